@@ -1,0 +1,475 @@
+//! Bezier curves of any degree in any dimension, and their exact operations.
+//!
+//! `P(t) = sum_i B_i^n(t) P_i` (mathematics.md, section 0). Control points are
+//! stored row-major (`point i, coordinate c` at `[i * dim + c]`), the layout
+//! of the C ABI. Every operation here is exact in the sense that it
+//! introduces no approximation beyond floating-point rounding: evaluation,
+//! derivatives (A2.3 basis), degree elevation, subdivision, segments with
+//! extrapolation (blossoming), reversal.
+
+use nalgebra::DMatrix;
+
+use crate::basis::{bezier_basis_derivatives, binomial};
+use crate::error::{BezjoinError, Result, check_closed_range, check_finite, check_finite_scalar};
+
+/// A polynomial Bezier curve of degree `n >= 0` in dimension `dim >= 1`.
+///
+/// Immutable once built; operations return new curves.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BezierCurve {
+    degree: usize,
+    dim: usize,
+    points: Vec<f64>,
+}
+
+impl BezierCurve {
+    /// A curve from `(degree + 1) * dim` row-major coordinates.
+    ///
+    /// Errors: `dim == 0` (InvalidArgument), wrong length (LengthMismatch),
+    /// NaN/infinity (NonFinite, naming the first bad index).
+    pub fn new(dim: usize, degree: usize, points: Vec<f64>) -> Result<Self> {
+        if dim == 0 {
+            return Err(BezjoinError::invalid("dim", "must be at least 1"));
+        }
+        let expected = degree
+            .checked_add(1)
+            .and_then(|n| n.checked_mul(dim))
+            .ok_or_else(|| BezjoinError::invalid("degree", format!("{degree} is too large")))?;
+        if points.len() != expected {
+            return Err(BezjoinError::LengthMismatch {
+                name: "points".into(),
+                expected,
+                actual: points.len(),
+            });
+        }
+        check_finite("points", &points)?;
+        Ok(Self {
+            degree,
+            dim,
+            points,
+        })
+    }
+
+    /// A curve from a list of control points (each a slice of `dim` coordinates).
+    pub fn from_rows<R: AsRef<[f64]>>(rows: &[R]) -> Result<Self> {
+        if rows.is_empty() {
+            return Err(BezjoinError::invalid(
+                "points",
+                "at least one control point is needed",
+            ));
+        }
+        let dim = rows[0].as_ref().len();
+        let mut points = Vec::with_capacity(rows.len() * dim);
+        for (i, r) in rows.iter().enumerate() {
+            let r = r.as_ref();
+            if r.len() != dim {
+                return Err(BezjoinError::DimensionMismatch {
+                    name: format!("points[{i}]"),
+                    expected: dim,
+                    actual: r.len(),
+                });
+            }
+            points.extend_from_slice(r);
+        }
+        Self::new(dim, rows.len() - 1, points)
+    }
+
+    /// A curve from an `(n + 1) x dim` matrix of control points (one per row).
+    pub fn from_matrix(m: &DMatrix<f64>) -> Result<Self> {
+        if m.nrows() == 0 {
+            return Err(BezjoinError::invalid(
+                "points",
+                "at least one control point is needed",
+            ));
+        }
+        let mut points = Vec::with_capacity(m.nrows() * m.ncols());
+        for i in 0..m.nrows() {
+            for c in 0..m.ncols() {
+                points.push(m[(i, c)]);
+            }
+        }
+        Self::new(m.ncols(), m.nrows() - 1, points)
+    }
+
+    /// Internal constructor for results of exact operations on valid curves.
+    pub(crate) fn from_parts(dim: usize, degree: usize, points: Vec<f64>) -> Self {
+        debug_assert_eq!(points.len(), (degree + 1) * dim);
+        Self {
+            degree,
+            dim,
+            points,
+        }
+    }
+
+    /// Degree `n`.
+    pub fn degree(&self) -> usize {
+        self.degree
+    }
+
+    /// Dimension of the space.
+    pub fn dim(&self) -> usize {
+        self.dim
+    }
+
+    /// Row-major control points, `(n + 1) * dim` values.
+    pub fn points(&self) -> &[f64] {
+        &self.points
+    }
+
+    /// Control point `i`.
+    pub fn point(&self, i: usize) -> &[f64] {
+        &self.points[i * self.dim..(i + 1) * self.dim]
+    }
+
+    /// Number of control points, `n + 1`.
+    pub fn point_count(&self) -> usize {
+        self.degree + 1
+    }
+
+    /// Control points as an `(n + 1) x dim` matrix.
+    pub fn control_matrix(&self) -> DMatrix<f64> {
+        DMatrix::from_row_slice(self.degree + 1, self.dim, &self.points)
+    }
+
+    /// Largest absolute coordinate of any control point (a size scale for
+    /// relative tolerances; at least the smallest positive normal number).
+    pub fn coordinate_scale(&self) -> f64 {
+        self.points
+            .iter()
+            .fold(0.0f64, |m, v| m.max(v.abs()))
+            .max(f64::MIN_POSITIVE)
+    }
+
+    /// Length of the control polygon.
+    pub fn polygon_length(&self) -> f64 {
+        (0..self.degree)
+            .map(|i| distance(self.point(i), self.point(i + 1)))
+            .sum()
+    }
+
+    /// `P(t)` written into `out` (length `dim`), without allocating.
+    ///
+    /// Uses the Bernstein-Horner scheme on the shorter side of `t = 1/2`
+    /// (`O(n d)`); any finite `t` is accepted.
+    ///
+    /// # Panics
+    /// If `out.len() != dim`.
+    pub fn eval_into(&self, t: f64, out: &mut [f64]) {
+        assert_eq!(out.len(), self.dim);
+        let n = self.degree;
+        let d = self.dim;
+        // P(t) = s^n sum_i C(n,i) (t/s)^i P_i = t^n sum_i C(n,i) (s/t)^(n-i) P_i,
+        // s = 1 - t. Horner in the ratio that is at most 1 in magnitude on [0, 1].
+        let s = 1.0 - t;
+        let (ratio, scale, first, step): (f64, f64, usize, isize) = if t > 0.5 {
+            (s / t, t.powi(n as i32), 0, 1)
+        } else {
+            (t / s, s.powi(n as i32), n, -1)
+        };
+        out.copy_from_slice(&self.points[first * d..(first + 1) * d]);
+        let mut coef = 1.0;
+        let mut idx = first as isize;
+        for i in 1..=n {
+            coef = coef * (n - i + 1) as f64 / i as f64;
+            idx += step;
+            let p = &self.points[idx as usize * d..(idx as usize + 1) * d];
+            for c in 0..d {
+                out[c] = out[c] * ratio + coef * p[c];
+            }
+        }
+        for v in out.iter_mut() {
+            *v *= scale;
+        }
+    }
+
+    /// `P(t)`.
+    pub fn eval(&self, t: f64) -> Vec<f64> {
+        let mut out = vec![0.0; self.dim];
+        self.eval_into(t, &mut out);
+        out
+    }
+
+    /// `P(t)` by de Casteljau's algorithm (slower, the most stable; the
+    /// reference that the fast path is tested against).
+    pub fn eval_de_casteljau(&self, t: f64) -> Vec<f64> {
+        let d = self.dim;
+        let mut w = self.points.clone();
+        for level in 1..=self.degree {
+            for i in 0..=(self.degree - level) {
+                for c in 0..d {
+                    w[i * d + c] = (1.0 - t) * w[i * d + c] + t * w[(i + 1) * d + c];
+                }
+            }
+        }
+        w.truncate(d);
+        w
+    }
+
+    /// Value and derivatives `0..=max_order` at `t`, written row-major into
+    /// `out` (`(max_order + 1) * dim` values; row `k` is `P^(k)(t)`).
+    ///
+    /// Derivatives come from the A2.3 basis matrix `D(t)` times the control
+    /// points (mathematics.md, section 0). Orders above the degree are zero.
+    ///
+    /// # Panics
+    /// If `out.len() != (max_order + 1) * dim`.
+    pub fn eval_derivatives_into(&self, t: f64, max_order: usize, out: &mut [f64]) {
+        let d = self.dim;
+        assert_eq!(out.len(), (max_order + 1) * d);
+        let basis = bezier_basis_derivatives(self.degree, t, max_order.min(self.degree));
+        out.fill(0.0);
+        for k in 0..=max_order.min(self.degree) {
+            let row = &mut out[k * d..(k + 1) * d];
+            for i in 0..=self.degree {
+                let b = basis[(k, i)];
+                if b != 0.0 {
+                    let p = &self.points[i * d..(i + 1) * d];
+                    for c in 0..d {
+                        row[c] += b * p[c];
+                    }
+                }
+            }
+        }
+    }
+
+    /// Value and derivatives `0..=max_order` at `t` as a `(max_order + 1) x dim` matrix.
+    pub fn eval_derivatives(&self, t: f64, max_order: usize) -> DMatrix<f64> {
+        let mut out = vec![0.0; (max_order + 1) * self.dim];
+        self.eval_derivatives_into(t, max_order, &mut out);
+        DMatrix::from_row_slice(max_order + 1, self.dim, &out)
+    }
+
+    /// The k-th derivative `P^(k)(t)`.
+    pub fn derivative_at(&self, t: f64, order: usize) -> Vec<f64> {
+        let m = self.eval_derivatives(t, order);
+        m.row(order).iter().copied().collect()
+    }
+
+    /// The hodograph `P'` as a Bezier curve of degree `n - 1`
+    /// (`n (P_(i+1) - P_i)`); a degree-0 curve gives the zero curve of degree 0.
+    pub fn hodograph(&self) -> BezierCurve {
+        let n = self.degree;
+        let d = self.dim;
+        if n == 0 {
+            return BezierCurve::from_parts(d, 0, vec![0.0; d]);
+        }
+        let mut pts = Vec::with_capacity(n * d);
+        for i in 0..n {
+            for c in 0..d {
+                pts.push(n as f64 * (self.points[(i + 1) * d + c] - self.points[i * d + c]));
+            }
+        }
+        BezierCurve::from_parts(d, n - 1, pts)
+    }
+
+    /// The same curve written with degree `new_degree >= n` (exact degree
+    /// elevation: `Q_j = sum_i C(n,i) C(m-n,j-i) / C(m,j) P_i`).
+    ///
+    /// Error: `new_degree < n` (InvalidArgument).
+    pub fn elevate_degree(&self, new_degree: usize) -> Result<BezierCurve> {
+        let n = self.degree;
+        let m = new_degree;
+        if m < n {
+            return Err(BezjoinError::invalid(
+                "new_degree",
+                format!("{m} is below the curve's degree {n}; degree reduction is not exact"),
+            ));
+        }
+        if m == n {
+            return Ok(self.clone());
+        }
+        let d = self.dim;
+        let r = m - n;
+        let mut pts = vec![0.0; (m + 1) * d];
+        for j in 0..=m {
+            let lo = j.saturating_sub(r);
+            let hi = j.min(n);
+            // Coefficients C(n,i) C(r,j-i) / C(m,j) computed as a ratio of
+            // products to stay accurate beyond 2^53.
+            let denom = binomial(m, j);
+            for i in lo..=hi {
+                let w = binomial(n, i) * binomial(r, j - i) / denom;
+                for c in 0..d {
+                    pts[j * d + c] += w * self.points[i * d + c];
+                }
+            }
+        }
+        Ok(BezierCurve::from_parts(d, m, pts))
+    }
+
+    /// Subdivision at `t in [0, 1]` by de Casteljau: the pieces on `[0, t]`
+    /// and `[t, 1]`, each reparametrised to `[0, 1]`.
+    pub fn split_at(&self, t: f64) -> Result<(BezierCurve, BezierCurve)> {
+        check_closed_range("t", t, 0.0, 1.0)?;
+        Ok(self.split_unchecked(t))
+    }
+
+    pub(crate) fn split_unchecked(&self, t: f64) -> (BezierCurve, BezierCurve) {
+        let n = self.degree;
+        let d = self.dim;
+        let mut w = self.points.clone();
+        let mut left = Vec::with_capacity((n + 1) * d);
+        let mut right = vec![0.0; (n + 1) * d];
+        left.extend_from_slice(&w[0..d]);
+        right[n * d..].copy_from_slice(&w[n * d..]);
+        for level in 1..=n {
+            for i in 0..=(n - level) {
+                for c in 0..d {
+                    w[i * d + c] = (1.0 - t) * w[i * d + c] + t * w[(i + 1) * d + c];
+                }
+            }
+            left.extend_from_slice(&w[0..d]);
+            let k = n - level;
+            right[k * d..(k + 1) * d].copy_from_slice(&w[k * d..(k + 1) * d]);
+        }
+        (
+            BezierCurve::from_parts(d, n, left),
+            BezierCurve::from_parts(d, n, right),
+        )
+    }
+
+    /// The curve `s -> P(a + (b - a) s)` for any finite `a`, `b`
+    /// (extrapolation outside `[0, 1]` and `a > b` included).
+    ///
+    /// Control point `i` is the blossom `P[a^(n-i), b^i]`, evaluated by de
+    /// Casteljau steps with `b` then `a`. `a == b` gives the constant curve.
+    pub fn segment(&self, a: f64, b: f64) -> Result<BezierCurve> {
+        check_finite_scalar("a", a)?;
+        check_finite_scalar("b", b)?;
+        Ok(self.segment_unchecked(a, b))
+    }
+
+    pub(crate) fn segment_unchecked(&self, a: f64, b: f64) -> BezierCurve {
+        let n = self.degree;
+        let d = self.dim;
+        let mut out = vec![0.0; (n + 1) * d];
+        // levels_b[i] holds the points after i de Casteljau steps at b
+        // (n + 1 - i points), i.e. blossom values P[b^i, ...].
+        let mut level = self.points.clone();
+        let mut work = vec![0.0; (n + 1) * d];
+        for i in 0..=n {
+            // Apply n - i steps at a to the current b-level (n + 1 - i points).
+            let count = n + 1 - i;
+            work[..count * d].copy_from_slice(&level[..count * d]);
+            for step in 1..count {
+                for j in 0..(count - step) {
+                    for c in 0..d {
+                        work[j * d + c] = (1.0 - a) * work[j * d + c] + a * work[(j + 1) * d + c];
+                    }
+                }
+            }
+            out[i * d..(i + 1) * d].copy_from_slice(&work[..d]);
+            // One more step at b.
+            if i < n {
+                for j in 0..(count - 1) {
+                    for c in 0..d {
+                        level[j * d + c] =
+                            (1.0 - b) * level[j * d + c] + b * level[(j + 1) * d + c];
+                    }
+                }
+            }
+        }
+        BezierCurve::from_parts(d, n, out)
+    }
+
+    /// The same curve traversed backwards: `s -> P(1 - s)`.
+    pub fn reverse(&self) -> BezierCurve {
+        let d = self.dim;
+        let mut pts = Vec::with_capacity(self.points.len());
+        for i in (0..=self.degree).rev() {
+            pts.extend_from_slice(self.point(i));
+        }
+        BezierCurve::from_parts(d, self.degree, pts)
+    }
+
+    /// Largest distance between this curve and `other` at `samples + 1`
+    /// evenly spaced parameters (a measuring tool for reports and tests).
+    pub fn max_distance_sampled(&self, other: &BezierCurve, samples: usize) -> f64 {
+        let samples = samples.max(1);
+        let mut a = vec![0.0; self.dim];
+        let mut b = vec![0.0; other.dim];
+        (0..=samples)
+            .map(|s| {
+                let t = s as f64 / samples as f64;
+                self.eval_into(t, &mut a);
+                other.eval_into(t, &mut b);
+                distance(&a, &b)
+            })
+            .fold(0.0, f64::max)
+    }
+}
+
+/// Euclidean distance between two points of equal dimension.
+pub fn distance(a: &[f64], b: &[f64]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y) * (x - y))
+        .sum::<f64>()
+        .sqrt()
+}
+
+/// Euclidean norm.
+pub fn norm(a: &[f64]) -> f64 {
+    a.iter().map(|x| x * x).sum::<f64>().sqrt()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn cubic() -> BezierCurve {
+        BezierCurve::from_rows(&[[0.0, 0.0], [1.0, 2.0], [3.0, 3.0], [4.0, 0.0]]).unwrap()
+    }
+
+    #[test]
+    fn horner_matches_de_casteljau() {
+        let c = cubic();
+        for s in -10..=30 {
+            let t = s as f64 / 20.0;
+            let a = c.eval(t);
+            let b = c.eval_de_casteljau(t);
+            assert!(distance(&a, &b) < 1e-12, "t={t}");
+        }
+    }
+
+    #[test]
+    fn endpoints_and_derivative_at_zero() {
+        let c = cubic();
+        assert_eq!(c.eval(0.0), vec![0.0, 0.0]);
+        assert_eq!(c.eval(1.0), vec![4.0, 0.0]);
+        let d = c.derivative_at(0.0, 1);
+        assert!((d[0] - 3.0).abs() < 1e-14 && (d[1] - 6.0).abs() < 1e-14);
+    }
+
+    #[test]
+    fn constructor_errors_name_the_argument() {
+        assert_eq!(
+            BezierCurve::new(2, 1, vec![0.0; 3]).unwrap_err(),
+            BezjoinError::LengthMismatch {
+                name: "points".into(),
+                expected: 4,
+                actual: 3
+            }
+        );
+        assert!(matches!(
+            BezierCurve::new(0, 1, vec![]),
+            Err(BezjoinError::InvalidArgument { .. })
+        ));
+        assert!(matches!(
+            BezierCurve::new(1, 1, vec![0.0, f64::INFINITY]),
+            Err(BezjoinError::NonFinite { index: 1, .. })
+        ));
+    }
+
+    #[test]
+    fn segment_handles_reversal_and_degenerate() {
+        let c = cubic();
+        let r = c.segment(1.0, 0.0).unwrap();
+        assert!(r.max_distance_sampled(&c.reverse(), 20) < 1e-14);
+        let p = c.segment(0.3, 0.3).unwrap();
+        let x = c.eval(0.3);
+        for i in 0..=3 {
+            assert!(distance(p.point(i), &x) < 1e-14);
+        }
+    }
+}

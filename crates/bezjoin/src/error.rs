@@ -1,0 +1,204 @@
+//! The one error type of the library.
+//!
+//! Every variant carries the offending values so that a message can name the
+//! bad argument (`"u0 = 1.5 is outside [0, 1]"`). The C ABI maps the variants
+//! onto its status codes with an exhaustive `match`, so the enum is
+//! deliberately not `#[non_exhaustive]`: a new variant must be given a status
+//! code before the FFI crate compiles again.
+
+/// Result alias used throughout the crate.
+pub type Result<T, E = BezjoinError> = std::result::Result<T, E>;
+
+/// Everything that can go wrong in a bezjoin operation.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum BezjoinError {
+    /// A scalar parameter lies outside its domain.
+    ///
+    /// ```
+    /// # use bezjoin_core::BezierCurve;
+    /// let line = BezierCurve::new(2, 1, vec![0.0, 0.0, 1.0, 0.0]).unwrap();
+    /// let err = line.split_at(1.5).unwrap_err();
+    /// assert_eq!(err.to_string(), "t = 1.5 is outside [0, 1]");
+    /// ```
+    #[error("{name} = {value} is outside {range}")]
+    ParameterOutOfRange {
+        /// Name of the argument as the caller knows it.
+        name: String,
+        /// The value given.
+        value: f64,
+        /// The allowed range, written as in mathematics (`[0, 1]`, `(0, 1)`, `> 0`).
+        range: String,
+    },
+
+    /// A continuity or derivative order above what the curve's degree allows.
+    #[error("{name} = {order} is above the degree {degree} of {curve}")]
+    OrderAboveDegree {
+        /// Name of the order argument.
+        name: String,
+        /// The order given.
+        order: usize,
+        /// The degree it may not exceed.
+        degree: usize,
+        /// Which curve.
+        curve: String,
+    },
+
+    /// An array whose length does not fit the degree, dimension or count.
+    #[error("{name} has {actual} values, expected {expected}")]
+    LengthMismatch {
+        /// Name of the array.
+        name: String,
+        /// Length needed.
+        expected: usize,
+        /// Length given.
+        actual: usize,
+    },
+
+    /// Any other value outside its domain; the reason says which and why.
+    #[error("{name}: {reason}")]
+    InvalidArgument {
+        /// Name of the argument.
+        name: String,
+        /// What is wrong with it.
+        reason: String,
+    },
+
+    /// NaN or infinity in the input.
+    ///
+    /// ```
+    /// # use bezjoin_core::BezierCurve;
+    /// let err = BezierCurve::new(1, 1, vec![0.0, f64::NAN]).unwrap_err();
+    /// assert_eq!(err.to_string(), "points[1] = NaN is not finite");
+    /// ```
+    #[error("{name}[{index}] = {value} is not finite")]
+    NonFinite {
+        /// Name of the array or argument.
+        name: String,
+        /// Position of the first non-finite value (0 for a scalar).
+        index: usize,
+        /// The value found.
+        value: f64,
+    },
+
+    /// Two curves or data sets of different dimensions.
+    #[error("{name} has dimension {actual}, expected {expected}")]
+    DimensionMismatch {
+        /// Which input.
+        name: String,
+        /// Dimension of the reference input.
+        expected: usize,
+        /// Dimension found.
+        actual: usize,
+    },
+
+    /// The constraints contradict each other or are too many.
+    #[error("inconsistent constraints: {reason}")]
+    Inconsistent {
+        /// Which constraints and why.
+        reason: String,
+    },
+
+    /// A linear system that has no unique solution.
+    #[error("singular system in {what}")]
+    Singular {
+        /// Which system.
+        what: String,
+    },
+
+    /// The answer cannot be trusted to the promised accuracy.
+    #[error("{what}: estimated relative error {estimate:e} exceeds the promised {limit:e}")]
+    IllConditioned {
+        /// Which computation.
+        what: String,
+        /// The error estimate (relative).
+        estimate: f64,
+        /// The accuracy the library promises.
+        limit: f64,
+    },
+
+    /// Curves that should cross do not (or only touch).
+    #[error("no intersection: {reason}")]
+    NoIntersection {
+        /// What was found instead.
+        reason: String,
+    },
+}
+
+impl BezjoinError {
+    /// `ParameterOutOfRange` with owned strings.
+    pub fn out_of_range(name: impl Into<String>, value: f64, range: impl Into<String>) -> Self {
+        Self::ParameterOutOfRange {
+            name: name.into(),
+            value,
+            range: range.into(),
+        }
+    }
+
+    /// `InvalidArgument` with owned strings.
+    pub fn invalid(name: impl Into<String>, reason: impl Into<String>) -> Self {
+        Self::InvalidArgument {
+            name: name.into(),
+            reason: reason.into(),
+        }
+    }
+}
+
+/// Check that every value of `values` is finite; name the first one that is not.
+pub fn check_finite(name: &str, values: &[f64]) -> Result<()> {
+    match values.iter().position(|v| !v.is_finite()) {
+        None => Ok(()),
+        Some(index) => Err(BezjoinError::NonFinite {
+            name: name.into(),
+            index,
+            value: values[index],
+        }),
+    }
+}
+
+/// Check a scalar is finite.
+pub fn check_finite_scalar(name: &str, value: f64) -> Result<()> {
+    if value.is_finite() {
+        Ok(())
+    } else {
+        Err(BezjoinError::NonFinite {
+            name: name.into(),
+            index: 0,
+            value,
+        })
+    }
+}
+
+/// Check `value` is finite and in the closed interval `[lo, hi]`.
+pub fn check_closed_range(name: &str, value: f64, lo: f64, hi: f64) -> Result<()> {
+    check_finite_scalar(name, value)?;
+    if value < lo || value > hi {
+        return Err(BezjoinError::out_of_range(
+            name,
+            value,
+            format!("[{lo}, {hi}]"),
+        ));
+    }
+    Ok(())
+}
+
+/// Check `value` is finite and in the open interval `(lo, hi)`.
+pub fn check_open_range(name: &str, value: f64, lo: f64, hi: f64) -> Result<()> {
+    check_finite_scalar(name, value)?;
+    if value <= lo || value >= hi {
+        return Err(BezjoinError::out_of_range(
+            name,
+            value,
+            format!("({lo}, {hi})"),
+        ));
+    }
+    Ok(())
+}
+
+/// Check `value` is finite and strictly positive.
+pub fn check_positive(name: &str, value: f64) -> Result<()> {
+    check_finite_scalar(name, value)?;
+    if value <= 0.0 {
+        return Err(BezjoinError::out_of_range(name, value, "> 0"));
+    }
+    Ok(())
+}

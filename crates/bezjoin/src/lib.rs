@@ -1,0 +1,36 @@
+//! # bezjoin
+//!
+//! Smooth joins of Bezier curves of any degree in any dimension, after four
+//! papers restated in `shared/spec/mathematics.md`:
+//!
+//! * [`connect`] — a connecting Bezier curve with C^k continuity at both ends
+//!   and interior point/derivative constraints (Krivosheev, Mavrin, Starkova 2025);
+//! * [`fillet`] — rounding the corner between two crossing curves, built on
+//!   [`intersect`] and [`connect`];
+//! * [`merge`] — the smallest change of two curves' control points that makes
+//!   them one curve (Ganchuk, Krivosheev, Mavrin, Ryzhov 2024; Hu et al. 2001);
+//! * [`lagrange`] — cubic splines whose control points lie on the curve (Kovtun).
+//!
+//! The ground they stand on: [`BezierCurve`] with exact evaluation,
+//! derivatives (The NURBS Book A2.3 in [`basis`]), degree elevation,
+//! subdivision, segments and arc length; [`BSplineCurve`] for chains.
+#![forbid(unsafe_code)]
+#![warn(missing_docs)]
+
+pub mod arclength;
+pub mod basis;
+pub mod bezier;
+pub mod bspline;
+pub mod connect;
+pub mod error;
+pub mod fillet;
+pub mod intersect;
+pub mod lagrange;
+pub mod linalg;
+pub mod merge;
+
+pub use arclength::DEFAULT_ARC_LENGTH_ACCURACY;
+pub use basis::KnotSide;
+pub use bezier::BezierCurve;
+pub use bspline::BSplineCurve;
+pub use error::{BezjoinError, Result};
