@@ -15,6 +15,21 @@
 #include <stdint.h>
 
 /**
+ * Major version (the SONAME's number): changes only with an ABI break.
+ */
+#define BZJ_VERSION_MAJOR 0
+
+/**
+ * Minor version: new functions and structs.
+ */
+#define BZJ_VERSION_MINOR 1
+
+/**
+ * Patch version: fixes only.
+ */
+#define BZJ_VERSION_PATCH 0
+
+/**
  * Status returned by every fallible function. Values are fixed by the contract.
  */
 enum BzjStatus

@@ -23,6 +23,7 @@ mod curve;
 mod fillet;
 mod lagrange;
 mod merge;
+mod version;
 
 pub use connect::*;
 pub use curve::*;
@@ -30,3 +31,4 @@ pub use fillet::*;
 pub use guard::{BzjStatus, bzj_last_error, bzj_status_name, bzj_version};
 pub use lagrange::*;
 pub use merge::*;
+pub use version::*;
