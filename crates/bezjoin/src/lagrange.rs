@@ -246,7 +246,8 @@ impl LagrangeOptions {
         (1..self.degree).filter(|j| !derived.contains(j)).collect()
     }
 
-    fn validate(&self) -> Result<()> {
+    /// Check degree (3..=5), continuity (1..=degree-2) and accuracy (> 0).
+    pub fn validate(&self) -> Result<()> {
         if !(3..=5).contains(&self.degree) {
             return Err(BezjoinError::invalid(
                 "degree",
