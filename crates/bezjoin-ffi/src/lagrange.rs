@@ -253,7 +253,9 @@ pub unsafe extern "C" fn bzj_lagrange_spline_degree(
             }
             return Err(BezjoinError::invalid(
                 "flags",
-                format!("{flags:#x} has bits other than BZJ_LAGRANGE_BACKWARD | BZJ_LAGRANGE_MIRRORED"),
+                format!(
+                    "{flags:#x} has bits other than BZJ_LAGRANGE_BACKWARD | BZJ_LAGRANGE_MIRRORED"
+                ),
             )
             .into());
         }
@@ -312,8 +314,15 @@ mod tests {
             )
         };
         assert_eq!(s, BzjStatus::BZJ_OK);
-        let core =
-            lagrange_spline(2, &nodes, None, &first, &second, &LagrangeOptions::default()).unwrap();
+        let core = lagrange_spline(
+            2,
+            &nodes,
+            None,
+            &first,
+            &second,
+            &LagrangeOptions::default(),
+        )
+        .unwrap();
         for (i, seg) in core.segments().iter().enumerate() {
             let h = unsafe { &*out[i] };
             assert_eq!(h.curve.points(), seg.points());

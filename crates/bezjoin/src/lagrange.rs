@@ -267,11 +267,7 @@ impl LagrangeOptions {
             ));
         }
         if !(self.accuracy.is_finite() && self.accuracy > 0.0) {
-            return Err(BezjoinError::out_of_range(
-                "accuracy",
-                self.accuracy,
-                "> 0",
-            ));
+            return Err(BezjoinError::out_of_range("accuracy", self.accuracy, "> 0"));
         }
         Ok(())
     }
@@ -400,7 +396,10 @@ pub fn chord_length_params(dim: usize, nodes: &[f64]) -> Result<Vec<f64>> {
     let count = nodes.len() / dim.max(1);
     let mut x = vec![0.0; count];
     for i in 1..count {
-        let chord = distance(&nodes[(i - 1) * dim..i * dim], &nodes[i * dim..(i + 1) * dim]);
+        let chord = distance(
+            &nodes[(i - 1) * dim..i * dim],
+            &nodes[i * dim..(i + 1) * dim],
+        );
         if chord == 0.0 {
             return Err(BezjoinError::invalid(
                 "nodes",
@@ -414,10 +413,7 @@ pub fn chord_length_params(dim: usize, nodes: &[f64]) -> Result<Vec<f64>> {
         x[i] = x[i - 1] + chord;
     }
     if !x.last().copied().unwrap_or(0.0).is_finite() {
-        return Err(BezjoinError::invalid(
-            "nodes",
-            "the chord length overflows",
-        ));
+        return Err(BezjoinError::invalid("nodes", "the chord length overflows"));
     }
     Ok(x)
 }
@@ -557,10 +553,16 @@ impl LagrangeSpline {
         let mut points = Vec::with_capacity(point_count * d);
         for j in 0..point_count {
             let window = &knots[j + 1..=j + n];
-            // a non-empty span [knots[r], knots[r+1]] with j <= r <= j + n
-            let r = (j.max(n)..=(j + n).min(knots.len() - n - 2))
-                .find(|&r| knots[r] < knots[r + 1])
-                .expect("a clamped knot vector has a span in every window");
+            // a non-empty span [knots[r], knots[r+1]] with j <= r <= j + n,
+            // preferably one whose closed interval holds the whole window
+            let spans: Vec<usize> = (j.max(n)..=(j + n).min(knots.len() - n - 2))
+                .filter(|&r| knots[r] < knots[r + 1])
+                .collect();
+            let r = spans
+                .iter()
+                .copied()
+                .find(|&r| window.iter().all(|&t| t == knots[r] || t == knots[r + 1]))
+                .unwrap_or(spans[0]);
             let s = self.params.partition_point(|&x| x <= knots[r]) - 1;
             let (x0, x1) = (self.params[s], self.params[s + 1]);
             let piece = &self.segments[s];
@@ -858,7 +860,10 @@ pub fn lagrange_spline(
     if let Some(i) = intervals.iter().position(|h| !(h.is_finite() && *h > 0.0)) {
         return Err(BezjoinError::invalid(
             "params",
-            format!("interval {i} = {} is not a positive finite length", intervals[i]),
+            format!(
+                "interval {i} = {} is not a positive finite length",
+                intervals[i]
+            ),
         ));
     }
 
@@ -998,7 +1003,9 @@ mod tests {
     fn lagrange_basis_reproduces_polynomials() {
         // y = u^n sampled at j/n: Bezier of u^n is (0, ..., 0, 1)
         for n in 1..=5 {
-            let pts: Vec<f64> = (0..=n).map(|j| (j as f64 / n as f64).powi(n as i32)).collect();
+            let pts: Vec<f64> = (0..=n)
+                .map(|j| (j as f64 / n as f64).powi(n as i32))
+                .collect();
             let c = bezier_from_lagrange_points(1, &pts).unwrap();
             for i in 0..n {
                 assert!(c.point(i)[0].abs() < 1e-14, "n={n} b{i}={}", c.point(i)[0]);
