@@ -56,7 +56,7 @@ unsafe fn build_into(
     }
     let segment_count = node_count - 1;
     if segment_capacity < segment_count {
-        return Err(FfiError::BufferTooSmall {
+        return Err(FfiError::HandleArrayTooSmall {
             name: "out_segments".into(),
             needed: segment_count,
             given: segment_capacity,
