@@ -8,13 +8,17 @@
 
 use bezjoin_core::BezierCurve;
 use bezjoin_core::BezjoinError;
-use bezjoin_core::merge::{DEFAULT_MERGE_ACCURACY, MergeMetric, MergeOptions, SplitParameter, merge};
+use bezjoin_core::merge::{
+    DEFAULT_MERGE_ACCURACY, MergeMetric, MergeOptions, SplitParameter, merge,
+};
 
 fn curve(degree: usize, seed: u64) -> BezierCurve {
     let mut state = seed;
     let pts = (0..(degree + 1) * 2)
         .map(|_| {
-            state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
             ((state >> 11) as f64 / (1u64 << 53) as f64) * 4.0 - 2.0
         })
         .collect();
@@ -23,7 +27,9 @@ fn curve(degree: usize, seed: u64) -> BezierCurve {
 
 #[test]
 fn merge_back_accuracy_by_degree() {
-    println!("| degree | t | metric | result | error of R vs the curve (relative) | solve estimate | split check |");
+    println!(
+        "| degree | t | metric | result | error of R vs the curve (relative) | solve estimate | split check |"
+    );
     println!("|---|---|---|---|---|---|---|");
     for degree in [1, 2, 3, 5, 7, 10, 12, 15, 20, 25, 30] {
         for t in [0.5, 0.3, 0.1] {
@@ -51,16 +57,17 @@ fn merge_back_accuracy_by_degree() {
                         // The pieces are what the promise is about: they are
                         // reproduced within the accuracy ...
                         assert!(m.report.split_check_error <= DEFAULT_MERGE_ACCURACY);
-                        // ... and R itself, extrapolated from the longer
-                        // piece, within (2/max(t,1-t) - 1)^n times that.
-                        let growth = (2.0 / t.max(1.0 - t) - 1.0).powi(degree as i32);
+                        // ... and R itself is within 10 times the accuracy
+                        // of the known answer.
                         assert!(
-                            error <= DEFAULT_MERGE_ACCURACY * growth.max(1.0),
+                            error <= 10.0 * DEFAULT_MERGE_ACCURACY,
                             "degree {degree} t {t}: silent error {error:e}"
                         );
                     }
                     Err(BezjoinError::IllConditioned { what, estimate, .. }) => {
-                        println!("| {degree} | {t} | {metric:?} | IllConditioned ({what}) | | {estimate:.1e} | |");
+                        println!(
+                            "| {degree} | {t} | {metric:?} | IllConditioned ({what}) | | {estimate:.1e} | |"
+                        );
                     }
                     Err(e) => panic!("degree {degree}: unexpected {e}"),
                 }

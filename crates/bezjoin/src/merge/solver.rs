@@ -195,12 +195,19 @@ pub(crate) fn solve_stage_one(
     // `Q^T e = -Q^T x0` exactly; then the constraint rows in order by
     // Gram-Schmidt (two passes), a row whose remainder is below
     // RANK_TOLERANCE being linearly dependent on those before it.
+    // Lower bound of the continuity rows' condition number (from the QR
+    // diagonal): rounding in those rows moves the feasible set by about
+    // this times the unit roundoff.
+    let mut row_condition = 1.0;
     let mut basis: Vec<(DVector<f64>, DVector<f64>)> = {
         let mut at = DMatrix::zeros(unknowns, continuity.len());
         for (c, row) in continuity.iter().enumerate() {
             at.set_column(c, &row.coefficients);
         }
-        let q = at.qr().q();
+        let qr = at.qr();
+        let diagonal = qr.r().diagonal().abs();
+        row_condition = diagonal.max() / diagonal.min().max(f64::MIN_POSITIVE);
+        let q = qr.q();
         (0..q.ncols())
             .map(|c| {
                 let column = q.column(c).into_owned();
@@ -254,7 +261,13 @@ pub(crate) fn solve_stage_one(
         rhs.row_mut(unknowns + k).copy_from(&row_rhs.transpose());
     }
     let solution = solve_checked(&kkt, &rhs, "the merge KKT system")?;
-    let estimate = solution.error_estimate();
+    // condition x backward error, but at least condition x (unit roundoff
+    // times the continuity rows' condition): the orthonormal rows and the
+    // right-hand side carry the rounding of the data, even when the
+    // right-hand side is itself tiny (curves that nearly are one).
+    let estimate = solution
+        .error_estimate()
+        .max(solution.condition * row_condition * f64::EPSILON);
     if estimate > accuracy {
         return Err(BezjoinError::IllConditioned {
             what: format!(
@@ -364,7 +377,12 @@ pub(crate) fn stage_two(
     let h = lengths[longest];
     let start = -breakpoints[longest] / h;
     let end = (1.0 - breakpoints[longest]) / h;
-    let merged = piece.segment(start, end)?;
+    let mut merged = piece.segment(start, end)?;
+    // Refinement: the extrapolation amplifies rounding by up to (2/h - 1)^m;
+    // two steps of least-squares correction against ALL pieces (the stacked
+    // restriction matrices [S_0; S_1; ...] are well conditioned together,
+    // unlike any one of them) remove most of it.
+    refine(&mut merged, pieces, breakpoints);
     let scale = pieces
         .iter()
         .map(|p| p.amax())
@@ -387,6 +405,52 @@ pub(crate) fn stage_two(
         });
     }
     Ok((merged, worst))
+}
+
+/// Restriction matrices: row block `j` maps `R`'s control points to those of
+/// `R` on `[t_j, t_{j+1}]` (exact segments of the unit coefficient vectors).
+fn restriction_matrix(degree: usize, breakpoints: &[f64]) -> DMatrix<f64> {
+    let count = breakpoints.len() - 1;
+    let points = degree + 1;
+    let mut s = DMatrix::zeros(count * points, points);
+    for k in 0..points {
+        let mut unit = vec![0.0; points];
+        unit[k] = 1.0;
+        let basis_curve = BezierCurve::from_parts(1, degree, unit);
+        for j in 0..count {
+            let seg = basis_curve.segment_unchecked(breakpoints[j], breakpoints[j + 1]);
+            for i in 0..points {
+                s[(j * points + i, k)] = seg.points()[i];
+            }
+        }
+    }
+    s
+}
+
+fn refine(merged: &mut BezierCurve, pieces: &[DMatrix<f64>], breakpoints: &[f64]) {
+    let degree = merged.degree();
+    let points = degree + 1;
+    let s = restriction_matrix(degree, breakpoints);
+    let mut target = DMatrix::zeros(s.nrows(), merged.dim());
+    for (j, p) in pieces.iter().enumerate() {
+        target.rows_mut(j * points, points).copy_from(p);
+    }
+    let qr = s.clone().qr();
+    let (q, r) = (qr.q(), qr.r());
+    let mut current = merged.control_matrix();
+    for _ in 0..2 {
+        let residual = &target - &s * &current;
+        let Some(correction) = r.solve_upper_triangular(&(q.transpose() * residual)) else {
+            return;
+        };
+        if correction.iter().any(|v| !v.is_finite()) {
+            return;
+        }
+        current += correction;
+    }
+    if let Ok(better) = BezierCurve::from_matrix(&current) {
+        *merged = better;
+    }
 }
 
 /// Largest distance between `R` and the original pieces, each compared in
