@@ -198,7 +198,7 @@ pub(crate) fn solve_stage_one(
     // Lower bound of the continuity rows' condition number (from the QR
     // diagonal): rounding in those rows moves the feasible set by about
     // this times the unit roundoff.
-    let mut row_condition = 1.0;
+    let row_condition;
     let mut basis: Vec<(DVector<f64>, DVector<f64>)> = {
         let mut at = DMatrix::zeros(unknowns, continuity.len());
         for (c, row) in continuity.iter().enumerate() {
@@ -289,7 +289,7 @@ pub(crate) fn solve_stage_one(
         .map(|row| (x.transpose() * &row.coefficients).amax())
         .fold(0.0f64, f64::max)
         / result_scale;
-    if !(continuity_residual <= accuracy) {
+    if continuity_residual.is_nan() || continuity_residual > accuracy {
         return Err(BezjoinError::IllConditioned {
             what: "merge stage 1 (residual of the continuity conditions (3))".into(),
             estimate: continuity_residual,
@@ -394,7 +394,7 @@ pub(crate) fn stage_two(
         let diff = (back.control_matrix() - p).amax();
         worst = worst.max(diff / scale);
     }
-    if !(worst <= accuracy) {
+    if worst.is_nan() || worst > accuracy {
         return Err(BezjoinError::IllConditioned {
             what: format!(
                 "merge stage 2 (R of degree {} restricted to the pieces does not give them back)",
