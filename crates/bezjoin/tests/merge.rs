@@ -972,3 +972,50 @@ fn chain_of_two_is_merge_and_chain_constraints_hold() {
         BezjoinError::Inconsistent { .. }
     ));
 }
+
+#[test]
+fn chain_no_feasible_perturbation_lowers_the_summed_metric() {
+    let mut rng = Random(61);
+    for metric in [MergeMetric::Discrete, MergeMetric::Integral] {
+        for fix_ends in [false, true] {
+            let curves: Vec<BezierCurve> = (0..3).map(|_| rng.curve(2, 4)).collect();
+            let o = ChainMergeOptions {
+                metric,
+                breakpoints: ChainBreakpoints::Given(vec![0.3, 0.55]),
+                fix_ends,
+                ..ChainMergeOptions::default()
+            };
+            let m = merge_chain(&curves, &o).unwrap();
+            let t = &m.report.breakpoints;
+            let value_of = |r: &BezierCurve| -> f64 {
+                (0..3)
+                    .map(|j| {
+                        let piece = r.segment(t[j], t[j + 1]).unwrap();
+                        metric_of(
+                            metric,
+                            4,
+                            &(piece.control_matrix() - curves[j].control_matrix()),
+                        )
+                    })
+                    .sum()
+            };
+            let best = value_of(&m.merged);
+            assert!((best - m.report.metric_value).abs() <= 1e-9 * (1.0 + best));
+            for _ in 0..30 {
+                let size = 10f64.powf(rng.range(-6.0, 0.0));
+                let mut points = m.merged.points().to_vec();
+                // With fixed ends, R's first and last control points are fixed.
+                let free = if fix_ends { 2..8 } else { 0..10 };
+                for v in &mut points[free] {
+                    *v += rng.range(-size, size);
+                }
+                let r = BezierCurve::new(2, 4, points).unwrap();
+                let value = value_of(&r);
+                assert!(
+                    value >= best - 1e-12 * (1.0 + best),
+                    "{metric:?} fix_ends={fix_ends}: {value} < {best}"
+                );
+            }
+        }
+    }
+}
