@@ -28,8 +28,11 @@
 //!
 //! **Stage 2** writes `R` exactly: `R = segment(P^, 0, 1/mu)`, or
 //! `segment(Q^, -mu/(1-mu), 1)` when `mu < 1/2` (extrapolate from the longer
-//! piece: the rounding error grows like `(2/mu - 1)^n`). `R` split at `mu`
-//! must give back `P^` and `Q^`; that check is part of every merge.
+//! piece: the rounding error grows like `(2/mu - 1)^n`), then refines it by
+//! two least-squares correction steps against both pieces at once (the
+//! stacked subdivision matrices `[S_L(mu); S_R(mu)]` are well conditioned
+//! together; this is the spec's "or solve for `R` directly"). `R` split at
+//! `mu` must give back `P^` and `Q^`; that check is part of every merge.
 //!
 //! # Guarantees and checks
 //!
