@@ -13,7 +13,7 @@ fuzz_target!(|data: &[u8]| {
     let len = input.below(4 * (MAX_DEGREE + 2) * MAX_DIM);
     let points: Vec<f64> = (0..len).map(|_| input.coordinate()).collect();
     // The declared length may be shorter than the buffer, never longer.
-    let declared = if input.byte() % 4 == 0 {
+    let declared = if input.byte().is_multiple_of(4) {
         input.below(len + 1)
     } else {
         len

@@ -24,7 +24,7 @@ fn ptr_or_null(v: &[f64], null_it: bool) -> *const f64 {
 
 fn check_segments(status: BzjStatus, segments: &mut [*mut BzjCurve], written: usize, call: &str) {
     check(status, call);
-    let sentinel = 1usize as *mut BzjCurve;
+    let sentinel = std::ptr::dangling_mut::<BzjCurve>();
     if status == BzjStatus::BZJ_ERR_BUFFER_TOO_SMALL {
         assert!(
             segments.iter().all(|s| *s == sentinel),
@@ -50,13 +50,13 @@ fuzz_target!(|data: &[u8]| {
     let dim = input.size(MAX_DIM).min(MAX_DIM + 1);
     let node_count = input.size(MAX_NODES).min(MAX_NODES + 1);
     let capacity = input.below(MAX_NODES + 2);
-    let sentinel = 1usize as *mut BzjCurve;
+    let sentinel = std::ptr::dangling_mut::<BzjCurve>();
     let mut segments = vec![sentinel; capacity];
     // Entries the library may write: all `node_count - 1` when they fit, else none.
     let needed = node_count.saturating_sub(1);
     let written = if capacity >= needed { needed } else { 0 };
     let nodes = doubles(&mut input, node_count * dim);
-    let params: Vec<f64> = if input.byte() % 2 == 0 {
+    let params: Vec<f64> = if input.byte().is_multiple_of(2) {
         let mut t = input.double();
         (0..node_count)
             .map(|_| {
@@ -67,12 +67,12 @@ fuzz_target!(|data: &[u8]| {
     } else {
         doubles(&mut input, node_count)
     };
-    let params_null = input.byte() % 3 == 0;
+    let params_null = input.byte().is_multiple_of(3);
 
-    if input.byte() % 2 == 0 {
+    if input.byte().is_multiple_of(2) {
         let first_inner = doubles(&mut input, 2 * dim);
         let second_inner = doubles(&mut input, node_count.saturating_sub(2) * dim);
-        let second_null = input.byte() % 8 == 0;
+        let second_null = input.byte().is_multiple_of(8);
         // SAFETY: every non-NULL buffer has the length the contract states.
         let status = unsafe {
             bzj_lagrange_spline(
@@ -94,7 +94,7 @@ fuzz_target!(|data: &[u8]| {
     } else {
         let degree = input.below(8);
         let continuity = input.below(6);
-        let flags = if input.byte() % 8 == 0 {
+        let flags = if input.byte().is_multiple_of(8) {
             input.byte() as u32 | 0x100
         } else {
             input.below(4) as u32
@@ -115,7 +115,10 @@ fuzz_target!(|data: &[u8]| {
                 nodes.as_ptr(),
                 ptr_or_null(&params, params_null),
                 start_inner.as_ptr(),
-                ptr_or_null(&free_inner, free_inner.is_empty() && input.byte() % 2 == 0),
+                ptr_or_null(
+                    &free_inner,
+                    free_inner.is_empty() && input.byte().is_multiple_of(2),
+                ),
                 if capacity == 0 {
                     null_mut()
                 } else {

@@ -62,7 +62,7 @@ fuzz_target!(|data: &[u8]| {
     let options = RawMergeOptions {
         metric: small_int(&mut input),
         split: small_int(&mut input),
-        mu: if input.byte() % 2 == 0 {
+        mu: if input.byte().is_multiple_of(2) {
             input.parameter()
         } else {
             input.double()
@@ -84,9 +84,9 @@ fuzz_target!(|data: &[u8]| {
         q_point_count: q_points.len(),
     };
     let options_ptr = (&raw const options).cast::<BzjMergeOptions>();
-    let want_hats = input.byte() % 2 == 0;
-    let want_report = input.byte() % 2 == 0;
-    let to_degree = input.byte() % 3 == 0;
+    let want_hats = input.byte().is_multiple_of(2);
+    let want_report = input.byte().is_multiple_of(2);
+    let to_degree = input.byte().is_multiple_of(3);
     let degree = input.below(MAX_DEGREE + 1);
 
     let (mut merged, mut p_hat, mut q_hat) = (null_mut(), null_mut(), null_mut());

@@ -92,7 +92,7 @@ impl<'a> Input<'a> {
 
     /// A parameter: mostly in [-0.5, 1.5], sometimes any double.
     pub fn parameter(&mut self) -> f64 {
-        if self.byte() % 8 == 0 {
+        if self.byte().is_multiple_of(8) {
             self.double()
         } else {
             let v = (u32::from(self.byte()) << 8) | u32::from(self.byte());
@@ -102,7 +102,7 @@ impl<'a> Input<'a> {
 
     /// A coordinate: mostly ordinary, sometimes any double.
     pub fn coordinate(&mut self) -> f64 {
-        if self.byte() % 8 == 0 {
+        if self.byte().is_multiple_of(8) {
             self.double()
         } else {
             self.ordinary()
@@ -138,6 +138,10 @@ pub fn check(status: BzjStatus, call: &str) {
 
 /// Check a handle returned by a call with `status`: NULL after a failure,
 /// a live curve of dimension `1..` after success (then freed).
+///
+/// `handle` must be NULL or a handle the library just returned (the
+/// targets only pass what a call wrote into an out-pointer).
+#[allow(clippy::not_unsafe_ptr_arg_deref)]
 pub fn check_and_free(status: BzjStatus, handle: *mut BzjCurve, call: &str) {
     check(status, call);
     if status != BzjStatus::BZJ_OK {
