@@ -6,9 +6,9 @@
 //    created once. Each worker w runs a deterministic pseudo-random sequence
 //    of `iterations` mixed calls on them (eval with derivatives, segment with
 //    extrapolation, split, arc length, degree elevation, reverse, points,
-//    including calls that fail on purpose), frees every handle it gets, and
-//    folds every status and every output double's bit pattern into an
-//    FNV-1a checksum.
+//    merge of two shared curves, including calls that fail on purpose),
+//    frees every handle it gets, and folds every status and every output
+//    double's bit pattern into an FNV-1a checksum.
 // 2. Reference: all workers run one after another on the main thread.
 //    Concurrent: all workers run at once, one thread each. Every worker's
 //    checksum must be bit-for-bit the reference one.
@@ -94,7 +94,7 @@ WorkerResult worker(unsigned id, long iterations) {
     for (long i = 0; i < iterations; ++i) {
         const BzjCurve* c = g_curves[rng.below(g_curves.size())];
         BzjStatus st;
-        switch (rng.below(8)) {
+        switch (rng.below(9)) {
             case 0:
             case 1: {  // eval, value and derivatives, inside and outside [0, 1]
                 const size_t order = rng.below(5);
@@ -149,6 +149,32 @@ WorkerResult worker(unsigned id, long iterations) {
                 sum.add_u64(static_cast<uint64_t>(st));
                 if (out) fold_curve(sum, out);
                 bzj_curve_free(out);
+                break;
+            }
+            case 7: {  // merge two shared curves of the same dimension
+                static const size_t pairs[][2] = {{1, 2}, {2, 7}, {3, 5}, {7, 1}, {0, 6}};
+                const size_t* pair = pairs[rng.below(5)];
+                BzjMergeOptions options;
+                std::memset(&options, 0, sizeof options);
+                options.metric = rng.below(2) ? BZJ_METRIC_L2 : BZJ_METRIC_DISCRETE;
+                const size_t split = rng.below(3);
+                options.split = split == 0 ? BZJ_SPLIT_GIVEN : split == 1 ? BZJ_SPLIT_HALF : BZJ_SPLIT_POLYGON;
+                options.mu = rng.uniform(0.2, 0.8);
+                options.fix_ends = rng.below(2) == 0;
+                BzjCurve *merged = nullptr, *p_hat = nullptr, *q_hat = nullptr;
+                BzjMergeReport report;
+                std::memset(&report, 0, sizeof report);
+                st = bzj_merge(g_curves[pair[0]], g_curves[pair[1]], &options, &merged, &p_hat, &q_hat, &report);
+                sum.add_u64(static_cast<uint64_t>(st));
+                if (st == BZJ_OK) {
+                    sum.add(report.mu);
+                    sum.add(report.metric_value);
+                    sum.add(report.max_deviation);
+                }
+                for (BzjCurve* h : {merged, p_hat, q_hat}) {
+                    if (h) fold_curve(sum, h);
+                    bzj_curve_free(h);
+                }
                 break;
             }
             default: {  // a non-finite parameter: an error on purpose
