@@ -372,7 +372,7 @@ fn solve2(a: f64, b: f64, c: f64, r: f64, s: f64) -> (f64, f64) {
 
 /// Closest parameter on `curve` to `x`, starting from samples and refined by
 /// Gauss-Newton; returns `(t, distance)`.
-fn project(
+pub(crate) fn project(
     curve: &BezierCurve,
     hodograph: &BezierCurve,
     x: &[f64],
