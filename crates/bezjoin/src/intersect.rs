@@ -17,9 +17,13 @@
 //!    point bounding boxes, widened by the distance tolerance, do not meet are
 //!    discarded (a Bezier piece lies in the convex hull of its control points).
 //!    A pair becomes a leaf when both pieces are flat (control points within
-//!    `1e-7 * scale` of their chord) or the depth bound is reached; each leaf
-//!    gives seeds from the closest points of the two chords (and from the four
-//!    chord ends when the chords are nearly parallel).
+//!    `max(1e-7 * scale, 1e-2 * chord length)` of their chord) or the depth
+//!    bound is reached; each leaf gives a seed from the closest points of the
+//!    two chords, or, when the chords are nearly parallel (sine of their
+//!    angle below about 0.06, where flat pieces might cross twice), seeds
+//!    from the four chord ends and the middle. A leaf whose chords are not
+//!    nearly parallel and whose parameter box already holds a polished hit
+//!    is skipped (such pieces cross at most once).
 //! 3. **Polishing.** Each seed is polished on the original curves by
 //!    Gauss-Newton on `|P(u) - Q(v)|^2` with Levenberg damping, kept inside
 //!    `[0, 1]^2` (a variable at its bound is held and the other solved alone).
@@ -61,6 +65,8 @@ pub const DEFAULT_MAX_HITS: usize = 10_000;
 
 /// Flatness of a leaf piece, relative to the coordinate scale.
 const RELATIVE_FLATNESS: f64 = 1e-7;
+/// Flatness of a leaf piece, relative to its chord length.
+const RELATIVE_CHORD_FLATNESS: f64 = 1e-2;
 /// Above this sine of the tangent angle a 2D hit is a crossing without further tests.
 const SURELY_TRANSVERSAL_SINE: f64 = 1e-3;
 /// Parameter distance below which two hits may be the same one.
@@ -237,6 +243,14 @@ impl Piece {
         (Piece::new(a, self.lo, mid), Piece::new(b, mid, self.hi))
     }
 
+    /// Flat enough to seed Newton from the chord: control points within
+    /// `max(absolute, RELATIVE_CHORD_FLATNESS * chord)` of the chord.
+    fn is_flat(&self, absolute: f64) -> bool {
+        let n = self.curve.degree();
+        let chord = distance(self.curve.point(0), self.curve.point(n));
+        self.deviation_from_chord() <= absolute.max(RELATIVE_CHORD_FLATNESS * chord)
+    }
+
     fn diagonal(&self) -> f64 {
         distance(&self.min, &self.max)
     }
@@ -291,24 +305,33 @@ struct CurvePair<'a> {
 }
 
 impl CurvePair<'_> {
-    fn gap(&self, u: f64, v: f64) -> Vec<f64> {
-        let a = self.p.eval(u);
-        let b = self.q.eval(v);
-        a.iter().zip(&b).map(|(x, y)| x - y).collect()
+    /// `P(u) - Q(v)` into `out` (`work` is scratch of length `dim`).
+    fn gap_into(&self, u: f64, v: f64, out: &mut [f64], work: &mut [f64]) {
+        self.p.eval_into(u, out);
+        self.q.eval_into(v, work);
+        for (o, w) in out.iter_mut().zip(work.iter()) {
+            *o -= w;
+        }
     }
 
     /// Gauss-Newton with Levenberg damping on `|P(u) - Q(v)|^2` in `[0,1]^2`.
     fn polish(&self, mut u: f64, mut v: f64) -> (f64, f64, f64) {
+        let d = self.p.dim();
+        let mut r = vec![0.0; d];
+        let mut trial = vec![0.0; d];
+        let mut work = vec![0.0; d];
+        let mut a = vec![0.0; d];
+        let mut b = vec![0.0; d];
         u = u.clamp(0.0, 1.0);
         v = v.clamp(0.0, 1.0);
-        let mut r = self.gap(u, v);
+        self.gap_into(u, v, &mut r, &mut work);
         let mut f = norm(&r);
-        for _ in 0..80 {
+        for _ in 0..60 {
             if f == 0.0 {
                 break;
             }
-            let a = self.dp.eval(u);
-            let b = self.dq.eval(v);
+            self.dp.eval_into(u, &mut a);
+            self.dq.eval_into(v, &mut b);
             let aa = dot(&a, &a);
             let bb = dot(&b, &b);
             let ab = dot(&a, &b);
@@ -330,26 +353,26 @@ impl CurvePair<'_> {
                 dv = 0.0;
                 du = if aa > 0.0 { -ar / aa } else { 0.0 };
             }
-            // Backtracking: accept the first step length that does not increase the gap.
+            // Backtracking: accept the first step length that decreases the gap.
             let mut step = 1.0;
-            let mut improved = false;
-            for _ in 0..30 {
+            let mut moved = 0.0f64;
+            for _ in 0..16 {
                 let nu = (u + step * du).clamp(0.0, 1.0);
                 let nv = (v + step * dv).clamp(0.0, 1.0);
-                let nr = self.gap(nu, nv);
-                let nf = norm(&nr);
+                self.gap_into(nu, nv, &mut trial, &mut work);
+                let nf = norm(&trial);
                 if nf < f {
-                    let moved = (nu - u).abs().max((nv - v).abs());
+                    moved = (nu - u).abs().max((nv - v).abs());
                     u = nu;
                     v = nv;
-                    r = nr;
+                    std::mem::swap(&mut r, &mut trial);
                     f = nf;
-                    improved = moved > 0.0;
                     break;
                 }
                 step *= 0.5;
             }
-            if !improved {
+            // Stop when nothing moves, or the step is at the rounding level.
+            if moved <= 4.0 * f64::EPSILON {
                 break;
             }
         }
@@ -563,8 +586,8 @@ impl<'a> Search<'a> {
             if self.overlaps.iter().any(|o| o.contains_box(&a, &b)) {
                 continue;
             }
-            let flat_a = a.deviation_from_chord() <= self.flatness;
-            let flat_b = b.deviation_from_chord() <= self.flatness;
+            let flat_a = a.is_flat(self.flatness);
+            let flat_b = b.is_flat(self.flatness);
             if (flat_a && flat_b) || depth >= self.options.max_depth {
                 self.leaf(&a, &b);
                 if self.candidates.len() > 4 * self.options.max_hits + 64 {
@@ -617,7 +640,21 @@ impl<'a> Search<'a> {
         let ab = dot(&da, &db);
         let det = aa * bb - ab * ab;
         let mut seeds: Vec<(f64, f64)> = Vec::with_capacity(5);
-        let nearly_parallel = !(det > 1e-6 * aa * bb);
+        // Flat pieces (within 1e-2 of their chords) can cross twice only when
+        // the chords make an angle below about 4e-2: seed from all ends then.
+        let nearly_parallel = !(det > 4e-3 * aa * bb);
+        if !nearly_parallel
+            && self
+                .candidates
+                .iter()
+                .rev()
+                .take(8)
+                .any(|c| c.u >= a.lo && c.u <= a.hi && c.v >= b.lo && c.v <= b.hi)
+        {
+            // Chords that are not nearly parallel cross at most once: this
+            // leaf's crossing is already known.
+            return;
+        }
         if !nearly_parallel {
             let s = ((-dot(&w, &da)) * bb + ab * dot(&w, &db)) / det;
             let t = (aa * dot(&w, &db) - ab * dot(&w, &da)) / det;
