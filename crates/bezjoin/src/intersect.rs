@@ -251,6 +251,10 @@ impl Piece {
         self.deviation_from_chord() <= absolute.max(RELATIVE_CHORD_FLATNESS * chord)
     }
 
+    fn contains(&self, x: &[f64], margin: f64) -> bool {
+        (0..x.len()).all(|c| x[c] >= self.min[c] - margin && x[c] <= self.max[c] + margin)
+    }
+
     fn diagonal(&self) -> f64 {
         distance(&self.min, &self.max)
     }
@@ -430,22 +434,24 @@ pub(crate) fn project(
         }
         let dt = -dot(&tangent, &r) / tt;
         let mut step = 1.0;
-        let mut improved = false;
-        for _ in 0..30 {
+        let mut moved = 0.0f64;
+        for _ in 0..16 {
             let nt = (t + step * dt).clamp(0.0, 1.0);
             curve.eval_into(nt, &mut buf);
-            let nr: Vec<f64> = buf.iter().zip(x).map(|(a, b)| a - b).collect();
-            let nf = norm(&nr);
+            for (ri, (a, b)) in r.iter_mut().zip(buf.iter().zip(x)) {
+                *ri = a - b;
+            }
+            let nf = norm(&r);
             if nf < f {
-                improved = nt != t;
+                moved = (nt - t).abs();
                 t = nt;
-                r = nr;
                 f = nf;
                 break;
             }
             step *= 0.5;
         }
-        if !improved {
+        // On acceptance `r` holds the gap at the new `t`; otherwise stop.
+        if moved <= 4.0 * f64::EPSILON {
             break;
         }
     }
@@ -513,16 +519,24 @@ impl<'a> Search<'a> {
         let pair = &self.pair;
         let tol = self.tolerance;
         let mut ends: Vec<(f64, f64)> = Vec::new();
+        let p_box = Piece::new(pair.p.clone(), 0.0, 1.0);
+        let q_box = Piece::new(pair.q.clone(), 0.0, 1.0);
         for &u in &[0.0, 1.0] {
-            let (v, d) = project(pair.q, &pair.dq, &pair.p.eval(u), None);
-            if d <= tol {
-                ends.push((u, v));
+            let x = pair.p.eval(u);
+            if q_box.contains(&x, tol) {
+                let (v, d) = project(pair.q, &pair.dq, &x, None);
+                if d <= tol {
+                    ends.push((u, v));
+                }
             }
         }
         for &v in &[0.0, 1.0] {
-            let (u, d) = project(pair.p, &pair.dp, &pair.q.eval(v), None);
-            if d <= tol {
-                ends.push((u, v));
+            let x = pair.q.eval(v);
+            if p_box.contains(&x, tol) {
+                let (u, d) = project(pair.p, &pair.dp, &x, None);
+                if d <= tol {
+                    ends.push((u, v));
+                }
             }
         }
         if ends.len() < 2 {
@@ -642,7 +656,7 @@ impl<'a> Search<'a> {
         let mut seeds: Vec<(f64, f64)> = Vec::with_capacity(5);
         // Flat pieces (within 1e-2 of their chords) can cross twice only when
         // the chords make an angle below about 4e-2: seed from all ends then.
-        let nearly_parallel = !(det > 4e-3 * aa * bb);
+        let nearly_parallel = det <= 4e-3 * aa * bb || det.is_nan();
         if !nearly_parallel
             && self
                 .candidates

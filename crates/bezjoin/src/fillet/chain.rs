@@ -144,7 +144,7 @@ pub fn fillet_chain(curves: &[BezierCurve], options: &ChainFilletOptions) -> Res
             0.0
         };
         let end = if i < corner_count { fillets[i].u0 } else { 1.0 };
-        if !(start < end) {
+        if start >= end || start.is_nan() || end.is_nan() {
             return Err(BezjoinError::invalid(
                 format!("curves[{i}]"),
                 format!(
