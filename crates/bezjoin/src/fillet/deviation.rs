@@ -18,17 +18,23 @@
 //!
 //! # Search
 //! `g(dp) = deviation(dp) - eps` tends to `-eps` as `dp -> 0` (the blend
-//! shrinks onto `X`) and is evaluated at the longest setbacks the curves
-//! allow, `dp_max = (1 - 1e-9) min(len(P before X), len(Q after X) / rho)`;
-//! if `g(dp_max) < 0` the bound cannot be reached and that is an error. The
-//! root in `(0, dp_max]` is found by the Illinois variant of false position
+//! shrinks onto `X`). The search starts at `dp = eps / 2` and doubles `dp`
+//! (halves it, if the first deviation is already above `eps`) until `g`
+//! changes sign, never beyond the longest setbacks the curves allow,
+//! `dp_max = (1 - 1e-9) min(len(P before X), len(Q after X) / rho)`; if the
+//! deviation is still below `eps` there, that is an error. The root in the
+//! bracket is then found by the Illinois variant of false position
 //! (bisection when a step would leave the bracket), at most 100 steps.
 //!
-//! The deviation grows monotonically with the setback in practice (for two
-//! lines it is exactly proportional to it; `tests/fillet.rs` checks the
-//! monotonicity on sweeps of cubic corners). The search needs only
-//! continuity and the sign change: if the deviation were not monotone, the
-//! result would still meet the bound, for one of the setbacks that do.
+//! Monotonicity: for two lines the deviation is exactly proportional to the
+//! setback; for curved corners it grows monotonically while the setbacks are
+//! short against the curves (`tests/fillet.rs` checks sweeps of cubic
+//! corners up to setbacks of about 1/8 of the curve length), but with the
+//! paper's scales (`alpha = beta = 1`) and long setbacks it can turn
+//! (measured: a C1 cubic corner whose deviation decreases beyond a setback
+//! of 0.6 on curves about 3 long). Walking up from short setbacks makes the
+//! search return the first bracketed root, i.e. the shortest setbacks on the
+//! doubling grid that reach `eps`, whether or not the deviation turns later.
 
 use crate::bezier::BezierCurve;
 use crate::error::{BezjoinError, Result, check_positive};
@@ -181,24 +187,60 @@ pub fn fillet_within_deviation(
         })
     };
     let tolerance = options.relative_deviation_accuracy * eps;
-    let widest = attempt(longest)?;
-    if widest.deviation < eps - tolerance {
-        return Err(BezjoinError::invalid(
-            "max_deviation",
-            format!(
-                "{eps} cannot be reached: the longest setbacks possible (p_setback = {}, \
-                 q_setback = {}) give a deviation of only {}",
-                widest.p_setback, widest.q_setback, widest.deviation
-            ),
-        ));
-    }
-    if (widest.deviation - eps).abs() <= tolerance {
-        return Ok(widest);
-    }
-    // Illinois false position on g(dp) = deviation - eps over (0, longest].
+    // Bracket the smallest root: walk up from a short setback by doubling
+    // (or down by halving when the first one is already too deviant).
     let (mut lo, mut g_lo) = (0.0, -eps);
-    let (mut hi, mut g_hi) = (longest, widest.deviation - eps);
-    let mut best = widest;
+    let mut dp = (0.5 * eps).min(longest);
+    let mut trial = attempt(dp)?;
+    let mut g = trial.deviation - eps;
+    if g.abs() <= tolerance {
+        return Ok(trial);
+    }
+    if g < 0.0 {
+        loop {
+            lo = dp;
+            g_lo = g;
+            if dp >= longest {
+                return Err(BezjoinError::invalid(
+                    "max_deviation",
+                    format!(
+                        "{eps} cannot be reached: the longest setbacks possible (p_setback = {}, \
+                         q_setback = {}) give a deviation of only {}",
+                        trial.p_setback, trial.q_setback, trial.deviation
+                    ),
+                ));
+            }
+            dp = (2.0 * dp).min(longest);
+            trial = attempt(dp)?;
+            g = trial.deviation - eps;
+            if g.abs() <= tolerance {
+                return Ok(trial);
+            }
+            if g > 0.0 {
+                break;
+            }
+        }
+    } else {
+        for _ in 0..60 {
+            let shorter = 0.5 * dp;
+            let t = attempt(shorter)?;
+            let gs = t.deviation - eps;
+            if gs.abs() <= tolerance {
+                return Ok(t);
+            }
+            if gs < 0.0 {
+                lo = shorter;
+                g_lo = gs;
+                break;
+            }
+            dp = shorter;
+            trial = t;
+            g = gs;
+        }
+    }
+    let (mut hi, mut g_hi) = (dp, g);
+    let mut best = trial;
+    // Illinois false position on g(dp) = deviation - eps over [lo, hi].
     let mut side = 0i32;
     for _ in 0..100 {
         let mut dp = (lo * g_hi - hi * g_lo) / (g_hi - g_lo);
@@ -207,8 +249,7 @@ pub fn fillet_within_deviation(
         }
         let trial = attempt(dp)?;
         let g = trial.deviation - eps;
-        let closer = (g.abs()) < (best.deviation - eps).abs();
-        if closer {
+        if g.abs() < (best.deviation - eps).abs() {
             best = trial;
         }
         if g.abs() <= tolerance {

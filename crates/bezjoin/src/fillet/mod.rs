@@ -290,8 +290,8 @@ pub(crate) fn available_lengths(
     q: &BezierCurve,
     crossing: &Intersection,
 ) -> Result<(f64, f64)> {
-    let before = p.arc_length(0.0, crossing.u, 1e-3 * p.default_length_accuracy())?;
-    let after = q.arc_length(crossing.v, 1.0, 1e-3 * q.default_length_accuracy())?;
+    let before = p.arc_length(0.0, crossing.u, p.default_length_accuracy())?;
+    let after = q.arc_length(crossing.v, 1.0, q.default_length_accuracy())?;
     Ok((before, after))
 }
 
