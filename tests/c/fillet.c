@@ -250,7 +250,8 @@ static void test_fillet(void) {
     bzj_curve_free(pt);
     bzj_curve_free(r);
     bzj_curve_free(qt);
-    dev.setback_ratio = 2.0;
+    dev.setback_ratio = 0.5;
+    dev.max_deviation = 0.05;
     EXPECT_STATUS(bzj_fillet_deviation(p, q, &dev, &pt, &r, &qt, NULL), BZJ_OK);
     bzj_curve_free(pt);
     bzj_curve_free(r);
@@ -267,6 +268,7 @@ static void test_fillet(void) {
     dev.q_order = 5;
     EXPECT_STATUS(bzj_fillet_deviation(p, q, &dev, &pt, &r, &qt, NULL), BZJ_ERR_INVALID_ARGUMENT);
     expect_message("q_order");
+    dev.q_order = 1;
     EXPECT_STATUS(bzj_fillet_deviation(p, f, &dev, &pt, &r, &qt, NULL), BZJ_ERR_NO_INTERSECTION);
     EXPECT_STATUS(bzj_fillet_deviation(p, q, NULL, &pt, &r, &qt, NULL), BZJ_ERR_NULL_POINTER);
 
