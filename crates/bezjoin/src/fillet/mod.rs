@@ -302,40 +302,39 @@ pub(crate) fn fillet_at_validated(
     options: &FilletOptions,
 ) -> Result<Fillet> {
     let (dp, dq) = (options.p_setback, options.q_setback);
-    let (before, after) = available_lengths(p, q, &crossing)?;
-    if dp >= before {
-        return Err(BezjoinError::invalid(
+    let accuracy = options.relative_length_accuracy;
+    // The inversion itself refuses a length beyond the curve's end; the
+    // lengths for the message are computed only on that path.
+    let too_long_p = || -> Result<BezjoinError> {
+        let (before, _) = available_lengths(p, q, &crossing)?;
+        Ok(BezjoinError::invalid(
             "p_setback",
             format!(
                 "{dp} is not shorter than the arc length {before} of P before the crossing at u = {}",
                 crossing.u
             ),
-        ));
-    }
-    if dq >= after {
-        return Err(BezjoinError::invalid(
+        ))
+    };
+    let too_long_q = || -> Result<BezjoinError> {
+        let (_, after) = available_lengths(p, q, &crossing)?;
+        Ok(BezjoinError::invalid(
             "q_setback",
             format!(
                 "{dq} is not shorter than the arc length {after} of Q after the crossing at v = {}",
                 crossing.v
             ),
-        ));
-    }
-    let accuracy = options.relative_length_accuracy;
-    let u0 = p.param_at_length(crossing.u, -dp, accuracy * dp)?;
-    let v0 = q.param_at_length(crossing.v, dq, accuracy * dq)?;
-    if !(u0 > 0.0 && u0 < crossing.u) {
-        return Err(BezjoinError::invalid(
-            "p_setback",
-            format!("{dp} leaves no part of P before the cut (u0 = {u0})"),
-        ));
-    }
-    if !(v0 < 1.0 && v0 > crossing.v) {
-        return Err(BezjoinError::invalid(
-            "q_setback",
-            format!("{dq} leaves no part of Q after the cut (v0 = {v0})"),
-        ));
-    }
+        ))
+    };
+    let u0 = match p.param_at_length(crossing.u, -dp, accuracy * dp) {
+        Ok(u0) if u0 > 0.0 && u0 < crossing.u => u0,
+        Ok(_) | Err(BezjoinError::InvalidArgument { .. }) => return Err(too_long_p()?),
+        Err(e) => return Err(e),
+    };
+    let v0 = match q.param_at_length(crossing.v, dq, accuracy * dq) {
+        Ok(v0) if v0 < 1.0 && v0 > crossing.v => v0,
+        Ok(_) | Err(BezjoinError::InvalidArgument { .. }) => return Err(too_long_q()?),
+        Err(e) => return Err(e),
+    };
     let mut connect_options = ConnectOptions::new(options.p_order, options.q_order);
     connect_options.p_scale = options.p_scale;
     connect_options.q_scale = options.q_scale;
