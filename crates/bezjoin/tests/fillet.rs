@@ -453,3 +453,45 @@ fn chain_errors() {
     assert!(e.to_string().contains("corner 0"), "{e}");
     assert!(e.to_string().contains("tangentially"), "{e}");
 }
+
+#[test]
+fn three_d_corner_is_ck() {
+    // Two space cubics through X = (0.2, -0.1, 0.5) at u = 0.6 and v = 0.3
+    // (each shifted so), crossing at an angle.
+    let x = [0.2, -0.1, 0.5];
+    let shift_through = |rows: [[f64; 3]; 4], t: f64| -> BezierCurve {
+        let raw = BezierCurve::from_rows(&rows).unwrap();
+        let at = raw.eval(t);
+        let moved: Vec<Vec<f64>> = rows
+            .iter()
+            .map(|r| (0..3).map(|c| r[c] + x[c] - at[c]).collect())
+            .collect();
+        BezierCurve::from_rows(&moved).unwrap()
+    };
+    let p = shift_through(
+        [
+            [0.0, 0.0, 0.0],
+            [1.0, 0.3, 0.2],
+            [2.0, -0.2, 0.5],
+            [3.0, 0.1, 0.4],
+        ],
+        0.6,
+    );
+    let q = shift_through(
+        [
+            [0.0, 0.0, 0.0],
+            [0.2, 1.0, 0.4],
+            [-0.1, 2.0, 0.1],
+            [0.3, 3.0, 0.6],
+        ],
+        0.3,
+    );
+    let f = fillet(&p, &q, &FilletOptions::new(0.4, 0.7, 3, 2)).unwrap();
+    assert!((f.crossing.u - 0.6).abs() < 1e-12 && (f.crossing.v - 0.3).abs() < 1e-12);
+    let spline = f.to_bspline().unwrap();
+    let [a, b, _] = f.knot_intervals();
+    assert_continuous(&spline, a, 3, 1e-9, "3D P|R");
+    assert_continuous(&spline, a + b, 2, 1e-9, "3D R|Q");
+    let lp = p.arc_length(f.u0, 0.6, 1e-14).unwrap();
+    assert!((lp - 0.4).abs() <= 1e-9 * 0.4);
+}

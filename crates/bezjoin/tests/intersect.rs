@@ -359,15 +359,13 @@ fn random_curves_against_dense_polylines() {
             let b = q.derivative_at(x.v, 1);
             let cross = (a[0] * b[1] - a[1] * b[0]).abs();
             cross < 0.05 * bezjoin_core::bezier::norm(&a) * bezjoin_core::bezier::norm(&b)
-                || x.u < 0.01
-                || x.u > 0.99
-                || x.v < 0.01
-                || x.v > 0.99
+                || !(0.01..=0.99).contains(&x.u)
+                || !(0.01..=0.99).contains(&x.v)
         });
         let poly = polyline_crossings(&p, &q, n);
         let poly_delicate = poly
             .iter()
-            .any(|&(u, v)| u < 0.01 || u > 0.99 || v < 0.01 || v > 0.99);
+            .any(|&(u, v)| !(0.01..=0.99).contains(&u) || !(0.01..=0.99).contains(&v));
         if delicate || poly_delicate {
             continue;
         }
