@@ -462,6 +462,24 @@ pub(crate) fn finish(
 
 /// The structured solve for given scales on a validated problem.
 pub(crate) fn solve_structured(problem: &Problem, alpha: f64, beta: f64) -> Result<Connection> {
+    let (conditions, points, constraint_condition) = structured_points(problem, alpha, beta)?;
+    finish(
+        problem,
+        &conditions,
+        points,
+        alpha,
+        beta,
+        constraint_condition,
+        "connect",
+    )
+}
+
+/// The structured solve without the final accuracy check.
+fn structured_points(
+    problem: &Problem,
+    alpha: f64,
+    beta: f64,
+) -> Result<(ConditionRows, DMatrix<f64>, f64)> {
     let n = problem.degree;
     let kp = problem.p_order;
     let kq = problem.q_order;
@@ -521,15 +539,7 @@ pub(crate) fn solve_structured(problem: &Problem, alpha: f64, beta: f64) -> Resu
         constraint_condition = solution.condition;
         points.rows_mut(first, m).copy_from(&solution.x);
     }
-    finish(
-        problem,
-        &conditions,
-        points,
-        alpha,
-        beta,
-        constraint_condition,
-        "connect",
-    )
+    Ok((conditions, points, constraint_condition))
 }
 
 /// The curve `R` connecting `P` at `u0` to `Q` at `v0` with C^k continuity
@@ -578,6 +588,36 @@ pub fn connect(
     check_positive("p_scale", options.p_scale)?;
     check_positive("q_scale", options.q_scale)?;
     solve_structured(&problem, options.p_scale, options.q_scale)
+}
+
+/// [`connect`] without the accuracy refusal: the answer is returned even when
+/// its [`Connection::error_estimate`] exceeds [`CONNECT_RESIDUAL_LIMIT`]
+/// (input errors and a singular interior block are still errors).
+///
+/// For measurements (the accuracy table in docs/accuracy.md) and for callers
+/// that apply their own acceptance test to `error_estimate`; prefer
+/// [`connect`], whose answers carry the guarantee.
+pub fn connect_unchecked(
+    p: &BezierCurve,
+    u0: f64,
+    q: &BezierCurve,
+    v0: f64,
+    options: &ConnectOptions,
+) -> Result<Connection> {
+    let problem = prepare(p, u0, q, v0, options)?;
+    check_positive("p_scale", options.p_scale)?;
+    check_positive("q_scale", options.q_scale)?;
+    let (alpha, beta) = (options.p_scale, options.q_scale);
+    let (conditions, points, constraint_condition) = structured_points(&problem, alpha, beta)?;
+    let (max_residual, error_estimate) = check_residuals(&problem, &conditions, &points);
+    Ok(Connection {
+        curve: BezierCurve::from_matrix(&points)?,
+        p_scale: alpha,
+        q_scale: beta,
+        max_residual,
+        error_estimate,
+        constraint_condition,
+    })
 }
 
 /// [`connect`] with `alpha = beta = s` chosen automatically: `s` minimises
