@@ -237,6 +237,7 @@ fn random_case(
     rng: &mut Random,
     degree: usize,
     constrained: bool,
+    scales: (f64, f64),
 ) -> (BezierCurve, f64, BezierCurve, f64, ConnectOptions) {
     let dim = 2 + rng.below(2);
     let middle = if constrained && degree >= 4 {
@@ -252,8 +253,11 @@ fn random_case(
     let p = random_curve(rng, dim, np);
     let q = random_curve(rng, dim, nq);
     let (u0, v0) = (rng.range(0.0, 1.0), rng.range(0.0, 1.0));
-    let scale = rng.range(0.5, 2.0);
-    let mut options = ConnectOptions::new(kp, kq).with_scales(scale, scale);
+    // Scales log-uniform in `scales`, independently for alpha and beta.
+    let (lo, hi) = (scales.0.ln(), scales.1.ln());
+    let alpha = rng.range(lo, hi).exp();
+    let beta = rng.range(lo, hi).exp();
+    let mut options = ConnectOptions::new(kp, kq).with_scales(alpha, beta);
     if middle > 0 {
         let base = connect_unchecked(&p, u0, &q, v0, &options).expect("base connection");
         let points = if middle >= 2 { 2 } else { 1 };
@@ -292,14 +296,14 @@ struct Row {
     min_estimate_refused: f64,
 }
 
-fn measure(degree: usize, constrained: bool, cases: usize, seed: u64) -> Row {
+fn measure(degree: usize, constrained: bool, scales: (f64, f64), cases: usize, seed: u64) -> Row {
     let mut rng = Random(seed ^ (degree as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1);
     let mut row = Row {
         min_estimate_refused: f64::INFINITY,
         ..Row::default()
     };
     for _ in 0..cases {
-        let (p, u0, q, v0, o) = random_case(&mut rng, degree, constrained);
+        let (p, u0, q, v0, o) = random_case(&mut rng, degree, constrained, scales);
         let system = exact_system(&p, u0, &q, v0, &o);
         let exact_points = exact_solve(&system);
         let unchecked = connect_unchecked(&p, u0, &q, v0, &o).expect("solvable");
@@ -329,7 +333,7 @@ fn measure(degree: usize, constrained: bool, cases: usize, seed: u64) -> Row {
 fn answers_meet_the_promise_exactly_at_low_degree() {
     for degree in [3, 5, 7, 10] {
         for constrained in [false, true] {
-            let row = measure(degree, constrained, 4, 7);
+            let row = measure(degree, constrained, (0.5, 2.0), 4, 7);
             assert_eq!(row.answered, row.cases, "degree {degree}");
             assert!(row.worst_true_answered <= 1e-12, "degree {degree}: {:e}", row.worst_true_answered);
             // The solver's own estimate bounds the true residual.
@@ -342,21 +346,22 @@ fn answers_meet_the_promise_exactly_at_low_degree() {
 #[ignore = "prints the accuracy table for docs/accuracy.md (slow; run with --release)"]
 fn print_accuracy_table() {
     let cases = 24;
-    for constrained in [false, true] {
+    let configurations = [
+        ("End conditions only (kp, kq about half the degree each)", false, (0.5, 2.0)),
+        ("With interior constraints (1 or 2 points, M = 1..8)", true, (0.5, 2.0)),
+        ("End conditions only, stressed scales", false, (0.1, 10.0)),
+    ];
+    for (title, constrained, scales) in configurations {
         println!(
-            "\n{} ({cases} random cases per degree, alpha = beta in [0.5, 2], 2D/3D, control points in [-1, 1])\n",
-            if constrained {
-                "With interior constraints (1 or 2 points, M = 1..8)"
-            } else {
-                "End conditions only (kp, kq about half the degree each)"
-            }
+            "\n{title}: {cases} random cases per degree, alpha, beta log-uniform in [{}, {}], 2D/3D, control points in [-1, 1]\n",
+            scales.0, scales.1
         );
         println!(
             "| degree | answered | worst true residual, all | worst true residual, answered | worst control-point error | max true/estimate | smallest refused estimate |"
         );
         println!("|---|---|---|---|---|---|---|");
         for degree in 3..=31 {
-            let row = measure(degree, constrained, cases, 2026);
+            let row = measure(degree, constrained, scales, cases, 2026);
             let refused = if row.min_estimate_refused.is_finite() {
                 format!("{:.1e}", row.min_estimate_refused)
             } else {

@@ -78,7 +78,7 @@ pub const CONNECT_RESIDUAL_LIMIT: f64 = 1e-8;
 /// measured accuracy table (docs/accuracy.md, Connect) shows that the
 /// residual promise already fails for typical random data at lower degrees,
 /// and this bound also caps the work a C caller can ask for.
-pub const MAX_CONNECT_DEGREE: usize = 48;
+pub const MAX_CONNECT_DEGREE: usize = 31;
 
 /// An interior constraint (2): `R^(k)(t) = derivatives[k]`, `k = 0..=K`.
 #[derive(Debug, Clone, PartialEq)]
