@@ -125,15 +125,18 @@ fn exact_system(
         targets.push(t.into_iter().map(|v| v * &power).collect());
         power *= &beta;
     }
-    let mut data_scale = p.coordinate_scale().max(q.coordinate_scale());
     for c in &o.constraints {
         for (k, d) in c.derivatives.iter().enumerate() {
             rows.push(basis_row(n, &exact(c.t), k));
             targets.push(d.iter().map(|&v| exact(v)).collect());
         }
-        for v in &c.derivatives[0] {
-            data_scale = data_scale.max(v.abs());
-        }
+    }
+    // S: control-point scale of P and Q, and |T_k| / ||D_k||_1.
+    let mut data_scale = p.coordinate_scale().max(q.coordinate_scale());
+    for (row, target) in rows.iter().zip(&targets) {
+        let size: f64 = target.iter().map(|t| to_f64(t).powi(2)).sum::<f64>().sqrt();
+        let row_norm: f64 = row.iter().map(|d| to_f64(&d.abs())).sum();
+        data_scale = data_scale.max(size / row_norm);
     }
     ExactSystem {
         rows,
@@ -153,7 +156,9 @@ fn exact_solve(system: &ExactSystem) -> Vec<Vec<Q>> {
         .map(|(r, t)| r.iter().chain(t.iter()).cloned().collect())
         .collect();
     for col in 0..size {
-        let pivot = (col..size).find(|&r| !a[r][col].is_zero()).expect("unisolvent");
+        let pivot = (col..size)
+            .find(|&r| !a[r][col].is_zero())
+            .expect("unisolvent");
         a.swap(col, pivot);
         let inv = Q::one() / &a[col][col];
         let pivot_row: Vec<Q> = a[col].iter().map(|v| v * &inv).collect();
@@ -167,7 +172,9 @@ fn exact_solve(system: &ExactSystem) -> Vec<Vec<Q>> {
             }
         }
     }
-    a.into_iter().map(|r| r[size..size + dim].to_vec()).collect()
+    a.into_iter()
+        .map(|r| r[size..size + dim].to_vec())
+        .collect()
 }
 
 /// Worst true relative residual of the f64 control points `points`.
@@ -271,12 +278,7 @@ fn random_case(
             let t = (j as f64 + rng.range(0.25, 0.75)) / points as f64;
             let d = base.curve.eval_derivatives(t, count - 1);
             let derivatives = (0..count)
-                .map(|k| {
-                    d.row(k)
-                        .iter()
-                        .map(|v| v * rng.range(0.9, 1.1))
-                        .collect()
-                })
+                .map(|k| d.row(k).iter().map(|v| v * rng.range(0.9, 1.1)).collect())
                 .collect();
             options = options.with_constraint(PointConstraint::new(t, derivatives));
         }
@@ -319,7 +321,9 @@ fn measure(degree: usize, constrained: bool, scales: (f64, f64), cases: usize, s
         match connect(&p, u0, &q, v0, &o) {
             Ok(c) => {
                 row.answered += 1;
-                row.worst_true_answered = row.worst_true_answered.max(true_residual(&system, &c.curve));
+                row.worst_true_answered = row
+                    .worst_true_answered
+                    .max(true_residual(&system, &c.curve));
             }
             Err(_) => {
                 row.min_estimate_refused = row.min_estimate_refused.min(unchecked.error_estimate);
@@ -335,9 +339,17 @@ fn answers_meet_the_promise_exactly_at_low_degree() {
         for constrained in [false, true] {
             let row = measure(degree, constrained, (0.5, 2.0), 4, 7);
             assert_eq!(row.answered, row.cases, "degree {degree}");
-            assert!(row.worst_true_answered <= 1e-12, "degree {degree}: {:e}", row.worst_true_answered);
+            assert!(
+                row.worst_true_answered <= 1e-12,
+                "degree {degree}: {:e}",
+                row.worst_true_answered
+            );
             // The solver's own estimate bounds the true residual.
-            assert!(row.worst_estimate_ratio <= 1.0, "degree {degree}: ratio {}", row.worst_estimate_ratio);
+            assert!(
+                row.worst_estimate_ratio <= 1.0,
+                "degree {degree}: ratio {}",
+                row.worst_estimate_ratio
+            );
         }
     }
 }
@@ -347,8 +359,16 @@ fn answers_meet_the_promise_exactly_at_low_degree() {
 fn print_accuracy_table() {
     let cases = 24;
     let configurations = [
-        ("End conditions only (kp, kq about half the degree each)", false, (0.5, 2.0)),
-        ("With interior constraints (1 or 2 points, M = 1..8)", true, (0.5, 2.0)),
+        (
+            "End conditions only (kp, kq about half the degree each)",
+            false,
+            (0.5, 2.0),
+        ),
+        (
+            "With interior constraints (1 or 2 points, M = 1..8)",
+            true,
+            (0.5, 2.0),
+        ),
         ("End conditions only, stressed scales", false, (0.1, 10.0)),
     ];
     for (title, constrained, scales) in configurations {

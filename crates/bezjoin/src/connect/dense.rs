@@ -31,8 +31,7 @@ pub fn connect_dense_reference(
     for r in 0..size {
         let norm: f64 = conditions.rows.row(r).iter().map(|v| v.abs()).sum();
         a.row_mut(r).copy_from(&(conditions.rows.row(r) / norm));
-        b.row_mut(r)
-            .copy_from(&(conditions.targets.row(r) / norm));
+        b.row_mut(r).copy_from(&(conditions.targets.row(r) / norm));
     }
     let solution = solve_checked(&a, &b, "connect: dense reference system")?;
     finish(

@@ -38,7 +38,8 @@ pub fn fairness_energy(curve: &BezierCurve) -> f64 {
     let mut energy = 0.0;
     for i in 0..=m {
         for j in 0..=m {
-            let gram = binomial(m, i) * binomial(m, j) / ((2 * m + 1) as f64 * binomial(2 * m, i + j));
+            let gram =
+                binomial(m, i) * binomial(m, j) / ((2 * m + 1) as f64 * binomial(2 * m, i + j));
             let dot: f64 = (0..d).map(|k| second[i * d + k] * second[j * d + k]).sum();
             energy += gram * dot;
         }

@@ -35,10 +35,12 @@
 //! ```
 //!
 //! where `|.|` is the Euclidean norm over the coordinates and `S`, the *data
-//! scale*, is the largest absolute coordinate of the control points of `P`
-//! and `Q` and of the prescribed positions `D_j0`. `S * ||D_k||_1` is the size
-//! a k-th derivative of a curve with control points of size `S` can have, so
-//! a zero target derivative never divides by zero.
+//! scale*, is the largest of: the absolute coordinates of the control points
+//! of `P` and `Q`, and `|T_k| / ||D_k||_1` over all conditions (the smallest
+//! control-point size any curve meeting condition `k` must have, since
+//! `|D_k R| <= ||D_k||_1 max_i |R_i|`). `S * ||D_k||_1` is the size a k-th
+//! derivative of a curve with control points of size `S` can have, so a zero
+//! target derivative never divides by zero.
 //!
 //! # What we guarantee
 //! Every returned [`Connection`] satisfies (1') and (2) with a worst relative
@@ -191,7 +193,7 @@ pub(crate) struct Problem {
     pub(crate) q_derivative_error: Vec<f64>,
     /// Constraints sorted by parameter: `(t_j, (K_j+1) x dim)`.
     pub(crate) constraints: Vec<(f64, DMatrix<f64>)>,
-    /// The data scale `S` of the residual definition.
+    /// The control-point scale of `P` and `Q` (part of the data scale `S`).
     pub(crate) data_scale: f64,
 }
 
@@ -274,7 +276,7 @@ pub(crate) fn prepare(
         });
     }
     let mut constraints: Vec<(f64, DMatrix<f64>)> = Vec::with_capacity(options.constraints.len());
-    let mut data_scale = p.coordinate_scale().max(q.coordinate_scale());
+    let data_scale = p.coordinate_scale().max(q.coordinate_scale());
     for (j, c) in options.constraints.iter().enumerate() {
         check_open_range(&format!("constraints[{j}].t"), c.t, 0.0, 1.0)?;
         if c.derivatives.is_empty() {
@@ -298,9 +300,6 @@ pub(crate) fn prepare(
             for (col, v) in row.iter().enumerate() {
                 values[(k, col)] = *v;
             }
-        }
-        for v in &c.derivatives[0] {
-            data_scale = data_scale.max(v.abs());
         }
         if let Some(i) = options.constraints[..j].iter().position(|o| o.t == c.t) {
             return Err(BezjoinError::invalid(
@@ -365,14 +364,13 @@ pub(crate) fn condition_rows(problem: &Problem, alpha: f64, beta: f64) -> Condit
     let d0 = bezier_basis_derivatives(n, 0.0, problem.p_order);
     let d1 = bezier_basis_derivatives(n, 1.0, problem.q_order);
     let mut r = 0;
-    let mut push = |basis_row: nalgebra::DMatrixView<f64>,
-                    target: nalgebra::DMatrixView<f64>,
-                    error: f64| {
-        rows.row_mut(r).copy_from(&basis_row);
-        targets.row_mut(r).copy_from(&target);
-        target_errors.push(error);
-        r += 1;
-    };
+    let mut push =
+        |basis_row: nalgebra::DMatrixView<f64>, target: nalgebra::DMatrixView<f64>, error: f64| {
+            rows.row_mut(r).copy_from(&basis_row);
+            targets.row_mut(r).copy_from(&target);
+            target_errors.push(error);
+            r += 1;
+        };
     for k in 0..=problem.p_order {
         let scale = alpha.powi(k as i32);
         let error = scale * problem.p_derivative_error[k]
@@ -398,6 +396,17 @@ pub(crate) fn condition_rows(problem: &Problem, alpha: f64, beta: f64) -> Condit
     }
 }
 
+/// The data scale `S`: the largest of the given positions' scale and
+/// `|T_k| / ||D_k||_1` over all conditions.
+fn effective_data_scale(positions: f64, conditions: &ConditionRows, row_norms: &[f64]) -> f64 {
+    row_norms
+        .iter()
+        .enumerate()
+        .map(|(r, norm)| conditions.targets.row(r).norm() / norm)
+        .filter(|v| v.is_finite())
+        .fold(positions, f64::max)
+}
+
 /// Check every condition on the computed control points `points`
 /// (`(n+1) x dim`): the worst floating-point relative residual and the bound
 /// on the worst exact one.
@@ -409,12 +418,15 @@ pub(crate) fn check_residuals(
     let n = problem.degree;
     let values = &conditions.rows * points;
     let abs_values = conditions.rows.abs() * points.abs();
+    let row_norms: Vec<f64> = (0..conditions.rows.nrows())
+        .map(|r| conditions.rows.row(r).iter().map(|v| v.abs()).sum())
+        .collect();
+    let data_scale = effective_data_scale(problem.data_scale, conditions, &row_norms);
     let mut worst = 0.0f64;
     let mut worst_bound = 0.0f64;
-    for r in 0..conditions.rows.nrows() {
-        let row_norm: f64 = conditions.rows.row(r).iter().map(|v| v.abs()).sum();
+    for (r, row_norm) in row_norms.iter().enumerate() {
         let target = conditions.targets.row(r);
-        let denominator = target.norm().max(problem.data_scale * row_norm);
+        let denominator = target.norm().max(data_scale * row_norm);
         let residual = (values.row(r) - target).norm() / denominator;
         // Rounding of D_k R (dot products of length n + 1, basis entries from
         // A2.3 with a relative error of a few units per order) and of the target.
