@@ -109,7 +109,7 @@ fn exact_system(
     let n = o.result_degree();
     let (pe, qe) = (curve_exact(p), curve_exact(q));
     let mut rows = Vec::new();
-    let mut targets = Vec::new();
+    let mut targets: Vec<Vec<Q>> = Vec::new();
     let (alpha, beta) = (exact(o.p_scale), exact(o.q_scale));
     let mut power = Q::one();
     for k in 0..=o.p_order {
