@@ -3,22 +3,22 @@
 //! is created and freed in each iteration, as a C caller would.
 use std::hint::black_box;
 
-use bezjoin::{BzjConnectOptions, BzjCurve, BzjPointConstraint, BzjStatus, bzj_connect};
+use bezjoin::{BzjConnectOptions, BzjPointConstraint, BzjStatus, bzj_connect};
 use bezjoin::{bzj_curve_eval, bzj_curve_free, bzj_curve_new};
 use criterion::{Criterion, criterion_group, criterion_main};
 
-fn cubic(dim: usize, offset: f64) -> *mut BzjCurve {
-    let pts: Vec<f64> = (0..4 * dim)
-        .map(|i| offset + ((i * 7919) % 97) as f64 / 9.7)
-        .collect();
-    let mut c = std::ptr::null_mut();
-    let s = unsafe { bzj_curve_new(dim, 3, pts.as_ptr(), pts.len(), &mut c) };
-    assert_eq!(s, BzjStatus::BZJ_OK);
-    c
-}
-
 fn bench_connect_ffi(c: &mut Criterion) {
     for dim in [2usize, 3] {
+        // The handle type is not re-exported; let inference name it.
+        let cubic = |dim: usize, offset: f64| {
+            let pts: Vec<f64> = (0..4 * dim)
+                .map(|i| offset + ((i * 7919) % 97) as f64 / 9.7)
+                .collect();
+            let mut c = std::ptr::null_mut();
+            let s = unsafe { bzj_curve_new(dim, 3, pts.as_ptr(), pts.len(), &mut c) };
+            assert_eq!(s, BzjStatus::BZJ_OK);
+            c
+        };
         let p = cubic(dim, 0.0);
         let q = cubic(dim, 20.0);
         let mut plain = BzjConnectOptions {
