@@ -4,7 +4,9 @@
 use std::hint::black_box;
 
 use bezjoin_core::BezierCurve;
-use bezjoin_core::connect::{ConnectOptions, PointConstraint, connect, connect_dense_reference};
+use bezjoin_core::connect::{
+    ConnectOptions, PointConstraint, connect, connect_auto_scale, connect_dense_reference,
+};
 use criterion::{Criterion, criterion_group, criterion_main};
 
 fn cubic(dim: usize, offset: f64) -> BezierCurve {
@@ -27,6 +29,9 @@ fn bench_connect(c: &mut Criterion) {
         let constrained = plain
             .clone()
             .with_constraint(PointConstraint::new(0.5, derivatives));
+        c.bench_function(&format!("connect_auto_scale/c3/{dim}d"), |b| {
+            b.iter(|| connect_auto_scale(black_box(&p), 1.0, black_box(&q), 0.0, &plain).unwrap())
+        });
         for (label, options) in [("c3", &plain), ("c3_k2", &constrained)] {
             c.bench_function(&format!("connect_structured/{label}/{dim}d"), |b| {
                 b.iter(|| connect(black_box(&p), 1.0, black_box(&q), 0.0, options).unwrap())
