@@ -118,7 +118,7 @@ pub(crate) fn auto_scale(problem: &Problem) -> Result<Connection> {
             f2 = energy_at(x2);
         }
     }
-    let mut candidates = vec![grid[best], (x1, f1), (x2, f2)];
+    let mut candidates = [grid[best], (x1, f1), (x2, f2)];
     candidates.sort_by(|p, q| p.1.total_cmp(&q.1));
     let s = candidates[0].0.exp();
     let result = solve_structured(problem, s, s)?;

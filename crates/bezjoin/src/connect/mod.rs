@@ -455,7 +455,8 @@ pub(crate) fn finish(
     what: &str,
 ) -> Result<Connection> {
     let (max_residual, error_estimate) = check_residuals(problem, conditions, &points);
-    if !(error_estimate <= CONNECT_RESIDUAL_LIMIT) || points.iter().any(|v| !v.is_finite()) {
+    let trusted = error_estimate.is_finite() && error_estimate <= CONNECT_RESIDUAL_LIMIT;
+    if !trusted || points.iter().any(|v| !v.is_finite()) {
         return Err(BezjoinError::IllConditioned {
             what: format!("{what} (degree {})", problem.degree),
             estimate: error_estimate,
