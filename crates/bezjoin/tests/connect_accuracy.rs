@@ -268,7 +268,7 @@ fn random_case(
     if middle > 0 {
         let base = connect_unchecked(&p, u0, &q, v0, &options).expect("base connection");
         let points = if middle >= 2 { 2 } else { 1 };
-        let first = (middle + 1) / 2;
+        let first = middle.div_ceil(2);
         let orders = if points == 2 {
             vec![first, middle - first]
         } else {
