@@ -33,7 +33,16 @@ pub use arclength::DEFAULT_ARC_LENGTH_ACCURACY;
 pub use basis::KnotSide;
 pub use bezier::BezierCurve;
 pub use bspline::BSplineCurve;
+pub use connect::{
+    CONNECT_RESIDUAL_LIMIT, ConnectOptions, Connection, MAX_CONNECT_DEGREE, PointConstraint,
+    connect, connect_auto_scale, connect_dense_reference, connect_unchecked, fairness_energy,
+};
 pub use error::{BezjoinError, Result};
+pub use fillet::{
+    ChainCorner, ChainFillet, ChainFilletOptions, DeviationFillet, DeviationFilletOptions, Fillet,
+    FilletOptions, fillet, fillet_at, fillet_chain, fillet_within_deviation,
+};
+pub use intersect::{IntersectOptions, Intersection, IntersectionKind, intersect};
 pub use lagrange::{
     BuildDirection, DEFAULT_LAGRANGE_ACCURACY, DerivedPoints, LagrangeOptions, LagrangeSpline,
     bezier_from_lagrange_points, lagrange_points_of_bezier, lagrange_spline,
