@@ -6,7 +6,8 @@
 //    created once. Each worker w runs a deterministic pseudo-random sequence
 //    of `iterations` mixed calls on them (eval with derivatives, segment with
 //    extrapolation, split, arc length, degree elevation, reverse, points,
-//    merge of two shared curves, including calls that fail on purpose),
+//    merge, connect and intersection of two shared curves, including calls
+//    that fail on purpose),
 //    frees every handle it gets, and folds every status and every output
 //    double's bit pattern into an FNV-1a checksum.
 // 2. Reference: all workers run one after another on the main thread.
@@ -94,9 +95,10 @@ WorkerResult worker(unsigned id, long iterations) {
     for (long i = 0; i < iterations; ++i) {
         const BzjCurve* c = g_curves[rng.below(g_curves.size())];
         BzjStatus st;
-        // Operation 7 (merge, the slowest) in 1 of 64 calls, the others about 1 in 8.
+        // Merge, connect and intersect (the slow ones) in 1 of 64 calls each,
+        // the others about 1 in 8.
         const size_t r = rng.below(64);
-        switch (r == 0 ? 7 : (r % 8 == 7 ? 8 : r % 8)) {
+        switch (r == 0 ? 7 : r == 1 ? 9 : r == 2 ? 10 : (r % 8 == 7 ? 8 : r % 8)) {
             case 0:
             case 1: {  // eval, value and derivatives, inside and outside [0, 1]
                 const size_t order = rng.below(5);
@@ -177,6 +179,35 @@ WorkerResult worker(unsigned id, long iterations) {
                     if (h) fold_curve(sum, h);
                     bzj_curve_free(h);
                 }
+                break;
+            }
+            case 9: {  // connect two shared curves of the same dimension, C^1 at both ends
+                static const size_t pairs[][2] = {{1, 2}, {2, 7}, {3, 5}, {7, 1}};
+                const size_t* pair = pairs[rng.below(4)];
+                BzjConnectOptions options;
+                std::memset(&options, 0, sizeof options);
+                options.p_order = 1;
+                options.q_order = rng.below(2);
+                options.p_scale = 1.0;
+                options.q_scale = 1.0;
+                BzjCurve* out = nullptr;
+                st = bzj_connect(g_curves[pair[0]], rng.uniform(0.3, 0.9), g_curves[pair[1]], rng.uniform(0.1, 0.7),
+                                 &options, &out);
+                sum.add_u64(static_cast<uint64_t>(st));
+                if (out) fold_curve(sum, out);
+                bzj_curve_free(out);
+                break;
+            }
+            case 10: {  // crossings of two shared planar curves
+                static const size_t pairs[][2] = {{1, 2}, {2, 7}, {7, 1}};
+                const size_t* pair = pairs[rng.below(3)];
+                double crossings[2 * 8];
+                size_t count = 0;
+                st = bzj_intersect(g_curves[pair[0]], g_curves[pair[1]], crossings, 8, &count);
+                sum.add_u64(static_cast<uint64_t>(st));
+                sum.add_u64(count);
+                if (st == BZJ_OK)
+                    for (size_t k = 0; k < 2 * (count < 8 ? count : 8); ++k) sum.add(crossings[k]);
                 break;
             }
             default: {  // a non-finite parameter: an error on purpose
