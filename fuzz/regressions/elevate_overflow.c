@@ -1,3 +1,8 @@
+/* Open finding F1 (docs/reliability.md): bzj_curve_elevate with a huge new degree.
+ * Build: cc elevate_overflow.c $(pkg-config --cflags --libs bezjoin) -o elevate_overflow
+ * ./elevate_overflow 18446744073709551615   -> BZJ_ERR_INTERNAL (index out of bounds)
+ * ./elevate_overflow 18446744073709551614   -> BZJ_ERR_INTERNAL (capacity overflow)
+ * ./elevate_overflow 0x100000000000          -> the process aborts (allocation failure) */
 #include <bezjoin.h>
 #include <stdio.h>
 #include <stdint.h>
