@@ -5,7 +5,10 @@
 //! the same rule on both halves to within the interval's share of the
 //! requested `accuracy`; otherwise both halves are refined. Straight lines
 //! (constant speed polynomials of degree <= 31 in the integrand's square)
-//! are exact at the first level.
+//! are exact at the first level. Where the requested absolute accuracy is
+//! below the rounding level of the length itself (`16 eps` times the
+//! length, e.g. long extrapolated ranges or `accuracy = 1e-300`) the result
+//! is accurate to that rounding level instead, and the work stays bounded.
 //!
 //! The inverse, [`BezierCurve::param_at_length`], solves
 //! `len(start, t) = length` by Newton's method on `t` (derivative `|P'(t)|`)
@@ -17,6 +20,9 @@ use crate::error::{BezjoinError, Result, check_finite_scalar};
 /// Default absolute accuracy factor: lengths are computed to
 /// `DEFAULT_ARC_LENGTH_ACCURACY * max(1, polygon length)`.
 pub const DEFAULT_ARC_LENGTH_ACCURACY: f64 = 1e-13;
+
+/// Relative rounding level below which the adaptive rule stops refining.
+const ROUNDING_FLOOR: f64 = 16.0 * f64::EPSILON;
 
 /// Maximum bisection depth of the adaptive quadrature.
 const MAX_DEPTH: u32 = 40;
@@ -46,10 +52,12 @@ const GL_WEIGHTS: [f64; 8] = [
 struct Speed<'a> {
     hodograph: &'a BezierCurve,
     buf: Vec<f64>,
+    evaluations: usize,
 }
 
 impl Speed<'_> {
     fn at(&mut self, t: f64) -> f64 {
+        self.evaluations += 1;
         self.hodograph.eval_into(t, &mut self.buf);
         norm(&self.buf)
     }
@@ -70,7 +78,11 @@ impl Speed<'_> {
         let left = self.gauss(a, m);
         let right = self.gauss(m, b);
         let refined = left + right;
-        if (refined - whole).abs() <= accuracy || depth >= MAX_DEPTH {
+        // Below the rounding level of the sum no refinement can help: accept
+        // there too (otherwise an absolute accuracy below `eps * length`
+        // would bisect down to MAX_DEPTH everywhere, 2^40 intervals).
+        let floor = ROUNDING_FLOOR * refined.abs();
+        if (refined - whole).abs() <= accuracy.max(floor) || depth >= MAX_DEPTH {
             return refined;
         }
         self.adaptive(a, m, left, 0.5 * accuracy, depth + 1)
@@ -143,6 +155,7 @@ impl BezierCurve {
         let mut speed = Speed {
             hodograph: &hodograph,
             buf: vec![0.0; self.dim()],
+            evaluations: 0,
         };
         // Bracket [lo, hi] in the direction of travel; f(t) = len(start, t) - length.
         let (mut lo, mut hi) = if length > 0.0 {
@@ -180,15 +193,22 @@ impl BezierCurve {
 }
 
 pub(crate) fn arc_length_with(hodograph: &BezierCurve, a: f64, b: f64, accuracy: f64) -> f64 {
+    arc_length_counted(hodograph, a, b, accuracy).0
+}
+
+/// The length and the number of speed evaluations it took.
+fn arc_length_counted(hodograph: &BezierCurve, a: f64, b: f64, accuracy: f64) -> (f64, usize) {
     if a == b {
-        return 0.0;
+        return (0.0, 0);
     }
     let mut speed = Speed {
         hodograph,
         buf: vec![0.0; hodograph.dim()],
+        evaluations: 0,
     };
     let whole = speed.gauss(a, b);
-    speed.adaptive(a, b, whole, accuracy, 0)
+    let length = speed.adaptive(a, b, whole, accuracy, 0);
+    (length, speed.evaluations)
 }
 
 #[cfg(test)]
@@ -224,5 +244,52 @@ mod tests {
             assert!((back - t).abs() < 1e-9, "{t} -> {s} -> {back}");
         }
         assert!(c.param_at_length(0.5, 100.0, 1e-12).is_err());
+    }
+}
+
+#[cfg(test)]
+mod review_tests {
+    use super::*;
+
+    fn cubic() -> BezierCurve {
+        BezierCurve::from_rows(&[[0.0, 0.0], [1.0, 2.0], [3.0, 3.0], [4.0, 0.0]]).unwrap()
+    }
+
+    /// Length of a long extrapolated range: the default absolute accuracy is
+    /// far below the rounding level of a length ~1e13. It must terminate and
+    /// be accurate to rounding (reference: the same length summed over pieces
+    /// split at the parameters where the integrand is smooth).
+    #[test]
+    fn long_range_far_below_rounding_terminates_and_is_accurate() {
+        let c = cubic();
+        let len = c.arc_length_default(-1e4, 1e4).unwrap();
+        let mut reference = 0.0;
+        let cuts = [-1e4, -1e3, -1e2, -10.0, -1.0, 0.0, 1.0, 10.0, 1e2, 1e3, 1e4];
+        for w in cuts.windows(2) {
+            reference += c.arc_length(w[0], w[1], 1e-6 * (w[1] - w[0]).abs()).unwrap();
+        }
+        assert!(
+            (len - reference).abs() <= 1e-12 * reference,
+            "{len} vs {reference}"
+        );
+    }
+
+    #[test]
+    fn work_stays_bounded_when_accuracy_is_below_rounding() {
+        let c = cubic();
+        let h = c.hodograph();
+        let (_, evaluations) =
+            arc_length_counted(&h, -1e4, 1e4, c.default_length_accuracy());
+        assert!(evaluations < 20_000, "{evaluations} speed evaluations");
+        let (_, evaluations) = arc_length_counted(&h, 0.0, 1.0, 1e-300);
+        assert!(evaluations < 20_000, "{evaluations} speed evaluations");
+    }
+
+    #[test]
+    fn accuracy_below_rounding_terminates() {
+        let c = cubic();
+        let tight = c.arc_length(0.0, 1.0, 1e-300).unwrap();
+        let normal = c.arc_length(0.0, 1.0, 1e-13).unwrap();
+        assert!((tight - normal).abs() <= 1e-13, "{tight} vs {normal}");
     }
 }
