@@ -174,6 +174,7 @@ pub(crate) unsafe fn input_slice<'a, T>(
     if ptr.is_null() {
         return Err(FfiError::NullPointer(name.into()));
     }
+    check_possible_length::<T>(len, name)?;
     // SAFETY: non-null and the caller promises `len` readable elements.
     Ok(unsafe { std::slice::from_raw_parts(ptr, len) })
 }
@@ -191,6 +192,7 @@ pub(crate) unsafe fn output_slice<'a>(
     if ptr.is_null() {
         return Err(FfiError::NullPointer(name.into()));
     }
+    check_possible_length::<f64>(given, name)?;
     if given < needed {
         return Err(FfiError::BufferTooSmall {
             name: name.into(),
@@ -200,6 +202,19 @@ pub(crate) unsafe fn output_slice<'a>(
     }
     // SAFETY: non-null and the caller promises `given >= needed` writable doubles.
     Ok(unsafe { std::slice::from_raw_parts_mut(ptr, needed) })
+}
+
+/// A length no array can have (more than `isize::MAX` bytes) is a caller
+/// error, reported before any slice is made (making one would be UB).
+fn check_possible_length<T>(len: usize, name: &str) -> FfiResult {
+    let largest = isize::MAX as usize / std::mem::size_of::<T>().max(1);
+    if len > largest {
+        return Err(FfiError::Core(BezjoinError::invalid(
+            format!("length of {name}"),
+            format!("{len} is larger than any array can be"),
+        )));
+    }
+    Ok(())
 }
 
 /// A required pointer to one value to read.

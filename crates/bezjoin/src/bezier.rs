@@ -308,7 +308,7 @@ impl BezierCurve {
         }
         let d = self.dim;
         let r = m - n;
-        let len = (m + 1).checked_mul(d).ok_or_else(|| {
+        let len = m.checked_add(1).and_then(|k| k.checked_mul(d)).ok_or_else(|| {
             BezjoinError::invalid("new_degree", format!("{m} is too large"))
         })?;
         let mut pts = Vec::new();
