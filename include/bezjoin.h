@@ -143,7 +143,8 @@ const char *bzj_status_name(int32_t status);
 BzjStatus bzj_curve_new(size_t dim, size_t degree, const double *points, size_t points_len, struct BzjCurve **out);
 
 /**
- * Release a curve handle. NULL is accepted and ignored.
+ * Release a curve handle. NULL is accepted and ignored. The calling
+ * thread's last error message is left unchanged.
  *
  * # Safety
  * `curve` is NULL or a handle from this library not yet released.

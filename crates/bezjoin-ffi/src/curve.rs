@@ -4,8 +4,8 @@ use bezjoin_core::BezierCurve;
 use bezjoin_core::error::{BezjoinError, check_finite_scalar};
 
 use crate::guard::{
-    BzjCurve, BzjStatus, FfiError, clear_handle, curve_ref, guard, input_slice, output_slice,
-    require_out, write_handle,
+    BzjCurve, BzjStatus, FfiError, clear_handle, curve_ref, guard, guard_release, input_slice,
+    output_slice, require_out, write_handle,
 };
 
 /// Create a Bezier curve of degree `degree` in dimension `dim` from
@@ -57,7 +57,8 @@ pub unsafe extern "C" fn bzj_curve_new(
     })
 }
 
-/// Release a curve handle. NULL is accepted and ignored.
+/// Release a curve handle. NULL is accepted and ignored. The calling
+/// thread's last error message is left unchanged.
 ///
 /// # Safety
 /// `curve` is NULL or a handle from this library not yet released.
@@ -66,10 +67,9 @@ pub unsafe extern "C" fn bzj_curve_free(curve: *mut BzjCurve) {
     if curve.is_null() {
         return;
     }
-    let _ = guard(|| {
+    guard_release(|| {
         // SAFETY: a live handle made by `Box::into_raw`, released once.
         drop(unsafe { Box::from_raw(curve) });
-        Ok(())
     });
 }
 

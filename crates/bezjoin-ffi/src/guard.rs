@@ -148,6 +148,17 @@ pub(crate) fn guard(body: impl FnOnce() -> FfiResult) -> BzjStatus {
     }
 }
 
+/// Run the body of a function that cannot fail and returns nothing (the
+/// release functions) inside the one catch_unwind: the last error is left
+/// as it was, so `bzj_curve_free(tmp)` between a failed call and
+/// `bzj_last_error()` does not erase the message. A panic (a bug) still
+/// replaces it.
+pub(crate) fn guard_release(body: impl FnOnce()) {
+    if catch_unwind(AssertUnwindSafe(body)).is_err() {
+        set_last_error("internal error (a bug in bezjoin, please report): panic while releasing");
+    }
+}
+
 /// The caller's curve behind `ptr`, or NULL_POINTER naming `name`.
 ///
 /// # Safety

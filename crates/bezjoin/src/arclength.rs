@@ -266,7 +266,9 @@ mod review_tests {
         let mut reference = 0.0;
         let cuts = [-1e4, -1e3, -1e2, -10.0, -1.0, 0.0, 1.0, 10.0, 1e2, 1e3, 1e4];
         for w in cuts.windows(2) {
-            reference += c.arc_length(w[0], w[1], 1e-6 * (w[1] - w[0]).abs()).unwrap();
+            reference += c
+                .arc_length(w[0], w[1], 1e-6 * (w[1] - w[0]).abs())
+                .unwrap();
         }
         assert!(
             (len - reference).abs() <= 1e-12 * reference,
@@ -278,8 +280,7 @@ mod review_tests {
     fn work_stays_bounded_when_accuracy_is_below_rounding() {
         let c = cubic();
         let h = c.hodograph();
-        let (_, evaluations) =
-            arc_length_counted(&h, -1e4, 1e4, c.default_length_accuracy());
+        let (_, evaluations) = arc_length_counted(&h, -1e4, 1e4, c.default_length_accuracy());
         assert!(evaluations < 20_000, "{evaluations} speed evaluations");
         let (_, evaluations) = arc_length_counted(&h, 0.0, 1.0, 1e-300);
         assert!(evaluations < 20_000, "{evaluations} speed evaluations");

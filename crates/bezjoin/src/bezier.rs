@@ -308,9 +308,10 @@ impl BezierCurve {
         }
         let d = self.dim;
         let r = m - n;
-        let len = m.checked_add(1).and_then(|k| k.checked_mul(d)).ok_or_else(|| {
-            BezjoinError::invalid("new_degree", format!("{m} is too large"))
-        })?;
+        let len = m
+            .checked_add(1)
+            .and_then(|k| k.checked_mul(d))
+            .ok_or_else(|| BezjoinError::invalid("new_degree", format!("{m} is too large")))?;
         let mut pts = Vec::new();
         pts.try_reserve_exact(len).map_err(|_| {
             BezjoinError::invalid(
@@ -332,8 +333,8 @@ impl BezierCurve {
                 // w(i + 1) / w(i)
                 ((n - i) as f64 * (j - i) as f64) / ((i + 1) as f64 * (r + i + 1 - j) as f64)
             };
-            let mode = (((j + 1) as f64 * (n + 1) as f64 / (m + 2) as f64).floor() as usize)
-                .clamp(lo, hi);
+            let mode =
+                (((j + 1) as f64 * (n + 1) as f64 / (m + 2) as f64).floor() as usize).clamp(lo, hi);
             weights[mode] = 1.0;
             for i in mode + 1..=hi {
                 weights[i] = weights[i - 1] * ratio(i - 1);
@@ -610,6 +611,9 @@ mod review_tests {
         // control point lies in the bounding box of the old ones.
         let c = BezierCurve::new(1, 0, vec![3.5]).unwrap();
         let e = c.elevate_degree(1500).unwrap();
-        assert!(e.points().iter().all(|&v| v == 3.5), "constant curve changed");
+        assert!(
+            e.points().iter().all(|&v| v == 3.5),
+            "constant curve changed"
+        );
     }
 }
