@@ -147,10 +147,12 @@ impl BezierCurve {
             .sum()
     }
 
-    /// `P(t)` written into `out` (length `dim`), without allocating.
+    /// `P(t)` written into `out` (length `dim`), without allocating up to
+    /// degree 512.
     ///
     /// Uses the Bernstein-Horner scheme on the shorter side of `t = 1/2`
-    /// (`O(n d)`); any finite `t` is accepted.
+    /// (`O(n d)`); above degree 512, where its binomials and powers leave
+    /// the `f64` range, de Casteljau's algorithm. Any finite `t` is accepted.
     ///
     /// # Panics
     /// If `out.len() != dim`.
@@ -455,12 +457,33 @@ impl BezierCurve {
     }
 }
 
+/// Highest degree evaluated by the Bernstein-Horner scheme: `C(n, n/2)` and
+/// `2^-n` stay well inside the `f64` range.
+const HORNER_MAX_DEGREE: usize = 512;
+
 /// `scale * sum_i B_i^n(t) P_i` for `n + 1` row-major points of dimension
 /// `dim`, written into `out`, by the Bernstein-Horner scheme:
 /// `P(t) = s^n sum_i C(n,i) (t/s)^i P_i = t^n sum_i C(n,i) (s/t)^(n-i) P_i`,
 /// `s = 1 - t`, with Horner in whichever ratio is at most 1 on `[0, 1]`.
+///
+/// Above [`HORNER_MAX_DEGREE`] the binomials and powers would leave the
+/// `f64` range, so de Casteljau's algorithm (allocating) is used instead.
 fn bernstein_horner(points: &[f64], n: usize, dim: usize, t: f64, scale: f64, out: &mut [f64]) {
     let d = dim;
+    if n > HORNER_MAX_DEGREE {
+        let mut w = points[..(n + 1) * d].to_vec();
+        for level in 1..=n {
+            for i in 0..=(n - level) {
+                for c in 0..d {
+                    w[i * d + c] = (1.0 - t) * w[i * d + c] + t * w[(i + 1) * d + c];
+                }
+            }
+        }
+        for c in 0..d {
+            out[c] = w[c] * scale;
+        }
+        return;
+    }
     let s = 1.0 - t;
     let (ratio, factor, first, step): (f64, f64, usize, isize) = if t > 0.5 {
         (s / t, t.powi(n as i32), 0, 1)
@@ -615,5 +638,41 @@ mod review_tests {
             e.points().iter().all(|&v| v == 3.5),
             "constant curve changed"
         );
+    }
+}
+
+#[cfg(test)]
+mod review_eval_tests {
+    use super::*;
+
+    #[test]
+    fn fast_evaluation_matches_de_casteljau_at_high_degree() {
+        // Bernstein-Horner multiplies C(n, i) (beyond f64 above n ~ 1030)
+        // by (1 - t)^n (below f64 near t = 1/2): both ends must still agree
+        // with de Casteljau, which uses convex combinations only.
+        for &n in &[200usize, 1100] {
+            let pts: Vec<f64> = (0..=n).map(|i| (i as f64 * 0.37).sin()).collect();
+            let c = BezierCurve::new(1, n, pts).unwrap();
+            for &t in &[0.0, 0.25, 0.5, 0.7, 1.0] {
+                let fast = c.eval(t)[0];
+                let reference = c.eval_de_casteljau(t)[0];
+                assert!(
+                    (fast - reference).abs() <= 1e-12,
+                    "n = {n}, t = {t}: {fast} vs {reference}"
+                );
+                let d = c.eval_derivatives(t, 1);
+                let mut basis = vec![0.0; 2];
+                c.eval_derivatives_basis(t, 1, &mut basis);
+                assert!((d[(0, 0)] - reference).abs() <= 1e-12, "n = {n}, t = {t}");
+                assert!((basis[0] - reference).abs() <= 1e-12, "n = {n}, t = {t}");
+                assert!(
+                    (basis[1] - d[(1, 0)]).abs() <= 1e-12 * basis[1].abs().max(n as f64),
+                    "n = {n}, t = {t}: {} vs {}",
+                    basis[1],
+                    d[(1, 0)]
+                );
+                assert!(d[(1, 0)].is_finite(), "n = {n}, t = {t}: {}", d[(1, 0)]);
+            }
+        }
     }
 }
