@@ -381,6 +381,18 @@ mod tests {
     }
 
     #[test]
+    fn non_finite_scalar_message_names_the_argument_without_index() {
+        let c = line();
+        let mut buf = [0.0f64; 2];
+        // SAFETY: live handle, 2 writable doubles.
+        let s = unsafe { bzj_curve_eval(c, f64::NAN, 0, buf.as_mut_ptr(), 2) };
+        assert_eq!(s, BzjStatus::BZJ_ERR_NON_FINITE);
+        assert_eq!(last_error(), "t = NaN is not finite");
+        // SAFETY: live handle.
+        unsafe { bzj_curve_free(c) };
+    }
+
+    #[test]
     fn free_keeps_the_last_error() {
         let c = line();
         let mut out = std::ptr::null_mut();

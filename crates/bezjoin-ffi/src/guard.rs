@@ -79,7 +79,9 @@ impl FfiError {
                 | BezjoinError::OrderAboveDegree { .. }
                 | BezjoinError::LengthMismatch { .. }
                 | BezjoinError::InvalidArgument { .. } => BZJ_ERR_INVALID_ARGUMENT,
-                BezjoinError::NonFinite { .. } => BZJ_ERR_NON_FINITE,
+                BezjoinError::NonFinite { .. } | BezjoinError::NonFiniteScalar { .. } => {
+                    BZJ_ERR_NON_FINITE
+                }
                 BezjoinError::DimensionMismatch { .. } => BZJ_ERR_DIMENSION_MISMATCH,
                 BezjoinError::Inconsistent { .. } => BZJ_ERR_INCONSISTENT,
                 BezjoinError::Singular { .. } => BZJ_ERR_SINGULAR,

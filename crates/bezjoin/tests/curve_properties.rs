@@ -203,7 +203,7 @@ fn arc_length_errors_name_the_argument() {
     let c = BezierCurve::from_rows(&[[0.0, 0.0], [1.0, 0.0]]).unwrap();
     assert_eq!(
         c.arc_length(f64::NAN, 1.0, 1e-9).unwrap_err().to_string(),
-        "a[0] = NaN is not finite"
+        "a = NaN is not finite"
     );
     assert!(
         c.arc_length(0.0, 1.0, 0.0)
