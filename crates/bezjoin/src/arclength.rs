@@ -14,6 +14,7 @@
 //! `len(start, t) = length` by Newton's method on `t` (derivative `|P'(t)|`)
 //! safeguarded by bisection, so it converges even where the speed vanishes.
 
+use crate::basis::binomial;
 use crate::bezier::{BezierCurve, norm};
 use crate::error::{BezjoinError, Result, check_finite_scalar};
 
@@ -197,6 +198,13 @@ pub(crate) fn arc_length_with(hodograph: &BezierCurve, a: f64, b: f64, accuracy:
 }
 
 /// The length and the number of speed evaluations it took.
+///
+/// The range is first cut at the local minima of the speed inside it
+/// ([`speed_minima`]): at a cusp `|P'|` has a kink, and an adaptive rule
+/// that compares one interval with its two halves can be fooled there (the
+/// kink sits at nearly the same relative place in both, so both estimates
+/// carry the same error; measured 1.5e-5 wrong with the halves agreeing to
+/// 1e-13). Each piece gets the share of `accuracy` of its width.
 fn arc_length_counted(hodograph: &BezierCurve, a: f64, b: f64, accuracy: f64) -> (f64, usize) {
     if a == b {
         return (0.0, 0);
@@ -206,9 +214,106 @@ fn arc_length_counted(hodograph: &BezierCurve, a: f64, b: f64, accuracy: f64) ->
         buf: vec![0.0; hodograph.dim()],
         evaluations: 0,
     };
-    let whole = speed.gauss(a, b);
-    let length = speed.adaptive(a, b, whole, accuracy, 0);
-    (length, speed.evaluations)
+    let (lo, hi) = if a < b { (a, b) } else { (b, a) };
+    let mut cuts = vec![lo];
+    cuts.extend(speed_minima(hodograph, lo, hi));
+    cuts.push(hi);
+    let width = hi - lo;
+    let mut length = 0.0;
+    for w in cuts.windows(2) {
+        if w[1] <= w[0] {
+            continue;
+        }
+        let share = accuracy * ((w[1] - w[0]) / width).max(f64::EPSILON);
+        let whole = speed.gauss(w[0], w[1]);
+        length += speed.adaptive(w[0], w[1], whole, share, 0);
+    }
+    (if a < b { length } else { -length }, speed.evaluations)
+}
+
+/// Highest hodograph degree for which [`speed_minima`] splits the range
+/// (its Bernstein product coefficients use binomials, exact far beyond).
+const MINIMA_MAX_DEGREE: usize = 200;
+
+/// Parameters in `(lo, hi)` where the speed `|H(t)|` has a local minimum
+/// (`H . H'` changes sign from - to +), located by Bernstein subdivision
+/// (variation diminishing: no sign change of the coefficients, no root)
+/// to a relative width of `2^-44`. Empty above [`MINIMA_MAX_DEGREE`].
+fn speed_minima(hodograph: &BezierCurve, lo: f64, hi: f64) -> Vec<f64> {
+    let p = hodograph.degree();
+    if p == 0 || p > MINIMA_MAX_DEGREE || hi <= lo {
+        return Vec::new();
+    }
+    let d = hodograph.dim();
+    // H on [lo, hi] as a Bezier curve in s in [0, 1], and its derivative in s.
+    let h = hodograph.segment_unchecked(lo, hi);
+    let g = h.hodograph();
+    let q = p - 1;
+    // f(s) = H(s) . H'(s), degree p + q, Bernstein coefficients.
+    let deg = p + q;
+    let mut coefficients = vec![0.0; deg + 1];
+    for i in 0..=p {
+        for j in 0..=q {
+            let w = binomial(p, i) * binomial(q, j) / binomial(deg, i + j);
+            let dot: f64 = (0..d).map(|c| h.point(i)[c] * g.point(j)[c]).sum();
+            coefficients[i + j] += w * dot;
+        }
+    }
+    let mut roots = Vec::new();
+    let mut budget = 4096usize;
+    isolate(&coefficients, 0.0, 1.0, &mut roots, &mut budget);
+    roots
+        .into_iter()
+        .map(|s| lo + s * (hi - lo))
+        .filter(|&t| t > lo && t < hi)
+        .collect()
+}
+
+/// Append to `roots` the points in `(s0, s1)` where the Bernstein polynomial
+/// with `coefficients` on `[s0, s1]` goes from negative to positive.
+fn isolate(coefficients: &[f64], s0: f64, s1: f64, roots: &mut Vec<f64>, budget: &mut usize) {
+    if *budget == 0 {
+        return;
+    }
+    *budget -= 1;
+    let first = coefficients[0];
+    let last = coefficients[coefficients.len() - 1];
+    let mut changes = 0;
+    let mut sign = 0.0f64;
+    for &c in coefficients {
+        if c != 0.0 {
+            if sign != 0.0 && c.signum() != sign {
+                changes += 1;
+            }
+            sign = c.signum();
+        }
+    }
+    if changes == 0 {
+        return;
+    }
+    if s1 - s0 <= 2f64.powi(-44) {
+        if first < 0.0 && last > 0.0 || changes % 2 == 1 && last > 0.0 {
+            roots.push(0.5 * (s0 + s1));
+        }
+        return;
+    }
+    // de Casteljau at 1/2.
+    let n = coefficients.len() - 1;
+    let mut w = coefficients.to_vec();
+    let mut left = Vec::with_capacity(n + 1);
+    let mut right = vec![0.0; n + 1];
+    left.push(w[0]);
+    right[n] = w[n];
+    for level in 1..=n {
+        for i in 0..=(n - level) {
+            w[i] = 0.5 * (w[i] + w[i + 1]);
+        }
+        left.push(w[0]);
+        right[n - level] = w[n - level];
+    }
+    let mid = 0.5 * (s0 + s1);
+    isolate(&left, s0, mid, roots, budget);
+    isolate(&right, mid, s1, roots, budget);
 }
 
 #[cfg(test)]
