@@ -9,7 +9,7 @@
 
 use nalgebra::DMatrix;
 
-use crate::basis::{bezier_basis_derivatives, binomial};
+use crate::basis::bezier_basis_derivatives;
 use crate::error::{BezjoinError, Result, check_closed_range, check_finite, check_finite_scalar};
 
 /// A polynomial Bezier curve of degree `n >= 0` in dimension `dim >= 1`.
@@ -345,8 +345,8 @@ impl BezierCurve {
                 weights[i] = weights[i + 1] / ratio(i);
             }
             let total: f64 = weights[lo..=hi].iter().sum();
-            for i in lo..=hi {
-                let w = weights[i] / total;
+            for (i, weight) in weights.iter().enumerate().take(hi + 1).skip(lo) {
+                let w = weight / total;
                 for c in 0..d {
                     pts[j * d + c] += w * self.points[i * d + c];
                 }
