@@ -83,6 +83,11 @@ impl Speed<'_> {
         // Below the rounding level of the sum no refinement can help: accept
         // there too (otherwise an absolute accuracy below `eps * length`
         // would bisect down to MAX_DEPTH everywhere, 2^40 intervals).
+        if !refined.is_finite() {
+            // Overflow: no refinement can help (and NaN would never pass
+            // the test below, bisecting 2^MAX_DEPTH times).
+            return refined;
+        }
         let floor = ROUNDING_FLOOR * refined.abs();
         if (refined - whole).abs() <= accuracy.max(floor) || depth >= MAX_DEPTH {
             return refined;
@@ -94,7 +99,11 @@ impl Speed<'_> {
 
 impl BezierCurve {
     /// Arc length between parameters `a` and `b` (signed: negative when
-    /// `b < a`), to an absolute `accuracy > 0`. Any finite `a`, `b`.
+    /// `b < a`), to an absolute `accuracy > 0`, or to `16 eps` relative where
+    /// that is larger (the rounding level). Any finite `a`, `b`.
+    ///
+    /// Errors: non-finite arguments, `accuracy <= 0`, a length that
+    /// overflows the `f64` range (InvalidArgument).
     pub fn arc_length(&self, a: f64, b: f64, accuracy: f64) -> Result<f64> {
         check_finite_scalar("a", a)?;
         check_finite_scalar("b", b)?;
@@ -106,7 +115,14 @@ impl BezierCurve {
             return Ok(0.0);
         }
         let hodograph = self.hodograph();
-        Ok(arc_length_with(&hodograph, a, b, accuracy))
+        let length = arc_length_with(&hodograph, a, b, accuracy);
+        if !length.is_finite() {
+            return Err(BezjoinError::invalid(
+                "a, b",
+                format!("the arc length from a = {a} to b = {b} overflows the f64 range"),
+            ));
+        }
+        Ok(length)
     }
 
     /// Arc length with the default accuracy
@@ -259,6 +275,9 @@ fn speed_minima(hodograph: &BezierCurve, lo: f64, hi: f64) -> Vec<f64> {
             let dot: f64 = (0..d).map(|c| h.point(i)[c] * g.point(j)[c]).sum();
             coefficients[i + j] += w * dot;
         }
+    }
+    if coefficients.iter().any(|c| !c.is_finite()) {
+        return Vec::new();
     }
     let mut roots = Vec::new();
     let mut budget = 4096usize;

@@ -391,10 +391,26 @@ impl BezierCurve {
     ///
     /// Control point `i` is the blossom `P[a^(n-i), b^i]`, evaluated by de
     /// Casteljau steps with `b` then `a`. `a == b` gives the constant curve.
+    ///
+    /// Errors: `a` or `b` not finite (NonFiniteScalar); a segment so far
+    /// outside `[0, 1]` that its control points overflow (InvalidArgument
+    /// naming the larger of `a`, `b`).
     pub fn segment(&self, a: f64, b: f64) -> Result<BezierCurve> {
         check_finite_scalar("a", a)?;
         check_finite_scalar("b", b)?;
-        Ok(self.segment_unchecked(a, b))
+        let seg = self.segment_unchecked(a, b);
+        if seg.points.iter().any(|v| !v.is_finite()) {
+            let (name, value) = if a.abs() >= b.abs() {
+                ("a", a)
+            } else {
+                ("b", b)
+            };
+            return Err(BezjoinError::invalid(
+                format!("{name} = {value}"),
+                "the segment's control points overflow the f64 range",
+            ));
+        }
+        Ok(seg)
     }
 
     pub(crate) fn segment_unchecked(&self, a: f64, b: f64) -> BezierCurve {

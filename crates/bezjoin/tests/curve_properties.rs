@@ -300,3 +300,21 @@ fn arc_length_ending_just_past_a_cusp() {
         }
     }
 }
+
+#[test]
+fn overflowing_segment_and_length_are_errors_not_infinite_curves() {
+    let c = BezierCurve::from_rows(&[[0.0, 0.0], [1.0, 2.0], [3.0, 3.0], [4.0, 0.0]]).unwrap();
+    // P(1e120) ~ 1e360: not representable. A curve with inf/NaN control
+    // points must never be returned (every other operation would then
+    // silently produce NaN).
+    let err = c.segment(0.0, 1e120).unwrap_err();
+    assert!(err.to_string().starts_with("b = 1000000"), "{err}");
+    assert!(err.to_string().contains("overflow"), "{err}");
+    let err = c.segment(-1e120, 0.5).unwrap_err();
+    assert!(err.to_string().starts_with("a = -1000000"), "{err}");
+    let err = c.arc_length(-1e200, 1e200, 1e-9).unwrap_err();
+    assert!(err.to_string().contains("arc length"), "{err}");
+    // Large but representable: fine, and finite.
+    let s = c.segment(-1e50, 1e50).unwrap();
+    assert!(s.points().iter().all(|v| v.is_finite()));
+}
