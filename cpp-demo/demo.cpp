@@ -329,6 +329,33 @@ double time_per_call_ns(int batches, int calls, Body&& body) {
     return samples[samples.size() / 2];
 }
 
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v[v.size() / 2];
+}
+
+// Ours and OCCT timed in alternating batches (the machine is shared and its
+// load drifts; alternating puts both under the same load). Medians of the
+// per-call times and of the per-batch ratios OCCT / ours.
+struct Pair {
+    double ours_ns;
+    double occt_ns;
+    double ratio;
+};
+
+template <class Ours, class Occt>
+Pair time_pair(int batches, int ours_calls, Ours&& ours, int occt_calls, Occt&& occt) {
+    std::vector<double> a;
+    std::vector<double> b;
+    std::vector<double> r;
+    for (int i = 0; i < batches; ++i) {
+        a.push_back(time_per_call_ns(1, ours_calls, ours));
+        b.push_back(time_per_call_ns(1, occt_calls, occt));
+        r.push_back(b.back() / a.back());
+    }
+    return {median(a), median(b), median(r)};
+}
+
 volatile double g_sink = 0.0;  // keeps timed results alive
 
 std::string format_time(double ns) {
@@ -345,8 +372,7 @@ struct Timing {
     std::string name;
     std::string ours_label;
     std::string occt_label;
-    double ours_ns;
-    double occt_ns;
+    Pair pair;
 };
 
 // ---------------------------------------------------------------- STEP
@@ -654,8 +680,8 @@ void check_error_path(Report& report) {
 
 void time_evaluation(Report& report, std::vector<Timing>& timings, const Options& options) {
     guarded(report, "timing.eval", [&] {
-        const int batches = options.quick ? 1 : 7;
-        const int calls = options.quick ? 10 : 400000;
+        const int batches = options.quick ? 1 : 15;
+        const int calls = options.quick ? 10 : 200000;
         for (std::size_t degree : {3u, 7u}) {
             std::mt19937_64 rng(7 + degree);
             const Curve curve(3, degree, random_points(rng, 3, degree));
@@ -665,18 +691,31 @@ void time_evaluation(Report& report, std::vector<Timing>& timings, const Options
                 params[i] = (i * 0.6180339887498949) - std::floor(i * 0.6180339887498949);
             }
             double buffer[3];
-            const double ours = time_per_call_ns(batches, calls, [&](int i) {
-                curve.eval_into(params[i & 1023], 0, buffer, 3);
-                g_sink = g_sink + buffer[0];
-            });
             gp_Pnt p;
-            const double theirs = time_per_call_ns(batches, calls, [&](int i) {
-                occ->D0(params[i & 1023], p);
-                g_sink = g_sink + p.X();
-            });
+            const Pair pair = time_pair(
+                batches, calls,
+                [&](int i) {
+                    curve.eval_into(params[i & 1023], 0, buffer, 3);
+                    g_sink = g_sink + buffer[0];
+                },
+                calls,
+                [&](int i) {
+                    occ->D0(params[i & 1023], p);
+                    g_sink = g_sink + p.X();
+                });
             timings.push_back({format("evaluation, degree %zu 3D", degree), "bzj_curve_eval order 0",
-                               "Geom_BezierCurve::D0", ours, theirs});
+                               "Geom_BezierCurve::D0", pair});
         }
+        // The cost of one trip through the C ABI (guard, status, last-error
+        // bookkeeping) on a function that does no work: part of every call.
+        const Curve curve(3, 3, std::vector<double>(12, 0.5));
+        const double trip = time_per_call_ns(batches, calls, [&](int) {
+            std::size_t degree = 0;
+            bzj_curve_degree(curve.get(), &degree);
+            g_sink = g_sink + static_cast<double>(degree);
+        });
+        report.info("timing.c-abi-call-overhead",
+                    format("bzj_curve_degree (no work): %s per call", format_time(trip).c_str()));
     });
 }
 
@@ -828,21 +867,23 @@ void check_connect(Report& report, StepScene& scene, std::vector<Timing>& timing
                            format("control points of R (degree %zu), OCCT-assembled system",
                                   cs.kp + cs.kq + 1));
 
-                const int batches = options.quick ? 1 : 7;
-                const int calls = options.quick ? 2 : 20000;
-                const double ours_ns = time_per_call_ns(batches, calls, [&](int) {
-                    const Curve joined = bezjoin::connect(p, cs.u0, q, cs.v0, opts);
-                    g_sink = g_sink + static_cast<double>(joined.degree());
-                });
-                const double theirs_ns = time_per_call_ns(batches, calls, [&](int) {
-                    const std::vector<double> x = occt_connect(
-                        occ_p, cs.u0, occ_q, cs.v0, static_cast<int>(cs.kp), static_cast<int>(cs.kq),
-                        cs.alpha, cs.beta);
-                    g_sink = g_sink + x[0];
-                });
+                const int batches = options.quick ? 1 : 11;
+                const int calls = options.quick ? 2 : 10000;
+                const Pair pair = time_pair(
+                    batches, calls,
+                    [&](int) {
+                        const Curve joined = bezjoin::connect(p, cs.u0, q, cs.v0, opts);
+                        g_sink = g_sink + static_cast<double>(joined.degree());
+                    },
+                    calls,
+                    [&](int) {
+                        const std::vector<double> x =
+                            occt_connect(occ_p, cs.u0, occ_q, cs.v0, static_cast<int>(cs.kp),
+                                         static_cast<int>(cs.kq), cs.alpha, cs.beta);
+                        g_sink = g_sink + x[0];
+                    });
                 timings.push_back({format("connect C3/C4 (cubic + quartic, degree %zu)", cs.kp + cs.kq + 1),
-                                   "bzj_connect", "EvalBsplineBasis + DN + math_Gauss", ours_ns,
-                                   theirs_ns});
+                                   "bzj_connect", "EvalBsplineBasis + DN + math_Gauss", pair});
                 const gp_Vec offset(0.0, 0.0, 0.0);
                 scene.add(Handle(Geom_Curve)(chain.curve), offset);
             }
@@ -1001,24 +1042,26 @@ void check_fillet(Report& report, StepScene& scene, std::vector<Timing>& timings
         scene.add(arc, gp_Vec(0.0, 6.0, 0.0));
         scene.add(m2, gp_Vec(0.0, 6.0, 0.0));
 
-        const int batches = options.quick ? 1 : 5;
-        const double occt_ns = time_per_call_ns(batches, options.quick ? 1 : 20, [&](int) {
-            TopoDS_Edge a;
-            TopoDS_Edge b;
-            const TopoDS_Edge result = run_occt(a, b);
-            g_sink = g_sink + static_cast<double>(result.IsNull());
-        });
         bezjoin::FilletOptions opts;
         opts.p_setback = 0.3;
         opts.q_setback = 0.3;
         opts.p_order = 3;
         opts.q_order = 3;
-        const double ours_ns = time_per_call_ns(batches, options.quick ? 1 : 2000, [&](int) {
-            const bezjoin::Fillet f = bezjoin::fillet(p, q, opts);
-            g_sink = g_sink + static_cast<double>(f.blend.degree());
-        });
+        const Pair pair = time_pair(
+            options.quick ? 1 : 7, options.quick ? 1 : 1000,
+            [&](int) {
+                const bezjoin::Fillet f = bezjoin::fillet(p, q, opts);
+                g_sink = g_sink + static_cast<double>(f.blend.degree());
+            },
+            options.quick ? 1 : 10,
+            [&](int) {
+                TopoDS_Edge a;
+                TopoDS_Edge b;
+                const TopoDS_Edge result = run_occt(a, b);
+                g_sink = g_sink + static_cast<double>(result.IsNull());
+            });
         timings.push_back({"fillet of two cubics (ours C3, OCCT G1 arc)", "bzj_fillet C3",
-                           "ChFi2d_FilletAPI", ours_ns, occt_ns});
+                           "ChFi2d_FilletAPI", pair});
     });
 }
 #endif  // BEZJOIN_HAS_FILLET
@@ -1095,18 +1138,19 @@ void check_merge(Report& report, StepScene& scene, std::vector<Timing>& timings,
         scene.add(p, gp_Vec(0.0, 11.0, 0.0));
         scene.add(q, gp_Vec(0.0, 11.0, 0.0));
 
-        const int batches = options.quick ? 1 : 7;
-        const int calls = options.quick ? 1 : 2000;
-        const double ours_ns = time_per_call_ns(batches, calls, [&](int) {
-            const bezjoin::Merge again = bezjoin::merge(p, q, opts);
-            g_sink = g_sink + again.report.mu;
-        });
-        const double occt_ns = time_per_call_ns(batches, options.quick ? 1 : 200, [&](int) {
-            GeomAPI_PointsToBSpline again(points, 3, 3, GeomAbs_C2, 1.0);
-            g_sink = g_sink + static_cast<double>(again.Curve()->NbPoles());
-        });
+        const Pair pair = time_pair(
+            options.quick ? 1 : 9, options.quick ? 1 : 1000,
+            [&](int) {
+                const bezjoin::Merge again = bezjoin::merge(p, q, opts);
+                g_sink = g_sink + again.report.mu;
+            },
+            options.quick ? 1 : 100,
+            [&](int) {
+                GeomAPI_PointsToBSpline again(points, 3, 3, GeomAbs_C2, 1.0);
+                g_sink = g_sink + static_cast<double>(again.Curve()->NbPoles());
+            });
         timings.push_back({"merge two cubics into one", "bzj_merge L2 optimal mu",
-                           "GeomAPI_PointsToBSpline 201 points", ours_ns, occt_ns});
+                           "GeomAPI_PointsToBSpline 201 points", pair});
     });
 }
 #endif  // BEZJOIN_HAS_MERGE
@@ -1263,12 +1307,12 @@ int main(int argc, char** argv) {
     time_evaluation(report, timings, options);
     write_step(report, scene, rng, options);
 
-    std::printf("\nSide by side (median per call; ratio = OCCT time / our time)%s\n",
+    std::printf("\nSide by side (median per call; ratio = median over alternating batches of OCCT time / our time)%s\n",
                 options.quick ? " [quick run: not meaningful]" : "");
     for (const Timing& t : timings) {
         std::printf("TIME %-44s ours %10s (%s)  OCCT %10s (%s)  ratio %8.1fx\n", t.name.c_str(),
-                    format_time(t.ours_ns).c_str(), t.ours_label.c_str(), format_time(t.occt_ns).c_str(),
-                    t.occt_label.c_str(), t.occt_ns / t.ours_ns);
+                    format_time(t.pair.ours_ns).c_str(), t.ours_label.c_str(),
+                    format_time(t.pair.occt_ns).c_str(), t.occt_label.c_str(), t.pair.ratio);
     }
     std::printf("\n%s: %d failure(s)\n", report.failures == 0 ? "ALL PASS" : "FAILED", report.failures);
     return report.failures == 0 ? 0 : 1;
