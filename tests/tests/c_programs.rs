@@ -57,7 +57,9 @@ fn build_and_run(source: &Path, cpp: bool) -> Result<(), String> {
         .args(["-x", "none"])
         .arg(static_library())
         .args(["-lpthread", "-ldl", "-lm", "-lrt", "-lutil", "-lgcc_s"]);
-    let output = cmd.output().map_err(|e| format!("cannot run the compiler: {e}"))?;
+    let output = cmd
+        .output()
+        .map_err(|e| format!("cannot run the compiler: {e}"))?;
     if !output.status.success() {
         return Err(format!(
             "{} failed to compile as {}:\n{}",
@@ -66,7 +68,9 @@ fn build_and_run(source: &Path, cpp: bool) -> Result<(), String> {
             String::from_utf8_lossy(&output.stderr)
         ));
     }
-    let run = Command::new(&exe).output().map_err(|e| format!("cannot run {}: {e}", exe.display()))?;
+    let run = Command::new(&exe)
+        .output()
+        .map_err(|e| format!("cannot run {}: {e}", exe.display()))?;
     if !run.status.success() {
         return Err(format!(
             "{} exited with {}:\n{}{}",
@@ -93,12 +97,18 @@ fn programs() -> Vec<PathBuf> {
 fn c_programs_pass_as_c() {
     let programs = programs();
     assert!(!programs.is_empty(), "no C programs found in tests/c");
-    let failures: Vec<String> = programs.iter().filter_map(|p| build_and_run(p, false).err()).collect();
+    let failures: Vec<String> = programs
+        .iter()
+        .filter_map(|p| build_and_run(p, false).err())
+        .collect();
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
 #[test]
 fn c_programs_pass_as_cpp() {
-    let failures: Vec<String> = programs().iter().filter_map(|p| build_and_run(p, true).err()).collect();
+    let failures: Vec<String> = programs()
+        .iter()
+        .filter_map(|p| build_and_run(p, true).err())
+        .collect();
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }

@@ -1,16 +1,17 @@
 //! Properties of the Bezier core (issue 2, item 7): every exact operation
 //! is checked against an independent way of computing the same thing.
 
+use bezjoin_core::BezierCurve;
 use bezjoin_core::basis::{bezier_basis_derivatives, binomial};
 use bezjoin_core::bezier::distance;
-use bezjoin_core::BezierCurve;
 use proptest::prelude::*;
 
 /// A random curve of degree 0..=max_degree in dimension 1..=4 with
 /// coordinates in [-10, 10].
 fn curve(max_degree: usize) -> impl Strategy<Value = BezierCurve> {
     (0..=max_degree, 1usize..=4).prop_flat_map(|(n, d)| {
-        prop::collection::vec(-10.0f64..10.0, (n + 1) * d).prop_map(move |pts| BezierCurve::new(d, n, pts).unwrap())
+        prop::collection::vec(-10.0f64..10.0, (n + 1) * d)
+            .prop_map(move |pts| BezierCurve::new(d, n, pts).unwrap())
     })
 }
 
@@ -29,7 +30,10 @@ fn derivative_closed_form(c: &BezierCurve, t: f64, k: usize) -> Vec<f64> {
     }
     let mut diffs: Vec<Vec<f64>> = (0..=n).map(|i| c.point(i).to_vec()).collect();
     for _ in 0..k {
-        diffs = diffs.windows(2).map(|w| w[1].iter().zip(&w[0]).map(|(b, a)| b - a).collect()).collect();
+        diffs = diffs
+            .windows(2)
+            .map(|w| w[1].iter().zip(&w[0]).map(|(b, a)| b - a).collect())
+            .collect();
     }
     let falling: f64 = (0..k).map(|j| (n - j) as f64).product();
     let m = n - k;
@@ -115,6 +119,15 @@ proptest! {
             let size = (0..k).map(|j| (n.saturating_sub(j)).max(1) as f64).product::<f64>() * 2f64.powi(k as i32);
             prop_assert!(close(&ours, &closed, 1e-11, c.coordinate_scale() * size), "k={} {:?} vs {:?}", k, ours, closed);
         }
+        // The A2.3 basis path (what the solvers use) agrees with both.
+        let mut basis_path = vec![0.0; (n + 2) * c.dim()];
+        c.eval_derivatives_basis(t, n + 1, &mut basis_path);
+        for k in 0..=n + 1 {
+            let closed = derivative_closed_form(&c, t, k);
+            let size = (0..k).map(|j| (n.saturating_sub(j)).max(1) as f64).product::<f64>() * 2f64.powi(k as i32);
+            let row = &basis_path[k * c.dim()..(k + 1) * c.dim()];
+            prop_assert!(close(row, &closed, 1e-11, c.coordinate_scale() * size), "A2.3 path, k={}", k);
+        }
         // Central differences of order k-1 give order k to O(h^2).
         if n >= 1 {
             let h = 1e-5;
@@ -178,7 +191,8 @@ proptest! {
 #[test]
 fn semicubical_parabola_length_matches_closed_form() {
     // (t^2, t^3): zero speed at t = 0 (repeated control points).
-    let c = BezierCurve::from_rows(&[[0.0, 0.0], [0.0, 0.0], [1.0 / 3.0, 0.0], [1.0, 1.0]]).unwrap();
+    let c =
+        BezierCurve::from_rows(&[[0.0, 0.0], [0.0, 0.0], [1.0 / 3.0, 0.0], [1.0, 1.0]]).unwrap();
     let exact = (13f64.powf(1.5) - 8.0) / 27.0;
     let len = c.arc_length(0.0, 1.0, 1e-14).unwrap();
     assert!((len - exact).abs() < 1e-13, "{len} vs {exact}");
@@ -187,7 +201,20 @@ fn semicubical_parabola_length_matches_closed_form() {
 #[test]
 fn arc_length_errors_name_the_argument() {
     let c = BezierCurve::from_rows(&[[0.0, 0.0], [1.0, 0.0]]).unwrap();
-    assert_eq!(c.arc_length(f64::NAN, 1.0, 1e-9).unwrap_err().to_string(), "a[0] = NaN is not finite");
-    assert!(c.arc_length(0.0, 1.0, 0.0).unwrap_err().to_string().contains("accuracy"));
-    assert!(c.param_at_length(0.5, 0.75, 1e-12).unwrap_err().to_string().contains("longer than the arc length 0.5"));
+    assert_eq!(
+        c.arc_length(f64::NAN, 1.0, 1e-9).unwrap_err().to_string(),
+        "a[0] = NaN is not finite"
+    );
+    assert!(
+        c.arc_length(0.0, 1.0, 0.0)
+            .unwrap_err()
+            .to_string()
+            .contains("accuracy")
+    );
+    assert!(
+        c.param_at_length(0.5, 0.75, 1e-12)
+            .unwrap_err()
+            .to_string()
+            .contains("longer than the arc length 0.5")
+    );
 }
