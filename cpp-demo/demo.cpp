@@ -1151,6 +1151,24 @@ void check_merge(Report& report, StepScene& scene, std::vector<Timing>& timings,
             });
         timings.push_back({"merge two cubics into one", "bzj_merge L2 optimal mu",
                            "GeomAPI_PointsToBSpline 201 points", pair});
+        // The paper's setting: discrete metric, mu = 1/2 (one KKT solve, no search).
+        bezjoin::MergeOptions paper;
+        paper.metric = BZJ_METRIC_DISCRETE;
+        paper.split = BZJ_SPLIT_HALF;
+        paper.fix_ends = true;
+        const Pair paper_pair = time_pair(
+            options.quick ? 1 : 9, options.quick ? 1 : 5000,
+            [&](int) {
+                const bezjoin::Merge again = bezjoin::merge(p, q, paper);
+                g_sink = g_sink + again.report.mu;
+            },
+            options.quick ? 1 : 100,
+            [&](int) {
+                GeomAPI_PointsToBSpline again(points, 3, 3, GeomAbs_C2, 1.0);
+                g_sink = g_sink + static_cast<double>(again.Curve()->NbPoles());
+            });
+        timings.push_back({"merge two cubics into one (paper)", "bzj_merge discrete mu=1/2",
+                           "GeomAPI_PointsToBSpline 201 points", paper_pair});
     });
 }
 #endif  // BEZJOIN_HAS_MERGE
