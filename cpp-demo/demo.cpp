@@ -118,6 +118,19 @@ void guarded(Report& report, const std::string& name, const std::function<void()
     }
 }
 
+// Expect `body` to throw bezjoin::Error with `status`; one row. Run under
+// valgrind too, so the error paths are shown not to leak.
+void expect_status(Report& report, const std::string& name, BzjStatus status,
+                   const std::function<void()>& body) {
+    try {
+        body();
+        report.fail(name, std::string("no error; expected ") + bzj_status_name(status));
+    } catch (const bezjoin::Error& e) {
+        const bool ok = e.status() == status && std::strlen(e.what()) > 0;
+        report.row(ok, name, ok ? 0.0 : 1.0, 0.0, e.what());
+    }
+}
+
 // ---------------------------------------------------------------- conversions
 
 std::vector<double> random_points(std::mt19937_64& rng, std::size_t dim, std::size_t degree) {
@@ -890,6 +903,19 @@ void check_connect(Report& report, StepScene& scene, std::vector<Timing>& timing
         });
         ++index;
     }
+    expect_status(report, "c.connect-error-u0-outside", BZJ_ERR_INVALID_ARGUMENT, [&] {
+        const Curve p(2, 2, {0.0, 0.0, 1.0, 1.0, 2.0, 0.0});
+        bezjoin::ConnectOptions opts;
+        opts.p_order = 1;
+        opts.q_order = 1;
+        (void)bezjoin::connect(p, 1.5, p, 0.0, opts);
+    });
+    expect_status(report, "c.connect-error-order-above-degree", BZJ_ERR_INVALID_ARGUMENT, [&] {
+        const Curve p(2, 2, {0.0, 0.0, 1.0, 1.0, 2.0, 0.0});
+        bezjoin::ConnectOptions opts;
+        opts.p_order = 3;
+        (void)bezjoin::connect(p, 0.5, p, 0.5, opts);
+    });
 }
 #endif  // BEZJOIN_HAS_CONNECT
 
@@ -1063,6 +1089,16 @@ void check_fillet(Report& report, StepScene& scene, std::vector<Timing>& timings
         timings.push_back({"fillet of two cubics (ours C3, OCCT G1 arc)", "bzj_fillet C3",
                            "ChFi2d_FilletAPI", pair});
     });
+    expect_status(report, "d.fillet-error-no-crossing", BZJ_ERR_NO_INTERSECTION, [&] {
+        const Curve low(2, 1, {0.0, 0.0, 1.0, 0.0});
+        const Curve high(2, 1, {0.0, 1.0, 1.0, 1.0});
+        bezjoin::FilletOptions opts;
+        opts.p_setback = 0.1;
+        opts.q_setback = 0.1;
+        opts.p_order = 1;
+        opts.q_order = 1;
+        (void)bezjoin::fillet(low, high, opts);
+    });
 }
 #endif  // BEZJOIN_HAS_FILLET
 
@@ -1170,6 +1206,18 @@ void check_merge(Report& report, StepScene& scene, std::vector<Timing>& timings,
         timings.push_back({"merge two cubics into one (paper)", "bzj_merge discrete mu=1/2",
                            "GeomAPI_PointsToBSpline 201 points", paper_pair});
     });
+    expect_status(report, "e.merge-error-mu-outside", BZJ_ERR_INVALID_ARGUMENT, [&] {
+        bezjoin::MergeOptions bad;
+        bad.split = BZJ_SPLIT_GIVEN;
+        bad.mu = 1.5;
+        (void)bezjoin::merge(p, q, bad);
+    });
+    expect_status(report, "e.merge-error-keep-both", BZJ_ERR_INCONSISTENT, [&] {
+        bezjoin::MergeOptions bad;
+        bad.keep_p = true;
+        bad.keep_q = true;
+        (void)bezjoin::merge(p, q, bad);  // P and Q are not one curve: nothing may change
+    });
 }
 #endif  // BEZJOIN_HAS_MERGE
 
@@ -1238,6 +1286,10 @@ void check_lagrange(Report& report, StepScene& scene) {
                           chain.knots.size() - 2, all_removable ? "ok" : "REFUSED",
                           any_c2 ? "yes" : "no"));
         scene.add(Handle(Geom_Curve)(chain.curve), gp_Vec(0.0, 14.0, 0.0));
+    });
+    expect_status(report, "f.lagrange-error-params-order", BZJ_ERR_INVALID_ARGUMENT, [&] {
+        const std::vector<double> nodes = {0.0, 0.0, 1.0, 0.0, 2.0, 1.0};
+        (void)bezjoin::lagrange_spline(2, nodes, {0.0, 1.0, 0.5}, {0.3, 0.1, 0.6, 0.1}, {1.6, 0.6});
     });
 }
 #endif  // BEZJOIN_HAS_LAGRANGE
