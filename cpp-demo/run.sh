@@ -57,10 +57,11 @@ say "cargo build --release -p bezjoin-ffi"
 
 # ---- 3. the demo --------------------------------------------------------------
 say "building the demo"
+mkdir -p "$build"
 cmake -S "$here" -B "$build" -DCMAKE_BUILD_TYPE=Release \
-      -DBEZJOIN_LIBRARY_DIR="$root/target/release" >"$build.cmake.log" 2>&1 \
-    || { cat "$build.cmake.log"; exit 1; }
-grep "bezjoin.h declares" "$build.cmake.log" || true
+      -DBEZJOIN_LIBRARY_DIR="$root/target/release" >"$build/cmake.log" 2>&1 \
+    || { cat "$build/cmake.log"; exit 1; }
+grep "bezjoin.h declares" "$build/cmake.log" || true
 cmake --build "$build" -j "$jobs"
 mkdir -p "$output"
 demo="$build/bezjoin_demo"
