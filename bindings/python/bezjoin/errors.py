@@ -52,6 +52,11 @@ class BezjoinError(Exception):
         """An argument the Python layer rejects, reported as the library would."""
         return cls(STATUS_INVALID_ARGUMENT, STATUS_NAMES[STATUS_INVALID_ARGUMENT], message)
 
+    @classmethod
+    def dimension_mismatch(cls, message):
+        """Data of the wrong dimension, caught before the library would read past it."""
+        return cls(STATUS_DIMENSION_MISMATCH, STATUS_NAMES[STATUS_DIMENSION_MISMATCH], message)
+
 
 class LibraryNotFoundError(OSError):
     """libbezjoin could not be found or loaded; the message lists every place tried."""
