@@ -28,7 +28,7 @@ mod version;
 pub use connect::*;
 pub use curve::*;
 pub use fillet::*;
-pub use guard::{BzjStatus, bzj_last_error, bzj_status_name, bzj_version};
+pub use guard::{BzjCurve, BzjStatus, bzj_last_error, bzj_status_name, bzj_version};
 pub use lagrange::*;
 pub use merge::*;
 pub use version::*;

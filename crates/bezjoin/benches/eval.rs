@@ -23,6 +23,10 @@ fn bench_eval(c: &mut Criterion) {
             c.bench_function(&format!("eval_all_derivatives/deg{degree}/{dim}d"), |b| {
                 b.iter(|| cv.eval_derivatives_into(black_box(0.37), degree, &mut all))
             });
+            c.bench_function(
+                &format!("eval_all_derivatives_a23_basis/deg{degree}/{dim}d"),
+                |b| b.iter(|| cv.eval_derivatives_basis(black_box(0.37), degree, &mut all)),
+            );
         }
     }
 }

@@ -117,7 +117,7 @@ impl BezierCurve {
     pub fn param_at_length(&self, start: f64, length: f64, accuracy: f64) -> Result<f64> {
         crate::error::check_closed_range("start", start, 0.0, 1.0)?;
         check_finite_scalar("length", length)?;
-        if !(accuracy > 0.0) || !accuracy.is_finite() {
+        if accuracy.is_nan() || accuracy <= 0.0 || !accuracy.is_finite() {
             return Err(BezjoinError::out_of_range("accuracy", accuracy, "> 0"));
         }
         if length == 0.0 {

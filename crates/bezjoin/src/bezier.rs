@@ -156,30 +156,7 @@ impl BezierCurve {
     /// If `out.len() != dim`.
     pub fn eval_into(&self, t: f64, out: &mut [f64]) {
         assert_eq!(out.len(), self.dim);
-        let n = self.degree;
-        let d = self.dim;
-        // P(t) = s^n sum_i C(n,i) (t/s)^i P_i = t^n sum_i C(n,i) (s/t)^(n-i) P_i,
-        // s = 1 - t. Horner in the ratio that is at most 1 in magnitude on [0, 1].
-        let s = 1.0 - t;
-        let (ratio, scale, first, step): (f64, f64, usize, isize) = if t > 0.5 {
-            (s / t, t.powi(n as i32), 0, 1)
-        } else {
-            (t / s, s.powi(n as i32), n, -1)
-        };
-        out.copy_from_slice(&self.points[first * d..(first + 1) * d]);
-        let mut coef = 1.0;
-        let mut idx = first as isize;
-        for i in 1..=n {
-            coef = coef * (n - i + 1) as f64 / i as f64;
-            idx += step;
-            let p = &self.points[idx as usize * d..(idx as usize + 1) * d];
-            for c in 0..d {
-                out[c] = out[c] * ratio + coef * p[c];
-            }
-        }
-        for v in out.iter_mut() {
-            *v *= scale;
-        }
+        bernstein_horner(&self.points, self.degree, self.dim, t, 1.0, out);
     }
 
     /// `P(t)`.
@@ -207,13 +184,59 @@ impl BezierCurve {
 
     /// Value and derivatives `0..=max_order` at `t`, written row-major into
     /// `out` (`(max_order + 1) * dim` values; row `k` is `P^(k)(t)`).
+    /// Orders above the degree are zero.
     ///
-    /// Derivatives come from the A2.3 basis matrix `D(t)` times the control
-    /// points (mathematics.md, section 0). Orders above the degree are zero.
+    /// Fast path, `O(n^2 d)` and allocation-free for `(n + 1) d <= 96`:
+    /// `P^(k)(t) = n!/(n-k)! sum_i (Delta^k P)_i B_i^(n-k)(t)` with each sum by
+    /// the Bernstein-Horner scheme. [`Self::eval_derivatives_basis`] computes
+    /// the same from the A2.3 basis matrix `D(t)` (the form the solvers use);
+    /// the tests hold the two together.
     ///
     /// # Panics
     /// If `out.len() != (max_order + 1) * dim`.
     pub fn eval_derivatives_into(&self, t: f64, max_order: usize, out: &mut [f64]) {
+        let d = self.dim;
+        let n = self.degree;
+        assert_eq!(out.len(), (max_order + 1) * d);
+        let len = self.points.len();
+        let mut stack = [0.0f64; 96];
+        let mut heap = Vec::new();
+        let diff: &mut [f64] = if len <= stack.len() {
+            stack[..len].copy_from_slice(&self.points);
+            &mut stack[..len]
+        } else {
+            heap.extend_from_slice(&self.points);
+            &mut heap
+        };
+        let top = max_order.min(n);
+        let mut factor = 1.0;
+        for k in 0..=top {
+            let m = n - k;
+            bernstein_horner(
+                &diff[..(m + 1) * d],
+                m,
+                d,
+                t,
+                factor,
+                &mut out[k * d..(k + 1) * d],
+            );
+            if k < top {
+                for i in 0..m * d {
+                    diff[i] = diff[i + d] - diff[i];
+                }
+                factor *= m as f64;
+            }
+        }
+        out[(top + 1) * d..].fill(0.0);
+    }
+
+    /// Value and derivatives `0..=max_order` at `t` from the A2.3 basis matrix
+    /// `D(t)` times the control points (mathematics.md, section 0); row-major
+    /// into `out` like [`Self::eval_derivatives_into`].
+    ///
+    /// # Panics
+    /// If `out.len() != (max_order + 1) * dim`.
+    pub fn eval_derivatives_basis(&self, t: f64, max_order: usize, out: &mut [f64]) {
         let d = self.dim;
         assert_eq!(out.len(), (max_order + 1) * d);
         let basis = bezier_basis_derivatives(self.degree, t, max_order.min(self.degree));
@@ -396,6 +419,35 @@ impl BezierCurve {
                 distance(&a, &b)
             })
             .fold(0.0, f64::max)
+    }
+}
+
+/// `scale * sum_i B_i^n(t) P_i` for `n + 1` row-major points of dimension
+/// `dim`, written into `out`, by the Bernstein-Horner scheme:
+/// `P(t) = s^n sum_i C(n,i) (t/s)^i P_i = t^n sum_i C(n,i) (s/t)^(n-i) P_i`,
+/// `s = 1 - t`, with Horner in whichever ratio is at most 1 on `[0, 1]`.
+fn bernstein_horner(points: &[f64], n: usize, dim: usize, t: f64, scale: f64, out: &mut [f64]) {
+    let d = dim;
+    let s = 1.0 - t;
+    let (ratio, factor, first, step): (f64, f64, usize, isize) = if t > 0.5 {
+        (s / t, t.powi(n as i32), 0, 1)
+    } else {
+        (t / s, s.powi(n as i32), n, -1)
+    };
+    out.copy_from_slice(&points[first * d..(first + 1) * d]);
+    let mut coef = 1.0;
+    let mut idx = first as isize;
+    for i in 1..=n {
+        coef = coef * (n - i + 1) as f64 / i as f64;
+        idx += step;
+        let p = &points[idx as usize * d..(idx as usize + 1) * d];
+        for c in 0..d {
+            out[c] = out[c] * ratio + coef * p[c];
+        }
+    }
+    let factor = factor * scale;
+    for v in out.iter_mut() {
+        *v *= factor;
     }
 }
 
