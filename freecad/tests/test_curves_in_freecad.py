@@ -7,7 +7,6 @@ import unittest
 import FreeCAD
 import Part
 
-import bezjoin
 from bezjoin import Curve, UnsupportedGeometryError
 from judge import (bezier, chain_bspline, derivative_jumps, gap, poles, size,
                    smoothness_by_knot_removal)
