@@ -302,3 +302,27 @@ def test_freecad_conversion_without_freecad_is_a_clear_error():
             curve.to_freecad()
     with pytest.raises(bezjoin.UnsupportedGeometryError, match="Part module"):
         Curve.from_freecad(object())
+
+
+def test_each_thread_gets_its_own_error_message():
+    import threading
+
+    barrier = threading.Barrier(4)
+    messages = {}
+
+    def fail(index):
+        with Curve([(0.0, 0.0), (1.0, 1.0)]) as curve:
+            barrier.wait()
+            for _ in range(200):
+                try:
+                    curve.split(2.0 + index)
+                except BezjoinError as error:
+                    messages.setdefault(index, set()).add(error.message)
+
+    threads = [threading.Thread(target=fail, args=(i,)) for i in range(4)]
+    for thread in threads:
+        thread.start()
+    for thread in threads:
+        thread.join()
+    for index in range(4):
+        assert messages[index] == {f"t = {2 + index} is outside [0, 1]"}
