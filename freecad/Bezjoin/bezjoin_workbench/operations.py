@@ -17,11 +17,6 @@ from . import ensure_bindings_importable
 
 bezjoin = ensure_bindings_importable()
 
-#: Fraction of a curve's parameter range by which edges that only touch at an
-#: end are extended (exactly: the same polynomial) so that they cross, for
-#: rounding the corner of a path.
-CORNER_EXTENSION = 0.25
-
 #: Ends closer than this (relative to the edge lengths, at least 1) count as one
 #: vertex: FreeCAD's ``Precision::Confusion()``.
 TOUCH_TOLERANCE = 1e-7
@@ -52,6 +47,15 @@ def orient_end_to_start(p, q):
     return p_oriented, q_oriented
 
 
+def _raised_for_order(curve, order):
+    """``curve`` written with degree at least ``order`` (exact elevation), so that a
+    continuity order above the degree of, say, a line segment can be asked for:
+    its higher derivatives are zero and the blend matches them."""
+    if order is not None and order > curve.degree:
+        return curve.elevate(order)
+    return curve.segment(0.0, 1.0)
+
+
 def _wire(curves):
     edges = [curve.to_edge() for curve in curves]
     return Part.Wire(edges)
@@ -66,15 +70,18 @@ def blend_edges(first_edge, second_edge, *, u0=1.0, v0=0.0, p_order=None, q_orde
     the end of the first faces the start of the second (the closest pair of
     ends), and ``u0``/``v0`` refer to these oriented curves: the defaults
     ``u0 = 1``, ``v0 = 0`` bridge the gap between the facing ends.
-    ``p_order``/``q_order`` default to each curve's degree (the paper).
+    ``p_order``/``q_order`` default to each curve's degree (the paper); an order
+    above a curve's degree is allowed (the curve is elevated first, exactly).
     """
     with edge_curve(first_edge, "first edge") as p, edge_curve(second_edge, "second edge") as q:
         if orient:
             p, q = orient_end_to_start(p, q)
         else:
             p, q = p.segment(0.0, 1.0), q.segment(0.0, 1.0)
-        with p, q, bezjoin.connect(p, u0, q, v0, p_order=p_order, q_order=q_order,
-                                   p_scale=p_scale, q_scale=q_scale) as blend:
+        with p, q, _raised_for_order(p, p_order) as p_raised, \
+                _raised_for_order(q, q_order) as q_raised, \
+                bezjoin.connect(p_raised, u0, q_raised, v0, p_order=p_order, q_order=q_order,
+                                p_scale=p_scale, q_scale=q_scale) as blend:
             return blend.to_edge()
 
 
@@ -88,15 +95,15 @@ def round_corner(first_edge, second_edge, *, setback, second_setback=None, p_ord
     Two cases:
 
     * the edges meet at an end (a corner of a path): they are oriented so that
-      the first ends at the corner and the second starts there, then both are
-      extended beyond the corner by ``CORNER_EXTENSION`` of their parameter
-      range (exactly: the same polynomials) so that they cross;
+      the first ends at the corner and the second starts there (the crossing
+      is then at ``u = 1``, ``v = 0``);
     * the edges cross: the corner rounded is "from the start of the first edge
       to the first crossing, then to the end of the second edge"; reach the
       other corners with ``reverse_first`` / ``reverse_second``.
 
     ``setback`` is the arc length kept off the corner along the first edge,
-    ``second_setback`` (default: the same) along the second.
+    ``second_setback`` (default: the same) along the second. Orders above an
+    edge's degree are allowed (the edge is elevated first, exactly).
     """
     second_setback = setback if second_setback is None else second_setback
     with edge_curve(first_edge, "first edge") as p, edge_curve(second_edge, "second edge") as q:
@@ -105,15 +112,15 @@ def round_corner(first_edge, second_edge, *, setback, second_setback=None, p_ord
             touching = _distance(p_oriented.points[-1], q_oriented.points[0]) <= (
                 TOUCH_TOLERANCE * max(1.0, p.length(), q.length()))
             if touching:
-                p_work = p_oriented.segment(0.0, 1.0 + CORNER_EXTENSION)
-                q_work = q_oriented.segment(-CORNER_EXTENSION, 1.0)
+                p_work, q_work = p_oriented.segment(0.0, 1.0), q_oriented.segment(0.0, 1.0)
             else:
                 p_work = p.reverse() if reverse_first else p.segment(0.0, 1.0)
                 q_work = q.reverse() if reverse_second else q.segment(0.0, 1.0)
-        with p_work, q_work, bezjoin.fillet(p_work, q_work, p_setback=setback,
-                                            q_setback=second_setback, p_order=p_order,
-                                            q_order=q_order, p_scale=p_scale,
-                                            q_scale=q_scale) as result:
+        with p_work, q_work, _raised_for_order(p_work, p_order) as p_raised, \
+                _raised_for_order(q_work, q_order) as q_raised, \
+                bezjoin.fillet(p_raised, q_raised, p_setback=setback, q_setback=second_setback,
+                               p_order=p_order, q_order=q_order, p_scale=p_scale,
+                               q_scale=q_scale) as result:
             return _wire(result.curves())
 
 

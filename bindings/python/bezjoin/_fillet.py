@@ -42,6 +42,11 @@ register_prototype(
 )
 
 
+#: Crossings asked for in the first call of :func:`intersect`; when there are more,
+#: it asks again with room for all of them.
+FIRST_CAPACITY = 16
+
+
 class FilletResult(CurveGroup):
     """The rounded corner: ``p_trimmed = P|[0,u0]``, ``blend``, ``q_trimmed = Q|[v0,1]``,
     each over ``[0, 1]``; together a C^min(p_order, q_order) B-spline with knot
@@ -102,7 +107,7 @@ def fillet(p, q, *, setback=None, p_setback=None, q_setback=None, p_order=None, 
 def intersect(p, q):
     """All crossings of ``p`` and ``q`` as ``(u, v)`` pairs ordered by ``u``."""
     p_handle, q_handle = handle_of(p, "p"), handle_of(q, "q")
-    capacity = 16
+    capacity = FIRST_CAPACITY
     while True:
         buffer = (ctypes.c_double * (2 * capacity))()
         count = ctypes.c_size_t()
