@@ -15,6 +15,19 @@
 #include <stdint.h>
 
 /**
+ * Flag for [`bzj_lagrange_spline_degree`]: build from the last segment
+ * backwards (the last segment's inner points are all given).
+ */
+#define BZJ_LAGRANGE_BACKWARD 1
+
+/**
+ * Flag for [`bzj_lagrange_spline_degree`]: derive the inner points farthest
+ * from the join instead of the nearest (the mirrored variant; errors grow
+ * by a factor `degree - 1` or more per node: short chains only).
+ */
+#define BZJ_LAGRANGE_MIRRORED 2
+
+/**
  * Major version (the SONAME's number): changes only with an ABI break.
  */
 #define BZJ_VERSION_MAJOR 0
@@ -239,6 +252,87 @@ BzjStatus bzj_curve_reverse(const struct BzjCurve *c, struct BzjCurve **out);
  * `c` is NULL or a live handle; `out` is NULL or writable.
  */
 BzjStatus bzj_curve_length(const struct BzjCurve *c, double a, double b, double *out);
+
+/**
+ * A spline of cubic segments, each given by four points ON it at local
+ * parameters `u = 0, 1/3, 2/3, 1`, joined C^1 in a global parameter
+ * (Kovtun's construction, mathematics.md section 4), written as
+ * `node_count - 1` cubic Bezier handles.
+ *
+ * * `nodes`: `node_count * dim` doubles; `params`: `node_count` strictly
+ *   increasing global parameters, or NULL for chord length;
+ * * `first_inner`: `2 * dim` doubles, the points at `u = 1/3, 2/3` of
+ *   segment 0;
+ * * `second_inner`: `(node_count - 2) * dim` doubles, the point at
+ *   `u = 2/3` of each later segment (may be NULL when `node_count == 2`);
+ *   the point at `u = 1/3` follows from C^1 (errors halve per node);
+ * * `out_segments`: caller array of `segment_capacity >= node_count - 1`
+ *   handles; on success entry `i` is segment `i` (release each with
+ *   `bzj_curve_free`).
+ *
+ * @return BZJ_ERR_NULL_POINTER if `out_segments`, `nodes`, `first_inner`,
+ *         or (with `node_count > 2`) `second_inner` is NULL;
+ *         BZJ_ERR_INVALID_ARGUMENT if `dim == 0`, `node_count < 2`, `params`
+ *         is not strictly increasing, consecutive nodes coincide with chord
+ *         length (NULL `params`);
+ *         BZJ_ERR_NON_FINITE if any value is NaN or infinite;
+ *         BZJ_ERR_BUFFER_TOO_SMALL if `segment_capacity < node_count - 1`
+ *         (nothing is written);
+ *         BZJ_ERR_ILL_CONDITIONED if the result fails its own checks.
+ *         On every error the first `node_count - 1` entries of `out_segments`
+ *         are NULL (except BUFFER_TOO_SMALL, which writes nothing) and
+ *         nothing is leaked.
+ *
+ * # Safety
+ * Every non-NULL pointer points to the number of doubles stated above;
+ * `out_segments` points to `segment_capacity` writable handle pointers.
+ */
+BzjStatus bzj_lagrange_spline(size_t dim, size_t node_count, const double *nodes, const double *params, const double *first_inner, const double *second_inner, struct BzjCurve **out_segments, size_t segment_capacity);
+
+/**
+ * The generalisation of [`bzj_lagrange_spline`]: segments of degree
+ * `degree` (3, 4 or 5) through points ON them at `u = j / degree`, joined
+ * C^`continuity` (`1 ..= degree - 2`) at every node.
+ *
+ * * `flags`: 0, or a combination of [`BZJ_LAGRANGE_BACKWARD`] (start from
+ *   the last segment) and [`BZJ_LAGRANGE_MIRRORED`] (derive the inner points
+ *   farthest from the join; errors grow fast: short chains only);
+ * * `start_inner`: `(degree - 1) * dim` doubles, all inner points
+ *   (`u = 1/n .. (n-1)/n`) of the starting segment (segment 0, or the last
+ *   with BACKWARD);
+ * * `free_inner`: `(node_count - 2) * (degree - 1 - continuity) * dim`
+ *   doubles: for every other segment in increasing segment order its free
+ *   inner points in increasing `u`. Without flags the derived points are
+ *   `u = 1/n .. continuity/n` and the free ones the rest (e.g. degree 5,
+ *   C^2: give `u = 3/5, 4/5`); MIRRORED or BACKWARD alone swaps the two
+ *   ends, both together restore it. May be NULL when its length is 0.
+ * * `out_segments` as for [`bzj_lagrange_spline`].
+ *
+ * `degree = 3, continuity = 1, flags = 0` is exactly `bzj_lagrange_spline`.
+ * Every C^2 and C^3 recurrence amplifies errors from node to node (factor
+ * about 2.4 to 12 per node, documented in the Rust crate); results whose
+ * estimated error exceeds 1e-9 are refused with BZJ_ERR_ILL_CONDITIONED.
+ *
+ * @return BZJ_ERR_NULL_POINTER if `out_segments`, `nodes`, `start_inner` or
+ *         a non-empty `free_inner` is NULL;
+ *         BZJ_ERR_INVALID_ARGUMENT if `degree` is not 3, 4 or 5,
+ *         `continuity` is not in `1 ..= degree - 2`, `flags` has unknown
+ *         bits, `dim == 0`, `node_count < 2`, `params` is not strictly
+ *         increasing, or consecutive nodes coincide with chord length;
+ *         BZJ_ERR_NON_FINITE if any value is NaN or infinite;
+ *         BZJ_ERR_BUFFER_TOO_SMALL if `segment_capacity < node_count - 1`
+ *         (nothing is written);
+ *         BZJ_ERR_ILL_CONDITIONED if the recurrence amplifies rounding
+ *         beyond 1e-9 or the result fails its own checks.
+ *         On every error the first `node_count - 1` entries of `out_segments`
+ *         are NULL (except BUFFER_TOO_SMALL, which writes nothing) and
+ *         nothing is leaked.
+ *
+ * # Safety
+ * Every non-NULL pointer points to the number of doubles stated above;
+ * `out_segments` points to `segment_capacity` writable handle pointers.
+ */
+BzjStatus bzj_lagrange_spline_degree(size_t dim, size_t degree, size_t continuity, uint32_t flags, size_t node_count, const double *nodes, const double *params, const double *start_inner, const double *free_inner, struct BzjCurve **out_segments, size_t segment_capacity);
 
 #ifdef __cplusplus
 }  // extern "C"

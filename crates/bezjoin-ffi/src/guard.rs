@@ -52,6 +52,12 @@ pub(crate) enum FfiError {
         needed: usize,
         given: usize,
     },
+    /// A caller's array of handle slots shorter than needed.
+    HandleArrayTooSmall {
+        name: String,
+        needed: usize,
+        given: usize,
+    },
 }
 
 impl From<BezjoinError> for FfiError {
@@ -65,7 +71,9 @@ impl FfiError {
         use BzjStatus::*;
         match self {
             FfiError::NullPointer(_) => BZJ_ERR_NULL_POINTER,
-            FfiError::BufferTooSmall { .. } => BZJ_ERR_BUFFER_TOO_SMALL,
+            FfiError::BufferTooSmall { .. } | FfiError::HandleArrayTooSmall { .. } => {
+                BZJ_ERR_BUFFER_TOO_SMALL
+            }
             FfiError::Core(e) => match e {
                 BezjoinError::ParameterOutOfRange { .. }
                 | BezjoinError::OrderAboveDegree { .. }
@@ -91,6 +99,13 @@ impl FfiError {
                 given,
             } => {
                 format!("{name} holds {given} doubles, {needed} are needed")
+            }
+            FfiError::HandleArrayTooSmall {
+                name,
+                needed,
+                given,
+            } => {
+                format!("{name} has room for {given} handles, {needed} are needed")
             }
         }
     }

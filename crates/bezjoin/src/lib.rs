@@ -34,3 +34,7 @@ pub use basis::KnotSide;
 pub use bezier::BezierCurve;
 pub use bspline::BSplineCurve;
 pub use error::{BezjoinError, Result};
+pub use lagrange::{
+    BuildDirection, DEFAULT_LAGRANGE_ACCURACY, DerivedPoints, LagrangeOptions, LagrangeSpline,
+    bezier_from_lagrange_points, lagrange_points_of_bezier, lagrange_spline,
+};
