@@ -18,6 +18,7 @@ from ._library import (
     library_version,
     status_name,
 )
+from ._lagrange import lagrange_spline
 from .curve import Curve
 from .errors import STATUS_NAMES, BezjoinError, LibraryNotFoundError, UnsupportedGeometryError
 
@@ -30,6 +31,7 @@ __all__ = [
     "UnsupportedGeometryError",
     "candidate_paths",
     "find_library",
+    "lagrange_spline",
     "library_path",
     "library_version",
     "status_name",

@@ -127,3 +127,21 @@ def test_library_reports_missing_function():
     library = _library.library()
     with pytest.raises(LibraryNotFoundError, match="has no bzj_no_such_function"):
         library.function("bzj_no_such_function")
+
+
+OPERATION_SYMBOLS = {
+    "connect": "bzj_connect",
+    "fillet": "bzj_fillet",
+    "intersect": "bzj_intersect",
+    "merge": "bzj_merge",
+    "lagrange_spline": "bzj_lagrange_spline",
+}
+
+
+def test_every_exposed_operation_exists_in_the_library():
+    library = _library.library()
+    exposed = [name for name in OPERATION_SYMBOLS if hasattr(bezjoin, name)]
+    assert exposed, "no operation is exposed"
+    for name in exposed:
+        assert library.has(OPERATION_SYMBOLS[name]), name
+        assert name in bezjoin.__all__

@@ -1,0 +1,101 @@
+"""bezjoin's operations judged by FreeCAD: curves built as FreeCAD objects go through
+bezjoin and come back as Part.BezierCurve; the pieces must meet, and the chain joined
+into one Part.BSplineCurve must have the promised continuity (knot removal and
+one-sided derivatives from getDN); the merged curve's FreeCAD segment at mu must be
+P^ and Q^. The workbench operations are driven the same way."""
+
+import unittest
+
+import FreeCAD
+import Part
+
+import bezjoin
+from bezjoin_workbench import commands, operations
+from judge import chain_bspline, derivative_jumps, gap, size, smoothness_by_knot_removal
+
+V = FreeCAD.Vector
+
+
+def assert_chain_smooth(test, pieces, widths, order):
+    """Pieces meet to 1e-12 (relative to their size) and every join is C^order."""
+    scale = size(pieces)
+    for left, right in zip(pieces, pieces[1:]):
+        test.assertLessEqual(gap(left.EndPoint, right.StartPoint), 1e-12 * scale)
+    for i in range(len(pieces) - 1):
+        jumps = derivative_jumps(pieces[i], widths[i], pieces[i + 1], widths[i + 1], order)
+        test.assertLess(max(jumps), 1e-10, (i, jumps))
+    spline = chain_bspline(pieces, widths)
+    for index in range(2, len(pieces) + 1):
+        test.assertGreaterEqual(smoothness_by_knot_removal(spline, index, 1e-9 * scale), order)
+    return spline
+
+
+class CommandDriver:
+    """Activated() with the selection and the form replaced: a feature is made, or the
+    library's message is shown."""
+
+    def drive(self, command, inputs, parameters):
+        document = FreeCAD.newDocument("BezjoinCommands")
+        shown = []
+        saved = (FreeCAD.ActiveDocument, command.inputs, commands.ask,
+                 commands.QtGui.QMessageBox.warning, commands.FreeCADGui.getMainWindow
+                 if hasattr(commands.FreeCADGui, "getMainWindow") else None)
+        command.inputs = lambda: inputs
+        commands.ask = lambda title, fields: dict(parameters)
+        commands.QtGui.QMessageBox.warning = lambda parent, title, text: shown.append(text)
+        commands.FreeCADGui.getMainWindow = lambda: None
+        try:
+            FreeCAD.setActiveDocument(document.Name)
+            command.Activated()
+            made = [(obj.Name, obj.Shape.copy(),
+                     {name: getattr(obj, name) for name in obj.PropertiesList
+                      if obj.getGroupOfProperty(name) == "Bezjoin"})
+                    for obj in document.Objects if obj.TypeId == "Part::Feature"]
+            return made, shown
+        finally:
+            (_active, _inputs, commands.ask, commands.QtGui.QMessageBox.warning,
+             main_window) = saved
+            del command.inputs
+            if main_window is None:
+                del commands.FreeCADGui.getMainWindow
+            else:
+                commands.FreeCADGui.getMainWindow = main_window
+            FreeCAD.closeDocument(document.Name)
+
+
+class SplineJudgedByFreeCAD(unittest.TestCase, CommandDriver):
+    def test_spline_passes_through_the_points_and_is_c1(self):
+        points = [(0, 0, 0), (0.3, 0.5, 0.1), (0.7, 0.9, 0.2), (1, 1, 0.2), (2, 0.9, 0),
+                  (2.5, 0.5, 0), (3.6, 1.4, 0.3), (4, 2, 0.5)]
+        wire = operations.spline_through_points([V(*p) for p in points])
+        edges = wire.Edges
+        self.assertEqual(len(edges), 3)
+        curves = [e.Curve for e in edges]
+        for curve in curves:
+            self.assertIsInstance(curve, Part.BezierCurve)
+            self.assertEqual(curve.Degree, 3)
+        on_curve = [(curves[0], 0.0, 0), (curves[0], 1 / 3, 1), (curves[0], 2 / 3, 2),
+                    (curves[0], 1.0, 3), (curves[1], 2 / 3, 4), (curves[1], 1.0, 5),
+                    (curves[2], 2 / 3, 6), (curves[2], 1.0, 7)]
+        for curve, u, index in on_curve:
+            self.assertLessEqual(gap(curve.value(u), points[index]), 1e-12)
+        nodes = [points[0], points[3], points[5], points[7]]
+        widths = [gap(nodes[i], nodes[i + 1]) for i in range(3)]
+        assert_chain_smooth(self, curves, widths, 1)
+
+    def test_wrong_point_count_is_explained(self):
+        with self.assertRaises(bezjoin.BezjoinError) as caught:
+            operations.spline_through_points([V(0, 0, 0), V(1, 0, 0), V(2, 0, 0)])
+        self.assertIn("2 m + 2", str(caught.exception))
+
+    def test_spline_command(self):
+        points = [V(0, 0, 0), V(0.3, 0.5, 0), V(0.7, 0.9, 0), V(1, 1, 0), V(2, 0.9, 0),
+                  V(2.5, 0.5, 0)]
+        made, shown = self.drive(commands.SplineCommand(), points, {})
+        self.assertEqual(shown, [])
+        (name, shape, _report), = made
+        self.assertEqual(name, "OnCurveSpline")
+        self.assertEqual(len(shape.Edges), 2)
+        made, shown = self.drive(commands.SplineCommand(), points[:5], {})
+        self.assertEqual(made, [])
+        self.assertIn("2 m + 2", shown[0])
