@@ -81,6 +81,20 @@ class Curve:
         if handle:
             library().function("bzj_curve_free")(handle)
 
+    def copy(self):
+        """An independent curve with the same control points (its own handle)."""
+        return Curve(self.points)
+
+    def __copy__(self):
+        # A shallow copy would share the handle and free it twice.
+        return self.copy()
+
+    def __deepcopy__(self, memo):
+        return self.copy()
+
+    def __reduce__(self):
+        return (Curve, (self.points,))
+
     @property
     def closed(self):
         """Whether :meth:`close` has released the handle."""

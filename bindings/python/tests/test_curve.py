@@ -326,3 +326,20 @@ def test_each_thread_gets_its_own_error_message():
         thread.join()
     for index in range(4):
         assert messages[index] == {f"t = {2 + index} is outside [0, 1]"}
+
+
+def test_copies_and_pickles_own_their_handle(monkeypatch):
+    import copy
+    import pickle
+
+    counter = FreeCounter(monkeypatch)
+    curve = Curve([(0.0, 1.0), (2.0, 3.5), (4.0, -1.0)])
+    twins = [curve.copy(), copy.copy(curve), copy.deepcopy(curve),
+             pickle.loads(pickle.dumps(curve))]
+    addresses = {address(c) for c in [curve] + twins}
+    assert len(addresses) == 5
+    for twin in twins:
+        assert twin.points == curve.points
+    for c in [curve] + twins:
+        c.close()
+    assert sorted(counter.released) == sorted(addresses)
