@@ -94,3 +94,15 @@ class Commands(unittest.TestCase):
             self.assertTrue(resources["ToolTip"])
             names_in_form = [field[0] for field in command.fields]
             self.assertEqual(len(names_in_form), len(set(names_in_form)))
+
+
+class OrientationTies(unittest.TestCase):
+    def test_closed_pair_keeps_the_given_directions(self):
+        # both ends coincide pairwise (a closed loop of two edges): no reversal
+        a = bezier([(0, 0, 0), (1, 1, 0), (2, 0, 0)])
+        b = bezier([(2, 0, 0), (1, -1, 0), (0, 0, 0)])
+        with operations.edge_curve(a, "first") as p, operations.edge_curve(b, "second") as q:
+            p_oriented, q_oriented = operations.orient_end_to_start(p, q)
+            with p_oriented, q_oriented:
+                self.assertEqual(p_oriented.points, p.points)
+                self.assertEqual(q_oriented.points, q.points)

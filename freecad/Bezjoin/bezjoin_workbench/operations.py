@@ -40,8 +40,10 @@ def orient_end_to_start(p, q):
     ``p`` and ``q`` as before; the returned ones are owned by the caller too)."""
     p_ends = (p.points[0], p.points[-1])
     q_ends = (q.points[0], q.points[-1])
-    best = min(((_distance(p_ends[i], q_ends[j]), i, j) for i in (1, 0) for j in (0, 1)))
-    _gap, p_end, q_end = best
+    # On a tie, keep the curves as they are (end of p to start of q).
+    _gap, _reversals, p_end, q_end = min(
+        (_distance(p_ends[i], q_ends[j]), (i == 0) + (j == 1), i, j)
+        for i in (0, 1) for j in (0, 1))
     p_oriented = p.reverse() if p_end == 0 else p.segment(0.0, 1.0)
     q_oriented = q.reverse() if q_end == 1 else q.segment(0.0, 1.0)
     return p_oriented, q_oriented
