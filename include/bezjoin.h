@@ -104,9 +104,254 @@ typedef int32_t BzjStatus;
 #endif // __cplusplus
 
 /**
+ * What stage 1 minimises.
+ */
+enum BzjMetric
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : int32_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+  /**
+   * Sum of squared control-point changes.
+   */
+  BZJ_METRIC_DISCRETE = 0,
+  /**
+   * Integral of the squared change of each curve over its own parameter
+   * (the paper's eq. 12, exact Bernstein Gram matrix).
+   */
+  BZJ_METRIC_L2 = 1,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum BzjMetric BzjMetric;
+#else
+typedef int32_t BzjMetric;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
+
+/**
+ * How the split parameter `mu` is chosen.
+ */
+enum BzjSplit
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : int32_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+  /**
+   * Use `options.mu`.
+   */
+  BZJ_SPLIT_GIVEN = 0,
+  /**
+   * `mu = 1/2` (the paper's examples).
+   */
+  BZJ_SPLIT_HALF = 1,
+  /**
+   * Proportional to the control-polygon lengths.
+   */
+  BZJ_SPLIT_POLYGON = 2,
+  /**
+   * The `mu` minimising the metric (sampling + golden section in
+   * `[0.001, 0.999]`).
+   */
+  BZJ_SPLIT_OPTIMAL = 3,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum BzjSplit BzjSplit;
+#else
+typedef int32_t BzjSplit;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
+
+/**
+ * How the breakpoints of [`bzj_merge_chain`] are chosen.
+ */
+enum BzjChainSplit
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : int32_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+  /**
+   * Use `options.breakpoints` (`curve_count - 1` interior values,
+   * strictly increasing in (0, 1)).
+   */
+  BZJ_CHAIN_SPLIT_GIVEN = 0,
+  /**
+   * `t_j = j / N`.
+   */
+  BZJ_CHAIN_SPLIT_UNIFORM = 1,
+  /**
+   * Proportional to the control-polygon lengths.
+   */
+  BZJ_CHAIN_SPLIT_POLYGON = 2,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum BzjChainSplit BzjChainSplit;
+#else
+typedef int32_t BzjChainSplit;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
+
+/**
  * Opaque, immutable Bezier curve handle (degree `n >= 0`, dimension `dim >= 1`).
  */
 typedef struct BzjCurve BzjCurve;
+
+/**
+ * A point kept with its derivatives `0..=max_order`.
+ */
+typedef struct BzjKeepPoint {
+  /**
+   * `u_k` on P or `v_k` on Q, in `[0, 1]`.
+   */
+  double param;
+  /**
+   * Derivatives `0..=max_order` kept (at most the degree of the merge).
+   */
+  size_t max_order;
+} BzjKeepPoint;
+
+/**
+ * Options of [`bzj_merge`] (layout fixed by the contract).
+ */
+typedef struct BzjMergeOptions {
+  /**
+   * The metric minimised.
+   */
+  BzjMetric metric;
+  /**
+   * How `mu` is chosen.
+   */
+  BzjSplit split;
+  /**
+   * Used when `split == BZJ_SPLIT_GIVEN`, in `(0, 1)`; ignored otherwise.
+   */
+  double mu;
+  /**
+   * P unchanged.
+   */
+  bool keep_p;
+  /**
+   * Q unchanged.
+   */
+  bool keep_q;
+  /**
+   * First point of P and last point of Q unchanged.
+   */
+  bool fix_ends;
+  /**
+   * Points of P kept (may be NULL if the count is 0).
+   */
+  const struct BzjKeepPoint *p_points;
+  /**
+   * Number of `p_points`.
+   */
+  size_t p_point_count;
+  /**
+   * Points of Q kept (may be NULL if the count is 0).
+   */
+  const struct BzjKeepPoint *q_points;
+  /**
+   * Number of `q_points`.
+   */
+  size_t q_point_count;
+} BzjMergeOptions;
+
+/**
+ * What [`bzj_merge`] reports (layout fixed by the contract).
+ */
+typedef struct BzjMergeReport {
+  /**
+   * Split parameter used.
+   */
+  double mu;
+  /**
+   * Value of the minimised metric.
+   */
+  double metric_value;
+  /**
+   * Max distance between R and P-then-Q (R(mu u) against P(u),
+   * R(mu + (1-mu) v) against Q(v), 257 samples each).
+   */
+  double max_deviation;
+} BzjMergeReport;
+
+/**
+ * A point kept with derivatives on one curve of a chain.
+ */
+typedef struct BzjChainKeepPoint {
+  /**
+   * Index of the curve in the chain.
+   */
+  size_t curve;
+  /**
+   * Parameter on that curve, in [0, 1].
+   */
+  double param;
+  /**
+   * Derivatives `0..=max_order` kept.
+   */
+  size_t max_order;
+} BzjChainKeepPoint;
+
+/**
+ * Options of [`bzj_merge_chain`].
+ */
+typedef struct BzjChainMergeOptions {
+  /**
+   * The metric, summed over the pieces.
+   */
+  BzjMetric metric;
+  /**
+   * How the breakpoints are chosen.
+   */
+  BzjChainSplit split;
+  /**
+   * `curve_count - 1` interior breakpoints for BZJ_CHAIN_SPLIT_GIVEN
+   * (may be NULL otherwise).
+   */
+  const double *breakpoints;
+  /**
+   * Number of `breakpoints`.
+   */
+  size_t breakpoint_count;
+  /**
+   * Degree of the merged curve; 0 means the highest degree of the curves.
+   */
+  size_t degree;
+  /**
+   * First point of the first curve and last point of the last unchanged.
+   */
+  bool fix_ends;
+  /**
+   * `curve_count` flags "keep this curve unchanged", or NULL for none.
+   */
+  const bool *keep;
+  /**
+   * Points kept with derivatives (may be NULL if the count is 0).
+   */
+  const struct BzjChainKeepPoint *keep_points;
+  /**
+   * Number of `keep_points`.
+   */
+  size_t keep_point_count;
+} BzjChainMergeOptions;
+
+/**
+ * What [`bzj_merge_chain`] reports.
+ */
+typedef struct BzjChainMergeReport {
+  /**
+   * Sum of the pieces' metrics.
+   */
+  double metric_value;
+  /**
+   * Max distance between the merged curve on `[t_j, t_{j+1}]` and curve
+   * `j`, each in its own parameter (257 samples per curve).
+   */
+  double max_deviation;
+} BzjChainMergeReport;
 
 #ifdef __cplusplus
 extern "C" {
@@ -333,6 +578,86 @@ BzjStatus bzj_lagrange_spline(size_t dim, size_t node_count, const double *nodes
  * `out_segments` points to `segment_capacity` writable handle pointers.
  */
 BzjStatus bzj_lagrange_spline_degree(size_t dim, size_t degree, size_t continuity, uint32_t flags, size_t node_count, const double *nodes, const double *params, const double *start_inner, const double *free_inner, struct BzjCurve **out_segments, size_t segment_capacity);
+
+/**
+ * Merge `p` and `q` into one Bezier curve `merged` (mathematics.md,
+ * section 3; Ganchuk, Krivosheev, Mavrin, Ryzhov 2024 with the mu-scaled
+ * continuity conditions): the smallest change (in `options.metric`) of
+ * their control points, under the constraints of `options`, that makes
+ * them the pieces `p_hat`, `q_hat` of one curve split at `mu`. A lower
+ * degree is elevated first; the merged degree is the higher one.
+ * `p_hat`, `q_hat` and `report` may be NULL when not wanted.
+ *
+ * Guarantee: the KKT solve's error estimate and the check "merged split at
+ * mu gives p_hat, q_hat" are both within 1e-8 relative, or the call fails
+ * with BZJ_ERR_ILL_CONDITIONED.
+ *
+ * @return BZJ_ERR_NULL_POINTER if `p`, `q`, `options` or `merged` is NULL,
+ *         or a point array is NULL with a non-zero count;
+ *         BZJ_ERR_INVALID_ARGUMENT if `mu` (with BZJ_SPLIT_GIVEN) is outside
+ *         (0, 1), a keep-point parameter is outside [0, 1], an order is above
+ *         the degree, an enum or bool field holds an invalid value, or a
+ *         control polygon has zero length with BZJ_SPLIT_POLYGON;
+ *         BZJ_ERR_NON_FINITE if `mu` or a keep-point parameter is NaN/infinite;
+ *         BZJ_ERR_DIMENSION_MISMATCH if `p` and `q` differ in dimension;
+ *         BZJ_ERR_INCONSISTENT if the constraints contradict each other or are
+ *         too many (the message names the first offending one);
+ *         BZJ_ERR_SINGULAR / BZJ_ERR_ILL_CONDITIONED if the solve cannot be trusted.
+ *
+ * # Safety
+ * `p`, `q` are NULL or live handles; `options` is NULL or readable with its
+ * point arrays holding their counts; `merged`, `p_hat`, `q_hat`, `report`
+ * are NULL or writable.
+ */
+BzjStatus bzj_merge(const struct BzjCurve *p, const struct BzjCurve *q, const struct BzjMergeOptions *options, struct BzjCurve **merged, struct BzjCurve **p_hat, struct BzjCurve **q_hat, struct BzjMergeReport *report);
+
+/**
+ * [`bzj_merge`] with a merged curve of degree `degree`, at least the higher
+ * of the two curves' degrees: both are elevated to `degree` (exactly) and
+ * the degree-`degree` problem is solved; keep-point orders may go up to
+ * `degree`. A higher degree gives more freedom, so a smaller change.
+ *
+ * @return as [`bzj_merge`]; BZJ_ERR_INVALID_ARGUMENT also if `degree` is
+ *         below a curve's degree.
+ *
+ * # Safety
+ * As [`bzj_merge`].
+ */
+BzjStatus bzj_merge_to_degree(const struct BzjCurve *p, const struct BzjCurve *q, const struct BzjMergeOptions *options, size_t degree, struct BzjCurve **merged, struct BzjCurve **p_hat, struct BzjCurve **q_hat, struct BzjMergeReport *report);
+
+/**
+ * **Beyond the paper**: merge `curve_count >= 2` consecutive curves into
+ * one Bezier curve. With breakpoints `0 = t_0 < ... < t_N = 1`, curve `j`
+ * is changed as little as possible (sum of the metrics) into the piece of
+ * `merged` on `[t_j, t_{j+1}]`; the pieces are one curve exactly when
+ * `h_{j+1}^r C_j^(r)(1) = h_j^r C_{j+1}^(r)(0)` at every join (`h_j` the
+ * interval lengths). With two curves this is [`bzj_merge`].
+ *
+ * Outputs: `merged` (required); `pieces` (NULL, or an array of
+ * `piece_capacity >= curve_count` handles receiving the changed curves);
+ * `breakpoints_out` (NULL, or `breakpoints_len >= curve_count + 1`
+ * doubles receiving `t_0..t_N`); `report` (NULL or written).
+ *
+ * @return BZJ_ERR_NULL_POINTER if `curves`, one of the handles, `options`
+ *         or `merged` is NULL, or an array is NULL with a non-zero count;
+ *         BZJ_ERR_BUFFER_TOO_SMALL if `piece_capacity < curve_count` or
+ *         `breakpoints_len < curve_count + 1` (their pointers non-NULL);
+ *         BZJ_ERR_INVALID_ARGUMENT if `curve_count < 2`, breakpoints are not
+ *         strictly increasing in (0, 1) or not `curve_count - 1` of them,
+ *         a keep point names a curve that does not exist, its parameter is
+ *         outside [0, 1] or its order above the degree, `degree` is below
+ *         a curve's degree, or an enum/bool field is invalid;
+ *         BZJ_ERR_NON_FINITE, BZJ_ERR_DIMENSION_MISMATCH, BZJ_ERR_INCONSISTENT,
+ *         BZJ_ERR_SINGULAR, BZJ_ERR_ILL_CONDITIONED as for [`bzj_merge`].
+ *
+ * # Safety
+ * `curves` is NULL or points to `curve_count` handles (NULL or live);
+ * `options` NULL or readable with its arrays holding their counts (`keep`:
+ * `curve_count` bools); `merged` NULL or writable; `pieces` NULL or
+ * `piece_capacity` writable handle slots; `breakpoints_out` NULL or
+ * `breakpoints_len` writable doubles; `report` NULL or writable.
+ */
+BzjStatus bzj_merge_chain(const struct BzjCurve *const *curves, size_t curve_count, const struct BzjChainMergeOptions *options, struct BzjCurve **merged, struct BzjCurve **pieces, size_t piece_capacity, double *breakpoints_out, size_t breakpoints_len, struct BzjChainMergeReport *report);
 
 #ifdef __cplusplus
 }  // extern "C"

@@ -38,3 +38,8 @@ pub use lagrange::{
     BuildDirection, DEFAULT_LAGRANGE_ACCURACY, DerivedPoints, LagrangeOptions, LagrangeSpline,
     bezier_from_lagrange_points, lagrange_points_of_bezier, lagrange_spline,
 };
+pub use merge::{
+    ChainBreakpoints, ChainKeepPoint, ChainMerge, ChainMergeOptions, ChainMergeReport,
+    DEFAULT_MERGE_ACCURACY, KeepPoint, Merge, MergeMetric, MergeOptions, MergeReport,
+    SplitParameter, merge, merge_chain, merge_metric_at,
+};
