@@ -4,16 +4,23 @@ into one Part.BSplineCurve must have the promised continuity (knot removal and
 one-sided derivatives from getDN); the merged curve's FreeCAD segment at mu must be
 P^ and Q^. The workbench operations are driven the same way."""
 
+import random
 import unittest
 
 import FreeCAD
 import Part
 
 import bezjoin
+from bezjoin import Curve
 from bezjoin_workbench import commands, operations
-from judge import chain_bspline, derivative_jumps, gap, size, smoothness_by_knot_removal
+from judge import (bezier, chain_bspline, derivative_jumps, gap, poles, size,
+                   smoothness_by_knot_removal)
 
 V = FreeCAD.Vector
+
+
+def random_points(rng, degree, spread=3.0):
+    return [tuple(rng.uniform(-spread, spread) for _ in range(3)) for _ in range(degree + 1)]
 
 
 def assert_chain_smooth(test, pieces, widths, order):
@@ -99,3 +106,58 @@ class SplineJudgedByFreeCAD(unittest.TestCase, CommandDriver):
         made, shown = self.drive(commands.SplineCommand(), points[:5], {})
         self.assertEqual(made, [])
         self.assertIn("2 m + 2", shown[0])
+
+
+class MergeJudgedByFreeCAD(unittest.TestCase, CommandDriver):
+    def test_freecad_segment_of_the_merged_curve_at_mu_is_p_hat_and_q_hat(self):
+        rng = random.Random(21)
+        for mu in ("half", 0.35, "optimal"):
+            p_points, q_points = random_points(rng, 4), random_points(rng, 4)
+            q_points[0] = p_points[-1]
+            with Curve.from_freecad(bezier(p_points)) as p, \
+                    Curve.from_freecad(bezier(q_points)) as q, \
+                    bezjoin.merge(p, q, mu=mu, metric="l2") as result:
+                merged = result.merged.to_freecad()
+                p_hat, q_hat = result.p_hat.points, result.q_hat.points
+                used = result.mu
+            left, right = merged.copy(), merged.copy()
+            left.segment(0.0, used)
+            right.segment(used, 1.0)
+            scale = size([merged])
+            for ours, theirs in zip(p_hat, poles(left)):
+                self.assertLessEqual(gap(ours, theirs), 1e-12 * scale)
+            for ours, theirs in zip(q_hat, poles(right)):
+                self.assertLessEqual(gap(ours, theirs), 1e-12 * scale)
+
+    def test_merge_edges_feature_and_report(self):
+        first = Part.Edge(bezier([(0, 0, 0), (1, 1, 0), (2, 1, 0), (3, 0, 0)]))
+        second = Part.Edge(bezier([(6, 0, 0), (5, -1, 0), (4, -1, 0), (3, 0, 0)]))
+        merged = operations.merge_edges(first, second, fix_ends=True)
+        curve = merged.shape.Curve
+        self.assertIsInstance(curve, Part.BezierCurve)
+        self.assertEqual(curve.Degree, 3)
+        # oriented end to start: the first edge's start and the second edge's start are
+        # the merged curve's ends (fixed)
+        self.assertLessEqual(gap(curve.StartPoint, (0, 0, 0)), 1e-12)
+        self.assertLessEqual(gap(curve.EndPoint, (6, 0, 0)), 1e-12)
+        self.assertEqual(merged.mu, 0.5)
+        self.assertGreater(merged.max_deviation, 0.0)
+        self.assertIn("mu = 0.5", merged.describe())
+
+    def test_merge_command_records_the_report(self):
+        first = Part.Edge(bezier([(0, 0, 0), (1, 1, 0), (2, 1, 0), (3, 0, 0)]))
+        second = Part.Edge(bezier([(3, 0, 0), (4, -1, 0), (5, -1, 0), (6, 0, 0)]))
+        parameters = {"metric": "l2", "mu_mode": "given", "mu": 0.3, "fix_ends": False,
+                      "keep_first": False, "keep_second": False}
+        made, shown = self.drive(commands.MergeCommand(), [first, second], parameters)
+        self.assertEqual(shown, [])
+        (name, shape, report), = made
+        self.assertEqual(name, "Merged")
+        self.assertEqual(report["MergeMu"], 0.3)
+        self.assertGreater(report["MergeMaxDeviation"], 0.0)
+        self.assertGreater(report["MergeMetric"], 0.0)
+        self.assertEqual(shape.Edges[0].Curve.Degree, 3)
+        made, shown = self.drive(commands.MergeCommand(), [first, second],
+                                 dict(parameters, keep_first=True, keep_second=True))
+        self.assertEqual(made, [])
+        self.assertTrue(shown[0].startswith("BZJ_ERR_INCONSISTENT: "), shown)

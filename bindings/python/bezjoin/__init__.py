@@ -19,6 +19,7 @@ from ._library import (
     status_name,
 )
 from ._lagrange import lagrange_spline
+from ._merge import MergeResult, merge
 from .curve import Curve
 from .errors import STATUS_NAMES, BezjoinError, LibraryNotFoundError, UnsupportedGeometryError
 
@@ -28,11 +29,13 @@ __all__ = [
     "BezjoinError",
     "Curve",
     "LibraryNotFoundError",
+    "MergeResult",
     "UnsupportedGeometryError",
     "candidate_paths",
     "find_library",
     "lagrange_spline",
     "library_path",
     "library_version",
+    "merge",
     "status_name",
 ]
