@@ -8,7 +8,6 @@ messages name the argument.
 """
 
 import ctypes
-import math
 import operator
 
 from .errors import BezjoinError
@@ -75,8 +74,3 @@ def flat(rows):
 def rows_of(buffer, count, dim):
     """``count`` rows of ``dim`` floats from a row-major ctypes buffer."""
     return [tuple(buffer[i * dim + c] for c in range(dim)) for i in range(count)]
-
-
-def is_finite_number(value):
-    """Whether ``value`` is a finite float."""
-    return math.isfinite(value)
