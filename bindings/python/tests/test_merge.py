@@ -187,3 +187,23 @@ def test_merge_errors():
             bezjoin.merge(p, q, p_points=[0.5])
         with pytest.raises(TypeError, match="mu must be a real number"):
             bezjoin.merge(p, q, mu=[0.5])
+
+
+def test_result_releases_its_three_curves(monkeypatch):
+    from test_curve import FreeCounter, address
+
+    counter = FreeCounter(monkeypatch)
+    rng = random.Random(47)
+    with Curve(random_points(rng, 3, 2)) as p, Curve(random_points(rng, 3, 2)) as q:
+        result = bezjoin.merge(p, q)
+        curves = result.curves()
+        assert [c is getattr(result, n) for c, n in zip(curves, ("merged", "p_hat", "q_hat"))] \
+            == [True, True, True]
+        where = sorted(address(c) for c in curves)
+        text = repr(result)
+        assert text.startswith("MergeResult(merged=Curve([") and "mu=0.5" in text
+        with result:
+            pass
+        assert all(c.closed for c in curves)
+        result.close()
+        assert sorted(counter.released) == where
