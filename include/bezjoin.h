@@ -199,6 +199,54 @@ typedef int32_t BzjChainSplit;
 typedef struct BzjCurve BzjCurve;
 
 /**
+ * An interior constraint: `R^(k)(t) = values[k*dim .. (k+1)*dim]`, `k = 0..=max_order`.
+ */
+typedef struct BzjPointConstraint {
+  /**
+   * Parameter on the connecting curve, in (0,1).
+   */
+  double t;
+  /**
+   * K: derivatives 0..K are prescribed.
+   */
+  size_t max_order;
+  /**
+   * (K+1)*dim doubles, row k = R^(k)(t).
+   */
+  const double *values;
+} BzjPointConstraint;
+
+/**
+ * Options of [`bzj_connect`] (layout fixed by the contract).
+ */
+typedef struct BzjConnectOptions {
+  /**
+   * kp <= degree of P.
+   */
+  size_t p_order;
+  /**
+   * kq <= degree of Q.
+   */
+  size_t q_order;
+  /**
+   * alpha > 0; 1.0 = the paper.
+   */
+  double p_scale;
+  /**
+   * beta > 0; 1.0 = the paper.
+   */
+  double q_scale;
+  /**
+   * May be NULL if constraint_count = 0.
+   */
+  const struct BzjPointConstraint *constraints;
+  /**
+   * Number of entries in `constraints`.
+   */
+  size_t constraint_count;
+} BzjConnectOptions;
+
+/**
  * A point kept with its derivatives `0..=max_order`.
  */
 typedef struct BzjKeepPoint {
@@ -373,6 +421,49 @@ const char *bzj_last_error(void);
  * `"BZJ_UNKNOWN_STATUS"` for a value that is not one.
  */
 const char *bzj_status_name(int32_t status);
+
+/**
+ * The Bezier curve `R` connecting `p` at `u0` to `q` at `v0` with
+ * `R^(k)(0) = alpha^k P^(k)(u0)` (k = 0..kp), `R^(k)(1) = beta^k Q^(k)(v0)`
+ * (k = 0..kq) and the interior constraints `R^(k)(t_j) = values_j[k]`
+ * (Krivosheev, Mavrin, Starkova 2025, Theorems 1 and 2). The degree of
+ * `out` is `kp + kq + 1 + sum(K_j + 1)`. Guarantee: every condition holds
+ * to a relative residual of 1e-8 (definition in the Rust documentation of
+ * `bezjoin_core::connect`), or the call fails with BZJ_ERR_ILL_CONDITIONED.
+ *
+ * @return BZJ_ERR_NULL_POINTER if `p`, `q`, `options`, `out`, a
+ *         non-empty `options->constraints` or a constraint's `values` is NULL;
+ *         BZJ_ERR_INVALID_ARGUMENT if `u0` or `v0` is outside [0,1], an order
+ *         is above its curve's degree, a scale is not > 0, a constraint's `t`
+ *         is outside (0,1) or repeated;
+ *         BZJ_ERR_NON_FINITE if `u0`, `v0`, a scale, a `t` or a value is NaN or infinite;
+ *         BZJ_ERR_DIMENSION_MISMATCH if `p` and `q` have different dimensions;
+ *         BZJ_ERR_SINGULAR if the interior system is numerically singular;
+ *         BZJ_ERR_ILL_CONDITIONED if the result cannot be trusted to 1e-8
+ *         (message carries the estimate) or its degree is above 31.
+ *
+ * # Safety
+ * `p`, `q` are NULL or live handles; `options` is NULL or readable, with
+ * `constraint_count` readable constraints each holding
+ * `(max_order + 1) * dim` readable doubles; `out` is NULL or writable.
+ */
+BzjStatus bzj_connect(const struct BzjCurve *p, double u0, const struct BzjCurve *q, double v0, const struct BzjConnectOptions *options, struct BzjCurve **out);
+
+/**
+ * [`bzj_connect`] with `alpha = beta = s` chosen automatically to minimise
+ * the fairness energy `integral_0^1 |R''(t)|^2 dt` (exact, Bernstein Gram
+ * matrix) by a bounded search over two decades either side of
+ * `s0 = |Q(v0) - P(u0)| / mean(|P'(u0)|, |Q'(v0)|)`; `options->p_scale` and
+ * `options->q_scale` are ignored. The chosen `s` is written to `scale_out`
+ * when it is not NULL. Same guarantee as [`bzj_connect`].
+ *
+ * @return the statuses of [`bzj_connect`] (except for the scales, which are
+ *         not read).
+ *
+ * # Safety
+ * As [`bzj_connect`]; `scale_out` is NULL or writable.
+ */
+BzjStatus bzj_connect_auto_scale(const struct BzjCurve *p, double u0, const struct BzjCurve *q, double v0, const struct BzjConnectOptions *options, struct BzjCurve **out, double *scale_out);
 
 /**
  * Create a Bezier curve of degree `degree` in dimension `dim` from

@@ -33,6 +33,10 @@ pub use arclength::DEFAULT_ARC_LENGTH_ACCURACY;
 pub use basis::KnotSide;
 pub use bezier::BezierCurve;
 pub use bspline::BSplineCurve;
+pub use connect::{
+    CONNECT_RESIDUAL_LIMIT, ConnectOptions, Connection, MAX_CONNECT_DEGREE, PointConstraint,
+    connect, connect_auto_scale, connect_dense_reference, connect_unchecked, fairness_energy,
+};
 pub use error::{BezjoinError, Result};
 pub use lagrange::{
     BuildDirection, DEFAULT_LAGRANGE_ACCURACY, DerivedPoints, LagrangeOptions, LagrangeSpline,
