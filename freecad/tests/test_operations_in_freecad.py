@@ -70,6 +70,88 @@ class CommandDriver:
             FreeCAD.closeDocument(document.Name)
 
 
+class ConnectJudgedByFreeCAD(unittest.TestCase, CommandDriver):
+    """P|[0,u0] and Q|[v0,1] cut by FreeCAD's own segment, R from bezjoin: the chain
+    is C^k over the knot intervals (u0, alpha, (1 - v0) alpha / beta)."""
+
+    def check_chain(self, p_points, q_points, u0, v0, order, alpha, beta):
+        p_freecad, q_freecad = bezier(p_points), bezier(q_points)
+        with Curve.from_freecad(p_freecad) as p, Curve.from_freecad(q_freecad) as q, \
+                bezjoin.connect(p, u0, q, v0, p_order=order, q_order=order, p_scale=alpha,
+                                q_scale=beta) as r:
+            blend = r.to_freecad()
+        p_kept, q_kept = p_freecad.copy(), q_freecad.copy()
+        p_kept.segment(0.0, u0)
+        q_kept.segment(v0, 1.0)
+        spline = assert_chain_smooth(self, [p_kept, blend, q_kept],
+                                     [u0, alpha, (1.0 - v0) * alpha / beta], order)
+        edge = Part.Edge(spline)
+        scale = size([p_freecad, q_freecad])
+        self.assertLessEqual(gap(edge.valueAt(edge.FirstParameter), p_points[0]), 1e-12 * scale)
+        self.assertLessEqual(gap(edge.valueAt(edge.LastParameter), q_points[-1]), 1e-12 * scale)
+        return blend
+
+    def test_paper_mode_cubics_give_a_c3_chain_of_degree_7(self):
+        rng = random.Random(11)
+        blend = self.check_chain(random_points(rng, 3), random_points(rng, 3), 0.8, 0.15, 3,
+                                 1.0, 1.0)
+        self.assertEqual(blend.Degree, 7)
+
+    def test_scaled_c2_blend_between_different_degrees(self):
+        rng = random.Random(12)
+        blend = self.check_chain(random_points(rng, 4), random_points(rng, 3), 0.65, 0.4, 2,
+                                 1.6, 0.7)
+        self.assertEqual(blend.Degree, 5)
+
+    def test_bridge_between_end_points(self):
+        rng = random.Random(13)
+        self.check_chain(random_points(rng, 2), random_points(rng, 5), 1.0, 0.0, 1, 1.0, 1.0)
+
+    def test_blend_edges_bridges_the_facing_ends(self):
+        first_curve = bezier([(0, 0, 0), (1, 1, 0), (2, 1, 0)])
+        second_curve = bezier([(6, 0, 0), (5, 1, 0), (4, 1, 0)])
+        edge = operations.blend_edges(Part.Edge(first_curve), Part.Edge(second_curve),
+                                      p_order=2, q_order=2, p_scale=1.2, q_scale=0.8)
+        blend = edge.Curve
+        self.assertEqual(blend.Degree, 5)
+        self.assertEqual(tuple(blend.StartPoint), (2.0, 1.0, 0.0))
+        self.assertEqual(tuple(blend.EndPoint), (4.0, 1.0, 0.0))
+        second_forward = second_curve.copy()
+        second_forward.reverse()
+        assert_chain_smooth(self, [first_curve, blend, second_forward], [1.0, 1.2, 1.2 / 0.8], 2)
+
+    def test_blend_command_makes_a_feature_or_shows_the_reason(self):
+        first = Part.Edge(bezier([(0, 0, 0), (1, 1, 0), (2, 1, 0)]))
+        second = Part.Edge(bezier([(4, 1, 0), (5, 1, 0), (6, 0, 0)]))
+        parameters = {"u0": 1.0, "v0": 0.0, "p_order": None, "q_order": 1, "p_scale": 1.0,
+                      "q_scale": 1.0}
+        made, shown = self.drive(commands.BlendCommand(), [first, second], parameters)
+        self.assertEqual(shown, [])
+        self.assertEqual(len(made), 1)
+        self.assertEqual(made[0][1].Edges[0].Curve.Degree, 2 + 1 + 1)
+        made, shown = self.drive(commands.BlendCommand(), [first, Part.makeCircle(1.0)],
+                                 parameters)
+        self.assertEqual(made, [])
+        self.assertEqual(len(shown), 1)
+        self.assertIn("second edge: a Circle", shown[0])
+        made, shown = self.drive(commands.BlendCommand(), [first, second],
+                                 dict(parameters, p_scale=-1.0))
+        self.assertEqual(made, [])
+        self.assertTrue(shown[0].startswith("BZJ_ERR_INVALID_ARGUMENT: "), shown)
+
+
+    def test_blend_with_an_order_above_a_line_degree(self):
+        line = bezier([(0, 0, 0), (2, 0, 0)])
+        arc_like = bezier([(3, 1, 0), (3, 2, 0), (2, 3, 0)])
+        edge = operations.blend_edges(Part.Edge(line), Part.Edge(arc_like), p_order=2,
+                                      q_order=2)
+        blend = edge.Curve
+        self.assertEqual(blend.Degree, 5)
+        # C2 to the line: the blend's second derivative vanishes where it leaves the line
+        self.assertLessEqual(gap(blend.getDN(0.0, 2), (0, 0, 0)), 1e-12)
+        assert_chain_smooth(self, [line, blend, arc_like], [1.0, 1.0, 1.0], 2)
+
+
 class SplineJudgedByFreeCAD(unittest.TestCase, CommandDriver):
     def test_spline_passes_through_the_points_and_is_c1(self):
         points = [(0, 0, 0), (0.3, 0.5, 0.1), (0.7, 0.9, 0.2), (1, 1, 0.2), (2, 0.9, 0),

@@ -18,6 +18,7 @@ from ._library import (
     library_version,
     status_name,
 )
+from ._connect import connect
 from ._lagrange import lagrange_spline
 from ._merge import MergeResult, merge
 from .curve import Curve
@@ -32,6 +33,7 @@ __all__ = [
     "MergeResult",
     "UnsupportedGeometryError",
     "candidate_paths",
+    "connect",
     "find_library",
     "lagrange_spline",
     "library_path",
