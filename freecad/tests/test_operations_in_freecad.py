@@ -124,7 +124,7 @@ class ConnectJudgedByFreeCAD(unittest.TestCase, CommandDriver):
         first = Part.Edge(bezier([(0, 0, 0), (1, 1, 0), (2, 1, 0)]))
         second = Part.Edge(bezier([(4, 1, 0), (5, 1, 0), (6, 0, 0)]))
         parameters = {"u0": 1.0, "v0": 0.0, "p_order": None, "q_order": 1, "p_scale": 1.0,
-                      "q_scale": 1.0}
+                      "q_scale": 1.0, "auto_scale": False}
         made, shown = self.drive(commands.BlendCommand(), [first, second], parameters)
         self.assertEqual(shown, [])
         self.assertEqual(len(made), 1)
@@ -150,6 +150,17 @@ class ConnectJudgedByFreeCAD(unittest.TestCase, CommandDriver):
         # C2 to the line: the blend's second derivative vanishes where it leaves the line
         self.assertLessEqual(gap(blend.getDN(0.0, 2), (0, 0, 0)), 1e-12)
         assert_chain_smooth(self, [line, blend, arc_like], [1.0, 1.0, 1.0], 2)
+
+    def test_blend_with_automatic_scale_is_a_smooth_chain_at_that_scale(self):
+        first_curve = bezier([(0, 0, 0), (1, 1, 0), (2, 1, 0)])
+        second_curve = bezier([(4, 1, 0), (5, 1, 0), (6, 0, 0)])
+        edge = operations.blend_edges(Part.Edge(first_curve), Part.Edge(second_curve),
+                                      p_order=2, q_order=2, auto_scale=True)
+        with Curve.from_freecad(first_curve) as p, Curve.from_freecad(second_curve) as q, \
+                bezjoin.connect_auto_scale(p, 1.0, q, 0.0, p_order=2, q_order=2) as result:
+            scale = result.scale
+            self.assertEqual(poles(edge.Curve), result.curve.points)
+        assert_chain_smooth(self, [first_curve, edge.Curve, second_curve], [1.0, scale, 1.0], 2)
 
 
 class SplineJudgedByFreeCAD(unittest.TestCase, CommandDriver):

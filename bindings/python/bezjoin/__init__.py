@@ -18,13 +18,14 @@ from ._library import (
     library_version,
     status_name,
 )
-from ._connect import connect
+from ._connect import AutoScaledConnection, connect, connect_auto_scale
 from ._lagrange import lagrange_spline
 from ._merge import MergeResult, merge
 from .curve import Curve
 from .errors import STATUS_NAMES, BezjoinError, LibraryNotFoundError, UnsupportedGeometryError
 
 __all__ = [
+    "AutoScaledConnection",
     "ENVIRONMENT_VARIABLE",
     "STATUS_NAMES",
     "BezjoinError",
@@ -34,6 +35,7 @@ __all__ = [
     "UnsupportedGeometryError",
     "candidate_paths",
     "connect",
+    "connect_auto_scale",
     "find_library",
     "lagrange_spline",
     "library_path",

@@ -11,6 +11,7 @@ from ._convert import double_array, flat, index_argument, point_rows, real_argum
 from ._library import CurvePointer, library, register_prototype
 from .curve import Curve, handle_of
 from .errors import BezjoinError
+from .results import CurveGroup
 
 
 class PointConstraintStruct(ctypes.Structure):
@@ -36,6 +37,13 @@ class ConnectOptionsStruct(ctypes.Structure):
     ]
 
 
+register_prototype(
+    "bzj_connect_auto_scale",
+    ctypes.c_int32,
+    [CurvePointer, ctypes.c_double, CurvePointer, ctypes.c_double,
+     ctypes.POINTER(ConnectOptionsStruct), ctypes.POINTER(CurvePointer),
+     ctypes.POINTER(ctypes.c_double)],
+)
 register_prototype(
     "bzj_connect",
     ctypes.c_int32,
@@ -68,6 +76,46 @@ def connect(p, u0, q, v0, *, p_order=None, q_order=None, p_scale=1.0, q_scale=1.
         BezjoinError: with the library's status and message.
     """
     p_handle, q_handle = handle_of(p, "p"), handle_of(q, "q")
+    options, _keep_alive = _options(p, q, p_order, q_order, p_scale, q_scale, constraints)
+    out = CurvePointer()
+    library().call("bzj_connect", p_handle, real_argument(u0, "u0"), q_handle,
+                   real_argument(v0, "v0"), ctypes.byref(options), ctypes.byref(out))
+    return Curve._adopt(out)
+
+
+class AutoScaledConnection(CurveGroup):
+    """The connecting ``curve`` and the ``scale`` ``s = alpha = beta`` chosen for it."""
+
+    _curve_fields = ("curve",)
+
+    def __init__(self, curve, scale):
+        self.curve = curve
+        self.scale = scale
+
+    def _fields(self):
+        return self._curve_fields + ("scale",)
+
+
+def connect_auto_scale(p, u0, q, v0, *, p_order=None, q_order=None, constraints=()):
+    """:func:`connect` with ``p_scale = q_scale = s`` chosen by the library to minimise
+    the fairness energy ``integral_0^1 |R''(t)|^2 dt`` (bounded search over two
+    decades either side of ``|Q(v0) - P(u0)| / mean(|P'(u0)|, |Q'(v0)|)``).
+
+    Returns:
+        :class:`AutoScaledConnection` (``curve``, ``scale``).
+    """
+    p_handle, q_handle = handle_of(p, "p"), handle_of(q, "q")
+    options, _keep_alive = _options(p, q, p_order, q_order, 1.0, 1.0, constraints)
+    out = CurvePointer()
+    scale = ctypes.c_double()
+    library().call("bzj_connect_auto_scale", p_handle, real_argument(u0, "u0"), q_handle,
+                   real_argument(v0, "v0"), ctypes.byref(options), ctypes.byref(out),
+                   ctypes.byref(scale))
+    return AutoScaledConnection(Curve._adopt(out), scale.value)
+
+
+def _options(p, q, p_order, q_order, p_scale, q_scale, constraints):
+    """The C options and the arrays they point into (keep both alive for the call)."""
     p_order = p.degree if p_order is None else index_argument(p_order, "p_order")
     q_order = q.degree if q_order is None else index_argument(q_order, "q_order")
     p_dim = p.dim
@@ -93,7 +141,4 @@ def connect(p, u0, q, v0, *, p_order=None, q_order=None, p_scale=1.0, q_scale=1.
         p_order, q_order, real_argument(p_scale, "p_scale"), real_argument(q_scale, "q_scale"),
         constraint_array if structs else None, len(structs),
     )
-    out = CurvePointer()
-    library().call("bzj_connect", p_handle, real_argument(u0, "u0"), q_handle,
-                   real_argument(v0, "v0"), ctypes.byref(options), ctypes.byref(out))
-    return Curve._adopt(out)
+    return options, (keep_alive, constraint_array)

@@ -93,3 +93,45 @@ def test_connect_errors():
             bezjoin.connect(p, 1.0, [(0, 0)], 0.0)
     with pytest.raises(ValueError, match="closed Curve"):
         bezjoin.connect(p, 1.0, q, 0.0)
+
+
+def bending_energy(points):
+    """integral_0^1 |R''(t)|^2 dt by 20-point Gauss-Legendre (exact for these degrees)."""
+    from test_merge import gauss_legendre
+
+    nodes, weights = gauss_legendre(20)
+    return sum(w * norm(derivative(points, x, 2)) ** 2 for x, w in zip(nodes, weights))
+
+
+@pytest.mark.parametrize("seed,order", [(53, 2), (59, 1), (61, 3)])
+def test_auto_scale_is_connect_at_the_best_scale_of_its_bracket(seed, order):
+    rng = random.Random(seed)
+    p_points, q_points = random_points(rng, 3, 2, 3.0), random_points(rng, 3, 2, 3.0)
+    u0, v0 = 0.9, 0.1
+    speed = (norm(derivative(p_points, u0, 1)) + norm(derivative(q_points, v0, 1))) / 2
+    start = distance(derivative(q_points, v0, 0), derivative(p_points, u0, 0)) / speed
+    with Curve(p_points) as p, Curve(q_points) as q, \
+            bezjoin.connect_auto_scale(p, u0, q, v0, p_order=order, q_order=order) as result:
+        s = result.scale
+        assert start / 100 * (1 - 1e-9) <= s <= start * 100 * (1 + 1e-9)
+        assert repr(result).startswith("AutoScaledConnection(curve=Curve([")
+        chosen = result.curve.points
+        with bezjoin.connect(p, u0, q, v0, p_order=order, q_order=order, p_scale=s,
+                             q_scale=s) as same:
+            assert max(distance(a, b) for a, b in zip(chosen, same.points)) <= 1e-9
+        best = bending_energy(chosen)
+        for i in range(41):  # log-spaced over the two decades either side of start
+            trial = start * 10 ** (-2 + i / 10)
+            with bezjoin.connect(p, u0, q, v0, p_order=order, q_order=order, p_scale=trial,
+                                 q_scale=trial) as other:
+                assert bending_energy(other.points) >= best * (1 - 1e-6), trial
+
+
+def test_auto_scale_errors():
+    with Curve([(0, 0), (1, 1), (2, 0)]) as p, Curve([(3, 0), (4, 1), (5, 0)]) as q:
+        expect_error("BZJ_ERR_INVALID_ARGUMENT",
+                     lambda: bezjoin.connect_auto_scale(p, 1.0, q, 0.0, p_order=3), "p_order")
+        expect_error("BZJ_ERR_NON_FINITE",
+                     lambda: bezjoin.connect_auto_scale(p, math.inf, q, 0.0), "u0")
+        with pytest.raises(TypeError, match="q must be a bezjoin.Curve"):
+            bezjoin.connect_auto_scale(p, 1.0, "q", 0.0)

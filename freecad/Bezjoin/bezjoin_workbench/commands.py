@@ -139,7 +139,9 @@ class BlendCommand(Command):
     fields = [
         ("u0", "Parameter on the first edge (1 = its end)", "float", 1.0, (0.0, 1.0)),
         ("v0", "Parameter on the second edge (0 = its start)", "float", 0.0, (0.0, 1.0)),
-    ] + ORDER_FIELDS
+    ] + ORDER_FIELDS + [
+        ("auto_scale", "Choose the scales automatically (least bending)", "bool", False, None),
+    ]
 
     def run(self, document, inputs, parameters):
         shape = operations.blend_edges(inputs[0], inputs[1], **parameters)

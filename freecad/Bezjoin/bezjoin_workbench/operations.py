@@ -64,7 +64,7 @@ def _wire(curves):
 
 
 def blend_edges(first_edge, second_edge, *, u0=1.0, v0=0.0, p_order=None, q_order=None,
-                p_scale=1.0, q_scale=1.0, orient=True):
+                p_scale=1.0, q_scale=1.0, auto_scale=False, orient=True):
     """The blend curve from ``first_edge`` at ``u0`` to ``second_edge`` at ``v0``
     (:func:`bezjoin.connect`), as a ``Part.Edge``.
 
@@ -74,6 +74,8 @@ def blend_edges(first_edge, second_edge, *, u0=1.0, v0=0.0, p_order=None, q_orde
     ``u0 = 1``, ``v0 = 0`` bridge the gap between the facing ends.
     ``p_order``/``q_order`` default to each curve's degree (the paper); an order
     above a curve's degree is allowed (the curve is elevated first, exactly).
+    With ``auto_scale`` the scales are ignored and chosen by the library
+    (:func:`bezjoin.connect_auto_scale`: least bending energy).
     """
     with edge_curve(first_edge, "first edge") as p, edge_curve(second_edge, "second edge") as q:
         if orient:
@@ -81,10 +83,14 @@ def blend_edges(first_edge, second_edge, *, u0=1.0, v0=0.0, p_order=None, q_orde
         else:
             p, q = p.segment(0.0, 1.0), q.segment(0.0, 1.0)
         with p, q, _raised_for_order(p, p_order) as p_raised, \
-                _raised_for_order(q, q_order) as q_raised, \
-                bezjoin.connect(p_raised, u0, q_raised, v0, p_order=p_order, q_order=q_order,
-                                p_scale=p_scale, q_scale=q_scale) as blend:
-            return blend.to_edge()
+                _raised_for_order(q, q_order) as q_raised:
+            if auto_scale:
+                with bezjoin.connect_auto_scale(p_raised, u0, q_raised, v0, p_order=p_order,
+                                                q_order=q_order) as result:
+                    return result.curve.to_edge()
+            with bezjoin.connect(p_raised, u0, q_raised, v0, p_order=p_order, q_order=q_order,
+                                 p_scale=p_scale, q_scale=q_scale) as blend:
+                return blend.to_edge()
 
 
 def round_corner(first_edge, second_edge, *, setback, second_setback=None, p_order=None,
