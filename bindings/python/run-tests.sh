@@ -19,4 +19,4 @@ fi
 export BEZJOIN_LIBRARY="$library"
 
 # Exit status 5 ("no tests collected") is a failure like any other non-zero status.
-python3 -m pytest -q -p no:cacheprovider bindings/python/tests
+python3 -m pytest -q -p no:cacheprovider --doctest-modules bindings/python/bezjoin bindings/python/tests
