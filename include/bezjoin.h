@@ -104,6 +104,35 @@ typedef int32_t BzjStatus;
 #endif // __cplusplus
 
 /**
+ * What an intersection hit is.
+ */
+enum BzjIntersectionKind
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : int32_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+  /**
+   * The curves cross (2D: P passes from one side of Q to the other).
+   */
+  BZJ_INTERSECTION_CROSSING = 0,
+  /**
+   * The curves meet tangentially without crossing.
+   */
+  BZJ_INTERSECTION_TOUCHING = 1,
+  /**
+   * The curves coincide for u in [u, u_end], v from v to v_end.
+   */
+  BZJ_INTERSECTION_OVERLAP = 2,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum BzjIntersectionKind BzjIntersectionKind;
+#else
+typedef int32_t BzjIntersectionKind;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
+
+/**
  * What stage 1 minimises.
  */
 enum BzjMetric
@@ -245,6 +274,155 @@ typedef struct BzjConnectOptions {
    */
   size_t constraint_count;
 } BzjConnectOptions;
+
+/**
+ * Tolerances and work bounds of the intersection search; fill with
+ * `bzj_intersect_options_default` and change what you need.
+ */
+typedef struct BzjIntersectOptions {
+  /**
+   * Curves meet where |P(u) - Q(v)| <= this times the largest absolute
+   * control-point coordinate of either curve; in (0, 1). Default 1e-9.
+   */
+  double relative_distance_tolerance;
+  /**
+   * Sine of the tangent angle below which a hit at an end point (or in 3D)
+   * is touching rather than crossing; in [0, 1). Default 1e-6.
+   */
+  double tangent_tolerance;
+  /**
+   * Largest number of subdivision levels. Default 60.
+   */
+  size_t max_depth;
+  /**
+   * Largest number of bounding-box pairs examined (>= 1); exceeding it is
+   * BZJ_ERR_ILL_CONDITIONED. Default 200000.
+   */
+  size_t max_box_pairs;
+  /**
+   * Largest number of hits; exceeding it is BZJ_ERR_ILL_CONDITIONED.
+   * Default 10000.
+   */
+  size_t max_hits;
+} BzjIntersectOptions;
+
+/**
+ * One hit of `bzj_intersect_detailed`.
+ */
+typedef struct BzjIntersection {
+  /**
+   * Parameter on P (for an overlap, its start).
+   */
+  double u;
+  /**
+   * Parameter on Q (for an overlap, of the point P(u)).
+   */
+  double v;
+  /**
+   * Overlap: end parameter on P (> u). Otherwise equal to u.
+   */
+  double u_end;
+  /**
+   * Overlap: parameter on Q of P(u_end) (below v when the curves run in
+   * opposite directions). Otherwise equal to v.
+   */
+  double v_end;
+  /**
+   * |P(u) - Q(v)|, at most the distance tolerance.
+   */
+  double distance;
+  /**
+   * Crossing, touching or overlap.
+   */
+  BzjIntersectionKind kind;
+} BzjIntersection;
+
+/**
+ * Options of `bzj_fillet` (contract layout; every field is read).
+ */
+typedef struct BzjFilletOptions {
+  /**
+   * Arc length along P back from the crossing, > 0.
+   */
+  double p_setback;
+  /**
+   * Arc length along Q on from the crossing, > 0.
+   */
+  double q_setback;
+  /**
+   * kp <= degree of P.
+   */
+  size_t p_order;
+  /**
+   * kq <= degree of Q.
+   */
+  size_t q_order;
+  /**
+   * alpha > 0; 1.0 = the paper.
+   */
+  double p_scale;
+  /**
+   * beta > 0; 1.0 = the paper.
+   */
+  double q_scale;
+} BzjFilletOptions;
+
+/**
+ * Options of `bzj_fillet_deviation`.
+ */
+typedef struct BzjDeviationFilletOptions {
+  /**
+   * eps > 0: the blend passes at this distance from the corner point
+   * (min over t of |R(t) - X|, X the crossing).
+   */
+  double max_deviation;
+  /**
+   * dq / dp > 0; 1.0 = symmetric rounding.
+   */
+  double setback_ratio;
+  /**
+   * kp <= degree of P.
+   */
+  size_t p_order;
+  /**
+   * kq <= degree of Q.
+   */
+  size_t q_order;
+  /**
+   * alpha > 0; 1.0 = the paper.
+   */
+  double p_scale;
+  /**
+   * beta > 0; 1.0 = the paper.
+   */
+  double q_scale;
+} BzjDeviationFilletOptions;
+
+/**
+ * What `bzj_fillet_deviation` chose and achieved.
+ */
+typedef struct BzjDeviationFilletReport {
+  /**
+   * The setback dp found (arc length along P back from the crossing).
+   */
+  double p_setback;
+  /**
+   * dq = setback_ratio * dp.
+   */
+  double q_setback;
+  /**
+   * The achieved deviation, within 1e-9 relative of max_deviation.
+   */
+  double deviation;
+  /**
+   * Where P was cut.
+   */
+  double u0;
+  /**
+   * Where Q was cut.
+   */
+  double v0;
+} BzjDeviationFilletReport;
 
 /**
  * A point kept with its derivatives `0..=max_order`.
@@ -588,6 +766,144 @@ BzjStatus bzj_curve_reverse(const struct BzjCurve *c, struct BzjCurve **out);
  * `c` is NULL or a live handle; `out` is NULL or writable.
  */
 BzjStatus bzj_curve_length(const struct BzjCurve *c, double a, double b, double *out);
+
+/**
+ * All places where `p` and `q` meet, ordered by u: crossings, touching
+ * points, and each overlap by its start pair. Writes the first
+ * `min(capacity, total)` pairs `(u, v)` into `out` (`2 * capacity` doubles)
+ * and the total found into `count`. `capacity == 0` with `out == NULL` is a
+ * valid "count only" query. Default tolerances (relative distance 1e-9);
+ * use `bzj_intersect_detailed` for the kind of each hit and other
+ * tolerances.
+ *
+ * @return BZJ_ERR_NULL_POINTER if `p`, `q` or `count` is NULL, or `out` is
+ *         NULL while `capacity > 0`;
+ *         BZJ_ERR_DIMENSION_MISMATCH if the curves' dimensions differ;
+ *         BZJ_ERR_INVALID_ARGUMENT for curves of dimension 1;
+ *         BZJ_ERR_ILL_CONDITIONED if the curves run within the tolerance
+ *         of each other without coinciding and the work bound is reached.
+ *
+ * # Safety
+ * `p`, `q` are NULL or live handles; `out` is NULL or points to
+ * `2 * capacity` writable doubles; `count` is NULL or writable.
+ */
+BzjStatus bzj_intersect(const struct BzjCurve *p, const struct BzjCurve *q, double *out, size_t capacity, size_t *count);
+
+/**
+ * Fill `out` with the default intersection options.
+ *
+ * @return BZJ_ERR_NULL_POINTER if `out` is NULL.
+ *
+ * # Safety
+ * `out` is NULL or writable.
+ */
+BzjStatus bzj_intersect_options_default(struct BzjIntersectOptions *out);
+
+/**
+ * Like `bzj_intersect`, with the kind of each hit (crossing, touching,
+ * overlap with its range) and explicit tolerances: `options` may be NULL for
+ * the defaults. Writes the first `min(capacity, total)` hits into `out` and
+ * the total into `count`; `capacity == 0` with `out == NULL` counts only.
+ *
+ * @return BZJ_ERR_NULL_POINTER if `p`, `q` or `count` is NULL, or `out` is
+ *         NULL while `capacity > 0`;
+ *         BZJ_ERR_DIMENSION_MISMATCH if the curves' dimensions differ;
+ *         BZJ_ERR_INVALID_ARGUMENT for curves of dimension 1 or an option out
+ *         of its range (named in the message);
+ *         BZJ_ERR_NON_FINITE if a tolerance is NaN or infinite;
+ *         BZJ_ERR_ILL_CONDITIONED if a work bound is reached.
+ *
+ * # Safety
+ * `p`, `q` are NULL or live handles; `options` is NULL or readable; `out`
+ * is NULL or points to `capacity` writable `BzjIntersection`; `count` is
+ * NULL or writable.
+ */
+BzjStatus bzj_intersect_detailed(const struct BzjCurve *p, const struct BzjCurve *q, const struct BzjIntersectOptions *options, struct BzjIntersection *out, size_t capacity, size_t *count);
+
+/**
+ * Round the corner between `p` and `q` at their first crossing (smallest u
+ * on P; touching points and overlaps are skipped): keeps P on `[0, u0]` and
+ * Q on `[v0, 1]`, where the arc length of P from u0 to the crossing is
+ * `p_setback` and that of Q from the crossing to v0 is `q_setback`, and joins
+ * them with the C^k curve of `bzj_connect` (degree `p_order + q_order + 1`).
+ * The three curves form a C^k B-spline with knot intervals
+ * `(u0, p_scale, (1 - v0) p_scale / q_scale)`. Other corners of the
+ * crossing: pass `bzj_curve_reverse` of P and/or Q.
+ *
+ * @return BZJ_ERR_NULL_POINTER if a pointer is NULL;
+ *         BZJ_ERR_DIMENSION_MISMATCH if the curves' dimensions differ;
+ *         BZJ_ERR_NON_FINITE if an option is NaN or infinite;
+ *         BZJ_ERR_INVALID_ARGUMENT if a setback or scale is not positive, an
+ *         order is above its curve's degree, or a setback is not shorter
+ *         than the part of the curve before / after the crossing;
+ *         BZJ_ERR_NO_INTERSECTION if the curves do not cross or only touch;
+ *         BZJ_ERR_ILL_CONDITIONED if the connection cannot be trusted.
+ *
+ * # Safety
+ * `p`, `q` are NULL or live handles; `options` is NULL or readable; the
+ * three out-pointers are NULL or writable.
+ */
+BzjStatus bzj_fillet(const struct BzjCurve *p, const struct BzjCurve *q, const struct BzjFilletOptions *options, struct BzjCurve **p_trimmed, struct BzjCurve **blend, struct BzjCurve **q_trimmed);
+
+/**
+ * Round the corner at the first crossing so that the blend passes at the
+ * distance `max_deviation` from the corner point X (the crossing):
+ * `min over t of |R(t) - X| = max_deviation` to 1e-9 relative, with setbacks
+ * `dp` and `dq = setback_ratio * dp` found by a bracketing search (1.0 =
+ * symmetric). Outputs as `bzj_fillet`; `report` (may be NULL) receives the
+ * setbacks, the deviation achieved and the cut parameters.
+ *
+ * @return BZJ_ERR_NULL_POINTER if a required pointer is NULL;
+ *         BZJ_ERR_DIMENSION_MISMATCH if the curves' dimensions differ;
+ *         BZJ_ERR_NON_FINITE if an option is NaN or infinite;
+ *         BZJ_ERR_INVALID_ARGUMENT if `max_deviation`, `setback_ratio` or a
+ *         scale is not positive, an order is above its curve's degree, or the
+ *         deviation cannot be reached even with the longest setbacks the
+ *         curves allow (the message gives the largest possible);
+ *         BZJ_ERR_NO_INTERSECTION if the curves do not cross or only touch;
+ *         BZJ_ERR_ILL_CONDITIONED if the connection or the search cannot be
+ *         trusted.
+ *
+ * # Safety
+ * `p`, `q` are NULL or live handles; `options` is NULL or readable; the
+ * out-pointers and `report` are NULL or writable.
+ */
+BzjStatus bzj_fillet_deviation(const struct BzjCurve *p, const struct BzjCurve *q, const struct BzjDeviationFilletOptions *options, struct BzjCurve **p_trimmed, struct BzjCurve **blend, struct BzjCurve **q_trimmed, struct BzjDeviationFilletReport *report);
+
+/**
+ * Round every corner of a chain of curves in one call. Corner i lies
+ * between `curves[i]` and `curves[i + 1]` (and, when `closed == 1`, between
+ * the last curve and the first); its crossing is the one nearest the shared
+ * end (smallest `(1 - u) + v`), rounded as `bzj_fillet` with `options`.
+ * Long chains (more than 64 corners) are computed in parallel; the result is
+ * identical either way.
+ *
+ * Output, in path order: trimmed curve 0, blend 0, trimmed curve 1, ...:
+ * `2 * curve_count - 1` handles for an open chain, `2 * curve_count` for a
+ * closed one (ending with the blend back to the start). The number needed
+ * is written into `count`; `capacity == 0` with `out_pieces == NULL` is a
+ * valid "count only" query (nothing is computed). Release every handle
+ * with `bzj_curve_free`.
+ *
+ * @return BZJ_ERR_NULL_POINTER if `curves`, one of its handles, `options`
+ *         or `count` is NULL, or `out_pieces` is NULL while `capacity > 0`;
+ *         BZJ_ERR_BUFFER_TOO_SMALL if `0 < capacity <` the number needed
+ *         (no handles are written);
+ *         BZJ_ERR_INVALID_ARGUMENT if `closed` is not 0 or 1, fewer than 2
+ *         curves are given, an option is out of range, a setback is too long
+ *         at a corner ("corner i ...") or two cuts pass each other on a curve;
+ *         BZJ_ERR_DIMENSION_MISMATCH if the curves' dimensions differ;
+ *         BZJ_ERR_NON_FINITE if an option is NaN or infinite;
+ *         BZJ_ERR_NO_INTERSECTION if consecutive curves do not cross or meet
+ *         tangentially (a smooth joint; the message names the corner);
+ *         BZJ_ERR_ILL_CONDITIONED if a connection cannot be trusted.
+ *
+ * # Safety
+ * `curves` is NULL or points to `curve_count` readable handle pointers (each
+ * NULL or live); `options` is NULL or readable; `out_pieces` is NULL or
+ * points to `capacity` writable handle pointers; `count` is NULL or writable.
+ */
+BzjStatus bzj_fillet_chain(const struct BzjCurve *const *curves, size_t curve_count, const struct BzjFilletOptions *options, int32_t closed, struct BzjCurve **out_pieces, size_t capacity, size_t *count);
 
 /**
  * A spline of cubic segments, each given by four points ON it at local

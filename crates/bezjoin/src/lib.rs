@@ -38,6 +38,11 @@ pub use connect::{
     connect, connect_auto_scale, connect_dense_reference, connect_unchecked, fairness_energy,
 };
 pub use error::{BezjoinError, Result};
+pub use fillet::{
+    ChainCorner, ChainFillet, ChainFilletOptions, DeviationFillet, DeviationFilletOptions, Fillet,
+    FilletOptions, fillet, fillet_at, fillet_chain, fillet_within_deviation,
+};
+pub use intersect::{IntersectOptions, Intersection, IntersectionKind, intersect};
 pub use lagrange::{
     BuildDirection, DEFAULT_LAGRANGE_ACCURACY, DerivedPoints, LagrangeOptions, LagrangeSpline,
     bezier_from_lagrange_points, lagrange_points_of_bezier, lagrange_spline,
