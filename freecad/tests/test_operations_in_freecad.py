@@ -163,6 +163,71 @@ class ConnectJudgedByFreeCAD(unittest.TestCase, CommandDriver):
         assert_chain_smooth(self, [first_curve, edge.Curve, second_curve], [1.0, scale, 1.0], 2)
 
 
+class RoundCornerJudgedByFreeCAD(unittest.TestCase, CommandDriver):
+    def test_fillet_pieces_form_a_smooth_bspline(self):
+        p_freecad = bezier([(0, 0, 0), (1, 0.3, 0), (2, 1.2, 0), (3, 3.0, 0)])
+        q_freecad = bezier([(0, 3.0, 0), (1.2, 2.0, 0), (2.5, 1.6, 0), (4, 1.0, 0)])
+        for order, alpha, beta in ((1, 1.0, 1.0), (2, 1.3, 0.9)):
+            with Curve.from_freecad(p_freecad) as p, Curve.from_freecad(q_freecad) as q, \
+                    bezjoin.fillet(p, q, p_setback=0.5, q_setback=0.7, p_order=order,
+                                   q_order=order, p_scale=alpha, q_scale=beta) as result:
+                pieces = [c.to_freecad() for c in result.curves()]
+            # u0 and v0 from FreeCAD's own projection of the kept ends onto P and Q
+            u0 = p_freecad.parameter(pieces[0].EndPoint)
+            v0 = q_freecad.parameter(pieces[2].StartPoint)
+            self.assertLessEqual(gap(p_freecad.value(u0), pieces[0].EndPoint), 1e-9)
+            kept = p_freecad.copy()
+            kept.segment(0.0, u0)
+            for ours, theirs in zip(poles(pieces[0]), poles(kept)):
+                self.assertLessEqual(gap(ours, theirs), 1e-9)
+            assert_chain_smooth(self, pieces, [u0, alpha, (1 - v0) * alpha / beta], order)
+
+    def test_round_corner_of_a_path_and_of_crossing_edges(self):
+        # an L corner: the edges only share the vertex (2, 0, 0)
+        first = Part.makeLine(V(0, 0, 0), V(2, 0, 0))
+        second = Part.Edge(bezier([(2, 0, 0), (2, 1, 0), (3, 2, 0)]))
+        wire = operations.round_corner(second, first, setback=0.5, p_order=2, q_order=2)
+        self.assertEqual(len(wire.Edges), 3)
+        self.assertTrue(wire.isValid())
+        ends = sorted([tuple(wire.OrderedVertexes[0].Point),
+                       tuple(wire.OrderedVertexes[-1].Point)])
+        self.assertEqual(ends, [(0.0, 0.0, 0.0), (3.0, 2.0, 0.0)])
+        # the corner vertex is cut off at the setback from it
+        self.assertGreater(wire.distToShape(Part.Vertex(V(2, 0, 0)))[0], 0.01)
+        edges = wire.OrderedEdges
+        for left, right in zip(edges, edges[1:]):
+            self.assertLessEqual(gap(left.valueAt(left.LastParameter),
+                                     right.valueAt(right.FirstParameter)), 1e-12)
+            a = left.tangentAt(left.LastParameter)
+            b = right.tangentAt(right.FirstParameter)
+            self.assertLessEqual(gap(a, b), 1e-9)
+            # C2 through a line: the curvature is continuous (zero on the line side)
+            self.assertLessEqual(abs(left.curvatureAt(left.LastParameter)
+                                     - right.curvatureAt(right.FirstParameter)), 1e-7)
+        # crossing edges
+        cross = operations.round_corner(Part.makeLine(V(0, 0, 0), V(4, 4, 0)),
+                                        Part.makeLine(V(0, 4, 0), V(4, 0, 0)), setback=1.0,
+                                        p_order=1, q_order=1)
+        self.assertEqual(len(cross.Edges), 3)
+        self.assertLessEqual(gap(cross.OrderedVertexes[0].Point, (0, 0, 0)), 1e-12)
+        self.assertLessEqual(gap(cross.OrderedVertexes[-1].Point, (4, 0, 0)), 1e-12)
+
+    def test_round_corner_command(self):
+        first = Part.makeLine(V(0, 0, 0), V(2, 0, 0))
+        second = Part.makeLine(V(2, 0, 0), V(2, 2, 0))
+        parameters = {"setback": 0.5, "second_setback": 0.8, "p_order": None, "q_order": None,
+                      "p_scale": 1.0, "q_scale": 1.0, "reverse_first": False,
+                      "reverse_second": False}
+        made, shown = self.drive(commands.RoundCornerCommand(), [first, second], parameters)
+        self.assertEqual(shown, [])
+        self.assertEqual([name for name, _shape, _report in made], ["RoundedCorner"])
+        self.assertEqual(len(made[0][1].Edges), 3)
+        made, shown = self.drive(commands.RoundCornerCommand(), [first, second],
+                                 dict(parameters, setback=5.0))
+        self.assertEqual(made, [])
+        self.assertTrue(shown[0].startswith("BZJ_ERR_INVALID_ARGUMENT: "), shown)
+
+
 class SplineJudgedByFreeCAD(unittest.TestCase, CommandDriver):
     def test_spline_passes_through_the_points_and_is_c1(self):
         points = [(0, 0, 0), (0.3, 0.5, 0.1), (0.7, 0.9, 0.2), (1, 1, 0.2), (2, 0.9, 0),

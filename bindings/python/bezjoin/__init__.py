@@ -19,6 +19,7 @@ from ._library import (
     status_name,
 )
 from ._connect import AutoScaledConnection, connect, connect_auto_scale
+from ._fillet import FilletResult, fillet, intersect
 from ._lagrange import lagrange_spline
 from ._merge import MergeResult, merge
 from .curve import Curve
@@ -30,13 +31,16 @@ __all__ = [
     "STATUS_NAMES",
     "BezjoinError",
     "Curve",
+    "FilletResult",
     "LibraryNotFoundError",
     "MergeResult",
     "UnsupportedGeometryError",
     "candidate_paths",
     "connect",
     "connect_auto_scale",
+    "fillet",
     "find_library",
+    "intersect",
     "lagrange_spline",
     "library_path",
     "library_version",
