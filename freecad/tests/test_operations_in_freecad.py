@@ -44,9 +44,8 @@ class CommandDriver:
     def drive(self, command, inputs, parameters):
         document = FreeCAD.newDocument("BezjoinCommands")
         shown = []
-        saved = (FreeCAD.ActiveDocument, command.inputs, commands.ask,
-                 commands.QtGui.QMessageBox.warning, commands.FreeCADGui.getMainWindow
-                 if hasattr(commands.FreeCADGui, "getMainWindow") else None)
+        saved_ask, saved_warning = commands.ask, commands.QtGui.QMessageBox.warning
+        saved_main_window = getattr(commands.FreeCADGui, "getMainWindow", None)
         command.inputs = lambda: inputs
         commands.ask = lambda title, fields: dict(parameters)
         commands.QtGui.QMessageBox.warning = lambda parent, title, text: shown.append(text)
@@ -60,13 +59,12 @@ class CommandDriver:
                     for obj in document.Objects if obj.TypeId == "Part::Feature"]
             return made, shown
         finally:
-            (_active, _inputs, commands.ask, commands.QtGui.QMessageBox.warning,
-             main_window) = saved
-            del command.inputs
-            if main_window is None:
+            commands.ask, commands.QtGui.QMessageBox.warning = saved_ask, saved_warning
+            del command.inputs  # back to the class's selection reader
+            if saved_main_window is None:
                 del commands.FreeCADGui.getMainWindow
             else:
-                commands.FreeCADGui.getMainWindow = main_window
+                commands.FreeCADGui.getMainWindow = saved_main_window
             FreeCAD.closeDocument(document.Name)
 
 
