@@ -120,8 +120,14 @@ thread_local! {
 }
 
 fn set_last_error(message: &str) {
-    let c = CString::new(message.replace('\0', " ")).unwrap_or_default();
-    LAST_ERROR.with(|e| *e.borrow_mut() = c);
+    LAST_ERROR.with(|e| {
+        // A success after a success: nothing to store (no allocation on the
+        // hot path of evaluation calls).
+        if message.is_empty() && e.borrow().as_bytes().is_empty() {
+            return;
+        }
+        *e.borrow_mut() = CString::new(message.replace('\0', " ")).unwrap_or_default();
+    });
 }
 
 /// Run one entry point's body: a panic becomes `BZJ_ERR_INTERNAL`, an error
