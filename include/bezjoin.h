@@ -657,7 +657,8 @@ BzjStatus bzj_connect_auto_scale(const struct BzjCurve *p, double u0, const stru
 BzjStatus bzj_curve_new(size_t dim, size_t degree, const double *points, size_t points_len, struct BzjCurve **out);
 
 /**
- * Release a curve handle. NULL is accepted and ignored.
+ * Release a curve handle. NULL is accepted and ignored. The calling
+ * thread's last error message is left unchanged.
  *
  * # Safety
  * `curve` is NULL or a handle from this library not yet released.
@@ -737,7 +738,9 @@ BzjStatus bzj_curve_split(const struct BzjCurve *c, double t, struct BzjCurve **
  * and `a > b` allowed; `a == b` gives a constant curve).
  *
  * @return BZJ_ERR_NULL_POINTER if `c` or `out` is NULL;
- *         BZJ_ERR_NON_FINITE if `a` or `b` is NaN or infinite.
+ *         BZJ_ERR_NON_FINITE if `a` or `b` is NaN or infinite;
+ *         BZJ_ERR_INVALID_ARGUMENT if `a` or `b` lies so far outside
+ *         `[0, 1]` that the segment's control points overflow.
  *
  * # Safety
  * `c` is NULL or a live handle; `out` is NULL or writable.
@@ -757,10 +760,14 @@ BzjStatus bzj_curve_reverse(const struct BzjCurve *c, struct BzjCurve **out);
 /**
  * Signed arc length of `c` from parameter `a` to `b` (any finite values),
  * by adaptive Gauss-Legendre quadrature to an absolute accuracy of
- * `1e-13 * max(1, control polygon length)`.
+ * `1e-13 * max(1, control polygon length)`, or `16 * DBL_EPSILON` times
+ * the length where that is larger (the rounding level, e.g. long
+ * extrapolated ranges). The range is cut at cusps first, so the accuracy
+ * holds across them.
  *
  * @return BZJ_ERR_NULL_POINTER if `c` or `out` is NULL;
- *         BZJ_ERR_NON_FINITE if `a` or `b` is NaN or infinite.
+ *         BZJ_ERR_NON_FINITE if `a` or `b` is NaN or infinite;
+ *         BZJ_ERR_INVALID_ARGUMENT if the length overflows the double range.
  *
  * # Safety
  * `c` is NULL or a live handle; `out` is NULL or writable.

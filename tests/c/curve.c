@@ -230,6 +230,28 @@ int main(void) {
         bzj_curve_free(l);
     }
 
+    /* review findings: impossible sizes are errors (never a panic, never
+       BZJ_ERR_INTERNAL), scalar messages carry no index, and releasing a
+       handle keeps the thread's last error. */
+    {
+        BzjCurve* e = (BzjCurve*)&failures; /* garbage on purpose: must be cleared */
+        EXPECT_STATUS(bzj_curve_elevate(c, SIZE_MAX, &e), BZJ_ERR_INVALID_ARGUMENT);
+        CHECK(e == NULL, "out cleared on impossible new_degree");
+        expect_message("new_degree");
+        double v[2];
+        EXPECT_STATUS(bzj_curve_eval(c, NAN, 0, v, 2), BZJ_ERR_NON_FINITE);
+        CHECK(strcmp(bzj_last_error(), "t = NaN is not finite") == 0, "message '%s'", bzj_last_error());
+        BzjCurve* tmp = NULL;
+        EXPECT_STATUS(bzj_curve_reverse(c, &tmp), BZJ_OK);
+        EXPECT_STATUS(bzj_curve_split(c, 2.0, &e, &e), BZJ_ERR_INVALID_ARGUMENT);
+        bzj_curve_free(tmp);
+        expect_message("t = 2");
+        BzjCurve* far = NULL;
+        EXPECT_STATUS(bzj_curve_segment(c, 0.0, 1e120, &far), BZJ_ERR_INVALID_ARGUMENT);
+        CHECK(far == NULL, "no curve with infinite control points");
+        expect_message("overflow");
+    }
+
     /* free accepts NULL */
     bzj_curve_free(NULL);
     bzj_curve_free(c);

@@ -203,7 +203,7 @@ fn arc_length_errors_name_the_argument() {
     let c = BezierCurve::from_rows(&[[0.0, 0.0], [1.0, 0.0]]).unwrap();
     assert_eq!(
         c.arc_length(f64::NAN, 1.0, 1e-9).unwrap_err().to_string(),
-        "a[0] = NaN is not finite"
+        "a = NaN is not finite"
     );
     assert!(
         c.arc_length(0.0, 1.0, 0.0)
@@ -217,4 +217,104 @@ fn arc_length_errors_name_the_argument() {
             .to_string()
             .contains("longer than the arc length 0.5")
     );
+}
+
+/// A cubic with a cusp (zero speed) at a parameter that is not a dyadic
+/// fraction, so the adaptive rule never puts a node boundary on it.
+fn cusp_curve() -> (BezierCurve, f64) {
+    let c = BezierCurve::from_rows(&[[0.0, 0.0], [1.0, 1.0], [0.0, 1.0], [1.0, 0.0]]).unwrap();
+    // The cusp of c is at t = 1/2; on c.segment(-0.1, 1.0) it is at s0.
+    let s0 = 0.6 / 1.1;
+    (c.segment(-0.1, 1.0).unwrap(), s0)
+}
+
+#[test]
+fn arc_length_across_a_cusp_meets_the_requested_accuracy() {
+    let (c, s0) = cusp_curve();
+    let speed = c.derivative_at(s0, 1);
+    assert!(speed.iter().all(|v| v.abs() < 1e-12), "{speed:?}");
+    // Reference: the two smooth sides separately (the speed is analytic on each).
+    let reference = c.arc_length(0.0, s0, 1e-15).unwrap() + c.arc_length(s0, 1.0, 1e-15).unwrap();
+    for &accuracy in &[1e-6, 1e-9, 1e-12] {
+        let len = c.arc_length(0.0, 1.0, accuracy).unwrap();
+        assert!(
+            (len - reference).abs() <= accuracy,
+            "accuracy {accuracy:e}: {len} vs {reference}"
+        );
+    }
+    let len = c.arc_length_default(0.0, 1.0).unwrap();
+    assert!((len - reference).abs() <= c.default_length_accuracy());
+}
+
+#[test]
+fn param_at_length_at_zero_speed_points_and_ends() {
+    let (c, s0) = cusp_curve();
+    let total = c.arc_length(0.0, 1.0, 1e-15).unwrap();
+    let to_cusp = c.arc_length(0.0, s0, 1e-15).unwrap();
+    // Exactly the length to the cusp: the parameter of the cusp.
+    let t = c.param_at_length(0.0, to_cusp, 1e-12).unwrap();
+    assert!((c.arc_length(0.0, t, 1e-15).unwrap() - to_cusp).abs() <= 1e-12);
+    // Starting AT the cusp, both directions (speed 0 at the start).
+    for &l in &[1e-9, 1e-4, 0.3] {
+        let t = c.param_at_length(s0, l, 1e-12).unwrap();
+        assert!(
+            (c.arc_length(s0, t, 1e-15).unwrap() - l).abs() <= 1e-12,
+            "l = {l}"
+        );
+        let t = c.param_at_length(s0, -l, 1e-12).unwrap();
+        assert!(
+            (c.arc_length(s0, t, 1e-15).unwrap() + l).abs() <= 1e-12,
+            "l = -{l}"
+        );
+    }
+    // The ends: the whole length lands on 1 (from 0) and on 0 (from 1).
+    assert_eq!(c.param_at_length(0.0, total, 1e-12).unwrap(), 1.0);
+    assert_eq!(c.param_at_length(1.0, -total, 1e-12).unwrap(), 0.0);
+    // Zero speed AT the start of the curve: (t^2, t^3).
+    let z =
+        BezierCurve::from_rows(&[[0.0, 0.0], [0.0, 0.0], [1.0 / 3.0, 0.0], [1.0, 1.0]]).unwrap();
+    for &l in &[1e-12, 1e-6, 0.5] {
+        let t = z.param_at_length(0.0, l, 1e-13).unwrap();
+        assert!(
+            (z.arc_length(0.0, t, 1e-15).unwrap() - l).abs() <= 1e-13,
+            "l = {l}"
+        );
+    }
+}
+
+#[test]
+fn arc_length_ending_just_past_a_cusp() {
+    // Found in review: on [0, s0 + 0.00145] the 16-point rule on the whole
+    // range and on its halves agreed to 1e-13 while both were 1.5e-5 wrong.
+    let (c, s0) = cusp_curve();
+    for &t in &[0.5469037124568128, s0 + 1e-3, 0.9] {
+        let reference = c.arc_length(0.0, s0, 1e-15).unwrap() + c.arc_length(s0, t, 1e-15).unwrap();
+        for &accuracy in &[1e-9, 1e-12] {
+            let len = c.arc_length(0.0, t, accuracy).unwrap();
+            assert!(
+                (len - reference).abs() <= accuracy,
+                "t = {t}, accuracy {accuracy:e}: {len} vs {reference}"
+            );
+            let back = c.arc_length(t, 0.0, accuracy).unwrap();
+            assert!((back + reference).abs() <= accuracy, "reversed: {back}");
+        }
+    }
+}
+
+#[test]
+fn overflowing_segment_and_length_are_errors_not_infinite_curves() {
+    let c = BezierCurve::from_rows(&[[0.0, 0.0], [1.0, 2.0], [3.0, 3.0], [4.0, 0.0]]).unwrap();
+    // P(1e120) ~ 1e360: not representable. A curve with inf/NaN control
+    // points must never be returned (every other operation would then
+    // silently produce NaN).
+    let err = c.segment(0.0, 1e120).unwrap_err();
+    assert!(err.to_string().starts_with("b = 1000000"), "{err}");
+    assert!(err.to_string().contains("overflow"), "{err}");
+    let err = c.segment(-1e120, 0.5).unwrap_err();
+    assert!(err.to_string().starts_with("a = -1000000"), "{err}");
+    let err = c.arc_length(-1e200, 1e200, 1e-9).unwrap_err();
+    assert!(err.to_string().contains("arc length"), "{err}");
+    // Large but representable: fine, and finite.
+    let s = c.segment(-1e50, 1e50).unwrap();
+    assert!(s.points().iter().all(|v| v.is_finite()));
 }

@@ -202,7 +202,7 @@ fn errors_name_what_is_wrong() {
     assert_eq!(e.to_string(), "q_order = 4 is above the degree 2 of Q");
     // Non-finite and non-positive input.
     let e = fillet(&p, &q, &FilletOptions::new(f64::NAN, 0.2, 1, 1)).unwrap_err();
-    assert!(matches!(e, BezjoinError::NonFinite { .. }), "{e}");
+    assert!(matches!(e, BezjoinError::NonFiniteScalar { .. }), "{e}");
     assert!(e.to_string().contains("p_setback"), "{e}");
     let e = fillet(&p, &q, &FilletOptions::new(0.2, f64::INFINITY, 1, 1)).unwrap_err();
     assert!(e.to_string().contains("q_setback"), "{e}");

@@ -781,7 +781,7 @@ fn errors_name_the_problem() {
         &MergeOptions::default().with_split(SplitParameter::Given(f64::NAN)),
     )
     .unwrap_err();
-    assert!(matches!(e, BezjoinError::NonFinite { .. }), "{e}");
+    assert!(matches!(e, BezjoinError::NonFiniteScalar { .. }), "{e}");
     let o = MergeOptions {
         q_points: vec![KeepPoint {
             param: 1.5,
