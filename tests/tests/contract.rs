@@ -16,9 +16,8 @@
 //! alignment and field offsets equal to those of a copy of the contract's
 //! struct (`Contract_*`), field types compared too.
 //!
-//! One test per section of the contract. The connect, fillet, merge and
-//! spline sections pass only once those operations' FFI has landed; the
-//! core and curve sections pass now.
+//! One test per section of the contract (core, curve, connect, fillet,
+//! merge, spline); all pass with every operation's FFI merged.
 //! `contract_copy_matches_shared_spec` checks the committed copy against
 //! `shared/spec/c-api.md` when that file is present (beside the clone in CI,
 //! or named by `BEZJOIN_C_API_SPEC`).
