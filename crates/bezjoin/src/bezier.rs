@@ -12,7 +12,28 @@ use nalgebra::DMatrix;
 use crate::basis::bezier_basis_derivatives;
 use crate::error::{BezjoinError, Result, check_closed_range, check_finite, check_finite_scalar};
 
-/// A polynomial Bezier curve of degree `n >= 0` in dimension `dim >= 1`.
+/// The highest degree a curve may have: 4096.
+///
+/// Far above anything numerically meaningful (double precision loses the
+/// shape of a Bezier curve long before; the solvers stop at degree 31) but low
+/// enough that no call on a valid curve can allocate gigabytes or run for
+/// minutes inside a host program: elevation to `MAX_DEGREE` costs at most
+/// `MAX_DEGREE^2 * dim` operations.
+pub const MAX_DEGREE: usize = 4096;
+
+/// `InvalidArgument` naming `name` when `degree > MAX_DEGREE`.
+fn check_degree_supported(name: &str, degree: usize) -> Result<()> {
+    if degree > MAX_DEGREE {
+        return Err(BezjoinError::invalid(
+            name,
+            format!("{degree} is above the supported maximum degree {MAX_DEGREE}"),
+        ));
+    }
+    Ok(())
+}
+
+/// A polynomial Bezier curve of degree `n >= 0` in dimension `dim >= 1`
+/// (`n <= MAX_DEGREE`).
 ///
 /// Immutable once built; operations return new curves.
 #[derive(Debug, Clone, PartialEq)]
@@ -31,6 +52,7 @@ impl BezierCurve {
         if dim == 0 {
             return Err(BezjoinError::invalid("dim", "must be at least 1"));
         }
+        check_degree_supported("degree", degree)?;
         let expected = degree
             .checked_add(1)
             .and_then(|n| n.checked_mul(dim))
@@ -308,6 +330,7 @@ impl BezierCurve {
         if m == n {
             return Ok(self.clone());
         }
+        check_degree_supported("new_degree", m)?;
         let d = self.dim;
         let r = m - n;
         let len = m
@@ -583,6 +606,22 @@ mod tests {
             BezierCurve::new(1, 1, vec![0.0, f64::INFINITY]),
             Err(BezjoinError::NonFinite { index: 1, .. })
         ));
+    }
+
+    #[test]
+    fn degrees_above_the_maximum_are_refused_before_any_work() {
+        let line = BezierCurve::from_rows(&[[0.0], [1.0]]).unwrap();
+        let err = line.elevate_degree(1 << 30).unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            format!("new_degree: 1073741824 is above the supported maximum degree {MAX_DEGREE}")
+        );
+        assert!(line.elevate_degree(MAX_DEGREE).is_ok());
+        let err = BezierCurve::new(1, MAX_DEGREE + 1, vec![0.0; MAX_DEGREE + 2]).unwrap_err();
+        assert!(
+            err.to_string().starts_with("degree: 4097 is above"),
+            "{err}"
+        );
     }
 
     #[test]

@@ -31,7 +31,7 @@ pub mod merge;
 
 pub use arclength::DEFAULT_ARC_LENGTH_ACCURACY;
 pub use basis::KnotSide;
-pub use bezier::BezierCurve;
+pub use bezier::{BezierCurve, MAX_DEGREE};
 pub use bspline::BSplineCurve;
 pub use connect::{
     CONNECT_RESIDUAL_LIMIT, ConnectOptions, Connection, MAX_CONNECT_DEGREE, PointConstraint,
