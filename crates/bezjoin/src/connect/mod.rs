@@ -26,6 +26,26 @@
 //! [`connect_dense_reference`] solves the full `(nr+1) x (nr+1)` system by
 //! LU instead; it is the reference for tests and benchmarks.
 //!
+//! # Where the basis rows come from
+//! * Rows of `D(0)` and `D(1)` (the end conditions (1'), and `P^(k)(u0)`,
+//!   `Q^(k)(v0)` when `u0`, `v0` is exactly 0 or 1): the closed form
+//!   `B_i^(k)(0) = n!/(n-k)! (-1)^(k-i) C(k, i)` for `i <= k` (0 otherwise),
+//!   and `B_i^(k)(1) = (-1)^k B_(n-i)^(k)(0)` from `B_i(t) = B_(n-i)(1 - t)`.
+//!   It is the k-th forward difference in `R^(k)(0) = n!/(n-k)! Delta^k R_0`,
+//!   i.e. exactly what A2.3 evaluates on the knots `0^(n+1) 1^(n+1)` at an
+//!   end; the
+//!   entries are integers formed exactly (up to rounding of `n!/(n-k)!`
+//!   above 2^53). The unit test `closed_form_end_rows_equal_a23` holds them
+//!   to [`bezier_basis_derivatives`] for every degree up to
+//!   [`MAX_CONNECT_DEGREE`], with the exact zero pattern.
+//! * Rows of `D(t_j)` for interior constraints, and `P^(k)(u0)`, `Q^(k)(v0)`
+//!   at interior parameters: A2.3 ([`bezier_basis_derivatives`]), as the
+//!   specification requires for the solvers.
+//!
+//! The end rows are the hot path of [`connect`] (and of every trial scale of
+//! [`connect_auto_scale`]); the closed form avoids A2.3's allocations there.
+//! The residual check works on the stored rows without temporary matrices.
+//!
 //! # Relative residual
 //! For each condition row with basis row `D_k` (a row of `D(0)`, `D(1)` or
 //! `D(t_j)`) and target `T_k`:
@@ -208,7 +228,6 @@ impl Problem {
     pub(crate) fn middle_count(&self) -> usize {
         self.constraints.iter().map(|(_, d)| d.nrows()).sum()
     }
-
 }
 
 fn unit_roundoff() -> f64 {
@@ -440,8 +459,8 @@ pub(crate) fn condition_rows(problem: &Problem, alpha: f64, beta: f64) -> Condit
             }
             // alpha^k by powi, as the bound was stated; factor (repeated
             // products) scales the target exactly like the previous code.
-            let error = scale.powi(k as i32) * errors[k]
-                + (k + 1) as f64 * unit_roundoff() * square.sqrt();
+            let error =
+                scale.powi(k as i32) * errors[k] + (k + 1) as f64 * unit_roundoff() * square.sqrt();
             target_errors.push(error);
             factor *= scale;
             r += 1;
@@ -799,6 +818,34 @@ mod tests {
             connect(&p, 1.0, &q3, 0.0, &ConnectOptions::new(1, 1)),
             Err(BezjoinError::DimensionMismatch { .. })
         ));
+    }
+
+    #[test]
+    fn closed_form_end_rows_equal_a23() {
+        for n in 1..=MAX_CONNECT_DEGREE {
+            for (t, at_one) in [(0.0, false), (1.0, true)] {
+                let reference = bezier_basis_derivatives(n, t, n);
+                let mut closed = DMatrix::zeros(n + 1, n + 1);
+                for k in 0..=n {
+                    end_basis_row(n, k, at_one, &mut closed, k);
+                }
+                assert_eq!(closed, basis_rows(n, t, n));
+                for k in 0..=n {
+                    let scale: f64 = reference.row(k).iter().map(|v| v.abs()).sum();
+                    for i in 0..=n {
+                        let (a, b) = (closed[(k, i)], reference[(k, i)]);
+                        assert!(
+                            (a - b).abs() <= 1e-14 * scale,
+                            "n={n} t={t} k={k} i={i}: closed {a} vs A2.3 {b}"
+                        );
+                        // Exact zeros: D(0) is lower triangular, D(1) anti-triangular.
+                        if (!at_one && i > k) || (at_one && i + k < n) {
+                            assert_eq!(a, 0.0);
+                        }
+                    }
+                }
+            }
+        }
     }
 
     #[test]
