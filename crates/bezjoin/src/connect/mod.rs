@@ -26,6 +26,26 @@
 //! [`connect_dense_reference`] solves the full `(nr+1) x (nr+1)` system by
 //! LU instead; it is the reference for tests and benchmarks.
 //!
+//! # Where the basis rows come from
+//! * Rows of `D(0)` and `D(1)` (the end conditions (1'), and `P^(k)(u0)`,
+//!   `Q^(k)(v0)` when `u0`, `v0` is exactly 0 or 1): the closed form
+//!   `B_i^(k)(0) = n!/(n-k)! (-1)^(k-i) C(k, i)` for `i <= k` (0 otherwise),
+//!   and `B_i^(k)(1) = (-1)^k B_(n-i)^(k)(0)` from `B_i(t) = B_(n-i)(1 - t)`.
+//!   It is the k-th forward difference in `R^(k)(0) = n!/(n-k)! Delta^k R_0`,
+//!   i.e. exactly what A2.3 evaluates on the knots `0^(n+1) 1^(n+1)` at an
+//!   end; the
+//!   entries are integers formed exactly (up to rounding of `n!/(n-k)!`
+//!   above 2^53). The unit test `closed_form_end_rows_equal_a23` holds them
+//!   to [`bezier_basis_derivatives`] for every degree up to
+//!   [`MAX_CONNECT_DEGREE`], with the exact zero pattern.
+//! * Rows of `D(t_j)` for interior constraints, and `P^(k)(u0)`, `Q^(k)(v0)`
+//!   at interior parameters: A2.3 ([`bezier_basis_derivatives`]), as the
+//!   specification requires for the solvers.
+//!
+//! The end rows are the hot path of [`connect`] (and of every trial scale of
+//! [`connect_auto_scale`]); the closed form avoids A2.3's allocations there.
+//! The residual check works on the stored rows without temporary matrices.
+//!
 //! # Relative residual
 //! For each condition row with basis row `D_k` (a row of `D(0)`, `D(1)` or
 //! `D(t_j)`) and target `T_k`:
@@ -208,42 +228,85 @@ impl Problem {
     pub(crate) fn middle_count(&self) -> usize {
         self.constraints.iter().map(|(_, d)| d.nrows()).sum()
     }
-
-    /// The targets `alpha^k P^(k)(u0)` and `beta^k Q^(k)(v0)`.
-    pub(crate) fn end_targets(&self, alpha: f64, beta: f64) -> (DMatrix<f64>, DMatrix<f64>) {
-        let scale_rows = |m: &DMatrix<f64>, s: f64| {
-            let mut out = m.clone();
-            let mut f = 1.0;
-            for k in 0..out.nrows() {
-                out.row_mut(k).scale_mut(f);
-                f *= s;
-            }
-            out
-        };
-        (
-            scale_rows(&self.p_derivatives, alpha),
-            scale_rows(&self.q_derivatives, beta),
-        )
-    }
 }
 
 fn unit_roundoff() -> f64 {
     f64::EPSILON / 2.0
 }
 
+/// Row `k` (`k <= order`) of `D(0)` (`at_one = false`) or `D(1)` (`at_one =
+/// true`) for degree `degree`, by the closed form (module documentation,
+/// "Where the basis rows come from"), written into `out[(k, ..)]` of a
+/// `rows x (degree + 1)` column-major buffer; the other entries are left alone.
+fn end_basis_row(degree: usize, k: usize, at_one: bool, out: &mut DMatrix<f64>, row: usize) {
+    // n!/(n-k)! (exact while below 2^53, else within k units of roundoff) and
+    // C(k, j) by the exact integer recurrence C(k, j+1) = C(k, j) (k-j)/(j+1).
+    let mut falling = 1.0f64;
+    for j in 0..k {
+        falling *= (degree - j) as f64;
+    }
+    let mut coefficient = 1.0f64; // C(k, j)
+    for j in 0..=k {
+        // D(0)[k][j] = n!/(n-k)! (-1)^(k-j) C(k, j);
+        // D(1)[k][n-j] = n!/(n-k)! (-1)^j C(k, j)  (B_i(t) = B_(n-i)(1-t)).
+        let (column, negative) = if at_one {
+            (degree - j, j % 2 == 1)
+        } else {
+            (j, (k - j) % 2 == 1)
+        };
+        let value = falling * coefficient;
+        out[(row, column)] = if negative { -value } else { value };
+        coefficient = coefficient * (k - j) as f64 / (j + 1) as f64;
+    }
+}
+
+/// `D(t)` for derivatives `0..=order` of degree `degree`: the closed form at
+/// `t = 0` and `t = 1`, A2.3 ([`bezier_basis_derivatives`]) elsewhere.
+fn basis_rows(degree: usize, t: f64, order: usize) -> DMatrix<f64> {
+    if degree > 0 && (t == 0.0 || t == 1.0) {
+        let mut d = DMatrix::zeros(order + 1, degree + 1);
+        for k in 0..=order.min(degree) {
+            end_basis_row(degree, k, t == 1.0, &mut d, k);
+        }
+        d
+    } else {
+        bezier_basis_derivatives(degree, t, order)
+    }
+}
+
 /// `P^(k)(t)` for `k = 0..=order` with a first-order rounding bound per row
 /// (`gamma * |D| |P|`, `gamma = 2 (n + k + 2) u`).
 fn derivatives_with_error(curve: &BezierCurve, t: f64, order: usize) -> (DMatrix<f64>, Vec<f64>) {
-    let basis = bezier_basis_derivatives(curve.degree(), t, order);
-    let points = curve.control_matrix();
-    let values = &basis * &points;
-    let abs_product = basis.abs() * points.abs();
-    let errors = (0..=order)
-        .map(|k| {
-            let gamma = 2.0 * (curve.degree() + k + 2) as f64 * unit_roundoff();
-            gamma * abs_product.row(k).norm()
-        })
-        .collect();
+    let basis = basis_rows(curve.degree(), t, order);
+    let dim = curve.dim();
+    let points = curve.points();
+    let mut values = DMatrix::zeros(order + 1, dim);
+    let mut errors = Vec::with_capacity(order + 1);
+    let mut abs_row = [0.0f64; 16];
+    let mut abs_heap = Vec::new();
+    let abs_row: &mut [f64] = if dim <= abs_row.len() {
+        &mut abs_row[..dim]
+    } else {
+        abs_heap.resize(dim, 0.0);
+        &mut abs_heap
+    };
+    for k in 0..=order {
+        abs_row.fill(0.0);
+        for i in 0..=curve.degree() {
+            let b = basis[(k, i)];
+            if b == 0.0 {
+                continue;
+            }
+            let point = &points[i * dim..(i + 1) * dim];
+            for c in 0..dim {
+                values[(k, c)] += b * point[c];
+                abs_row[c] += b.abs() * point[c].abs();
+            }
+        }
+        let gamma = 2.0 * (curve.degree() + k + 2) as f64 * unit_roundoff();
+        let norm = abs_row.iter().map(|v| v * v).sum::<f64>().sqrt();
+        errors.push(gamma * norm);
+    }
     (values, errors)
 }
 
@@ -363,36 +426,58 @@ pub(crate) struct ConditionRows {
 pub(crate) fn condition_rows(problem: &Problem, alpha: f64, beta: f64) -> ConditionRows {
     let n = problem.degree;
     let count = n + 1;
+    let dim = problem.dim;
     let mut rows = DMatrix::zeros(count, n + 1);
-    let mut targets = DMatrix::zeros(count, problem.dim);
+    let mut targets = DMatrix::zeros(count, dim);
     let mut target_errors = Vec::with_capacity(count);
-    let (p_targets, q_targets) = problem.end_targets(alpha, beta);
-    let d0 = bezier_basis_derivatives(n, 0.0, problem.p_order);
-    let d1 = bezier_basis_derivatives(n, 1.0, problem.q_order);
     let mut r = 0;
-    let mut push =
-        |basis_row: nalgebra::DMatrixView<f64>, target: nalgebra::DMatrixView<f64>, error: f64| {
-            rows.row_mut(r).copy_from(&basis_row);
-            targets.row_mut(r).copy_from(&target);
+    // End rows: D(0) rows 0..=kp and D(1) rows 0..=kq by the closed form.
+    for (derivatives, errors, order, scale, at_one) in [
+        (
+            &problem.p_derivatives,
+            &problem.p_derivative_error,
+            problem.p_order,
+            alpha,
+            false,
+        ),
+        (
+            &problem.q_derivatives,
+            &problem.q_derivative_error,
+            problem.q_order,
+            beta,
+            true,
+        ),
+    ] {
+        let mut factor = 1.0f64;
+        for k in 0..=order {
+            end_basis_row(n, k, at_one, &mut rows, r);
+            let mut square = 0.0;
+            for c in 0..dim {
+                let v = derivatives[(k, c)] * factor;
+                targets[(r, c)] = v;
+                square += v * v;
+            }
+            // alpha^k by powi, as the bound was stated; factor (repeated
+            // products) scales the target exactly like the previous code.
+            let error =
+                scale.powi(k as i32) * errors[k] + (k + 1) as f64 * unit_roundoff() * square.sqrt();
             target_errors.push(error);
+            factor *= scale;
             r += 1;
-        };
-    for k in 0..=problem.p_order {
-        let scale = alpha.powi(k as i32);
-        let error = scale * problem.p_derivative_error[k]
-            + (k + 1) as f64 * unit_roundoff() * p_targets.row(k).norm();
-        push(d0.rows(k, 1), p_targets.rows(k, 1), error);
+        }
     }
-    for k in 0..=problem.q_order {
-        let scale = beta.powi(k as i32);
-        let error = scale * problem.q_derivative_error[k]
-            + (k + 1) as f64 * unit_roundoff() * q_targets.row(k).norm();
-        push(d1.rows(k, 1), q_targets.rows(k, 1), error);
-    }
+    // Interior rows: D(t_j) from A2.3.
     for (t, values) in &problem.constraints {
         let dt = bezier_basis_derivatives(n, *t, values.nrows() - 1);
         for k in 0..values.nrows() {
-            push(dt.rows(k, 1), values.rows(k, 1), 0.0);
+            for i in 0..=n {
+                rows[(r, i)] = dt[(k, i)];
+            }
+            for c in 0..dim {
+                targets[(r, c)] = values[(k, c)];
+            }
+            target_errors.push(0.0);
+            r += 1;
         }
     }
     ConditionRows {
@@ -402,43 +487,58 @@ pub(crate) fn condition_rows(problem: &Problem, alpha: f64, beta: f64) -> Condit
     }
 }
 
-/// The data scale `S`: the largest of the given positions' scale and
-/// `|T_k| / ||D_k||_1` over all conditions.
-fn effective_data_scale(positions: f64, conditions: &ConditionRows, row_norms: &[f64]) -> f64 {
-    row_norms
-        .iter()
-        .enumerate()
-        .map(|(r, norm)| conditions.targets.row(r).norm() / norm)
-        .filter(|v| v.is_finite())
-        .fold(positions, f64::max)
-}
-
 /// Check every condition on the computed control points `points`
 /// (`(n+1) x dim`): the worst floating-point relative residual and the bound
 /// on the worst exact one.
+///
+/// The data scale `S` is the largest of the given positions' scale and
+/// `|T_k| / ||D_k||_1` over all conditions. Allocation-free: one pass for
+/// `S`, one for the residuals (`n + 1 <= 32` rows by [`MAX_CONNECT_DEGREE`]).
 pub(crate) fn check_residuals(
     problem: &Problem,
     conditions: &ConditionRows,
     points: &DMatrix<f64>,
 ) -> (f64, f64) {
     let n = problem.degree;
-    let values = &conditions.rows * points;
-    let abs_values = conditions.rows.abs() * points.abs();
-    let row_norms: Vec<f64> = (0..conditions.rows.nrows())
-        .map(|r| conditions.rows.row(r).iter().map(|v| v.abs()).sum())
-        .collect();
-    let data_scale = effective_data_scale(problem.data_scale, conditions, &row_norms);
+    let rows = &conditions.rows;
+    let targets = &conditions.targets;
+    let count = rows.nrows();
+    let dim = problem.dim;
+    let mut row_norms = [0.0f64; MAX_CONNECT_DEGREE + 1];
+    let mut data_scale = problem.data_scale;
+    for (r, norm) in row_norms.iter_mut().enumerate().take(count) {
+        *norm = rows.row(r).iter().map(|v| v.abs()).sum();
+        let v = targets.row(r).norm() / *norm;
+        if v.is_finite() {
+            data_scale = data_scale.max(v);
+        }
+    }
+    // Rounding of D_k R (dot products of length n + 1, basis entries with a
+    // relative error of a few units per order) and of the target.
+    let gamma = 2.0 * (2 * n + 4) as f64 * unit_roundoff();
     let mut worst = 0.0f64;
     let mut worst_bound = 0.0f64;
-    for (r, row_norm) in row_norms.iter().enumerate() {
-        let target = conditions.targets.row(r);
+    for (r, row_norm) in row_norms.iter().enumerate().take(count) {
+        let target = targets.row(r);
         let denominator = target.norm().max(data_scale * row_norm);
-        let residual = (values.row(r) - target).norm() / denominator;
-        // Rounding of D_k R (dot products of length n + 1, basis entries from
-        // A2.3 with a relative error of a few units per order) and of the target.
-        let gamma = 2.0 * (2 * n + 4) as f64 * unit_roundoff();
-        let bound = residual
-            + (gamma * abs_values.row(r).norm() + conditions.target_errors[r]) / denominator;
+        let mut difference_square = 0.0;
+        let mut abs_square = 0.0;
+        for c in 0..dim {
+            let mut value = 0.0;
+            let mut abs_value = 0.0;
+            for i in 0..=n {
+                let b = rows[(r, i)];
+                let x = points[(i, c)];
+                value += b * x;
+                abs_value += b.abs() * x.abs();
+            }
+            let difference = value - target[c];
+            difference_square += difference * difference;
+            abs_square += abs_value * abs_value;
+        }
+        let residual = difference_square.sqrt() / denominator;
+        let bound =
+            residual + (gamma * abs_square.sqrt() + conditions.target_errors[r]) / denominator;
         let (residual, bound) = if residual.is_finite() && bound.is_finite() {
             (residual, bound)
         } else {
@@ -718,6 +818,34 @@ mod tests {
             connect(&p, 1.0, &q3, 0.0, &ConnectOptions::new(1, 1)),
             Err(BezjoinError::DimensionMismatch { .. })
         ));
+    }
+
+    #[test]
+    fn closed_form_end_rows_equal_a23() {
+        for n in 1..=MAX_CONNECT_DEGREE {
+            for (t, at_one) in [(0.0, false), (1.0, true)] {
+                let reference = bezier_basis_derivatives(n, t, n);
+                let mut closed = DMatrix::zeros(n + 1, n + 1);
+                for k in 0..=n {
+                    end_basis_row(n, k, at_one, &mut closed, k);
+                }
+                assert_eq!(closed, basis_rows(n, t, n));
+                for k in 0..=n {
+                    let scale: f64 = reference.row(k).iter().map(|v| v.abs()).sum();
+                    for i in 0..=n {
+                        let (a, b) = (closed[(k, i)], reference[(k, i)]);
+                        assert!(
+                            (a - b).abs() <= 1e-14 * scale,
+                            "n={n} t={t} k={k} i={i}: closed {a} vs A2.3 {b}"
+                        );
+                        // Exact zeros: D(0) is lower triangular, D(1) anti-triangular.
+                        if (!at_one && i > k) || (at_one && i + k < n) {
+                            assert_eq!(a, 0.0);
+                        }
+                    }
+                }
+            }
+        }
     }
 
     #[test]
