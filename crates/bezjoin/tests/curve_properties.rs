@@ -342,7 +342,8 @@ proptest! {
         let length = if backward { -fraction * available } else { fraction * available };
         let t = c.param_at_length(start, length, accuracy).unwrap();
         prop_assert!((0.0..=1.0).contains(&t));
-        prop_assert!(if backward { t <= start } else { t >= start });
+        let on_the_right_side = if backward { t <= start } else { t >= start };
+        prop_assert!(on_the_right_side, "start {}, t {}", start, t);
         let measured = c.arc_length(start, t, accuracy * 1e-3).unwrap();
         prop_assert!((measured - length).abs() <= accuracy, "{} vs {}", measured, length);
     }
