@@ -33,8 +33,7 @@ fn bench_eval(c: &mut Criterion) {
 }
 
 fn bench_arc_length(c: &mut Criterion) {
-    let cubic =
-        BezierCurve::from_rows(&[[0.0, 0.0], [1.0, 2.0], [3.0, 3.0], [4.0, 0.0]]).unwrap();
+    let cubic = BezierCurve::from_rows(&[[0.0, 0.0], [1.0, 2.0], [3.0, 3.0], [4.0, 0.0]]).unwrap();
     let accuracy = cubic.default_length_accuracy();
     c.bench_function("arc_length/cubic_2d_default_accuracy", |b| {
         b.iter(|| cubic.arc_length(black_box(0.0), black_box(1.0), accuracy))

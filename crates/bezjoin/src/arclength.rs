@@ -125,11 +125,18 @@ impl Speed<'_> {
     /// panel, with its own error check: the 16-point rule on the interval
     /// against the sum over its halves, accepted within `tolerance` or the
     /// rounding level of the value. `None` when the check fails.
-    fn checked_partial(&mut self, a: f64, x: f64, tolerance: f64) -> Option<f64> {
+    /// `whole`: the 16-point rule on the interval when already known.
+    fn checked_partial(
+        &mut self,
+        a: f64,
+        x: f64,
+        whole: Option<f64>,
+        tolerance: f64,
+    ) -> Option<f64> {
         if a == x {
             return Some(0.0);
         }
-        let whole = self.gauss(a, x);
+        let whole = whole.unwrap_or_else(|| self.gauss(a, x));
         let m = 0.5 * (a + x);
         let refined = self.gauss(a, m) + self.gauss(m, x);
         let floor = ROUNDING_FLOOR * refined.abs();
@@ -310,7 +317,11 @@ fn invert_on_panels(
     let mut cumulative = 0.0;
     let mut found = None;
     for k in 0..n {
-        let panel = if forward { panels[k] } else { panels[n - 1 - k] };
+        let panel = if forward {
+            panels[k]
+        } else {
+            panels[n - 1 - k]
+        };
         if !panel.length.is_finite() {
             return None;
         }
@@ -337,14 +348,16 @@ fn invert_on_panels(
     let (mut inside, mut beyond) = (near, far);
     let mut t = near + (far - near) * (remaining / panel.length);
     let mut at_rounding_limit = false;
-    let mut converged = false;
+    // The rule on [near, t] at the converged t (reused by the check).
+    let mut converged = None;
     for _ in 0..PANEL_NEWTON_STEPS {
-        let phi = sign * speed.gauss(near, t) - remaining;
+        let partial = speed.gauss(near, t);
+        let phi = sign * partial - remaining;
         if !phi.is_finite() {
             return None;
         }
         if phi.abs() <= residual_tolerance {
-            converged = true;
+            converged = Some(partial);
             break;
         }
         if phi > 0.0 {
@@ -373,10 +386,10 @@ fn invert_on_panels(
         }
         t = next;
     }
-    if !(converged || at_rounding_limit) {
+    if !(converged.is_some() || at_rounding_limit) {
         return None;
     }
-    let partial = speed.checked_partial(near, t, panel.tolerance)?;
+    let partial = speed.checked_partial(near, t, converged, panel.tolerance)?;
     if at_rounding_limit || (sign * partial - remaining).abs() <= residual_tolerance {
         Some(t)
     } else {
@@ -726,7 +739,10 @@ mod panel_inversion_tests {
         assert!(speed_bounded_away_from_zero(&h, 0.2, 0.7));
         // Outside [0, 1] the control polygon says nothing.
         assert!(!speed_bounded_away_from_zero(&h, -0.5, 1.0));
-        let bound = SPEED_MARGIN * (0..=h.degree()).map(|i| norm(h.point(i))).fold(0.0, f64::max);
+        let bound = SPEED_MARGIN
+            * (0..=h.degree())
+                .map(|i| norm(h.point(i)))
+                .fold(0.0, f64::max);
         for k in 0..=1000 {
             let t = k as f64 / 1000.0;
             assert!(norm(&h.eval(t)) >= bound, "t = {t}");

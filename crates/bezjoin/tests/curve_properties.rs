@@ -422,7 +422,10 @@ fn param_at_length_very_short_and_whole_lengths() {
         assert!((measured - (total - hair)).abs() <= accuracy, "hair {hair}");
         let t = c.param_at_length(1.0, -(total - hair), accuracy).unwrap();
         let measured = c.arc_length(1.0, t, 1e-15).unwrap();
-        assert!((measured + (total - hair)).abs() <= accuracy, "hair -{hair}");
+        assert!(
+            (measured + (total - hair)).abs() <= accuracy,
+            "hair -{hair}"
+        );
     }
     // Just past the whole length: within the accuracy it is the end, beyond
     // it an error.
@@ -440,7 +443,9 @@ fn param_at_length_is_monotone_in_the_length() {
     let total = c.arc_length(0.0, 1.0, 1e-15).unwrap();
     let mut previous = 0.0;
     for k in 1..=200 {
-        let t = c.param_at_length(0.0, total * k as f64 / 200.0, 1e-12).unwrap();
+        let t = c
+            .param_at_length(0.0, total * k as f64 / 200.0, 1e-12)
+            .unwrap();
         assert!(t > previous, "k = {k}: {t} after {previous}");
         previous = t;
     }
