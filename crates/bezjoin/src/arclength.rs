@@ -14,6 +14,12 @@
 //! The inverse, [`BezierCurve::param_at_length`], solves
 //! `len(start, t) = length` by Newton's method on `t` (derivative `|P'(t)|`)
 //! safeguarded by bisection, so it converges even where the speed vanishes.
+//! It integrates the available range once, keeping the adaptive rule's
+//! accepted panels as a cumulative table; the table locates the panel that
+//! holds the answer, and Newton runs inside that panel on the fixed 16-point
+//! rule (whose result is checked against its halves at the end). Only when
+//! that check fails does it fall back to Newton on adaptive lengths from
+//! `start`.
 
 use crate::basis::binomial;
 use crate::bezier::{BezierCurve, norm};
@@ -75,7 +81,18 @@ impl Speed<'_> {
         sum * half
     }
 
-    fn adaptive(&mut self, a: f64, b: f64, whole: f64, accuracy: f64, depth: u32) -> f64 {
+    /// Adaptive rule on `[a, b]` (`whole` = the 16-point rule on it); when
+    /// `panels` is given, every accepted interval is appended to it in
+    /// increasing order of `t`.
+    fn adaptive(
+        &mut self,
+        a: f64,
+        b: f64,
+        whole: f64,
+        accuracy: f64,
+        depth: u32,
+        panels: &mut Option<&mut Vec<Panel>>,
+    ) -> f64 {
         let m = 0.5 * (a + b);
         let left = self.gauss(a, m);
         let right = self.gauss(m, b);
@@ -90,11 +107,51 @@ impl Speed<'_> {
         }
         let floor = ROUNDING_FLOOR * refined.abs();
         if (refined - whole).abs() <= accuracy.max(floor) || depth >= MAX_DEPTH {
+            if let Some(panels) = panels {
+                panels.push(Panel {
+                    a,
+                    b,
+                    length: refined,
+                    tolerance: accuracy,
+                });
+            }
             return refined;
         }
-        self.adaptive(a, m, left, 0.5 * accuracy, depth + 1)
-            + self.adaptive(m, b, right, 0.5 * accuracy, depth + 1)
+        self.adaptive(a, m, left, 0.5 * accuracy, depth + 1, panels)
+            + self.adaptive(m, b, right, 0.5 * accuracy, depth + 1, panels)
     }
+
+    /// `int_a^x |H|` on a sub-interval `[a, x]` (or `[x, a]`) of an accepted
+    /// panel, with its own error check: the 16-point rule on the interval
+    /// against the sum over its halves, accepted within `tolerance` or the
+    /// rounding level of the value. `None` when the check fails.
+    /// `whole`: the 16-point rule on the interval when already known.
+    fn checked_partial(
+        &mut self,
+        a: f64,
+        x: f64,
+        whole: Option<f64>,
+        tolerance: f64,
+    ) -> Option<f64> {
+        if a == x {
+            return Some(0.0);
+        }
+        let whole = whole.unwrap_or_else(|| self.gauss(a, x));
+        let m = 0.5 * (a + x);
+        let refined = self.gauss(a, m) + self.gauss(m, x);
+        let floor = ROUNDING_FLOOR * refined.abs();
+        ((refined - whole).abs() <= tolerance.max(floor)).then_some(refined)
+    }
+}
+
+/// One interval accepted by the adaptive rule: `length = int_a^b |H|`
+/// (a < b) to within `tolerance` (or the rounding level of `length`).
+#[derive(Clone, Copy, Debug)]
+struct Panel {
+    a: f64,
+    b: f64,
+    length: f64,
+    tolerance: f64,
 }
 
 impl BezierCurve {
@@ -155,7 +212,19 @@ impl BezierCurve {
         }
         let hodograph = self.hodograph();
         let end = if length > 0.0 { 1.0 } else { 0.0 };
-        let available = arc_length_with(&hodograph, start, end, accuracy * 0.1);
+        let forward = length > 0.0;
+        // One adaptive pass over the whole available range, recording its
+        // accepted panels (the same value as `arc_length_with(start, end)`
+        // up to sign).
+        let (range_lo, range_hi) = if forward { (start, 1.0) } else { (0.0, start) };
+        let mut panels = Vec::new();
+        let (available, _) = arc_length_panels(
+            &hodograph,
+            range_lo,
+            range_hi,
+            accuracy * 0.1,
+            Some(&mut panels),
+        );
         if length.abs() > available.abs() + accuracy {
             return Err(BezjoinError::invalid(
                 "length",
@@ -175,6 +244,16 @@ impl BezierCurve {
             buf: vec![0.0; self.dim()],
             evaluations: 0,
         };
+        // A non-finite range length leaves panels unrecorded: no table then.
+        if available.is_finite() {
+            if let Some(t) =
+                invert_on_panels(&mut speed, &panels, forward, length.abs(), 0.5 * accuracy)
+            {
+                return Ok(t);
+            }
+        }
+        // Fallback (a panel whose partial integral fails its error check):
+        // Newton on adaptive lengths from `start`.
         // Bracket [lo, hi] in the direction of travel; f(t) = len(start, t) - length.
         let (mut lo, mut hi) = if length > 0.0 {
             (start, 1.0)
@@ -182,7 +261,7 @@ impl BezierCurve {
             (0.0, start)
         };
         // Initial guess: proportional.
-        let mut t = start + (end - start) * (length / available);
+        let mut t = start + (end - start) * (length.abs() / available);
         for _ in 0..100 {
             let len = arc_length_with(&hodograph, start, t, accuracy * 0.1);
             let f = len - length;
@@ -210,8 +289,120 @@ impl BezierCurve {
     }
 }
 
+/// Maximum Newton steps of [`invert_on_panels`].
+const PANEL_NEWTON_STEPS: usize = 60;
+
+/// The parameter at arc length `target >= 0` from the start of the range
+/// covered by `panels` (from its low end when `forward`, else from its high
+/// end), or `None` when it cannot be certified (then the caller falls back).
+///
+/// The panels are the accepted intervals of one adaptive pass over the range,
+/// so their cumulative lengths locate the panel holding the answer; inside
+/// it, safeguarded Newton (derivative: the speed) solves
+/// `cumulative + int_near^t |H| = target` with the fixed 16-point rule on
+/// `[near, t]`, which costs 17 speed evaluations per step instead of an
+/// adaptive length from the start. The final partial integral is checked
+/// like an adaptive interval (rule against its halves, within the panel's
+/// accuracy share), and the residual recomputed from the refined value must
+/// be within `residual_tolerance`. Error budget of the returned `t`: the
+/// panel table's accuracy plus the panel's share plus `residual_tolerance`.
+fn invert_on_panels(
+    speed: &mut Speed<'_>,
+    panels: &[Panel],
+    forward: bool,
+    target: f64,
+    residual_tolerance: f64,
+) -> Option<f64> {
+    let n = panels.len();
+    let mut cumulative = 0.0;
+    let mut found = None;
+    for k in 0..n {
+        let panel = if forward {
+            panels[k]
+        } else {
+            panels[n - 1 - k]
+        };
+        if !panel.length.is_finite() {
+            return None;
+        }
+        if cumulative + panel.length >= target || k + 1 == n {
+            found = Some(panel);
+            break;
+        }
+        cumulative += panel.length;
+    }
+    let panel = found?;
+    let (near, far) = if forward {
+        (panel.a, panel.b)
+    } else {
+        (panel.b, panel.a)
+    };
+    // Sign of gauss(near, t) for t between near and far.
+    let sign = if forward { 1.0 } else { -1.0 };
+    let remaining = (target - cumulative).clamp(0.0, panel.length);
+    if remaining == 0.0 {
+        return Some(near);
+    }
+    // phi(t) = sign * int_near^t |H| - remaining: negative at `inside`,
+    // positive at `beyond`.
+    let (mut inside, mut beyond) = (near, far);
+    let mut t = near + (far - near) * (remaining / panel.length);
+    let mut at_rounding_limit = false;
+    // The rule on [near, t] at the converged t (reused by the check).
+    let mut converged = None;
+    for _ in 0..PANEL_NEWTON_STEPS {
+        let partial = speed.gauss(near, t);
+        let phi = sign * partial - remaining;
+        if !phi.is_finite() {
+            return None;
+        }
+        if phi.abs() <= residual_tolerance {
+            converged = Some(partial);
+            break;
+        }
+        if phi > 0.0 {
+            beyond = t;
+        } else {
+            inside = t;
+        }
+        let v = speed.at(t);
+        let newton = t - phi / (sign * v);
+        let (lo, hi) = if inside < beyond {
+            (inside, beyond)
+        } else {
+            (beyond, inside)
+        };
+        let next = if v > 0.0 && newton > lo && newton < hi {
+            newton
+        } else {
+            0.5 * (lo + hi)
+        };
+        if next == t || hi - lo <= 4.0 * f64::EPSILON * hi.abs().max(f64::MIN_POSITIVE) {
+            // No representable parameter is closer: the length is resolved
+            // to the rounding level of `t`.
+            t = next;
+            at_rounding_limit = true;
+            break;
+        }
+        t = next;
+    }
+    if !(converged.is_some() || at_rounding_limit) {
+        return None;
+    }
+    let partial = speed.checked_partial(near, t, converged, panel.tolerance)?;
+    if at_rounding_limit || (sign * partial - remaining).abs() <= residual_tolerance {
+        Some(t)
+    } else {
+        None
+    }
+}
+
 pub(crate) fn arc_length_with(hodograph: &BezierCurve, a: f64, b: f64, accuracy: f64) -> f64 {
     arc_length_counted(hodograph, a, b, accuracy).0
+}
+
+fn arc_length_counted(hodograph: &BezierCurve, a: f64, b: f64, accuracy: f64) -> (f64, usize) {
+    arc_length_panels(hodograph, a, b, accuracy, None)
 }
 
 /// The length and the number of speed evaluations it took.
@@ -222,7 +413,21 @@ pub(crate) fn arc_length_with(hodograph: &BezierCurve, a: f64, b: f64, accuracy:
 /// kink sits at nearly the same relative place in both, so both estimates
 /// carry the same error; measured 1.5e-5 wrong with the halves agreeing to
 /// 1e-13). Each piece gets the share of `accuracy` of its width.
-fn arc_length_counted(hodograph: &BezierCurve, a: f64, b: f64, accuracy: f64) -> (f64, usize) {
+///
+/// The cut search is skipped when the speed is provably bounded away from
+/// zero on the range ([`speed_bounded_away_from_zero`]): then `|H|` is
+/// smooth (no kink), and the adaptive rule alone is reliable.
+///
+/// With `panels`, the accepted intervals are appended to it in increasing
+/// order of `t` (each with its value and its share of the accuracy): the
+/// cumulative table that [`BezierCurve::param_at_length`] inverts.
+fn arc_length_panels(
+    hodograph: &BezierCurve,
+    a: f64,
+    b: f64,
+    accuracy: f64,
+    mut panels: Option<&mut Vec<Panel>>,
+) -> (f64, usize) {
     if a == b {
         return (0.0, 0);
     }
@@ -233,7 +438,9 @@ fn arc_length_counted(hodograph: &BezierCurve, a: f64, b: f64, accuracy: f64) ->
     };
     let (lo, hi) = if a < b { (a, b) } else { (b, a) };
     let mut cuts = vec![lo];
-    cuts.extend(speed_minima(hodograph, lo, hi));
+    if !speed_bounded_away_from_zero(hodograph, lo, hi) {
+        cuts.extend(speed_minima(hodograph, lo, hi));
+    }
     cuts.push(hi);
     let width = hi - lo;
     let mut length = 0.0;
@@ -243,9 +450,47 @@ fn arc_length_counted(hodograph: &BezierCurve, a: f64, b: f64, accuracy: f64) ->
         }
         let share = accuracy * ((w[1] - w[0]) / width).max(f64::EPSILON);
         let whole = speed.gauss(w[0], w[1]);
-        length += speed.adaptive(w[0], w[1], whole, share, 0);
+        length += speed.adaptive(w[0], w[1], whole, share, 0, &mut panels);
     }
     (if a < b { length } else { -length }, speed.evaluations)
+}
+
+/// Fraction of the largest hodograph control point that the speed must
+/// provably exceed for [`speed_bounded_away_from_zero`] to skip the cut
+/// search.
+const SPEED_MARGIN: f64 = 0.1;
+
+/// True when `lo..hi` lies in `[0, 1]` and the hodograph's control polygon
+/// stays on one side of a plane through the origin with margin: with `u`
+/// the unit mean of the control points `H_i`, `u . H_i >= SPEED_MARGIN *
+/// max |H_j|` for all `i`. Then `|H(t)| >= u . H(t) >= SPEED_MARGIN * max
+/// |H_j|` on `[0, 1]` (convex hull property), so the speed has no zero and
+/// no sharp minimum there. Costs one pass over the control points.
+fn speed_bounded_away_from_zero(hodograph: &BezierCurve, lo: f64, hi: f64) -> bool {
+    if lo < 0.0 || hi > 1.0 {
+        return false;
+    }
+    let d = hodograph.dim();
+    let n = hodograph.degree() + 1;
+    let mut mean = vec![0.0; d];
+    for i in 0..n {
+        for (m, x) in mean.iter_mut().zip(hodograph.point(i)) {
+            *m += x;
+        }
+    }
+    let mean_norm = norm(&mean);
+    if !(mean_norm > 0.0 && mean_norm.is_finite()) {
+        return false;
+    }
+    let mut min_along = f64::INFINITY;
+    let mut max_norm = 0.0f64;
+    for i in 0..n {
+        let p = hodograph.point(i);
+        let along: f64 = p.iter().zip(&mean).map(|(x, m)| x * m).sum::<f64>() / mean_norm;
+        min_along = min_along.min(along);
+        max_norm = max_norm.max(norm(p));
+    }
+    max_norm.is_finite() && min_along >= SPEED_MARGIN * max_norm
 }
 
 /// Highest hodograph degree for which [`speed_minima`] splits the range
@@ -417,5 +662,105 @@ mod review_tests {
         let tight = c.arc_length(0.0, 1.0, 1e-300).unwrap();
         let normal = c.arc_length(0.0, 1.0, 1e-13).unwrap();
         assert!((tight - normal).abs() <= 1e-13, "{tight} vs {normal}");
+    }
+}
+
+#[cfg(test)]
+mod panel_inversion_tests {
+    use super::*;
+
+    fn cubic() -> BezierCurve {
+        BezierCurve::from_rows(&[[0.0, 0.0], [1.0, 2.0], [3.0, 3.0], [4.0, 0.0]]).unwrap()
+    }
+
+    /// Cusp at t = 1/2 (hodograph through the origin).
+    fn cusp() -> BezierCurve {
+        BezierCurve::from_rows(&[[0.0, 0.0], [2.0, 1.0], [0.0, 1.0], [2.0, 0.0]]).unwrap()
+    }
+
+    /// The panel inversion itself (not the fallback) answers, and its answer
+    /// has the defining property, on a smooth curve and across a cusp, both
+    /// directions.
+    #[test]
+    fn panel_inversion_answers_and_meets_the_accuracy() {
+        for c in [cubic(), cusp()] {
+            let h = c.hodograph();
+            for &accuracy in &[1e-6, 1e-10, 1e-13] {
+                for &start in &[0.0, 0.25, 0.5, 0.8, 1.0] {
+                    for forward in [true, false] {
+                        let (lo, hi) = if forward { (start, 1.0) } else { (0.0, start) };
+                        if lo == hi {
+                            continue;
+                        }
+                        let mut panels = Vec::new();
+                        let (available, _) =
+                            arc_length_panels(&h, lo, hi, 0.1 * accuracy, Some(&mut panels));
+                        let sum: f64 = panels.iter().map(|p| p.length).sum();
+                        assert!((sum - available).abs() <= 1e-14 * available);
+                        assert!(panels.windows(2).all(|w| w[0].b <= w[1].a));
+                        for &fraction in &[1e-9, 0.1, 0.37, 0.5, 0.9, 0.999_999] {
+                            let target = fraction * available;
+                            let mut speed = Speed {
+                                hodograph: &h,
+                                buf: vec![0.0; 2],
+                                evaluations: 0,
+                            };
+                            let t = invert_on_panels(
+                                &mut speed,
+                                &panels,
+                                forward,
+                                target,
+                                0.5 * accuracy,
+                            )
+                            .unwrap_or_else(|| {
+                                panic!("no answer: start {start}, fraction {fraction}")
+                            });
+                            let measured = arc_length_with(&h, start, t, 1e-16).abs();
+                            assert!(
+                                (measured - target).abs() <= accuracy,
+                                "start {start}, forward {forward}, fraction {fraction}, \
+                                 accuracy {accuracy:e}: {measured} vs {target}"
+                            );
+                            let public = if forward { target } else { -target };
+                            assert_eq!(c.param_at_length(start, public, accuracy).unwrap(), t);
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn speed_bound_holds_where_the_cut_search_is_skipped() {
+        let gentle =
+            BezierCurve::from_rows(&[[0.0, 0.0], [1.0, 0.5], [2.0, 0.5], [3.0, 0.0]]).unwrap();
+        let h = gentle.hodograph();
+        assert!(speed_bounded_away_from_zero(&h, 0.0, 1.0));
+        assert!(speed_bounded_away_from_zero(&h, 0.2, 0.7));
+        // Outside [0, 1] the control polygon says nothing.
+        assert!(!speed_bounded_away_from_zero(&h, -0.5, 1.0));
+        let bound = SPEED_MARGIN
+            * (0..=h.degree())
+                .map(|i| norm(h.point(i)))
+                .fold(0.0, f64::max);
+        for k in 0..=1000 {
+            let t = k as f64 / 1000.0;
+            assert!(norm(&h.eval(t)) >= bound, "t = {t}");
+        }
+        // A cusp (speed 0 inside) and a 1D curve turning back: not skipped.
+        assert!(!speed_bounded_away_from_zero(&cusp().hodograph(), 0.0, 1.0));
+        let back = BezierCurve::from_rows(&[[0.0], [2.0], [-1.0], [1.0]]).unwrap();
+        assert!(!speed_bounded_away_from_zero(&back.hodograph(), 0.0, 1.0));
+        // Skipping the cut search leaves the length as it was: against the
+        // sum over pieces (each integrated to far tighter accuracy).
+        let whole = gentle.arc_length(0.0, 1.0, 1e-13).unwrap();
+        let pieces: f64 = (0..8)
+            .map(|k| {
+                gentle
+                    .arc_length(k as f64 / 8.0, (k + 1) as f64 / 8.0, 1e-16)
+                    .unwrap()
+            })
+            .sum();
+        assert!((whole - pieces).abs() <= 1e-13, "{whole} vs {pieces}");
     }
 }

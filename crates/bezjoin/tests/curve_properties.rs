@@ -318,3 +318,136 @@ fn overflowing_segment_and_length_are_errors_not_infinite_curves() {
     let s = c.segment(-1e50, 1e50).unwrap();
     assert!(s.points().iter().all(|v| v.is_finite()));
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// The defining property of `param_at_length`, both directions, several
+    /// accuracies, on random curves (dimension 1 curves have kinks in their
+    /// speed wherever a coordinate turns back): the length from `start` to
+    /// the returned parameter, measured 1000 times more accurately, is the
+    /// requested one to within `accuracy`.
+    #[test]
+    fn param_at_length_meets_its_accuracy(
+        c in curve(8),
+        start in 0.0f64..=1.0,
+        fraction in 0.0f64..=1.0,
+        backward in any::<bool>(),
+        exponent in prop::sample::select(vec![-6, -9, -12]),
+    ) {
+        prop_assume!(c.degree() >= 1 && c.polygon_length() > 1e-3);
+        let accuracy = 10f64.powi(exponent) * c.polygon_length().max(1.0);
+        let end = if backward { 0.0 } else { 1.0 };
+        let available = c.arc_length(start, end, accuracy * 1e-3).unwrap().abs();
+        let length = if backward { -fraction * available } else { fraction * available };
+        let t = c.param_at_length(start, length, accuracy).unwrap();
+        prop_assert!((0.0..=1.0).contains(&t));
+        let on_the_right_side = if backward { t <= start } else { t >= start };
+        prop_assert!(on_the_right_side, "start {}, t {}", start, t);
+        let measured = c.arc_length(start, t, accuracy * 1e-3).unwrap();
+        prop_assert!((measured - length).abs() <= accuracy, "{} vs {}", measured, length);
+    }
+}
+
+#[test]
+fn param_at_length_across_a_cusp() {
+    let (c, s0) = cusp_curve();
+    let to_cusp = c.arc_length(0.0, s0, 1e-15).unwrap();
+    let total = c.arc_length(0.0, 1.0, 1e-15).unwrap();
+    for &accuracy in &[1e-6, 1e-9, 1e-12] {
+        // From before the cusp to past it, forwards.
+        for &fraction in &[0.5, 0.9, 0.999, 1.0, 1.001, 1.1, 1.5] {
+            let l = (fraction * to_cusp).min(total);
+            let t = c.param_at_length(0.0, l, accuracy).unwrap();
+            let measured = c.arc_length(0.0, t, 1e-15).unwrap();
+            assert!(
+                (measured - l).abs() <= accuracy,
+                "accuracy {accuracy:e}, l = {l}: {measured}"
+            );
+            if l < to_cusp - accuracy {
+                assert!(t < s0, "l = {l} is before the cusp, t = {t}");
+            }
+            if l > to_cusp + accuracy {
+                assert!(t > s0, "l = {l} is past the cusp, t = {t}");
+            }
+        }
+        // From the end back across the cusp.
+        let from_end = total - to_cusp;
+        for &fraction in &[0.5, 1.0, 1.01, 1.3] {
+            let l = -(fraction * from_end).min(total);
+            let t = c.param_at_length(1.0, l, accuracy).unwrap();
+            let measured = c.arc_length(1.0, t, 1e-15).unwrap();
+            assert!(
+                (measured - l).abs() <= accuracy,
+                "accuracy {accuracy:e}, l = {l}: {measured}"
+            );
+        }
+    }
+}
+
+#[test]
+fn param_at_length_very_short_and_whole_lengths() {
+    let c = BezierCurve::from_rows(&[[0.0, 0.0], [1.0, 2.0], [3.0, 3.0], [4.0, 0.0]]).unwrap();
+    let accuracy = 1e-12;
+    let total = c.arc_length(0.0, 1.0, 1e-15).unwrap();
+    for &start in &[0.0, 0.3, 1.0] {
+        for &l in &[1e-300, 1e-15, 1e-13, 1e-10, 1e-6] {
+            for &signed in &[l, -l] {
+                let t = c.param_at_length(start, signed, accuracy);
+                if (start == 1.0 && signed > 0.0) || (start == 0.0 && signed < 0.0) {
+                    // Nothing left in that direction: only a length within
+                    // the accuracy is accepted, and it lands on the end.
+                    if l <= accuracy {
+                        assert_eq!(t.unwrap(), start);
+                    } else {
+                        assert!(t.is_err(), "start {start}, l = {signed}");
+                    }
+                    continue;
+                }
+                let t = t.unwrap();
+                let measured = c.arc_length(start, t, 1e-15).unwrap();
+                assert!(
+                    (measured - signed).abs() <= accuracy,
+                    "start {start}, l = {signed}: {measured}"
+                );
+            }
+        }
+    }
+    // The whole curve, and the whole curve up to a hair.
+    assert_eq!(c.param_at_length(0.0, total, accuracy).unwrap(), 1.0);
+    assert_eq!(c.param_at_length(1.0, -total, accuracy).unwrap(), 0.0);
+    for &hair in &[1e-11, 1e-9, 1e-6] {
+        let t = c.param_at_length(0.0, total - hair, accuracy).unwrap();
+        let measured = c.arc_length(0.0, t, 1e-15).unwrap();
+        assert!((measured - (total - hair)).abs() <= accuracy, "hair {hair}");
+        let t = c.param_at_length(1.0, -(total - hair), accuracy).unwrap();
+        let measured = c.arc_length(1.0, t, 1e-15).unwrap();
+        assert!(
+            (measured + (total - hair)).abs() <= accuracy,
+            "hair -{hair}"
+        );
+    }
+    // Just past the whole length: within the accuracy it is the end, beyond
+    // it an error.
+    assert_eq!(
+        c.param_at_length(0.0, total + 0.5 * accuracy, accuracy)
+            .unwrap(),
+        1.0
+    );
+    assert!(c.param_at_length(0.0, total + 1e-9, accuracy).is_err());
+}
+
+#[test]
+fn param_at_length_is_monotone_in_the_length() {
+    let (c, _) = cusp_curve();
+    let total = c.arc_length(0.0, 1.0, 1e-15).unwrap();
+    let mut previous = 0.0;
+    for k in 1..=200 {
+        let t = c
+            .param_at_length(0.0, total * k as f64 / 200.0, 1e-12)
+            .unwrap();
+        assert!(t > previous, "k = {k}: {t} after {previous}");
+        previous = t;
+    }
+    assert!(1.0 - previous <= 1e-9, "{previous}");
+}
