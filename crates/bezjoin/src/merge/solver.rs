@@ -77,6 +77,9 @@ struct Row {
     /// Right-hand side for the perturbation (one value per coordinate).
     rhs: DVector<f64>,
     label: String,
+    /// False for the exact unit rows of "keep P/Q unchanged": they carry no
+    /// rounding, so they do not enter the data-rounding term of the estimate.
+    rounded: bool,
 }
 
 fn normalised(mut row: Row) -> Row {
@@ -137,6 +140,7 @@ pub(crate) fn solve_stage_one(
                     pieces[j].name,
                     pieces[j + 1].name
                 ),
+                rounded: true,
             }));
         }
     }
@@ -156,6 +160,7 @@ pub(crate) fn solve_stage_one(
                     coefficients: unit(j * points_per_piece + i),
                     rhs: DVector::zeros(dim),
                     label: format!("keep {} unchanged (control point {i})", p.name),
+                    rounded: false,
                 });
             }
         }
@@ -165,11 +170,13 @@ pub(crate) fn solve_stage_one(
             coefficients: unit(0),
             rhs: DVector::zeros(dim),
             label: format!("fix ends (first point of {})", pieces[0].name),
+            rounded: true,
         });
         constraints.push(Row {
             coefficients: unit(unknowns - 1),
             rhs: DVector::zeros(dim),
             label: format!("fix ends (last point of {})", pieces[count - 1].name),
+            rounded: true,
         });
     }
     for (j, p) in pieces.iter().enumerate() {
@@ -187,6 +194,7 @@ pub(crate) fn solve_stage_one(
                         "{}[{k}] (derivative {s} of {} at {})",
                         p.points_name, p.name, kp.param
                     ),
+                    rounded: true,
                 }));
             }
         }
@@ -345,15 +353,20 @@ pub(crate) fn solve_stage_one(
     })
 }
 
-/// 2-norm condition number of the constraint rows as given (continuity rows
-/// and the kept constraint rows, each scaled to unit length).
+/// 2-norm condition number of the constraint rows that carry rounding, as
+/// given (continuity rows, fix-ends and keep-point rows; each scaled to unit
+/// length). The exact unit rows of "keep P/Q unchanged" are left out.
 fn row_matrix_condition(continuity: &[Row], kept: &[Row], unknowns: usize) -> f64 {
-    let rows = continuity.len() + kept.len();
-    if rows == 0 {
+    let rows: Vec<&Row> = continuity
+        .iter()
+        .chain(kept)
+        .filter(|row| row.rounded)
+        .collect();
+    if rows.is_empty() {
         return 1.0;
     }
-    let mut matrix = DMatrix::zeros(rows, unknowns);
-    for (k, row) in continuity.iter().chain(kept).enumerate() {
+    let mut matrix = DMatrix::zeros(rows.len(), unknowns);
+    for (k, row) in rows.iter().enumerate() {
         let norm = row.coefficients.norm().max(f64::MIN_POSITIVE);
         matrix.set_row(k, &(row.coefficients.transpose() / norm));
     }
