@@ -77,6 +77,7 @@ fn derivative_row(n: usize, t: &Q, k: usize) -> Vec<Q> {
 }
 
 /// Restriction matrices of degree `n` at `mu`: `left[i][k]`, `right[i][k]`.
+#[allow(clippy::needless_range_loop)]
 fn restrictions(n: usize, mu: &Q) -> (Vec<Vec<Q>>, Vec<Vec<Q>>) {
     let mut left = vec![vec![Q::zero(); n + 1]; n + 1];
     let mut right = vec![vec![Q::zero(); n + 1]; n + 1];
@@ -132,6 +133,7 @@ fn transpose(a: &[Vec<Q>]) -> Vec<Vec<Q>> {
 }
 
 /// Gaussian elimination with exact pivoting on nonzero entries.
+#[allow(clippy::needless_range_loop)]
 fn solve(mut a: Vec<Vec<Q>>, mut b: Vec<Vec<Q>>) -> Vec<Vec<Q>> {
     let n = a.len();
     for col in 0..n {
@@ -230,7 +232,7 @@ fn exact_pieces(
         if n >= 2 {
             for s in 0..=orders {
                 let d = derivative_row(n, &Q::new(BigInt::one(), BigInt::from(2)), s);
-                let on_r = multiply(&[d.clone()], &left).remove(0);
+                let on_r = multiply(std::slice::from_ref(&d), &left).remove(0);
                 c_rows.push(on_r);
                 d_rows.push(multiply(&[d], &pe).remove(0));
             }
