@@ -36,9 +36,13 @@
 //!
 //! # Guarantees and checks
 //!
-//! * The KKT solve is checked: its condition estimate times its backward
-//!   error must stay below `accuracy` (default [`DEFAULT_MERGE_ACCURACY`]),
-//!   otherwise the answer is `IllConditioned` with the estimate.
+//! * The KKT solve is checked: its error estimate, the larger of condition
+//!   times backward error and `4 eps cond(rows) sqrt(cond(Z^T W Z))` (the
+//!   rounding the constraint rows carry, magnified by the reduced problem;
+//!   measured >= the true error against an exact rational reference, test
+//!   `merge_exact`), must stay below `accuracy` (default
+//!   [`DEFAULT_MERGE_ACCURACY`]), otherwise the answer is `IllConditioned`
+//!   with the estimate.
 //! * `R` restricted to each piece's interval reproduces the stage-1 pieces to
 //!   `accuracy` relative to the coordinate scale, otherwise `IllConditioned`.
 //! * Constraints: rows are scaled to unit length and tested against the
