@@ -22,7 +22,7 @@ fi
 
 # Targets with an open finding in another module (docs/reliability.md); they
 # run only when named explicitly. Empty this list when the finding is fixed.
-KNOWN_OPEN=(curve_length fillet)
+KNOWN_OPEN=()
 targets=("$@")
 if [ "${#targets[@]}" -eq 0 ]; then
     for t in $(cargo +nightly fuzz list); do

@@ -35,6 +35,14 @@ const ROUNDING_FLOOR: f64 = 16.0 * f64::EPSILON;
 /// Maximum bisection depth of the adaptive quadrature.
 const MAX_DEPTH: u32 = 40;
 
+/// Speed evaluations one length computation may spend (about 0.1 s at
+/// degree 20). Past it, panels are accepted as they are and the shortfall is
+/// reported: `arc_length` and `param_at_length` then return
+/// `IllConditioned` with the estimate instead of running on (fuzz finding
+/// F2: without a budget a degree-22 curve on an extrapolated range bisected
+/// towards 2^40 panels).
+const MAX_EVALUATIONS: usize = 1 << 20;
+
 // 16-point Gauss-Legendre nodes (positive half) and weights on [-1, 1].
 const GL_NODES: [f64; 8] = [
     0.095_012_509_837_637_44,
@@ -61,6 +69,14 @@ struct Speed<'a> {
     hodograph: &'a BezierCurve,
     buf: Vec<f64>,
     evaluations: usize,
+    /// Bound on the rounding noise of the speed integrated over a unit of
+    /// `t`: no refinement can resolve differences below `noise_per_unit *
+    /// width` (see [`speed_noise_per_unit`]).
+    noise_per_unit: f64,
+    /// Sum of `|refined - whole|` over panels accepted only because the
+    /// depth or evaluation budget ran out: the part of the error the rule
+    /// could not bring under the requested accuracy.
+    unresolved: f64,
 }
 
 impl Speed<'_> {
@@ -105,8 +121,14 @@ impl Speed<'_> {
             // the test below, bisecting 2^MAX_DEPTH times).
             return refined;
         }
-        let floor = ROUNDING_FLOOR * refined.abs();
-        if (refined - whole).abs() <= accuracy.max(floor) || depth >= MAX_DEPTH {
+        let floor = (ROUNDING_FLOOR * refined.abs()).max(self.noise_per_unit * (b - a).abs());
+        let difference = (refined - whole).abs();
+        let resolved = difference <= accuracy.max(floor);
+        let budget_spent = depth >= MAX_DEPTH || self.evaluations >= MAX_EVALUATIONS;
+        if resolved || budget_spent {
+            if !resolved {
+                self.unresolved += difference;
+            }
             if let Some(panels) = panels {
                 panels.push(Panel {
                     a,
@@ -172,7 +194,7 @@ impl BezierCurve {
             return Ok(0.0);
         }
         let hodograph = self.hodograph();
-        let length = arc_length_with(&hodograph, a, b, accuracy);
+        let length = arc_length_checked(&hodograph, a, b, accuracy)?;
         if !length.is_finite() {
             return Err(BezjoinError::invalid(
                 "a, b",
@@ -218,13 +240,15 @@ impl BezierCurve {
         // up to sign).
         let (range_lo, range_hi) = if forward { (start, 1.0) } else { (0.0, start) };
         let mut panels = Vec::new();
-        let (available, _) = arc_length_panels(
+        let pass = arc_length_panels(
             &hodograph,
             range_lo,
             range_hi,
             accuracy * 0.1,
             Some(&mut panels),
         );
+        check_resolved(&pass, range_lo, range_hi, accuracy * 0.1)?;
+        let available = pass.length;
         if length.abs() > available.abs() + accuracy {
             return Err(BezjoinError::invalid(
                 "length",
@@ -243,6 +267,8 @@ impl BezierCurve {
             hodograph: &hodograph,
             buf: vec![0.0; self.dim()],
             evaluations: 0,
+            noise_per_unit: speed_noise_per_unit(&hodograph, range_lo, range_hi),
+            unresolved: 0.0,
         };
         // A non-finite range length leaves panels unrecorded: no table then.
         if available.is_finite() {
@@ -402,7 +428,8 @@ pub(crate) fn arc_length_with(hodograph: &BezierCurve, a: f64, b: f64, accuracy:
 }
 
 fn arc_length_counted(hodograph: &BezierCurve, a: f64, b: f64, accuracy: f64) -> (f64, usize) {
-    arc_length_panels(hodograph, a, b, accuracy, None)
+    let result = arc_length_panels(hodograph, a, b, accuracy, None);
+    (result.length, result.evaluations)
 }
 
 /// The length and the number of speed evaluations it took.
@@ -427,16 +454,22 @@ fn arc_length_panels(
     b: f64,
     accuracy: f64,
     mut panels: Option<&mut Vec<Panel>>,
-) -> (f64, usize) {
+) -> LengthResult {
     if a == b {
-        return (0.0, 0);
+        return LengthResult {
+            length: 0.0,
+            evaluations: 0,
+            unresolved: 0.0,
+        };
     }
+    let (lo, hi) = if a < b { (a, b) } else { (b, a) };
     let mut speed = Speed {
         hodograph,
         buf: vec![0.0; hodograph.dim()],
         evaluations: 0,
+        noise_per_unit: speed_noise_per_unit(hodograph, lo, hi),
+        unresolved: 0.0,
     };
-    let (lo, hi) = if a < b { (a, b) } else { (b, a) };
     let mut cuts = vec![lo];
     if !speed_bounded_away_from_zero(hodograph, lo, hi) {
         cuts.extend(speed_minima(hodograph, lo, hi));
@@ -452,7 +485,54 @@ fn arc_length_panels(
         let whole = speed.gauss(w[0], w[1]);
         length += speed.adaptive(w[0], w[1], whole, share, 0, &mut panels);
     }
-    (if a < b { length } else { -length }, speed.evaluations)
+    LengthResult {
+        length: if a < b { length } else { -length },
+        evaluations: speed.evaluations,
+        unresolved: speed.unresolved,
+    }
+}
+
+/// What one adaptive length computation produced.
+struct LengthResult {
+    /// The signed length.
+    length: f64,
+    /// Speed evaluations spent.
+    evaluations: usize,
+    /// Error the rule could not resolve within its budget (0 when it met
+    /// the accuracy everywhere).
+    unresolved: f64,
+}
+
+/// Rounding-noise bound of `|H(t)|` per unit of `t` on `[lo, hi]`: the
+/// Bernstein-Horner evaluation of a degree-`n` hodograph errs by at most
+/// about `(n + 1) eps max|H_i| sum_i |B_i(t)|`, and `sum_i |B_i(t)| =
+/// (|1 - t| + |t|)^n` (1 inside `[0, 1]`, growing outside). A factor 4 covers
+/// the norm and the quadrature weights.
+fn speed_noise_per_unit(hodograph: &BezierCurve, lo: f64, hi: f64) -> f64 {
+    let n = hodograph.degree();
+    let growth = |t: f64| ((1.0 - t).abs() + t.abs()).powi(n as i32);
+    let size = hodograph.coordinate_scale() * (hodograph.dim() as f64).sqrt();
+    4.0 * (n + 1) as f64 * f64::EPSILON * size * growth(lo).max(growth(hi))
+}
+
+/// The length, or `IllConditioned` when the adaptive rule could not reach
+/// `accuracy` within its budget.
+fn arc_length_checked(hodograph: &BezierCurve, a: f64, b: f64, accuracy: f64) -> Result<f64> {
+    let result = arc_length_panels(hodograph, a, b, accuracy, None);
+    check_resolved(&result, a, b, accuracy)?;
+    Ok(result.length)
+}
+
+fn check_resolved(result: &LengthResult, a: f64, b: f64, accuracy: f64) -> Result<()> {
+    if result.unresolved > accuracy {
+        let size = result.length.abs().max(f64::MIN_POSITIVE);
+        return Err(BezjoinError::IllConditioned {
+            what: format!("arc length from t = {a} to t = {b}"),
+            estimate: (result.unresolved + accuracy) / size,
+            limit: accuracy / size,
+        });
+    }
+    Ok(())
 }
 
 /// Fraction of the largest hodograph control point that the speed must

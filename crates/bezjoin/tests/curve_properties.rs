@@ -451,3 +451,49 @@ fn param_at_length_is_monotone_in_the_length() {
     }
     assert!(1.0 - previous <= 1e-9, "{previous}");
 }
+
+/// Fuzz finding F2 (docs/reliability.md): a degree-22 curve on an
+/// extrapolated range used to bisect towards 2^40 panels. The length must
+/// come back (a value or `IllConditioned` with its estimate), and a value
+/// must agree with a second computation at a looser accuracy.
+#[test]
+fn arc_length_work_is_bounded_on_noisy_extrapolated_ranges() {
+    let mut p = vec![
+        75.341796875,
+        -55.3375244140625,
+        77.6519775390625,
+        7.659912109375,
+        -63.00048828125,
+        64.764404296875,
+        33.880615234375,
+        20.4742431640625,
+        70.770263671875,
+        -68.194580078125,
+        -31.1187744140625,
+        76.62353515625,
+        42.96875,
+        0.0,
+        0.0,
+        0.0,
+        2.2250738585072014e-308,
+        57.769775390625,
+        62.152099609375,
+        -49.542236328125,
+        40.9454345703125,
+    ];
+    p.resize(46, -17.6483154296875);
+    let c = BezierCurve::new(2, 22, p).unwrap();
+    let (a, b) = (-0.33865110246433205, 0.95217059586480501);
+    match c.arc_length_default(a, b) {
+        Ok(len) => {
+            let loose = c.arc_length(a, b, 1e-6 * len).unwrap();
+            assert!((len - loose).abs() <= 2e-6 * len, "{len} vs {loose}");
+        }
+        Err(e) => assert!(
+            matches!(e, bezjoin_core::BezjoinError::IllConditioned { .. }),
+            "{e}"
+        ),
+    }
+    // Inside [0, 1] the same curve resolves to the default accuracy.
+    assert!(c.arc_length_default(0.0, 1.0).is_ok());
+}
