@@ -773,8 +773,8 @@ mod panel_inversion_tests {
                             continue;
                         }
                         let mut panels = Vec::new();
-                        let (available, _) =
-                            arc_length_panels(&h, lo, hi, 0.1 * accuracy, Some(&mut panels));
+                        let available =
+                            arc_length_panels(&h, lo, hi, 0.1 * accuracy, Some(&mut panels)).length;
                         let sum: f64 = panels.iter().map(|p| p.length).sum();
                         assert!((sum - available).abs() <= 1e-14 * available);
                         assert!(panels.windows(2).all(|w| w[0].b <= w[1].a));
@@ -784,6 +784,8 @@ mod panel_inversion_tests {
                                 hodograph: &h,
                                 buf: vec![0.0; 2],
                                 evaluations: 0,
+                                noise_per_unit: speed_noise_per_unit(&h, lo, hi),
+                                unresolved: 0.0,
                             };
                             let t = invert_on_panels(
                                 &mut speed,
