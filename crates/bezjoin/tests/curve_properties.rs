@@ -483,7 +483,7 @@ fn arc_length_work_is_bounded_on_noisy_extrapolated_ranges() {
     ];
     p.resize(46, -17.6483154296875);
     let c = BezierCurve::new(2, 22, p).unwrap();
-    let (a, b) = (-0.33865110246433205, 0.95217059586480501);
+    let (a, b) = (-0.338_651_102_464_332, 0.952_170_595_864_805);
     match c.arc_length_default(a, b) {
         Ok(len) => {
             let loose = c.arc_length(a, b, 1e-6 * len).unwrap();
