@@ -14,10 +14,21 @@ mod tests {
 
     #[test]
     fn header_constants_match_cargo_version() {
-        assert_eq!(BZJ_VERSION_MAJOR.to_string(), env!("CARGO_PKG_VERSION_MAJOR"));
-        assert_eq!(BZJ_VERSION_MINOR.to_string(), env!("CARGO_PKG_VERSION_MINOR"));
-        assert_eq!(BZJ_VERSION_PATCH.to_string(), env!("CARGO_PKG_VERSION_PATCH"));
-        let v = unsafe { std::ffi::CStr::from_ptr(crate::bzj_version()) }.to_str().unwrap();
+        assert_eq!(
+            BZJ_VERSION_MAJOR.to_string(),
+            env!("CARGO_PKG_VERSION_MAJOR")
+        );
+        assert_eq!(
+            BZJ_VERSION_MINOR.to_string(),
+            env!("CARGO_PKG_VERSION_MINOR")
+        );
+        assert_eq!(
+            BZJ_VERSION_PATCH.to_string(),
+            env!("CARGO_PKG_VERSION_PATCH")
+        );
+        let v = unsafe { std::ffi::CStr::from_ptr(crate::bzj_version()) }
+            .to_str()
+            .unwrap();
         assert_eq!(v, env!("CARGO_PKG_VERSION"));
     }
 }
