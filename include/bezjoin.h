@@ -15,6 +15,19 @@
 #include <stdint.h>
 
 /**
+ * Flag for [`bzj_lagrange_spline_degree`]: build from the last segment
+ * backwards (the last segment's inner points are all given).
+ */
+#define BZJ_LAGRANGE_BACKWARD 1
+
+/**
+ * Flag for [`bzj_lagrange_spline_degree`]: derive the inner points farthest
+ * from the join instead of the nearest (the mirrored variant; errors grow
+ * by a factor `degree - 1` or more per node: short chains only).
+ */
+#define BZJ_LAGRANGE_MIRRORED 2
+
+/**
  * Major version (the SONAME's number): changes only with an ABI break.
  */
 #define BZJ_VERSION_MAJOR 0
@@ -91,9 +104,480 @@ typedef int32_t BzjStatus;
 #endif // __cplusplus
 
 /**
+ * What an intersection hit is.
+ */
+enum BzjIntersectionKind
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : int32_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+  /**
+   * The curves cross (2D: P passes from one side of Q to the other).
+   */
+  BZJ_INTERSECTION_CROSSING = 0,
+  /**
+   * The curves meet tangentially without crossing.
+   */
+  BZJ_INTERSECTION_TOUCHING = 1,
+  /**
+   * The curves coincide for u in [u, u_end], v from v to v_end.
+   */
+  BZJ_INTERSECTION_OVERLAP = 2,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum BzjIntersectionKind BzjIntersectionKind;
+#else
+typedef int32_t BzjIntersectionKind;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
+
+/**
+ * What stage 1 minimises.
+ */
+enum BzjMetric
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : int32_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+  /**
+   * Sum of squared control-point changes.
+   */
+  BZJ_METRIC_DISCRETE = 0,
+  /**
+   * Integral of the squared change of each curve over its own parameter
+   * (the paper's eq. 12, exact Bernstein Gram matrix).
+   */
+  BZJ_METRIC_L2 = 1,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum BzjMetric BzjMetric;
+#else
+typedef int32_t BzjMetric;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
+
+/**
+ * How the split parameter `mu` is chosen.
+ */
+enum BzjSplit
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : int32_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+  /**
+   * Use `options.mu`.
+   */
+  BZJ_SPLIT_GIVEN = 0,
+  /**
+   * `mu = 1/2` (the paper's examples).
+   */
+  BZJ_SPLIT_HALF = 1,
+  /**
+   * Proportional to the control-polygon lengths.
+   */
+  BZJ_SPLIT_POLYGON = 2,
+  /**
+   * The `mu` minimising the metric (sampling + golden section in
+   * `[0.001, 0.999]`).
+   */
+  BZJ_SPLIT_OPTIMAL = 3,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum BzjSplit BzjSplit;
+#else
+typedef int32_t BzjSplit;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
+
+/**
+ * How the breakpoints of [`bzj_merge_chain`] are chosen.
+ */
+enum BzjChainSplit
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : int32_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+  /**
+   * Use `options.breakpoints` (`curve_count - 1` interior values,
+   * strictly increasing in (0, 1)).
+   */
+  BZJ_CHAIN_SPLIT_GIVEN = 0,
+  /**
+   * `t_j = j / N`.
+   */
+  BZJ_CHAIN_SPLIT_UNIFORM = 1,
+  /**
+   * Proportional to the control-polygon lengths.
+   */
+  BZJ_CHAIN_SPLIT_POLYGON = 2,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum BzjChainSplit BzjChainSplit;
+#else
+typedef int32_t BzjChainSplit;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
+
+/**
  * Opaque, immutable Bezier curve handle (degree `n >= 0`, dimension `dim >= 1`).
  */
 typedef struct BzjCurve BzjCurve;
+
+/**
+ * An interior constraint: `R^(k)(t) = values[k*dim .. (k+1)*dim]`, `k = 0..=max_order`.
+ */
+typedef struct BzjPointConstraint {
+  /**
+   * Parameter on the connecting curve, in (0,1).
+   */
+  double t;
+  /**
+   * K: derivatives 0..K are prescribed.
+   */
+  size_t max_order;
+  /**
+   * (K+1)*dim doubles, row k = R^(k)(t).
+   */
+  const double *values;
+} BzjPointConstraint;
+
+/**
+ * Options of [`bzj_connect`] (layout fixed by the contract).
+ */
+typedef struct BzjConnectOptions {
+  /**
+   * kp <= degree of P.
+   */
+  size_t p_order;
+  /**
+   * kq <= degree of Q.
+   */
+  size_t q_order;
+  /**
+   * alpha > 0; 1.0 = the paper.
+   */
+  double p_scale;
+  /**
+   * beta > 0; 1.0 = the paper.
+   */
+  double q_scale;
+  /**
+   * May be NULL if constraint_count = 0.
+   */
+  const struct BzjPointConstraint *constraints;
+  /**
+   * Number of entries in `constraints`.
+   */
+  size_t constraint_count;
+} BzjConnectOptions;
+
+/**
+ * Tolerances and work bounds of the intersection search; fill with
+ * `bzj_intersect_options_default` and change what you need.
+ */
+typedef struct BzjIntersectOptions {
+  /**
+   * Curves meet where |P(u) - Q(v)| <= this times the largest absolute
+   * control-point coordinate of either curve; in (0, 1). Default 1e-9.
+   */
+  double relative_distance_tolerance;
+  /**
+   * Sine of the tangent angle below which a hit at an end point (or in 3D)
+   * is touching rather than crossing; in [0, 1). Default 1e-6.
+   */
+  double tangent_tolerance;
+  /**
+   * Largest number of subdivision levels. Default 60.
+   */
+  size_t max_depth;
+  /**
+   * Largest number of bounding-box pairs examined (>= 1); exceeding it is
+   * BZJ_ERR_ILL_CONDITIONED. Default 200000.
+   */
+  size_t max_box_pairs;
+  /**
+   * Largest number of hits; exceeding it is BZJ_ERR_ILL_CONDITIONED.
+   * Default 10000.
+   */
+  size_t max_hits;
+} BzjIntersectOptions;
+
+/**
+ * One hit of `bzj_intersect_detailed`.
+ */
+typedef struct BzjIntersection {
+  /**
+   * Parameter on P (for an overlap, its start).
+   */
+  double u;
+  /**
+   * Parameter on Q (for an overlap, of the point P(u)).
+   */
+  double v;
+  /**
+   * Overlap: end parameter on P (> u). Otherwise equal to u.
+   */
+  double u_end;
+  /**
+   * Overlap: parameter on Q of P(u_end) (below v when the curves run in
+   * opposite directions). Otherwise equal to v.
+   */
+  double v_end;
+  /**
+   * |P(u) - Q(v)|, at most the distance tolerance.
+   */
+  double distance;
+  /**
+   * Crossing, touching or overlap.
+   */
+  BzjIntersectionKind kind;
+} BzjIntersection;
+
+/**
+ * Options of `bzj_fillet` (contract layout; every field is read).
+ */
+typedef struct BzjFilletOptions {
+  /**
+   * Arc length along P back from the crossing, > 0.
+   */
+  double p_setback;
+  /**
+   * Arc length along Q on from the crossing, > 0.
+   */
+  double q_setback;
+  /**
+   * kp <= degree of P.
+   */
+  size_t p_order;
+  /**
+   * kq <= degree of Q.
+   */
+  size_t q_order;
+  /**
+   * alpha > 0; 1.0 = the paper.
+   */
+  double p_scale;
+  /**
+   * beta > 0; 1.0 = the paper.
+   */
+  double q_scale;
+} BzjFilletOptions;
+
+/**
+ * Options of `bzj_fillet_deviation`.
+ */
+typedef struct BzjDeviationFilletOptions {
+  /**
+   * eps > 0: the blend passes at this distance from the corner point
+   * (min over t of |R(t) - X|, X the crossing).
+   */
+  double max_deviation;
+  /**
+   * dq / dp > 0; 1.0 = symmetric rounding.
+   */
+  double setback_ratio;
+  /**
+   * kp <= degree of P.
+   */
+  size_t p_order;
+  /**
+   * kq <= degree of Q.
+   */
+  size_t q_order;
+  /**
+   * alpha > 0; 1.0 = the paper.
+   */
+  double p_scale;
+  /**
+   * beta > 0; 1.0 = the paper.
+   */
+  double q_scale;
+} BzjDeviationFilletOptions;
+
+/**
+ * What `bzj_fillet_deviation` chose and achieved.
+ */
+typedef struct BzjDeviationFilletReport {
+  /**
+   * The setback dp found (arc length along P back from the crossing).
+   */
+  double p_setback;
+  /**
+   * dq = setback_ratio * dp.
+   */
+  double q_setback;
+  /**
+   * The achieved deviation, within 1e-9 relative of max_deviation.
+   */
+  double deviation;
+  /**
+   * Where P was cut.
+   */
+  double u0;
+  /**
+   * Where Q was cut.
+   */
+  double v0;
+} BzjDeviationFilletReport;
+
+/**
+ * A point kept with its derivatives `0..=max_order`.
+ */
+typedef struct BzjKeepPoint {
+  /**
+   * `u_k` on P or `v_k` on Q, in `[0, 1]`.
+   */
+  double param;
+  /**
+   * Derivatives `0..=max_order` kept (at most the degree of the merge).
+   */
+  size_t max_order;
+} BzjKeepPoint;
+
+/**
+ * Options of [`bzj_merge`] (layout fixed by the contract).
+ */
+typedef struct BzjMergeOptions {
+  /**
+   * The metric minimised.
+   */
+  BzjMetric metric;
+  /**
+   * How `mu` is chosen.
+   */
+  BzjSplit split;
+  /**
+   * Used when `split == BZJ_SPLIT_GIVEN`, in `(0, 1)`; ignored otherwise.
+   */
+  double mu;
+  /**
+   * P unchanged.
+   */
+  bool keep_p;
+  /**
+   * Q unchanged.
+   */
+  bool keep_q;
+  /**
+   * First point of P and last point of Q unchanged.
+   */
+  bool fix_ends;
+  /**
+   * Points of P kept (may be NULL if the count is 0).
+   */
+  const struct BzjKeepPoint *p_points;
+  /**
+   * Number of `p_points`.
+   */
+  size_t p_point_count;
+  /**
+   * Points of Q kept (may be NULL if the count is 0).
+   */
+  const struct BzjKeepPoint *q_points;
+  /**
+   * Number of `q_points`.
+   */
+  size_t q_point_count;
+} BzjMergeOptions;
+
+/**
+ * What [`bzj_merge`] reports (layout fixed by the contract).
+ */
+typedef struct BzjMergeReport {
+  /**
+   * Split parameter used.
+   */
+  double mu;
+  /**
+   * Value of the minimised metric.
+   */
+  double metric_value;
+  /**
+   * Max distance between R and P-then-Q (R(mu u) against P(u),
+   * R(mu + (1-mu) v) against Q(v), 257 samples each).
+   */
+  double max_deviation;
+} BzjMergeReport;
+
+/**
+ * A point kept with derivatives on one curve of a chain.
+ */
+typedef struct BzjChainKeepPoint {
+  /**
+   * Index of the curve in the chain.
+   */
+  size_t curve;
+  /**
+   * Parameter on that curve, in [0, 1].
+   */
+  double param;
+  /**
+   * Derivatives `0..=max_order` kept.
+   */
+  size_t max_order;
+} BzjChainKeepPoint;
+
+/**
+ * Options of [`bzj_merge_chain`].
+ */
+typedef struct BzjChainMergeOptions {
+  /**
+   * The metric, summed over the pieces.
+   */
+  BzjMetric metric;
+  /**
+   * How the breakpoints are chosen.
+   */
+  BzjChainSplit split;
+  /**
+   * `curve_count - 1` interior breakpoints for BZJ_CHAIN_SPLIT_GIVEN
+   * (may be NULL otherwise).
+   */
+  const double *breakpoints;
+  /**
+   * Number of `breakpoints`.
+   */
+  size_t breakpoint_count;
+  /**
+   * Degree of the merged curve; 0 means the highest degree of the curves.
+   */
+  size_t degree;
+  /**
+   * First point of the first curve and last point of the last unchanged.
+   */
+  bool fix_ends;
+  /**
+   * `curve_count` flags "keep this curve unchanged", or NULL for none.
+   */
+  const bool *keep;
+  /**
+   * Points kept with derivatives (may be NULL if the count is 0).
+   */
+  const struct BzjChainKeepPoint *keep_points;
+  /**
+   * Number of `keep_points`.
+   */
+  size_t keep_point_count;
+} BzjChainMergeOptions;
+
+/**
+ * What [`bzj_merge_chain`] reports.
+ */
+typedef struct BzjChainMergeReport {
+  /**
+   * Sum of the pieces' metrics.
+   */
+  double metric_value;
+  /**
+   * Max distance between the merged curve on `[t_j, t_{j+1}]` and curve
+   * `j`, each in its own parameter (257 samples per curve).
+   */
+  double max_deviation;
+} BzjChainMergeReport;
 
 #ifdef __cplusplus
 extern "C" {
@@ -117,6 +601,49 @@ const char *bzj_last_error(void);
 const char *bzj_status_name(int32_t status);
 
 /**
+ * The Bezier curve `R` connecting `p` at `u0` to `q` at `v0` with
+ * `R^(k)(0) = alpha^k P^(k)(u0)` (k = 0..kp), `R^(k)(1) = beta^k Q^(k)(v0)`
+ * (k = 0..kq) and the interior constraints `R^(k)(t_j) = values_j[k]`
+ * (Krivosheev, Mavrin, Starkova 2025, Theorems 1 and 2). The degree of
+ * `out` is `kp + kq + 1 + sum(K_j + 1)`. Guarantee: every condition holds
+ * to a relative residual of 1e-8 (definition in the Rust documentation of
+ * `bezjoin_core::connect`), or the call fails with BZJ_ERR_ILL_CONDITIONED.
+ *
+ * @return BZJ_ERR_NULL_POINTER if `p`, `q`, `options`, `out`, a
+ *         non-empty `options->constraints` or a constraint's `values` is NULL;
+ *         BZJ_ERR_INVALID_ARGUMENT if `u0` or `v0` is outside [0,1], an order
+ *         is above its curve's degree, a scale is not > 0, a constraint's `t`
+ *         is outside (0,1) or repeated;
+ *         BZJ_ERR_NON_FINITE if `u0`, `v0`, a scale, a `t` or a value is NaN or infinite;
+ *         BZJ_ERR_DIMENSION_MISMATCH if `p` and `q` have different dimensions;
+ *         BZJ_ERR_SINGULAR if the interior system is numerically singular;
+ *         BZJ_ERR_ILL_CONDITIONED if the result cannot be trusted to 1e-8
+ *         (message carries the estimate) or its degree is above 31.
+ *
+ * # Safety
+ * `p`, `q` are NULL or live handles; `options` is NULL or readable, with
+ * `constraint_count` readable constraints each holding
+ * `(max_order + 1) * dim` readable doubles; `out` is NULL or writable.
+ */
+BzjStatus bzj_connect(const struct BzjCurve *p, double u0, const struct BzjCurve *q, double v0, const struct BzjConnectOptions *options, struct BzjCurve **out);
+
+/**
+ * [`bzj_connect`] with `alpha = beta = s` chosen automatically to minimise
+ * the fairness energy `integral_0^1 |R''(t)|^2 dt` (exact, Bernstein Gram
+ * matrix) by a bounded search over two decades either side of
+ * `s0 = |Q(v0) - P(u0)| / mean(|P'(u0)|, |Q'(v0)|)`; `options->p_scale` and
+ * `options->q_scale` are ignored. The chosen `s` is written to `scale_out`
+ * when it is not NULL. Same guarantee as [`bzj_connect`].
+ *
+ * @return the statuses of [`bzj_connect`] (except for the scales, which are
+ *         not read).
+ *
+ * # Safety
+ * As [`bzj_connect`]; `scale_out` is NULL or writable.
+ */
+BzjStatus bzj_connect_auto_scale(const struct BzjCurve *p, double u0, const struct BzjCurve *q, double v0, const struct BzjConnectOptions *options, struct BzjCurve **out, double *scale_out);
+
+/**
  * Create a Bezier curve of degree `degree` in dimension `dim` from
  * `points_len == (degree + 1) * dim` row-major coordinates.
  *
@@ -130,7 +657,8 @@ const char *bzj_status_name(int32_t status);
 BzjStatus bzj_curve_new(size_t dim, size_t degree, const double *points, size_t points_len, struct BzjCurve **out);
 
 /**
- * Release a curve handle. NULL is accepted and ignored.
+ * Release a curve handle. NULL is accepted and ignored. The calling
+ * thread's last error message is left unchanged.
  *
  * # Safety
  * `curve` is NULL or a handle from this library not yet released.
@@ -210,7 +738,9 @@ BzjStatus bzj_curve_split(const struct BzjCurve *c, double t, struct BzjCurve **
  * and `a > b` allowed; `a == b` gives a constant curve).
  *
  * @return BZJ_ERR_NULL_POINTER if `c` or `out` is NULL;
- *         BZJ_ERR_NON_FINITE if `a` or `b` is NaN or infinite.
+ *         BZJ_ERR_NON_FINITE if `a` or `b` is NaN or infinite;
+ *         BZJ_ERR_INVALID_ARGUMENT if `a` or `b` lies so far outside
+ *         `[0, 1]` that the segment's control points overflow.
  *
  * # Safety
  * `c` is NULL or a live handle; `out` is NULL or writable.
@@ -230,15 +760,318 @@ BzjStatus bzj_curve_reverse(const struct BzjCurve *c, struct BzjCurve **out);
 /**
  * Signed arc length of `c` from parameter `a` to `b` (any finite values),
  * by adaptive Gauss-Legendre quadrature to an absolute accuracy of
- * `1e-13 * max(1, control polygon length)`.
+ * `1e-13 * max(1, control polygon length)`, or `16 * DBL_EPSILON` times
+ * the length where that is larger (the rounding level, e.g. long
+ * extrapolated ranges). The range is cut at cusps first, so the accuracy
+ * holds across them.
  *
  * @return BZJ_ERR_NULL_POINTER if `c` or `out` is NULL;
- *         BZJ_ERR_NON_FINITE if `a` or `b` is NaN or infinite.
+ *         BZJ_ERR_NON_FINITE if `a` or `b` is NaN or infinite;
+ *         BZJ_ERR_INVALID_ARGUMENT if the length overflows the double range.
  *
  * # Safety
  * `c` is NULL or a live handle; `out` is NULL or writable.
  */
 BzjStatus bzj_curve_length(const struct BzjCurve *c, double a, double b, double *out);
+
+/**
+ * All places where `p` and `q` meet, ordered by u: crossings, touching
+ * points, and each overlap by its start pair. Writes the first
+ * `min(capacity, total)` pairs `(u, v)` into `out` (`2 * capacity` doubles)
+ * and the total found into `count`. `capacity == 0` with `out == NULL` is a
+ * valid "count only" query. Default tolerances (relative distance 1e-9);
+ * use `bzj_intersect_detailed` for the kind of each hit and other
+ * tolerances.
+ *
+ * @return BZJ_ERR_NULL_POINTER if `p`, `q` or `count` is NULL, or `out` is
+ *         NULL while `capacity > 0`;
+ *         BZJ_ERR_DIMENSION_MISMATCH if the curves' dimensions differ;
+ *         BZJ_ERR_INVALID_ARGUMENT for curves of dimension 1;
+ *         BZJ_ERR_ILL_CONDITIONED if the curves run within the tolerance
+ *         of each other without coinciding and the work bound is reached.
+ *
+ * # Safety
+ * `p`, `q` are NULL or live handles; `out` is NULL or points to
+ * `2 * capacity` writable doubles; `count` is NULL or writable.
+ */
+BzjStatus bzj_intersect(const struct BzjCurve *p, const struct BzjCurve *q, double *out, size_t capacity, size_t *count);
+
+/**
+ * Fill `out` with the default intersection options.
+ *
+ * @return BZJ_ERR_NULL_POINTER if `out` is NULL.
+ *
+ * # Safety
+ * `out` is NULL or writable.
+ */
+BzjStatus bzj_intersect_options_default(struct BzjIntersectOptions *out);
+
+/**
+ * Like `bzj_intersect`, with the kind of each hit (crossing, touching,
+ * overlap with its range) and explicit tolerances: `options` may be NULL for
+ * the defaults. Writes the first `min(capacity, total)` hits into `out` and
+ * the total into `count`; `capacity == 0` with `out == NULL` counts only.
+ *
+ * @return BZJ_ERR_NULL_POINTER if `p`, `q` or `count` is NULL, or `out` is
+ *         NULL while `capacity > 0`;
+ *         BZJ_ERR_DIMENSION_MISMATCH if the curves' dimensions differ;
+ *         BZJ_ERR_INVALID_ARGUMENT for curves of dimension 1 or an option out
+ *         of its range (named in the message);
+ *         BZJ_ERR_NON_FINITE if a tolerance is NaN or infinite;
+ *         BZJ_ERR_ILL_CONDITIONED if a work bound is reached.
+ *
+ * # Safety
+ * `p`, `q` are NULL or live handles; `options` is NULL or readable; `out`
+ * is NULL or points to `capacity` writable `BzjIntersection`; `count` is
+ * NULL or writable.
+ */
+BzjStatus bzj_intersect_detailed(const struct BzjCurve *p, const struct BzjCurve *q, const struct BzjIntersectOptions *options, struct BzjIntersection *out, size_t capacity, size_t *count);
+
+/**
+ * Round the corner between `p` and `q` at their first crossing (smallest u
+ * on P; touching points and overlaps are skipped): keeps P on `[0, u0]` and
+ * Q on `[v0, 1]`, where the arc length of P from u0 to the crossing is
+ * `p_setback` and that of Q from the crossing to v0 is `q_setback`, and joins
+ * them with the C^k curve of `bzj_connect` (degree `p_order + q_order + 1`).
+ * The three curves form a C^k B-spline with knot intervals
+ * `(u0, p_scale, (1 - v0) p_scale / q_scale)`. Other corners of the
+ * crossing: pass `bzj_curve_reverse` of P and/or Q.
+ *
+ * @return BZJ_ERR_NULL_POINTER if a pointer is NULL;
+ *         BZJ_ERR_DIMENSION_MISMATCH if the curves' dimensions differ;
+ *         BZJ_ERR_NON_FINITE if an option is NaN or infinite;
+ *         BZJ_ERR_INVALID_ARGUMENT if a setback or scale is not positive, an
+ *         order is above its curve's degree, or a setback is not shorter
+ *         than the part of the curve before / after the crossing;
+ *         BZJ_ERR_NO_INTERSECTION if the curves do not cross or only touch;
+ *         BZJ_ERR_ILL_CONDITIONED if the connection cannot be trusted.
+ *
+ * # Safety
+ * `p`, `q` are NULL or live handles; `options` is NULL or readable; the
+ * three out-pointers are NULL or writable.
+ */
+BzjStatus bzj_fillet(const struct BzjCurve *p, const struct BzjCurve *q, const struct BzjFilletOptions *options, struct BzjCurve **p_trimmed, struct BzjCurve **blend, struct BzjCurve **q_trimmed);
+
+/**
+ * Round the corner at the first crossing so that the blend passes at the
+ * distance `max_deviation` from the corner point X (the crossing):
+ * `min over t of |R(t) - X| = max_deviation` to 1e-9 relative, with setbacks
+ * `dp` and `dq = setback_ratio * dp` found by a bracketing search (1.0 =
+ * symmetric). Outputs as `bzj_fillet`; `report` (may be NULL) receives the
+ * setbacks, the deviation achieved and the cut parameters.
+ *
+ * @return BZJ_ERR_NULL_POINTER if a required pointer is NULL;
+ *         BZJ_ERR_DIMENSION_MISMATCH if the curves' dimensions differ;
+ *         BZJ_ERR_NON_FINITE if an option is NaN or infinite;
+ *         BZJ_ERR_INVALID_ARGUMENT if `max_deviation`, `setback_ratio` or a
+ *         scale is not positive, an order is above its curve's degree, or the
+ *         deviation cannot be reached even with the longest setbacks the
+ *         curves allow (the message gives the largest possible);
+ *         BZJ_ERR_NO_INTERSECTION if the curves do not cross or only touch;
+ *         BZJ_ERR_ILL_CONDITIONED if the connection or the search cannot be
+ *         trusted.
+ *
+ * # Safety
+ * `p`, `q` are NULL or live handles; `options` is NULL or readable; the
+ * out-pointers and `report` are NULL or writable.
+ */
+BzjStatus bzj_fillet_deviation(const struct BzjCurve *p, const struct BzjCurve *q, const struct BzjDeviationFilletOptions *options, struct BzjCurve **p_trimmed, struct BzjCurve **blend, struct BzjCurve **q_trimmed, struct BzjDeviationFilletReport *report);
+
+/**
+ * Round every corner of a chain of curves in one call. Corner i lies
+ * between `curves[i]` and `curves[i + 1]` (and, when `closed == 1`, between
+ * the last curve and the first); its crossing is the one nearest the shared
+ * end (smallest `(1 - u) + v`), rounded as `bzj_fillet` with `options`.
+ * Long chains (more than 64 corners) are computed in parallel; the result is
+ * identical either way.
+ *
+ * Output, in path order: trimmed curve 0, blend 0, trimmed curve 1, ...:
+ * `2 * curve_count - 1` handles for an open chain, `2 * curve_count` for a
+ * closed one (ending with the blend back to the start). The number needed
+ * is written into `count`; `capacity == 0` with `out_pieces == NULL` is a
+ * valid "count only" query (nothing is computed). Release every handle
+ * with `bzj_curve_free`.
+ *
+ * @return BZJ_ERR_NULL_POINTER if `curves`, one of its handles, `options`
+ *         or `count` is NULL, or `out_pieces` is NULL while `capacity > 0`;
+ *         BZJ_ERR_BUFFER_TOO_SMALL if `0 < capacity <` the number needed
+ *         (no handles are written);
+ *         BZJ_ERR_INVALID_ARGUMENT if `closed` is not 0 or 1, fewer than 2
+ *         curves are given, an option is out of range, a setback is too long
+ *         at a corner ("corner i ...") or two cuts pass each other on a curve;
+ *         BZJ_ERR_DIMENSION_MISMATCH if the curves' dimensions differ;
+ *         BZJ_ERR_NON_FINITE if an option is NaN or infinite;
+ *         BZJ_ERR_NO_INTERSECTION if consecutive curves do not cross or meet
+ *         tangentially (a smooth joint; the message names the corner);
+ *         BZJ_ERR_ILL_CONDITIONED if a connection cannot be trusted.
+ *
+ * # Safety
+ * `curves` is NULL or points to `curve_count` readable handle pointers (each
+ * NULL or live); `options` is NULL or readable; `out_pieces` is NULL or
+ * points to `capacity` writable handle pointers; `count` is NULL or writable.
+ */
+BzjStatus bzj_fillet_chain(const struct BzjCurve *const *curves, size_t curve_count, const struct BzjFilletOptions *options, int32_t closed, struct BzjCurve **out_pieces, size_t capacity, size_t *count);
+
+/**
+ * A spline of cubic segments, each given by four points ON it at local
+ * parameters `u = 0, 1/3, 2/3, 1`, joined C^1 in a global parameter
+ * (Kovtun's construction, mathematics.md section 4), written as
+ * `node_count - 1` cubic Bezier handles.
+ *
+ * * `nodes`: `node_count * dim` doubles; `params`: `node_count` strictly
+ *   increasing global parameters, or NULL for chord length;
+ * * `first_inner`: `2 * dim` doubles, the points at `u = 1/3, 2/3` of
+ *   segment 0;
+ * * `second_inner`: `(node_count - 2) * dim` doubles, the point at
+ *   `u = 2/3` of each later segment (may be NULL when `node_count == 2`);
+ *   the point at `u = 1/3` follows from C^1 (errors halve per node);
+ * * `out_segments`: caller array of `segment_capacity >= node_count - 1`
+ *   handles; on success entry `i` is segment `i` (release each with
+ *   `bzj_curve_free`).
+ *
+ * @return BZJ_ERR_NULL_POINTER if `out_segments`, `nodes`, `first_inner`,
+ *         or (with `node_count > 2`) `second_inner` is NULL;
+ *         BZJ_ERR_INVALID_ARGUMENT if `dim == 0`, `node_count < 2`, `params`
+ *         is not strictly increasing, consecutive nodes coincide with chord
+ *         length (NULL `params`);
+ *         BZJ_ERR_NON_FINITE if any value is NaN or infinite;
+ *         BZJ_ERR_BUFFER_TOO_SMALL if `segment_capacity < node_count - 1`
+ *         (nothing is written);
+ *         BZJ_ERR_ILL_CONDITIONED if the result fails its own checks.
+ *         On every error the first `node_count - 1` entries of `out_segments`
+ *         are NULL (except BUFFER_TOO_SMALL, which writes nothing) and
+ *         nothing is leaked.
+ *
+ * # Safety
+ * Every non-NULL pointer points to the number of doubles stated above;
+ * `out_segments` points to `segment_capacity` writable handle pointers.
+ */
+BzjStatus bzj_lagrange_spline(size_t dim, size_t node_count, const double *nodes, const double *params, const double *first_inner, const double *second_inner, struct BzjCurve **out_segments, size_t segment_capacity);
+
+/**
+ * The generalisation of [`bzj_lagrange_spline`]: segments of degree
+ * `degree` (3, 4 or 5) through points ON them at `u = j / degree`, joined
+ * C^`continuity` (`1 ..= degree - 2`) at every node.
+ *
+ * * `flags`: 0, or a combination of [`BZJ_LAGRANGE_BACKWARD`] (start from
+ *   the last segment) and [`BZJ_LAGRANGE_MIRRORED`] (derive the inner points
+ *   farthest from the join; errors grow fast: short chains only);
+ * * `start_inner`: `(degree - 1) * dim` doubles, all inner points
+ *   (`u = 1/n .. (n-1)/n`) of the starting segment (segment 0, or the last
+ *   with BACKWARD);
+ * * `free_inner`: `(node_count - 2) * (degree - 1 - continuity) * dim`
+ *   doubles: for every other segment in increasing segment order its free
+ *   inner points in increasing `u`. Without flags the derived points are
+ *   `u = 1/n .. continuity/n` and the free ones the rest (e.g. degree 5,
+ *   C^2: give `u = 3/5, 4/5`); MIRRORED or BACKWARD alone swaps the two
+ *   ends, both together restore it. May be NULL when its length is 0.
+ * * `out_segments` as for [`bzj_lagrange_spline`].
+ *
+ * `degree = 3, continuity = 1, flags = 0` is exactly `bzj_lagrange_spline`.
+ * Every C^2 and C^3 recurrence amplifies errors from node to node (factor
+ * about 2.4 to 12 per node, documented in the Rust crate); results whose
+ * estimated error exceeds 1e-9 are refused with BZJ_ERR_ILL_CONDITIONED.
+ *
+ * @return BZJ_ERR_NULL_POINTER if `out_segments`, `nodes`, `start_inner` or
+ *         a non-empty `free_inner` is NULL;
+ *         BZJ_ERR_INVALID_ARGUMENT if `degree` is not 3, 4 or 5,
+ *         `continuity` is not in `1 ..= degree - 2`, `flags` has unknown
+ *         bits, `dim == 0`, `node_count < 2`, `params` is not strictly
+ *         increasing, or consecutive nodes coincide with chord length;
+ *         BZJ_ERR_NON_FINITE if any value is NaN or infinite;
+ *         BZJ_ERR_BUFFER_TOO_SMALL if `segment_capacity < node_count - 1`
+ *         (nothing is written);
+ *         BZJ_ERR_ILL_CONDITIONED if the recurrence amplifies rounding
+ *         beyond 1e-9 or the result fails its own checks.
+ *         On every error the first `node_count - 1` entries of `out_segments`
+ *         are NULL (except BUFFER_TOO_SMALL, which writes nothing) and
+ *         nothing is leaked.
+ *
+ * # Safety
+ * Every non-NULL pointer points to the number of doubles stated above;
+ * `out_segments` points to `segment_capacity` writable handle pointers.
+ */
+BzjStatus bzj_lagrange_spline_degree(size_t dim, size_t degree, size_t continuity, uint32_t flags, size_t node_count, const double *nodes, const double *params, const double *start_inner, const double *free_inner, struct BzjCurve **out_segments, size_t segment_capacity);
+
+/**
+ * Merge `p` and `q` into one Bezier curve `merged` (mathematics.md,
+ * section 3; Ganchuk, Krivosheev, Mavrin, Ryzhov 2024 with the mu-scaled
+ * continuity conditions): the smallest change (in `options.metric`) of
+ * their control points, under the constraints of `options`, that makes
+ * them the pieces `p_hat`, `q_hat` of one curve split at `mu`. A lower
+ * degree is elevated first; the merged degree is the higher one.
+ * `p_hat`, `q_hat` and `report` may be NULL when not wanted.
+ *
+ * Guarantee: the KKT solve's error estimate and the check "merged split at
+ * mu gives p_hat, q_hat" are both within 1e-8 relative, or the call fails
+ * with BZJ_ERR_ILL_CONDITIONED.
+ *
+ * @return BZJ_ERR_NULL_POINTER if `p`, `q`, `options` or `merged` is NULL,
+ *         or a point array is NULL with a non-zero count;
+ *         BZJ_ERR_INVALID_ARGUMENT if `mu` (with BZJ_SPLIT_GIVEN) is outside
+ *         (0, 1), a keep-point parameter is outside [0, 1], an order is above
+ *         the degree, an enum or bool field holds an invalid value, or a
+ *         control polygon has zero length with BZJ_SPLIT_POLYGON;
+ *         BZJ_ERR_NON_FINITE if `mu` or a keep-point parameter is NaN/infinite;
+ *         BZJ_ERR_DIMENSION_MISMATCH if `p` and `q` differ in dimension;
+ *         BZJ_ERR_INCONSISTENT if the constraints contradict each other or are
+ *         too many (the message names the first offending one);
+ *         BZJ_ERR_SINGULAR / BZJ_ERR_ILL_CONDITIONED if the solve cannot be trusted.
+ *
+ * # Safety
+ * `p`, `q` are NULL or live handles; `options` is NULL or readable with its
+ * point arrays holding their counts; `merged`, `p_hat`, `q_hat`, `report`
+ * are NULL or writable.
+ */
+BzjStatus bzj_merge(const struct BzjCurve *p, const struct BzjCurve *q, const struct BzjMergeOptions *options, struct BzjCurve **merged, struct BzjCurve **p_hat, struct BzjCurve **q_hat, struct BzjMergeReport *report);
+
+/**
+ * [`bzj_merge`] with a merged curve of degree `degree`, at least the higher
+ * of the two curves' degrees: both are elevated to `degree` (exactly) and
+ * the degree-`degree` problem is solved; keep-point orders may go up to
+ * `degree`. A higher degree gives more freedom, so a smaller change.
+ *
+ * @return as [`bzj_merge`]; BZJ_ERR_INVALID_ARGUMENT also if `degree` is
+ *         below a curve's degree.
+ *
+ * # Safety
+ * As [`bzj_merge`].
+ */
+BzjStatus bzj_merge_to_degree(const struct BzjCurve *p, const struct BzjCurve *q, const struct BzjMergeOptions *options, size_t degree, struct BzjCurve **merged, struct BzjCurve **p_hat, struct BzjCurve **q_hat, struct BzjMergeReport *report);
+
+/**
+ * **Beyond the paper**: merge `curve_count >= 2` consecutive curves into
+ * one Bezier curve. With breakpoints `0 = t_0 < ... < t_N = 1`, curve `j`
+ * is changed as little as possible (sum of the metrics) into the piece of
+ * `merged` on `[t_j, t_{j+1}]`; the pieces are one curve exactly when
+ * `h_{j+1}^r C_j^(r)(1) = h_j^r C_{j+1}^(r)(0)` at every join (`h_j` the
+ * interval lengths). With two curves this is [`bzj_merge`].
+ *
+ * Outputs: `merged` (required); `pieces` (NULL, or an array of
+ * `piece_capacity >= curve_count` handles receiving the changed curves);
+ * `breakpoints_out` (NULL, or `breakpoints_len >= curve_count + 1`
+ * doubles receiving `t_0..t_N`); `report` (NULL or written).
+ *
+ * @return BZJ_ERR_NULL_POINTER if `curves`, one of the handles, `options`
+ *         or `merged` is NULL, or an array is NULL with a non-zero count;
+ *         BZJ_ERR_BUFFER_TOO_SMALL if `piece_capacity < curve_count` or
+ *         `breakpoints_len < curve_count + 1` (their pointers non-NULL);
+ *         BZJ_ERR_INVALID_ARGUMENT if `curve_count < 2`, breakpoints are not
+ *         strictly increasing in (0, 1) or not `curve_count - 1` of them,
+ *         a keep point names a curve that does not exist, its parameter is
+ *         outside [0, 1] or its order above the degree, `degree` is below
+ *         a curve's degree, or an enum/bool field is invalid;
+ *         BZJ_ERR_NON_FINITE, BZJ_ERR_DIMENSION_MISMATCH, BZJ_ERR_INCONSISTENT,
+ *         BZJ_ERR_SINGULAR, BZJ_ERR_ILL_CONDITIONED as for [`bzj_merge`].
+ *
+ * # Safety
+ * `curves` is NULL or points to `curve_count` handles (NULL or live);
+ * `options` NULL or readable with its arrays holding their counts (`keep`:
+ * `curve_count` bools); `merged` NULL or writable; `pieces` NULL or
+ * `piece_capacity` writable handle slots; `breakpoints_out` NULL or
+ * `breakpoints_len` writable doubles; `report` NULL or writable.
+ */
+BzjStatus bzj_merge_chain(const struct BzjCurve *const *curves, size_t curve_count, const struct BzjChainMergeOptions *options, struct BzjCurve **merged, struct BzjCurve **pieces, size_t piece_capacity, double *breakpoints_out, size_t breakpoints_len, struct BzjChainMergeReport *report);
 
 #ifdef __cplusplus
 }  // extern "C"

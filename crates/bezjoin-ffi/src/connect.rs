@@ -1,1 +1,320 @@
-//! (in progress)
+//! Connect two curves with C^k continuity and interior constraints
+//! (mathematics.md, section 1; `bezjoin_core::connect`).
+
+use bezjoin_core::BezjoinError;
+use bezjoin_core::connect::{
+    ConnectOptions, MAX_CONNECT_DEGREE, PointConstraint, connect, connect_auto_scale,
+};
+
+use crate::guard::{
+    BzjCurve, BzjStatus, FfiResult, clear_handle, curve_ref, guard, input_ref, input_slice,
+    require_out, write_handle,
+};
+
+/// An interior constraint: `R^(k)(t) = values[k*dim .. (k+1)*dim]`, `k = 0..=max_order`.
+#[repr(C)]
+#[derive(Debug, Clone, Copy)]
+pub struct BzjPointConstraint {
+    /// Parameter on the connecting curve, in (0,1).
+    pub t: f64,
+    /// K: derivatives 0..K are prescribed.
+    pub max_order: usize,
+    /// (K+1)*dim doubles, row k = R^(k)(t).
+    pub values: *const f64,
+}
+
+/// Options of [`bzj_connect`] (layout fixed by the contract).
+#[repr(C)]
+#[derive(Debug, Clone, Copy)]
+pub struct BzjConnectOptions {
+    /// kp <= degree of P.
+    pub p_order: usize,
+    /// kq <= degree of Q.
+    pub q_order: usize,
+    /// alpha > 0; 1.0 = the paper.
+    pub p_scale: f64,
+    /// beta > 0; 1.0 = the paper.
+    pub q_scale: f64,
+    /// May be NULL if constraint_count = 0.
+    pub constraints: *const BzjPointConstraint,
+    /// Number of entries in `constraints`.
+    pub constraint_count: usize,
+}
+
+/// Read the C options into the core's options; `dim` is the dimension of P
+/// (the length of each derivative row).
+///
+/// # Safety
+/// `options` is valid for reads, its arrays as the contract describes.
+unsafe fn read_options(options: &BzjConnectOptions, dim: usize) -> FfiResult<ConnectOptions> {
+    // SAFETY: caller promises `constraint_count` readable constraints.
+    let constraints = unsafe {
+        input_slice(
+            options.constraints,
+            options.constraint_count,
+            "options.constraints",
+        )
+    }?;
+    // Refuse an impossible degree before reading any values array.
+    let mut degree = options
+        .p_order
+        .checked_add(options.q_order)
+        .and_then(|d| d.checked_add(1));
+    for c in constraints {
+        degree = degree
+            .and_then(|d| d.checked_add(c.max_order))
+            .and_then(|d| d.checked_add(1));
+    }
+    match degree {
+        Some(d) if d <= MAX_CONNECT_DEGREE => {}
+        _ => {
+            return Err(BezjoinError::IllConditioned {
+                what: format!(
+                    "connect: result degree {} is above the supported maximum {MAX_CONNECT_DEGREE}",
+                    degree.map_or_else(|| "(overflow)".to_string(), |d| d.to_string())
+                ),
+                estimate: f64::INFINITY,
+                limit: bezjoin_core::connect::CONNECT_RESIDUAL_LIMIT,
+            }
+            .into());
+        }
+    }
+    let mut out = ConnectOptions::new(options.p_order, options.q_order)
+        .with_scales(options.p_scale, options.q_scale);
+    for (j, c) in constraints.iter().enumerate() {
+        let rows = c.max_order + 1;
+        let name = format!("options.constraints[{j}].values");
+        // Bounded by MAX_CONNECT_DEGREE above, so no overflow.
+        let len = rows * dim;
+        if c.values.is_null() {
+            return Err(crate::guard::FfiError::NullPointer(name));
+        }
+        // SAFETY: caller promises (max_order + 1) * dim readable doubles.
+        let values = unsafe { input_slice(c.values, len, &name) }?;
+        let derivatives = values.chunks(dim).map(<[f64]>::to_vec).collect();
+        out.constraints.push(PointConstraint::new(c.t, derivatives));
+    }
+    Ok(out)
+}
+
+/// The Bezier curve `R` connecting `p` at `u0` to `q` at `v0` with
+/// `R^(k)(0) = alpha^k P^(k)(u0)` (k = 0..kp), `R^(k)(1) = beta^k Q^(k)(v0)`
+/// (k = 0..kq) and the interior constraints `R^(k)(t_j) = values_j[k]`
+/// (Krivosheev, Mavrin, Starkova 2025, Theorems 1 and 2). The degree of
+/// `out` is `kp + kq + 1 + sum(K_j + 1)`. Guarantee: every condition holds
+/// to a relative residual of 1e-8 (definition in the Rust documentation of
+/// `bezjoin_core::connect`), or the call fails with BZJ_ERR_ILL_CONDITIONED.
+///
+/// @return BZJ_ERR_NULL_POINTER if `p`, `q`, `options`, `out`, a
+///         non-empty `options->constraints` or a constraint's `values` is NULL;
+///         BZJ_ERR_INVALID_ARGUMENT if `u0` or `v0` is outside [0,1], an order
+///         is above its curve's degree, a scale is not > 0, a constraint's `t`
+///         is outside (0,1) or repeated;
+///         BZJ_ERR_NON_FINITE if `u0`, `v0`, a scale, a `t` or a value is NaN or infinite;
+///         BZJ_ERR_DIMENSION_MISMATCH if `p` and `q` have different dimensions;
+///         BZJ_ERR_SINGULAR if the interior system is numerically singular;
+///         BZJ_ERR_ILL_CONDITIONED if the result cannot be trusted to 1e-8
+///         (message carries the estimate) or its degree is above 31.
+///
+/// # Safety
+/// `p`, `q` are NULL or live handles; `options` is NULL or readable, with
+/// `constraint_count` readable constraints each holding
+/// `(max_order + 1) * dim` readable doubles; `out` is NULL or writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn bzj_connect(
+    p: *const BzjCurve,
+    u0: f64,
+    q: *const BzjCurve,
+    v0: f64,
+    options: *const BzjConnectOptions,
+    out: *mut *mut BzjCurve,
+) -> BzjStatus {
+    // SAFETY: `out` is null or writable (caller contract).
+    unsafe { clear_handle(out) };
+    guard(|| {
+        let out = require_out(out, "out")?;
+        // SAFETY: caller contract for every pointer.
+        let (p, q, options) = unsafe { read_inputs(p, q, options) }?;
+        let connection = connect(p, u0, q, v0, &options)?;
+        // SAFETY: `out` checked non-null.
+        unsafe { write_handle(out, connection.curve) };
+        Ok(())
+    })
+}
+
+/// [`bzj_connect`] with `alpha = beta = s` chosen automatically to minimise
+/// the fairness energy `integral_0^1 |R''(t)|^2 dt` (exact, Bernstein Gram
+/// matrix) by a bounded search over two decades either side of
+/// `s0 = |Q(v0) - P(u0)| / mean(|P'(u0)|, |Q'(v0)|)`; `options->p_scale` and
+/// `options->q_scale` are ignored. The chosen `s` is written to `scale_out`
+/// when it is not NULL. Same guarantee as [`bzj_connect`].
+///
+/// @return the statuses of [`bzj_connect`] (except for the scales, which are
+///         not read).
+///
+/// # Safety
+/// As [`bzj_connect`]; `scale_out` is NULL or writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn bzj_connect_auto_scale(
+    p: *const BzjCurve,
+    u0: f64,
+    q: *const BzjCurve,
+    v0: f64,
+    options: *const BzjConnectOptions,
+    out: *mut *mut BzjCurve,
+    scale_out: *mut f64,
+) -> BzjStatus {
+    // SAFETY: `out` is null or writable (caller contract).
+    unsafe { clear_handle(out) };
+    guard(|| {
+        let out = require_out(out, "out")?;
+        // SAFETY: caller contract for every pointer.
+        let (p, q, options) = unsafe { read_inputs(p, q, options) }?;
+        let connection = connect_auto_scale(p, u0, q, v0, &options)?;
+        if !scale_out.is_null() {
+            // SAFETY: non-null and writable by the caller contract.
+            unsafe { scale_out.write(connection.p_scale) };
+        }
+        // SAFETY: `out` checked non-null.
+        unsafe { write_handle(out, connection.curve) };
+        Ok(())
+    })
+}
+
+/// The two curves and the options, with the dimension checked before any
+/// constraint values are read.
+///
+/// # Safety
+/// As [`bzj_connect`].
+unsafe fn read_inputs<'a>(
+    p: *const BzjCurve,
+    q: *const BzjCurve,
+    options: *const BzjConnectOptions,
+) -> FfiResult<(
+    &'a bezjoin_core::BezierCurve,
+    &'a bezjoin_core::BezierCurve,
+    ConnectOptions,
+)> {
+    // SAFETY: caller contract.
+    let p = unsafe { curve_ref(p, "p") }?;
+    // SAFETY: caller contract.
+    let q = unsafe { curve_ref(q, "q") }?;
+    // SAFETY: caller contract.
+    let options = unsafe { input_ref(options, "options") }?;
+    if p.dim() != q.dim() {
+        return Err(BezjoinError::DimensionMismatch {
+            name: "q".into(),
+            expected: p.dim(),
+            actual: q.dim(),
+        }
+        .into());
+    }
+    // SAFETY: caller contract.
+    let options = unsafe { read_options(options, p.dim()) }?;
+    Ok((p, q, options))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::curve::{bzj_curve_eval, bzj_curve_free, bzj_curve_new};
+
+    fn make(dim: usize, points: &[f64]) -> *mut BzjCurve {
+        let mut c = std::ptr::null_mut();
+        let degree = points.len() / dim - 1;
+        let s = unsafe { bzj_curve_new(dim, degree, points.as_ptr(), points.len(), &mut c) };
+        assert_eq!(s, BzjStatus::BZJ_OK);
+        c
+    }
+
+    fn eval(c: *const BzjCurve, t: f64, order: usize, dim: usize) -> Vec<f64> {
+        let mut out = vec![0.0; (order + 1) * dim];
+        let s = unsafe { bzj_curve_eval(c, t, order, out.as_mut_ptr(), out.len()) };
+        assert_eq!(s, BzjStatus::BZJ_OK);
+        out
+    }
+
+    #[test]
+    fn connects_with_a_constraint_and_reports_errors() {
+        let p = make(2, &[0.0, 0.0, 1.0, 2.0, 2.0, 2.0, 3.0, 0.0]);
+        let q = make(2, &[6.0, 0.0, 7.0, -2.0, 8.0, -2.0, 9.0, 0.0]);
+        let values = [4.5, 0.5, 3.0, 0.0];
+        let constraint = BzjPointConstraint {
+            t: 0.5,
+            max_order: 1,
+            values: values.as_ptr(),
+        };
+        let options = BzjConnectOptions {
+            p_order: 2,
+            q_order: 3,
+            p_scale: 1.5,
+            q_scale: 0.5,
+            constraints: &constraint,
+            constraint_count: 1,
+        };
+        let mut r = std::ptr::null_mut();
+        let s = unsafe { bzj_connect(p, 0.7, q, 0.2, &options, &mut r) };
+        assert_eq!(s, BzjStatus::BZJ_OK);
+        let mut degree = 0;
+        unsafe { crate::curve::bzj_curve_degree(r, &mut degree) };
+        assert_eq!(degree, 2 + 3 + 1 + 2);
+        let rp = eval(r, 0.0, 2, 2);
+        let pp = eval(p, 0.7, 2, 2);
+        for k in 0..=2 {
+            for c in 0..2 {
+                let want = pp[k * 2 + c] * 1.5f64.powi(k as i32);
+                assert!((rp[k * 2 + c] - want).abs() < 1e-9 * (1.0 + want.abs()));
+            }
+        }
+        let rt = eval(r, 0.5, 1, 2);
+        for i in 0..4 {
+            assert!((rt[i] - values[i]).abs() < 1e-9);
+        }
+        // Errors.
+        let mut bad = std::ptr::null_mut();
+        assert_eq!(
+            unsafe { bzj_connect(p, 1.5, q, 0.2, &options, &mut bad) },
+            BzjStatus::BZJ_ERR_INVALID_ARGUMENT
+        );
+        assert!(bad.is_null());
+        assert_eq!(
+            unsafe { bzj_connect(std::ptr::null(), 0.5, q, 0.2, &options, &mut bad) },
+            BzjStatus::BZJ_ERR_NULL_POINTER
+        );
+        let null_values = BzjPointConstraint {
+            values: std::ptr::null(),
+            ..constraint
+        };
+        let o = BzjConnectOptions {
+            constraints: &null_values,
+            ..options
+        };
+        assert_eq!(
+            unsafe { bzj_connect(p, 0.5, q, 0.2, &o, &mut bad) },
+            BzjStatus::BZJ_ERR_NULL_POINTER
+        );
+        let huge = BzjPointConstraint {
+            max_order: usize::MAX,
+            ..constraint
+        };
+        let o = BzjConnectOptions {
+            constraints: &huge,
+            ..options
+        };
+        assert_eq!(
+            unsafe { bzj_connect(p, 0.5, q, 0.2, &o, &mut bad) },
+            BzjStatus::BZJ_ERR_ILL_CONDITIONED
+        );
+        let mut scale = 0.0;
+        assert_eq!(
+            unsafe { bzj_connect_auto_scale(p, 1.0, q, 0.0, &options, &mut r, &mut scale) },
+            BzjStatus::BZJ_OK
+        );
+        assert!(scale > 0.0);
+        unsafe {
+            bzj_curve_free(r);
+            bzj_curve_free(p);
+            bzj_curve_free(q);
+        }
+    }
+}

@@ -4,8 +4,8 @@ use bezjoin_core::BezierCurve;
 use bezjoin_core::error::{BezjoinError, check_finite_scalar};
 
 use crate::guard::{
-    BzjCurve, BzjStatus, FfiError, clear_handle, curve_ref, guard, input_slice, output_slice,
-    require_out, write_handle,
+    BzjCurve, BzjStatus, FfiError, clear_handle, curve_ref, guard, guard_release, input_slice,
+    output_slice, require_out, write_handle,
 };
 
 /// Create a Bezier curve of degree `degree` in dimension `dim` from
@@ -32,6 +32,22 @@ pub unsafe extern "C" fn bzj_curve_new(
         if points.is_null() {
             return Err(FfiError::NullPointer("points".into()));
         }
+        // Check the length from the numbers alone before touching memory.
+        if dim == 0 {
+            return Err(BezjoinError::invalid("dim", "must be at least 1").into());
+        }
+        let expected = degree
+            .checked_add(1)
+            .and_then(|n| n.checked_mul(dim))
+            .ok_or_else(|| BezjoinError::invalid("degree", format!("{degree} is too large")))?;
+        if points_len != expected {
+            return Err(BezjoinError::LengthMismatch {
+                name: "points".into(),
+                expected,
+                actual: points_len,
+            }
+            .into());
+        }
         // SAFETY: caller promises `points_len` readable doubles.
         let pts = unsafe { input_slice(points, points_len, "points") }?;
         let curve = BezierCurve::new(dim, degree, pts.to_vec())?;
@@ -41,7 +57,8 @@ pub unsafe extern "C" fn bzj_curve_new(
     })
 }
 
-/// Release a curve handle. NULL is accepted and ignored.
+/// Release a curve handle. NULL is accepted and ignored. The calling
+/// thread's last error message is left unchanged.
 ///
 /// # Safety
 /// `curve` is NULL or a handle from this library not yet released.
@@ -50,10 +67,9 @@ pub unsafe extern "C" fn bzj_curve_free(curve: *mut BzjCurve) {
     if curve.is_null() {
         return;
     }
-    let _ = guard(|| {
+    guard_release(|| {
         // SAFETY: a live handle made by `Box::into_raw`, released once.
         drop(unsafe { Box::from_raw(curve) });
-        Ok(())
     });
 }
 
@@ -220,7 +236,9 @@ pub unsafe extern "C" fn bzj_curve_split(
 /// and `a > b` allowed; `a == b` gives a constant curve).
 ///
 /// @return BZJ_ERR_NULL_POINTER if `c` or `out` is NULL;
-///         BZJ_ERR_NON_FINITE if `a` or `b` is NaN or infinite.
+///         BZJ_ERR_NON_FINITE if `a` or `b` is NaN or infinite;
+///         BZJ_ERR_INVALID_ARGUMENT if `a` or `b` lies so far outside
+///         `[0, 1]` that the segment's control points overflow.
 ///
 /// # Safety
 /// `c` is NULL or a live handle; `out` is NULL or writable.
@@ -269,10 +287,14 @@ pub unsafe extern "C" fn bzj_curve_reverse(
 
 /// Signed arc length of `c` from parameter `a` to `b` (any finite values),
 /// by adaptive Gauss-Legendre quadrature to an absolute accuracy of
-/// `1e-13 * max(1, control polygon length)`.
+/// `1e-13 * max(1, control polygon length)`, or `16 * DBL_EPSILON` times
+/// the length where that is larger (the rounding level, e.g. long
+/// extrapolated ranges). The range is cut at cusps first, so the accuracy
+/// holds across them.
 ///
 /// @return BZJ_ERR_NULL_POINTER if `c` or `out` is NULL;
-///         BZJ_ERR_NON_FINITE if `a` or `b` is NaN or infinite.
+///         BZJ_ERR_NON_FINITE if `a` or `b` is NaN or infinite;
+///         BZJ_ERR_INVALID_ARGUMENT if the length overflows the double range.
 ///
 /// # Safety
 /// `c` is NULL or a live handle; `out` is NULL or writable.
@@ -292,4 +314,104 @@ pub unsafe extern "C" fn bzj_curve_length(
         unsafe { out.write(len) };
         Ok(())
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::guard::bzj_last_error;
+
+    fn last_error() -> String {
+        // SAFETY: never NULL, NUL-terminated.
+        unsafe { std::ffi::CStr::from_ptr(bzj_last_error()) }
+            .to_str()
+            .unwrap()
+            .to_owned()
+    }
+
+    fn line() -> *mut BzjCurve {
+        let pts = [0.0, 0.0, 1.0, 2.0];
+        let mut c = std::ptr::null_mut();
+        // SAFETY: valid buffers.
+        let s = unsafe { bzj_curve_new(2, 1, pts.as_ptr(), pts.len(), &mut c) };
+        assert_eq!(s, BzjStatus::BZJ_OK);
+        c
+    }
+
+    #[test]
+    fn elevate_to_an_impossible_degree_is_an_error_not_a_panic() {
+        let c = line();
+        for new_degree in [usize::MAX, usize::MAX / 2, 1usize << 50] {
+            let mut out = std::ptr::dangling_mut();
+            // SAFETY: live handle, writable out.
+            let s = unsafe { bzj_curve_elevate(c, new_degree, &mut out) };
+            assert_eq!(s, BzjStatus::BZJ_ERR_INVALID_ARGUMENT, "{}", last_error());
+            assert!(out.is_null());
+            assert!(last_error().contains("new_degree"), "{}", last_error());
+        }
+        // SAFETY: live handle.
+        unsafe { bzj_curve_free(c) };
+    }
+
+    #[test]
+    fn wrong_points_len_is_rejected_before_reading_points() {
+        let pts = [0.0, 0.0, 1.0, 2.0];
+        let mut c = std::ptr::dangling_mut();
+        // A length that no array can have: must be rejected from the
+        // numbers alone, never turned into a slice.
+        // SAFETY: the library must not read past the 4 doubles.
+        let s = unsafe { bzj_curve_new(2, 1, pts.as_ptr(), usize::MAX, &mut c) };
+        assert_eq!(s, BzjStatus::BZJ_ERR_INVALID_ARGUMENT);
+        assert!(c.is_null());
+        assert!(last_error().contains("points"), "{}", last_error());
+        // SAFETY: as above.
+        let s = unsafe { bzj_curve_new(2, usize::MAX, pts.as_ptr(), 4, &mut c) };
+        assert_eq!(s, BzjStatus::BZJ_ERR_INVALID_ARGUMENT);
+        assert!(last_error().contains("degree"), "{}", last_error());
+    }
+
+    #[test]
+    fn impossible_out_len_is_rejected_not_sliced() {
+        let c = line();
+        let mut buf = [0.0f64; 4];
+        // out_len larger than any array can be (more than isize::MAX bytes).
+        // SAFETY: the library must not write past the 4 doubles.
+        let s = unsafe { bzj_curve_eval(c, 0.5, usize::MAX / 16, buf.as_mut_ptr(), usize::MAX) };
+        assert_eq!(s, BzjStatus::BZJ_ERR_INVALID_ARGUMENT, "{}", last_error());
+        assert!(last_error().contains("length of out"), "{}", last_error());
+        // SAFETY: as above.
+        let s = unsafe { bzj_curve_points(c, buf.as_mut_ptr(), usize::MAX) };
+        assert_eq!(s, BzjStatus::BZJ_ERR_INVALID_ARGUMENT, "{}", last_error());
+        // SAFETY: live handle.
+        unsafe { bzj_curve_free(c) };
+    }
+
+    #[test]
+    fn non_finite_scalar_message_names_the_argument_without_index() {
+        let c = line();
+        let mut buf = [0.0f64; 2];
+        // SAFETY: live handle, 2 writable doubles.
+        let s = unsafe { bzj_curve_eval(c, f64::NAN, 0, buf.as_mut_ptr(), 2) };
+        assert_eq!(s, BzjStatus::BZJ_ERR_NON_FINITE);
+        assert_eq!(last_error(), "t = NaN is not finite");
+        // SAFETY: live handle.
+        unsafe { bzj_curve_free(c) };
+    }
+
+    #[test]
+    fn free_keeps_the_last_error() {
+        let c = line();
+        let mut out = std::ptr::null_mut();
+        // SAFETY: live handle, writable out.
+        let s = unsafe { bzj_curve_split(c, 2.0, &mut out, std::ptr::null_mut()) };
+        assert_ne!(s, BzjStatus::BZJ_OK);
+        let before = last_error();
+        assert!(!before.is_empty());
+        // SAFETY: live handle; NULL is accepted.
+        unsafe {
+            bzj_curve_free(c);
+            bzj_curve_free(std::ptr::null_mut());
+        }
+        assert_eq!(last_error(), before);
+    }
 }

@@ -1,1 +1,543 @@
-//! (in progress)
+//! Curve intersection and corner rounding (mathematics.md, section 2):
+//! `bzj_intersect`, `bzj_fillet` of the contract, and the additions
+//! `bzj_intersect_detailed`, `bzj_intersect_options_default`,
+//! `bzj_fillet_deviation` and `bzj_fillet_chain`.
+
+use bezjoin_core::BezierCurve;
+use bezjoin_core::error::BezjoinError;
+use bezjoin_core::fillet::{
+    ChainFilletOptions, DeviationFilletOptions, FilletOptions, fillet, fillet_chain,
+    fillet_within_deviation,
+};
+use bezjoin_core::intersect::{IntersectOptions, Intersection, IntersectionKind, intersect};
+
+use crate::guard::{
+    BzjCurve, BzjStatus, FfiError, FfiResult, clear_handle, curve_ref, guard, input_ref,
+    input_slice, new_handle, require_out, write_handle,
+};
+
+/// Options of `bzj_fillet` (contract layout; every field is read).
+#[repr(C)]
+#[derive(Debug, Clone, Copy)]
+pub struct BzjFilletOptions {
+    /// Arc length along P back from the crossing, > 0.
+    pub p_setback: f64,
+    /// Arc length along Q on from the crossing, > 0.
+    pub q_setback: f64,
+    /// kp <= degree of P.
+    pub p_order: usize,
+    /// kq <= degree of Q.
+    pub q_order: usize,
+    /// alpha > 0; 1.0 = the paper.
+    pub p_scale: f64,
+    /// beta > 0; 1.0 = the paper.
+    pub q_scale: f64,
+}
+
+impl BzjFilletOptions {
+    fn to_core(self) -> FilletOptions {
+        FilletOptions::new(self.p_setback, self.q_setback, self.p_order, self.q_order)
+            .with_scales(self.p_scale, self.q_scale)
+    }
+}
+
+/// What an intersection hit is.
+#[repr(i32)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[allow(non_camel_case_types)]
+pub enum BzjIntersectionKind {
+    /// The curves cross (2D: P passes from one side of Q to the other).
+    BZJ_INTERSECTION_CROSSING = 0,
+    /// The curves meet tangentially without crossing.
+    BZJ_INTERSECTION_TOUCHING = 1,
+    /// The curves coincide for u in [u, u_end], v from v to v_end.
+    BZJ_INTERSECTION_OVERLAP = 2,
+}
+
+/// One hit of `bzj_intersect_detailed`.
+#[repr(C)]
+#[derive(Debug, Clone, Copy)]
+pub struct BzjIntersection {
+    /// Parameter on P (for an overlap, its start).
+    pub u: f64,
+    /// Parameter on Q (for an overlap, of the point P(u)).
+    pub v: f64,
+    /// Overlap: end parameter on P (> u). Otherwise equal to u.
+    pub u_end: f64,
+    /// Overlap: parameter on Q of P(u_end) (below v when the curves run in
+    /// opposite directions). Otherwise equal to v.
+    pub v_end: f64,
+    /// |P(u) - Q(v)|, at most the distance tolerance.
+    pub distance: f64,
+    /// Crossing, touching or overlap.
+    pub kind: BzjIntersectionKind,
+}
+
+/// Tolerances and work bounds of the intersection search; fill with
+/// `bzj_intersect_options_default` and change what you need.
+#[repr(C)]
+#[derive(Debug, Clone, Copy)]
+pub struct BzjIntersectOptions {
+    /// Curves meet where |P(u) - Q(v)| <= this times the largest absolute
+    /// control-point coordinate of either curve; in (0, 1). Default 1e-9.
+    pub relative_distance_tolerance: f64,
+    /// Sine of the tangent angle below which a hit at an end point (or in 3D)
+    /// is touching rather than crossing; in [0, 1). Default 1e-6.
+    pub tangent_tolerance: f64,
+    /// Largest number of subdivision levels. Default 60.
+    pub max_depth: usize,
+    /// Largest number of bounding-box pairs examined (>= 1); exceeding it is
+    /// BZJ_ERR_ILL_CONDITIONED. Default 200000.
+    pub max_box_pairs: usize,
+    /// Largest number of hits; exceeding it is BZJ_ERR_ILL_CONDITIONED.
+    /// Default 10000.
+    pub max_hits: usize,
+}
+
+impl From<&IntersectOptions> for BzjIntersectOptions {
+    fn from(o: &IntersectOptions) -> Self {
+        Self {
+            relative_distance_tolerance: o.relative_distance_tolerance,
+            tangent_tolerance: o.tangent_tolerance,
+            max_depth: o.max_depth,
+            max_box_pairs: o.max_box_pairs,
+            max_hits: o.max_hits,
+        }
+    }
+}
+
+impl From<&BzjIntersectOptions> for IntersectOptions {
+    fn from(o: &BzjIntersectOptions) -> Self {
+        Self {
+            relative_distance_tolerance: o.relative_distance_tolerance,
+            tangent_tolerance: o.tangent_tolerance,
+            max_depth: o.max_depth,
+            max_box_pairs: o.max_box_pairs,
+            max_hits: o.max_hits,
+        }
+    }
+}
+
+impl From<&Intersection> for BzjIntersection {
+    fn from(h: &Intersection) -> Self {
+        let (kind, u_end, v_end) = match h.kind {
+            IntersectionKind::Crossing => {
+                (BzjIntersectionKind::BZJ_INTERSECTION_CROSSING, h.u, h.v)
+            }
+            IntersectionKind::Touching => {
+                (BzjIntersectionKind::BZJ_INTERSECTION_TOUCHING, h.u, h.v)
+            }
+            IntersectionKind::Overlap { u_range, v_range } => (
+                BzjIntersectionKind::BZJ_INTERSECTION_OVERLAP,
+                u_range.1,
+                v_range.1,
+            ),
+        };
+        Self {
+            u: h.u,
+            v: h.v,
+            u_end,
+            v_end,
+            distance: h.distance,
+            kind,
+        }
+    }
+}
+
+/// Options of `bzj_fillet_deviation`.
+#[repr(C)]
+#[derive(Debug, Clone, Copy)]
+pub struct BzjDeviationFilletOptions {
+    /// eps > 0: the blend passes at this distance from the corner point
+    /// (min over t of |R(t) - X|, X the crossing).
+    pub max_deviation: f64,
+    /// dq / dp > 0; 1.0 = symmetric rounding.
+    pub setback_ratio: f64,
+    /// kp <= degree of P.
+    pub p_order: usize,
+    /// kq <= degree of Q.
+    pub q_order: usize,
+    /// alpha > 0; 1.0 = the paper.
+    pub p_scale: f64,
+    /// beta > 0; 1.0 = the paper.
+    pub q_scale: f64,
+}
+
+/// What `bzj_fillet_deviation` chose and achieved.
+#[repr(C)]
+#[derive(Debug, Clone, Copy)]
+pub struct BzjDeviationFilletReport {
+    /// The setback dp found (arc length along P back from the crossing).
+    pub p_setback: f64,
+    /// dq = setback_ratio * dp.
+    pub q_setback: f64,
+    /// The achieved deviation, within 1e-9 relative of max_deviation.
+    pub deviation: f64,
+    /// Where P was cut.
+    pub u0: f64,
+    /// Where Q was cut.
+    pub v0: f64,
+}
+
+/// Same-dimension check with the C argument names.
+fn same_dimension(p: &BezierCurve, q: &BezierCurve) -> FfiResult {
+    if p.dim() != q.dim() {
+        return Err(BezjoinError::DimensionMismatch {
+            name: "q".into(),
+            expected: p.dim(),
+            actual: q.dim(),
+        }
+        .into());
+    }
+    Ok(())
+}
+
+/// All places where `p` and `q` meet, ordered by u: crossings, touching
+/// points, and each overlap by its start pair. Writes the first
+/// `min(capacity, total)` pairs `(u, v)` into `out` (`2 * capacity` doubles)
+/// and the total found into `count`. `capacity == 0` with `out == NULL` is a
+/// valid "count only" query. Default tolerances (relative distance 1e-9);
+/// use `bzj_intersect_detailed` for the kind of each hit and other
+/// tolerances.
+///
+/// @return BZJ_ERR_NULL_POINTER if `p`, `q` or `count` is NULL, or `out` is
+///         NULL while `capacity > 0`;
+///         BZJ_ERR_DIMENSION_MISMATCH if the curves' dimensions differ;
+///         BZJ_ERR_INVALID_ARGUMENT for curves of dimension 1;
+///         BZJ_ERR_ILL_CONDITIONED if the curves run within the tolerance
+///         of each other without coinciding and the work bound is reached.
+///
+/// # Safety
+/// `p`, `q` are NULL or live handles; `out` is NULL or points to
+/// `2 * capacity` writable doubles; `count` is NULL or writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn bzj_intersect(
+    p: *const BzjCurve,
+    q: *const BzjCurve,
+    out: *mut f64,
+    capacity: usize,
+    count: *mut usize,
+) -> BzjStatus {
+    guard(|| {
+        // SAFETY: caller contract.
+        let (p, q) = unsafe { (curve_ref(p, "p")?, curve_ref(q, "q")?) };
+        let count = require_out(count, "count")?;
+        if capacity > 0 && out.is_null() {
+            return Err(FfiError::NullPointer("out".into()));
+        }
+        let doubles = capacity
+            .checked_mul(2)
+            .ok_or_else(|| BezjoinError::invalid("capacity", format!("{capacity} is too large")))?;
+        same_dimension(p, q)?;
+        let hits = intersect(p, q, &IntersectOptions::default())?;
+        let written = hits.len().min(capacity);
+        if written > 0 {
+            // SAFETY: non-null (checked) with `2 * capacity >= 2 * written` writable doubles.
+            let buf = unsafe { std::slice::from_raw_parts_mut(out, doubles) };
+            for (i, h) in hits.iter().take(written).enumerate() {
+                buf[2 * i] = h.u;
+                buf[2 * i + 1] = h.v;
+            }
+        }
+        // SAFETY: checked non-null.
+        unsafe { count.write(hits.len()) };
+        Ok(())
+    })
+}
+
+/// Fill `out` with the default intersection options.
+///
+/// @return BZJ_ERR_NULL_POINTER if `out` is NULL.
+///
+/// # Safety
+/// `out` is NULL or writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn bzj_intersect_options_default(out: *mut BzjIntersectOptions) -> BzjStatus {
+    guard(|| {
+        let out = require_out(out, "out")?;
+        // SAFETY: checked non-null.
+        unsafe { out.write(BzjIntersectOptions::from(&IntersectOptions::default())) };
+        Ok(())
+    })
+}
+
+/// Like `bzj_intersect`, with the kind of each hit (crossing, touching,
+/// overlap with its range) and explicit tolerances: `options` may be NULL for
+/// the defaults. Writes the first `min(capacity, total)` hits into `out` and
+/// the total into `count`; `capacity == 0` with `out == NULL` counts only.
+///
+/// @return BZJ_ERR_NULL_POINTER if `p`, `q` or `count` is NULL, or `out` is
+///         NULL while `capacity > 0`;
+///         BZJ_ERR_DIMENSION_MISMATCH if the curves' dimensions differ;
+///         BZJ_ERR_INVALID_ARGUMENT for curves of dimension 1 or an option out
+///         of its range (named in the message);
+///         BZJ_ERR_NON_FINITE if a tolerance is NaN or infinite;
+///         BZJ_ERR_ILL_CONDITIONED if a work bound is reached.
+///
+/// # Safety
+/// `p`, `q` are NULL or live handles; `options` is NULL or readable; `out`
+/// is NULL or points to `capacity` writable `BzjIntersection`; `count` is
+/// NULL or writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn bzj_intersect_detailed(
+    p: *const BzjCurve,
+    q: *const BzjCurve,
+    options: *const BzjIntersectOptions,
+    out: *mut BzjIntersection,
+    capacity: usize,
+    count: *mut usize,
+) -> BzjStatus {
+    guard(|| {
+        // SAFETY: caller contract.
+        let (p, q) = unsafe { (curve_ref(p, "p")?, curve_ref(q, "q")?) };
+        let count = require_out(count, "count")?;
+        if capacity > 0 && out.is_null() {
+            return Err(FfiError::NullPointer("out".into()));
+        }
+        same_dimension(p, q)?;
+        // SAFETY: caller contract (NULL or readable).
+        let options = match unsafe { options.as_ref() } {
+            Some(o) => IntersectOptions::from(o),
+            None => IntersectOptions::default(),
+        };
+        let hits = intersect(p, q, &options)?;
+        let written = hits.len().min(capacity);
+        for (i, h) in hits.iter().take(written).enumerate() {
+            // SAFETY: `out` is non-null with `capacity > i` writable elements.
+            unsafe { out.add(i).write(BzjIntersection::from(h)) };
+        }
+        // SAFETY: checked non-null.
+        unsafe { count.write(hits.len()) };
+        Ok(())
+    })
+}
+
+/// Round the corner between `p` and `q` at their first crossing (smallest u
+/// on P; touching points and overlaps are skipped): keeps P on `[0, u0]` and
+/// Q on `[v0, 1]`, where the arc length of P from u0 to the crossing is
+/// `p_setback` and that of Q from the crossing to v0 is `q_setback`, and joins
+/// them with the C^k curve of `bzj_connect` (degree `p_order + q_order + 1`).
+/// The three curves form a C^k B-spline with knot intervals
+/// `(u0, p_scale, (1 - v0) p_scale / q_scale)`. Other corners of the
+/// crossing: pass `bzj_curve_reverse` of P and/or Q.
+///
+/// @return BZJ_ERR_NULL_POINTER if a pointer is NULL;
+///         BZJ_ERR_DIMENSION_MISMATCH if the curves' dimensions differ;
+///         BZJ_ERR_NON_FINITE if an option is NaN or infinite;
+///         BZJ_ERR_INVALID_ARGUMENT if a setback or scale is not positive, an
+///         order is above its curve's degree, or a setback is not shorter
+///         than the part of the curve before / after the crossing;
+///         BZJ_ERR_NO_INTERSECTION if the curves do not cross or only touch;
+///         BZJ_ERR_ILL_CONDITIONED if the connection cannot be trusted.
+///
+/// # Safety
+/// `p`, `q` are NULL or live handles; `options` is NULL or readable; the
+/// three out-pointers are NULL or writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn bzj_fillet(
+    p: *const BzjCurve,
+    q: *const BzjCurve,
+    options: *const BzjFilletOptions,
+    p_trimmed: *mut *mut BzjCurve,
+    blend: *mut *mut BzjCurve,
+    q_trimmed: *mut *mut BzjCurve,
+) -> BzjStatus {
+    // SAFETY: caller contract.
+    unsafe {
+        clear_handle(p_trimmed);
+        clear_handle(blend);
+        clear_handle(q_trimmed);
+    }
+    guard(|| {
+        // SAFETY: caller contract.
+        let (p, q) = unsafe { (curve_ref(p, "p")?, curve_ref(q, "q")?) };
+        // SAFETY: caller contract.
+        let options = unsafe { input_ref(options, "options") }?;
+        let p_out = require_out(p_trimmed, "p_trimmed")?;
+        let blend_out = require_out(blend, "blend")?;
+        let q_out = require_out(q_trimmed, "q_trimmed")?;
+        let result = fillet(p, q, &options.to_core())?;
+        // SAFETY: all three checked non-null.
+        unsafe {
+            write_handle(p_out, result.p_trimmed);
+            write_handle(blend_out, result.blend);
+            write_handle(q_out, result.q_trimmed);
+        }
+        Ok(())
+    })
+}
+
+/// Round the corner at the first crossing so that the blend passes at the
+/// distance `max_deviation` from the corner point X (the crossing):
+/// `min over t of |R(t) - X| = max_deviation` to 1e-9 relative, with setbacks
+/// `dp` and `dq = setback_ratio * dp` found by a bracketing search (1.0 =
+/// symmetric). Outputs as `bzj_fillet`; `report` (may be NULL) receives the
+/// setbacks, the deviation achieved and the cut parameters.
+///
+/// @return BZJ_ERR_NULL_POINTER if a required pointer is NULL;
+///         BZJ_ERR_DIMENSION_MISMATCH if the curves' dimensions differ;
+///         BZJ_ERR_NON_FINITE if an option is NaN or infinite;
+///         BZJ_ERR_INVALID_ARGUMENT if `max_deviation`, `setback_ratio` or a
+///         scale is not positive, an order is above its curve's degree, or the
+///         deviation cannot be reached even with the longest setbacks the
+///         curves allow (the message gives the largest possible);
+///         BZJ_ERR_NO_INTERSECTION if the curves do not cross or only touch;
+///         BZJ_ERR_ILL_CONDITIONED if the connection or the search cannot be
+///         trusted.
+///
+/// # Safety
+/// `p`, `q` are NULL or live handles; `options` is NULL or readable; the
+/// out-pointers and `report` are NULL or writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn bzj_fillet_deviation(
+    p: *const BzjCurve,
+    q: *const BzjCurve,
+    options: *const BzjDeviationFilletOptions,
+    p_trimmed: *mut *mut BzjCurve,
+    blend: *mut *mut BzjCurve,
+    q_trimmed: *mut *mut BzjCurve,
+    report: *mut BzjDeviationFilletReport,
+) -> BzjStatus {
+    // SAFETY: caller contract.
+    unsafe {
+        clear_handle(p_trimmed);
+        clear_handle(blend);
+        clear_handle(q_trimmed);
+    }
+    guard(|| {
+        // SAFETY: caller contract.
+        let (p, q) = unsafe { (curve_ref(p, "p")?, curve_ref(q, "q")?) };
+        // SAFETY: caller contract.
+        let o = unsafe { input_ref(options, "options") }?;
+        let p_out = require_out(p_trimmed, "p_trimmed")?;
+        let blend_out = require_out(blend, "blend")?;
+        let q_out = require_out(q_trimmed, "q_trimmed")?;
+        let mut core =
+            DeviationFilletOptions::new(o.max_deviation, 0).with_setback_ratio(o.setback_ratio);
+        core.shape =
+            FilletOptions::new(1.0, 1.0, o.p_order, o.q_order).with_scales(o.p_scale, o.q_scale);
+        let r = fillet_within_deviation(p, q, &core)?;
+        if !report.is_null() {
+            // SAFETY: non-null and writable (caller contract).
+            unsafe {
+                report.write(BzjDeviationFilletReport {
+                    p_setback: r.p_setback,
+                    q_setback: r.q_setback,
+                    deviation: r.deviation,
+                    u0: r.fillet.u0,
+                    v0: r.fillet.v0,
+                })
+            };
+        }
+        // SAFETY: all three checked non-null.
+        unsafe {
+            write_handle(p_out, r.fillet.p_trimmed);
+            write_handle(blend_out, r.fillet.blend);
+            write_handle(q_out, r.fillet.q_trimmed);
+        }
+        Ok(())
+    })
+}
+
+/// Round every corner of a chain of curves in one call. Corner i lies
+/// between `curves[i]` and `curves[i + 1]` (and, when `closed == 1`, between
+/// the last curve and the first); its crossing is the one nearest the shared
+/// end (smallest `(1 - u) + v`), rounded as `bzj_fillet` with `options`.
+/// Long chains (more than 64 corners) are computed in parallel; the result is
+/// identical either way.
+///
+/// Output, in path order: trimmed curve 0, blend 0, trimmed curve 1, ...:
+/// `2 * curve_count - 1` handles for an open chain, `2 * curve_count` for a
+/// closed one (ending with the blend back to the start). The number needed
+/// is written into `count`; `capacity == 0` with `out_pieces == NULL` is a
+/// valid "count only" query (nothing is computed). Release every handle
+/// with `bzj_curve_free`.
+///
+/// @return BZJ_ERR_NULL_POINTER if `curves`, one of its handles, `options`
+///         or `count` is NULL, or `out_pieces` is NULL while `capacity > 0`;
+///         BZJ_ERR_BUFFER_TOO_SMALL if `0 < capacity <` the number needed
+///         (no handles are written);
+///         BZJ_ERR_INVALID_ARGUMENT if `closed` is not 0 or 1, fewer than 2
+///         curves are given, an option is out of range, a setback is too long
+///         at a corner ("corner i ...") or two cuts pass each other on a curve;
+///         BZJ_ERR_DIMENSION_MISMATCH if the curves' dimensions differ;
+///         BZJ_ERR_NON_FINITE if an option is NaN or infinite;
+///         BZJ_ERR_NO_INTERSECTION if consecutive curves do not cross or meet
+///         tangentially (a smooth joint; the message names the corner);
+///         BZJ_ERR_ILL_CONDITIONED if a connection cannot be trusted.
+///
+/// # Safety
+/// `curves` is NULL or points to `curve_count` readable handle pointers (each
+/// NULL or live); `options` is NULL or readable; `out_pieces` is NULL or
+/// points to `capacity` writable handle pointers; `count` is NULL or writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn bzj_fillet_chain(
+    curves: *const *const BzjCurve,
+    curve_count: usize,
+    options: *const BzjFilletOptions,
+    closed: i32,
+    out_pieces: *mut *mut BzjCurve,
+    capacity: usize,
+    count: *mut usize,
+) -> BzjStatus {
+    if !out_pieces.is_null() {
+        for i in 0..capacity {
+            // SAFETY: caller promises `capacity` writable handle pointers.
+            unsafe { clear_handle(out_pieces.add(i)) };
+        }
+    }
+    guard(|| {
+        let count = require_out(count, "count")?;
+        if curves.is_null() {
+            return Err(FfiError::NullPointer("curves".into()));
+        }
+        // SAFETY: caller contract.
+        let options = unsafe { input_ref(options, "options") }?;
+        let closed = match closed {
+            0 => false,
+            1 => true,
+            other => {
+                return Err(BezjoinError::invalid(
+                    "closed",
+                    format!("{other} is neither 0 (open) nor 1 (closed)"),
+                )
+                .into());
+            }
+        };
+        // SAFETY: caller promises `curve_count` readable pointers.
+        let handles = unsafe { input_slice(curves, curve_count, "curves") }?;
+        let needed = if closed {
+            curve_count.saturating_mul(2)
+        } else {
+            curve_count.saturating_mul(2).saturating_sub(1)
+        };
+        // SAFETY: checked non-null.
+        unsafe { count.write(needed) };
+        if capacity == 0 && out_pieces.is_null() {
+            return Ok(());
+        }
+        if out_pieces.is_null() {
+            return Err(FfiError::NullPointer("out_pieces".into()));
+        }
+        let mut owned = Vec::with_capacity(curve_count);
+        for (i, &h) in handles.iter().enumerate() {
+            // SAFETY: each is NULL or a live handle (caller contract).
+            owned.push(unsafe { curve_ref(h, &format!("curves[{i}]")) }?.clone());
+        }
+        if capacity < needed && curve_count >= 2 {
+            return Err(FfiError::BufferTooSmall {
+                name: "out_pieces (handles)".into(),
+                needed,
+                given: capacity,
+            });
+        }
+        let mut chain = ChainFilletOptions::open(options.to_core());
+        chain.closed = closed;
+        let result = fillet_chain(&owned, &chain)?;
+        for (i, piece) in result.pieces.into_iter().enumerate() {
+            // SAFETY: `i < needed <= capacity` writable handle pointers.
+            unsafe { out_pieces.add(i).write(new_handle(piece)) };
+        }
+        Ok(())
+    })
+}

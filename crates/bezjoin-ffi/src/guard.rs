@@ -52,6 +52,12 @@ pub(crate) enum FfiError {
         needed: usize,
         given: usize,
     },
+    /// A caller's array of handle slots shorter than needed.
+    HandleArrayTooSmall {
+        name: String,
+        needed: usize,
+        given: usize,
+    },
 }
 
 impl From<BezjoinError> for FfiError {
@@ -65,13 +71,17 @@ impl FfiError {
         use BzjStatus::*;
         match self {
             FfiError::NullPointer(_) => BZJ_ERR_NULL_POINTER,
-            FfiError::BufferTooSmall { .. } => BZJ_ERR_BUFFER_TOO_SMALL,
+            FfiError::BufferTooSmall { .. } | FfiError::HandleArrayTooSmall { .. } => {
+                BZJ_ERR_BUFFER_TOO_SMALL
+            }
             FfiError::Core(e) => match e {
                 BezjoinError::ParameterOutOfRange { .. }
                 | BezjoinError::OrderAboveDegree { .. }
                 | BezjoinError::LengthMismatch { .. }
                 | BezjoinError::InvalidArgument { .. } => BZJ_ERR_INVALID_ARGUMENT,
-                BezjoinError::NonFinite { .. } => BZJ_ERR_NON_FINITE,
+                BezjoinError::NonFinite { .. } | BezjoinError::NonFiniteScalar { .. } => {
+                    BZJ_ERR_NON_FINITE
+                }
                 BezjoinError::DimensionMismatch { .. } => BZJ_ERR_DIMENSION_MISMATCH,
                 BezjoinError::Inconsistent { .. } => BZJ_ERR_INCONSISTENT,
                 BezjoinError::Singular { .. } => BZJ_ERR_SINGULAR,
@@ -92,6 +102,13 @@ impl FfiError {
             } => {
                 format!("{name} holds {given} doubles, {needed} are needed")
             }
+            FfiError::HandleArrayTooSmall {
+                name,
+                needed,
+                given,
+            } => {
+                format!("{name} has room for {given} handles, {needed} are needed")
+            }
         }
     }
 }
@@ -103,8 +120,14 @@ thread_local! {
 }
 
 fn set_last_error(message: &str) {
-    let c = CString::new(message.replace('\0', " ")).unwrap_or_default();
-    LAST_ERROR.with(|e| *e.borrow_mut() = c);
+    LAST_ERROR.with(|e| {
+        // A success after a success: nothing to store (no allocation on the
+        // hot path of evaluation calls).
+        if message.is_empty() && e.borrow().as_bytes().is_empty() {
+            return;
+        }
+        *e.borrow_mut() = CString::new(message.replace('\0', " ")).unwrap_or_default();
+    });
 }
 
 /// Run one entry point's body: a panic becomes `BZJ_ERR_INTERNAL`, an error
@@ -130,6 +153,17 @@ pub(crate) fn guard(body: impl FnOnce() -> FfiResult) -> BzjStatus {
             ));
             BzjStatus::BZJ_ERR_INTERNAL
         }
+    }
+}
+
+/// Run the body of a function that cannot fail and returns nothing (the
+/// release functions) inside the one catch_unwind: the last error is left
+/// as it was, so `bzj_curve_free(tmp)` between a failed call and
+/// `bzj_last_error()` does not erase the message. A panic (a bug) still
+/// replaces it.
+pub(crate) fn guard_release(body: impl FnOnce()) {
+    if catch_unwind(AssertUnwindSafe(body)).is_err() {
+        set_last_error("internal error (a bug in bezjoin, please report): panic while releasing");
     }
 }
 
@@ -159,6 +193,7 @@ pub(crate) unsafe fn input_slice<'a, T>(
     if ptr.is_null() {
         return Err(FfiError::NullPointer(name.into()));
     }
+    check_possible_length::<T>(len, name)?;
     // SAFETY: non-null and the caller promises `len` readable elements.
     Ok(unsafe { std::slice::from_raw_parts(ptr, len) })
 }
@@ -176,6 +211,7 @@ pub(crate) unsafe fn output_slice<'a>(
     if ptr.is_null() {
         return Err(FfiError::NullPointer(name.into()));
     }
+    check_possible_length::<f64>(given, name)?;
     if given < needed {
         return Err(FfiError::BufferTooSmall {
             name: name.into(),
@@ -185,6 +221,19 @@ pub(crate) unsafe fn output_slice<'a>(
     }
     // SAFETY: non-null and the caller promises `given >= needed` writable doubles.
     Ok(unsafe { std::slice::from_raw_parts_mut(ptr, needed) })
+}
+
+/// A length no array can have (more than `isize::MAX` bytes) is a caller
+/// error, reported before any slice is made (making one would be UB).
+fn check_possible_length<T>(len: usize, name: &str) -> FfiResult {
+    let largest = isize::MAX as usize / std::mem::size_of::<T>().max(1);
+    if len > largest {
+        return Err(FfiError::Core(BezjoinError::invalid(
+            format!("length of {name}"),
+            format!("{len} is larger than any array can be"),
+        )));
+    }
+    Ok(())
 }
 
 /// A required pointer to one value to read.

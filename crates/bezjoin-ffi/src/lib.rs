@@ -9,8 +9,8 @@
 //!   `catch_unwind` guard and a panic becomes `BZJ_ERR_INTERNAL`;
 //! * null pointers give `BZJ_ERR_NULL_POINTER`, NaN/infinity
 //!   `BZJ_ERR_NON_FINITE`; on any error handle out-pointers are set to NULL;
-//! * [`BzjCurve`] handles are immutable and may be read from several threads
-//!   at once; release each with [`bzj_curve_free`].
+//! * `BzjCurve` handles are immutable and may be read from several threads
+//!   at once; release each with `bzj_curve_free`.
 //!
 //! Enumerations that come *from* C (metric, split mode) are read as plain
 //! integers and validated, so an out-of-range value is an error, never
@@ -28,7 +28,7 @@ mod version;
 pub use connect::*;
 pub use curve::*;
 pub use fillet::*;
-pub use guard::{BzjStatus, bzj_last_error, bzj_status_name, bzj_version};
+pub use guard::{BzjCurve, BzjStatus, bzj_last_error, bzj_status_name, bzj_version};
 pub use lagrange::*;
 pub use merge::*;
 pub use version::*;

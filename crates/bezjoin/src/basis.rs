@@ -73,7 +73,8 @@ pub fn basis_derivatives(
     let p = degree;
     let n = max_order.min(p);
     let mut ders = DMatrix::<f64>::zeros(max_order + 1, p + 1);
-    // ndu: lower triangle knot differences, upper triangle basis functions.
+    // ndu: lower triangle knot differences (then their reciprocals), upper
+    // triangle basis functions.
     let mut ndu = DMatrix::<f64>::zeros(p + 1, p + 1);
     let mut left = vec![0.0; p + 1];
     let mut right = vec![0.0; p + 1];
@@ -93,6 +94,13 @@ pub fn basis_derivatives(
     for j in 0..=p {
         ders[(0, j)] = ndu[(j, p)];
     }
+    // Reciprocals of the knot differences (lower triangle of ndu), so that
+    // the O(p^2 n) loop below multiplies instead of dividing.
+    for j in 1..=p {
+        for r in 0..j {
+            ndu[(j, r)] = 1.0 / ndu[(j, r)];
+        }
+    }
     // Derivatives (Eq. 2.9), two alternating rows of coefficients.
     let mut a = [vec![0.0; p + 1], vec![0.0; p + 1]];
     for r in 0..=p {
@@ -103,7 +111,7 @@ pub fn basis_derivatives(
             let rk = r as isize - k as isize;
             let pk = p - k;
             if r >= k {
-                a[s2][0] = a[s1][0] / ndu[(pk + 1, rk as usize)];
+                a[s2][0] = a[s1][0] * ndu[(pk + 1, rk as usize)];
                 d = a[s2][0] * ndu[(rk as usize, pk)];
             }
             let j1: usize = if rk >= -1 { 1 } else { (-rk) as usize };
@@ -114,11 +122,11 @@ pub fn basis_derivatives(
             };
             for j in j1..=j2 {
                 let idx = (rk + j as isize) as usize;
-                a[s2][j] = (a[s1][j] - a[s1][j - 1]) / ndu[(pk + 1, idx)];
+                a[s2][j] = (a[s1][j] - a[s1][j - 1]) * ndu[(pk + 1, idx)];
                 d += a[s2][j] * ndu[(idx, pk)];
             }
             if r <= pk {
-                a[s2][k] = -a[s1][k - 1] / ndu[(pk + 1, r)];
+                a[s2][k] = -a[s1][k - 1] * ndu[(pk + 1, r)];
                 d += a[s2][k] * ndu[(r, pk)];
             }
             ders[(k, r)] = d;

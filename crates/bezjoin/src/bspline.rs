@@ -37,7 +37,13 @@ impl BSplineCurve {
         }
         check_finite("knots", &knots)?;
         check_finite("points", &points)?;
-        if points.len() % dim != 0 || points.len() / dim < degree + 1 {
+        let Some(order) = degree.checked_add(1) else {
+            return Err(BezjoinError::invalid(
+                "degree",
+                format!("{degree} is too large"),
+            ));
+        };
+        if points.len() % dim != 0 || points.len() / dim < order {
             return Err(BezjoinError::invalid(
                 "points",
                 format!(
@@ -313,5 +319,33 @@ mod tests {
         let (k, m) = s.knots_with_multiplicities();
         assert_eq!(k, vec![0.0, 1.0, 2.0]);
         assert_eq!(m, vec![2, 1, 2]);
+    }
+}
+
+#[cfg(test)]
+mod review_tests {
+    use super::*;
+
+    #[test]
+    fn new_rejects_an_impossible_degree_without_panicking() {
+        for degree in [usize::MAX, usize::MAX - 1] {
+            let r = BSplineCurve::new(1, degree, vec![0.0, 1.0], vec![0.0, 1.0]);
+            assert!(
+                matches!(&r, Err(BezjoinError::InvalidArgument { name, .. }) if name == "degree" || name == "points"),
+                "{r:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn continuity_at_a_smooth_join_of_curves_with_vanishing_derivatives() {
+        // A straight line split at 0.5: all derivatives above the first
+        // vanish on both sides, so the chain is C^degree at the join.
+        let c = BezierCurve::from_rows(&[[0.0, 0.0], [1.0, 1.0], [2.0, 2.0], [3.0, 3.0]]).unwrap();
+        let (a, b) = c.split_at(0.5).unwrap();
+        let s = BSplineCurve::from_bezier_chain(&[a, b], &[0.5, 0.5]).unwrap();
+        assert_eq!(s.continuity_at(0.5, 1e-12), Some(3));
+        // A point that is not a knot is inside one polynomial piece.
+        assert_eq!(s.continuity_at(0.25, 1e-12), Some(3));
     }
 }

@@ -80,6 +80,22 @@ pub enum BezjoinError {
         value: f64,
     },
 
+    /// A scalar argument that is NaN or infinite (no index in the message).
+    ///
+    /// ```
+    /// # use bezjoin_core::BezierCurve;
+    /// let line = BezierCurve::new(1, 1, vec![0.0, 1.0]).unwrap();
+    /// let err = line.segment(0.0, f64::INFINITY).unwrap_err();
+    /// assert_eq!(err.to_string(), "b = inf is not finite");
+    /// ```
+    #[error("{name} = {value} is not finite")]
+    NonFiniteScalar {
+        /// Name of the argument.
+        name: String,
+        /// The value found.
+        value: f64,
+    },
+
     /// Two curves or data sets of different dimensions.
     #[error("{name} has dimension {actual}, expected {expected}")]
     DimensionMismatch {
@@ -160,9 +176,8 @@ pub fn check_finite_scalar(name: &str, value: f64) -> Result<()> {
     if value.is_finite() {
         Ok(())
     } else {
-        Err(BezjoinError::NonFinite {
+        Err(BezjoinError::NonFiniteScalar {
             name: name.into(),
-            index: 0,
             value,
         })
     }

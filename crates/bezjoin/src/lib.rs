@@ -31,6 +31,24 @@ pub mod merge;
 
 pub use arclength::DEFAULT_ARC_LENGTH_ACCURACY;
 pub use basis::KnotSide;
-pub use bezier::BezierCurve;
+pub use bezier::{BezierCurve, MAX_DEGREE};
 pub use bspline::BSplineCurve;
+pub use connect::{
+    CONNECT_RESIDUAL_LIMIT, ConnectOptions, Connection, MAX_CONNECT_DEGREE, PointConstraint,
+    connect, connect_auto_scale, connect_dense_reference, connect_unchecked, fairness_energy,
+};
 pub use error::{BezjoinError, Result};
+pub use fillet::{
+    ChainCorner, ChainFillet, ChainFilletOptions, DeviationFillet, DeviationFilletOptions, Fillet,
+    FilletOptions, fillet, fillet_at, fillet_chain, fillet_within_deviation,
+};
+pub use intersect::{IntersectOptions, Intersection, IntersectionKind, intersect};
+pub use lagrange::{
+    BuildDirection, DEFAULT_LAGRANGE_ACCURACY, DerivedPoints, LagrangeOptions, LagrangeSpline,
+    bezier_from_lagrange_points, lagrange_points_of_bezier, lagrange_spline,
+};
+pub use merge::{
+    ChainBreakpoints, ChainKeepPoint, ChainMerge, ChainMergeOptions, ChainMergeReport,
+    DEFAULT_MERGE_ACCURACY, KeepPoint, Merge, MergeMetric, MergeOptions, MergeReport,
+    SplitParameter, merge, merge_chain, merge_metric_at,
+};

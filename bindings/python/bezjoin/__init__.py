@@ -1,0 +1,49 @@
+"""bezjoin: smooth joins of Bezier curves, from Python, over the C ABI (ctypes).
+
+Pure Python; no compiler at install. The shared library is found through
+``BEZJOIN_LIBRARY``, then next to the package, then ``target/release/`` of
+the repository holding the package (see :mod:`bezjoin._library`).
+
+    >>> import bezjoin
+    >>> with bezjoin.Curve([(0, 0), (1, 2), (3, 0)]) as c:
+    ...     c.evaluate(0.5)
+    (1.25, 1.0)
+"""
+
+from ._library import (
+    ENVIRONMENT_VARIABLE,
+    candidate_paths,
+    find_library,
+    library_path,
+    library_version,
+    status_name,
+)
+from ._connect import AutoScaledConnection, connect, connect_auto_scale
+from ._fillet import FilletResult, fillet, intersect
+from ._lagrange import lagrange_spline
+from ._merge import MergeResult, merge
+from .curve import Curve
+from .errors import STATUS_NAMES, BezjoinError, LibraryNotFoundError, UnsupportedGeometryError
+
+__all__ = [
+    "AutoScaledConnection",
+    "ENVIRONMENT_VARIABLE",
+    "STATUS_NAMES",
+    "BezjoinError",
+    "Curve",
+    "FilletResult",
+    "LibraryNotFoundError",
+    "MergeResult",
+    "UnsupportedGeometryError",
+    "candidate_paths",
+    "connect",
+    "connect_auto_scale",
+    "fillet",
+    "find_library",
+    "intersect",
+    "lagrange_spline",
+    "library_path",
+    "library_version",
+    "merge",
+    "status_name",
+]

@@ -1,0 +1,144 @@
+"""Connect two curves with a Bezier curve of prescribed end continuity (``bzj_connect``).
+
+Krivosheev, Mavrin, Starkova, "Bezier curve conjugation for smooth curve
+joining and corner rounding", Omsk Scientific Bulletin, 2025 (mathematics.md
+section 1).
+"""
+
+import ctypes
+
+from ._convert import double_array, flat, index_argument, point_rows, real_argument
+from ._library import CurvePointer, library, register_prototype
+from .curve import Curve, handle_of
+from .errors import BezjoinError
+from .results import CurveGroup
+
+
+class PointConstraintStruct(ctypes.Structure):
+    """``BzjPointConstraint`` (layout fixed by the C contract)."""
+
+    _fields_ = [
+        ("t", ctypes.c_double),
+        ("max_order", ctypes.c_size_t),
+        ("values", ctypes.POINTER(ctypes.c_double)),
+    ]
+
+
+class ConnectOptionsStruct(ctypes.Structure):
+    """``BzjConnectOptions`` (layout fixed by the C contract)."""
+
+    _fields_ = [
+        ("p_order", ctypes.c_size_t),
+        ("q_order", ctypes.c_size_t),
+        ("p_scale", ctypes.c_double),
+        ("q_scale", ctypes.c_double),
+        ("constraints", ctypes.POINTER(PointConstraintStruct)),
+        ("constraint_count", ctypes.c_size_t),
+    ]
+
+
+register_prototype(
+    "bzj_connect_auto_scale",
+    ctypes.c_int32,
+    [CurvePointer, ctypes.c_double, CurvePointer, ctypes.c_double,
+     ctypes.POINTER(ConnectOptionsStruct), ctypes.POINTER(CurvePointer),
+     ctypes.POINTER(ctypes.c_double)],
+)
+register_prototype(
+    "bzj_connect",
+    ctypes.c_int32,
+    [CurvePointer, ctypes.c_double, CurvePointer, ctypes.c_double,
+     ctypes.POINTER(ConnectOptionsStruct), ctypes.POINTER(CurvePointer)],
+)
+
+
+def connect(p, u0, q, v0, *, p_order=None, q_order=None, p_scale=1.0, q_scale=1.0,
+            constraints=()):
+    """The Bezier curve ``R`` from ``P(u0)`` to ``Q(v0)`` with
+
+    ``R^(k)(0) = p_scale^k P^(k)(u0)`` for ``k = 0..p_order`` and
+    ``R^(k)(1) = q_scale^k Q^(k)(v0)`` for ``k = 0..q_order``,
+
+    of degree ``p_order + q_order + 1 + sum(K_j + 1)`` (Theorems 1 and 2).
+    The chain ``P|[0,u0]``, ``R``, ``Q|[v0,1]`` is a C^min(p_order, q_order)
+    B-spline with knot intervals ``(u0, p_scale, (1 - v0) p_scale / q_scale)``.
+
+    Args:
+        p, q: :class:`Curve` objects of the same dimension.
+        u0, v0: parameters in ``[0, 1]`` on ``p`` and ``q``.
+        p_order, q_order: continuity orders (default: the curve's degree, as
+            in the paper).
+        p_scale, q_scale: shape scales ``alpha, beta > 0`` (1.0 = the paper).
+        constraints: ``(t, derivatives)`` pairs: ``R`` passes at ``t`` in
+            ``(0, 1)`` with ``R^(k)(t) = derivatives[k]``, ``k = 0..K``.
+
+    Raises:
+        BezjoinError: with the library's status and message.
+    """
+    p_handle, q_handle = handle_of(p, "p"), handle_of(q, "q")
+    options, _keep_alive = _options(p, q, p_order, q_order, p_scale, q_scale, constraints)
+    out = CurvePointer()
+    library().call("bzj_connect", p_handle, real_argument(u0, "u0"), q_handle,
+                   real_argument(v0, "v0"), ctypes.byref(options), ctypes.byref(out))
+    return Curve._adopt(out)
+
+
+class AutoScaledConnection(CurveGroup):
+    """The connecting ``curve`` and the ``scale`` ``s = alpha = beta`` chosen for it."""
+
+    _curve_fields = ("curve",)
+
+    def __init__(self, curve, scale):
+        self.curve = curve
+        self.scale = scale
+
+    def _fields(self):
+        return self._curve_fields + ("scale",)
+
+
+def connect_auto_scale(p, u0, q, v0, *, p_order=None, q_order=None, constraints=()):
+    """:func:`connect` with ``p_scale = q_scale = s`` chosen by the library to minimise
+    the fairness energy ``integral_0^1 |R''(t)|^2 dt`` (bounded search over two
+    decades either side of ``|Q(v0) - P(u0)| / mean(|P'(u0)|, |Q'(v0)|)``).
+
+    Returns:
+        :class:`AutoScaledConnection` (``curve``, ``scale``).
+    """
+    p_handle, q_handle = handle_of(p, "p"), handle_of(q, "q")
+    options, _keep_alive = _options(p, q, p_order, q_order, 1.0, 1.0, constraints)
+    out = CurvePointer()
+    scale = ctypes.c_double()
+    library().call("bzj_connect_auto_scale", p_handle, real_argument(u0, "u0"), q_handle,
+                   real_argument(v0, "v0"), ctypes.byref(options), ctypes.byref(out),
+                   ctypes.byref(scale))
+    return AutoScaledConnection(Curve._adopt(out), scale.value)
+
+
+def _options(p, q, p_order, q_order, p_scale, q_scale, constraints):
+    """The C options and the arrays they point into (keep both alive for the call)."""
+    p_order = p.degree if p_order is None else index_argument(p_order, "p_order")
+    q_order = q.degree if q_order is None else index_argument(q_order, "q_order")
+    p_dim = p.dim
+    keep_alive = []
+    structs = []
+    for j, constraint in enumerate(constraints):
+        try:
+            t, derivatives = constraint
+        except (TypeError, ValueError):
+            raise TypeError(f"constraints[{j}] must be a (t, derivatives) pair") from None
+        rows, dim = point_rows(derivatives, f"constraints[{j}] derivatives")
+        if dim != p_dim:
+            # The C struct carries no length: a short row would be read past its end.
+            raise BezjoinError.dimension_mismatch(
+                f"constraints[{j}] derivatives have dimension {dim} but p has dimension {p_dim}"
+            )
+        array, _length = double_array(flat(rows))
+        keep_alive.append(array)
+        structs.append(PointConstraintStruct(real_argument(t, f"constraints[{j}] t"),
+                                             len(rows) - 1, array))
+    constraint_array = (PointConstraintStruct * max(len(structs), 1))(*structs)
+    options = ConnectOptionsStruct(
+        p_order, q_order, real_argument(p_scale, "p_scale"), real_argument(q_scale, "q_scale"),
+        constraint_array if structs else None, len(structs),
+    )
+    return options, (keep_alive, constraint_array)

@@ -1,0 +1,76 @@
+"""Argument conversion shared by the curve and the operations.
+
+Python-side checks exist only where ctypes would otherwise change the value
+silently (a negative integer wraps around in ``size_t``) or where the flat C
+array cannot express the mistake (ragged point rows). Everything else (NaN,
+parameter ranges, orders above the degree...) is left to the library, whose
+messages name the argument.
+"""
+
+import ctypes
+import operator
+
+from .errors import BezjoinError
+
+
+def index_argument(value, name):
+    """A non-negative integer for a ``size_t`` argument."""
+    try:
+        number = operator.index(value)
+    except TypeError:
+        raise TypeError(f"{name} must be an integer, not {type(value).__name__}") from None
+    if isinstance(value, bool):
+        raise TypeError(f"{name} must be an integer, not bool")
+    if number < 0:
+        raise BezjoinError.invalid_argument(f"{name} = {number} is negative")
+    return number
+
+
+def real_argument(value, name):
+    """A float for a ``double`` argument (NaN and infinity pass: the library reports them)."""
+    if isinstance(value, bool):
+        raise TypeError(f"{name} must be a real number, not bool")
+    try:
+        return float(value)
+    except (TypeError, ValueError):
+        raise TypeError(f"{name} must be a real number, not {type(value).__name__}") from None
+
+
+def point_rows(points, name):
+    """Rows of floats from a sequence of points (tuples, lists, FreeCAD vectors, numpy rows).
+
+    Returns ``(rows, dim)``. Raises :class:`BezjoinError` (invalid argument)
+    for no points, an empty point, or rows of different lengths.
+    """
+    try:
+        rows = [tuple(real_argument(x, f"{name}[{i}] coordinate") for x in row)
+                for i, row in enumerate(points)]
+    except TypeError as error:
+        raise TypeError(f"{name} must be a sequence of points: {error}") from None
+    if not rows:
+        raise BezjoinError.invalid_argument(f"{name} is empty (a curve needs at least one point)")
+    dim = len(rows[0])
+    if dim == 0:
+        raise BezjoinError.invalid_argument(f"{name}[0] has no coordinates")
+    for i, row in enumerate(rows):
+        if len(row) != dim:
+            raise BezjoinError.invalid_argument(
+                f"{name}[{i}] has {len(row)} coordinates but {name}[0] has {dim}"
+            )
+    return rows, dim
+
+
+def double_array(values):
+    """A ctypes ``double[]`` holding ``values`` (kept alive by the caller)."""
+    values = list(values)
+    return (ctypes.c_double * max(len(values), 1))(*values), len(values)
+
+
+def flat(rows):
+    """Row-major flattening of point rows."""
+    return [x for row in rows for x in row]
+
+
+def rows_of(buffer, count, dim):
+    """``count`` rows of ``dim`` floats from a row-major ctypes buffer."""
+    return [tuple(buffer[i * dim + c] for c in range(dim)) for i in range(count)]

@@ -1,0 +1,118 @@
+"""Round the corner where two curves cross (``bzj_fillet``) and find the crossings
+(``bzj_intersect``).
+
+Krivosheev, Mavrin, Starkova, "Bezier curve conjugation for smooth curve
+joining and corner rounding", Omsk Scientific Bulletin, 2025, Fig. 2
+(mathematics.md section 2).
+"""
+
+import ctypes
+
+from ._convert import index_argument, real_argument
+from ._library import CurvePointer, library, register_prototype
+from .curve import Curve, handle_of
+from .results import CurveGroup
+
+
+class FilletOptionsStruct(ctypes.Structure):
+    """``BzjFilletOptions`` (layout fixed by the C contract)."""
+
+    _fields_ = [
+        ("p_setback", ctypes.c_double),
+        ("q_setback", ctypes.c_double),
+        ("p_order", ctypes.c_size_t),
+        ("q_order", ctypes.c_size_t),
+        ("p_scale", ctypes.c_double),
+        ("q_scale", ctypes.c_double),
+    ]
+
+
+_curve_out = ctypes.POINTER(CurvePointer)
+register_prototype(
+    "bzj_fillet",
+    ctypes.c_int32,
+    [CurvePointer, CurvePointer, ctypes.POINTER(FilletOptionsStruct), _curve_out, _curve_out,
+     _curve_out],
+)
+register_prototype(
+    "bzj_intersect",
+    ctypes.c_int32,
+    [CurvePointer, CurvePointer, ctypes.POINTER(ctypes.c_double), ctypes.c_size_t,
+     ctypes.POINTER(ctypes.c_size_t)],
+)
+
+
+#: Crossings asked for in the first call of :func:`intersect`; when there are more,
+#: it asks again with room for all of them.
+FIRST_CAPACITY = 16
+
+
+class FilletResult(CurveGroup):
+    """The rounded corner: ``p_trimmed = P|[0,u0]``, ``blend``, ``q_trimmed = Q|[v0,1]``,
+    each over ``[0, 1]``; together a C^min(p_order, q_order) B-spline with knot
+    intervals ``(u0, p_scale, (1 - v0) p_scale / q_scale)``.
+
+    ``u0`` and ``v0`` are not reported by the C function; they are the
+    parameters where the kept parts end/start, recoverable from the setbacks.
+    """
+
+    _curve_fields = ("p_trimmed", "blend", "q_trimmed")
+
+    def __init__(self, p_trimmed, blend, q_trimmed):
+        self.p_trimmed = p_trimmed
+        self.blend = blend
+        self.q_trimmed = q_trimmed
+
+
+def fillet(p, q, *, setback=None, p_setback=None, q_setback=None, p_order=None, q_order=None,
+           p_scale=1.0, q_scale=1.0):
+    """Round the corner "along ``p`` up to the first crossing ``X``, then along ``q``".
+
+    The crossing is the one with the smallest parameter on ``p``. ``p`` is
+    kept on ``[0, u0]`` with ``len(p; u0..u*) = p_setback`` and ``q`` on
+    ``[v0, 1]`` with ``len(q; v*..v0) = q_setback`` (arc lengths from ``X``);
+    the blend is :func:`bezjoin.connect` of those ends. Other corners of the
+    crossing: reverse ``p`` and/or ``q`` first.
+
+    Args:
+        setback: both setbacks (symmetric rounding); or give ``p_setback``
+            and ``q_setback`` (asymmetric).
+        p_order, q_order: continuity orders (default: the curve's degree).
+        p_scale, q_scale: shape scales (1.0 = the paper).
+
+    Raises:
+        BezjoinError: ``BZJ_ERR_NO_INTERSECTION`` when the curves do not cross
+            (or only touch), ``BZJ_ERR_INVALID_ARGUMENT`` for a setback longer
+            than the curve part, ...
+    """
+    p_handle, q_handle = handle_of(p, "p"), handle_of(q, "q")
+    if setback is not None:
+        if p_setback is not None or q_setback is not None:
+            raise TypeError("give either setback or p_setback/q_setback, not both")
+        p_setback = q_setback = setback
+    if p_setback is None or q_setback is None:
+        raise TypeError("fillet needs setback, or both p_setback and q_setback")
+    p_order = p.degree if p_order is None else index_argument(p_order, "p_order")
+    q_order = q.degree if q_order is None else index_argument(q_order, "q_order")
+    options = FilletOptionsStruct(
+        real_argument(p_setback, "p_setback"), real_argument(q_setback, "q_setback"),
+        p_order, q_order, real_argument(p_scale, "p_scale"), real_argument(q_scale, "q_scale"),
+    )
+    p_trimmed, blend, q_trimmed = CurvePointer(), CurvePointer(), CurvePointer()
+    library().call("bzj_fillet", p_handle, q_handle, ctypes.byref(options),
+                   ctypes.byref(p_trimmed), ctypes.byref(blend), ctypes.byref(q_trimmed))
+    return FilletResult(Curve._adopt(p_trimmed), Curve._adopt(blend), Curve._adopt(q_trimmed))
+
+
+def intersect(p, q):
+    """All crossings of ``p`` and ``q`` as ``(u, v)`` pairs ordered by ``u``."""
+    p_handle, q_handle = handle_of(p, "p"), handle_of(q, "q")
+    capacity = FIRST_CAPACITY
+    while True:
+        buffer = (ctypes.c_double * (2 * capacity))()
+        count = ctypes.c_size_t()
+        library().call("bzj_intersect", p_handle, q_handle, buffer, capacity,
+                       ctypes.byref(count))
+        if count.value <= capacity:
+            return [(buffer[2 * i], buffer[2 * i + 1]) for i in range(count.value)]
+        capacity = count.value

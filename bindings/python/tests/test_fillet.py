@@ -1,0 +1,112 @@
+"""intersect and fillet: crossings are common points, the kept parts and the setbacks are
+what was asked (arc lengths re-measured), the chain is smooth, and every error path."""
+
+import math
+
+import pytest
+
+import bezjoin
+from bezjoin import Curve
+from reference import derivative, distance, norm
+from test_curve import expect_error
+
+
+def test_two_lines_cross_where_expected():
+    with Curve([(0, 0), (4, 4)]) as p, Curve([(0, 4), (4, 0)]) as q:
+        crossings = bezjoin.intersect(p, q)
+    assert len(crossings) == 1
+    u, v = crossings[0]
+    assert abs(u - 0.5) <= 1e-12 and abs(v - 0.5) <= 1e-12
+
+
+def test_crossings_are_common_points_ordered_by_u():
+    # a wave crossing a line three times
+    wave = [(0, -1), (1, 3), (2, -3), (3, 1)]
+    line = [(-0.5, 0.1), (3.5, -0.1)]
+    with Curve(wave) as p, Curve(line) as q:
+        crossings = bezjoin.intersect(p, q)
+        assert len(crossings) == 3
+        assert [u for u, _v in crossings] == sorted(u for u, _v in crossings)
+        for u, v in crossings:
+            assert distance(p.evaluate(u), q.evaluate(v)) <= 1e-12 * 10
+
+
+def test_more_crossings_than_the_first_request_holds(monkeypatch):
+    import bezjoin._fillet as fillet_module
+
+    wave = [(0, -1), (1, 3), (2, -3), (3, 1)]
+    line = [(-0.5, 0.1), (3.5, -0.1)]
+    with Curve(wave) as p, Curve(line) as q:
+        expected = bezjoin.intersect(p, q)
+        monkeypatch.setattr(fillet_module, "FIRST_CAPACITY", 1)
+        assert bezjoin.intersect(p, q) == expected
+        assert len(expected) == 3
+
+
+def test_no_crossing_is_an_empty_list():
+    with Curve([(0, 0), (1, 0)]) as p, Curve([(0, 1), (1, 1)]) as q:
+        assert bezjoin.intersect(p, q) == []
+
+
+def kept_parameter(whole, trimmed, at_start):
+    """The u0 (or v0) with trimmed = whole|[0,u0] (or whole|[v0,1]), from first derivatives."""
+    if at_start:
+        return norm(derivative(trimmed, 0.0, 1)) / norm(derivative(whole, 0.0, 1))
+    return 1.0 - norm(derivative(trimmed, 1.0, 1)) / norm(derivative(whole, 1.0, 1))
+
+
+@pytest.mark.parametrize("order,p_setback,q_setback,alpha,beta", [
+    (1, 0.5, 0.5, 1.0, 1.0), (2, 0.4, 0.9, 1.0, 1.0), (2, 0.6, 0.6, 1.4, 0.8), (3, 0.3, 0.3, 1, 1)])
+def test_fillet_keeps_the_right_parts_and_is_smooth(order, p_setback, q_setback, alpha, beta):
+    p_points = [(0, 0), (1, 0.3), (2, 1.2), (3, 3.0)]
+    q_points = [(0, 3.0), (1.2, 2.0), (2.5, 1.6), (4, 1.0)]
+    with Curve(p_points) as p, Curve(q_points) as q:
+        ((u_star, v_star),) = bezjoin.intersect(p, q)
+        with bezjoin.fillet(p, q, p_setback=p_setback, q_setback=q_setback, p_order=order,
+                            q_order=order, p_scale=alpha, q_scale=beta) as result:
+            p_kept, blend, q_kept = (c.points for c in result.curves())
+            u0 = kept_parameter(p_points, p_kept, True)
+            v0 = kept_parameter(q_points, q_kept, False)
+            assert distance(p_kept[0], p_points[0]) <= 1e-12
+            assert distance(q_kept[-1], q_points[-1]) <= 1e-12
+            assert distance(p_kept[-1], p.evaluate(u0)) <= 1e-10
+            assert distance(q_kept[0], q.evaluate(v0)) <= 1e-10
+            assert abs(p.length(u0, u_star) - p_setback) <= 1e-9
+            assert abs(q.length(v_star, v0) - q_setback) <= 1e-9
+            assert len(blend) == 2 * order + 2
+            widths = (u0, alpha, (1 - v0) * alpha / beta)
+            chain = (p_kept, blend, q_kept)
+            for left, right in ((0, 1), (1, 2)):
+                for k in range(order + 1):
+                    a = tuple(x / widths[left] ** k for x in derivative(chain[left], 1.0, k))
+                    b = tuple(x / widths[right] ** k for x in derivative(chain[right], 0.0, k))
+                    assert distance(a, b) <= 1e-9 * max(1.0, norm(a)), (left, k)
+
+
+def test_symmetric_setback():
+    with Curve([(0, 0), (4, 4)]) as p, Curve([(0, 4), (4, 0)]) as q, \
+            bezjoin.fillet(p, q, setback=1.0, p_order=1, q_order=1) as result:
+        corner = (2.0, 2.0)
+        assert abs(distance(result.p_trimmed.points[-1], corner) - 1.0) <= 1e-12
+        assert abs(distance(result.q_trimmed.points[0], corner) - 1.0) <= 1e-12
+
+
+def test_fillet_errors():
+    with Curve([(0, 0), (4, 4)]) as p, Curve([(0, 4), (4, 0)]) as q, \
+            Curve([(0, 5), (4, 5)]) as away, Curve([(0, 0, 0), (1, 1, 1)]) as space:
+        expect_error("BZJ_ERR_NO_INTERSECTION", lambda: bezjoin.fillet(p, away, setback=0.5))
+        expect_error("BZJ_ERR_INVALID_ARGUMENT", lambda: bezjoin.fillet(p, q, setback=10.0))
+        expect_error("BZJ_ERR_INVALID_ARGUMENT", lambda: bezjoin.fillet(p, q, setback=-1.0))
+        expect_error("BZJ_ERR_NON_FINITE", lambda: bezjoin.fillet(p, q, setback=math.nan))
+        expect_error("BZJ_ERR_INVALID_ARGUMENT",
+                     lambda: bezjoin.fillet(p, q, setback=0.5, p_order=2), "p_order")
+        expect_error("BZJ_ERR_INVALID_ARGUMENT",
+                     lambda: bezjoin.fillet(p, q, setback=0.5, p_scale=0.0), "p_scale")
+        expect_error("BZJ_ERR_DIMENSION_MISMATCH", lambda: bezjoin.fillet(p, space, setback=0.5))
+        expect_error("BZJ_ERR_DIMENSION_MISMATCH", lambda: bezjoin.intersect(p, space))
+        with pytest.raises(TypeError, match="not both"):
+            bezjoin.fillet(p, q, setback=0.5, p_setback=0.5)
+        with pytest.raises(TypeError, match="needs setback"):
+            bezjoin.fillet(p, q, p_setback=0.5)
+        with pytest.raises(TypeError, match="p must be a bezjoin.Curve"):
+            bezjoin.intersect(None, q)

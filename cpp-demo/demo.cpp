@@ -1,0 +1,1389 @@
+// bezjoin C++ demo: our curves checked by OpenCASCADE's NURBS code, side-by-side
+// timings, and a STEP file of the demo's curves.
+//
+// Every check prints one row "PASS|FAIL name worst-error (tolerance) note";
+// the program exits 1 if any row is FAIL. Informational rows start with INFO.
+//
+// Usage: bezjoin_demo [--quick] [--step FILE] [--leak-on-purpose]
+//   --quick            run every code path once instead of timing it (valgrind)
+//   --step FILE        where to write the STEP file (default bezjoin-demo.step)
+//   --leak-on-purpose  leak one bezjoin curve and exit 0: run.sh uses it to
+//                      show that its leak check does catch a leak of ours.
+
+#include "bezjoin.hpp"
+
+#include <BRepAdaptor_Curve.hxx>
+#include <BRepBuilderAPI_MakeEdge.hxx>
+#include <BRepBuilderAPI_MakeVertex.hxx>
+#include <BRep_Builder.hxx>
+#include <BRep_Tool.hxx>
+#include <BSplCLib.hxx>
+#include <ChFi2d_FilletAPI.hxx>
+#include <GCPnts_AbscissaPoint.hxx>
+#include <Geom2dAPI_InterCurveCurve.hxx>
+#include <Geom2dAdaptor_Curve.hxx>
+#include <Geom2d_BezierCurve.hxx>
+#include <GeomAPI_PointsToBSpline.hxx>
+#include <GeomAPI_ProjectPointOnCurve.hxx>
+#include <GeomLProp_CLProps.hxx>
+#include <Geom_BSplineCurve.hxx>
+#include <Geom_BezierCurve.hxx>
+#include <IFSelect_ReturnStatus.hxx>
+#include <Interface_Static.hxx>
+#include <Message.hxx>
+#include <Message_Messenger.hxx>
+#include <Message_PrinterOStream.hxx>
+#include <STEPControl_Reader.hxx>
+#include <STEPControl_Writer.hxx>
+#include <Standard_Failure.hxx>
+#include <TColStd_Array1OfInteger.hxx>
+#include <TColStd_Array1OfReal.hxx>
+#include <TColgp_Array1OfPnt.hxx>
+#include <TColgp_Array1OfPnt2d.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopoDS.hxx>
+#include <TopoDS_Compound.hxx>
+#include <TopoDS_Edge.hxx>
+#include <gp_Pln.hxx>
+#include <math_Gauss.hxx>
+#include <math_Matrix.hxx>
+#include <math_Vector.hxx>
+
+#include <Standard_Version.hxx>
+
+#include <algorithm>
+#include <cstdarg>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <exception>
+#include <functional>
+#include <random>
+#include <string>
+#include <vector>
+
+namespace {
+
+using bezjoin::Curve;
+
+// ---------------------------------------------------------------- reporting
+
+struct Report {
+    int failures = 0;
+
+    void row(bool pass, const std::string& name, double worst, double tolerance,
+             const std::string& note = "", const char* tolerance_suffix = "") {
+        if (!pass) {
+            ++failures;
+        }
+        std::printf("%s %-34s %10.3e  (tol %.0e%s)%s%s\n", pass ? "PASS" : "FAIL", name.c_str(), worst,
+                    tolerance, tolerance_suffix, note.empty() ? "" : "  ", note.c_str());
+        std::fflush(stdout);
+    }
+
+    void fail(const std::string& name, const std::string& why) {
+        ++failures;
+        std::printf("FAIL %-34s %10s  %s\n", name.c_str(), "-", why.c_str());
+        std::fflush(stdout);
+    }
+
+    void info(const std::string& name, const std::string& text) {
+        std::printf("INFO %-34s %s\n", name.c_str(), text.c_str());
+        std::fflush(stdout);
+    }
+};
+
+std::string format(const char* fmt, ...) __attribute__((format(printf, 1, 2)));
+std::string format(const char* fmt, ...) {
+    char buffer[512];
+    va_list args;
+    va_start(args, fmt);
+    std::vsnprintf(buffer, sizeof buffer, fmt, args);
+    va_end(args);
+    return buffer;
+}
+
+// Run one check; an exception (ours or OCCT's) is a FAIL row, not a crash.
+void guarded(Report& report, const std::string& name, const std::function<void()>& body) {
+    try {
+        body();
+    } catch (const bezjoin::Error& e) {
+        report.fail(name, std::string("bezjoin::Error ") + e.what());
+    } catch (const Standard_Failure& e) {
+        report.fail(name, std::string("OCCT ") + e.DynamicType()->Name() + ": " +
+                              (e.GetMessageString() ? e.GetMessageString() : ""));
+    } catch (const std::exception& e) {
+        report.fail(name, e.what());
+    }
+}
+
+// Expect `body` to throw bezjoin::Error with `status`; one row. Run under
+// valgrind too, so the error paths are shown not to leak.
+void expect_status(Report& report, const std::string& name, BzjStatus status,
+                   const std::function<void()>& body) {
+    try {
+        body();
+        report.fail(name, std::string("no error; expected ") + bzj_status_name(status));
+    } catch (const bezjoin::Error& e) {
+        const bool ok = e.status() == status && std::strlen(e.what()) > 0;
+        report.row(ok, name, ok ? 0.0 : 1.0, 0.0, e.what());
+    }
+}
+
+// ---------------------------------------------------------------- conversions
+
+std::vector<double> random_points(std::mt19937_64& rng, std::size_t dim, std::size_t degree) {
+    std::uniform_real_distribution<double> coordinate(-1.0, 1.0);
+    std::vector<double> points((degree + 1) * dim);
+    for (double& x : points) {
+        x = coordinate(rng);
+    }
+    return points;
+}
+
+gp_Pnt point3(const double* p, std::size_t dim) {
+    return gp_Pnt(p[0], dim > 1 ? p[1] : 0.0, dim > 2 ? p[2] : 0.0);
+}
+
+TColgp_Array1OfPnt poles3(const std::vector<double>& points, std::size_t dim) {
+    const int count = static_cast<int>(points.size() / dim);
+    TColgp_Array1OfPnt poles(1, count);
+    for (int i = 0; i < count; ++i) {
+        poles(i + 1) = point3(&points[i * dim], dim);
+    }
+    return poles;
+}
+
+// OCCT's Bezier curve of ours (2D curves lifted to z = 0).
+Handle(Geom_BezierCurve) occ_bezier(const Curve& c) {
+    return new Geom_BezierCurve(poles3(c.points(), c.dim()));
+}
+
+Handle(Geom2d_BezierCurve) occ_bezier2d(const Curve& c) {
+    const std::vector<double> points = c.points();
+    const int count = static_cast<int>(points.size() / 2);
+    TColgp_Array1OfPnt2d poles(1, count);
+    for (int i = 0; i < count; ++i) {
+        poles(i + 1) = gp_Pnt2d(points[2 * i], points[2 * i + 1]);
+    }
+    return new Geom2d_BezierCurve(poles);
+}
+
+[[maybe_unused]] double max_abs(const std::vector<double>& v) {
+    double m = 0.0;
+    for (double x : v) {
+        m = std::max(m, std::abs(x));
+    }
+    return m;
+}
+
+// Largest coordinate difference between our control points and OCCT's poles,
+// relative to the size of the OCCT curve (max |coordinate|, at least 1).
+double pole_difference(const Curve& ours, const Handle(Geom_BezierCurve)& occ) {
+    const std::vector<double> points = ours.points();
+    const std::size_t dim = ours.dim();
+    if (static_cast<int>(points.size() / dim) != occ->NbPoles()) {
+        return INFINITY;
+    }
+    double scale = 1.0;
+    double worst = 0.0;
+    for (int i = 1; i <= occ->NbPoles(); ++i) {
+        const gp_Pnt pole = occ->Pole(i);
+        for (std::size_t c = 0; c < dim; ++c) {
+            scale = std::max(scale, std::abs(pole.Coord(static_cast<int>(c) + 1)));
+            worst = std::max(worst, std::abs(points[(i - 1) * dim + c] -
+                                             pole.Coord(static_cast<int>(c) + 1)));
+        }
+    }
+    return worst / scale;
+}
+
+Handle(Geom_BezierCurve) occ_segment(const Handle(Geom_BezierCurve)& c, double a, double b) {
+    Handle(Geom_BezierCurve) copy = Handle(Geom_BezierCurve)::DownCast(c->Copy());
+    copy->Segment(a, b);
+    return copy;
+}
+
+double norm(const gp_Vec& v) { return v.Magnitude(); }
+
+[[maybe_unused]] double curvature(const Handle(Geom_Curve)& c, double u) {
+    GeomLProp_CLProps props(c, u, 2, 1e-12);
+    return props.Curvature();
+}
+
+// Curvature of our curve at t, from our own derivatives (any dim 2 or 3).
+[[maybe_unused]] double curvature(const Curve& c, double t) {
+    const std::vector<double> d = c.eval(t, 2);
+    const std::size_t dim = c.dim();
+    const gp_Vec d1(dim > 0 ? d[dim] : 0.0, dim > 1 ? d[dim + 1] : 0.0, dim > 2 ? d[dim + 2] : 0.0);
+    const gp_Vec d2(d[2 * dim], dim > 1 ? d[2 * dim + 1] : 0.0, dim > 2 ? d[2 * dim + 2] : 0.0);
+    const double speed = d1.Magnitude();
+    return d1.Crossed(d2).Magnitude() / (speed * speed * speed);
+}
+
+// ---------------------------------------------------------------- chains
+
+// One Geom_BSplineCurve from Bezier pieces on consecutive knot intervals of the
+// given lengths (all pieces elevated to the largest degree). Interior knots get
+// multiplicity = degree, so neighbours share one pole: the left piece's last
+// pole is kept, and `pole_gap` receives the largest distance between it and the
+// right piece's first pole (the C^0 defect, relative to the curve's size).
+struct Chain {
+    Handle(Geom_BSplineCurve) curve;
+    std::vector<double> knots;  // distinct knots
+    int degree = 0;
+    double pole_gap = 0.0;
+    double size = 1.0;  // max |coordinate|, at least 1
+};
+
+[[maybe_unused]] Chain make_chain(const std::vector<const Curve*>& pieces, const std::vector<double>& intervals,
+                 double start = 0.0) {
+    Chain chain;
+    std::size_t degree = 0;
+    for (const Curve* piece : pieces) {
+        degree = std::max(degree, piece->degree());
+    }
+    chain.degree = static_cast<int>(degree);
+    const std::size_t dim = pieces.front()->dim();
+    std::vector<gp_Pnt> poles;
+    for (std::size_t p = 0; p < pieces.size(); ++p) {
+        const Curve elevated = pieces[p]->elevate(degree);
+        const std::vector<double> points = elevated.points();
+        for (std::size_t i = 0; i <= degree; ++i) {
+            const gp_Pnt pole = point3(&points[i * dim], dim);
+            chain.size = std::max({chain.size, std::abs(pole.X()), std::abs(pole.Y()),
+                                   std::abs(pole.Z())});
+            if (p > 0 && i == 0) {
+                chain.pole_gap = std::max(chain.pole_gap, pole.Distance(poles.back()));
+                continue;
+            }
+            poles.push_back(pole);
+        }
+    }
+    chain.pole_gap /= chain.size;
+    const int knot_count = static_cast<int>(pieces.size()) + 1;
+    TColStd_Array1OfReal knots(1, knot_count);
+    TColStd_Array1OfInteger mults(1, knot_count);
+    double x = start;
+    chain.knots.push_back(x);
+    knots(1) = x;
+    mults(1) = chain.degree + 1;
+    for (std::size_t p = 0; p < pieces.size(); ++p) {
+        x += intervals[p];
+        chain.knots.push_back(x);
+        knots(static_cast<int>(p) + 2) = x;
+        mults(static_cast<int>(p) + 2) = p + 1 == pieces.size() ? chain.degree + 1 : chain.degree;
+    }
+    TColgp_Array1OfPnt occ_poles(1, static_cast<int>(poles.size()));
+    for (std::size_t i = 0; i < poles.size(); ++i) {
+        occ_poles(static_cast<int>(i) + 1) = poles[i];
+    }
+    chain.curve = new Geom_BSplineCurve(occ_poles, knots, mults, chain.degree);
+    return chain;
+}
+
+// OCCT's verdict on the join at (1-based) knot `index`: RemoveKnot can lower
+// the multiplicity to degree - k within `tolerance` (C^k), and the derivatives
+// 0..k evaluated from the left span and the right span agree. Returns the worst
+// relative derivative jump; `removable` is RemoveKnot's answer; `stricter`
+// tells whether it could go one further (C^(k+1); false for a generic join).
+struct JoinVerdict {
+    bool removable = false;
+    bool stricter = false;
+    double jump = 0.0;
+};
+
+[[maybe_unused]] JoinVerdict judge_join(const Chain& chain, int index, int k, double tolerance) {
+    JoinVerdict verdict;
+    {
+        Handle(Geom_BSplineCurve) copy = Handle(Geom_BSplineCurve)::DownCast(chain.curve->Copy());
+        verdict.removable = copy->RemoveKnot(index, chain.degree - k, tolerance);
+    }
+    if (chain.degree - k - 1 >= 0) {
+        Handle(Geom_BSplineCurve) copy = Handle(Geom_BSplineCurve)::DownCast(chain.curve->Copy());
+        verdict.stricter = copy->RemoveKnot(index, chain.degree - k - 1, tolerance);
+    }
+    const double u = chain.knots[index - 1];
+    for (int order = 0; order <= k; ++order) {
+        gp_Vec left;
+        gp_Vec right;
+        if (order == 0) {
+            left = gp_Vec(chain.curve->LocalValue(u, index - 1, index).XYZ());
+            right = gp_Vec(chain.curve->LocalValue(u, index, index + 1).XYZ());
+        } else {
+            left = chain.curve->LocalDN(u, index - 1, index, order);
+            right = chain.curve->LocalDN(u, index, index + 1, order);
+        }
+        const double scale = std::max({1.0, norm(left), norm(right)});
+        verdict.jump = std::max(verdict.jump, (left - right).Magnitude() / scale);
+    }
+    return verdict;
+}
+
+// ---------------------------------------------------------------- timing
+
+using Clock = std::chrono::steady_clock;
+
+// Median over `batches` of the time per call of `body` (called `calls` times per
+// batch), in nanoseconds.
+template <class Body>
+double time_per_call_ns(int batches, int calls, Body&& body) {
+    std::vector<double> samples;
+    for (int b = 0; b < batches; ++b) {
+        const auto start = Clock::now();
+        for (int i = 0; i < calls; ++i) {
+            body(i);
+        }
+        const auto stop = Clock::now();
+        samples.push_back(std::chrono::duration<double, std::nano>(stop - start).count() / calls);
+    }
+    std::sort(samples.begin(), samples.end());
+    return samples[samples.size() / 2];
+}
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v[v.size() / 2];
+}
+
+// Ours and OCCT timed in alternating batches (the machine is shared and its
+// load drifts; alternating puts both under the same load). Medians of the
+// per-call times and of the per-batch ratios OCCT / ours.
+struct Pair {
+    double ours_ns;
+    double occt_ns;
+    double ratio;
+};
+
+template <class Ours, class Occt>
+Pair time_pair(int batches, int ours_calls, Ours&& ours, int occt_calls, Occt&& occt) {
+    std::vector<double> a;
+    std::vector<double> b;
+    std::vector<double> r;
+    for (int i = 0; i < batches; ++i) {
+        a.push_back(time_per_call_ns(1, ours_calls, ours));
+        b.push_back(time_per_call_ns(1, occt_calls, occt));
+        r.push_back(b.back() / a.back());
+    }
+    return {median(a), median(b), median(r)};
+}
+
+volatile double g_sink = 0.0;  // keeps timed results alive
+
+std::string format_time(double ns) {
+    if (ns >= 1e6) {
+        return format("%.2f ms", ns / 1e6);
+    }
+    if (ns >= 1e3) {
+        return format("%.2f us", ns / 1e3);
+    }
+    return format("%.1f ns", ns);
+}
+
+struct Timing {
+    std::string name;
+    std::string ours_label;
+    std::string occt_label;
+    Pair pair;
+};
+
+// ---------------------------------------------------------------- STEP
+
+struct StepScene {
+    BRep_Builder builder;
+    TopoDS_Compound compound;
+    int edges = 0;
+
+    StepScene() { builder.MakeCompound(compound); }
+
+    void add(const Handle(Geom_Curve)& curve, const gp_Vec& offset) {
+        Handle(Geom_Curve) moved = Handle(Geom_Curve)::DownCast(curve->Translated(offset));
+        builder.Add(compound, BRepBuilderAPI_MakeEdge(moved).Edge());
+        ++edges;
+    }
+    void add(const Curve& c, const gp_Vec& offset) { add(occ_bezier(c), offset); }
+    void add(const TopoDS_Edge& edge, const gp_Vec& offset) {
+        double first = 0.0;
+        double last = 0.0;
+        Handle(Geom_Curve) curve = BRep_Tool::Curve(edge, first, last);
+        Handle(Geom_Curve) moved = Handle(Geom_Curve)::DownCast(curve->Translated(offset));
+        builder.Add(compound, BRepBuilderAPI_MakeEdge(moved, first, last).Edge());
+        ++edges;
+    }
+};
+
+// ---------------------------------------------------------------- reference
+
+// An independent long-double reference (64-bit mantissa: about 2000 times
+// finer than double), used to tell whose rounding a disagreement is.
+using Wide = long double;
+
+// C^(k)(t) of the Bezier curve `points` (dim, degree) by forward differences
+// and de Casteljau, all in long double.
+std::vector<Wide> reference_derivative(const std::vector<double>& points, std::size_t dim,
+                                       std::size_t degree, double t, std::size_t k) {
+    std::vector<Wide> w(points.begin(), points.end());
+    std::size_t n = degree;
+    Wide factor = 1.0L;
+    for (std::size_t step = 0; step < k; ++step) {
+        for (std::size_t i = 0; i + 1 <= n; ++i) {
+            for (std::size_t c = 0; c < dim; ++c) {
+                w[i * dim + c] = w[(i + 1) * dim + c] - w[i * dim + c];
+            }
+        }
+        factor *= static_cast<Wide>(n);
+        --n;
+    }
+    const Wide x = t;
+    for (std::size_t level = 1; level <= n; ++level) {
+        for (std::size_t i = 0; i + level <= n; ++i) {
+            for (std::size_t c = 0; c < dim; ++c) {
+                w[i * dim + c] = (1.0L - x) * w[i * dim + c] + x * w[(i + 1) * dim + c];
+            }
+        }
+    }
+    std::vector<Wide> out(dim);
+    for (std::size_t c = 0; c < dim; ++c) {
+        out[c] = factor * w[c];
+    }
+    return out;
+}
+
+// Control points of s -> C(a + (b - a) s) by blossoming in long double:
+// point i = blossom(a^(n-i), b^i).
+std::vector<Wide> reference_segment(const std::vector<double>& points, std::size_t dim,
+                                    std::size_t degree, double a, double b) {
+    std::vector<Wide> out((degree + 1) * dim);
+    for (std::size_t i = 0; i <= degree; ++i) {
+        std::vector<Wide> w(points.begin(), points.end());
+        for (std::size_t level = 1; level <= degree; ++level) {
+            const Wide x = level <= degree - i ? static_cast<Wide>(a) : static_cast<Wide>(b);
+            for (std::size_t j = 0; j + level <= degree; ++j) {
+                for (std::size_t c = 0; c < dim; ++c) {
+                    w[j * dim + c] = (1.0L - x) * w[j * dim + c] + x * w[(j + 1) * dim + c];
+                }
+            }
+        }
+        for (std::size_t c = 0; c < dim; ++c) {
+            out[i * dim + c] = w[c];
+        }
+    }
+    return out;
+}
+
+// ---------------------------------------------------------------- the demo
+
+struct Options {
+    bool quick = false;
+    std::string step_path = "bezjoin-demo.step";
+};
+
+// a. values and derivatives vs Geom_BezierCurve::DN / Geom2d_BezierCurve::DN,
+// with a long-double reference to say whose rounding any disagreement is.
+// Errors of C^(k) are relative to max |C^(k)| over the 101 parameters.
+// PASS: ours is within `tolerance` of the reference, and ours vs OCCT is within
+// `tolerance` plus OCCT's own distance from the reference.
+void check_values_and_derivatives(Report& report, std::mt19937_64& rng) {
+    const double tolerance = 1e-12;
+    for (std::size_t dim : {2u, 3u}) {
+        const std::string name = format("a.values+derivatives-%zud", dim);
+        guarded(report, name, [&] {
+            double worst = 0.0;         // ours vs OCCT
+            double worst_ours = 0.0;    // ours vs reference
+            double worst_occt = 0.0;    // OCCT vs reference
+            std::size_t agree_up_to = 20;  // highest degree with ours vs OCCT <= tolerance throughout
+            bool pass = true;
+            for (std::size_t degree = 1; degree <= 20; ++degree) {
+                const std::vector<double> points = random_points(rng, dim, degree);
+                const Curve curve(dim, degree, points);
+                const Handle(Geom_BezierCurve) occ3 = occ_bezier(curve);
+                const Handle(Geom2d_BezierCurve) occ2 = dim == 2 ? occ_bezier2d(curve) : nullptr;
+                std::vector<std::vector<double>> ours(101);
+                std::vector<std::vector<double>> theirs(101);
+                std::vector<std::vector<Wide>> exact(101);
+                for (int i = 0; i <= 100; ++i) {
+                    const double t = i / 100.0;
+                    ours[i] = curve.eval(t, degree);
+                    theirs[i].resize((degree + 1) * dim);
+                    exact[i].resize((degree + 1) * dim);
+                    for (std::size_t k = 0; k <= degree; ++k) {
+                        double* row = &theirs[i][k * dim];
+                        if (dim == 2) {
+                            const gp_Vec2d v = k == 0 ? gp_Vec2d(occ2->Value(t).XY())
+                                                      : occ2->DN(t, static_cast<int>(k));
+                            row[0] = v.X();
+                            row[1] = v.Y();
+                        } else {
+                            const gp_Vec v = k == 0 ? gp_Vec(occ3->Value(t).XYZ())
+                                                    : occ3->DN(t, static_cast<int>(k));
+                            row[0] = v.X();
+                            row[1] = v.Y();
+                            row[2] = v.Z();
+                        }
+                        const std::vector<Wide> r = reference_derivative(points, dim, degree, t, k);
+                        std::copy(r.begin(), r.end(), exact[i].begin() + static_cast<long>(k * dim));
+                    }
+                }
+                for (std::size_t k = 0; k <= degree; ++k) {
+                    Wide scale = 0.0L;
+                    Wide ours_occt = 0.0L;
+                    Wide ours_ref = 0.0L;
+                    Wide occt_ref = 0.0L;
+                    for (int i = 0; i <= 100; ++i) {
+                        Wide size = 0.0L, a = 0.0L, b = 0.0L, c2 = 0.0L;
+                        for (std::size_t c = 0; c < dim; ++c) {
+                            const std::size_t j = k * dim + c;
+                            size += exact[i][j] * exact[i][j];
+                            a += (ours[i][j] - static_cast<Wide>(theirs[i][j])) * (ours[i][j] - static_cast<Wide>(theirs[i][j]));
+                            b += (ours[i][j] - exact[i][j]) * (ours[i][j] - exact[i][j]);
+                            c2 += (theirs[i][j] - exact[i][j]) * (theirs[i][j] - exact[i][j]);
+                        }
+                        scale = std::max(scale, std::sqrt(size));
+                        ours_occt = std::max(ours_occt, std::sqrt(a));
+                        ours_ref = std::max(ours_ref, std::sqrt(b));
+                        occt_ref = std::max(occt_ref, std::sqrt(c2));
+                    }
+                    const double denominator = static_cast<double>(std::max(scale, 1e-300L));
+                    const double e_ours_occt = static_cast<double>(ours_occt) / denominator;
+                    const double e_ours_ref = static_cast<double>(ours_ref) / denominator;
+                    const double e_occt_ref = static_cast<double>(occt_ref) / denominator;
+                    worst = std::max(worst, e_ours_occt);
+                    worst_ours = std::max(worst_ours, e_ours_ref);
+                    worst_occt = std::max(worst_occt, e_occt_ref);
+                    if (e_ours_occt > tolerance && agree_up_to >= degree) {
+                        agree_up_to = degree - 1;
+                    }
+                    pass = pass && e_ours_ref <= tolerance && e_ours_occt <= tolerance + e_occt_ref;
+                }
+            }
+            report.row(pass, name, worst, tolerance,
+                       format("ours vs OCCT, degrees 1..20, orders 0..degree, 101 t; within tol up to "
+                              "degree %zu; vs long-double reference: ours %.1e, OCCT %.1e",
+                              agree_up_to, worst_ours, worst_occt),
+                       " + OCCT's own error");
+        });
+    }
+}
+
+// b. elevation vs Increase; split and segment vs Segment; reverse vs Reverse.
+void check_exact_operations(Report& report, std::mt19937_64& rng) {
+    const double tolerance = 1e-12;
+    double worst_elevate = 0.0;
+    double worst_reverse = 0.0;
+    guarded(report, "b.elevate-vs-Increase", [&] {
+        for (std::size_t dim : {2u, 3u}) {
+            for (std::size_t degree = 1; degree <= 20; ++degree) {
+                const Curve curve(dim, degree, random_points(rng, dim, degree));
+                const Handle(Geom_BezierCurve) occ = occ_bezier(curve);
+                for (std::size_t target : {degree + 1, degree + 3, std::size_t(25)}) {
+                    Handle(Geom_BezierCurve) raised = Handle(Geom_BezierCurve)::DownCast(occ->Copy());
+                    raised->Increase(static_cast<int>(target));
+                    worst_elevate = std::max(worst_elevate, pole_difference(curve.elevate(target), raised));
+                }
+            }
+        }
+        report.row(worst_elevate <= tolerance, "b.elevate-vs-Increase", worst_elevate, tolerance,
+                   "degrees 1..20 -> +1, +3, 25; 2D and 3D; control points");
+    });
+    // Split and segment: ours and OCCT's Segment, each also against the
+    // long-double blossom, so a disagreement is attributed (as in a).
+    struct Errors {
+        double ours_occt = 0.0;
+        double ours_ref = 0.0;
+        double occt_ref = 0.0;
+        std::size_t agree_up_to = 20;
+        bool pass = true;
+    };
+    auto compare = [&](Errors& e, const Curve& ours, const Handle(Geom_BezierCurve)& occ,
+                       const std::vector<double>& points, std::size_t dim, std::size_t degree,
+                       double a, double b) {
+        const std::vector<Wide> exact = reference_segment(points, dim, degree, a, b);
+        const std::vector<double> mine = ours.points();
+        Wide scale = 1.0L;
+        Wide d_ours = 0.0L;
+        Wide d_occt = 0.0L;
+        for (std::size_t i = 0; i < exact.size(); ++i) {
+            scale = std::max(scale, std::abs(exact[i]));
+            const Wide theirs = occ->Pole(static_cast<int>(i / dim) + 1).Coord(static_cast<int>(i % dim) + 1);
+            d_ours = std::max(d_ours, std::abs(mine[i] - exact[i]));
+            d_occt = std::max(d_occt, std::abs(theirs - exact[i]));
+        }
+        const double ours_occt = pole_difference(ours, occ);
+        const double ours_ref = static_cast<double>(d_ours / scale);
+        const double occt_ref = static_cast<double>(d_occt / scale);
+        e.ours_occt = std::max(e.ours_occt, ours_occt);
+        e.ours_ref = std::max(e.ours_ref, ours_ref);
+        e.occt_ref = std::max(e.occt_ref, occt_ref);
+        if (ours_occt > tolerance && e.agree_up_to >= degree) {
+            e.agree_up_to = degree - 1;
+        }
+        e.pass = e.pass && ours_ref <= tolerance && ours_occt <= tolerance + occt_ref;
+    };
+    auto note = [](const Errors& e, const char* what) {
+        return format("%s; ours vs OCCT within tol up to degree %zu; vs long-double blossom: ours "
+                      "%.1e, OCCT %.1e",
+                      what, e.agree_up_to, e.ours_ref, e.occt_ref);
+    };
+    guarded(report, "b.split-vs-Segment", [&] {
+        Errors e;
+        for (std::size_t degree = 1; degree <= 20; ++degree) {
+            for (std::size_t dim : {2u, 3u}) {
+                const std::vector<double> points = random_points(rng, dim, degree);
+                const Curve curve(dim, degree, points);
+                const Handle(Geom_BezierCurve) occ = occ_bezier(curve);
+                for (double t : {0.1, 0.37, 0.5, 0.9}) {
+                    const auto pieces = curve.split(t);
+                    compare(e, pieces.first, occ_segment(occ, 0.0, t), points, dim, degree, 0.0, t);
+                    compare(e, pieces.second, occ_segment(occ, t, 1.0), points, dim, degree, t, 1.0);
+                }
+            }
+        }
+        report.row(e.pass, "b.split-vs-Segment", e.ours_occt, tolerance,
+                   note(e, "t = 0.1 0.37 0.5 0.9, degrees 1..20"), " + OCCT's own error");
+    });
+    guarded(report, "b.segment-vs-Segment", [&] {
+        Errors e;
+        for (std::size_t degree = 1; degree <= 20; ++degree) {
+            for (std::size_t dim : {2u, 3u}) {
+                const std::vector<double> points = random_points(rng, dim, degree);
+                const Curve curve(dim, degree, points);
+                const Handle(Geom_BezierCurve) occ = occ_bezier(curve);
+                const double ranges[][2] = {{0.2, 0.7}, {0.05, 0.95}, {-0.5, 1.5}, {0.3, 1.2}};
+                for (const auto& range : ranges) {
+                    compare(e, curve.segment(range[0], range[1]), occ_segment(occ, range[0], range[1]),
+                            points, dim, degree, range[0], range[1]);
+                }
+                Handle(Geom_BezierCurve) reversed = Handle(Geom_BezierCurve)::DownCast(occ->Copy());
+                reversed->Reverse();
+                worst_reverse = std::max(worst_reverse, pole_difference(curve.reverse(), reversed));
+            }
+        }
+        report.row(e.pass, "b.segment-vs-Segment", e.ours_occt, tolerance,
+                   note(e, "[0.2,0.7] [0.05,0.95] [-0.5,1.5] [0.3,1.2]"), " + OCCT's own error");
+        report.row(worst_reverse <= tolerance, "b.reverse-vs-Reverse", worst_reverse, tolerance,
+                   "degrees 1..20, 2D and 3D");
+    });
+}
+
+// The wrapper turns a failed call into bezjoin::Error with status and message.
+void check_error_path(Report& report) {
+    guarded(report, "wrapper.error-carries-status", [&] {
+        try {
+            const Curve bad(2, 3, std::vector<double>(7, 0.0));  // needs 8 doubles
+            report.fail("wrapper.error-carries-status", "no exception for points_len = 7");
+        } catch (const bezjoin::Error& e) {
+            const bool ok = e.status() == BZJ_ERR_INVALID_ARGUMENT &&
+                            std::strstr(e.what(), "points") != nullptr;
+            report.row(ok, "wrapper.error-carries-status", ok ? 0.0 : 1.0, 0.0, e.what());
+        }
+        try {
+            const Curve nan(2, 1, {0.0, 0.0, NAN, 1.0});
+            report.fail("wrapper.error-non-finite", "no exception for NaN");
+        } catch (const bezjoin::Error& e) {
+            const bool ok = e.status() == BZJ_ERR_NON_FINITE;
+            report.row(ok, "wrapper.error-non-finite", ok ? 0.0 : 1.0, 0.0, e.what());
+        }
+        Curve moved_from(2, 1, {0.0, 0.0, 1.0, 1.0});
+        Curve moved_to = std::move(moved_from);
+        const bool ok = !moved_from && moved_to && moved_to.degree() == 1;  // NOLINT(bugprone-use-after-move)
+        report.row(ok, "wrapper.move-transfers-ownership", ok ? 0.0 : 1.0, 0.0);
+    });
+}
+
+void time_evaluation(Report& report, std::vector<Timing>& timings, const Options& options) {
+    guarded(report, "timing.eval", [&] {
+        const int batches = options.quick ? 1 : 15;
+        const int calls = options.quick ? 10 : 200000;
+        for (std::size_t degree : {3u, 7u}) {
+            std::mt19937_64 rng(7 + degree);
+            const Curve curve(3, degree, random_points(rng, 3, degree));
+            const Handle(Geom_BezierCurve) occ = occ_bezier(curve);
+            std::vector<double> params(1024);
+            for (std::size_t i = 0; i < params.size(); ++i) {
+                params[i] = (i * 0.6180339887498949) - std::floor(i * 0.6180339887498949);
+            }
+            double buffer[3];
+            gp_Pnt p;
+            const Pair pair = time_pair(
+                batches, calls,
+                [&](int i) {
+                    curve.eval_into(params[i & 1023], 0, buffer, 3);
+                    g_sink = g_sink + buffer[0];
+                },
+                calls,
+                [&](int i) {
+                    occ->D0(params[i & 1023], p);
+                    g_sink = g_sink + p.X();
+                });
+            timings.push_back({format("evaluation, degree %zu 3D", degree), "bzj_curve_eval order 0",
+                               "Geom_BezierCurve::D0", pair});
+        }
+        // The cost of one trip through the C ABI (guard, status, last-error
+        // bookkeeping) on a function that does no work: part of every call.
+        const Curve curve(3, 3, std::vector<double>(12, 0.5));
+        const double trip = time_per_call_ns(batches, calls, [&](int) {
+            std::size_t degree = 0;
+            bzj_curve_degree(curve.get(), &degree);
+            g_sink = g_sink + static_cast<double>(degree);
+        });
+        report.info("timing.c-abi-call-overhead",
+                    format("bzj_curve_degree (no work): %s per call", format_time(trip).c_str()));
+    });
+}
+
+#if BEZJOIN_HAS_CONNECT
+// The connect system C R = F assembled with OCCT's B-spline basis
+// (BSplCLib::EvalBsplineBasis on the Bezier knot vector) and right-hand side
+// (Geom_BezierCurve::DN), solved per coordinate with math_Gauss. Returns R's
+// control points row-major (dim 3).
+std::vector<double> occt_connect(const Handle(Geom_BezierCurve)& p, double u0,
+                                 const Handle(Geom_BezierCurve)& q, double v0, int kp, int kq,
+                                 double alpha, double beta) {
+    const int degree = kp + kq + 1;
+    const int order = degree + 1;
+    TColStd_Array1OfReal flat_knots(1, 2 * order);
+    for (int i = 1; i <= order; ++i) {
+        flat_knots(i) = 0.0;
+        flat_knots(order + i) = 1.0;
+    }
+    math_Matrix system(1, order, 1, order, 0.0);
+    math_Matrix rhs(1, order, 1, 3, 0.0);
+    math_Matrix basis(1, kp + 1, 1, order, 0.0);
+    int first = 0;
+    BSplCLib::EvalBsplineBasis(kp, order, flat_knots, 0.0, first, basis);
+    for (int k = 0; k <= kp; ++k) {
+        for (int j = 1; j <= order; ++j) {
+            system(k + 1, first + j - 1) = basis(k + 1, j);
+        }
+        const gp_Vec d = k == 0 ? gp_Vec(p->Value(u0).XYZ()) : p->DN(u0, k);
+        const double s = std::pow(alpha, k);
+        rhs(k + 1, 1) = s * d.X();
+        rhs(k + 1, 2) = s * d.Y();
+        rhs(k + 1, 3) = s * d.Z();
+    }
+    math_Matrix basis_end(1, kq + 1, 1, order, 0.0);
+    BSplCLib::EvalBsplineBasis(kq, order, flat_knots, 1.0, first, basis_end);
+    for (int k = 0; k <= kq; ++k) {
+        const int row = kp + 2 + k;
+        for (int j = 1; j <= order; ++j) {
+            system(row, first + j - 1) = basis_end(k + 1, j);
+        }
+        const gp_Vec d = k == 0 ? gp_Vec(q->Value(v0).XYZ()) : q->DN(v0, k);
+        const double s = std::pow(beta, k);
+        rhs(row, 1) = s * d.X();
+        rhs(row, 2) = s * d.Y();
+        rhs(row, 3) = s * d.Z();
+    }
+    math_Gauss gauss(system);
+    if (!gauss.IsDone()) {
+        throw std::runtime_error("math_Gauss: singular connect system");
+    }
+    std::vector<double> out(static_cast<std::size_t>(order) * 3);
+    for (int c = 1; c <= 3; ++c) {
+        math_Vector b(1, order);
+        for (int i = 1; i <= order; ++i) {
+            b(i) = rhs(i, c);
+        }
+        math_Vector x(1, order);
+        gauss.Solve(b, x);
+        for (int i = 1; i <= order; ++i) {
+            out[(i - 1) * 3 + (c - 1)] = x(i);
+        }
+    }
+    return out;
+}
+
+// c. connect: the chain P|[0,u0], R, Q|[v0,1] on knot intervals
+// (u0, alpha, (1-v0) alpha/beta) is C^kp / C^kq by OCCT's judgement.
+void check_connect(Report& report, StepScene& scene, std::vector<Timing>& timings,
+                   const Options& options) {
+    struct Case {
+        const char* name;
+        std::size_t np, nq, kp, kq;
+        double u0, v0, alpha, beta;
+        bool constraint;
+    };
+    const Case cases[] = {
+        {"paper kp=np kq=nq", 3, 4, 3, 4, 0.6, 0.3, 1.0, 1.0, false},
+        {"scaled + point", 5, 3, 2, 3, 0.8, 0.25, 1.7, 0.6, true},
+    };
+    const double tolerance = 1e-9;
+    int index = 0;
+    for (const Case& cs : cases) {
+        const std::string name = format("c.connect[%s]", cs.name);
+        guarded(report, name, [&] {
+            std::mt19937_64 rng(100 + index);
+            std::vector<double> p_points = random_points(rng, 3, cs.np);
+            std::vector<double> q_points = random_points(rng, 3, cs.nq);
+            for (std::size_t i = 0; i <= cs.nq; ++i) {
+                q_points[i * 3] += 2.5;  // Q to the right of P: a real gap to bridge
+            }
+            const Curve p(3, cs.np, p_points);
+            const Curve q(3, cs.nq, q_points);
+            bezjoin::ConnectOptions opts;
+            opts.p_order = cs.kp;
+            opts.q_order = cs.kq;
+            opts.p_scale = cs.alpha;
+            opts.q_scale = cs.beta;
+            bezjoin::PointConstraint point;
+            if (cs.constraint) {
+                point.t = 0.4;
+                point.max_order = 1;
+                point.values = {1.2, 0.9, -0.3, 2.0, 0.5, 0.4};  // R(0.4), R'(0.4)
+                opts.constraints.push_back(point);
+            }
+            const Curve r = bezjoin::connect(p, cs.u0, q, cs.v0, opts);
+            const Curve p_part = p.segment(0.0, cs.u0);
+            const Curve q_part = q.segment(cs.v0, 1.0);
+            const double intervals_q = (1.0 - cs.v0) * cs.alpha / cs.beta;
+            const Chain chain = make_chain({&p_part, &r, &q_part}, {cs.u0, cs.alpha, intervals_q});
+            const JoinVerdict left = judge_join(chain, 2, static_cast<int>(cs.kp), tolerance * chain.size);
+            const JoinVerdict right = judge_join(chain, 3, static_cast<int>(cs.kq), tolerance * chain.size);
+            double worst = std::max({left.jump, right.jump, chain.pole_gap});
+            bool pass = left.removable && right.removable && worst <= tolerance;
+            std::string note = format(
+                "degree %d; RemoveKnot to mult %d at P|R: %s, to %d at R|Q: %s; C^(k+1) too: %s/%s",
+                chain.degree, chain.degree - static_cast<int>(cs.kp), left.removable ? "ok" : "REFUSED",
+                chain.degree - static_cast<int>(cs.kq), right.removable ? "ok" : "REFUSED",
+                left.stricter ? "yes" : "no", right.stricter ? "yes" : "no");
+            if (cs.constraint) {
+                // R(t0) and R'(t0) through OCCT's chain: global u = u0 + alpha t0.
+                const double u = cs.u0 + cs.alpha * point.t;
+                const gp_Pnt value = chain.curve->Value(u);
+                const gp_Vec tangent = chain.curve->DN(u, 1) * cs.alpha;
+                const gp_Pnt wanted(point.values[0], point.values[1], point.values[2]);
+                const gp_Vec wanted_tangent(point.values[3], point.values[4], point.values[5]);
+                const double miss = std::max(value.Distance(wanted) / chain.size,
+                                             (tangent - wanted_tangent).Magnitude() /
+                                                 std::max(1.0, wanted_tangent.Magnitude()));
+                worst = std::max(worst, miss);
+                pass = pass && miss <= tolerance;
+                note += format("; constraint miss %.1e", miss);
+            }
+            report.row(pass, name, worst, tolerance, note);
+
+            if (!cs.constraint) {
+                // The same system through OCCT: assemble + math_Gauss.
+                const Handle(Geom_BezierCurve) occ_p = occ_bezier(p);
+                const Handle(Geom_BezierCurve) occ_q = occ_bezier(q);
+                const std::vector<double> theirs =
+                    occt_connect(occ_p, cs.u0, occ_q, cs.v0, static_cast<int>(cs.kp),
+                                 static_cast<int>(cs.kq), cs.alpha, cs.beta);
+                const std::vector<double> ours = r.points();
+                double gap = ours.size() == theirs.size() ? 0.0 : INFINITY;
+                for (std::size_t i = 0; i < std::min(ours.size(), theirs.size()); ++i) {
+                    gap = std::max(gap, std::abs(ours[i] - theirs[i]));
+                }
+                gap /= std::max(1.0, max_abs(theirs));
+                report.row(gap <= 1e-10, "c.connect-vs-math_Gauss", gap, 1e-10,
+                           format("control points of R (degree %zu), OCCT-assembled system",
+                                  cs.kp + cs.kq + 1));
+
+                const int batches = options.quick ? 1 : 11;
+                const int calls = options.quick ? 2 : 10000;
+                const Pair pair = time_pair(
+                    batches, calls,
+                    [&](int) {
+                        const Curve joined = bezjoin::connect(p, cs.u0, q, cs.v0, opts);
+                        g_sink = g_sink + static_cast<double>(joined.degree());
+                    },
+                    calls,
+                    [&](int) {
+                        const std::vector<double> x =
+                            occt_connect(occ_p, cs.u0, occ_q, cs.v0, static_cast<int>(cs.kp),
+                                         static_cast<int>(cs.kq), cs.alpha, cs.beta);
+                        g_sink = g_sink + x[0];
+                    });
+                timings.push_back({format("connect C3/C4 (cubic + quartic, degree %zu)", cs.kp + cs.kq + 1),
+                                   "bzj_connect", "EvalBsplineBasis + DN + math_Gauss", pair});
+                const gp_Vec offset(0.0, 0.0, 0.0);
+                scene.add(Handle(Geom_Curve)(chain.curve), offset);
+            }
+        });
+        ++index;
+    }
+    expect_status(report, "c.connect-error-u0-outside", BZJ_ERR_INVALID_ARGUMENT, [&] {
+        const Curve p(2, 2, {0.0, 0.0, 1.0, 1.0, 2.0, 0.0});
+        bezjoin::ConnectOptions opts;
+        opts.p_order = 1;
+        opts.q_order = 1;
+        (void)bezjoin::connect(p, 1.5, p, 0.0, opts);
+    });
+    expect_status(report, "c.connect-error-order-above-degree", BZJ_ERR_INVALID_ARGUMENT, [&] {
+        const Curve p(2, 2, {0.0, 0.0, 1.0, 1.0, 2.0, 0.0});
+        bezjoin::ConnectOptions opts;
+        opts.p_order = 3;
+        (void)bezjoin::connect(p, 0.5, p, 0.5, opts);
+    });
+}
+#endif  // BEZJOIN_HAS_CONNECT
+
+#if BEZJOIN_HAS_FILLET
+// d. fillet: our crossing vs Geom2dAPI_InterCurveCurve, setbacks by OCCT's
+// arc length, continuity as in c, and OCCT's circular fillet of the same corner.
+void check_fillet(Report& report, StepScene& scene, std::vector<Timing>& timings,
+                  const Options& options) {
+    const Curve p(2, 3, {0.0, 0.0, 0.8, 0.3, 1.5, -0.2, 2.2, 0.4});
+    const Curve q(2, 3, {1.0, -1.0, 1.3, -0.2, 0.8, 0.6, 1.2, 1.4});
+    double u_star = 0.0;
+    double v_star = 0.0;
+    guarded(report, "d.intersect-vs-InterCurveCurve", [&] {
+        const auto ours = bezjoin::intersect(p, q);
+        Geom2dAPI_InterCurveCurve occ(occ_bezier2d(p), occ_bezier2d(q), 1e-12);
+        const Geom2dInt_GInter& inter = occ.Intersector();
+        double worst = 0.0;
+        bool pass = static_cast<int>(ours.size()) == occ.NbPoints() && !ours.empty();
+        for (const auto& uv : ours) {
+            double best = INFINITY;
+            for (int i = 1; i <= occ.NbPoints(); ++i) {
+                const IntRes2d_IntersectionPoint& point = inter.Point(i);
+                best = std::min(best, std::max(std::abs(point.ParamOnFirst() - uv.first),
+                                               std::abs(point.ParamOnSecond() - uv.second)));
+            }
+            worst = std::max(worst, best);
+        }
+        if (!ours.empty()) {
+            u_star = ours.front().first;
+            v_star = ours.front().second;
+            const std::vector<double> a = p.eval(u_star);
+            const std::vector<double> b = q.eval(v_star);
+            worst = std::max(worst, std::hypot(a[0] - b[0], a[1] - b[1]));
+        }
+        pass = pass && worst <= 1e-10;
+        report.row(pass, "d.intersect-vs-InterCurveCurve", worst, 1e-10,
+                   format("ours %zu crossing(s), OCCT %d; (u*, v*) = (%.12f, %.12f); "
+                          "worst of |du|, |dv|, |P(u*)-Q(v*)|",
+                          ours.size(), occ.NbPoints(), u_star, v_star));
+    });
+    if (u_star == 0.0) {
+        return;
+    }
+
+    struct Case {
+        const char* name;
+        double dp, dq;
+        std::size_t kp, kq;
+        double alpha, beta;
+    };
+    const Case cases[] = {
+        {"C3 symmetric", 0.3, 0.3, 3, 3, 1.0, 1.0},
+        {"C2 asymmetric scaled", 0.25, 0.4, 2, 2, 1.2, 0.8},
+    };
+    const Handle(Geom2d_BezierCurve) occ_p2 = occ_bezier2d(p);
+    const Handle(Geom2d_BezierCurve) occ_q2 = occ_bezier2d(q);
+    const double tolerance = 1e-9;
+    double our_jump = 0.0;
+    for (const Case& cs : cases) {
+        const std::string name = format("d.fillet[%s]", cs.name);
+        guarded(report, name, [&] {
+            bezjoin::FilletOptions opts;
+            opts.p_setback = cs.dp;
+            opts.q_setback = cs.dq;
+            opts.p_order = cs.kp;
+            opts.q_order = cs.kq;
+            opts.p_scale = cs.alpha;
+            opts.q_scale = cs.beta;
+            const bezjoin::Fillet f = bezjoin::fillet(p, q, opts);
+            // u0, v0 from the setbacks by OCCT's own arc length.
+            const double u0 = GCPnts_AbscissaPoint(1e-13, Geom2dAdaptor_Curve(occ_p2), -cs.dp, u_star).Parameter();
+            const double v0 = GCPnts_AbscissaPoint(1e-13, Geom2dAdaptor_Curve(occ_q2), cs.dq, v_star).Parameter();
+            const double trim_gap = std::max(
+                pole_difference(f.p_trimmed, occ_segment(occ_bezier(p), 0.0, u0)),
+                pole_difference(f.q_trimmed, occ_segment(occ_bezier(q), v0, 1.0)));
+            const Chain chain = make_chain({&f.p_trimmed, &f.blend, &f.q_trimmed},
+                                           {u0, cs.alpha, (1.0 - v0) * cs.alpha / cs.beta});
+            const JoinVerdict left = judge_join(chain, 2, static_cast<int>(cs.kp), tolerance * chain.size);
+            const JoinVerdict right = judge_join(chain, 3, static_cast<int>(cs.kq), tolerance * chain.size);
+            const double worst = std::max({left.jump, right.jump, chain.pole_gap, trim_gap});
+            const bool pass = left.removable && right.removable && worst <= tolerance;
+            report.row(pass, name, worst, tolerance,
+                       format("u0 = %.6f v0 = %.6f (OCCT arc length); trims vs Segment %.1e; "
+                              "RemoveKnot C^%zu: %s, C^%zu: %s",
+                              u0, v0, trim_gap, cs.kp, left.removable ? "ok" : "REFUSED", cs.kq,
+                              right.removable ? "ok" : "REFUSED"));
+            if (cs.kp == 3) {
+                our_jump = std::max(
+                    std::abs(curvature(f.p_trimmed, 1.0) - curvature(f.blend, 0.0)),
+                    std::abs(curvature(f.blend, 1.0) - curvature(f.q_trimmed, 0.0)));
+                scene.add(f.p_trimmed, gp_Vec(0.0, 3.0, 0.0));
+                scene.add(f.blend, gp_Vec(0.0, 3.0, 0.0));
+                scene.add(f.q_trimmed, gp_Vec(0.0, 3.0, 0.0));
+            }
+        });
+    }
+
+    // OCCT's circular fillet of the same corner, radius giving about the same
+    // setback (0.3) for the tangent directions at the crossing.
+    guarded(report, "d.ChFi2d_FilletAPI", [&] {
+        const Handle(Geom_BezierCurve) occ_p = occ_bezier(p);
+        const Handle(Geom_BezierCurve) occ_q = occ_bezier(q);
+        const gp_Pnt corner = occ_p->Value(u_star);
+        const gp_Vec tp = occ_p->DN(u_star, 1).Normalized();
+        const gp_Vec tq = occ_q->DN(v_star, 1).Normalized();
+        const double turn = tp.Angle(tq);
+        const double radius = 0.3 / std::tan(turn / 2.0);
+        const TopoDS_Vertex start = BRepBuilderAPI_MakeVertex(occ_p->Value(0.0));
+        const TopoDS_Vertex middle = BRepBuilderAPI_MakeVertex(corner);
+        const TopoDS_Vertex end = BRepBuilderAPI_MakeVertex(occ_q->Value(1.0));
+        const TopoDS_Edge e1 = BRepBuilderAPI_MakeEdge(occ_p, start, middle, 0.0, u_star).Edge();
+        const TopoDS_Edge e2 = BRepBuilderAPI_MakeEdge(occ_q, middle, end, v_star, 1.0).Edge();
+        const gp_Pln plane(gp::XOY());
+
+        auto run_occt = [&](TopoDS_Edge& m1, TopoDS_Edge& m2) {
+            ChFi2d_FilletAPI api(e1, e2, plane);
+            if (!api.Perform(radius) || api.NbResults(corner) < 1) {
+                throw std::runtime_error("ChFi2d_FilletAPI found no fillet");
+            }
+            return api.Result(corner, m1, m2, -1);
+        };
+        TopoDS_Edge m1;
+        TopoDS_Edge m2;
+        const TopoDS_Edge arc = run_occt(m1, m2);
+        // Curvature jump at each tangency point: trimmed edge vs arc.
+        double arc_first = 0.0;
+        double arc_last = 0.0;
+        const Handle(Geom_Curve) arc_curve = BRep_Tool::Curve(arc, arc_first, arc_last);
+        double occt_jump = 0.0;
+        for (const TopoDS_Edge* edge : {&m1, &m2}) {
+            double first = 0.0;
+            double last = 0.0;
+            const Handle(Geom_Curve) curve = BRep_Tool::Curve(*edge, first, last);
+            // The end of the trimmed edge nearest to the arc, and the arc end there.
+            const gp_Pnt a = curve->Value(first);
+            const gp_Pnt b = curve->Value(last);
+            const gp_Pnt s = arc_curve->Value(arc_first);
+            const gp_Pnt e = arc_curve->Value(arc_last);
+            const double da = std::min(a.Distance(s), a.Distance(e));
+            const double db = std::min(b.Distance(s), b.Distance(e));
+            const double u_edge = da < db ? first : last;
+            const gp_Pnt at = curve->Value(u_edge);
+            const double u_arc = at.Distance(s) < at.Distance(e) ? arc_first : arc_last;
+            occt_jump = std::max(occt_jump, std::abs(curvature(curve, u_edge) - curvature(arc_curve, u_arc)));
+        }
+        report.info("d.curvature-jump-at-tangency",
+                    format("ours (C3, setback 0.3): %.2e   OCCT circular fillet (G1, r = %.4f): %.2e",
+                           our_jump, radius, occt_jump));
+        scene.add(m1, gp_Vec(0.0, 6.0, 0.0));
+        scene.add(arc, gp_Vec(0.0, 6.0, 0.0));
+        scene.add(m2, gp_Vec(0.0, 6.0, 0.0));
+
+        bezjoin::FilletOptions opts;
+        opts.p_setback = 0.3;
+        opts.q_setback = 0.3;
+        opts.p_order = 3;
+        opts.q_order = 3;
+        const Pair pair = time_pair(
+            options.quick ? 1 : 7, options.quick ? 1 : 1000,
+            [&](int) {
+                const bezjoin::Fillet f = bezjoin::fillet(p, q, opts);
+                g_sink = g_sink + static_cast<double>(f.blend.degree());
+            },
+            options.quick ? 1 : 10,
+            [&](int) {
+                TopoDS_Edge a;
+                TopoDS_Edge b;
+                const TopoDS_Edge result = run_occt(a, b);
+                g_sink = g_sink + static_cast<double>(result.IsNull());
+            });
+        timings.push_back({"fillet of two cubics (ours C3, OCCT G1 arc)", "bzj_fillet C3",
+                           "ChFi2d_FilletAPI", pair});
+    });
+    expect_status(report, "d.fillet-error-no-crossing", BZJ_ERR_NO_INTERSECTION, [&] {
+        const Curve low(2, 1, {0.0, 0.0, 1.0, 0.0});
+        const Curve high(2, 1, {0.0, 1.0, 1.0, 1.0});
+        bezjoin::FilletOptions opts;
+        opts.p_setback = 0.1;
+        opts.q_setback = 0.1;
+        opts.p_order = 1;
+        opts.q_order = 1;
+        (void)bezjoin::fillet(low, high, opts);
+    });
+}
+#endif  // BEZJOIN_HAS_FILLET
+
+#if BEZJOIN_HAS_MERGE
+// e. merge: Segment of R at mu gives back P^ and Q^; our deviation vs OCCT's
+// best one-span fit of the same two curves.
+void check_merge(Report& report, StepScene& scene, std::vector<Timing>& timings,
+                 const Options& options) {
+    const Curve p(3, 3, {0.0, 0.0, 0.0, 0.4, 0.5, 0.1, 0.9, 0.7, 0.2, 1.4, 0.75, 0.2});
+    const Curve q(3, 3, {1.4, 0.75, 0.2, 1.9, 0.8, 0.2, 2.4, 0.5, 0.1, 2.8, 0.0, 0.0});
+    const Handle(Geom_BezierCurve) occ_p = occ_bezier(p);
+    const Handle(Geom_BezierCurve) occ_q = occ_bezier(q);
+    bezjoin::MergeOptions opts;
+    opts.metric = BZJ_METRIC_L2;
+    opts.split = BZJ_SPLIT_OPTIMAL;
+    opts.fix_ends = true;
+    const double tolerance = 1e-12;
+    guarded(report, "e.merge-Segment-at-mu", [&] {
+        const bezjoin::Merge m = bezjoin::merge(p, q, opts);
+        const double mu = m.report.mu;
+        const Handle(Geom_BezierCurve) r = occ_bezier(m.merged);
+        const double gap = std::max(pole_difference(m.p_hat, occ_segment(r, 0.0, mu)),
+                                    pole_difference(m.q_hat, occ_segment(r, mu, 1.0)));
+        report.row(gap <= tolerance, "e.merge-Segment-at-mu", gap, tolerance,
+                   format("L2 metric, optimal mu = %.6f, ends fixed", mu));
+
+        // Our reported deviation vs OCCT's evaluation of |R(mu u) - P(u)|, |R(mu + (1-mu) v) - Q(v)|.
+        double measured = 0.0;
+        for (int i = 0; i <= 2000; ++i) {
+            const double s = i / 2000.0;
+            measured = std::max(measured, r->Value(mu * s).Distance(occ_p->Value(s)));
+            measured = std::max(measured, r->Value(mu + (1.0 - mu) * s).Distance(occ_q->Value(s)));
+        }
+        const double reported = m.report.max_deviation;
+        const double disagreement = std::abs(reported - measured) / std::max(measured, 1e-300);
+        report.row(disagreement <= 1e-3, "e.merge-reported-deviation", disagreement, 1e-3,
+                   format("reported %.6e, OCCT-evaluated %.6e (2001 samples per curve)", reported,
+                          measured));
+
+        // OCCT's best single-span fit of the same samples, same degree.
+        const int samples = 101;
+        TColgp_Array1OfPnt points(1, 2 * samples - 1);
+        for (int i = 0; i < samples; ++i) {
+            points(i + 1) = occ_p->Value(i / double(samples - 1));
+        }
+        for (int i = 1; i < samples; ++i) {
+            points(samples + i) = occ_q->Value(i / double(samples - 1));
+        }
+        GeomAPI_PointsToBSpline fit(points, 3, 3, GeomAbs_C2, 1.0);
+        if (!fit.IsDone()) {
+            throw std::runtime_error("GeomAPI_PointsToBSpline failed");
+        }
+        const Handle(Geom_BSplineCurve) occ_fit = fit.Curve();
+        // Same geometric measure for both: distance from P-then-Q samples to the curve.
+        auto distance_to = [&](const Handle(Geom_Curve)& curve) {
+            double worst = 0.0;
+            for (int i = 1; i <= points.Upper(); ++i) {
+                GeomAPI_ProjectPointOnCurve projection(points(i), curve);
+                if (projection.NbPoints() > 0) {
+                    worst = std::max(worst, projection.LowerDistance());
+                }
+            }
+            return worst;
+        };
+        const double ours_geometric = distance_to(r);
+        const double occt_geometric = distance_to(occ_fit);
+        report.info("e.merge-vs-PointsToBSpline",
+                    format("max distance of P-then-Q to the curve: ours %.3e (parametric %.3e), "
+                           "OCCT one-span cubic fit %.3e (%d knots)",
+                           ours_geometric, reported, occt_geometric, occ_fit->NbKnots()));
+        scene.add(m.merged, gp_Vec(0.0, 9.0, 0.0));
+        scene.add(Handle(Geom_Curve)(occ_fit), gp_Vec(0.0, 10.0, 0.0));
+        scene.add(p, gp_Vec(0.0, 11.0, 0.0));
+        scene.add(q, gp_Vec(0.0, 11.0, 0.0));
+
+        const Pair pair = time_pair(
+            options.quick ? 1 : 9, options.quick ? 1 : 1000,
+            [&](int) {
+                const bezjoin::Merge again = bezjoin::merge(p, q, opts);
+                g_sink = g_sink + again.report.mu;
+            },
+            options.quick ? 1 : 100,
+            [&](int) {
+                GeomAPI_PointsToBSpline again(points, 3, 3, GeomAbs_C2, 1.0);
+                g_sink = g_sink + static_cast<double>(again.Curve()->NbPoles());
+            });
+        timings.push_back({"merge two cubics into one", "bzj_merge L2 optimal mu",
+                           "GeomAPI_PointsToBSpline 201 points", pair});
+        // The paper's setting: discrete metric, mu = 1/2 (one KKT solve, no search).
+        bezjoin::MergeOptions paper;
+        paper.metric = BZJ_METRIC_DISCRETE;
+        paper.split = BZJ_SPLIT_HALF;
+        paper.fix_ends = true;
+        const Pair paper_pair = time_pair(
+            options.quick ? 1 : 9, options.quick ? 1 : 5000,
+            [&](int) {
+                const bezjoin::Merge again = bezjoin::merge(p, q, paper);
+                g_sink = g_sink + again.report.mu;
+            },
+            options.quick ? 1 : 100,
+            [&](int) {
+                GeomAPI_PointsToBSpline again(points, 3, 3, GeomAbs_C2, 1.0);
+                g_sink = g_sink + static_cast<double>(again.Curve()->NbPoles());
+            });
+        timings.push_back({"merge two cubics into one (paper)", "bzj_merge discrete mu=1/2",
+                           "GeomAPI_PointsToBSpline 201 points", paper_pair});
+    });
+    expect_status(report, "e.merge-error-mu-outside", BZJ_ERR_INVALID_ARGUMENT, [&] {
+        bezjoin::MergeOptions bad;
+        bad.split = BZJ_SPLIT_GIVEN;
+        bad.mu = 1.5;
+        (void)bezjoin::merge(p, q, bad);
+    });
+    expect_status(report, "e.merge-error-keep-both", BZJ_ERR_INCONSISTENT, [&] {
+        bezjoin::MergeOptions bad;
+        bad.keep_p = true;
+        bad.keep_q = true;
+        (void)bezjoin::merge(p, q, bad);  // P and Q are not one curve: nothing may change
+    });
+}
+#endif  // BEZJOIN_HAS_MERGE
+
+#if BEZJOIN_HAS_LAGRANGE
+// f. Lagrange spline: the given points lie on OCCT's curve; C1 by OCCT.
+void check_lagrange(Report& report, StepScene& scene) {
+    guarded(report, "f.lagrange-points-on-curve", [&] {
+        const std::size_t dim = 3;
+        const std::vector<double> params = {0.0, 0.7, 1.5, 2.1, 3.0, 3.6};
+        auto helix = [](double x) { return gp_Pnt(std::cos(x), std::sin(x), 0.3 * x); };
+        std::vector<double> nodes;
+        for (double x : params) {
+            const gp_Pnt pt = helix(x);
+            nodes.insert(nodes.end(), {pt.X(), pt.Y(), pt.Z()});
+        }
+        std::vector<gp_Pnt> given;  // every given point with its global parameter
+        std::vector<double> given_at;
+        for (std::size_t i = 0; i < params.size(); ++i) {
+            given.push_back(helix(params[i]));
+            given_at.push_back(params[i]);
+        }
+        const double h0 = params[1] - params[0];
+        std::vector<double> first_inner;
+        for (double f : {1.0 / 3.0, 2.0 / 3.0}) {
+            const double x = params[0] + f * h0;
+            const gp_Pnt pt = helix(x);
+            first_inner.insert(first_inner.end(), {pt.X(), pt.Y(), pt.Z()});
+            given.push_back(pt);
+            given_at.push_back(x);
+        }
+        std::vector<double> second_inner;
+        for (std::size_t i = 1; i + 1 < params.size(); ++i) {
+            const double x = params[i] + (params[i + 1] - params[i]) * 2.0 / 3.0;
+            const gp_Pnt pt = helix(x);
+            second_inner.insert(second_inner.end(), {pt.X(), pt.Y(), pt.Z()});
+            given.push_back(pt);
+            given_at.push_back(x);
+        }
+        const std::vector<Curve> segments =
+            bezjoin::lagrange_spline(dim, nodes, params, first_inner, second_inner);
+        std::vector<const Curve*> pieces;
+        std::vector<double> intervals;
+        for (std::size_t i = 0; i < segments.size(); ++i) {
+            pieces.push_back(&segments[i]);
+            intervals.push_back(params[i + 1] - params[i]);
+        }
+        const Chain chain = make_chain(pieces, intervals, params[0]);
+        double miss = chain.pole_gap;
+        for (std::size_t i = 0; i < given.size(); ++i) {
+            miss = std::max(miss, chain.curve->Value(given_at[i]).Distance(given[i]) / chain.size);
+        }
+        const double tolerance = 1e-12;
+        report.row(miss <= tolerance, "f.lagrange-points-on-curve", miss, tolerance,
+                   format("%zu given points at their parameters on OCCT's cubic B-spline", given.size()));
+        double jump = 0.0;
+        bool all_removable = true;
+        bool any_c2 = false;
+        for (int index = 2; index < static_cast<int>(chain.knots.size()); ++index) {
+            const JoinVerdict verdict = judge_join(chain, index, 1, 1e-9 * chain.size);
+            all_removable = all_removable && verdict.removable;
+            any_c2 = any_c2 || verdict.stricter;
+            jump = std::max(jump, verdict.jump);
+        }
+        report.row(all_removable && jump <= 1e-9, "f.lagrange-C1-by-OCCT", jump, 1e-9,
+                   format("%zu interior knots: RemoveKnot to mult 2 %s; C2 somewhere: %s",
+                          chain.knots.size() - 2, all_removable ? "ok" : "REFUSED",
+                          any_c2 ? "yes" : "no"));
+        scene.add(Handle(Geom_Curve)(chain.curve), gp_Vec(0.0, 14.0, 0.0));
+    });
+    expect_status(report, "f.lagrange-error-params-order", BZJ_ERR_INVALID_ARGUMENT, [&] {
+        const std::vector<double> nodes = {0.0, 0.0, 1.0, 0.0, 2.0, 1.0};
+        (void)bezjoin::lagrange_spline(2, nodes, {0.0, 1.0, 0.5}, {0.3, 0.1, 0.6, 0.1}, {1.6, 0.6});
+    });
+}
+#endif  // BEZJOIN_HAS_LAGRANGE
+
+void write_step(Report& report, StepScene& scene, std::mt19937_64& rng, const Options& options) {
+    guarded(report, "step.write-and-read-back", [&] {
+        // Plus a few plain curves of ours, degrees 2..5, in a row.
+        for (std::size_t degree = 2; degree <= 5; ++degree) {
+            const Curve c(3, degree, random_points(rng, 3, degree));
+            scene.add(c, gp_Vec(3.0 * static_cast<double>(degree), -4.0, 0.0));
+        }
+        STEPControl_Writer writer;
+        Interface_Static::SetCVal("write.step.schema", "AP214IS");
+        if (writer.Transfer(scene.compound, STEPControl_AsIs) != IFSelect_RetDone ||
+            writer.Write(options.step_path.c_str()) != IFSelect_RetDone) {
+            throw std::runtime_error("STEPControl_Writer failed for " + options.step_path);
+        }
+        STEPControl_Reader reader;
+        if (reader.ReadFile(options.step_path.c_str()) != IFSelect_RetDone) {
+            throw std::runtime_error("STEPControl_Reader cannot read " + options.step_path);
+        }
+        reader.TransferRoots();
+        int edges = 0;
+        for (TopExp_Explorer it(reader.OneShape(), TopAbs_EDGE); it.More(); it.Next()) {
+            ++edges;
+        }
+        const bool pass = edges == scene.edges;
+        report.row(pass, "step.write-and-read-back", std::abs(edges - scene.edges), 0.0,
+                   format("%s: %d edges written, %d read back", options.step_path.c_str(), scene.edges,
+                          edges));
+    });
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    Options options;
+    for (int i = 1; i < argc; ++i) {
+        if (std::strcmp(argv[i], "--quick") == 0) {
+            options.quick = true;
+        } else if (std::strcmp(argv[i], "--step") == 0 && i + 1 < argc) {
+            options.step_path = argv[++i];
+        } else if (std::strcmp(argv[i], "--leak-on-purpose") == 0) {
+            Curve leaked(2, 1, {0.0, 0.0, 1.0, 1.0});
+            std::printf("leaking one curve handle on purpose: %p\n", static_cast<void*>(leaked.release()));
+            return 0;
+        } else {
+            std::fprintf(stderr, "usage: %s [--quick] [--step FILE] [--leak-on-purpose]\n", argv[0]);
+            return 2;
+        }
+    }
+    // OCCT's STEP writer prints to stdout through the default messenger.
+    Message::DefaultMessenger()->RemovePrinters(STANDARD_TYPE(Message_PrinterOStream));
+
+    std::printf("bezjoin %s vs OpenCASCADE %s%s\n", bezjoin::version().c_str(), OCC_VERSION_COMPLETE,
+                options.quick ? " (quick: timings not meaningful)" : "");
+    Report report;
+    StepScene scene;
+    std::vector<Timing> timings;
+    std::mt19937_64 rng(20261122);
+
+    check_values_and_derivatives(report, rng);
+    check_exact_operations(report, rng);
+    check_error_path(report);
+#if BEZJOIN_HAS_CONNECT
+    check_connect(report, scene, timings, options);
+#else
+    report.info("c.connect", "not checked: this bezjoin.h has no bzj_connect");
+#endif
+#if BEZJOIN_HAS_FILLET
+    check_fillet(report, scene, timings, options);
+#else
+    report.info("d.fillet", "not checked: this bezjoin.h has no bzj_fillet/bzj_intersect");
+#endif
+#if BEZJOIN_HAS_MERGE
+    check_merge(report, scene, timings, options);
+#else
+    report.info("e.merge", "not checked: this bezjoin.h has no bzj_merge");
+#endif
+#if BEZJOIN_HAS_LAGRANGE
+    check_lagrange(report, scene);
+#else
+    report.info("f.lagrange", "not checked: this bezjoin.h has no bzj_lagrange_spline");
+#endif
+    time_evaluation(report, timings, options);
+    write_step(report, scene, rng, options);
+
+    std::printf("\nSide by side (median per call; ratio = median over alternating batches of OCCT time / our time)%s\n",
+                options.quick ? " [quick run: not meaningful]" : "");
+    for (const Timing& t : timings) {
+        std::printf("TIME %-44s ours %10s (%s)  OCCT %10s (%s)  ratio %8.1fx\n", t.name.c_str(),
+                    format_time(t.pair.ours_ns).c_str(), t.ours_label.c_str(),
+                    format_time(t.pair.occt_ns).c_str(), t.occt_label.c_str(), t.pair.ratio);
+    }
+    std::printf("\n%s: %d failure(s)\n", report.failures == 0 ? "ALL PASS" : "FAILED", report.failures);
+    return report.failures == 0 ? 0 : 1;
+}

@@ -1,0 +1,69 @@
+//! Intersection and corner rounding: one cubic-cubic intersection, one
+//! cubic-cubic C3 fillet (blend degree 7), one deviation-bound fillet, and a
+//! chain of 100 000 corners on 1 and 2 threads (local rayon pools).
+use std::hint::black_box;
+
+use bezjoin_core::BezierCurve;
+use bezjoin_core::fillet::{
+    ChainFilletOptions, DeviationFilletOptions, FilletOptions, fillet, fillet_chain,
+    fillet_within_deviation,
+};
+use bezjoin_core::intersect::{IntersectOptions, intersect};
+use criterion::{Criterion, criterion_group, criterion_main};
+
+fn cubic(rows: [[f64; 2]; 4]) -> BezierCurve {
+    BezierCurve::from_rows(&rows).unwrap()
+}
+
+/// A zigzag of `n` cubics meeting end to end at sharp corners.
+fn zigzag(n: usize) -> Vec<BezierCurve> {
+    (0..n)
+        .map(|i| {
+            let x = i as f64 * 1.5;
+            let (y0, y1) = if i % 2 == 0 { (0.0, 1.0) } else { (1.0, 0.0) };
+            let bulge = 0.1 * ((i * 7919 % 13) as f64 / 13.0 - 0.5);
+            cubic([
+                [x, y0],
+                [x + 0.5, y0 + (y1 - y0) / 3.0 + bulge],
+                [x + 1.0, y0 + 2.0 * (y1 - y0) / 3.0 - bulge],
+                [x + 1.5, y1],
+            ])
+        })
+        .collect()
+}
+
+fn bench_fillet(c: &mut Criterion) {
+    let p = cubic([[-1.0, -1.0], [-0.3, 0.2], [0.4, 0.5], [1.2, 0.3]]);
+    let q = cubic([[0.5, -1.2], [0.1, -0.2], [-0.1, 0.6], [0.3, 1.4]]);
+    c.bench_function("intersect/cubic_cubic", |b| {
+        b.iter(|| intersect(black_box(&p), black_box(&q), &IntersectOptions::default()).unwrap())
+    });
+    let options = FilletOptions::symmetric(0.3, 3);
+    c.bench_function("fillet/cubic_cubic_c3", |b| {
+        b.iter(|| fillet(black_box(&p), black_box(&q), &options).unwrap())
+    });
+    let deviation = DeviationFilletOptions::new(0.05, 3);
+    c.bench_function("fillet/cubic_cubic_c3_within_deviation", |b| {
+        b.iter(|| fillet_within_deviation(black_box(&p), black_box(&q), &deviation).unwrap())
+    });
+}
+
+fn bench_chain(c: &mut Criterion) {
+    let curves = zigzag(100_001);
+    let options = ChainFilletOptions::open(FilletOptions::symmetric(0.25, 2));
+    let mut group = c.benchmark_group("fillet_chain_100000_corners_c2");
+    group.sample_size(10);
+    for threads in [1, 2] {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        group.bench_function(format!("{threads}_threads"), |b| {
+            b.iter(|| pool.install(|| fillet_chain(black_box(&curves), &options).unwrap()))
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, bench_fillet, bench_chain);
+criterion_main!(benches);

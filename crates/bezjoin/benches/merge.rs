@@ -1,0 +1,43 @@
+//! Merging two curves: two cubics and two degree-7 curves, both metrics,
+//! a given mu against the optimal mu.
+use std::hint::black_box;
+
+use bezjoin_core::BezierCurve;
+use bezjoin_core::merge::{MergeMetric, MergeOptions, SplitParameter, merge};
+use criterion::{Criterion, criterion_group, criterion_main};
+
+fn pair(degree: usize) -> (BezierCurve, BezierCurve) {
+    let make = |offset: usize, shift: f64| {
+        let pts: Vec<f64> = (0..(degree + 1) * 2)
+            .map(|i| ((i * 7919 + offset) % 97) as f64 / 9.7 + if i % 2 == 0 { shift } else { 0.0 })
+            .collect();
+        BezierCurve::new(2, degree, pts).unwrap()
+    };
+    (make(0, 0.0), make(31, 10.0))
+}
+
+fn bench_merge(c: &mut Criterion) {
+    for degree in [3, 7] {
+        let (p, q) = pair(degree);
+        for (metric, metric_name) in [
+            (MergeMetric::Discrete, "discrete"),
+            (MergeMetric::Integral, "integral"),
+        ] {
+            for (split, split_name) in [
+                (SplitParameter::Given(0.4), "given_mu"),
+                (SplitParameter::Optimal, "optimal_mu"),
+            ] {
+                let options = MergeOptions::default()
+                    .with_metric(metric)
+                    .with_split(split);
+                c.bench_function(
+                    &format!("merge/deg{degree}/{metric_name}/{split_name}"),
+                    |b| b.iter(|| merge(black_box(&p), black_box(&q), &options).unwrap()),
+                );
+            }
+        }
+    }
+}
+
+criterion_group!(benches, bench_merge);
+criterion_main!(benches);

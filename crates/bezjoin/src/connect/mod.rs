@@ -1,0 +1,869 @@
+//! Connect two curves with C^k continuity and interior constraints
+//! (mathematics.md, section 1).
+//!
+//! After Krivosheev, Mavrin, Starkova, *Bezier curve conjugation for smooth
+//! curve joining and corner rounding*, Omsk Scientific Bulletin, 2025
+//! (Theorems 1 and 2), extended with several interior constraint points and
+//! the shape scales `alpha`, `beta`:
+//!
+//! ```text
+//! R^(k)(0)   = alpha^k P^(k)(u0),  k = 0..kp
+//! R^(k)(1)   = beta^k  Q^(k)(v0),  k = 0..kq                    (1')
+//! R^(k)(t_j) = D_jk,               k = 0..K_j, j = 1..m          (2)
+//! ```
+//!
+//! The connecting curve `R` has degree `nr = kp + kq + 1 + sum_j (K_j + 1)`
+//! and is the unique solution. The chain `P|[0,u0]`, `R`, `Q|[v0,1]` is a C^k
+//! B-spline with knot intervals `(u0, alpha, (1 - v0) alpha / beta)`.
+//!
+//! # Solver
+//! The structured path of the paper's eq. 19 ([`connect`]): forward
+//! substitution with the lower-triangular rows of `D(0)` for `R_0..R_kp`,
+//! back substitution with the anti-triangular rows of `D(1)` for
+//! `R_(nr-kq)..R_nr`, one `M x M` dense solve (`M = sum (K_j + 1)`, rows
+//! scaled to unit 1-norm) for the middle points with the known ones moved to
+//! the right-hand side; all coordinates at once. Cost `O(nr^2 d + M^3)`.
+//! [`connect_dense_reference`] solves the full `(nr+1) x (nr+1)` system by
+//! LU instead; it is the reference for tests and benchmarks.
+//!
+//! # Where the basis rows come from
+//! * Rows of `D(0)` and `D(1)` (the end conditions (1'), and `P^(k)(u0)`,
+//!   `Q^(k)(v0)` when `u0`, `v0` is exactly 0 or 1): the closed form
+//!   `B_i^(k)(0) = n!/(n-k)! (-1)^(k-i) C(k, i)` for `i <= k` (0 otherwise),
+//!   and `B_i^(k)(1) = (-1)^k B_(n-i)^(k)(0)` from `B_i(t) = B_(n-i)(1 - t)`.
+//!   It is the k-th forward difference in `R^(k)(0) = n!/(n-k)! Delta^k R_0`,
+//!   i.e. exactly what A2.3 evaluates on the knots `0^(n+1) 1^(n+1)` at an
+//!   end; the
+//!   entries are integers formed exactly (up to rounding of `n!/(n-k)!`
+//!   above 2^53). The unit test `closed_form_end_rows_equal_a23` holds them
+//!   to [`bezier_basis_derivatives`] for every degree up to
+//!   [`MAX_CONNECT_DEGREE`], with the exact zero pattern.
+//! * Rows of `D(t_j)` for interior constraints, and `P^(k)(u0)`, `Q^(k)(v0)`
+//!   at interior parameters: A2.3 ([`bezier_basis_derivatives`]), as the
+//!   specification requires for the solvers.
+//!
+//! The end rows are the hot path of [`connect`] (and of every trial scale of
+//! [`connect_auto_scale`]); the closed form avoids A2.3's allocations there.
+//! The residual check works on the stored rows without temporary matrices.
+//!
+//! # Relative residual
+//! For each condition row with basis row `D_k` (a row of `D(0)`, `D(1)` or
+//! `D(t_j)`) and target `T_k`:
+//!
+//! ```text
+//! residual_k = |D_k R - T_k| / max(|T_k|, S * ||D_k||_1)
+//! ```
+//!
+//! where `|.|` is the Euclidean norm over the coordinates and `S`, the *data
+//! scale*, is the largest of: the absolute coordinates of the control points
+//! of `P` and `Q`, and `|T_k| / ||D_k||_1` over all conditions (the smallest
+//! control-point size any curve meeting condition `k` must have, since
+//! `|D_k R| <= ||D_k||_1 max_i |R_i|`). `S * ||D_k||_1` is the size a k-th
+//! derivative of a curve with control points of size `S` can have, so a zero
+//! target derivative never divides by zero.
+//!
+//! # What we guarantee
+//! Every returned [`Connection`] satisfies (1') and (2) with a worst relative
+//! residual, *in exact arithmetic on the returned control points*, of at most
+//! [`CONNECT_RESIDUAL_LIMIT`] (`1e-8`). The solver checks this itself: it
+//! recomputes every residual after solving and adds a first-order rounding
+//! bound for the evaluation of `D_k R` and of the targets
+//! ([`Connection::error_estimate`]); when that bound exceeds the limit the
+//! answer is refused with [`BezjoinError::IllConditioned`] carrying the
+//! estimate. Result degrees above [`MAX_CONNECT_DEGREE`] (31, the range of
+//! the measured table in `docs/accuracy.md`) are refused up front.
+//!
+//! Measured (docs/accuracy.md, exact-rational reference): for random data the
+//! true worst residual stays below 1e-13 up to degree 31 with end conditions
+//! only and below 3e-10 with interior constraints; the estimate is above the
+//! true residual by a factor 2 to 100. Refusals come from ill-posed data
+//! (control points many orders of magnitude larger than the data).
+
+mod dense;
+mod energy;
+
+use nalgebra::DMatrix;
+
+use crate::basis::bezier_basis_derivatives;
+use crate::bezier::BezierCurve;
+use crate::error::{
+    BezjoinError, Result, check_closed_range, check_finite, check_open_range, check_positive,
+};
+use crate::linalg::solve_checked;
+
+pub use dense::connect_dense_reference;
+pub use energy::{AUTO_SCALE_SEARCH_DECADES, fairness_energy};
+
+/// The promised worst relative residual of (1') and (2) (see the module
+/// documentation for the definition). Answers whose error estimate exceeds
+/// it are refused with `IllConditioned`.
+pub const CONNECT_RESIDUAL_LIMIT: f64 = 1e-8;
+
+/// Largest result degree `kp + kq + 1 + sum (K_j + 1)` accepted at all.
+///
+/// Above it the request is refused with `IllConditioned` before any work.
+/// The accuracy table (docs/accuracy.md, Connect) is measured up to 31; with
+/// interior constraints the worst residual there grows about tenfold per
+/// three to four degrees (3e-10 at degree 30), so the 1e-8 margin is gone
+/// a few degrees above it. The bound also caps the work a C caller can ask for.
+pub const MAX_CONNECT_DEGREE: usize = 31;
+
+/// An interior constraint (2): `R^(k)(t) = derivatives[k]`, `k = 0..=K`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PointConstraint {
+    /// Parameter on the connecting curve, in `(0, 1)`.
+    pub t: f64,
+    /// `derivatives[k] = R^(k)(t)`, `k = 0..=K`, each with `dim` values;
+    /// at least the position (`K >= 0`).
+    pub derivatives: Vec<Vec<f64>>,
+}
+
+impl PointConstraint {
+    /// A constraint at `t` with the value and derivatives `0..=K`.
+    pub fn new(t: f64, derivatives: Vec<Vec<f64>>) -> Self {
+        Self { t, derivatives }
+    }
+
+    /// `K`, the highest prescribed order (`derivatives.len() - 1`).
+    pub fn max_order(&self) -> usize {
+        self.derivatives.len().saturating_sub(1)
+    }
+}
+
+/// What to connect and how (mathematics.md, section 1).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ConnectOptions {
+    /// `kp <= degree of P`: derivatives `0..=kp` of `P` at `u0` are matched.
+    pub p_order: usize,
+    /// `kq <= degree of Q`: derivatives `0..=kq` of `Q` at `v0` are matched.
+    pub q_order: usize,
+    /// `alpha > 0`; `1.0` is the paper.
+    pub p_scale: f64,
+    /// `beta > 0`; `1.0` is the paper.
+    pub q_scale: f64,
+    /// Interior constraints at distinct parameters in `(0, 1)`, any order.
+    pub constraints: Vec<PointConstraint>,
+}
+
+impl ConnectOptions {
+    /// Orders `kp`, `kq`, scales 1 (the paper), no constraints.
+    pub fn new(p_order: usize, q_order: usize) -> Self {
+        Self {
+            p_order,
+            q_order,
+            p_scale: 1.0,
+            q_scale: 1.0,
+            constraints: Vec::new(),
+        }
+    }
+
+    /// The same options with scales `alpha`, `beta`.
+    pub fn with_scales(mut self, p_scale: f64, q_scale: f64) -> Self {
+        self.p_scale = p_scale;
+        self.q_scale = q_scale;
+        self
+    }
+
+    /// The same options with one more interior constraint.
+    pub fn with_constraint(mut self, constraint: PointConstraint) -> Self {
+        self.constraints.push(constraint);
+        self
+    }
+
+    /// The degree of the connecting curve: `kp + kq + 1 + sum (K_j + 1)`.
+    pub fn result_degree(&self) -> usize {
+        self.p_order
+            + self.q_order
+            + 1
+            + self
+                .constraints
+                .iter()
+                .map(|c| c.derivatives.len())
+                .sum::<usize>()
+    }
+}
+
+/// A connecting curve and the accuracy it was checked to.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Connection {
+    /// `R`, of degree `kp + kq + 1 + sum (K_j + 1)`.
+    pub curve: BezierCurve,
+    /// `alpha` used.
+    pub p_scale: f64,
+    /// `beta` used.
+    pub q_scale: f64,
+    /// Worst relative residual of (1') and (2) as computed in floating point.
+    pub max_residual: f64,
+    /// Bound on the worst relative residual in exact arithmetic on the
+    /// returned control points: `max_residual` plus first-order rounding
+    /// bounds of the evaluation; never above [`CONNECT_RESIDUAL_LIMIT`].
+    pub error_estimate: f64,
+    /// 1-norm condition estimate of the row-scaled `M x M` interior block
+    /// (1 when there are no constraints).
+    pub constraint_condition: f64,
+}
+
+/// The validated problem, independent of the scales.
+#[derive(Debug, Clone)]
+pub(crate) struct Problem {
+    pub(crate) dim: usize,
+    pub(crate) degree: usize,
+    pub(crate) p_order: usize,
+    pub(crate) q_order: usize,
+    /// `P^(k)(u0)`, `(kp+1) x dim`, unscaled.
+    pub(crate) p_derivatives: DMatrix<f64>,
+    /// Rounding bound of each row of `p_derivatives` (absolute, Euclidean).
+    pub(crate) p_derivative_error: Vec<f64>,
+    /// `Q^(k)(v0)`, `(kq+1) x dim`, unscaled.
+    pub(crate) q_derivatives: DMatrix<f64>,
+    pub(crate) q_derivative_error: Vec<f64>,
+    /// Constraints sorted by parameter: `(t_j, (K_j+1) x dim)`.
+    pub(crate) constraints: Vec<(f64, DMatrix<f64>)>,
+    /// The control-point scale of `P` and `Q` (part of the data scale `S`).
+    pub(crate) data_scale: f64,
+}
+
+impl Problem {
+    /// `M = sum (K_j + 1)`.
+    pub(crate) fn middle_count(&self) -> usize {
+        self.constraints.iter().map(|(_, d)| d.nrows()).sum()
+    }
+}
+
+fn unit_roundoff() -> f64 {
+    f64::EPSILON / 2.0
+}
+
+/// Row `k` (`k <= order`) of `D(0)` (`at_one = false`) or `D(1)` (`at_one =
+/// true`) for degree `degree`, by the closed form (module documentation,
+/// "Where the basis rows come from"), written into `out[(k, ..)]` of a
+/// `rows x (degree + 1)` column-major buffer; the other entries are left alone.
+fn end_basis_row(degree: usize, k: usize, at_one: bool, out: &mut DMatrix<f64>, row: usize) {
+    // n!/(n-k)! (exact while below 2^53, else within k units of roundoff) and
+    // C(k, j) by the exact integer recurrence C(k, j+1) = C(k, j) (k-j)/(j+1).
+    let mut falling = 1.0f64;
+    for j in 0..k {
+        falling *= (degree - j) as f64;
+    }
+    let mut coefficient = 1.0f64; // C(k, j)
+    for j in 0..=k {
+        // D(0)[k][j] = n!/(n-k)! (-1)^(k-j) C(k, j);
+        // D(1)[k][n-j] = n!/(n-k)! (-1)^j C(k, j)  (B_i(t) = B_(n-i)(1-t)).
+        let (column, negative) = if at_one {
+            (degree - j, j % 2 == 1)
+        } else {
+            (j, (k - j) % 2 == 1)
+        };
+        let value = falling * coefficient;
+        out[(row, column)] = if negative { -value } else { value };
+        coefficient = coefficient * (k - j) as f64 / (j + 1) as f64;
+    }
+}
+
+/// `D(t)` for derivatives `0..=order` of degree `degree`: the closed form at
+/// `t = 0` and `t = 1`, A2.3 ([`bezier_basis_derivatives`]) elsewhere.
+fn basis_rows(degree: usize, t: f64, order: usize) -> DMatrix<f64> {
+    if degree > 0 && (t == 0.0 || t == 1.0) {
+        let mut d = DMatrix::zeros(order + 1, degree + 1);
+        for k in 0..=order.min(degree) {
+            end_basis_row(degree, k, t == 1.0, &mut d, k);
+        }
+        d
+    } else {
+        bezier_basis_derivatives(degree, t, order)
+    }
+}
+
+/// `P^(k)(t)` for `k = 0..=order` with a first-order rounding bound per row
+/// (`gamma * |D| |P|`, `gamma = 2 (n + k + 2) u`).
+fn derivatives_with_error(curve: &BezierCurve, t: f64, order: usize) -> (DMatrix<f64>, Vec<f64>) {
+    let basis = basis_rows(curve.degree(), t, order);
+    let dim = curve.dim();
+    let points = curve.points();
+    let mut values = DMatrix::zeros(order + 1, dim);
+    let mut errors = Vec::with_capacity(order + 1);
+    let mut abs_row = [0.0f64; 16];
+    let mut abs_heap = Vec::new();
+    let abs_row: &mut [f64] = if dim <= abs_row.len() {
+        &mut abs_row[..dim]
+    } else {
+        abs_heap.resize(dim, 0.0);
+        &mut abs_heap
+    };
+    for k in 0..=order {
+        abs_row.fill(0.0);
+        for i in 0..=curve.degree() {
+            let b = basis[(k, i)];
+            if b == 0.0 {
+                continue;
+            }
+            let point = &points[i * dim..(i + 1) * dim];
+            for c in 0..dim {
+                values[(k, c)] += b * point[c];
+                abs_row[c] += b.abs() * point[c].abs();
+            }
+        }
+        let gamma = 2.0 * (curve.degree() + k + 2) as f64 * unit_roundoff();
+        let norm = abs_row.iter().map(|v| v * v).sum::<f64>().sqrt();
+        errors.push(gamma * norm);
+    }
+    (values, errors)
+}
+
+/// Validate the inputs (everything except the scales) and evaluate the end data.
+pub(crate) fn prepare(
+    p: &BezierCurve,
+    u0: f64,
+    q: &BezierCurve,
+    v0: f64,
+    options: &ConnectOptions,
+) -> Result<Problem> {
+    let dim = p.dim();
+    if q.dim() != dim {
+        return Err(BezjoinError::DimensionMismatch {
+            name: "q".into(),
+            expected: dim,
+            actual: q.dim(),
+        });
+    }
+    check_closed_range("u0", u0, 0.0, 1.0)?;
+    check_closed_range("v0", v0, 0.0, 1.0)?;
+    if options.p_order > p.degree() {
+        return Err(BezjoinError::OrderAboveDegree {
+            name: "p_order".into(),
+            order: options.p_order,
+            degree: p.degree(),
+            curve: "p".into(),
+        });
+    }
+    if options.q_order > q.degree() {
+        return Err(BezjoinError::OrderAboveDegree {
+            name: "q_order".into(),
+            order: options.q_order,
+            degree: q.degree(),
+            curve: "q".into(),
+        });
+    }
+    let mut constraints: Vec<(f64, DMatrix<f64>)> = Vec::with_capacity(options.constraints.len());
+    let data_scale = p.coordinate_scale().max(q.coordinate_scale());
+    for (j, c) in options.constraints.iter().enumerate() {
+        check_open_range(&format!("constraints[{j}].t"), c.t, 0.0, 1.0)?;
+        if c.derivatives.is_empty() {
+            return Err(BezjoinError::invalid(
+                format!("constraints[{j}].derivatives"),
+                "is empty; at least the position (order 0) is needed",
+            ));
+        }
+        let rows = c.derivatives.len();
+        let mut values = DMatrix::zeros(rows, dim);
+        for (k, row) in c.derivatives.iter().enumerate() {
+            let name = format!("constraints[{j}].derivatives[{k}]");
+            if row.len() != dim {
+                return Err(BezjoinError::LengthMismatch {
+                    name,
+                    expected: dim,
+                    actual: row.len(),
+                });
+            }
+            check_finite(&name, row)?;
+            for (col, v) in row.iter().enumerate() {
+                values[(k, col)] = *v;
+            }
+        }
+        if let Some(i) = options.constraints[..j].iter().position(|o| o.t == c.t) {
+            return Err(BezjoinError::invalid(
+                format!("constraints[{j}].t"),
+                format!(
+                    "{} repeats constraints[{i}].t; constraint parameters must be distinct",
+                    c.t
+                ),
+            ));
+        }
+        constraints.push((c.t, values));
+    }
+    let degree = options
+        .constraints
+        .iter()
+        .try_fold(options.p_order + options.q_order + 1, |acc, c| {
+            acc.checked_add(c.derivatives.len())
+        })
+        .unwrap_or(usize::MAX);
+    if degree > MAX_CONNECT_DEGREE {
+        return Err(BezjoinError::IllConditioned {
+            what: format!(
+                "connect: result degree {degree} is above the supported maximum {MAX_CONNECT_DEGREE}"
+            ),
+            estimate: f64::INFINITY,
+            limit: CONNECT_RESIDUAL_LIMIT,
+        });
+    }
+    constraints.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let (p_derivatives, p_derivative_error) = derivatives_with_error(p, u0, options.p_order);
+    let (q_derivatives, q_derivative_error) = derivatives_with_error(q, v0, options.q_order);
+    Ok(Problem {
+        dim,
+        degree,
+        p_order: options.p_order,
+        q_order: options.q_order,
+        p_derivatives,
+        p_derivative_error,
+        q_derivatives,
+        q_derivative_error,
+        constraints,
+        data_scale,
+    })
+}
+
+/// The basis rows of every condition, in the order P end (k = 0..kp), Q end
+/// (k = 0..kq), constraints (sorted by t, k = 0..K_j), with their targets and
+/// the targets' rounding bounds.
+pub(crate) struct ConditionRows {
+    pub(crate) rows: DMatrix<f64>,
+    pub(crate) targets: DMatrix<f64>,
+    pub(crate) target_errors: Vec<f64>,
+}
+
+pub(crate) fn condition_rows(problem: &Problem, alpha: f64, beta: f64) -> ConditionRows {
+    let n = problem.degree;
+    let count = n + 1;
+    let dim = problem.dim;
+    let mut rows = DMatrix::zeros(count, n + 1);
+    let mut targets = DMatrix::zeros(count, dim);
+    let mut target_errors = Vec::with_capacity(count);
+    let mut r = 0;
+    // End rows: D(0) rows 0..=kp and D(1) rows 0..=kq by the closed form.
+    for (derivatives, errors, order, scale, at_one) in [
+        (
+            &problem.p_derivatives,
+            &problem.p_derivative_error,
+            problem.p_order,
+            alpha,
+            false,
+        ),
+        (
+            &problem.q_derivatives,
+            &problem.q_derivative_error,
+            problem.q_order,
+            beta,
+            true,
+        ),
+    ] {
+        let mut factor = 1.0f64;
+        for k in 0..=order {
+            end_basis_row(n, k, at_one, &mut rows, r);
+            let mut square = 0.0;
+            for c in 0..dim {
+                let v = derivatives[(k, c)] * factor;
+                targets[(r, c)] = v;
+                square += v * v;
+            }
+            // alpha^k by powi, as the bound was stated; factor (repeated
+            // products) scales the target exactly like the previous code.
+            let error =
+                scale.powi(k as i32) * errors[k] + (k + 1) as f64 * unit_roundoff() * square.sqrt();
+            target_errors.push(error);
+            factor *= scale;
+            r += 1;
+        }
+    }
+    // Interior rows: D(t_j) from A2.3.
+    for (t, values) in &problem.constraints {
+        let dt = bezier_basis_derivatives(n, *t, values.nrows() - 1);
+        for k in 0..values.nrows() {
+            for i in 0..=n {
+                rows[(r, i)] = dt[(k, i)];
+            }
+            for c in 0..dim {
+                targets[(r, c)] = values[(k, c)];
+            }
+            target_errors.push(0.0);
+            r += 1;
+        }
+    }
+    ConditionRows {
+        rows,
+        targets,
+        target_errors,
+    }
+}
+
+/// Check every condition on the computed control points `points`
+/// (`(n+1) x dim`): the worst floating-point relative residual and the bound
+/// on the worst exact one.
+///
+/// The data scale `S` is the largest of the given positions' scale and
+/// `|T_k| / ||D_k||_1` over all conditions. Allocation-free: one pass for
+/// `S`, one for the residuals (`n + 1 <= 32` rows by [`MAX_CONNECT_DEGREE`]).
+pub(crate) fn check_residuals(
+    problem: &Problem,
+    conditions: &ConditionRows,
+    points: &DMatrix<f64>,
+) -> (f64, f64) {
+    let n = problem.degree;
+    let rows = &conditions.rows;
+    let targets = &conditions.targets;
+    let count = rows.nrows();
+    let dim = problem.dim;
+    let mut row_norms = [0.0f64; MAX_CONNECT_DEGREE + 1];
+    let mut data_scale = problem.data_scale;
+    for (r, norm) in row_norms.iter_mut().enumerate().take(count) {
+        *norm = rows.row(r).iter().map(|v| v.abs()).sum();
+        let v = targets.row(r).norm() / *norm;
+        if v.is_finite() {
+            data_scale = data_scale.max(v);
+        }
+    }
+    // Rounding of D_k R (dot products of length n + 1, basis entries with a
+    // relative error of a few units per order) and of the target.
+    let gamma = 2.0 * (2 * n + 4) as f64 * unit_roundoff();
+    let mut worst = 0.0f64;
+    let mut worst_bound = 0.0f64;
+    for (r, row_norm) in row_norms.iter().enumerate().take(count) {
+        let target = targets.row(r);
+        let denominator = target.norm().max(data_scale * row_norm);
+        let mut difference_square = 0.0;
+        let mut abs_square = 0.0;
+        for c in 0..dim {
+            let mut value = 0.0;
+            let mut abs_value = 0.0;
+            for i in 0..=n {
+                let b = rows[(r, i)];
+                let x = points[(i, c)];
+                value += b * x;
+                abs_value += b.abs() * x.abs();
+            }
+            let difference = value - target[c];
+            difference_square += difference * difference;
+            abs_square += abs_value * abs_value;
+        }
+        let residual = difference_square.sqrt() / denominator;
+        let bound =
+            residual + (gamma * abs_square.sqrt() + conditions.target_errors[r]) / denominator;
+        let (residual, bound) = if residual.is_finite() && bound.is_finite() {
+            (residual, bound)
+        } else {
+            (f64::INFINITY, f64::INFINITY)
+        };
+        worst = worst.max(residual);
+        worst_bound = worst_bound.max(bound);
+    }
+    (worst, worst_bound)
+}
+
+/// Turn solved control points into a checked [`Connection`], or refuse.
+pub(crate) fn finish(
+    problem: &Problem,
+    conditions: &ConditionRows,
+    points: DMatrix<f64>,
+    alpha: f64,
+    beta: f64,
+    constraint_condition: f64,
+    what: &str,
+) -> Result<Connection> {
+    let (max_residual, error_estimate) = check_residuals(problem, conditions, &points);
+    let trusted = error_estimate.is_finite() && error_estimate <= CONNECT_RESIDUAL_LIMIT;
+    if !trusted || points.iter().any(|v| !v.is_finite()) {
+        return Err(BezjoinError::IllConditioned {
+            what: format!("{what} (degree {})", problem.degree),
+            estimate: error_estimate,
+            limit: CONNECT_RESIDUAL_LIMIT,
+        });
+    }
+    Ok(Connection {
+        curve: BezierCurve::from_matrix(&points)?,
+        p_scale: alpha,
+        q_scale: beta,
+        max_residual,
+        error_estimate,
+        constraint_condition,
+    })
+}
+
+/// The structured solve for given scales on a validated problem.
+pub(crate) fn solve_structured(problem: &Problem, alpha: f64, beta: f64) -> Result<Connection> {
+    let (conditions, points, constraint_condition) = structured_points(problem, alpha, beta)?;
+    finish(
+        problem,
+        &conditions,
+        points,
+        alpha,
+        beta,
+        constraint_condition,
+        "connect",
+    )
+}
+
+/// The structured solve without the final accuracy check.
+fn structured_points(
+    problem: &Problem,
+    alpha: f64,
+    beta: f64,
+) -> Result<(ConditionRows, DMatrix<f64>, f64)> {
+    let n = problem.degree;
+    let kp = problem.p_order;
+    let kq = problem.q_order;
+    let dim = problem.dim;
+    let conditions = condition_rows(problem, alpha, beta);
+    let rows = &conditions.rows;
+    let targets = &conditions.targets;
+    let mut points = DMatrix::<f64>::zeros(n + 1, dim);
+    // P end: row k of D(0) touches R_0..R_k only (lower triangular).
+    for k in 0..=kp {
+        let diagonal = rows[(k, k)];
+        for c in 0..dim {
+            let mut sum = targets[(k, c)];
+            for i in 0..k {
+                sum -= rows[(k, i)] * points[(i, c)];
+            }
+            points[(k, c)] = sum / diagonal;
+        }
+    }
+    // Q end: row k of D(1) touches R_(n-k)..R_n only (anti-triangular).
+    for k in 0..=kq {
+        let r = kp + 1 + k;
+        let index = n - k;
+        let diagonal = rows[(r, index)];
+        for c in 0..dim {
+            let mut sum = targets[(r, c)];
+            for i in index + 1..=n {
+                sum -= rows[(r, i)] * points[(i, c)];
+            }
+            points[(index, c)] = sum / diagonal;
+        }
+    }
+    // Interior constraints: M x M for R_(kp+1)..R_(kp+M), known points moved
+    // to the right-hand side, rows scaled to unit 1-norm.
+    let m = problem.middle_count();
+    let mut constraint_condition = 1.0;
+    if m > 0 {
+        let first = kp + 1;
+        let start = kp + kq + 2;
+        let mut a = DMatrix::<f64>::zeros(m, m);
+        let mut b = DMatrix::<f64>::zeros(m, dim);
+        for i in 0..m {
+            let row = rows.row(start + i);
+            let norm: f64 = row.iter().map(|v| v.abs()).sum();
+            for j in 0..m {
+                a[(i, j)] = row[first + j] / norm;
+            }
+            for c in 0..dim {
+                let mut sum = targets[(start + i, c)];
+                for j in (0..first).chain(first + m..=n) {
+                    sum -= row[j] * points[(j, c)];
+                }
+                b[(i, c)] = sum / norm;
+            }
+        }
+        let solution = solve_checked(&a, &b, "connect: interior constraints")?;
+        constraint_condition = solution.condition;
+        points.rows_mut(first, m).copy_from(&solution.x);
+    }
+    Ok((conditions, points, constraint_condition))
+}
+
+/// The curve `R` connecting `P` at `u0` to `Q` at `v0` with C^k continuity
+/// (1') and the interior constraints (2) (mathematics.md, section 1;
+/// Krivosheev, Mavrin, Starkova 2025, Theorems 1 and 2), by the structured
+/// solve.
+///
+/// The degree of the result is `kp + kq + 1 + sum (K_j + 1)`.
+///
+/// # Guarantee
+/// The returned curve satisfies (1') and (2) with a worst relative residual
+/// (module documentation) of at most [`CONNECT_RESIDUAL_LIMIT`], as bounded
+/// by [`Connection::error_estimate`]; otherwise the call fails with
+/// `IllConditioned` carrying the estimate.
+///
+/// # Errors
+/// * `DimensionMismatch` (`q`) when `P` and `Q` have different dimensions;
+/// * `ParameterOutOfRange` / `NonFinite` for `u0`, `v0` outside `[0, 1]`,
+///   `p_scale`, `q_scale` not `> 0`, `constraints[j].t` outside `(0, 1)`;
+/// * `OrderAboveDegree` for `p_order > deg P`, `q_order > deg Q`;
+/// * `InvalidArgument` for a repeated `constraints[j].t` or an empty
+///   `constraints[j].derivatives`;
+/// * `LengthMismatch` / `NonFinite` for `constraints[j].derivatives[k]`;
+/// * `Singular` if the interior block is singular (it is not in exact
+///   arithmetic: Hermite interpolation at distinct points is unisolvent);
+/// * `IllConditioned` when the accuracy cannot be guaranteed or the degree
+///   exceeds [`MAX_CONNECT_DEGREE`].
+///
+/// ```
+/// use bezjoin_core::BezierCurve;
+/// use bezjoin_core::connect::{ConnectOptions, connect};
+/// let p = BezierCurve::from_rows(&[[0.0, 0.0], [1.0, 1.0], [2.0, 0.0], [3.0, 1.0]]).unwrap();
+/// let q = BezierCurve::from_rows(&[[5.0, 0.0], [6.0, 2.0], [7.0, 0.0], [8.0, 1.0]]).unwrap();
+/// let joined = connect(&p, 1.0, &q, 0.0, &ConnectOptions::new(3, 3)).unwrap();
+/// assert_eq!(joined.curve.degree(), 7);
+/// assert!(joined.max_residual < 1e-12);
+/// ```
+pub fn connect(
+    p: &BezierCurve,
+    u0: f64,
+    q: &BezierCurve,
+    v0: f64,
+    options: &ConnectOptions,
+) -> Result<Connection> {
+    let problem = prepare(p, u0, q, v0, options)?;
+    check_positive("p_scale", options.p_scale)?;
+    check_positive("q_scale", options.q_scale)?;
+    solve_structured(&problem, options.p_scale, options.q_scale)
+}
+
+/// [`connect`] without the accuracy refusal: the answer is returned even when
+/// its [`Connection::error_estimate`] exceeds [`CONNECT_RESIDUAL_LIMIT`]
+/// (input errors and a singular interior block are still errors).
+///
+/// For measurements (the accuracy table in docs/accuracy.md) and for callers
+/// that apply their own acceptance test to `error_estimate`; prefer
+/// [`connect`], whose answers carry the guarantee.
+pub fn connect_unchecked(
+    p: &BezierCurve,
+    u0: f64,
+    q: &BezierCurve,
+    v0: f64,
+    options: &ConnectOptions,
+) -> Result<Connection> {
+    let problem = prepare(p, u0, q, v0, options)?;
+    check_positive("p_scale", options.p_scale)?;
+    check_positive("q_scale", options.q_scale)?;
+    let (alpha, beta) = (options.p_scale, options.q_scale);
+    let (conditions, points, constraint_condition) = structured_points(&problem, alpha, beta)?;
+    let (max_residual, error_estimate) = check_residuals(&problem, &conditions, &points);
+    Ok(Connection {
+        curve: BezierCurve::from_matrix(&points)?,
+        p_scale: alpha,
+        q_scale: beta,
+        max_residual,
+        error_estimate,
+        constraint_condition,
+    })
+}
+
+/// [`connect`] with `alpha = beta = s` chosen automatically: `s` minimises
+/// the fairness energy `E(s) = integral_0^1 |R_s''(t)|^2 dt` (computed
+/// exactly, [`fairness_energy`]) by a bounded 1-D search on `log s` over
+/// [`AUTO_SCALE_SEARCH_DECADES`] decades either side of the natural scale
+/// `s0 = |Q(v0) - P(u0)| / mean(|P'(u0)|, |Q'(v0)|)` (1 when the gap or the
+/// speeds vanish): a grid of 33 points, then golden-section refinement around
+/// the best. When `kp = kq = 0` the result does not depend on `s` and `s = 1`.
+/// The scales in `options` are ignored; the chosen `s` is reported in
+/// `p_scale` and `q_scale`. Same guarantee and errors as [`connect`].
+pub fn connect_auto_scale(
+    p: &BezierCurve,
+    u0: f64,
+    q: &BezierCurve,
+    v0: f64,
+    options: &ConnectOptions,
+) -> Result<Connection> {
+    let problem = prepare(p, u0, q, v0, options)?;
+    energy::auto_scale(&problem)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn cubic(offset: f64) -> BezierCurve {
+        BezierCurve::from_rows(&[
+            [offset, 0.0],
+            [offset + 1.0, 1.0],
+            [offset + 2.0, -1.0],
+            [offset + 3.0, 0.5],
+        ])
+        .unwrap()
+    }
+
+    #[test]
+    fn error_messages_name_the_argument() {
+        let p = cubic(0.0);
+        let q = cubic(5.0);
+        let err = |u0: f64, v0: f64, o: ConnectOptions| {
+            connect(&p, u0, &q, v0, &o).unwrap_err().to_string()
+        };
+        assert_eq!(
+            err(1.5, 0.0, ConnectOptions::new(1, 1)),
+            "u0 = 1.5 is outside [0, 1]"
+        );
+        assert!(err(1.0, -0.5, ConnectOptions::new(1, 1)).starts_with("v0 = -0.5"));
+        assert!(err(1.0, 0.0, ConnectOptions::new(4, 1)).starts_with("p_order = 4"));
+        assert!(err(1.0, 0.0, ConnectOptions::new(1, 4)).starts_with("q_order = 4"));
+        assert!(
+            err(1.0, 0.0, ConnectOptions::new(1, 1).with_scales(0.0, 1.0))
+                .starts_with("p_scale = 0")
+        );
+        assert!(
+            err(1.0, 0.0, ConnectOptions::new(1, 1).with_scales(1.0, -1.0))
+                .starts_with("q_scale = -1")
+        );
+        let c = |t: f64| PointConstraint::new(t, vec![vec![1.0, 2.0]]);
+        assert!(
+            err(1.0, 0.0, ConnectOptions::new(1, 1).with_constraint(c(1.0)))
+                .starts_with("constraints[0].t = 1")
+        );
+        let o = ConnectOptions::new(1, 1)
+            .with_constraint(c(0.5))
+            .with_constraint(c(0.5));
+        assert!(err(1.0, 0.0, o).starts_with("constraints[1].t"));
+        let o = ConnectOptions::new(1, 1)
+            .with_constraint(PointConstraint::new(0.5, vec![vec![1.0, 2.0], vec![1.0]]));
+        assert_eq!(
+            err(1.0, 0.0, o),
+            "constraints[0].derivatives[1] has 1 values, expected 2"
+        );
+        let o = ConnectOptions::new(1, 1)
+            .with_constraint(PointConstraint::new(0.5, vec![vec![1.0, f64::NAN]]));
+        assert!(err(1.0, 0.0, o).starts_with("constraints[0].derivatives[0][1] = NaN"));
+        let q3 = BezierCurve::from_rows(&[[0.0, 0.0, 0.0], [1.0, 1.0, 1.0]]).unwrap();
+        assert!(matches!(
+            connect(&p, 1.0, &q3, 0.0, &ConnectOptions::new(1, 1)),
+            Err(BezjoinError::DimensionMismatch { .. })
+        ));
+    }
+
+    #[test]
+    fn closed_form_end_rows_equal_a23() {
+        for n in 1..=MAX_CONNECT_DEGREE {
+            for (t, at_one) in [(0.0, false), (1.0, true)] {
+                let reference = bezier_basis_derivatives(n, t, n);
+                let mut closed = DMatrix::zeros(n + 1, n + 1);
+                for k in 0..=n {
+                    end_basis_row(n, k, at_one, &mut closed, k);
+                }
+                assert_eq!(closed, basis_rows(n, t, n));
+                for k in 0..=n {
+                    let scale: f64 = reference.row(k).iter().map(|v| v.abs()).sum();
+                    for i in 0..=n {
+                        let (a, b) = (closed[(k, i)], reference[(k, i)]);
+                        assert!(
+                            (a - b).abs() <= 1e-14 * scale,
+                            "n={n} t={t} k={k} i={i}: closed {a} vs A2.3 {b}"
+                        );
+                        // Exact zeros: D(0) is lower triangular, D(1) anti-triangular.
+                        if (!at_one && i > k) || (at_one && i + k < n) {
+                            assert_eq!(a, 0.0);
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn structured_matches_dense_on_a_small_case() {
+        let p = cubic(0.0);
+        let q = cubic(5.0);
+        let o = ConnectOptions::new(3, 2)
+            .with_scales(0.7, 1.3)
+            .with_constraint(PointConstraint::new(
+                0.4,
+                vec![vec![4.0, 3.0], vec![2.0, 0.0]],
+            ));
+        let s = connect(&p, 0.8, &q, 0.1, &o).unwrap();
+        let d = connect_dense_reference(&p, 0.8, &q, 0.1, &o).unwrap();
+        assert_eq!(s.curve.degree(), 3 + 2 + 1 + 2);
+        let scale = s.curve.coordinate_scale();
+        for (a, b) in s.curve.points().iter().zip(d.curve.points()) {
+            assert!((a - b).abs() <= 1e-12 * scale);
+        }
+    }
+}

@@ -1,0 +1,227 @@
+//! **[beyond]** Rounding every corner of a chain of curves in one call
+//! (mathematics.md, section 2: "rounding every corner of a chain of curves").
+//!
+//! Corner `i` lies between `curves[i]` and `curves[i + 1]` (and, for a closed
+//! chain, between the last curve and the first). Its crossing is the hit of
+//! the two curves nearest their shared end: the one with the smallest
+//! `(1 - u) + v` (for a chain whose curves meet end to end that is
+//! `u = 1, v = 0`). Every corner is rounded as [`super::fillet`] rounds one,
+//! with the same options; curve `i` is then kept between the cut of corner
+//! `i - 1` and the cut of corner `i`.
+//!
+//! Corners are independent, so when there are more than
+//! `parallel_threshold` of them they are computed in parallel with rayon
+//! (in the caller's rayon pool, e.g. inside `ThreadPool::install`), otherwise
+//! sequentially. Every corner is computed by the same deterministic code
+//! either way, and the first failing corner (in chain order) is the error
+//! reported, so the result is identical bit for bit.
+
+use rayon::prelude::*;
+
+use crate::bezier::BezierCurve;
+use crate::error::{BezjoinError, Result};
+use crate::intersect::{Intersection, IntersectionKind, intersect};
+
+use super::{Fillet, FilletOptions, fillet_at_validated, validate};
+
+/// Default of [`ChainFilletOptions::parallel_threshold`].
+pub const DEFAULT_PARALLEL_THRESHOLD: usize = 64;
+
+/// Options of [`fillet_chain`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct ChainFilletOptions {
+    /// Setbacks, orders, scales and accuracies used at every corner.
+    pub fillet: FilletOptions,
+    /// `true`: the last curve's end joins the first curve's start as one more corner.
+    pub closed: bool,
+    /// Corners are computed in parallel when there are more than this many;
+    /// default [`DEFAULT_PARALLEL_THRESHOLD`] (64).
+    pub parallel_threshold: usize,
+}
+
+impl ChainFilletOptions {
+    /// An open chain with the given corner options.
+    pub fn open(fillet: FilletOptions) -> Self {
+        Self {
+            fillet,
+            closed: false,
+            parallel_threshold: DEFAULT_PARALLEL_THRESHOLD,
+        }
+    }
+
+    /// A closed chain with the given corner options.
+    pub fn closed(fillet: FilletOptions) -> Self {
+        Self {
+            closed: true,
+            ..Self::open(fillet)
+        }
+    }
+}
+
+/// One rounded corner of a chain.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ChainCorner {
+    /// The crossing of `curves[i]` and `curves[i + 1]` that was rounded.
+    pub crossing: Intersection,
+    /// Cut parameter on `curves[i]`.
+    pub u0: f64,
+    /// Cut parameter on `curves[i + 1]`.
+    pub v0: f64,
+    /// `alpha` and `beta` used.
+    pub scales: (f64, f64),
+    /// The connect solver's worst relative residual.
+    pub max_residual: f64,
+}
+
+/// A chain with every corner rounded.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ChainFillet {
+    /// In path order: trimmed curve 0, blend 0, trimmed curve 1, blend 1, ...
+    /// An open chain of `n` curves gives `2n - 1` pieces (ending with the
+    /// trimmed last curve), a closed one `2n` (ending with the blend from
+    /// the last curve to the first, whose trimmed start begins the list).
+    pub pieces: Vec<BezierCurve>,
+    /// Corner `i`, between `curves[i]` and `curves[(i + 1) % n]`.
+    pub corners: Vec<ChainCorner>,
+}
+
+/// Round every corner of the chain `curves` (module documentation).
+///
+/// Errors: fewer than 2 curves; curves of different dimensions (naming
+/// `curves[i]`); the option errors of [`super::fillet`]; at a corner, no
+/// crossing, a tangential (smooth) joint, or a setback too long — the
+/// message starts with `corner i`; two cuts on one curve that pass each other
+/// (InvalidArgument naming the curve).
+///
+/// ```
+/// use bezjoin_core::BezierCurve;
+/// use bezjoin_core::fillet::{ChainFilletOptions, FilletOptions, fillet_chain};
+/// // A closed triangle of lines.
+/// let a = BezierCurve::from_rows(&[[0.0, 0.0], [4.0, 0.0]]).unwrap();
+/// let b = BezierCurve::from_rows(&[[4.0, 0.0], [0.0, 3.0]]).unwrap();
+/// let c = BezierCurve::from_rows(&[[0.0, 3.0], [0.0, 0.0]]).unwrap();
+/// let options = ChainFilletOptions::closed(FilletOptions::symmetric(0.5, 1));
+/// let rounded = fillet_chain(&[a, b, c], &options).unwrap();
+/// assert_eq!(rounded.pieces.len(), 6);
+/// ```
+pub fn fillet_chain(curves: &[BezierCurve], options: &ChainFilletOptions) -> Result<ChainFillet> {
+    let n = curves.len();
+    if n < 2 {
+        return Err(BezjoinError::invalid(
+            "curves",
+            format!("a chain needs at least 2 curves, {n} given"),
+        ));
+    }
+    let dim = curves[0].dim();
+    if let Some(i) = curves.iter().position(|c| c.dim() != dim) {
+        return Err(BezjoinError::DimensionMismatch {
+            name: format!("curves[{i}]"),
+            expected: dim,
+            actual: curves[i].dim(),
+        });
+    }
+    for i in 0..n {
+        validate(&curves[i], &curves[(i + 1) % n], &options.fillet)?;
+    }
+    let corner_count = if options.closed { n } else { n - 1 };
+    let one = |i: usize| round_corner(i, &curves[i], &curves[(i + 1) % n], &options.fillet);
+    let results: Vec<Result<Fillet>> = if corner_count > options.parallel_threshold {
+        (0..corner_count).into_par_iter().map(one).collect()
+    } else {
+        (0..corner_count).map(one).collect()
+    };
+    let mut fillets = Vec::with_capacity(corner_count);
+    for r in results {
+        fillets.push(r?);
+    }
+    let mut pieces = Vec::with_capacity(2 * n);
+    for i in 0..n {
+        let start = if i > 0 {
+            fillets[i - 1].v0
+        } else if options.closed {
+            fillets[corner_count - 1].v0
+        } else {
+            0.0
+        };
+        let end = if i < corner_count { fillets[i].u0 } else { 1.0 };
+        if start >= end || start.is_nan() || end.is_nan() {
+            return Err(BezjoinError::invalid(
+                format!("curves[{i}]"),
+                format!(
+                    "the cuts of its two corners pass each other (start {start} >= end {end}); \
+                     the setbacks are too long for this curve"
+                ),
+            ));
+        }
+        pieces.push(curves[i].segment(start, end)?);
+        if i < corner_count {
+            pieces.push(fillets[i].blend.clone());
+        }
+    }
+    let corners = fillets
+        .into_iter()
+        .map(|f| ChainCorner {
+            crossing: f.crossing,
+            u0: f.u0,
+            v0: f.v0,
+            scales: (f.p_scale, f.q_scale),
+            max_residual: f.max_residual,
+        })
+        .collect();
+    Ok(ChainFillet { pieces, corners })
+}
+
+fn round_corner(
+    index: usize,
+    p: &BezierCurve,
+    q: &BezierCurve,
+    options: &FilletOptions,
+) -> Result<Fillet> {
+    let hits = intersect(p, q, &options.intersect)?;
+    let nearest = hits
+        .into_iter()
+        .min_by(|a, b| ((1.0 - a.u) + a.v).total_cmp(&((1.0 - b.u) + b.v)));
+    let crossing = match nearest {
+        Some(h) if h.kind == IntersectionKind::Crossing => h,
+        Some(h) if h.kind == IntersectionKind::Touching => {
+            return Err(BezjoinError::NoIntersection {
+                reason: format!(
+                    "corner {index}: the curves meet tangentially at u = {}, v = {} \
+                     (a smooth joint), there is no corner to round",
+                    h.u, h.v
+                ),
+            });
+        }
+        Some(_) => {
+            return Err(BezjoinError::NoIntersection {
+                reason: format!("corner {index}: the curves overlap near their shared end"),
+            });
+        }
+        None => {
+            return Err(BezjoinError::NoIntersection {
+                reason: format!("corner {index}: the curves do not cross"),
+            });
+        }
+    };
+    fillet_at_validated(p, q, crossing, options).map_err(|e| in_corner(e, index))
+}
+
+/// Prefix the argument name (or reason) of an error with its corner.
+fn in_corner(error: BezjoinError, index: usize) -> BezjoinError {
+    match error {
+        BezjoinError::InvalidArgument { name, reason } => BezjoinError::InvalidArgument {
+            name: format!("corner {index} {name}"),
+            reason,
+        },
+        BezjoinError::IllConditioned {
+            what,
+            estimate,
+            limit,
+        } => BezjoinError::IllConditioned {
+            what: format!("corner {index}: {what}"),
+            estimate,
+            limit,
+        },
+        other => other,
+    }
+}

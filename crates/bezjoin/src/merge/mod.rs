@@ -1,0 +1,690 @@
+//! Approximate merging of consecutive Bezier curves into one curve
+//! (mathematics.md, section 3).
+//!
+//! After Ganchuk, Krivosheev, Mavrin, Ryzhov, "Approximation of conjugation
+//! of Bezier curves with preservation of smoothness order and additional
+//! restrictions", Bulletin of SUSU, Construction and Architecture, 2024,
+//! 24(1) 59-69, which builds on Hu, Tong, Ju, Sun, "Approximate merging of a
+//! pair of Bezier curves", Computer-Aided Design 33 (2001).
+//!
+//! # The method
+//!
+//! Given `P` and `Q` of degree `n` (a lower degree is elevated first,
+//! exactly), [`merge`] finds the smallest changes `eps`, `delta` of their
+//! control points such that `P^ = P + eps` and `Q^ = Q + delta` are the two
+//! pieces of ONE Bezier curve `R` of degree `n` split at `mu in (0, 1)`:
+//! `P^(u) = R(mu u)`, `Q^(v) = R(mu + (1 - mu) v)`.
+//!
+//! **Stage 1** minimises the chosen [`MergeMetric`] subject to the
+//! continuity conditions
+//!
+//! ```text
+//! (1 - mu)^r P^^(r)(1) = mu^r Q^^(r)(0),   r = 0..n                 (3)
+//! ```
+//!
+//! and the caller's constraints, by Lagrange multipliers: one linear KKT
+//! system for all coordinates at once. The `mu` factors fix a gap in the
+//! paper, whose equations omit them and are right only for `mu = 1/2`.
+//!
+//! **Stage 2** writes `R` exactly: `R = segment(P^, 0, 1/mu)`, or
+//! `segment(Q^, -mu/(1-mu), 1)` when `mu < 1/2` (extrapolate from the longer
+//! piece: the rounding error grows like `(2/mu - 1)^n`), then refines it by
+//! two least-squares correction steps against both pieces at once (the
+//! stacked subdivision matrices `[S_L(mu); S_R(mu)]` are well conditioned
+//! together; this is the spec's "or solve for `R` directly"). `R` split at
+//! `mu` must give back `P^` and `Q^`; that check is part of every merge.
+//!
+//! # Guarantees and checks
+//!
+//! * The KKT solve is checked: its error estimate, the larger of condition
+//!   times backward error and `4 eps cond(rows) sqrt(cond(Z^T W Z))` (the
+//!   rounding the constraint rows carry, magnified by the reduced problem;
+//!   measured >= the true error against an exact rational reference, test
+//!   `merge_exact`), must stay below `accuracy` (default
+//!   [`DEFAULT_MERGE_ACCURACY`]), otherwise the answer is `IllConditioned`
+//!   with the estimate.
+//! * `R` restricted to each piece's interval reproduces the stage-1 pieces to
+//!   `accuracy` relative to the coordinate scale, otherwise `IllConditioned`.
+//! * Constraints: rows are scaled to unit length and tested against the
+//!   continuity rows and the constraints before them (QR / Gram-Schmidt, a
+//!   remainder below [`RANK_TOLERANCE`] means linearly dependent). A
+//!   dependent row that the solution satisfies (to [`CONSISTENCY_TOLERANCE`]
+//!   times the coordinate scale) is *redundant but consistent* and accepted
+//!   (for example "keep P" together with "fix ends"); one that it does not
+//!   satisfy is *contradictory*, an [`BezjoinError::Inconsistent`] error
+//!   naming it. Beyond continuity, at most `n + 1` independent conditions
+//!   per coordinate fit.
+//! * Every merge reports `mu`, the metric value and the largest distance
+//!   between `R` and "P then Q" ([`DEVIATION_SAMPLES`] + 1 samples on each
+//!   piece, `R(mu u)` against `P(u)`, `R(mu + (1-mu) v)` against `Q(v)`).
+//!
+//! # Beyond the paper
+//!
+//! * the `mu` minimising the metric ([`SplitParameter::Optimal`]);
+//! * a merged degree `m > n` ([`MergeOptions::degree`]): `P` and `Q` are
+//!   elevated to `m` (exact) and the degree-`m` problem is solved;
+//! * [`merge_chain`]: `N >= 2` consecutive curves into one, see there.
+
+mod solver;
+
+use crate::bezier::BezierCurve;
+use crate::error::{
+    BezjoinError, Result, check_closed_range, check_finite_scalar, check_open_range, check_positive,
+};
+
+pub use solver::{CONSISTENCY_TOLERANCE, DEVIATION_SAMPLES, RANK_TOLERANCE, bernstein_gram_matrix};
+use solver::{PieceInput, max_deviation, solve_stage_one, stage_two};
+
+/// The default `accuracy` of a merge: the largest accepted relative error
+/// estimate of the stage-1 solve and of the stage-2 check.
+pub const DEFAULT_MERGE_ACCURACY: f64 = 1e-8;
+
+/// The optimal split parameter is searched in `[MU_SEARCH_MIN, 1 - MU_SEARCH_MIN]`.
+pub const MU_SEARCH_MIN: f64 = 1e-3;
+
+/// Number of evenly spaced samples of the metric that bracket the optimal
+/// `mu` before the golden-section search.
+pub const MU_SEARCH_SAMPLES: usize = 32;
+
+/// The golden-section search stops when its bracket is shorter than this.
+pub const MU_SEARCH_TOLERANCE: f64 = 1e-10;
+
+/// What stage 1 minimises.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum MergeMetric {
+    /// Sum of the squared changes of the control points,
+    /// `sum_i |eps_i|^2 + |delta_i|^2`.
+    #[default]
+    Discrete,
+    /// The paper's eq. (12): `int_0^1 |P^(u) - P(u)|^2 du + int_0^1 |Q^(v) -
+    /// Q(v)|^2 dv`, each curve in its own parameter, equal weights, with the
+    /// exact Bernstein Gram matrix ([`bernstein_gram_matrix`]).
+    Integral,
+}
+
+/// How the split parameter `mu` is chosen.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub enum SplitParameter {
+    /// The caller's value, in `(0, 1)`.
+    Given(f64),
+    /// `mu = 1/2`, the paper's examples.
+    #[default]
+    Half,
+    /// `mu = L_P / (L_P + L_Q)` with the control-polygon lengths (the
+    /// paper's suggestion).
+    PolygonLength,
+    /// The `mu` minimising the metric: the metric is sampled at
+    /// [`MU_SEARCH_SAMPLES`] evenly spaced values in
+    /// `[MU_SEARCH_MIN, 1 - MU_SEARCH_MIN]`, the best sample and its
+    /// neighbours bracket a golden-section search that stops at a bracket of
+    /// [`MU_SEARCH_TOLERANCE`] (or after 100 steps). This finds the global
+    /// minimum when the metric has one minimum per sampling interval; values
+    /// of `mu` where stage 1 fails count as infinitely bad.
+    Optimal,
+}
+
+/// Keep the point and its derivatives `0..=max_order` of a curve at `param`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct KeepPoint {
+    /// `u_k` on `P` or `v_k` on `Q`, in `[0, 1]`.
+    pub param: f64,
+    /// Derivatives `0..=max_order` are kept (at most the working degree).
+    pub max_order: usize,
+}
+
+/// Options of [`merge`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct MergeOptions {
+    /// The metric minimised in stage 1.
+    pub metric: MergeMetric,
+    /// How `mu` is chosen.
+    pub split: SplitParameter,
+    /// `P` unchanged (`eps = 0`).
+    pub keep_p: bool,
+    /// `Q` unchanged (`delta = 0`).
+    pub keep_q: bool,
+    /// First point of `P` and last point of `Q` unchanged.
+    pub fix_ends: bool,
+    /// Points of `P` kept with derivatives.
+    pub p_points: Vec<KeepPoint>,
+    /// Points of `Q` kept with derivatives.
+    pub q_points: Vec<KeepPoint>,
+    /// Degree of `R`; `None` is the larger of the two degrees. A larger
+    /// value elevates both curves to it first.
+    pub degree: Option<usize>,
+    /// Largest accepted relative error estimate ([`DEFAULT_MERGE_ACCURACY`]).
+    pub accuracy: f64,
+}
+
+impl Default for MergeOptions {
+    fn default() -> Self {
+        Self {
+            metric: MergeMetric::Discrete,
+            split: SplitParameter::Half,
+            keep_p: false,
+            keep_q: false,
+            fix_ends: false,
+            p_points: Vec::new(),
+            q_points: Vec::new(),
+            degree: None,
+            accuracy: DEFAULT_MERGE_ACCURACY,
+        }
+    }
+}
+
+impl MergeOptions {
+    /// These options with another metric.
+    pub fn with_metric(mut self, metric: MergeMetric) -> Self {
+        self.metric = metric;
+        self
+    }
+
+    /// These options with another split choice.
+    pub fn with_split(mut self, split: SplitParameter) -> Self {
+        self.split = split;
+        self
+    }
+}
+
+/// What every merge reports.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MergeReport {
+    /// Split parameter used.
+    pub mu: f64,
+    /// Value of the minimised metric.
+    pub metric_value: f64,
+    /// Largest distance between `R` and "P then Q" (sampled, see the module).
+    pub max_deviation: f64,
+    /// Relative error estimate of the stage-1 KKT solve.
+    pub solve_error_estimate: f64,
+    /// Largest control-point difference between `R` split at `mu` and
+    /// `P^`, `Q^`, relative to the coordinate scale.
+    pub split_check_error: f64,
+}
+
+/// The result of [`merge`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct Merge {
+    /// The single curve `R`.
+    pub merged: BezierCurve,
+    /// `P^ = P + eps`, the piece of `R` on `[0, mu]`.
+    pub p_hat: BezierCurve,
+    /// `Q^ = Q + delta`, the piece of `R` on `[mu, 1]`.
+    pub q_hat: BezierCurve,
+    /// Split parameter, metric value, deviation and checks.
+    pub report: MergeReport,
+}
+
+/// Merge `P` and `Q` into one Bezier curve `R` (mathematics.md, section 3;
+/// Ganchuk et al. 2024 with the `mu`-scaled continuity conditions).
+///
+/// Guarantee: `P^`, `Q^` are the pieces of `R` at `mu` (checked to
+/// `options.accuracy`), satisfy the constraints, and minimise the metric
+/// among all such pairs; see the module documentation for the checks.
+///
+/// ```
+/// # use bezjoin_core::{BezierCurve, merge::{merge, MergeOptions, SplitParameter}};
+/// let r = BezierCurve::from_rows(&[[0.0, 0.0], [1.0, 2.0], [3.0, 2.0], [4.0, 0.0]]).unwrap();
+/// let (p, q) = r.split_at(0.3).unwrap();
+/// let options = MergeOptions::default().with_split(SplitParameter::Optimal);
+/// let result = merge(&p, &q, &options).unwrap();
+/// assert!((result.report.mu - 0.3).abs() < 1e-6);
+/// assert!(result.report.max_deviation < 1e-9);
+/// ```
+///
+/// Errors: dimensions differ (DimensionMismatch); `mu` outside `(0, 1)`,
+/// a keep-point parameter outside `[0, 1]` (ParameterOutOfRange); an order
+/// above the working degree (OrderAboveDegree); a degree below the curves'
+/// or a zero-length control polygon for [`SplitParameter::PolygonLength`]
+/// (InvalidArgument); NaN/infinity (NonFinite); too many or contradictory
+/// constraints (Inconsistent, naming the constraint); an untrustworthy
+/// solve (IllConditioned, with the estimate).
+pub fn merge(p: &BezierCurve, q: &BezierCurve, options: &MergeOptions) -> Result<Merge> {
+    if q.dim() != p.dim() {
+        return Err(BezjoinError::DimensionMismatch {
+            name: "q".into(),
+            expected: p.dim(),
+            actual: q.dim(),
+        });
+    }
+    check_positive("accuracy", options.accuracy)?;
+    let degree = working_degree(&[p, q], options.degree)?;
+    let pieces = vec![
+        piece_input(
+            p,
+            "P",
+            "p_points",
+            options.keep_p,
+            options.p_points.iter().enumerate().collect(),
+            degree,
+        )?,
+        piece_input(
+            q,
+            "Q",
+            "q_points",
+            options.keep_q,
+            options.q_points.iter().enumerate().collect(),
+            degree,
+        )?,
+    ];
+    let metric = options.metric;
+    let accuracy = options.accuracy;
+    let fix_ends = options.fix_ends;
+    let mu = match options.split {
+        SplitParameter::Given(mu) => {
+            check_open_range("mu", mu, 0.0, 1.0)?;
+            mu
+        }
+        SplitParameter::Half => 0.5,
+        SplitParameter::PolygonLength => {
+            let breakpoints = polygon_breakpoints(&[p, q], &["P", "Q"])?;
+            breakpoints[1]
+        }
+        SplitParameter::Optimal => optimal_mu(|mu| {
+            solve_stage_one(&pieces, &[mu, 1.0 - mu], metric, fix_ends, accuracy)
+                .map(|s| s.metric_value)
+        })?,
+    };
+    let breakpoints = [0.0, mu, 1.0];
+    let stage_one = solve_stage_one(&pieces, &[mu, 1.0 - mu], metric, fix_ends, accuracy)?;
+    let (merged, split_check_error) = stage_two(&stage_one.pieces, &breakpoints, accuracy)?;
+    let max_deviation = max_deviation(&merged, &[p, q], &breakpoints);
+    let mut hats = stage_one.pieces.iter().map(BezierCurve::from_matrix);
+    let p_hat = hats.next().expect("two pieces")?;
+    let q_hat = hats.next().expect("two pieces")?;
+    Ok(Merge {
+        merged,
+        p_hat,
+        q_hat,
+        report: MergeReport {
+            mu,
+            metric_value: stage_one.metric_value,
+            max_deviation,
+            solve_error_estimate: stage_one.error_estimate,
+            split_check_error,
+        },
+    })
+}
+
+/// The metric value of the stage-1 optimum at a given `mu` (no stage 2),
+/// the function [`SplitParameter::Optimal`] minimises. `options.split` is
+/// ignored.
+pub fn merge_metric_at(
+    p: &BezierCurve,
+    q: &BezierCurve,
+    options: &MergeOptions,
+    mu: f64,
+) -> Result<f64> {
+    if q.dim() != p.dim() {
+        return Err(BezjoinError::DimensionMismatch {
+            name: "q".into(),
+            expected: p.dim(),
+            actual: q.dim(),
+        });
+    }
+    check_open_range("mu", mu, 0.0, 1.0)?;
+    check_positive("accuracy", options.accuracy)?;
+    let degree = working_degree(&[p, q], options.degree)?;
+    let pieces = vec![
+        piece_input(
+            p,
+            "P",
+            "p_points",
+            options.keep_p,
+            options.p_points.iter().enumerate().collect(),
+            degree,
+        )?,
+        piece_input(
+            q,
+            "Q",
+            "q_points",
+            options.keep_q,
+            options.q_points.iter().enumerate().collect(),
+            degree,
+        )?,
+    ];
+    solve_stage_one(
+        &pieces,
+        &[mu, 1.0 - mu],
+        options.metric,
+        options.fix_ends,
+        options.accuracy,
+    )
+    .map(|s| s.metric_value)
+}
+
+/// How the breakpoints of [`merge_chain`] are chosen.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub enum ChainBreakpoints {
+    /// The caller's interior breakpoints `0 < t_1 < ... < t_{N-1} < 1`.
+    Given(Vec<f64>),
+    /// `t_j = j / N`.
+    Uniform,
+    /// Proportional to the control-polygon lengths.
+    #[default]
+    PolygonLength,
+}
+
+/// A keep-point on one curve of a chain.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ChainKeepPoint {
+    /// Index of the curve in the chain.
+    pub curve: usize,
+    /// Parameter and derivative order on that curve.
+    pub point: KeepPoint,
+}
+
+/// Options of [`merge_chain`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct ChainMergeOptions {
+    /// The metric, summed over the pieces.
+    pub metric: MergeMetric,
+    /// How the breakpoints are chosen.
+    pub breakpoints: ChainBreakpoints,
+    /// Curves kept unchanged: empty (none), or one flag per curve.
+    pub keep: Vec<bool>,
+    /// First point of the first curve and last point of the last unchanged.
+    pub fix_ends: bool,
+    /// Points kept with derivatives.
+    pub keep_points: Vec<ChainKeepPoint>,
+    /// Degree of `R`; `None` is the largest degree of the curves.
+    pub degree: Option<usize>,
+    /// Largest accepted relative error estimate ([`DEFAULT_MERGE_ACCURACY`]).
+    pub accuracy: f64,
+}
+
+impl Default for ChainMergeOptions {
+    fn default() -> Self {
+        Self {
+            metric: MergeMetric::Discrete,
+            breakpoints: ChainBreakpoints::PolygonLength,
+            keep: Vec::new(),
+            fix_ends: false,
+            keep_points: Vec::new(),
+            degree: None,
+            accuracy: DEFAULT_MERGE_ACCURACY,
+        }
+    }
+}
+
+/// What a chain merge reports.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ChainMergeReport {
+    /// `0 = t_0 < t_1 < ... < t_N = 1`: curve `j` became `R` on `[t_j, t_{j+1}]`.
+    pub breakpoints: Vec<f64>,
+    /// Sum of the metrics of all pieces.
+    pub metric_value: f64,
+    /// Largest distance between `R(t_j + (t_{j+1} - t_j) u)` and `C_j(u)`, sampled.
+    pub max_deviation: f64,
+    /// Relative error estimate of the stage-1 KKT solve.
+    pub solve_error_estimate: f64,
+    /// Largest control-point difference between `R` restricted to the
+    /// pieces' intervals and the pieces, relative to the coordinate scale.
+    pub split_check_error: f64,
+}
+
+/// The result of [`merge_chain`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct ChainMerge {
+    /// The single curve `R`.
+    pub merged: BezierCurve,
+    /// The changed curves `C^_j`, each `R` on `[t_j, t_{j+1}]`.
+    pub pieces: Vec<BezierCurve>,
+    /// Breakpoints, metric value, deviation and checks.
+    pub report: ChainMergeReport,
+}
+
+/// **[beyond the paper]** Merge `N >= 2` consecutive curves `C_0..C_{N-1}`
+/// into one Bezier curve `R` of degree `m` (the largest degree, or
+/// `options.degree`; lower degrees are elevated exactly).
+///
+/// With breakpoints `0 = t_0 < t_1 < ... < t_N = 1` and `h_j = t_{j+1} -
+/// t_j`, curve `j` is to become `C^_j(u) = R(t_j + h_j u)`. The pieces are
+/// one polynomial exactly when at every join
+/// `h_{j+1}^r C^_j^(r)(1) = h_j^r C^_{j+1}^(r)(0)`, `r = 0..m` (eq. (3) with
+/// `mu = h_j / (h_j + h_{j+1})`, scaled). Stage 1 minimises the SUM of the
+/// pieces' metrics under these conditions and the constraints (one KKT
+/// system); stage 2 extrapolates `R` from the piece with the shortest extrapolation
+/// (for two pieces the longer one) and checks it
+/// against every piece. With `N = 2` this is exactly [`merge`].
+///
+/// The breakpoints are given, uniform or proportional to the control-polygon
+/// lengths; an optimal choice (an `(N-1)`-dimensional search) is not offered.
+///
+/// Errors: as [`merge`]; fewer than two curves, `keep` of the wrong length,
+/// breakpoints not strictly increasing inside `(0, 1)` or of the wrong count
+/// (InvalidArgument / ParameterOutOfRange / LengthMismatch).
+pub fn merge_chain(curves: &[BezierCurve], options: &ChainMergeOptions) -> Result<ChainMerge> {
+    let count = curves.len();
+    if count < 2 {
+        return Err(BezjoinError::invalid(
+            "curves",
+            format!("{count} curves given, at least 2 are needed"),
+        ));
+    }
+    for (j, c) in curves.iter().enumerate().skip(1) {
+        if c.dim() != curves[0].dim() {
+            return Err(BezjoinError::DimensionMismatch {
+                name: format!("curves[{j}]"),
+                expected: curves[0].dim(),
+                actual: c.dim(),
+            });
+        }
+    }
+    check_positive("accuracy", options.accuracy)?;
+    if !options.keep.is_empty() && options.keep.len() != count {
+        return Err(BezjoinError::LengthMismatch {
+            name: "keep".into(),
+            expected: count,
+            actual: options.keep.len(),
+        });
+    }
+    let refs: Vec<&BezierCurve> = curves.iter().collect();
+    let degree = working_degree(&refs, options.degree)?;
+    let names: Vec<String> = (0..count).map(|j| format!("curves[{j}]")).collect();
+    let mut per_curve: Vec<Vec<(usize, &KeepPoint)>> = vec![Vec::new(); count];
+    for (k, kp) in options.keep_points.iter().enumerate() {
+        if kp.curve >= count {
+            return Err(BezjoinError::invalid(
+                format!("keep_points[{k}].curve"),
+                format!("{} is not below the curve count {count}", kp.curve),
+            ));
+        }
+        per_curve[kp.curve].push((k, &kp.point));
+    }
+    let mut pieces = Vec::with_capacity(count);
+    for (j, c) in curves.iter().enumerate() {
+        let keep = options.keep.get(j).copied().unwrap_or(false);
+        pieces.push(piece_input(
+            c,
+            &names[j],
+            "keep_points",
+            keep,
+            per_curve[j].clone(),
+            degree,
+        )?);
+    }
+    let breakpoints = match &options.breakpoints {
+        ChainBreakpoints::Given(inner) => {
+            if inner.len() != count - 1 {
+                return Err(BezjoinError::LengthMismatch {
+                    name: "breakpoints".into(),
+                    expected: count - 1,
+                    actual: inner.len(),
+                });
+            }
+            let mut all = vec![0.0];
+            for (k, &t) in inner.iter().enumerate() {
+                let name = format!("breakpoints[{k}]");
+                check_open_range(&name, t, 0.0, 1.0)?;
+                if t <= *all.last().expect("non-empty") {
+                    return Err(BezjoinError::invalid(
+                        name,
+                        format!("{t} is not above the breakpoint before it"),
+                    ));
+                }
+                all.push(t);
+            }
+            all.push(1.0);
+            all
+        }
+        ChainBreakpoints::Uniform => (0..=count).map(|j| j as f64 / count as f64).collect(),
+        ChainBreakpoints::PolygonLength => {
+            let names: Vec<&str> = names.iter().map(String::as_str).collect();
+            polygon_breakpoints(&refs, &names)?
+        }
+    };
+    let lengths: Vec<f64> = breakpoints.windows(2).map(|w| w[1] - w[0]).collect();
+    let stage_one = solve_stage_one(
+        &pieces,
+        &lengths,
+        options.metric,
+        options.fix_ends,
+        options.accuracy,
+    )?;
+    let (merged, split_check_error) = stage_two(&stage_one.pieces, &breakpoints, options.accuracy)?;
+    let max_deviation = max_deviation(&merged, &refs, &breakpoints);
+    let pieces = stage_one
+        .pieces
+        .iter()
+        .map(BezierCurve::from_matrix)
+        .collect::<Result<Vec<_>>>()?;
+    Ok(ChainMerge {
+        merged,
+        pieces,
+        report: ChainMergeReport {
+            breakpoints,
+            metric_value: stage_one.metric_value,
+            max_deviation,
+            solve_error_estimate: stage_one.error_estimate,
+            split_check_error,
+        },
+    })
+}
+
+fn working_degree(curves: &[&BezierCurve], requested: Option<usize>) -> Result<usize> {
+    let highest = curves.iter().map(|c| c.degree()).max().unwrap_or(0);
+    match requested {
+        None => Ok(highest),
+        Some(m) if m >= highest => Ok(m),
+        Some(m) => Err(BezjoinError::invalid(
+            "degree",
+            format!("{m} is below the highest degree {highest} of the curves to merge"),
+        )),
+    }
+}
+
+fn piece_input<'a>(
+    curve: &BezierCurve,
+    name: &str,
+    points_name: &str,
+    keep: bool,
+    points: Vec<(usize, &'a KeepPoint)>,
+    degree: usize,
+) -> Result<PieceInput<'a>> {
+    for &(k, kp) in &points {
+        check_closed_range(&format!("{points_name}[{k}].param"), kp.param, 0.0, 1.0)?;
+        if kp.max_order > degree {
+            return Err(BezjoinError::OrderAboveDegree {
+                name: format!("{points_name}[{k}].max_order"),
+                order: kp.max_order,
+                degree,
+                curve: name.into(),
+            });
+        }
+    }
+    Ok(PieceInput {
+        curve: curve.elevate_degree(degree)?,
+        name: name.into(),
+        points_name: points_name.into(),
+        keep,
+        points,
+    })
+}
+
+fn polygon_breakpoints(curves: &[&BezierCurve], names: &[&str]) -> Result<Vec<f64>> {
+    let lengths: Vec<f64> = curves.iter().map(|c| c.polygon_length()).collect();
+    for (j, &l) in lengths.iter().enumerate() {
+        check_finite_scalar("control polygon length", l)?;
+        if l <= 0.0 {
+            return Err(BezjoinError::invalid(
+                "split",
+                format!(
+                    "the control polygon of {} has zero length, so a split proportional to \
+                     polygon lengths would give it an empty interval",
+                    names[j]
+                ),
+            ));
+        }
+    }
+    let total: f64 = lengths.iter().sum();
+    let mut breakpoints = vec![0.0];
+    let mut running = 0.0;
+    for l in &lengths[..lengths.len() - 1] {
+        running += l;
+        breakpoints.push(running / total);
+    }
+    breakpoints.push(1.0);
+    Ok(breakpoints)
+}
+
+/// Minimise `metric(mu)` over `[MU_SEARCH_MIN, 1 - MU_SEARCH_MIN]`: sampling
+/// brackets the best sample, golden section refines it.
+fn optimal_mu(mut metric: impl FnMut(f64) -> Result<f64>) -> Result<f64> {
+    let lo = MU_SEARCH_MIN;
+    let hi = 1.0 - MU_SEARCH_MIN;
+    let grid: Vec<f64> = (0..=MU_SEARCH_SAMPLES)
+        .map(|k| lo + (hi - lo) * k as f64 / MU_SEARCH_SAMPLES as f64)
+        .collect();
+    let mut first_error = None;
+    let mut values = Vec::with_capacity(grid.len());
+    for &mu in &grid {
+        match metric(mu) {
+            Ok(v) => values.push(v),
+            Err(e) => {
+                first_error.get_or_insert(e);
+                values.push(f64::INFINITY);
+            }
+        }
+    }
+    let best = (0..grid.len())
+        .min_by(|&a, &b| values[a].total_cmp(&values[b]))
+        .expect("non-empty grid");
+    if !values[best].is_finite() {
+        return Err(first_error.expect("an error for every sample"));
+    }
+    let mut a = grid[best.saturating_sub(1)];
+    let mut b = grid[(best + 1).min(grid.len() - 1)];
+    let mut evaluate = |mu: f64| metric(mu).unwrap_or(f64::INFINITY);
+    let ratio = (5f64.sqrt() - 1.0) / 2.0;
+    let mut c = b - ratio * (b - a);
+    let mut d = a + ratio * (b - a);
+    let mut fc = evaluate(c);
+    let mut fd = evaluate(d);
+    let (mut best_mu, mut best_value) = (grid[best], values[best]);
+    for _ in 0..100 {
+        if b - a < MU_SEARCH_TOLERANCE {
+            break;
+        }
+        if fc <= fd {
+            b = d;
+            d = c;
+            fd = fc;
+            c = b - ratio * (b - a);
+            fc = evaluate(c);
+        } else {
+            a = c;
+            c = d;
+            fc = fd;
+            d = a + ratio * (b - a);
+            fd = evaluate(d);
+        }
+        for (mu, v) in [(c, fc), (d, fd)] {
+            if v < best_value {
+                best_value = v;
+                best_mu = mu;
+            }
+        }
+    }
+    Ok(best_mu)
+}

@@ -1,0 +1,497 @@
+//! Corner rounding: the defining properties (C^k chain in the B-spline
+//! sense, setback arc lengths, mirror symmetry), the deviation bound, chains
+//! (sequential and parallel identical) and every error path.
+
+use bezjoin_core::bezier::distance;
+use bezjoin_core::bspline::{BSplineCurve, join_jumps, relative_jump};
+use bezjoin_core::fillet::{
+    ChainFilletOptions, DeviationFilletOptions, FilletOptions, distance_to_curve, fillet,
+    fillet_chain, fillet_within_deviation,
+};
+use bezjoin_core::intersect::{IntersectOptions, IntersectionKind, intersect};
+use bezjoin_core::{BezierCurve, BezjoinError, KnotSide};
+
+struct Lcg(u64);
+impl Lcg {
+    fn next(&mut self) -> f64 {
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        ((self.0 >> 11) as f64) / ((1u64 << 53) as f64)
+    }
+    fn range(&mut self, a: f64, b: f64) -> f64 {
+        a + (b - a) * self.next()
+    }
+}
+
+fn curve(rows: &[&[f64]]) -> BezierCurve {
+    BezierCurve::from_rows(rows).unwrap()
+}
+
+/// A random cubic through `x` at parameter `t`, heading in direction `angle`.
+fn cubic_through(rng: &mut Lcg, x: [f64; 2], t: f64, angle: f64) -> BezierCurve {
+    // A gently curved cubic along the direction, then shifted so that C(t) = x.
+    let (c, s) = (angle.cos(), angle.sin());
+    let bend = [rng.range(-0.3, 0.3), rng.range(-0.3, 0.3)];
+    let local = [
+        [0.0, 0.0],
+        [1.0, bend[0]],
+        [2.0, bend[1]],
+        [3.0, rng.range(-0.2, 0.2)],
+    ];
+    let rows: Vec<Vec<f64>> = local
+        .iter()
+        .map(|p| vec![c * p[0] - s * p[1], s * p[0] + c * p[1]])
+        .collect();
+    let raw = BezierCurve::from_rows(&rows).unwrap();
+    let at = raw.eval(t);
+    let shifted: Vec<Vec<f64>> = rows
+        .iter()
+        .map(|p| vec![p[0] + x[0] - at[0], p[1] + x[1] - at[1]])
+        .collect();
+    BezierCurve::from_rows(&shifted).unwrap()
+}
+
+/// Derivatives `0..=k` from both sides of the knot at `t` agree to `tol` relative.
+fn assert_continuous(spline: &BSplineCurve, t: f64, k: usize, tol: f64, what: &str) {
+    let left = spline.eval_derivatives_side(t, k, KnotSide::Left);
+    let right = spline.eval_derivatives_side(t, k, KnotSide::Right);
+    for order in 0..=k {
+        let a: Vec<f64> = left.row(order).iter().copied().collect();
+        let b: Vec<f64> = right.row(order).iter().copied().collect();
+        let jump = relative_jump(&a, &b);
+        assert!(
+            jump <= tol,
+            "{what}: derivative {order} jumps by {jump:e} at t = {t}: {a:?} vs {b:?}"
+        );
+    }
+}
+
+#[test]
+fn three_pieces_form_a_ck_bspline_and_setbacks_hold() {
+    let mut rng = Lcg(31);
+    let mut done = 0;
+    for case in 0..30 {
+        let x = [rng.range(-1.0, 1.0), rng.range(-1.0, 1.0)];
+        let a = rng.range(0.0, std::f64::consts::TAU);
+        let (tp, tq, b) = (
+            rng.range(0.4, 0.7),
+            rng.range(0.3, 0.6),
+            a + rng.range(0.5, 2.6),
+        );
+        let p = cubic_through(&mut rng, x, tp, a);
+        let q = cubic_through(&mut rng, x, tq, b);
+        let kp = 1 + (rng.next() * 3.0) as usize;
+        let kq = 1 + (rng.next() * 3.0) as usize;
+        let (dp, dq) = (rng.range(0.1, 0.6), rng.range(0.1, 0.6));
+        let (alpha, beta) = (rng.range(0.5, 2.0), rng.range(0.5, 2.0));
+        let options = FilletOptions::new(dp, dq, kp, kq).with_scales(alpha, beta);
+        let f = match fillet(&p, &q, &options) {
+            Ok(f) => f,
+            Err(e) => panic!("case {case}: {e}"),
+        };
+        let (us, vs) = (f.crossing.u, f.crossing.v);
+        assert!(distance(&p.eval(us), &q.eval(vs)) < 1e-14);
+        // It is the first crossing.
+        let hits = intersect(&p, &q, &IntersectOptions::default()).unwrap();
+        let first = hits
+            .iter()
+            .find(|h| h.kind == IntersectionKind::Crossing)
+            .unwrap();
+        assert_eq!(first.u, us);
+        // Setback arc lengths, measured independently.
+        let lp = p.arc_length(f.u0, us, 1e-14).unwrap();
+        let lq = q.arc_length(vs, f.v0, 1e-14).unwrap();
+        assert!((lp - dp).abs() <= 1e-9 * dp, "case {case}: {lp} vs {dp}");
+        assert!((lq - dq).abs() <= 1e-9 * dq, "case {case}: {lq} vs {dq}");
+        // The trimmed pieces are the original curves on [0, u0] and [v0, 1].
+        for i in 0..=10 {
+            let s = i as f64 / 10.0;
+            assert!(distance(&f.p_trimmed.eval(s), &p.eval(f.u0 * s)) < 1e-13);
+            let v = f.v0 + (1.0 - f.v0) * s;
+            assert!(distance(&f.q_trimmed.eval(s), &q.eval(v)) < 1e-13);
+        }
+        // C^k in the B-spline sense of mathematics.md: knot intervals
+        // (u0, alpha, (1 - v0) alpha / beta), derivatives from both sides.
+        assert_eq!(f.blend.degree(), kp + kq + 1);
+        let intervals = [f.u0, alpha, (1.0 - f.v0) * alpha / beta];
+        let spline = BSplineCurve::from_bezier_chain(
+            &[f.p_trimmed.clone(), f.blend.clone(), f.q_trimmed.clone()],
+            &intervals,
+        )
+        .unwrap();
+        assert_continuous(&spline, intervals[0], kp, 1e-9, "P|R join");
+        assert_continuous(&spline, intervals[0] + intervals[1], kq, 1e-9, "R|Q join");
+        // Not more than promised in general: the next derivative jumps at
+        // one of the joins for these random data (guards the test itself).
+        let jp = join_jumps(&f.p_trimmed, intervals[0], &f.blend, intervals[1], kp + 1);
+        let jq = join_jumps(&f.blend, intervals[1], &f.q_trimmed, intervals[2], kq + 1);
+        assert!(jp[kp + 1] > 1e-6 || jq[kq + 1] > 1e-6, "case {case}");
+        done += 1;
+    }
+    assert_eq!(done, 30);
+}
+
+/// Mirror in the y axis.
+fn mirror(x: &[f64]) -> Vec<f64> {
+    vec![-x[0], x[1]]
+}
+
+#[test]
+fn mirror_symmetric_input_gives_a_mirror_symmetric_blend() {
+    // P rises to the right and crosses the y axis once, at X; Q is P
+    // mirrored and reversed, so Q(v) = M(P(1 - v)) crosses P at X and the
+    // path "P up to X, then Q" is symmetric about the axis.
+    let p = curve(&[&[-2.0, -1.0], &[-0.8, -0.2], &[0.7, 0.4], &[1.5, 1.5]]);
+    let rows: Vec<Vec<f64>> = (0..=3).rev().map(|i| mirror(p.point(i))).collect();
+    let q = BezierCurve::from_rows(&rows).unwrap();
+    for order in 1..=3 {
+        for setback in [0.1, 0.5, 1.0] {
+            let f = fillet(&p, &q, &FilletOptions::symmetric(setback, order)).unwrap();
+            assert!(f.crossing.point[0].abs() < 1e-14);
+            assert!((f.v0 - (1.0 - f.u0)).abs() < 1e-10, "{} {}", f.u0, f.v0);
+            for i in 0..=20 {
+                let t = i as f64 / 20.0;
+                let a = mirror(&f.blend.eval(t));
+                let b = f.blend.eval(1.0 - t);
+                assert!(
+                    distance(&a, &b) < 1e-10,
+                    "order {order}, setback {setback}, t = {t}: {a:?} vs {b:?}"
+                );
+            }
+            // The blend is not trivially symmetric: it is curved.
+            let (b0, b1) = (f.blend.eval(0.0), f.blend.eval(1.0));
+            let chord_mid = [0.5 * (b0[0] + b1[0]), 0.5 * (b0[1] + b1[1])];
+            assert!(distance(&f.blend.eval(0.5), &chord_mid) > 1e-3);
+        }
+    }
+}
+
+#[test]
+fn errors_name_what_is_wrong() {
+    let p = curve(&[&[-1.0, 0.0], &[0.0, 0.5], &[1.0, 0.0]]);
+    let q = curve(&[&[0.0, -1.0], &[0.1, 0.0], &[0.0, 1.0]]);
+    let ok = FilletOptions::symmetric(0.2, 1);
+    fillet(&p, &q, &ok).unwrap();
+    // No crossing.
+    let far = curve(&[&[5.0, -1.0], &[5.0, 1.0]]);
+    let e = fillet(&p, &far, &ok).unwrap_err();
+    assert!(matches!(e, BezjoinError::NoIntersection { .. }), "{e}");
+    assert!(e.to_string().contains("do not cross"), "{e}");
+    // Only touching: the tangent line at the apex of the parabola.
+    let tangent = curve(&[&[-1.0, 0.25], &[1.0, 0.25]]);
+    let e = fillet(&p, &tangent, &FilletOptions::symmetric(0.2, 1)).unwrap_err();
+    assert!(matches!(e, BezjoinError::NoIntersection { .. }), "{e}");
+    assert!(e.to_string().contains("only touch"), "{e}");
+    // Setback longer than the part before / after the crossing.
+    let e = fillet(&p, &q, &FilletOptions::new(5.0, 0.2, 2, 2)).unwrap_err();
+    assert!(
+        e.to_string().starts_with("p_setback: 5 is not shorter"),
+        "{e}"
+    );
+    let e = fillet(&p, &q, &FilletOptions::new(0.2, 5.0, 2, 2)).unwrap_err();
+    assert!(
+        e.to_string().starts_with("q_setback: 5 is not shorter"),
+        "{e}"
+    );
+    // Order above degree.
+    let e = fillet(&p, &q, &FilletOptions::new(0.2, 0.2, 3, 1)).unwrap_err();
+    assert_eq!(e.to_string(), "p_order = 3 is above the degree 2 of P");
+    let e = fillet(&p, &q, &FilletOptions::new(0.2, 0.2, 1, 4)).unwrap_err();
+    assert_eq!(e.to_string(), "q_order = 4 is above the degree 2 of Q");
+    // Non-finite and non-positive input.
+    let e = fillet(&p, &q, &FilletOptions::new(f64::NAN, 0.2, 1, 1)).unwrap_err();
+    assert!(matches!(e, BezjoinError::NonFiniteScalar { .. }), "{e}");
+    assert!(e.to_string().contains("p_setback"), "{e}");
+    let e = fillet(&p, &q, &FilletOptions::new(0.2, f64::INFINITY, 1, 1)).unwrap_err();
+    assert!(e.to_string().contains("q_setback"), "{e}");
+    let e = fillet(&p, &q, &FilletOptions::new(0.0, 0.2, 1, 1)).unwrap_err();
+    assert_eq!(e.to_string(), "p_setback = 0 is outside > 0");
+    let e = fillet(&p, &q, &ok.clone().with_scales(f64::NAN, 1.0)).unwrap_err();
+    assert!(e.to_string().contains("p_scale"), "{e}");
+    // Dimensions.
+    let q3 = curve(&[&[0.0, 0.0, 0.0], &[1.0, 1.0, 1.0]]);
+    let e = fillet(&p, &q3, &ok).unwrap_err();
+    assert!(matches!(e, BezjoinError::DimensionMismatch { .. }), "{e}");
+}
+
+#[test]
+fn deviation_bound_holds_and_is_monotone_for_short_setbacks() {
+    let mut rng = Lcg(77);
+    for case in 0..4 {
+        let x = [rng.range(-1.0, 1.0), rng.range(-1.0, 1.0)];
+        let a = rng.range(0.0, std::f64::consts::TAU);
+        let p = cubic_through(&mut rng, x, 0.6, a);
+        let b = a + rng.range(0.6, 2.5);
+        let q = cubic_through(&mut rng, x, 0.4, b);
+        let order = 1 + case % 3;
+        // Monotone for setbacks short against the curves (about 3 long):
+        // a sweep up to 0.4. (Longer ones can turn; the search copes.)
+        let mut last = 0.0;
+        for i in 1..=8 {
+            let dp = 0.05 * i as f64;
+            let f = fillet(&p, &q, &FilletOptions::symmetric(dp, order)).unwrap();
+            let (_, dev) = distance_to_curve(&f.blend, &f.crossing.point);
+            assert!(
+                dev > last,
+                "case {case}: deviation {dev} after {last} at dp = {dp}"
+            );
+            last = dev;
+        }
+        for ratio in [1.0, 0.5, 2.0] {
+            let eps = rng.range(0.01, 0.1);
+            let options = DeviationFilletOptions::new(eps, order).with_setback_ratio(ratio);
+            let r = fillet_within_deviation(&p, &q, &options).unwrap();
+            assert!(
+                (r.deviation - eps).abs() <= 1e-9 * eps,
+                "{} vs {eps}",
+                r.deviation
+            );
+            // Independently: sampling of the blend comes no closer than eps
+            // to the corner, and gets within 1e-9 relative of it near the
+            // reported parameter.
+            let x = &r.fillet.crossing.point;
+            let blend = &r.fillet.blend;
+            let closest = (0..=2000)
+                .map(|i| distance(&blend.eval(i as f64 / 2000.0), x))
+                .fold(f64::INFINITY, f64::min);
+            assert!(closest >= eps * (1.0 - 1e-9), "{closest} < {eps}");
+            let t = r.deviation_parameter;
+            let local = (0..=2000)
+                .map(|i| distance(&blend.eval(t + 1e-4 * (i as f64 / 1000.0 - 1.0)), x))
+                .fold(f64::INFINITY, f64::min);
+            assert!(local <= eps * (1.0 + 1e-9), "{local} vs {eps}");
+            // The setbacks have the requested ratio and hold as arc lengths.
+            assert!((r.q_setback - ratio * r.p_setback).abs() <= 1e-15 * r.q_setback);
+            let f = &r.fillet;
+            let lp = p.arc_length(f.u0, f.crossing.u, 1e-14).unwrap();
+            let lq = q.arc_length(f.crossing.v, f.v0, 1e-14).unwrap();
+            assert!((lp - r.p_setback).abs() <= 1e-9 * r.p_setback);
+            assert!((lq - r.q_setback).abs() <= 1e-9 * r.q_setback);
+        }
+    }
+}
+
+#[test]
+fn deviation_for_two_lines_matches_geometry() {
+    // Two lines at right angles with a symmetric C1 cubic blend: by symmetry
+    // the closest point is R(1/2), on the bisector; the search must land on it.
+    let p = curve(&[&[-2.0, 0.0], &[2.0, 0.0]]);
+    let q = curve(&[&[0.0, -2.0], &[0.0, 2.0]]);
+    let r = fillet_within_deviation(&p, &q, &DeviationFilletOptions::new(0.3, 1)).unwrap();
+    assert!((r.deviation_parameter - 0.5).abs() < 1e-6);
+    let mid = r.fillet.blend.eval(0.5);
+    assert!((mid[0] + mid[1]).abs() < 1e-12, "{mid:?}");
+    assert!((distance(&mid, &[0.0, 0.0]) - 0.3).abs() < 1e-9 * 0.3);
+    // Unreachable bound.
+    let e = fillet_within_deviation(&p, &q, &DeviationFilletOptions::new(50.0, 1)).unwrap_err();
+    assert!(
+        e.to_string()
+            .starts_with("max_deviation: 50 cannot be reached"),
+        "{e}"
+    );
+    let e = fillet_within_deviation(&p, &q, &DeviationFilletOptions::new(-1.0, 1)).unwrap_err();
+    assert!(e.to_string().contains("max_deviation"), "{e}");
+    let e = fillet_within_deviation(
+        &p,
+        &q,
+        &DeviationFilletOptions::new(0.1, 1).with_setback_ratio(f64::NAN),
+    )
+    .unwrap_err();
+    assert!(e.to_string().contains("setback_ratio"), "{e}");
+}
+
+/// A zigzag of cubics meeting end to end with sharp corners.
+fn zigzag(rng: &mut Lcg, n: usize, closed: bool) -> Vec<BezierCurve> {
+    let mut nodes: Vec<[f64; 2]> = (0..=n)
+        .map(|i| {
+            [
+                i as f64 * 1.5 + rng.range(-0.2, 0.2),
+                if i % 2 == 0 { 0.0 } else { 1.0 } + rng.range(-0.2, 0.2),
+            ]
+        })
+        .collect();
+    if closed {
+        // Close over a polygon instead: points on a circle.
+        nodes = (0..n)
+            .map(|i| {
+                let a = std::f64::consts::TAU * i as f64 / n as f64;
+                let r = 3.0 + rng.range(-0.3, 0.3);
+                [r * a.cos(), r * a.sin()]
+            })
+            .collect();
+        nodes.push(nodes[0]);
+    }
+    (0..n)
+        .map(|i| {
+            let (a, b) = (nodes[i], nodes[i + 1]);
+            let d = [b[0] - a[0], b[1] - a[1]];
+            let normal = [-d[1], d[0]];
+            let (s1, s2) = (rng.range(-0.15, 0.15), rng.range(-0.15, 0.15));
+            curve(&[
+                &a,
+                &[
+                    a[0] + d[0] / 3.0 + s1 * normal[0],
+                    a[1] + d[1] / 3.0 + s1 * normal[1],
+                ],
+                &[
+                    a[0] + 2.0 * d[0] / 3.0 + s2 * normal[0],
+                    a[1] + 2.0 * d[1] / 3.0 + s2 * normal[1],
+                ],
+                &b,
+            ])
+        })
+        .collect()
+}
+
+#[test]
+fn chains_open_and_closed_are_ck_at_every_join() {
+    let mut rng = Lcg(5);
+    for closed in [false, true] {
+        let curves = zigzag(&mut rng, 9, closed);
+        let k = 2;
+        let (alpha, beta) = (1.3, 0.8);
+        let corner = FilletOptions::symmetric(0.3, k).with_scales(alpha, beta);
+        let options = if closed {
+            ChainFilletOptions::closed(corner)
+        } else {
+            ChainFilletOptions::open(corner)
+        };
+        let r = fillet_chain(&curves, &options).unwrap();
+        let n = curves.len();
+        assert_eq!(r.pieces.len(), if closed { 2 * n } else { 2 * n - 1 });
+        assert_eq!(r.corners.len(), if closed { n } else { n - 1 });
+        // Parameter length of each trimmed curve.
+        let kept = |i: usize| -> f64 {
+            let start = if i > 0 {
+                r.corners[i - 1].v0
+            } else if closed {
+                r.corners[n - 1].v0
+            } else {
+                0.0
+            };
+            let end = if i < r.corners.len() {
+                r.corners[i].u0
+            } else {
+                1.0
+            };
+            end - start
+        };
+        for (i, c) in r.corners.iter().enumerate() {
+            assert_eq!((c.crossing.u, c.crossing.v), (1.0, 0.0), "corner {i}");
+            let trim = &r.pieces[2 * i];
+            let blend = &r.pieces[2 * i + 1];
+            let next = &r.pieces[(2 * i + 2) % r.pieces.len()];
+            let next_kept = kept((i + 1) % n);
+            let jl = join_jumps(trim, kept(i), blend, alpha, k);
+            let jr = join_jumps(blend, alpha, next, next_kept * alpha / beta, k);
+            for order in 0..=k {
+                assert!(jl[order] <= 1e-9, "corner {i} left, order {order}: {jl:?}");
+                assert!(jr[order] <= 1e-9, "corner {i} right, order {order}: {jr:?}");
+            }
+            // Setbacks as arc lengths from the shared end.
+            let lp = curves[i].arc_length(c.u0, 1.0, 1e-14).unwrap();
+            let lq = curves[(i + 1) % n].arc_length(0.0, c.v0, 1e-14).unwrap();
+            assert!((lp - 0.3).abs() <= 1e-9 * 0.3 && (lq - 0.3).abs() <= 1e-9 * 0.3);
+        }
+    }
+}
+
+#[test]
+fn parallel_and_sequential_chains_are_identical() {
+    let mut rng = Lcg(99);
+    let curves = zigzag(&mut rng, 100, false);
+    let corner = FilletOptions::symmetric(0.25, 3);
+    let sequential = ChainFilletOptions {
+        parallel_threshold: usize::MAX,
+        ..ChainFilletOptions::open(corner.clone())
+    };
+    let parallel = ChainFilletOptions {
+        parallel_threshold: 0,
+        ..ChainFilletOptions::open(corner)
+    };
+    let a = fillet_chain(&curves, &sequential).unwrap();
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(2)
+        .build()
+        .unwrap();
+    let b = pool.install(|| fillet_chain(&curves, &parallel)).unwrap();
+    assert_eq!(a, b);
+    // The first failing corner is the one reported, either way.
+    let mut broken = curves.clone();
+    broken[40] = curve(&[&[100.0, 100.0], &[101.0, 100.0]])
+        .elevate_degree(3)
+        .unwrap();
+    broken[90] = curve(&[&[200.0, 100.0], &[201.0, 100.0]])
+        .elevate_degree(3)
+        .unwrap();
+    let ea = fillet_chain(&broken, &sequential).unwrap_err();
+    let eb = pool
+        .install(|| fillet_chain(&broken, &parallel))
+        .unwrap_err();
+    assert_eq!(ea, eb);
+    assert!(ea.to_string().contains("corner 39"), "{ea}");
+}
+
+#[test]
+fn chain_errors() {
+    let mut rng = Lcg(3);
+    let curves = zigzag(&mut rng, 3, false);
+    let options = ChainFilletOptions::open(FilletOptions::symmetric(0.3, 1));
+    let e = fillet_chain(&curves[..1], &options).unwrap_err();
+    assert!(e.to_string().contains("at least 2 curves"), "{e}");
+    // Setbacks so long that the cuts on the middle curve pass each other.
+    let long = ChainFilletOptions::open(FilletOptions::symmetric(1.0, 1));
+    let e = fillet_chain(&curves, &long).unwrap_err();
+    assert!(e.to_string().contains("curves[1]"), "{e}");
+    // A smooth (tangent-continuous) joint is not a corner.
+    let a = curve(&[&[0.0, 0.0], &[1.0, 0.0], &[2.0, 0.0]]);
+    let b = curve(&[&[2.0, 0.0], &[3.0, 0.0], &[4.0, 1.0]]);
+    let e = fillet_chain(&[a, b], &options).unwrap_err();
+    assert!(matches!(e, BezjoinError::NoIntersection { .. }), "{e}");
+    assert!(e.to_string().contains("corner 0"), "{e}");
+    assert!(e.to_string().contains("tangentially"), "{e}");
+}
+
+#[test]
+fn three_d_corner_is_ck() {
+    // Two space cubics through X = (0.2, -0.1, 0.5) at u = 0.6 and v = 0.3
+    // (each shifted so), crossing at an angle.
+    let x = [0.2, -0.1, 0.5];
+    let shift_through = |rows: [[f64; 3]; 4], t: f64| -> BezierCurve {
+        let raw = BezierCurve::from_rows(&rows).unwrap();
+        let at = raw.eval(t);
+        let moved: Vec<Vec<f64>> = rows
+            .iter()
+            .map(|r| (0..3).map(|c| r[c] + x[c] - at[c]).collect())
+            .collect();
+        BezierCurve::from_rows(&moved).unwrap()
+    };
+    let p = shift_through(
+        [
+            [0.0, 0.0, 0.0],
+            [1.0, 0.3, 0.2],
+            [2.0, -0.2, 0.5],
+            [3.0, 0.1, 0.4],
+        ],
+        0.6,
+    );
+    let q = shift_through(
+        [
+            [0.0, 0.0, 0.0],
+            [0.2, 1.0, 0.4],
+            [-0.1, 2.0, 0.1],
+            [0.3, 3.0, 0.6],
+        ],
+        0.3,
+    );
+    let f = fillet(&p, &q, &FilletOptions::new(0.4, 0.7, 3, 2)).unwrap();
+    assert!((f.crossing.u - 0.6).abs() < 1e-12 && (f.crossing.v - 0.3).abs() < 1e-12);
+    let spline = f.to_bspline().unwrap();
+    let [a, b, _] = f.knot_intervals();
+    assert_continuous(&spline, a, 3, 1e-9, "3D P|R");
+    assert_continuous(&spline, a + b, 2, 1e-9, "3D R|Q");
+    let lp = p.arc_length(f.u0, 0.6, 1e-14).unwrap();
+    assert!((lp - 0.4).abs() <= 1e-9 * 0.4);
+}

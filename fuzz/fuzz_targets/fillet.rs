@@ -1,0 +1,62 @@
+//! `bzj_fillet` on fuzzed curve pairs with fuzzed setbacks (any double),
+//! orders (also `SIZE_MAX`) and scales; sometimes one out-pointer NULL.
+#![no_main]
+
+use bezjoin_fuzz::*;
+use libfuzzer_sys::fuzz_target;
+use std::ptr::null_mut;
+
+fuzz_target!(|data: &[u8]| {
+    let mut input = Input::new(data);
+    let Some(p) = curve(&mut input) else { return };
+    let Some(q) = curve(&mut input) else {
+        // SAFETY: live handle, released once.
+        unsafe { bzj_curve_free(p) };
+        return;
+    };
+    let setback = |input: &mut Input| {
+        if input.byte() % 4 == 0 {
+            input.double()
+        } else {
+            input.ordinary().abs() / 20.0
+        }
+    };
+    let options = BzjFilletOptions {
+        p_setback: setback(&mut input),
+        q_setback: setback(&mut input),
+        p_order: input.size(6),
+        q_order: input.size(6),
+        p_scale: if input.byte() % 4 == 0 {
+            input.double()
+        } else {
+            1.0
+        },
+        q_scale: if input.byte() % 4 == 0 {
+            input.double()
+        } else {
+            1.0
+        },
+    };
+    let drop_one = input.byte() % 16;
+    let (mut a, mut b, mut c) = (null_mut(), null_mut(), null_mut());
+    let pa: *mut *mut BzjCurve = if drop_one == 1 { null_mut() } else { &mut a };
+    let pb: *mut *mut BzjCurve = if drop_one == 2 { null_mut() } else { &mut b };
+    let pc: *mut *mut BzjCurve = if drop_one == 3 { null_mut() } else { &mut c };
+    // SAFETY: live handles, readable options, out-pointers valid or NULL.
+    let status = unsafe { bzj_fillet(p, q, &options, pa, pb, pc) };
+    if (1..=3).contains(&drop_one) {
+        assert_eq!(
+            status,
+            BzjStatus::BZJ_ERR_NULL_POINTER,
+            "bzj_fillet with a NULL out-pointer"
+        );
+    }
+    check_and_free(status, a, "bzj_fillet");
+    check_and_free(status, b, "bzj_fillet");
+    check_and_free(status, c, "bzj_fillet");
+    // SAFETY: live handles, released once.
+    unsafe {
+        bzj_curve_free(p);
+        bzj_curve_free(q);
+    }
+});

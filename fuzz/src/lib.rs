@@ -1,0 +1,188 @@
+//! Shared pieces of the fuzz targets: turning libFuzzer's bytes into
+//! arguments of the C ABI, and the checks every call must pass.
+//!
+//! Every target drives the `extern "C"` functions of the `bezjoin` crate
+//! (the FFI crate, used as an rlib) exactly as a C host would, with
+//! arbitrary doubles (NaN, infinities, subnormals, huge values and raw bit
+//! patterns), sizes and option values. The oracle: no crash, no hang, and
+//! never `BZJ_ERR_INTERNAL` (a caught panic is a bug too); a failed call
+//! leaves a message and NULL handles; a successful one returns handles
+//! that answer `bzj_curve_degree`/`bzj_curve_dim`. Sizes are bounded
+//! (degree <= 40, dim <= 4) so one input cannot run for long.
+
+use std::ffi::CStr;
+use std::ptr::null_mut;
+
+pub use bezjoin::*;
+
+/// Largest degree a target builds or asks for.
+pub const MAX_DEGREE: usize = 40;
+/// Largest dimension a target builds.
+pub const MAX_DIM: usize = 4;
+
+/// A cursor over the fuzzer's bytes; reads past the end give zeros.
+pub struct Input<'a> {
+    data: &'a [u8],
+}
+
+impl<'a> Input<'a> {
+    /// Wrap the fuzzer's input.
+    pub fn new(data: &'a [u8]) -> Self {
+        Self { data }
+    }
+
+    /// The next byte (0 when the input is used up).
+    pub fn byte(&mut self) -> u8 {
+        match self.data.split_first() {
+            Some((&b, rest)) => {
+                self.data = rest;
+                b
+            }
+            None => 0,
+        }
+    }
+
+    /// A value in `0..n` (`n >= 1`) from two bytes.
+    pub fn below(&mut self, n: usize) -> usize {
+        let v = (usize::from(self.byte()) << 8) | usize::from(self.byte());
+        v % n
+    }
+
+    /// A size: mostly small, sometimes the extreme values that overflow
+    /// careless arithmetic.
+    pub fn size(&mut self, small: usize) -> usize {
+        match self.byte() % 16 {
+            0 => usize::MAX,
+            1 => usize::MAX / 2 + 1,
+            2 => 0,
+            _ => self.below(small + 1),
+        }
+    }
+
+    /// Any double: special values, raw bit patterns, or ordinary numbers.
+    pub fn double(&mut self) -> f64 {
+        match self.byte() % 20 {
+            0 => 0.0,
+            1 => -0.0,
+            2 => 1.0,
+            3 => 0.5,
+            4 => f64::NAN,
+            5 => f64::INFINITY,
+            6 => f64::NEG_INFINITY,
+            7 => 5e-324,
+            8 => f64::MAX,
+            9 => -f64::MAX,
+            10 => f64::MIN_POSITIVE,
+            11 => 1e-300,
+            12 => 1e300,
+            13..=15 => {
+                let mut bits = [0u8; 8];
+                bits.iter_mut().for_each(|b| *b = self.byte());
+                f64::from_bits(u64::from_le_bytes(bits))
+            }
+            _ => self.ordinary(),
+        }
+    }
+
+    /// A moderate finite number in about [-100, 100] (most coordinates).
+    pub fn ordinary(&mut self) -> f64 {
+        let v = (i32::from(self.byte()) << 8 | i32::from(self.byte())) - 32768;
+        f64::from(v) / 327.68
+    }
+
+    /// A parameter: mostly in [-0.5, 1.5], sometimes any double.
+    pub fn parameter(&mut self) -> f64 {
+        if self.byte().is_multiple_of(8) {
+            self.double()
+        } else {
+            let v = (u32::from(self.byte()) << 8) | u32::from(self.byte());
+            -0.5 + 2.0 * f64::from(v) / 65535.0
+        }
+    }
+
+    /// A coordinate: mostly ordinary, sometimes any double.
+    pub fn coordinate(&mut self) -> f64 {
+        if self.byte().is_multiple_of(8) {
+            self.double()
+        } else {
+            self.ordinary()
+        }
+    }
+}
+
+/// The calling thread's last error message.
+pub fn last_error() -> String {
+    // SAFETY: bzj_last_error never returns NULL and the string lives until
+    // this thread's next call.
+    unsafe { CStr::from_ptr(bzj_last_error()) }
+        .to_string_lossy()
+        .into_owned()
+}
+
+/// The oracle for one call's status: never `BZJ_ERR_INTERNAL`, and a failed
+/// call leaves a message.
+pub fn check(status: BzjStatus, call: &str) {
+    assert_ne!(
+        status,
+        BzjStatus::BZJ_ERR_INTERNAL,
+        "{call} returned BZJ_ERR_INTERNAL: {}",
+        last_error()
+    );
+    if status != BzjStatus::BZJ_OK {
+        assert!(
+            !last_error().is_empty(),
+            "{call} failed ({status:?}) without a message"
+        );
+    }
+}
+
+/// Check a handle returned by a call with `status`: NULL after a failure,
+/// a live curve of dimension `1..` after success (then freed).
+///
+/// `handle` must be NULL or a handle the library just returned (the
+/// targets only pass what a call wrote into an out-pointer).
+#[allow(clippy::not_unsafe_ptr_arg_deref)]
+pub fn check_and_free(status: BzjStatus, handle: *mut BzjCurve, call: &str) {
+    check(status, call);
+    if status != BzjStatus::BZJ_OK {
+        assert!(handle.is_null(), "{call} failed but returned a handle");
+        return;
+    }
+    assert!(!handle.is_null(), "{call} succeeded without a handle");
+    let mut dim = 0usize;
+    let mut degree = 0usize;
+    // SAFETY: a live handle from the library; out-pointers are valid.
+    unsafe {
+        check(bzj_curve_dim(handle, &mut dim), "bzj_curve_dim");
+        check(bzj_curve_degree(handle, &mut degree), "bzj_curve_degree");
+        assert!(dim >= 1);
+        let mut points = vec![0.0; (degree + 1) * dim];
+        check(
+            bzj_curve_points(handle, points.as_mut_ptr(), points.len()),
+            "bzj_curve_points",
+        );
+        bzj_curve_free(handle);
+    }
+}
+
+/// A curve built from the input through `bzj_curve_new` (degree <= 40,
+/// dim <= 4), or `None` when the input describes an invalid one (the call's
+/// status is checked either way). Free it with `bzj_curve_free`.
+pub fn curve(input: &mut Input) -> Option<*mut BzjCurve> {
+    let dim = 1 + input.below(MAX_DIM);
+    let degree = input.below(MAX_DEGREE + 1);
+    let points: Vec<f64> = (0..(degree + 1) * dim)
+        .map(|_| input.coordinate())
+        .collect();
+    let mut out = null_mut();
+    // SAFETY: `points` holds `points.len()` doubles; `out` is writable.
+    let status = unsafe { bzj_curve_new(dim, degree, points.as_ptr(), points.len(), &mut out) };
+    check(status, "bzj_curve_new");
+    if status == BzjStatus::BZJ_OK {
+        assert!(!out.is_null());
+        Some(out)
+    } else {
+        assert!(out.is_null());
+        None
+    }
+}

@@ -1,0 +1,185 @@
+/* bzj_connect and bzj_connect_auto_scale through the C ABI: continuity
+ * checked by evaluating both curves with bzj_curve_eval, and every error
+ * path (null pointers, bad parameters, order above degree, bad constraints).
+ * Returns 0 on success, 1 with a message on the first failure. */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "bezjoin.h"
+
+static int failures = 0;
+
+#define CHECK(cond, ...)                                  \
+    do {                                                  \
+        if (!(cond)) {                                    \
+            fprintf(stderr, "connect.c:%d: ", __LINE__);  \
+            fprintf(stderr, __VA_ARGS__);                 \
+            fprintf(stderr, "\n");                        \
+            failures++;                                   \
+        }                                                 \
+    } while (0)
+
+#define EXPECT_STATUS(call, expected)                                          \
+    do {                                                                       \
+        BzjStatus s_ = (call);                                                 \
+        CHECK(s_ == (expected), "%s gave %s (%s), expected %s", #call,         \
+              bzj_status_name(s_), bzj_last_error(), bzj_status_name(expected)); \
+    } while (0)
+
+/* |a - b| <= tol * max(1, |b|) */
+static int close_to(double a, double b, double tol) {
+    double scale = fabs(b) > 1.0 ? fabs(b) : 1.0;
+    return fabs(a - b) <= tol * scale;
+}
+
+/* R^(k)(tr) == s^k C^(k)(tc) for k = 0..order, all coordinates. */
+static void check_match(const BzjCurve* r, double tr, const BzjCurve* c, double tc,
+                        size_t order, double s, size_t dim, const char* what) {
+    double rv[4 * 3], cv[4 * 3];
+    size_t len = (order + 1) * dim;
+    EXPECT_STATUS(bzj_curve_eval(r, tr, order, rv, len), BZJ_OK);
+    EXPECT_STATUS(bzj_curve_eval(c, tc, order, cv, len), BZJ_OK);
+    double power = 1.0;
+    for (size_t k = 0; k <= order; k++) {
+        for (size_t i = 0; i < dim; i++) {
+            double want = power * cv[k * dim + i];
+            CHECK(close_to(rv[k * dim + i], want, 1e-9), "%s: order %zu coord %zu: %g vs %g",
+                  what, k, i, rv[k * dim + i], want);
+        }
+        power *= s;
+    }
+}
+
+int main(void) {
+    const double p_points[] = {0, 0, 0, 1, 2, 1, 2, 2, 0, 3, 0, 1};
+    const double q_points[] = {6, 0, 0, 7, -2, 1, 8, -2, 0, 9, 0, 2};
+    const double flat_points[] = {0, 0, 1, 1};
+    BzjCurve *p = NULL, *q = NULL, *flat = NULL, *r = NULL;
+    EXPECT_STATUS(bzj_curve_new(3, 3, p_points, 12, &p), BZJ_OK);
+    EXPECT_STATUS(bzj_curve_new(3, 3, q_points, 12, &q), BZJ_OK);
+    EXPECT_STATUS(bzj_curve_new(2, 1, flat_points, 4, &flat), BZJ_OK);
+
+    /* C3 at both ends, scales 1.5 and 0.75, one K = 1 constraint. */
+    const double values[] = {4.5, 0.0, 1.0, 3.0, -1.0, 0.5};
+    BzjPointConstraint constraint = {0.4, 1, values};
+    BzjConnectOptions options = {3, 3, 1.5, 0.75, &constraint, 1};
+    EXPECT_STATUS(bzj_connect(p, 0.8, q, 0.1, &options, &r), BZJ_OK);
+    size_t degree = 0;
+    EXPECT_STATUS(bzj_curve_degree(r, &degree), BZJ_OK);
+    CHECK(degree == 3 + 3 + 1 + 2, "degree %zu, expected 9", degree);
+    check_match(r, 0.0, p, 0.8, 3, 1.5, 3, "P end");
+    check_match(r, 1.0, q, 0.1, 3, 0.75, 3, "Q end");
+    double at_t[2 * 3];
+    EXPECT_STATUS(bzj_curve_eval(r, 0.4, 1, at_t, 6), BZJ_OK);
+    for (int i = 0; i < 6; i++) {
+        CHECK(close_to(at_t[i], values[i], 1e-9), "constraint value %d: %g vs %g", i, at_t[i],
+              values[i]);
+    }
+    bzj_curve_free(r);
+    r = NULL;
+
+    /* The paper's case: no constraints, scales 1, NULL constraint array. */
+    BzjConnectOptions paper = {2, 1, 1.0, 1.0, NULL, 0};
+    EXPECT_STATUS(bzj_connect(p, 1.0, q, 0.0, &paper, &r), BZJ_OK);
+    EXPECT_STATUS(bzj_curve_degree(r, &degree), BZJ_OK);
+    CHECK(degree == 4, "degree %zu, expected 4", degree);
+    check_match(r, 0.0, p, 1.0, 2, 1.0, 3, "paper P end");
+    check_match(r, 1.0, q, 0.0, 1, 1.0, 3, "paper Q end");
+    bzj_curve_free(r);
+    r = NULL;
+
+    /* Automatic scale, with and without scale_out. */
+    double scale = -1.0;
+    EXPECT_STATUS(bzj_connect_auto_scale(p, 0.8, q, 0.1, &options, &r, &scale), BZJ_OK);
+    CHECK(scale > 0.0 && isfinite(scale), "auto scale %g", scale);
+    check_match(r, 0.0, p, 0.8, 3, scale, 3, "auto P end");
+    check_match(r, 1.0, q, 0.1, 3, scale, 3, "auto Q end");
+    bzj_curve_free(r);
+    r = NULL;
+    EXPECT_STATUS(bzj_connect_auto_scale(p, 0.8, q, 0.1, &options, &r, NULL), BZJ_OK);
+    bzj_curve_free(r);
+    r = NULL;
+
+    /* Error paths: each leaves *out NULL. */
+    BzjCurve* sentinel = (BzjCurve*)&failures; /* non-NULL garbage to be cleared */
+    r = sentinel;
+    EXPECT_STATUS(bzj_connect(NULL, 0.5, q, 0.5, &options, &r), BZJ_ERR_NULL_POINTER);
+    CHECK(r == NULL, "out not cleared");
+    EXPECT_STATUS(bzj_connect(p, 0.5, NULL, 0.5, &options, &r), BZJ_ERR_NULL_POINTER);
+    EXPECT_STATUS(bzj_connect(p, 0.5, q, 0.5, NULL, &r), BZJ_ERR_NULL_POINTER);
+    EXPECT_STATUS(bzj_connect(p, 0.5, q, 0.5, &options, NULL), BZJ_ERR_NULL_POINTER);
+    EXPECT_STATUS(bzj_connect_auto_scale(p, 0.5, q, 0.5, &options, NULL, NULL),
+                  BZJ_ERR_NULL_POINTER);
+    r = sentinel;
+    EXPECT_STATUS(bzj_connect(p, 1.5, q, 0.5, &options, &r), BZJ_ERR_INVALID_ARGUMENT);
+    CHECK(r == NULL, "out not cleared");
+    CHECK(strstr(bzj_last_error(), "u0") != NULL, "message does not name u0: %s",
+          bzj_last_error());
+    EXPECT_STATUS(bzj_connect(p, 0.5, q, -0.1, &options, &r), BZJ_ERR_INVALID_ARGUMENT);
+    CHECK(strstr(bzj_last_error(), "v0") != NULL, "message: %s", bzj_last_error());
+    EXPECT_STATUS(bzj_connect(p, NAN, q, 0.5, &options, &r), BZJ_ERR_NON_FINITE);
+    EXPECT_STATUS(bzj_connect_auto_scale(p, 2.0, q, 0.5, &options, &r, NULL),
+                  BZJ_ERR_INVALID_ARGUMENT);
+    EXPECT_STATUS(bzj_connect(p, 0.5, flat, 0.5, &paper, &r), BZJ_ERR_DIMENSION_MISMATCH);
+
+    BzjConnectOptions bad = options;
+    bad.p_order = 4;
+    EXPECT_STATUS(bzj_connect(p, 0.5, q, 0.5, &bad, &r), BZJ_ERR_INVALID_ARGUMENT);
+    CHECK(strstr(bzj_last_error(), "p_order") != NULL, "message: %s", bzj_last_error());
+    bad = options;
+    bad.q_order = 9;
+    EXPECT_STATUS(bzj_connect_auto_scale(p, 0.5, q, 0.5, &bad, &r, NULL),
+                  BZJ_ERR_INVALID_ARGUMENT);
+    bad = options;
+    bad.p_scale = 0.0;
+    EXPECT_STATUS(bzj_connect(p, 0.5, q, 0.5, &bad, &r), BZJ_ERR_INVALID_ARGUMENT);
+    bad.p_scale = INFINITY;
+    EXPECT_STATUS(bzj_connect(p, 0.5, q, 0.5, &bad, &r), BZJ_ERR_NON_FINITE);
+    /* The automatic scale ignores the given scales. */
+    bad = options;
+    bad.q_scale = -1.0;
+    EXPECT_STATUS(bzj_connect_auto_scale(p, 0.5, q, 0.5, &bad, &r, NULL), BZJ_OK);
+    bzj_curve_free(r);
+    r = NULL;
+    bad = options;
+    bad.constraints = NULL;
+    EXPECT_STATUS(bzj_connect(p, 0.5, q, 0.5, &bad, &r), BZJ_ERR_NULL_POINTER);
+
+    BzjPointConstraint wrong = constraint;
+    bad = options;
+    bad.constraints = &wrong;
+    wrong.t = 1.0;
+    EXPECT_STATUS(bzj_connect(p, 0.5, q, 0.5, &bad, &r), BZJ_ERR_INVALID_ARGUMENT);
+    CHECK(strstr(bzj_last_error(), "constraints[0].t") != NULL, "message: %s",
+          bzj_last_error());
+    wrong.t = NAN;
+    EXPECT_STATUS(bzj_connect(p, 0.5, q, 0.5, &bad, &r), BZJ_ERR_NON_FINITE);
+    wrong = constraint;
+    wrong.values = NULL;
+    EXPECT_STATUS(bzj_connect(p, 0.5, q, 0.5, &bad, &r), BZJ_ERR_NULL_POINTER);
+    const double nan_values[] = {1.0, NAN, 0.0, 0.0, 0.0, 0.0};
+    wrong = constraint;
+    wrong.values = nan_values;
+    EXPECT_STATUS(bzj_connect(p, 0.5, q, 0.5, &bad, &r), BZJ_ERR_NON_FINITE);
+    wrong = constraint;
+    wrong.max_order = (size_t)-1; /* absurd order: refused before reading values */
+    EXPECT_STATUS(bzj_connect(p, 0.5, q, 0.5, &bad, &r), BZJ_ERR_ILL_CONDITIONED);
+    BzjPointConstraint twice[2] = {constraint, constraint};
+    bad.constraints = twice;
+    bad.constraint_count = 2;
+    EXPECT_STATUS(bzj_connect(p, 0.5, q, 0.5, &bad, &r), BZJ_ERR_INVALID_ARGUMENT);
+    CHECK(strstr(bzj_last_error(), "constraints[1].t") != NULL, "message: %s",
+          bzj_last_error());
+    CHECK(r == NULL, "out not cleared after errors");
+
+    bzj_curve_free(p);
+    bzj_curve_free(q);
+    bzj_curve_free(flat);
+    if (failures != 0) {
+        fprintf(stderr, "connect.c: %d failure(s)\n", failures);
+        return 1;
+    }
+    printf("connect.c: ok\n");
+    return 0;
+}
