@@ -2,7 +2,9 @@
 
 use bezjoin_core::BezierCurve;
 use bezjoin_core::bspline::relative_jump;
-use bezjoin_core::connect::{ConnectOptions, Connection, PointConstraint, connect, connect_auto_scale};
+use bezjoin_core::connect::{
+    ConnectOptions, Connection, PointConstraint, connect, connect_auto_scale,
+};
 use serde_json::json;
 
 use crate::check::{JoinCheck, curve_json, worst};
@@ -32,8 +34,16 @@ pub fn parse(job: &Located) -> Result<ConnectJob, JobError> {
     let obj = job.object()?;
     let p = obj.required("p")?.curve()?;
     let q = obj.required("q")?.curve()?;
-    let u0 = obj.optional("u0").map(|f| f.number()).transpose()?.unwrap_or(1.0);
-    let v0 = obj.optional("v0").map(|f| f.number()).transpose()?.unwrap_or(0.0);
+    let u0 = obj
+        .optional("u0")
+        .map(|f| f.number())
+        .transpose()?
+        .unwrap_or(1.0);
+    let v0 = obj
+        .optional("v0")
+        .map(|f| f.number())
+        .transpose()?
+        .unwrap_or(0.0);
     let p_order = obj
         .optional("p_order")
         .map(|f| f.count())
@@ -187,7 +197,11 @@ fn outcome(job: &ConnectJob, c: &Connection) -> Outcome {
         figure.marker(Marker::new(
             MarkerKind::Constraint,
             &con.derivatives[0],
-            format!("R({}) prescribed, orders 0..{}", con.t, con.derivatives.len() - 1),
+            format!(
+                "R({}) prescribed, orders 0..{}",
+                con.t,
+                con.derivatives.len() - 1
+            ),
         ));
     }
     figure.line(format!(
@@ -208,7 +222,9 @@ fn outcome(job: &ConnectJob, c: &Connection) -> Outcome {
         c.max_residual
     ));
     if let Some(d) = max_point_distance {
-        figure.line(format!("Largest distance of R(t_j) from a prescribed point: {d:.1e}"));
+        figure.line(format!(
+            "Largest distance of R(t_j) from a prescribed point: {d:.1e}"
+        ));
     }
     Outcome {
         json,
@@ -220,4 +236,9 @@ fn outcome(job: &ConnectJob, c: &Connection) -> Outcome {
             deviation_meaning: "prescribed interior points R(t_j)",
         },
     }
+}
+
+/// The demo's connect scenarios.
+pub fn demo_scenarios() -> Vec<crate::demo::Scenario> {
+    Vec::new()
 }

@@ -7,9 +7,16 @@ use clap::{Args, Subcommand};
 
 use bezjoin_core::BezierCurve;
 
+use crate::demo::Scenario;
 use crate::job::Located;
 use crate::svg::{CurveItem, Figure, Role};
 use crate::{CliError, Outcome};
+
+pub mod connect;
+pub mod fillet;
+pub mod intersect;
+pub mod merge;
+pub mod spline;
 
 /// Arguments shared by the operations.
 #[derive(Args, Debug, Clone)]
@@ -23,25 +30,68 @@ pub struct JobArgs {
 
 /// The operations, as subcommands.
 #[derive(Subcommand, Debug, Clone)]
-pub enum Operation {}
+pub enum Operation {
+    /// Connect P(u0) to Q(v0) with a C^k Bezier curve (mathematics.md section 1).
+    Connect(JobArgs),
+    /// Round the corner between two crossing curves (section 2).
+    Fillet(JobArgs),
+    /// Merge two curves into one by the smallest change (section 3).
+    Merge(JobArgs),
+    /// Spline with control points on the curve (section 4).
+    Spline(JobArgs),
+    /// All meeting points of two curves.
+    Intersect(JobArgs),
+}
 
 impl Operation {
     /// The shared arguments.
     pub fn args(&self) -> &JobArgs {
-        match *self {}
+        match self {
+            Operation::Connect(a)
+            | Operation::Fillet(a)
+            | Operation::Merge(a)
+            | Operation::Spline(a)
+            | Operation::Intersect(a) => a,
+        }
+    }
+
+    /// The subcommand's name.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Operation::Connect(_) => "connect",
+            Operation::Fillet(_) => "fillet",
+            Operation::Merge(_) => "merge",
+            Operation::Spline(_) => "spline",
+            Operation::Intersect(_) => "intersect",
+        }
     }
 
     /// Run the job.
     pub fn run(&self, job: &Located) -> Result<Outcome, CliError> {
-        let _ = job;
-        match *self {}
+        run_named(self.name(), job)
     }
 }
 
 /// Run the operation called `name` (as on the command line) on `job`.
 pub fn run_named(name: &str, job: &Located) -> Result<Outcome, CliError> {
-    let _ = job;
-    Err(CliError::Operation(format!("unknown operation {name:?}")))
+    match name {
+        "connect" => connect::run(job),
+        "fillet" => fillet::run(job),
+        "merge" => merge::run(job),
+        "spline" => spline::run(job),
+        "intersect" => intersect::run(job),
+        _ => Err(CliError::Operation(format!("unknown operation {name:?}"))),
+    }
+}
+
+/// The demo's scenarios of every operation, in the order the index shows them.
+pub fn demo_scenarios() -> Vec<Scenario> {
+    let mut all = connect::demo_scenarios();
+    all.extend(fillet::demo_scenarios());
+    all.extend(merge::demo_scenarios());
+    all.extend(spline::demo_scenarios());
+    all.extend(intersect::demo_scenarios());
+    all
 }
 
 /// Draw the part `[a, b]` of `curve` in `role` with its comb, over the
