@@ -1,0 +1,244 @@
+//! `bezjoin connect`: the connecting curve of mathematics.md section 1.
+
+use bezjoin_core::BezierCurve;
+use bezjoin_core::bspline::relative_jump;
+use bezjoin_core::connect::{
+    ConnectOptions, Connection, PointConstraint, connect, connect_auto_scale,
+};
+use serde_json::json;
+
+use crate::check::{JoinCheck, curve_json, worst};
+use crate::job::{JobError, Located};
+use crate::ops::draw_part;
+use crate::svg::{CurveItem, Figure, Marker, MarkerKind, Role};
+use crate::{CliError, Outcome, Summary};
+
+/// A parsed connect job.
+pub struct ConnectJob {
+    /// Curve P, left of the connection.
+    pub p: BezierCurve,
+    /// Parameter on P where R starts.
+    pub u0: f64,
+    /// Curve Q, right of the connection.
+    pub q: BezierCurve,
+    /// Parameter on Q where R ends.
+    pub v0: f64,
+    /// Orders, scales and interior constraints.
+    pub options: ConnectOptions,
+    /// Choose the scale automatically (`connect_auto_scale`).
+    pub auto_scale: bool,
+}
+
+/// Read a connect job.
+pub fn parse(job: &Located) -> Result<ConnectJob, JobError> {
+    let obj = job.object()?;
+    let p = obj.required("p")?.curve()?;
+    let q = obj.required("q")?.curve()?;
+    let u0 = obj
+        .optional("u0")
+        .map(|f| f.number())
+        .transpose()?
+        .unwrap_or(1.0);
+    let v0 = obj
+        .optional("v0")
+        .map(|f| f.number())
+        .transpose()?
+        .unwrap_or(0.0);
+    let p_order = obj
+        .optional("p_order")
+        .map(|f| f.count())
+        .transpose()?
+        .unwrap_or(p.degree());
+    let q_order = obj
+        .optional("q_order")
+        .map(|f| f.count())
+        .transpose()?
+        .unwrap_or(q.degree());
+    let mut options = ConnectOptions::new(p_order, q_order);
+    let p_scale = obj.optional("p_scale");
+    let q_scale = obj.optional("q_scale");
+    let auto_scale = match obj.optional("auto_scale") {
+        Some(f) => f.boolean()?,
+        None => false,
+    };
+    if auto_scale {
+        if let Some(f) = p_scale.as_ref().or(q_scale.as_ref()) {
+            return Err(JobError::new(
+                f.path.clone(),
+                "cannot be given together with \"auto_scale\": true",
+            ));
+        }
+    }
+    if let Some(f) = p_scale {
+        options.p_scale = f.number()?;
+    }
+    if let Some(f) = q_scale {
+        options.q_scale = f.number()?;
+    }
+    if let Some(list) = obj.optional("constraints") {
+        for item in list.array()? {
+            let c = item.object()?;
+            let t = c.required("t")?.number()?;
+            let derivatives = c.required("derivatives")?.points(Some(p.dim()))?;
+            c.finish()?;
+            options.constraints.push(PointConstraint { t, derivatives });
+        }
+    }
+    obj.finish()?;
+    Ok(ConnectJob {
+        p,
+        u0,
+        q,
+        v0,
+        options,
+        auto_scale,
+    })
+}
+
+/// Run a connect job.
+pub fn run(job: &Located) -> Result<Outcome, CliError> {
+    let job = parse(job)?;
+    let connection = if job.auto_scale {
+        connect_auto_scale(&job.p, job.u0, &job.q, job.v0, &job.options)?
+    } else {
+        connect(&job.p, job.u0, &job.q, job.v0, &job.options)?
+    };
+    Ok(outcome(&job, &connection))
+}
+
+/// The joins of P, R and Q measured by the tool: `R^(k)(0) / alpha^k`
+/// against `P^(k)(u0)`, and `R^(k)(1) / alpha^k` against `(beta/alpha)^k
+/// Q^(k)(v0)` (the chain's knot intervals `(u0, alpha, (1-v0) alpha/beta)`
+/// in the original parameters).
+pub fn measure_joins(
+    p: &BezierCurve,
+    u0: f64,
+    r: &BezierCurve,
+    q: &BezierCurve,
+    v0: f64,
+    (p_scale, q_scale): (f64, f64),
+    (p_order, q_order): (usize, usize),
+) -> [JoinCheck; 2] {
+    let left = p.eval_derivatives(u0, p.degree().min(r.degree()));
+    let start = r.eval_derivatives(0.0, p.degree().min(r.degree()));
+    let end = r.eval_derivatives(1.0, q.degree().min(r.degree()));
+    let right = q.eval_derivatives(v0, q.degree().min(r.degree()));
+    [
+        JoinCheck::from_derivatives("P|R", &left, 1.0, &start, p_scale, p_order),
+        JoinCheck::from_derivatives("R|Q", &end, p_scale, &right, p_scale / q_scale, q_order),
+    ]
+}
+
+fn outcome(job: &ConnectJob, c: &Connection) -> Outcome {
+    let r = &c.curve;
+    let checks = measure_joins(
+        &job.p,
+        job.u0,
+        r,
+        &job.q,
+        job.v0,
+        (c.p_scale, c.q_scale),
+        (job.options.p_order, job.options.q_order),
+    );
+    let mut constraint_reports = Vec::new();
+    let mut max_point_distance: Option<f64> = None;
+    for (j, con) in job.options.constraints.iter().enumerate() {
+        let d = r.eval_derivatives(con.t, con.derivatives.len() - 1);
+        let jumps: Vec<f64> = con
+            .derivatives
+            .iter()
+            .enumerate()
+            .map(|(k, want)| {
+                let got: Vec<f64> = d.row(k).iter().copied().collect();
+                relative_jump(&got, want)
+            })
+            .collect();
+        let at = r.eval(con.t);
+        let distance = bezjoin_core::bezier::distance(&at, &con.derivatives[0]);
+        max_point_distance = Some(max_point_distance.unwrap_or(0.0).max(distance));
+        constraint_reports.push(json!({
+            "index": j,
+            "t": con.t,
+            "relative_residuals": jumps,
+            "point_distance": distance,
+        }));
+    }
+    let json = json!({
+        "operation": "connect",
+        "curve": curve_json(r),
+        "report": {
+            "degree": r.degree(),
+            "p_scale": c.p_scale,
+            "q_scale": c.q_scale,
+            "max_residual": c.max_residual,
+            "chain_knot_intervals": [job.u0, c.p_scale, (1.0 - job.v0) * c.p_scale / c.q_scale],
+            "measured_continuity": checks.iter().map(JoinCheck::to_json).collect::<Vec<_>>(),
+            "constraints": constraint_reports,
+        }
+    });
+
+    let mut figure = Figure::new("Connecting curve");
+    draw_part(&mut figure, &job.p, 0.0, job.u0, Role::Input, "P");
+    draw_part(&mut figure, &job.q, job.v0, 1.0, Role::Input, "Q");
+    let sum_k: usize = job
+        .options
+        .constraints
+        .iter()
+        .map(|c| c.derivatives.len())
+        .sum();
+    figure.curve(CurveItem::bezier(
+        r,
+        Role::Result,
+        format!("R, degree {}", r.degree()),
+    ));
+    figure.marker(Marker::new(MarkerKind::Join, &r.eval(0.0), "R(0)"));
+    figure.marker(Marker::new(MarkerKind::Join, &r.eval(1.0), "R(1)"));
+    for con in &job.options.constraints {
+        figure.marker(Marker::new(
+            MarkerKind::Constraint,
+            &con.derivatives[0],
+            format!(
+                "R({}) prescribed, orders 0..{}",
+                con.t,
+                con.derivatives.len() - 1
+            ),
+        ));
+    }
+    figure.line(format!(
+        "R: degree {} = kp + kq + 1 + sum(K+1) = {} + {} + 1 + {}; scales alpha = {:.4}, beta = {:.4}{}",
+        r.degree(),
+        job.options.p_order,
+        job.options.q_order,
+        sum_k,
+        c.p_scale,
+        c.q_scale,
+        if job.auto_scale { " (automatic)" } else { "" }
+    ));
+    for check in &checks {
+        figure.line(check.describe());
+    }
+    figure.line(format!(
+        "Library's own largest relative residual: {:.1e}",
+        c.max_residual
+    ));
+    if let Some(d) = max_point_distance {
+        figure.line(format!(
+            "Largest distance of R(t_j) from a prescribed point: {d:.1e}"
+        ));
+    }
+    Outcome {
+        json,
+        figure,
+        summary: Summary {
+            degree: r.degree(),
+            worst_continuity_jump: Some(worst(&checks)),
+            max_deviation: max_point_distance,
+            deviation_meaning: "prescribed interior points R(t_j)",
+        },
+    }
+}
+
+/// The demo's connect scenarios.
+pub fn demo_scenarios() -> Vec<crate::demo::Scenario> {
+    Vec::new()
+}

@@ -1,0 +1,18 @@
+//! `bezjoin fillet` (being written).
+
+use crate::demo::Scenario;
+use crate::job::Located;
+use crate::{CliError, Outcome};
+
+/// Run a fillet job.
+pub fn run(job: &Located) -> Result<Outcome, CliError> {
+    let _ = job;
+    Err(CliError::Operation(
+        "bezjoin fillet is not available in this build".into(),
+    ))
+}
+
+/// The demo's fillet scenarios.
+pub fn demo_scenarios() -> Vec<Scenario> {
+    Vec::new()
+}

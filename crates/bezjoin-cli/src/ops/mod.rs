@@ -1,0 +1,129 @@
+//! The subcommands: one module per operation, each turning a JSON job into
+//! an [`Outcome`].
+
+use std::path::PathBuf;
+
+use clap::{Args, Subcommand};
+
+use bezjoin_core::BezierCurve;
+
+use crate::demo::Scenario;
+use crate::job::Located;
+use crate::svg::{CurveItem, Figure, Role};
+use crate::{CliError, Outcome};
+
+pub mod connect;
+pub mod fillet;
+pub mod intersect;
+pub mod merge;
+pub mod spline;
+
+/// Arguments shared by the operations.
+#[derive(Args, Debug, Clone)]
+pub struct JobArgs {
+    /// The JSON job; `-` or nothing reads standard input.
+    pub job: Option<PathBuf>,
+    /// Also draw the result as an SVG picture into FILE.
+    #[arg(long, value_name = "FILE")]
+    pub svg: Option<PathBuf>,
+}
+
+/// The operations, as subcommands.
+#[derive(Subcommand, Debug, Clone)]
+pub enum Operation {
+    /// Connect P(u0) to Q(v0) with a C^k Bezier curve (mathematics.md section 1).
+    Connect(JobArgs),
+    /// Round the corner between two crossing curves (section 2).
+    Fillet(JobArgs),
+    /// Merge two curves into one by the smallest change (section 3).
+    Merge(JobArgs),
+    /// Spline with control points on the curve (section 4).
+    Spline(JobArgs),
+    /// All meeting points of two curves.
+    Intersect(JobArgs),
+}
+
+impl Operation {
+    /// The shared arguments.
+    pub fn args(&self) -> &JobArgs {
+        match self {
+            Operation::Connect(a)
+            | Operation::Fillet(a)
+            | Operation::Merge(a)
+            | Operation::Spline(a)
+            | Operation::Intersect(a) => a,
+        }
+    }
+
+    /// The subcommand's name.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Operation::Connect(_) => "connect",
+            Operation::Fillet(_) => "fillet",
+            Operation::Merge(_) => "merge",
+            Operation::Spline(_) => "spline",
+            Operation::Intersect(_) => "intersect",
+        }
+    }
+
+    /// Run the job.
+    pub fn run(&self, job: &Located) -> Result<Outcome, CliError> {
+        run_named(self.name(), job)
+    }
+}
+
+/// Run the operation called `name` (as on the command line) on `job`.
+pub fn run_named(name: &str, job: &Located) -> Result<Outcome, CliError> {
+    match name {
+        "connect" => connect::run(job),
+        "fillet" => fillet::run(job),
+        "merge" => merge::run(job),
+        "spline" => spline::run(job),
+        "intersect" => intersect::run(job),
+        _ => Err(CliError::Operation(format!("unknown operation {name:?}"))),
+    }
+}
+
+/// The demo's scenarios of every operation, in the order the index shows them.
+pub fn demo_scenarios() -> Vec<Scenario> {
+    let mut all = connect::demo_scenarios();
+    all.extend(fillet::demo_scenarios());
+    all.extend(merge::demo_scenarios());
+    all.extend(spline::demo_scenarios());
+    all.extend(intersect::demo_scenarios());
+    all
+}
+
+/// Draw the part `[a, b]` of `curve` in `role` with its comb, over the
+/// whole given curve drawn as discarded (grey, dashed, with its control
+/// polygon). When `[a, b]` is all of `[0, 1]` the curve is drawn once.
+pub fn draw_part(figure: &mut Figure, curve: &BezierCurve, a: f64, b: f64, role: Role, name: &str) {
+    let degree = curve.degree();
+    if a <= 0.0 && b >= 1.0 {
+        figure.curve(CurveItem::bezier(
+            curve,
+            role,
+            format!("{name}, degree {degree}"),
+        ));
+        return;
+    }
+    let mut given = CurveItem::bezier(
+        curve,
+        Role::Discarded,
+        format!("{name}, degree {degree}, as given"),
+    );
+    given.polygon = true;
+    figure.curve(given);
+    if b > a {
+        if let Ok(kept) = curve.segment(a, b) {
+            figure.curve(
+                CurveItem::bezier(
+                    &kept,
+                    role,
+                    format!("{name} on [{a:.4}, {b:.4}] (kept part)"),
+                )
+                .without_polygon(),
+            );
+        }
+    }
+}
