@@ -134,14 +134,28 @@ fn check_connection(job: &Value, result: &Value) -> BezierCurve {
     let left = p.eval_derivatives(u0, kp);
     let start = r.eval_derivatives(0.0, kp);
     for k in 0..=kp {
-        let want: Vec<f64> = row(&left, k).iter().map(|x| x * alpha.powi(k as i32)).collect();
-        assert_close(&row(&start, k), &want, &format!("R^({k})(0) vs alpha^k P^({k})(u0)"));
+        let want: Vec<f64> = row(&left, k)
+            .iter()
+            .map(|x| x * alpha.powi(k as i32))
+            .collect();
+        assert_close(
+            &row(&start, k),
+            &want,
+            &format!("R^({k})(0) vs alpha^k P^({k})(u0)"),
+        );
     }
     let right = q.eval_derivatives(v0, kq);
     let end = r.eval_derivatives(1.0, kq);
     for k in 0..=kq {
-        let want: Vec<f64> = row(&right, k).iter().map(|x| x * beta.powi(k as i32)).collect();
-        assert_close(&row(&end, k), &want, &format!("R^({k})(1) vs beta^k Q^({k})(v0)"));
+        let want: Vec<f64> = row(&right, k)
+            .iter()
+            .map(|x| x * beta.powi(k as i32))
+            .collect();
+        assert_close(
+            &row(&end, k),
+            &want,
+            &format!("R^({k})(1) vs beta^k Q^({k})(v0)"),
+        );
     }
 
     for (j, c) in constraints.iter().enumerate() {
@@ -247,9 +261,7 @@ fn assert_well_formed_xml(text: &str) {
         } else {
             let self_closing = inner.ends_with('/');
             let body = inner.strip_suffix('/').unwrap_or(inner);
-            let name_end = body
-                .find(|c: char| c.is_whitespace())
-                .unwrap_or(body.len());
+            let name_end = body.find(|c: char| c.is_whitespace()).unwrap_or(body.len());
             let name = &body[..name_end];
             assert!(is_name(name), "bad tag name {name:?} at byte {i}");
             check_attributes(&body[name_end..], i);
@@ -278,11 +290,17 @@ fn assert_well_formed_xml(text: &str) {
                 .unwrap_or_else(|| panic!("attribute without value near byte {at}: {s:?}"));
             let name = s[..eq].trim();
             assert!(is_name(name), "bad attribute name {name:?} near byte {at}");
-            assert!(!seen.contains(&name.to_string()), "duplicate attribute {name}");
+            assert!(
+                !seen.contains(&name.to_string()),
+                "duplicate attribute {name}"
+            );
             seen.push(name.to_string());
             let value = s[eq + 1..].trim_start();
             let q = value.chars().next().unwrap_or(' ');
-            assert!(q == '"' || q == '\'', "unquoted attribute {name} near byte {at}");
+            assert!(
+                q == '"' || q == '\'',
+                "unquoted attribute {name} near byte {at}"
+            );
             let close = value[1..]
                 .find(q)
                 .unwrap_or_else(|| panic!("unterminated attribute {name} near byte {at}"));
@@ -355,14 +373,20 @@ fn the_check_detects_a_broken_join() {
     let job_path = example("connect.json");
     let mut result = success_json(&run_with_file(&job_path, None));
     let job = read_json(&job_path);
-    result["curve"]["points"][1][0] = json!(result["curve"]["points"][1][0].as_f64().unwrap() + 1e-3);
+    result["curve"]["points"][1][0] =
+        json!(result["curve"]["points"][1][0].as_f64().unwrap() + 1e-3);
     let broken = std::panic::catch_unwind(|| check_connection(&job, &result));
-    assert!(broken.is_err(), "a perturbed control point must fail the continuity check");
+    assert!(
+        broken.is_err(),
+        "a perturbed control point must fail the continuity check"
+    );
 }
 
 #[test]
 fn the_xml_checker_rejects_malformed_documents() {
-    assert_well_formed_xml("<?xml version=\"1.0\"?><svg a=\"1 &lt; 2\"><g><path d='M0 0'/></g><!-- x --></svg>");
+    assert_well_formed_xml(
+        "<?xml version=\"1.0\"?><svg a=\"1 &lt; 2\"><g><path d='M0 0'/></g><!-- x --></svg>",
+    );
     for bad in [
         "<svg><g></svg>",
         "<svg></g>",
@@ -416,6 +440,9 @@ fn bad_jobs_exit_2_naming_the_field() {
         &format!("{{\"p\": {p}, \"q\": {q}, \"constraints\": [{{\"t\": 0.5}}]}}"),
         "constraints[0].derivatives",
     );
-    assert_rejected(&format!("{{\"p\": {p}, \"q\": {q}, \"colour\": 1}}"), "colour");
+    assert_rejected(
+        &format!("{{\"p\": {p}, \"q\": {q}, \"colour\": 1}}"),
+        "colour",
+    );
     assert_rejected("{\"p\": ", "line");
 }
