@@ -238,7 +238,79 @@ fn outcome(job: &ConnectJob, c: &Connection) -> Outcome {
     }
 }
 
-/// The demo's connect scenarios.
+/// Cubic P of the demo: ends at (6, 10) heading up and to the right.
+fn demo_p() -> serde_json::Value {
+    json!([[0.0, 3.0], [2.0, 6.5], [4.0, 9.0], [6.0, 10.0]])
+}
+
+/// Cubic Q of the demo: starts at (18, 10) heading down and to the right.
+fn demo_q() -> serde_json::Value {
+    json!([[18.0, 10.0], [20.0, 9.0], [22.0, 6.5], [24.0, 3.0]])
+}
+
+/// The demo's connect scenarios (mathematics.md section 1): the papers'
+/// connection of two cubics without interior constraints, the same
+/// connection through the prescribed point R(0.5) = (12, 14) with
+/// R'(0.5) = (8.1, 1.4) and R''(0.5) = (-5, -39), and the unconstrained
+/// connection with the scale chosen automatically.
 pub fn demo_scenarios() -> Vec<crate::demo::Scenario> {
-    Vec::new()
+    use crate::demo::Scenario;
+    vec![
+        Scenario {
+            name: "connect-plain",
+            operation: "connect",
+            title: "Connection of two cubics, C2 at both joins",
+            description: "R joins the end of P to the start of Q with continuity of orders \
+                          0..2 on both sides at scales alpha = beta = 1; no interior \
+                          constraints, so R has degree kp + kq + 1 = 5.",
+            job: json!({
+                "p": demo_p(),
+                "q": demo_q(),
+                "u0": 1.0,
+                "v0": 0.0,
+                "p_order": 2,
+                "q_order": 2,
+                "p_scale": 1.0,
+                "q_scale": 1.0,
+            }),
+        },
+        Scenario {
+            name: "connect-constrained",
+            operation: "connect",
+            title: "Connection through a prescribed point with derivatives",
+            description: "The papers' interior constraint: R(0.5) = (12, 14), \
+                          R'(0.5) = (8.1, 1.4), R''(0.5) = (-5, -39), with C2 joins to P \
+                          and Q; R has degree kp + kq + 1 + (K + 1) = 2 + 2 + 1 + 3 = 8.",
+            job: json!({
+                "p": demo_p(),
+                "q": demo_q(),
+                "u0": 1.0,
+                "v0": 0.0,
+                "p_order": 2,
+                "q_order": 2,
+                "p_scale": 1.0,
+                "q_scale": 1.0,
+                "constraints": [
+                    { "t": 0.5, "derivatives": [[12.0, 14.0], [8.1, 1.4], [-5.0, -39.0]] }
+                ],
+            }),
+        },
+        Scenario {
+            name: "connect-auto-scale",
+            operation: "connect",
+            title: "Connection with the scale chosen automatically",
+            description: "The same cubics, joined at interior parameters u0 = 0.9 and \
+                          v0 = 0.1 with C2 joins; the scales alpha and beta are chosen \
+                          by connect_auto_scale instead of being given.",
+            job: json!({
+                "p": demo_p(),
+                "q": demo_q(),
+                "u0": 0.9,
+                "v0": 0.1,
+                "p_order": 2,
+                "q_order": 2,
+                "auto_scale": true,
+            }),
+        },
+    ]
 }
