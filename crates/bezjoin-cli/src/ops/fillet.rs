@@ -338,12 +338,14 @@ fn distance_to(curve: &BezierCurve, point: &[f64]) -> (f64, f64) {
 
 fn corner_job(setbacks: (f64, f64), orders: (usize, usize)) -> Value {
     json!({
-        "p": [[-4.0, -1.5], [-2.5, 1.0], [-0.5, -0.8], [2.5, 0.5]],
-        "q": [[0.5, -3.5], [-1.0, -1.0], [1.8, 0.5], [0.2, 3.0]],
+        "p": [[-4.0, -0.5], [-2.5, 0.8], [-1.0, 0.6], [1.5, -0.2]],
+        "q": [[0.2, -2.0], [-0.3, -0.5], [0.6, 1.2], [-0.2, 3.0]],
         "p_setback": setbacks.0,
         "q_setback": setbacks.1,
         "p_order": orders.0,
-        "q_order": orders.1
+        "q_order": orders.1,
+        "p_scale": 0.15,
+        "q_scale": 0.15
     })
 }
 
@@ -354,15 +356,15 @@ pub fn demo_scenarios() -> Vec<Scenario> {
             name: "fillet-symmetric-c2",
             operation: "fillet",
             title: "Fillet: symmetric C2 rounding of a corner between two cubics",
-            description: "Equal setbacks 1.2 along both cubics from their crossing; the blend of degree 5 is C2 at both ends. The grey-blue circular arc of the same corner (tangent at P(u0)) is drawn for comparison: its comb jumps at the ends, ours does not.",
-            job: corner_job((1.2, 1.2), (2, 2)),
+            description: "Equal setbacks 0.6 along both cubics from their crossing; the blend of degree 5 is C2 at both ends (scales alpha = beta = 0.15 keep it from looping). The purple dashed circular arc of the same corner (tangent at P(u0)) is drawn for comparison: its comb jumps at the ends, ours does not.",
+            job: corner_job((0.6, 0.6), (2, 2)),
         },
         Scenario {
             name: "fillet-asymmetric-c3",
             operation: "fillet",
-            title: "Fillet: asymmetric C3 rounding (setbacks 0.8 and 1.8)",
-            description: "Setbacks 0.8 along P and 1.8 along Q; the blend of degree 7 is C3 at both ends, next to the circular arc of the same corner.",
-            job: corner_job((0.8, 1.8), (3, 3)),
+            title: "Fillet: asymmetric C3 rounding (setbacks 0.4 and 0.9)",
+            description: "Setbacks 0.4 along P and 0.9 along Q; the blend of degree 7 is C3 at both ends, next to the circular arc of the same corner.",
+            job: corner_job((0.4, 0.9), (3, 3)),
         },
     ]
 }

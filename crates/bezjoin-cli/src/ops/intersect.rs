@@ -166,10 +166,10 @@ pub fn demo_scenarios() -> Vec<Scenario> {
         name: "intersect-wavy-cubics",
         operation: "intersect",
         title: "Intersect: two cubics crossing several times",
-        description: "A wavy cubic P and a steep S-shaped cubic Q meet at several points; every hit is marked with its parameters u on P and v on Q.",
+        description: "Two wavy cubics of opposite phase meet at several points; every hit is marked with its parameters u on P and v on Q.",
         job: json!({
             "p": [[0.0, 0.0], [1.5, 4.0], [2.5, -4.0], [4.0, 0.0]],
-            "q": [[0.0, 1.0], [5.5, -1.0], [-1.5, -1.0], [4.0, 1.0]]
+            "q": [[0.0, 1.5], [1.5, -2.5], [2.5, 2.5], [4.0, -1.5]]
         }),
     }]
 }
