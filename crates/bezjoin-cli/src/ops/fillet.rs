@@ -221,12 +221,7 @@ fn outcome(job: &FilletJob, f: &Fillet, max_deviation: Option<f64>) -> Outcome {
     figure.curve(CurveItem::bezier(
         &f.blend,
         Role::Result,
-        format!(
-            "blend R, degree {} (C{} | C{})",
-            f.blend.degree(),
-            kp,
-            kq
-        ),
+        format!("blend R, degree {} (C{} | C{})", f.blend.degree(), kp, kq),
     ));
     let mut arc_line = None;
     if let Some(arc) = circular_fillet(p, f.u0, q, x.u, x.v, f.v0) {
@@ -320,7 +315,10 @@ fn distance_to(curve: &BezierCurve, point: &[f64]) -> (f64, f64) {
             let v = d(t);
             if v < bd { (v, t) } else { (bd, bt) }
         });
-    let (mut lo, mut hi) = ((best.1 - 1.0 / n as f64).max(0.0), (best.1 + 1.0 / n as f64).min(1.0));
+    let (mut lo, mut hi) = (
+        (best.1 - 1.0 / n as f64).max(0.0),
+        (best.1 + 1.0 / n as f64).min(1.0),
+    );
     let g = 0.5 * (5f64.sqrt() - 1.0);
     for _ in 0..80 {
         let m1 = hi - g * (hi - lo);

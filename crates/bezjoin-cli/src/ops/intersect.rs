@@ -75,8 +75,7 @@ fn hit_json(p: &BezierCurve, q: &BezierCurve, hit: &Intersection) -> (Value, f64
         "measured_distance": gap,
     });
     if let IntersectionKind::Overlap { u_range, v_range } = hit.kind {
-        let end_gap =
-            bezjoin_core::bezier::distance(&p.eval(u_range.1), &q.eval(v_range.1));
+        let end_gap = bezjoin_core::bezier::distance(&p.eval(u_range.1), &q.eval(v_range.1));
         value["u_range"] = json!([u_range.0, u_range.1]);
         value["v_range"] = json!([v_range.0, v_range.1]);
         value["measured_end_distance"] = json!(end_gap);
@@ -96,8 +95,8 @@ fn outcome(job: &IntersectJob, hits: &[Intersection]) -> Outcome {
             v
         })
         .collect();
-    let tolerance = job.options.relative_distance_tolerance
-        * p.coordinate_scale().max(q.coordinate_scale());
+    let tolerance =
+        job.options.relative_distance_tolerance * p.coordinate_scale().max(q.coordinate_scale());
     let json = json!({
         "operation": "intersect",
         "p": curve_json(p),
