@@ -236,7 +236,7 @@ fn outcome(job: &FilletJob, f: &Fillet, max_deviation: Option<f64>) -> Outcome {
             comb: true,
         });
         arc_line = Some(format!(
-            "Reference: circular arc tangent to P at P(u0) and to Q at v = {:.4}, radius {:.4}: only G1, its curvature jumps at both ends",
+            "Reference: circular arc tangent to P at P(u0) and to Q at v = {:.4}, radius {:.4}: only G1",
             arc.v, arc.radius
         ));
     }
@@ -256,15 +256,15 @@ fn outcome(job: &FilletJob, f: &Fillet, max_deviation: Option<f64>) -> Outcome {
         format!("Q(v0), v0 = {:.4}", f.v0),
     ));
     figure.line(format!(
-        "Blend R: degree {} = kp + kq + 1 = {} + {} + 1; scales alpha = {:.4}, beta = {:.4}; knot intervals ({:.4}, {:.4}, {:.4})",
+        "Blend R: degree {} = kp + kq + 1 = {} + {} + 1; scales alpha = {:.4}, beta = {:.4}",
         f.blend.degree(),
         kp,
         kq,
         f.p_scale,
         f.q_scale,
-        a,
-        b,
-        c
+    ));
+    figure.line(format!(
+        "Chain knot intervals (u0, alpha, (1 - v0) alpha / beta) = ({a:.4}, {b:.4}, {c:.4})"
     ));
     figure.line(format!(
         "Setbacks measured as arc lengths from X: along P {p_setback:.6}, along Q {q_setback:.6}{}",
