@@ -357,11 +357,12 @@ fn outcome(job: &MergeJob, m: &Merge) -> Outcome {
     }
 }
 
-/// The two demo cubics: they meet with a small gap and a slight kink.
+/// The two demo cubics: one cubic split at 0.45, then Q moved by up to
+/// 0.18, so they meet with a small gap and a slight kink.
 fn demo_curves() -> (Value, Value) {
     (
-        json!([[0.0, 0.0], [1.0, 2.0], [3.0, 2.6], [4.0, 1.2]]),
-        json!([[4.08, 1.1], [4.9, -0.3], [6.6, -0.6], [8.0, 1.0]]),
+        json!([[0.0, 0.0], [1.125, 1.8], [2.351, 1.676], [3.588, 1.269]]),
+        json!([[3.648, 1.219], [5.219, 0.921], [6.475, -0.05], [8.0, 1.5]]),
     )
 }
 
@@ -403,14 +404,14 @@ pub fn demo_scenarios() -> Vec<Scenario> {
         scenario(
             "merge-keep-p",
             "Merge keeping P",
-            "P stays exactly (R on [0, mu] is P, degree 6 so Q has room to change); only Q changes.",
-            json!({"metric": "discrete", "split": "polygon", "keep_p": true, "degree": 6}),
+            "P stays exactly (R on [0, mu] is P); only Q changes.",
+            json!({"metric": "discrete", "split": "polygon", "keep_p": true}),
         ),
         scenario(
             "merge-keep-q",
             "Merge keeping Q",
-            "Q stays exactly (R on [mu, 1] is Q, degree 6); only P changes.",
-            json!({"metric": "integral", "split": "polygon", "keep_q": true, "degree": 6}),
+            "Q stays exactly (R on [mu, 1] is Q); only P changes.",
+            json!({"metric": "integral", "split": "polygon", "keep_q": true}),
         ),
         scenario(
             "merge-fix-ends",
