@@ -280,7 +280,11 @@ fn bad_jobs_exit_2_naming_the_field() {
     assert_job_error(&variant(json!({"keep_p": "yes"})), "keep_p");
     assert_job_error(&variant(json!({"colour": 1})), "colour");
     // Contradictory: keep P and keep Q, but they do not join.
-    assert_job_error(&variant(json!({"keep_p": true, "keep_q": true})), "Q");
+    assert_job_error(&variant(json!({"keep_p": true, "keep_q": true})), "keep Q");
+    assert_job_error(
+        &variant(json!({"p_points": [{"param": 0.5, "max_order": 9}]})),
+        "p_points[0].max_order",
+    );
     let mut job = example();
     job["q"] = json!([[0.0, 0.0, 0.0], [1.0, 1.0, 1.0]]);
     assert_job_error(&job, "q");
