@@ -289,3 +289,50 @@ fn bad_jobs_exit_2_naming_the_field() {
     job["q"] = json!([[0.0, 0.0, 0.0], [1.0, 1.0, 1.0]]);
     assert_job_error(&job, "q");
 }
+
+#[test]
+fn polygon_split_is_the_control_polygon_length_ratio() {
+    let job = variant(json!({"split": "polygon"}));
+    let out = run_ok(&job);
+    check_common(&job, &out);
+    let length = |c: &BezierCurve| {
+        (1..=c.degree())
+            .map(|i| dist(c.point(i - 1), c.point(i)))
+            .sum::<f64>()
+    };
+    let (lp, lq) = (
+        length(&curve_from(&job["p"])),
+        length(&curve_from(&job["q"])),
+    );
+    let mu = out["report"]["mu"].as_f64().unwrap();
+    assert!((mu - lp / (lp + lq)).abs() < 1e-12);
+}
+
+#[test]
+fn three_dimensional_merge_with_fixed_ends_draws_a_projection() {
+    let job = json!({
+        "p": [[0.0, 0.0, 0.0], [1.0, 1.0, 0.5], [2.0, 0.0, 1.0]],
+        "q": {"points": [[2.05, 0.0, 1.0], [3.0, -1.0, 1.2], [4.0, 0.0, 1.0]]},
+        "metric": "integral",
+        "split": "optimal",
+        "fix_ends": true
+    });
+    let svg = std::env::temp_dir().join(format!("bezjoin-merge-3d-{}.svg", std::process::id()));
+    let out = run_stdin(&job, &["--svg", svg.to_str().unwrap()]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let result: Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(result["curve"]["dim"], 3);
+    let mut flat = job.clone();
+    flat["q"] = job["q"]["points"].clone();
+    let (r, _) = check_common(&flat, &result);
+    assert!(dist(&r.eval(0.0), &[0.0, 0.0, 0.0]) < 1e-9);
+    assert!(dist(&r.eval(1.0), &[4.0, 0.0, 1.0]) < 1e-9);
+    let text = std::fs::read_to_string(&svg).unwrap();
+    let _ = std::fs::remove_file(&svg);
+    assert_well_formed_xml(&text);
+    assert!(text.contains("x-y projection"));
+}
