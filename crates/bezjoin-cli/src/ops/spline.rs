@@ -66,7 +66,11 @@ pub fn parse(job: &Located) -> Result<SplineJob, JobError> {
     let dim = nodes[0].len();
     let params = match obj.optional("params") {
         Some(f) => {
-            let values: Vec<f64> = f.array()?.iter().map(|v| v.number()).collect::<Result<_, _>>()?;
+            let values: Vec<f64> = f
+                .array()?
+                .iter()
+                .map(|v| v.number())
+                .collect::<Result<_, _>>()?;
             if values.len() != nodes.len() {
                 return Err(JobError::new(
                     f.path.clone(),
@@ -85,7 +89,10 @@ pub fn parse(job: &Located) -> Result<SplineJob, JobError> {
         Some(f) => {
             let d = f.count()?;
             if !(3..=5).contains(&d) {
-                return Err(JobError::new(f.path.clone(), format!("{d} is not one of 3, 4, 5")));
+                return Err(JobError::new(
+                    f.path.clone(),
+                    format!("{d} is not one of 3, 4, 5"),
+                ));
             }
             d
         }
@@ -169,10 +176,14 @@ pub fn parse(job: &Located) -> Result<SplineJob, JobError> {
             out
         }
         None if later_segments == 0 => Vec::new(),
-        None => return Err(JobError::new(
-            format!("{}.free_inner", job.path),
-            format!("is required: {later_segments} segment(s) besides the starting one need their free inner points"),
-        )),
+        None => {
+            return Err(JobError::new(
+                format!("{}.free_inner", job.path),
+                format!(
+                    "is required: {later_segments} segment(s) besides the starting one need their free inner points"
+                ),
+            ));
+        }
     };
     obj.finish()?;
     Ok(SplineJob {
@@ -201,17 +212,32 @@ impl SplineJob {
         let mut out = Vec::new();
         for (i, node) in self.nodes.iter().enumerate() {
             let (segment, index) = if i < segments { (i, 0) } else { (i - 1, n) };
-            out.push(GivenPoint { segment, index, point: node.clone(), kind: "node" });
+            out.push(GivenPoint {
+                segment,
+                index,
+                point: node.clone(),
+                kind: "node",
+            });
         }
         let start = self.start_segment();
         for (j, p) in self.start_inner.iter().enumerate() {
-            out.push(GivenPoint { segment: start, index: j + 1, point: p.clone(), kind: "start inner" });
+            out.push(GivenPoint {
+                segment: start,
+                index: j + 1,
+                point: p.clone(),
+                kind: "start inner",
+            });
         }
         let free = self.options.free_indices();
         let others = (0..segments).filter(|&s| s != start);
         for (segment, group) in others.zip(&self.free_inner) {
             for (&j, p) in free.iter().zip(group) {
-                out.push(GivenPoint { segment, index: j, point: p.clone(), kind: "free inner" });
+                out.push(GivenPoint {
+                    segment,
+                    index: j,
+                    point: p.clone(),
+                    kind: "free inner",
+                });
             }
         }
         out
@@ -315,7 +341,7 @@ fn outcome(job: &SplineJob, spline: &LagrangeSpline) -> Result<Outcome, CliError
         figure.marker(Marker::new(
             MarkerKind::Constraint,
             &g.point,
-            format!("given, segment {} u = {}/{n}", g.segment, g.index),
+            format!("u = {}/{n}", g.index),
         ));
     }
     for (i, node) in job.nodes.iter().enumerate() {
@@ -324,8 +350,16 @@ fn outcome(job: &SplineJob, spline: &LagrangeSpline) -> Result<Outcome, CliError
     figure.line(format!(
         "{} segments of degree {n}, C{k} promised at every node; built {direction}{}; {}",
         spline.segment_count(),
-        if mirrored { ", mirrored (derived points far from the join)" } else { "" },
-        if job.params.is_some() { "given parameters" } else { "chord-length parameters" },
+        if mirrored {
+            ", mirrored (derived points far from the join)"
+        } else {
+            ""
+        },
+        if job.params.is_some() {
+            "given parameters"
+        } else {
+            "chord-length parameters"
+        },
     ));
     if job.dim == 3 {
         figure.line("3D: projected to the x-y plane");
@@ -370,7 +404,9 @@ fn wave_job(degree: usize, continuity: usize, node_count: usize) -> Value {
     let step = 1.2;
     let nodes: Vec<[f64; 2]> = (0..node_count).map(|i| f(i as f64 * step)).collect();
     let params: Vec<f64> = (0..node_count).map(|i| i as f64 * step).collect();
-    let start: Vec<[f64; 2]> = (1..degree).map(|j| f(step * j as f64 / degree as f64)).collect();
+    let start: Vec<[f64; 2]> = (1..degree)
+        .map(|j| f(step * j as f64 / degree as f64))
+        .collect();
     let options = LagrangeOptions::default()
         .with_degree(degree)
         .with_continuity(continuity);
