@@ -178,7 +178,7 @@ pub fn parse(job: &Located) -> Result<SplineJob, JobError> {
         None if later_segments == 0 => Vec::new(),
         None => {
             return Err(JobError::new(
-                format!("{}.free_inner", job.path),
+                "free_inner",
                 format!(
                     "is required: {later_segments} segment(s) besides the starting one need their free inner points"
                 ),
