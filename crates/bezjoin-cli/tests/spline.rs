@@ -83,14 +83,18 @@ fn points(v: &Value) -> Vec<Vec<f64>> {
 /// De Casteljau evaluation of control points `b` at `t`.
 fn eval(b: &[Vec<f64>], t: f64) -> Vec<f64> {
     let mut w = b.to_vec();
-    for r in 1..w.len() {
-        for i in 0..w.len() - r {
-            for c in 0..w[i].len() {
-                w[i][c] = (1.0 - t) * w[i][c] + t * w[i + 1][c];
-            }
-        }
+    while w.len() > 1 {
+        w = w
+            .windows(2)
+            .map(|p| {
+                p[0].iter()
+                    .zip(&p[1])
+                    .map(|(a, c)| (1.0 - t) * a + t * c)
+                    .collect()
+            })
+            .collect();
     }
-    w[0].clone()
+    w.remove(0)
 }
 
 /// Control points of the `m`-th derivative (repeated hodograph).
