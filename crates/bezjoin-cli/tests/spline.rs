@@ -289,7 +289,7 @@ fn quintic_c2_in_3d_from_stdin_holds() {
     check_result(&job, &result);
     let text = std::fs::read_to_string(&svg).unwrap();
     std::fs::remove_file(&svg).ok();
-    assert!(text.contains("x-y plane"));
+    assert!(text.contains("x-y projection"));
     assert_well_formed_xml(&text);
 }
 

@@ -361,9 +361,6 @@ fn outcome(job: &SplineJob, spline: &LagrangeSpline) -> Result<Outcome, CliError
             "chord-length parameters"
         },
     ));
-    if job.dim == 3 {
-        figure.line("3D: projected to the x-y plane");
-    }
     let worst_jump = worst(&checks);
     if !checks.is_empty() {
         let measured = checks.iter().filter_map(JoinCheck::measured_order).min();
