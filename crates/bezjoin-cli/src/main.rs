@@ -31,7 +31,7 @@ enum Command {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
-        Command::Demo { out } => demo::run(&out).map(|table| print!("{table}")),
+        Command::Demo { out } => demo::run(&out).and_then(|table| print_stdout(&table)),
         Command::Operation(op) => run_operation(op),
     };
     match result {
@@ -54,8 +54,19 @@ fn run_operation(op: ops::Operation) -> Result<(), CliError> {
     }
     let text = serde_json::to_string_pretty(&outcome.json)
         .map_err(|e| CliError::Io(format!("cannot format the result: {e}")))?;
-    println!("{text}");
-    Ok(())
+    print_stdout(&format!("{text}\n"))
+}
+
+/// Write to standard output; a reader that closed the pipe early (`| head`)
+/// ends the program normally instead of a panic trace.
+fn print_stdout(text: &str) -> Result<(), CliError> {
+    use std::io::Write as _;
+    let mut out = std::io::stdout().lock();
+    match out.write_all(text.as_bytes()).and_then(|()| out.flush()) {
+        Ok(()) => Ok(()),
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
+        Err(e) => Err(CliError::Io(format!("cannot write the result: {e}"))),
+    }
 }
 
 fn read_job(path: Option<&Path>) -> Result<(String, String), CliError> {

@@ -293,6 +293,9 @@ struct Bounds {
     max: [f64; 2],
 }
 
+/// Comb samples of one curve: (point on the curve, unit normal, signed curvature).
+type CombSamples = Vec<([f64; 2], [f64; 2], f64)>;
+
 impl Bounds {
     fn empty() -> Self {
         Bounds {
@@ -303,9 +306,9 @@ impl Bounds {
 
     fn add(&mut self, p: [f64; 2]) {
         if p[0].is_finite() && p[1].is_finite() {
-            for k in 0..2 {
-                self.min[k] = self.min[k].min(p[k]);
-                self.max[k] = self.max[k].max(p[k]);
+            for ((lo, hi), v) in self.min.iter_mut().zip(self.max.iter_mut()).zip(p) {
+                *lo = lo.min(v);
+                *hi = hi.max(v);
             }
         }
     }
@@ -317,7 +320,7 @@ impl Bounds {
 
 /// Comb samples of one curve: (point, unit normal pointing away from the
 /// centre of curvature when k > 0 is left, signed curvature).
-fn comb_samples(shape: &Shape, count: usize) -> Vec<([f64; 2], [f64; 2], f64)> {
+fn comb_samples(shape: &Shape, count: usize) -> CombSamples {
     (0..=count)
         .map(|i| {
             let t = i as f64 / count as f64;
@@ -359,7 +362,7 @@ fn render(figure: &Figure) -> String {
     // 2. One comb scale for the whole picture: the largest |k| (ignoring
     //    isolated extreme values above 4x the 95th percentile, whose spikes
     //    are clipped and said so) maps to COMB_LENGTH_FRACTION of the size.
-    let combs: Vec<Option<Vec<([f64; 2], [f64; 2], f64)>>> = figure
+    let combs: Vec<Option<CombSamples>> = figure
         .curves
         .iter()
         .map(|item| {
