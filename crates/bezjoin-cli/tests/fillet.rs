@@ -3,6 +3,9 @@
 //! returned control points, the SVG is well-formed and bad jobs exit 2
 //! naming the field.
 
+mod common;
+use common::assert_well_formed_xml;
+
 use std::io::Write;
 use std::path::PathBuf;
 use std::process::{Command, Stdio};
@@ -107,70 +110,6 @@ fn min_distance(c: &BezierCurve, point: &[f64]) -> f64 {
             norm(&[p[0] - point[0], p[1] - point[1]])
         })
         .fold(f64::INFINITY, f64::min)
-}
-
-/// Minimal well-formedness check: tags nest and close, attributes quoted.
-fn assert_well_formed_xml(text: &str) {
-    let mut stack: Vec<String> = Vec::new();
-    let mut rest = text;
-    let mut roots = 0;
-    while let Some(open) = rest.find('<') {
-        rest = &rest[open..];
-        if rest.starts_with("<?") {
-            let end = rest.find("?>").expect("unclosed <?");
-            rest = &rest[end + 2..];
-            continue;
-        }
-        if rest.starts_with("<!--") {
-            let end = rest.find("-->").expect("unclosed comment");
-            rest = &rest[end + 3..];
-            continue;
-        }
-        if rest.starts_with("<!") {
-            let end = rest.find('>').expect("unclosed <!");
-            rest = &rest[end + 1..];
-            continue;
-        }
-        // Find the end of the tag, skipping quoted attribute values.
-        let bytes = rest.as_bytes();
-        let mut i = 1;
-        let mut quote: Option<u8> = None;
-        while i < bytes.len() {
-            match (quote, bytes[i]) {
-                (None, b'"') | (None, b'\'') => quote = Some(bytes[i]),
-                (Some(q), c) if c == q => quote = None,
-                (None, b'<') => panic!("'<' inside a tag: {}", &rest[..i.min(80)]),
-                (None, b'>') => break,
-                _ => {}
-            }
-            i += 1;
-        }
-        assert!(i < bytes.len(), "unterminated tag");
-        let tag = &rest[1..i];
-        rest = &rest[i + 1..];
-        if let Some(name) = tag.strip_prefix('/') {
-            let top = stack.pop().expect("closing tag without opening");
-            assert_eq!(top, name.trim(), "mismatched closing tag");
-            if stack.is_empty() {
-                roots += 1;
-            }
-        } else {
-            let name: String = tag
-                .chars()
-                .take_while(|c| !c.is_whitespace() && *c != '/')
-                .collect();
-            assert!(!name.is_empty(), "empty tag name");
-            if tag.ends_with('/') {
-                if stack.is_empty() {
-                    roots += 1;
-                }
-            } else {
-                stack.push(name);
-            }
-        }
-    }
-    assert!(stack.is_empty(), "unclosed tags: {stack:?}");
-    assert_eq!(roots, 1, "exactly one root element");
 }
 
 #[test]

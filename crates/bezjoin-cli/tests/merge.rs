@@ -1,6 +1,9 @@
 //! `bezjoin merge` run as a process: the example and variants of it; every
 //! property is re-measured here from the returned control points.
 
+mod common;
+use common::assert_well_formed_xml;
+
 use std::io::Write;
 use std::process::{Command, Output, Stdio};
 
@@ -76,43 +79,6 @@ fn max_distance(a: &BezierCurve, b: &BezierCurve, map: impl Fn(f64) -> f64) -> f
             dist(&a.eval(t), &b.eval(map(t)))
         })
         .fold(0.0, f64::max)
-}
-
-/// A minimal well-formedness check: tags nest and close, quotes balance.
-fn assert_well_formed_xml(text: &str) {
-    let mut stack: Vec<String> = Vec::new();
-    let mut rest = text;
-    while let Some(start) = rest.find('<') {
-        rest = &rest[start..];
-        if rest.starts_with("<!--") {
-            let end = rest.find("-->").expect("unclosed comment");
-            rest = &rest[end + 3..];
-            continue;
-        }
-        if rest.starts_with("<?") || rest.starts_with("<!") {
-            let end = rest.find('>').expect("unclosed declaration");
-            rest = &rest[end + 1..];
-            continue;
-        }
-        let end = rest.find('>').expect("unclosed tag");
-        let tag = &rest[1..end];
-        assert_eq!(
-            tag.matches('"').count() % 2,
-            0,
-            "unbalanced quotes in <{tag}>"
-        );
-        assert!(!tag.contains('<'), "'<' inside tag <{tag}>");
-        if let Some(name) = tag.strip_prefix('/') {
-            let open = stack.pop().expect("closing tag without opening");
-            assert_eq!(open, name.trim(), "mismatched closing tag");
-        } else if !tag.ends_with('/') {
-            let name = tag.split_whitespace().next().unwrap().to_string();
-            stack.push(name);
-        }
-        rest = &rest[end + 1..];
-    }
-    assert!(stack.is_empty(), "unclosed tags: {stack:?}");
-    assert!(text.contains("<svg"), "no svg element");
 }
 
 /// Checks that must hold for every merge: `R` split at `mu` gives `P^`,

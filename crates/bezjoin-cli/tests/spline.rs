@@ -4,6 +4,9 @@
 //! B-spline knot vector), the SVG is well-formed, bad jobs exit 2 naming
 //! the field.
 
+mod common;
+use common::assert_well_formed_xml;
+
 use std::io::Write;
 use std::path::PathBuf;
 use std::process::{Command, Output, Stdio};
@@ -30,40 +33,6 @@ fn run_stdin(job: &Value, extra: &[&str]) -> Output {
         .write_all(job.to_string().as_bytes())
         .unwrap();
     child.wait_with_output().unwrap()
-}
-
-/// Minimal well-formedness check: tags nest and close, quotes balance.
-fn assert_well_formed_xml(text: &str) {
-    let mut stack: Vec<String> = Vec::new();
-    let mut rest = text;
-    while let Some(start) = rest.find('<') {
-        let after = &rest[start + 1..];
-        let end = after.find('>').expect("unclosed '<'");
-        let tag = &after[..end];
-        rest = &after[end + 1..];
-        if tag.starts_with('?') || tag.starts_with('!') {
-            continue;
-        }
-        assert_eq!(
-            tag.matches('"').count() % 2,
-            0,
-            "unbalanced quotes in <{tag}>"
-        );
-        if let Some(name) = tag.strip_prefix('/') {
-            let open = stack
-                .pop()
-                .unwrap_or_else(|| panic!("</{name}> without opening"));
-            assert_eq!(open, name.trim(), "mismatched closing tag");
-        } else if !tag.ends_with('/') {
-            let name = tag
-                .split_whitespace()
-                .next()
-                .expect("empty tag")
-                .to_string();
-            stack.push(name);
-        }
-    }
-    assert!(stack.is_empty(), "unclosed tags: {stack:?}");
 }
 
 fn points(v: &Value) -> Vec<Vec<f64>> {

@@ -1,0 +1,138 @@
+//! Helpers shared by the CLI's process tests.
+
+/// Minimal XML well-formedness check: one root element, every start tag
+/// closed by a matching end tag in order, quoted attribute values, no raw
+/// `<` or stray `&` in text; comments, processing instructions, DOCTYPE and
+/// CDATA sections are skipped.
+pub fn assert_well_formed_xml(text: &str) {
+    fn check_entities(s: &str, at: usize) {
+        let mut rest = s;
+        while let Some(i) = rest.find('&') {
+            let after = &rest[i + 1..];
+            let end = after
+                .find(';')
+                .unwrap_or_else(|| panic!("unterminated entity near byte {at}"));
+            let name = &after[..end];
+            let ok = matches!(name, "amp" | "lt" | "gt" | "quot" | "apos")
+                || (name.starts_with("#x")
+                    && name.len() > 2
+                    && name[2..].chars().all(|c| c.is_ascii_hexdigit()))
+                || (name.starts_with('#')
+                    && name.len() > 1
+                    && name[1..].chars().all(|c| c.is_ascii_digit()));
+            assert!(ok, "bad entity &{name}; near byte {at}");
+            rest = &after[end + 1..];
+        }
+    }
+    fn is_name(s: &str) -> bool {
+        let mut chars = s.chars();
+        matches!(chars.next(), Some(c) if c.is_alphabetic() || c == '_' || c == ':')
+            && chars.all(|c| c.is_alphanumeric() || matches!(c, '_' | ':' | '-' | '.'))
+    }
+
+    let bytes = text.as_bytes();
+    let mut stack: Vec<String> = Vec::new();
+    let mut roots = 0;
+    let mut i = 0;
+    while i < bytes.len() {
+        if bytes[i] != b'<' {
+            let next = text[i..].find('<').map_or(text.len(), |n| i + n);
+            let chunk = &text[i..next];
+            check_entities(chunk, i);
+            assert!(
+                !stack.is_empty() || chunk.trim().is_empty(),
+                "text outside the root element near byte {i}"
+            );
+            i = next;
+            continue;
+        }
+        let rest = &text[i..];
+        let skip = |open: &str, close: &str| -> Option<usize> {
+            rest.starts_with(open).then(|| {
+                rest.find(close)
+                    .unwrap_or_else(|| panic!("unterminated {open} at byte {i}"))
+                    + close.len()
+            })
+        };
+        if let Some(n) = skip("<!--", "-->")
+            .or_else(|| skip("<![CDATA[", "]]>"))
+            .or_else(|| skip("<?", "?>"))
+            .or_else(|| skip("<!DOCTYPE", ">"))
+        {
+            i += n;
+            continue;
+        }
+        // A tag: find its end, honouring quoted attribute values.
+        let mut j = i + 1;
+        let mut quote: Option<u8> = None;
+        while j < bytes.len() {
+            match (quote, bytes[j]) {
+                (None, b'>') => break,
+                (None, b'"' | b'\'') => quote = Some(bytes[j]),
+                (Some(q), c) if c == q => quote = None,
+                (None, b'<') => panic!("'<' inside a tag at byte {j}"),
+                _ => {}
+            }
+            j += 1;
+        }
+        assert!(j < bytes.len(), "unterminated tag at byte {i}");
+        let inner = &text[i + 1..j];
+        if let Some(name) = inner.strip_prefix('/') {
+            let name = name.trim_end();
+            let open = stack
+                .pop()
+                .unwrap_or_else(|| panic!("</{name}> without a start tag at byte {i}"));
+            assert_eq!(open, name, "</{name}> closes <{open}> at byte {i}");
+        } else {
+            let self_closing = inner.ends_with('/');
+            let body = inner.strip_suffix('/').unwrap_or(inner);
+            let name_end = body.find(|c: char| c.is_whitespace()).unwrap_or(body.len());
+            let name = &body[..name_end];
+            assert!(is_name(name), "bad tag name {name:?} at byte {i}");
+            check_attributes(&body[name_end..], i);
+            if stack.is_empty() {
+                roots += 1;
+                assert_eq!(roots, 1, "a second root element <{name}> at byte {i}");
+            }
+            if !self_closing {
+                stack.push(name.to_string());
+            }
+        }
+        i = j + 1;
+    }
+    assert!(stack.is_empty(), "unclosed elements: {stack:?}");
+    assert_eq!(roots, 1, "no root element");
+
+    fn check_attributes(mut s: &str, at: usize) {
+        let mut seen = Vec::new();
+        loop {
+            s = s.trim_start();
+            if s.is_empty() {
+                return;
+            }
+            let eq = s
+                .find('=')
+                .unwrap_or_else(|| panic!("attribute without value near byte {at}: {s:?}"));
+            let name = s[..eq].trim();
+            assert!(is_name(name), "bad attribute name {name:?} near byte {at}");
+            assert!(
+                !seen.contains(&name.to_string()),
+                "duplicate attribute {name}"
+            );
+            seen.push(name.to_string());
+            let value = s[eq + 1..].trim_start();
+            let q = value.chars().next().unwrap_or(' ');
+            assert!(
+                q == '"' || q == '\'',
+                "unquoted attribute {name} near byte {at}"
+            );
+            let close = value[1..]
+                .find(q)
+                .unwrap_or_else(|| panic!("unterminated attribute {name} near byte {at}"));
+            let v = &value[1..1 + close];
+            assert!(!v.contains('<'), "'<' in attribute {name} near byte {at}");
+            check_entities(v, at);
+            s = &value[close + 2..];
+        }
+    }
+}
