@@ -179,8 +179,8 @@ enum BzjSplit
    */
   BZJ_SPLIT_POLYGON = 2,
   /**
-   * The `mu` minimising the metric (sampling + golden section in
-   * `[0.001, 0.999]`).
+   * The `mu` minimising the metric over `[0.001, 0.999]` (33 samples,
+   * then Brent's method around the best).
    */
   BZJ_SPLIT_OPTIMAL = 3,
 };

@@ -43,8 +43,8 @@ pub enum BzjSplit {
     BZJ_SPLIT_HALF = 1,
     /// Proportional to the control-polygon lengths.
     BZJ_SPLIT_POLYGON = 2,
-    /// The `mu` minimising the metric (sampling + golden section in
-    /// `[0.001, 0.999]`).
+    /// The `mu` minimising the metric over `[0.001, 0.999]` (33 samples,
+    /// then Brent's method around the best).
     BZJ_SPLIT_OPTIMAL = 3,
 }
 

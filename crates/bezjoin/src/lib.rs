@@ -28,6 +28,7 @@ pub mod intersect;
 pub mod lagrange;
 pub mod linalg;
 pub mod merge;
+mod minimize;
 
 pub use arclength::DEFAULT_ARC_LENGTH_ACCURACY;
 pub use basis::KnotSide;

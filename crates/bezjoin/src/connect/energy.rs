@@ -4,15 +4,21 @@ use super::{Connection, Problem, solve_structured};
 use crate::basis::binomial;
 use crate::bezier::BezierCurve;
 use crate::error::{BezjoinError, Result};
+use crate::minimize::minimize_on_grid_then_brent;
 
 /// Decades of `s` searched on either side of the natural scale `s0`.
 pub const AUTO_SCALE_SEARCH_DECADES: f64 = 2.0;
 
-/// Grid points of the coarse search (then golden-section refinement).
+/// Grid points of the coarse search (then refinement by Brent's method,
+/// [`crate::minimize`]).
 const GRID_POINTS: usize = 33;
 
-/// Golden-section iterations (the bracket shrinks by 0.618 each).
-const GOLDEN_ITERATIONS: usize = 40;
+/// The refinement stops when the bracket around the best `log s` is about
+/// this wide (a relative change of `s` of 1e-9).
+const LOG_SCALE_TOLERANCE: f64 = 1e-9;
+
+/// At most this many refinement evaluations after the grid.
+const REFINEMENT_STEPS: usize = 60;
 
 /// `integral_0^1 |R''(t)|^2 dt`, exactly (up to rounding): the second
 /// hodograph `h` (degree `m = n - 2`, `h_i = n (n-1) (R_(i+2) - 2 R_(i+1) + R_i)`)
@@ -78,49 +84,19 @@ pub(crate) fn auto_scale(problem: &Problem) -> Result<Connection> {
             Err(_) => f64::INFINITY,
         }
     };
-    let step = (hi - lo) / (GRID_POINTS - 1) as f64;
-    let grid: Vec<(f64, f64)> = (0..GRID_POINTS)
-        .map(|i| {
-            let x = lo + step * i as f64;
-            (x, energy_at(x))
-        })
-        .collect();
-    let best = grid
-        .iter()
-        .enumerate()
-        .min_by(|a, b| a.1.1.total_cmp(&b.1.1))
-        .map(|(i, _)| i)
-        .unwrap_or(GRID_POINTS / 2);
-    if !grid[best].1.is_finite() {
+    let Some(minimum) = minimize_on_grid_then_brent(
+        energy_at,
+        lo,
+        hi,
+        GRID_POINTS,
+        LOG_SCALE_TOLERANCE,
+        REFINEMENT_STEPS,
+    ) else {
         // No scale in the range gives a trustworthy answer: report the one at s0.
         let s = center.exp();
         return solve_structured(problem, s, s);
-    }
-    let mut a = grid[best.saturating_sub(1)].0;
-    let mut b = grid[(best + 1).min(GRID_POINTS - 1)].0;
-    let ratio = (5f64.sqrt() - 1.0) / 2.0;
-    let mut x1 = b - ratio * (b - a);
-    let mut x2 = a + ratio * (b - a);
-    let mut f1 = energy_at(x1);
-    let mut f2 = energy_at(x2);
-    for _ in 0..GOLDEN_ITERATIONS {
-        if f1 <= f2 {
-            b = x2;
-            x2 = x1;
-            f2 = f1;
-            x1 = b - ratio * (b - a);
-            f1 = energy_at(x1);
-        } else {
-            a = x1;
-            x1 = x2;
-            f1 = f2;
-            x2 = a + ratio * (b - a);
-            f2 = energy_at(x2);
-        }
-    }
-    let mut candidates = [grid[best], (x1, f1), (x2, f2)];
-    candidates.sort_by(|p, q| p.1.total_cmp(&q.1));
-    let s = candidates[0].0.exp();
+    };
+    let s = minimum.x.exp();
     let result = solve_structured(problem, s, s)?;
     if !result.curve.points().iter().all(|v| v.is_finite()) {
         return Err(BezjoinError::Singular {

@@ -744,10 +744,11 @@ pub fn connect_unchecked(
 /// exactly, [`fairness_energy`]) by a bounded 1-D search on `log s` over
 /// [`AUTO_SCALE_SEARCH_DECADES`] decades either side of the natural scale
 /// `s0 = |Q(v0) - P(u0)| / mean(|P'(u0)|, |Q'(v0)|)` (1 when the gap or the
-/// speeds vanish): a grid of 33 points, then golden-section refinement around
-/// the best. When `kp = kq = 0` the result does not depend on `s` and `s = 1`.
-/// The scales in `options` are ignored; the chosen `s` is reported in
-/// `p_scale` and `q_scale`. Same guarantee and errors as [`connect`].
+/// speeds vanish): a grid of 33 points, then Brent's method (parabolic
+/// interpolation safeguarded by golden section) around the best, to a
+/// relative precision of about 1e-9 in `s`. When `kp = kq = 0` the result
+/// does not depend on `s` and `s = 1`. The scales in `options` are
+/// ignored; the chosen `s` is reported in `p_scale` and `q_scale`. Same guarantee and errors as [`connect`].
 pub fn connect_auto_scale(
     p: &BezierCurve,
     u0: f64,

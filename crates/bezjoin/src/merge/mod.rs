@@ -71,9 +71,10 @@ use crate::bezier::BezierCurve;
 use crate::error::{
     BezjoinError, Result, check_closed_range, check_finite_scalar, check_open_range, check_positive,
 };
+use crate::minimize::minimize_on_grid_then_brent;
 
 pub use solver::{CONSISTENCY_TOLERANCE, DEVIATION_SAMPLES, RANK_TOLERANCE, bernstein_gram_matrix};
-use solver::{PieceInput, max_deviation, solve_stage_one, stage_two};
+use solver::{PieceInput, StageOne, StageOneCheck, max_deviation, solve_stage_one, stage_two};
 
 /// The default `accuracy` of a merge: the largest accepted relative error
 /// estimate of the stage-1 solve and of the stage-2 check.
@@ -83,11 +84,15 @@ pub const DEFAULT_MERGE_ACCURACY: f64 = 1e-8;
 pub const MU_SEARCH_MIN: f64 = 1e-3;
 
 /// Number of evenly spaced samples of the metric that bracket the optimal
-/// `mu` before the golden-section search.
+/// `mu` before the refinement by Brent's method.
 pub const MU_SEARCH_SAMPLES: usize = 32;
 
-/// The golden-section search stops when its bracket is shorter than this.
+/// The refinement (Brent's method) stops when the bracket around the best
+/// `mu` is about this wide.
 pub const MU_SEARCH_TOLERANCE: f64 = 1e-10;
+
+/// At most this many refinement evaluations after the grid.
+pub const MU_SEARCH_MAX_STEPS: usize = 100;
 
 /// What stage 1 minimises.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -116,8 +121,9 @@ pub enum SplitParameter {
     /// The `mu` minimising the metric: the metric is sampled at
     /// [`MU_SEARCH_SAMPLES`] evenly spaced values in
     /// `[MU_SEARCH_MIN, 1 - MU_SEARCH_MIN]`, the best sample and its
-    /// neighbours bracket a golden-section search that stops at a bracket of
-    /// [`MU_SEARCH_TOLERANCE`] (or after 100 steps). This finds the global
+    /// neighbours bracket Brent's method (parabolic interpolation
+    /// safeguarded by golden section) that stops at a bracket of about
+    /// [`MU_SEARCH_TOLERANCE`] (or after [`MU_SEARCH_MAX_STEPS`] steps). This finds the global
     /// minimum when the metric has one minimum per sampling interval; values
     /// of `mu` where stage 1 fails count as infinitely bad.
     Optimal,
@@ -240,54 +246,32 @@ pub struct Merge {
 /// constraints (Inconsistent, naming the constraint); an untrustworthy
 /// solve (IllConditioned, with the estimate).
 pub fn merge(p: &BezierCurve, q: &BezierCurve, options: &MergeOptions) -> Result<Merge> {
-    if q.dim() != p.dim() {
-        return Err(BezjoinError::DimensionMismatch {
-            name: "q".into(),
-            expected: p.dim(),
-            actual: q.dim(),
-        });
-    }
-    check_positive("accuracy", options.accuracy)?;
-    let degree = working_degree(&[p, q], options.degree)?;
-    let pieces = vec![
-        piece_input(
-            p,
-            "P",
-            "p_points",
-            options.keep_p,
-            options.p_points.iter().enumerate().collect(),
-            degree,
-        )?,
-        piece_input(
-            q,
-            "Q",
-            "q_points",
-            options.keep_q,
-            options.q_points.iter().enumerate().collect(),
-            degree,
-        )?,
-    ];
-    let metric = options.metric;
-    let accuracy = options.accuracy;
-    let fix_ends = options.fix_ends;
-    let mu = match options.split {
+    let problem = PairProblem::new(p, q, options)?;
+    let (mu, stage_one) = match options.split {
         SplitParameter::Given(mu) => {
             check_open_range("mu", mu, 0.0, 1.0)?;
-            mu
+            (mu, problem.solve(mu, StageOneCheck::Full)?)
         }
-        SplitParameter::Half => 0.5,
+        SplitParameter::Half => (0.5, problem.solve(0.5, StageOneCheck::Full)?),
         SplitParameter::PolygonLength => {
-            let breakpoints = polygon_breakpoints(&[p, q], &["P", "Q"])?;
-            breakpoints[1]
+            let mu = polygon_breakpoints(&[p, q], &["P", "Q"])?[1];
+            (mu, problem.solve(mu, StageOneCheck::Full)?)
         }
-        SplitParameter::Optimal => optimal_mu(|mu| {
-            solve_stage_one(&pieces, &[mu, 1.0 - mu], metric, fix_ends, accuracy)
-                .map(|s| s.metric_value)
-        })?,
+        SplitParameter::Optimal => {
+            let mu = problem.optimal_mu(StageOneCheck::Trial)?;
+            match problem.solve(mu, StageOneCheck::Full) {
+                // The quick search's winner failed the full check: search
+                // again with the full check at every trial.
+                Err(BezjoinError::IllConditioned { .. }) => {
+                    let mu = problem.optimal_mu(StageOneCheck::Full)?;
+                    (mu, problem.solve(mu, StageOneCheck::Full)?)
+                }
+                stage_one => (mu, stage_one?),
+            }
+        }
     };
     let breakpoints = [0.0, mu, 1.0];
-    let stage_one = solve_stage_one(&pieces, &[mu, 1.0 - mu], metric, fix_ends, accuracy)?;
-    let (merged, split_check_error) = stage_two(&stage_one.pieces, &breakpoints, accuracy)?;
+    let (merged, split_check_error) = stage_two(&stage_one.pieces, &breakpoints, options.accuracy)?;
     let max_deviation = max_deviation(&merged, &[p, q], &breakpoints);
     let mut hats = stage_one.pieces.iter().map(BezierCurve::from_matrix);
     let p_hat = hats.next().expect("two pieces")?;
@@ -315,42 +299,76 @@ pub fn merge_metric_at(
     options: &MergeOptions,
     mu: f64,
 ) -> Result<f64> {
-    if q.dim() != p.dim() {
-        return Err(BezjoinError::DimensionMismatch {
-            name: "q".into(),
-            expected: p.dim(),
-            actual: q.dim(),
-        });
-    }
+    let problem = PairProblem::new(p, q, options)?;
     check_open_range("mu", mu, 0.0, 1.0)?;
-    check_positive("accuracy", options.accuracy)?;
-    let degree = working_degree(&[p, q], options.degree)?;
-    let pieces = vec![
-        piece_input(
-            p,
-            "P",
-            "p_points",
-            options.keep_p,
-            options.p_points.iter().enumerate().collect(),
-            degree,
-        )?,
-        piece_input(
-            q,
-            "Q",
-            "q_points",
-            options.keep_q,
-            options.q_points.iter().enumerate().collect(),
-            degree,
-        )?,
-    ];
-    solve_stage_one(
-        &pieces,
-        &[mu, 1.0 - mu],
-        options.metric,
-        options.fix_ends,
-        options.accuracy,
-    )
-    .map(|s| s.metric_value)
+    problem
+        .solve(mu, StageOneCheck::Full)
+        .map(|s| s.metric_value)
+}
+
+/// Two curves at the working degree with their constraints: what stage 1
+/// needs for any `mu`.
+struct PairProblem<'a> {
+    pieces: Vec<PieceInput<'a>>,
+    metric: MergeMetric,
+    fix_ends: bool,
+    accuracy: f64,
+}
+
+impl<'a> PairProblem<'a> {
+    /// Validates the pair and the options other than the split.
+    fn new(p: &BezierCurve, q: &BezierCurve, options: &'a MergeOptions) -> Result<Self> {
+        if q.dim() != p.dim() {
+            return Err(BezjoinError::DimensionMismatch {
+                name: "q".into(),
+                expected: p.dim(),
+                actual: q.dim(),
+            });
+        }
+        check_positive("accuracy", options.accuracy)?;
+        let degree = working_degree(&[p, q], options.degree)?;
+        let pieces = vec![
+            piece_input(
+                p,
+                "P",
+                "p_points",
+                options.keep_p,
+                options.p_points.iter().enumerate().collect(),
+                degree,
+            )?,
+            piece_input(
+                q,
+                "Q",
+                "q_points",
+                options.keep_q,
+                options.q_points.iter().enumerate().collect(),
+                degree,
+            )?,
+        ];
+        Ok(Self {
+            pieces,
+            metric: options.metric,
+            fix_ends: options.fix_ends,
+            accuracy: options.accuracy,
+        })
+    }
+
+    fn solve(&self, mu: f64, check: StageOneCheck) -> Result<StageOne> {
+        solve_stage_one(
+            &self.pieces,
+            &[mu, 1.0 - mu],
+            self.metric,
+            self.fix_ends,
+            self.accuracy,
+            check,
+        )
+    }
+
+    /// The search of [`SplitParameter::Optimal`], each trial solved with
+    /// `check`.
+    fn optimal_mu(&self, check: StageOneCheck) -> Result<f64> {
+        optimal_mu(|mu| self.solve(mu, check).map(|s| s.metric_value))
+    }
 }
 
 /// How the breakpoints of [`merge_chain`] are chosen.
@@ -541,6 +559,7 @@ pub fn merge_chain(curves: &[BezierCurve], options: &ChainMergeOptions) -> Resul
         options.metric,
         options.fix_ends,
         options.accuracy,
+        StageOneCheck::Full,
     )?;
     let (merged, split_check_error) = stage_two(&stage_one.pieces, &breakpoints, options.accuracy)?;
     let max_deviation = max_deviation(&merged, &refs, &breakpoints);
@@ -629,62 +648,98 @@ fn polygon_breakpoints(curves: &[&BezierCurve], names: &[&str]) -> Result<Vec<f6
 }
 
 /// Minimise `metric(mu)` over `[MU_SEARCH_MIN, 1 - MU_SEARCH_MIN]`: sampling
-/// brackets the best sample, golden section refines it.
+/// brackets the best sample, Brent's method refines it
+/// ([`crate::minimize`]). When no sample can be solved, the first sample's
+/// error is returned.
 fn optimal_mu(mut metric: impl FnMut(f64) -> Result<f64>) -> Result<f64> {
-    let lo = MU_SEARCH_MIN;
-    let hi = 1.0 - MU_SEARCH_MIN;
-    let grid: Vec<f64> = (0..=MU_SEARCH_SAMPLES)
-        .map(|k| lo + (hi - lo) * k as f64 / MU_SEARCH_SAMPLES as f64)
-        .collect();
     let mut first_error = None;
-    let mut values = Vec::with_capacity(grid.len());
-    for &mu in &grid {
-        match metric(mu) {
-            Ok(v) => values.push(v),
+    let minimum = minimize_on_grid_then_brent(
+        |mu| match metric(mu) {
+            Ok(v) => v,
             Err(e) => {
                 first_error.get_or_insert(e);
-                values.push(f64::INFINITY);
+                f64::INFINITY
+            }
+        },
+        MU_SEARCH_MIN,
+        1.0 - MU_SEARCH_MIN,
+        MU_SEARCH_SAMPLES + 1,
+        MU_SEARCH_TOLERANCE,
+        MU_SEARCH_MAX_STEPS,
+    );
+    match minimum {
+        Some(m) => Ok(m.x),
+        None => Err(first_error.expect("an error for every sample")),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Deterministic pseudo-random curves (LCG).
+    fn curve(state: &mut u64, degree: usize) -> BezierCurve {
+        let points = (0..(degree + 1) * 2)
+            .map(|_| {
+                *state = state
+                    .wrapping_mul(6_364_136_223_846_793_005)
+                    .wrapping_add(1_442_695_040_888_963_407);
+                (*state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+            })
+            .collect();
+        BezierCurve::new(2, degree, points).unwrap()
+    }
+
+    /// The quick search (trials without the rounding term of the estimate)
+    /// can pick a `mu` whose full check fails; `merge` must then fall back to
+    /// the fully checked search and return its answer, never the quick one.
+    /// Degrees 12 and 14 with the integral metric give both situations
+    /// (measured: 45-61 of 99 evenly spaced `mu` pass the full check there;
+    /// over degrees 12..20, three curves each, 10 of 27 searches fell back).
+    #[test]
+    fn optimal_mu_falls_back_to_the_fully_checked_search() {
+        let mut state = 5;
+        let (mut fallbacks, mut quick_kept) = (0, 0);
+        for degree in [12, 14] {
+            for _ in 0..3 {
+                let (p, q) = (curve(&mut state, degree), curve(&mut state, degree));
+                let options = MergeOptions::default()
+                    .with_metric(MergeMetric::Integral)
+                    .with_split(SplitParameter::Optimal);
+                let problem = PairProblem::new(&p, &q, &options).unwrap();
+                let Ok(quick) = problem.optimal_mu(StageOneCheck::Trial) else {
+                    continue;
+                };
+                let result = merge(&p, &q, &options);
+                match problem.solve(quick, StageOneCheck::Full) {
+                    Ok(full) => {
+                        quick_kept += 1;
+                        let m = result.unwrap();
+                        assert_eq!(m.report.mu, quick);
+                        assert_eq!(m.report.metric_value, full.metric_value);
+                    }
+                    Err(BezjoinError::IllConditioned { .. }) => {
+                        fallbacks += 1;
+                        let checked = problem.optimal_mu(StageOneCheck::Full);
+                        match (result, checked) {
+                            (Ok(m), Ok(mu)) => {
+                                assert_eq!(m.report.mu, mu);
+                                assert_ne!(m.report.mu, quick);
+                                // The answer passed every check at its mu.
+                                assert!(problem.solve(mu, StageOneCheck::Full).is_ok());
+                            }
+                            (Err(e), Err(f)) => assert_eq!(e, f),
+                            (r, c) => panic!("merge {r:?} vs fully checked search {c:?}"),
+                        }
+                    }
+                    Err(e) => panic!("unexpected {e}"),
+                }
             }
         }
+        eprintln!("{fallbacks} fallbacks, {quick_kept} quick answers kept");
+        assert!(
+            fallbacks > 0 && quick_kept > 0,
+            "{fallbacks} fallbacks, {quick_kept} quick answers kept: the test no longer covers both paths"
+        );
     }
-    let best = (0..grid.len())
-        .min_by(|&a, &b| values[a].total_cmp(&values[b]))
-        .expect("non-empty grid");
-    if !values[best].is_finite() {
-        return Err(first_error.expect("an error for every sample"));
-    }
-    let mut a = grid[best.saturating_sub(1)];
-    let mut b = grid[(best + 1).min(grid.len() - 1)];
-    let mut evaluate = |mu: f64| metric(mu).unwrap_or(f64::INFINITY);
-    let ratio = (5f64.sqrt() - 1.0) / 2.0;
-    let mut c = b - ratio * (b - a);
-    let mut d = a + ratio * (b - a);
-    let mut fc = evaluate(c);
-    let mut fd = evaluate(d);
-    let (mut best_mu, mut best_value) = (grid[best], values[best]);
-    for _ in 0..100 {
-        if b - a < MU_SEARCH_TOLERANCE {
-            break;
-        }
-        if fc <= fd {
-            b = d;
-            d = c;
-            fd = fc;
-            c = b - ratio * (b - a);
-            fc = evaluate(c);
-        } else {
-            a = c;
-            c = d;
-            fc = fd;
-            d = a + ratio * (b - a);
-            fd = evaluate(d);
-        }
-        for (mu, v) in [(c, fc), (d, fd)] {
-            if v < best_value {
-                best_value = v;
-                best_mu = mu;
-            }
-        }
-    }
-    Ok(best_mu)
 }
