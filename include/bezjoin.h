@@ -853,6 +853,25 @@ BzjStatus bzj_intersect_detailed(const struct BzjCurve *p, const struct BzjCurve
 BzjStatus bzj_fillet(const struct BzjCurve *p, const struct BzjCurve *q, const struct BzjFilletOptions *options, struct BzjCurve **p_trimmed, struct BzjCurve **blend, struct BzjCurve **q_trimmed);
 
 /**
+ * [`bzj_fillet`] with `alpha = beta = s` chosen automatically, as
+ * `bzj_connect_auto_scale` chooses it: `s` minimises the blend's fairness
+ * energy `integral_0^1 |R''(t)|^2 dt` over two decades either side of
+ * `s0 = |Q(v0) - P(u0)| / mean(|P'(u0)|, |Q'(v0)|)`. `options->p_scale`
+ * and `options->q_scale` are ignored (not read for validity). The chosen
+ * `s` is written to `scale_out` when it is not NULL. With the paper's
+ * scale 1 a blend whose ends move fast against the setback puts its inner
+ * control points past the corner and can loop; this variant avoids that.
+ * Same guarantee as [`bzj_fillet`], with knot intervals
+ * `(u0, s, 1 - v0)`.
+ *
+ * @return the statuses of [`bzj_fillet`] (except for the scales).
+ *
+ * # Safety
+ * As [`bzj_fillet`]; `scale_out` is NULL or writable.
+ */
+BzjStatus bzj_fillet_auto_scale(const struct BzjCurve *p, const struct BzjCurve *q, const struct BzjFilletOptions *options, struct BzjCurve **p_trimmed, struct BzjCurve **blend, struct BzjCurve **q_trimmed, double *scale_out);
+
+/**
  * Round the corner at the first crossing so that the blend passes at the
  * distance `max_deviation` from the corner point X (the crossing):
  * `min over t of |R(t) - X| = max_deviation` to 1e-9 relative, with setbacks

@@ -10,6 +10,9 @@
 #              STRESS_ITERATIONS (per thread, default 100000),
 #              KEEP_TMP=1 keeps the temporary directory.
 set -euo pipefail
+# Never `cmd | grep -q`: grep -q exits at the first match, cmd may then die
+# of SIGPIPE and pipefail fails the script (seen once in CI at the ldd check);
+# `grep ... >/dev/null` reads all of its input.
 ROOT="$(cd "$(dirname "$0")/.." && pwd)"
 cd "$ROOT"
 FUZZ_SECONDS="${FUZZ_SECONDS:-20}"
@@ -45,7 +48,7 @@ for f in include/bezjoin.h "lib/libbezjoin.so.$VERSION" lib/libbezjoin.a \
 done
 [ "$(readlink "$PREFIX/lib/libbezjoin.so")" = "libbezjoin.so.$MAJOR" ]
 [ "$(readlink "$PREFIX/lib/libbezjoin.so.$MAJOR")" = "libbezjoin.so.$VERSION" ]
-readelf -d "$PREFIX/lib/libbezjoin.so.$VERSION" | grep -q "Library soname: \[libbezjoin.so.$MAJOR\]"
+readelf -d "$PREFIX/lib/libbezjoin.so.$VERSION" | grep "Library soname: \[libbezjoin.so.$MAJOR\]" >/dev/null
 # Only the C API is exported: nothing else can clash with a host's symbols.
 others="$(nm -D --defined-only "$PREFIX/lib/libbezjoin.so.$VERSION" | awk '{print $3}' | grep -v '^bzj_' || true)"
 if [ -n "$others" ]; then
@@ -66,7 +69,7 @@ export PKG_CONFIG_PATH="$PREFIX/lib/pkgconfig${PKG_CONFIG_PATH:+:$PKG_CONFIG_PAT
 cc -std=c11 -Wall -Wextra -Werror -pedantic scripts/consumer/c/smoke.c -o "$TMP/smoke" \
     $(pkg-config --cflags --libs bezjoin) -lm -Wl,-rpath,"$(pkg-config --variable=libdir bezjoin)"
 "$TMP/smoke"
-ldd "$TMP/smoke" | grep -q "libbezjoin.so.$MAJOR => $PREFIX/lib/"
+ldd "$TMP/smoke" | grep "libbezjoin.so.$MAJOR => $PREFIX/lib/" >/dev/null
 step "C consumer under valgrind memcheck"
 "${VALGRIND[@]}" "$TMP/smoke"
 
@@ -83,17 +86,17 @@ cmake_consumer() {  # $1 = build name, $2 = prefix, rest = extra cmake args
 }
 step "C++ consumer (find_package(bezjoin CONFIG), shared)"
 cmake_consumer cmake-shared "$PREFIX"
-ldd "$TMP/cmake-shared/build/consumer" | grep -q "libbezjoin.so.$MAJOR"
+ldd "$TMP/cmake-shared/build/consumer" | grep "libbezjoin.so.$MAJOR" >/dev/null
 step "C++ consumer (static archive, BEZJOIN_USE_STATIC_LIBS=ON)"
 cmake_consumer cmake-static "$PREFIX" -DBEZJOIN_USE_STATIC_LIBS=ON
-if ldd "$TMP/cmake-static/build/consumer" | grep -q libbezjoin; then
+if ldd "$TMP/cmake-static/build/consumer" | grep libbezjoin >/dev/null; then
     echo "static consumer still loads libbezjoin.so" >&2
     exit 1
 fi
 step "C++ consumer against a moved prefix (relocatable CMake package)"
 cp -a "$PREFIX" "$TMP/moved"
 cmake_consumer cmake-moved "$TMP/moved"
-ldd "$TMP/cmake-moved/build/consumer" | grep -q "$TMP/moved/lib/libbezjoin.so.$MAJOR"
+ldd "$TMP/cmake-moved/build/consumer" | grep "$TMP/moved/lib/libbezjoin.so.$MAJOR" >/dev/null
 step "find_package(bezjoin 1.0) must refuse a $VERSION install"
 mkdir -p "$TMP/version-check"
 printf 'cmake_minimum_required(VERSION 3.16)\nproject(v NONE)\nfind_package(bezjoin %s CONFIG QUIET)\nif(bezjoin_FOUND)\n  message(FATAL_ERROR "accepted")\nendif()\n' \

@@ -7,7 +7,7 @@ wanted=(cmake pkg-config g++ valgrind libtbb-dev
         libocct-modeling-algorithms-dev libocct-data-exchange-dev)
 missing=()
 for p in "${wanted[@]}"; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep "install ok installed" >/dev/null || missing+=("$p")
 done
 if ((${#missing[@]})); then
   echo "installing: ${missing[*]}"

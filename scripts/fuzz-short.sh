@@ -13,7 +13,7 @@ cd "$ROOT"
 PER_TARGET="${1:-20}"
 shift || true
 
-if ! rustup toolchain list | grep -q '^nightly'; then
+if ! rustup toolchain list | grep '^nightly' >/dev/null; then
     rustup toolchain install nightly --profile minimal
 fi
 if ! command -v cargo-fuzz >/dev/null; then
@@ -26,7 +26,7 @@ KNOWN_OPEN=()
 targets=("$@")
 if [ "${#targets[@]}" -eq 0 ]; then
     for t in $(cargo +nightly fuzz list); do
-        if printf '%s\n' "${KNOWN_OPEN[@]}" | grep -qx "$t"; then
+        if printf '%s\n' "${KNOWN_OPEN[@]}" | grep -x "$t" >/dev/null; then
             echo "fuzz: skipping $t (open finding, see docs/reliability.md)" >&2
         else
             targets+=("$t")

@@ -1,6 +1,7 @@
 /* Intersection and corner rounding through the C contract: bzj_intersect,
  * bzj_intersect_detailed, bzj_intersect_options_default, bzj_fillet,
- * bzj_fillet_deviation and bzj_fillet_chain, with each error path.
+ * bzj_fillet_auto_scale, bzj_fillet_deviation and bzj_fillet_chain, with
+ * each error path.
  * Compiled as C11 and as C++17 and linked with libbezjoin.a by
  * tests/tests/c_programs.rs. Exits 0 when every check passes. */
 #include <math.h>
@@ -340,9 +341,71 @@ static void test_chain(void) {
     bzj_curve_free(f);
 }
 
+/* Two fast lines written as cubics (speed 8, crossing at the origin), C^3
+ * with setback 0.5: scale 1 puts the blend's second control point past the
+ * corner (x > 0); the automatic scale keeps every control point in the
+ * corner's quadrant and joins with R'(0) = s * P'(u0). */
+static void test_fillet_auto_scale(void) {
+    const double pl[] = {-4.0, 0.0, -4.0 / 3.0, 0.0, 4.0 / 3.0, 0.0, 4.0, 0.0};
+    const double ql[] = {0.0, -4.0, 0.0, -4.0 / 3.0, 0.0, 4.0 / 3.0, 0.0, 4.0};
+    BzjCurve* p = make(3, pl);
+    BzjCurve* q = make(3, ql);
+    BzjCurve *pt = NULL, *r = NULL, *qt = NULL;
+    BzjFilletOptions o = fillet_options(0.5, 0.5, 3, 3);
+    double points[16];
+    EXPECT_STATUS(bzj_fillet(p, q, &o, &pt, &r, &qt), BZJ_OK);
+    EXPECT_STATUS(bzj_curve_points(r, points, 16), BZJ_OK);
+    CHECK(points[2] > 0.0, "scale 1: R_1.x = %g, expected past the corner", points[2]);
+    bzj_curve_free(pt);
+    bzj_curve_free(r);
+    bzj_curve_free(qt);
+
+    o.p_scale = -1.0; /* ignored, not validated */
+    o.q_scale = NAN;
+    double s = -1.0;
+    EXPECT_STATUS(bzj_fillet_auto_scale(p, q, &o, &pt, &r, &qt, &s), BZJ_OK);
+    CHECK(s > 0.0 && s < 1.0, "chosen scale %g", s);
+    EXPECT_STATUS(bzj_curve_points(r, points, 16), BZJ_OK);
+    for (int i = 0; i < 8; i++) {
+        CHECK(points[2 * i] <= 1e-15 && points[2 * i + 1] >= -1e-15,
+              "control point %d (%g, %g) outside the corner", i, points[2 * i],
+              points[2 * i + 1]);
+    }
+    double a[4], b[4];
+    eval1(pt, 1.0, a); /* u0 * P'(u0) */
+    eval1(r, 0.0, b);  /* s * P'(u0) */
+    double u0 = 0.5 - 0.5 / 8.0;
+    CHECK(fabs(b[2] - s * a[2] / u0) < 1e-12 * fabs(b[2]) && fabs(b[3]) < 1e-12,
+          "R'(0) = (%g, %g), s P'(u0) = %g", b[2], b[3], s * a[2] / u0);
+    bzj_curve_free(pt);
+    bzj_curve_free(r);
+    bzj_curve_free(qt);
+    /* scale_out may be NULL. */
+    EXPECT_STATUS(bzj_fillet_auto_scale(p, q, &o, &pt, &r, &qt, NULL), BZJ_OK);
+    bzj_curve_free(pt);
+    bzj_curve_free(r);
+    bzj_curve_free(qt);
+    /* Errors as bzj_fillet's. */
+    EXPECT_STATUS(bzj_fillet_auto_scale(p, q, NULL, &pt, &r, &qt, &s), BZJ_ERR_NULL_POINTER);
+    expect_message("options");
+    EXPECT_STATUS(bzj_fillet_auto_scale(p, q, &o, NULL, &r, &qt, &s), BZJ_ERR_NULL_POINTER);
+    expect_message("p_trimmed");
+    CHECK(r == NULL && qt == NULL, "outputs not NULL after a null pointer");
+    BzjFilletOptions bad = fillet_options(9.0, 0.5, 3, 3);
+    EXPECT_STATUS(bzj_fillet_auto_scale(p, q, &bad, &pt, &r, &qt, &s), BZJ_ERR_INVALID_ARGUMENT);
+    expect_message("p_setback");
+    bad = fillet_options(0.5, 0.5, 3, 4);
+    EXPECT_STATUS(bzj_fillet_auto_scale(p, q, &bad, &pt, &r, &qt, &s), BZJ_ERR_INVALID_ARGUMENT);
+    expect_message("q_order");
+    CHECK(pt == NULL && r == NULL && qt == NULL, "outputs not NULL after an error");
+    bzj_curve_free(p);
+    bzj_curve_free(q);
+}
+
 int main(void) {
     test_intersect();
     test_fillet();
+    test_fillet_auto_scale();
     test_chain();
     if (failures != 0) {
         fprintf(stderr, "fillet.c: %d check(s) failed\n", failures);

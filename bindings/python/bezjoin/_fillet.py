@@ -35,6 +35,12 @@ register_prototype(
      _curve_out],
 )
 register_prototype(
+    "bzj_fillet_auto_scale",
+    ctypes.c_int32,
+    [CurvePointer, CurvePointer, ctypes.POINTER(FilletOptionsStruct), _curve_out, _curve_out,
+     _curve_out, ctypes.POINTER(ctypes.c_double)],
+)
+register_prototype(
     "bzj_intersect",
     ctypes.c_int32,
     [CurvePointer, CurvePointer, ctypes.POINTER(ctypes.c_double), ctypes.c_size_t,
@@ -50,7 +56,8 @@ FIRST_CAPACITY = 16
 class FilletResult(CurveGroup):
     """The rounded corner: ``p_trimmed = P|[0,u0]``, ``blend``, ``q_trimmed = Q|[v0,1]``,
     each over ``[0, 1]``; together a C^min(p_order, q_order) B-spline with knot
-    intervals ``(u0, p_scale, (1 - v0) p_scale / q_scale)``.
+    intervals ``(u0, p_scale, (1 - v0) p_scale / q_scale)``. ``scale`` is the
+    chosen ``s = p_scale = q_scale`` when ``auto_scale=True``, else ``None``.
 
     ``u0`` and ``v0`` are not reported by the C function; they are the
     parameters where the kept parts end/start, recoverable from the setbacks.
@@ -58,14 +65,15 @@ class FilletResult(CurveGroup):
 
     _curve_fields = ("p_trimmed", "blend", "q_trimmed")
 
-    def __init__(self, p_trimmed, blend, q_trimmed):
+    def __init__(self, p_trimmed, blend, q_trimmed, scale=None):
         self.p_trimmed = p_trimmed
         self.blend = blend
         self.q_trimmed = q_trimmed
+        self.scale = scale
 
 
 def fillet(p, q, *, setback=None, p_setback=None, q_setback=None, p_order=None, q_order=None,
-           p_scale=1.0, q_scale=1.0):
+           p_scale=1.0, q_scale=1.0, auto_scale=False):
     """Round the corner "along ``p`` up to the first crossing ``X``, then along ``q``".
 
     The crossing is the one with the smallest parameter on ``p``. ``p`` is
@@ -79,6 +87,11 @@ def fillet(p, q, *, setback=None, p_setback=None, q_setback=None, p_order=None, 
             and ``q_setback`` (asymmetric).
         p_order, q_order: continuity orders (default: the curve's degree).
         p_scale, q_scale: shape scales (1.0 = the paper).
+        auto_scale: when true, ``p_scale = q_scale = s`` is chosen by the
+            library (``bzj_fillet_auto_scale``: the minimum of the blend's
+            fairness energy); the given scales are ignored and ``s`` is
+            returned as ``result.scale``. Use it when the curves are fast
+            against the setback: scale 1 can then loop past the corner.
 
     Raises:
         BezjoinError: ``BZJ_ERR_NO_INTERSECTION`` when the curves do not cross
@@ -99,8 +112,14 @@ def fillet(p, q, *, setback=None, p_setback=None, q_setback=None, p_order=None, 
         p_order, q_order, real_argument(p_scale, "p_scale"), real_argument(q_scale, "q_scale"),
     )
     p_trimmed, blend, q_trimmed = CurvePointer(), CurvePointer(), CurvePointer()
-    library().call("bzj_fillet", p_handle, q_handle, ctypes.byref(options),
-                   ctypes.byref(p_trimmed), ctypes.byref(blend), ctypes.byref(q_trimmed))
+    outputs = (ctypes.byref(p_trimmed), ctypes.byref(blend), ctypes.byref(q_trimmed))
+    if auto_scale:
+        scale = ctypes.c_double()
+        library().call("bzj_fillet_auto_scale", p_handle, q_handle, ctypes.byref(options),
+                       *outputs, ctypes.byref(scale))
+        return FilletResult(Curve._adopt(p_trimmed), Curve._adopt(blend),
+                            Curve._adopt(q_trimmed), scale.value)
+    library().call("bzj_fillet", p_handle, q_handle, ctypes.byref(options), *outputs)
     return FilletResult(Curve._adopt(p_trimmed), Curve._adopt(blend), Curve._adopt(q_trimmed))
 
 

@@ -91,6 +91,34 @@ def test_symmetric_setback():
         assert abs(distance(result.q_trimmed.points[0], corner) - 1.0) <= 1e-12
 
 
+def test_auto_scale_keeps_a_fast_corner_inside():
+    """Lines of speed 8 as cubics, C^3, setback 0.5: scale 1 puts the blend's second
+    control point past the corner; the automatic scale keeps the whole control
+    polygon in the corner's quadrant, and the chain is C^3 with widths (u0, s, 1 - v0)."""
+    p_points = [(-4, 0), (-4 / 3, 0), (4 / 3, 0), (4, 0)]
+    q_points = [(0, -4), (0, -4 / 3), (0, 4 / 3), (0, 4)]
+    with Curve(p_points) as p, Curve(q_points) as q:
+        with bezjoin.fillet(p, q, setback=0.5) as paper:
+            assert paper.scale is None
+            assert paper.blend.points[1][0] > 0.0
+        with bezjoin.fillet(p, q, setback=0.5, auto_scale=True) as result:
+            s = result.scale
+            assert 0.0 < s < 1.0
+            assert all(x <= 1e-15 and y >= -1e-15 for x, y in result.blend.points)
+            u0, v0 = 0.5 - 0.5 / 8, 0.5 + 0.5 / 8
+            widths = (u0, s, 1 - v0)
+            chain = tuple(c.points for c in result.curves())
+            for left, right in ((0, 1), (1, 2)):
+                size = max(norm(derivative(chain[left], 1.0, k)) / widths[left] ** k
+                           for k in range(4))
+                for k in range(4):
+                    a = tuple(x / widths[left] ** k for x in derivative(chain[left], 1.0, k))
+                    b = tuple(x / widths[right] ** k for x in derivative(chain[right], 0.0, k))
+                    assert distance(a, b) <= 1e-9 * size, (left, k)
+        expect_error("BZJ_ERR_INVALID_ARGUMENT",
+                     lambda: bezjoin.fillet(p, q, setback=9.0, auto_scale=True), "p_setback")
+
+
 def test_fillet_errors():
     with Curve([(0, 0), (4, 4)]) as p, Curve([(0, 4), (4, 0)]) as q, \
             Curve([(0, 5), (4, 5)]) as away, Curve([(0, 0, 0), (1, 1, 1)]) as space:

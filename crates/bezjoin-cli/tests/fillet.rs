@@ -129,8 +129,17 @@ fn check_fillet_output(job: &Value, out: &Value, setbacks: Option<(f64, f64)>) {
     let v0 = out["v0"].as_f64().unwrap();
     let kp = job["p_order"].as_u64().unwrap() as usize;
     let kq = job["q_order"].as_u64().unwrap() as usize;
-    let alpha = job["p_scale"].as_f64().unwrap_or(1.0);
-    let beta = job["q_scale"].as_f64().unwrap_or(1.0);
+    let (alpha, beta) = if job["auto_scale"].as_bool() == Some(true) {
+        // Chosen by the library: the reported scales, equal.
+        let s = out["report"]["p_scale"].as_f64().unwrap();
+        assert_eq!(out["report"]["q_scale"].as_f64(), Some(s));
+        (s, s)
+    } else {
+        (
+            job["p_scale"].as_f64().unwrap_or(1.0),
+            job["q_scale"].as_f64().unwrap_or(1.0),
+        )
+    };
     assert_eq!(r.degree(), kp + kq + 1);
     // Trimmed pieces are the original curves' parts.
     for i in 0..=20 {
@@ -204,6 +213,47 @@ fn fillet_c3_asymmetric_and_default_scales() {
     assert_eq!(code, 0, "{stderr}");
     let out: Value = serde_json::from_str(&stdout).unwrap();
     check_fillet_output(&job, &out, Some((0.4, 0.9)));
+}
+
+/// Fast lines (speed 8, as cubics) with a short setback: with scale 1 the
+/// blend's control points pass the corner; `"auto_scale": true` keeps them
+/// in the corner's quadrant; on fast curved cubics the C^k chain holds at the
+/// chosen scale.
+#[test]
+fn fillet_auto_scale_keeps_the_blend_in_the_corner() {
+    let lines = serde_json::json!({
+        "p": [[-4.0, 0.0], [-1.0, 0.0], [2.0, 0.0], [5.0, 0.0]],
+        "q": [[0.0, -4.0], [0.0, -1.0], [0.0, 2.0], [0.0, 5.0]],
+        "p_setback": 0.5, "p_order": 2, "q_order": 2
+    });
+    let inside = |out: &Value| {
+        out["blend"]["points"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .all(|b| b[0].as_f64().unwrap() <= 1e-15 && b[1].as_f64().unwrap() >= -1e-15)
+    };
+    let (code, stdout, stderr) = run("fillet", &lines.to_string(), None);
+    assert_eq!(code, 0, "{stderr}");
+    assert!(!inside(&serde_json::from_str(&stdout).unwrap()));
+    let mut job = lines.clone();
+    job["auto_scale"] = Value::Bool(true);
+    let (code, stdout, stderr) = run("fillet", &job.to_string(), None);
+    assert_eq!(code, 0, "{stderr}");
+    let out: Value = serde_json::from_str(&stdout).unwrap();
+    assert!(inside(&out), "{}", out["blend"]);
+    let s = out["report"]["p_scale"].as_f64().unwrap();
+    assert!(s > 0.0 && s < 1.0, "s = {s}");
+    // The chain check needs nonzero higher derivatives: fast curved cubics.
+    let curved = serde_json::json!({
+        "p": [[-4.0, -0.6], [-1.0, 0.3], [2.0, 0.3], [5.0, -0.6]],
+        "q": [[0.6, -4.0], [-0.3, -1.0], [-0.3, 2.0], [0.6, 5.0]],
+        "p_setback": 0.5, "p_order": 2, "q_order": 2, "auto_scale": true
+    });
+    let (code, stdout, stderr) = run("fillet", &curved.to_string(), None);
+    assert_eq!(code, 0, "{stderr}");
+    let out: Value = serde_json::from_str(&stdout).unwrap();
+    check_fillet_output(&curved, &out, Some((0.5, 0.5)));
 }
 
 #[test]
@@ -299,6 +349,16 @@ fn bad_jobs_exit_2_naming_the_field() {
         "fillet",
         &format!("{{{lines}, \"p_setback\": 0.2, \"colour\": 1}}"),
         "colour",
+    );
+    assert_exit_2_naming(
+        "fillet",
+        &format!("{{{lines}, \"p_setback\": 0.2, \"auto_scale\": true, \"q_scale\": 2}}"),
+        "q_scale",
+    );
+    assert_exit_2_naming(
+        "fillet",
+        &format!("{{{lines}, \"p_setback\": 0.2, \"auto_scale\": 1}}"),
+        "auto_scale",
     );
     // Setback longer than the part of P before the crossing (library error).
     assert_exit_2_naming(

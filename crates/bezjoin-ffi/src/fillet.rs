@@ -1,7 +1,7 @@
 //! Curve intersection and corner rounding (mathematics.md, section 2):
 //! `bzj_intersect`, `bzj_fillet` of the contract, and the additions
 //! `bzj_intersect_detailed`, `bzj_intersect_options_default`,
-//! `bzj_fillet_deviation` and `bzj_fillet_chain`.
+//! `bzj_fillet_auto_scale`, `bzj_fillet_deviation` and `bzj_fillet_chain`.
 
 use bezjoin_core::BezierCurve;
 use bezjoin_core::error::BezjoinError;
@@ -342,6 +342,65 @@ pub unsafe extern "C" fn bzj_fillet(
     blend: *mut *mut BzjCurve,
     q_trimmed: *mut *mut BzjCurve,
 ) -> BzjStatus {
+    // SAFETY: caller contract (`scale_out` NULL is allowed).
+    unsafe {
+        fillet_with_scale(
+            p,
+            q,
+            options,
+            false,
+            p_trimmed,
+            blend,
+            q_trimmed,
+            std::ptr::null_mut(),
+        )
+    }
+}
+
+/// [`bzj_fillet`] with `alpha = beta = s` chosen automatically, as
+/// `bzj_connect_auto_scale` chooses it: `s` minimises the blend's fairness
+/// energy `integral_0^1 |R''(t)|^2 dt` over two decades either side of
+/// `s0 = |Q(v0) - P(u0)| / mean(|P'(u0)|, |Q'(v0)|)`. `options->p_scale`
+/// and `options->q_scale` are ignored (not read for validity). The chosen
+/// `s` is written to `scale_out` when it is not NULL. With the paper's
+/// scale 1 a blend whose ends move fast against the setback puts its inner
+/// control points past the corner and can loop; this variant avoids that.
+/// Same guarantee as [`bzj_fillet`], with knot intervals
+/// `(u0, s, 1 - v0)`.
+///
+/// @return the statuses of [`bzj_fillet`] (except for the scales).
+///
+/// # Safety
+/// As [`bzj_fillet`]; `scale_out` is NULL or writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn bzj_fillet_auto_scale(
+    p: *const BzjCurve,
+    q: *const BzjCurve,
+    options: *const BzjFilletOptions,
+    p_trimmed: *mut *mut BzjCurve,
+    blend: *mut *mut BzjCurve,
+    q_trimmed: *mut *mut BzjCurve,
+    scale_out: *mut f64,
+) -> BzjStatus {
+    // SAFETY: caller contract.
+    unsafe { fillet_with_scale(p, q, options, true, p_trimmed, blend, q_trimmed, scale_out) }
+}
+
+/// The body of `bzj_fillet` and `bzj_fillet_auto_scale`.
+///
+/// # Safety
+/// As [`bzj_fillet_auto_scale`].
+#[allow(clippy::too_many_arguments)]
+unsafe fn fillet_with_scale(
+    p: *const BzjCurve,
+    q: *const BzjCurve,
+    options: *const BzjFilletOptions,
+    auto_scale: bool,
+    p_trimmed: *mut *mut BzjCurve,
+    blend: *mut *mut BzjCurve,
+    q_trimmed: *mut *mut BzjCurve,
+    scale_out: *mut f64,
+) -> BzjStatus {
     // SAFETY: caller contract.
     unsafe {
         clear_handle(p_trimmed);
@@ -356,7 +415,13 @@ pub unsafe extern "C" fn bzj_fillet(
         let p_out = require_out(p_trimmed, "p_trimmed")?;
         let blend_out = require_out(blend, "blend")?;
         let q_out = require_out(q_trimmed, "q_trimmed")?;
-        let result = fillet(p, q, &options.to_core())?;
+        let mut core_options = options.to_core();
+        core_options.auto_scale = auto_scale;
+        let result = fillet(p, q, &core_options)?;
+        if !scale_out.is_null() {
+            // SAFETY: non-null and writable by the caller contract.
+            unsafe { scale_out.write(result.p_scale) };
+        }
         // SAFETY: all three checked non-null.
         unsafe {
             write_handle(p_out, result.p_trimmed);

@@ -495,3 +495,85 @@ fn three_d_corner_is_ck() {
     let lp = p.arc_length(f.u0, 0.6, 1e-14).unwrap();
     assert!((lp - 0.4).abs() <= 1e-9 * 0.4);
 }
+
+/// Fast lines, short setback: with the paper's scale 1 the blend's inner
+/// control points pass the corner (the blend loops); the automatic scale
+/// keeps the blend inside the corner, is C^k in the B-spline sense with the
+/// knot intervals of the chosen scale, and is a minimum of the fairness
+/// energy over the scale.
+#[test]
+fn auto_scale_keeps_a_fast_corner_inside_and_minimises_the_energy() {
+    use bezjoin_core::fairness_energy;
+    // P runs along y = 0 to the corner X = (0, 0) and beyond, Q along x = 0
+    // upwards; both with speed 8 (parameter length 1, 8 units long), written
+    // as cubics so that C^3 can be asked.
+    let p = curve(&[&[-4.0, 0.0], &[4.0, 0.0]])
+        .elevate_degree(3)
+        .unwrap();
+    let q = curve(&[&[0.0, -4.0], &[0.0, 4.0]])
+        .elevate_degree(3)
+        .unwrap();
+    let order = 3;
+    let paper = fillet(&p, &q, &FilletOptions::symmetric(0.5, order)).unwrap();
+    // Scale 1: R'(0) = P'(u0) = (8, 0), so R_1 = R_0 + (8/7, 0) is past x = 0.
+    assert!(paper.blend.point(1)[0] > 0.0, "{:?}", paper.blend.point(1));
+    let options = FilletOptions::symmetric(0.5, order).with_auto_scale();
+    let auto = fillet(&p, &q, &options).unwrap();
+    let s = auto.p_scale;
+    assert_eq!(auto.q_scale, s);
+    assert!(s > 0.0 && s < 1.0, "s = {s}");
+    // Inside the corner: every control point of the blend in the quadrant
+    // x <= 0, y >= 0 (the blend lies in their convex hull).
+    for i in 0..=auto.blend.degree() {
+        let b = auto.blend.point(i);
+        assert!(b[0] <= 1e-15 && b[1] >= -1e-15, "control point {i}: {b:?}");
+    }
+    // Same setbacks and cut points as the paper's scale; C^3 at both joins.
+    assert_eq!((auto.u0, auto.v0), (paper.u0, paper.v0));
+    let intervals = [auto.u0, s, 1.0 - auto.v0];
+    let spline = BSplineCurve::from_bezier_chain(
+        &[
+            auto.p_trimmed.clone(),
+            auto.blend.clone(),
+            auto.q_trimmed.clone(),
+        ],
+        &intervals,
+    )
+    .unwrap();
+    // Lines have zero second and third derivatives, so each jump is taken
+    // relative to the largest derivative at the join, not to itself.
+    for t in [intervals[0], intervals[0] + s] {
+        let left = spline.eval_derivatives_side(t, order, KnotSide::Left);
+        let right = spline.eval_derivatives_side(t, order, KnotSide::Right);
+        let size = (0..=order)
+            .map(|k| left.row(k).norm().max(right.row(k).norm()))
+            .fold(0.0, f64::max);
+        for k in 0..=order {
+            let jump = (left.row(k) - right.row(k)).norm();
+            assert!(
+                jump <= 1e-9 * size,
+                "t = {t}: derivative {k} jumps by {jump:e} (size {size:e})"
+            );
+        }
+    }
+    // A minimum of the energy over the scale (fixed-scale fillets nearby).
+    let energy = fairness_energy(&auto.blend);
+    for factor in [0.9, 0.99, 1.01, 1.1] {
+        let other = fillet(
+            &p,
+            &q,
+            &FilletOptions::symmetric(0.5, order).with_scales(s * factor, s * factor),
+        )
+        .unwrap();
+        assert!(
+            fairness_energy(&other.blend) >= energy * (1.0 - 1e-12),
+            "factor {factor}: {} < {energy}",
+            fairness_energy(&other.blend)
+        );
+    }
+    // The scales given with auto_scale are ignored, not validated.
+    let mut ignored = options.clone();
+    ignored.p_scale = -1.0;
+    ignored.q_scale = f64::NAN;
+    assert_eq!(fillet(&p, &q, &ignored).unwrap(), auto);
+}

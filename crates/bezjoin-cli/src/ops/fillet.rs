@@ -107,10 +107,26 @@ pub fn parse(job: &Located) -> Result<FilletJob, JobError> {
         FilletMode::Deviation { .. } => (1.0, 1.0),
     };
     let mut options = FilletOptions::new(dp, dq, p_order, q_order);
-    if let Some(f) = obj.optional("p_scale") {
+    let p_scale = obj.optional("p_scale");
+    let q_scale = obj.optional("q_scale");
+    let auto_scale = obj
+        .optional("auto_scale")
+        .map(|f| f.boolean())
+        .transpose()?
+        .unwrap_or(false);
+    if auto_scale {
+        if let Some(f) = p_scale.as_ref().or(q_scale.as_ref()) {
+            return Err(JobError::new(
+                f.path.clone(),
+                "cannot be given together with \"auto_scale\": true",
+            ));
+        }
+        options.auto_scale = true;
+    }
+    if let Some(f) = p_scale {
         options.p_scale = f.positive()?;
     }
-    if let Some(f) = obj.optional("q_scale") {
+    if let Some(f) = q_scale {
         options.q_scale = f.positive()?;
     }
     obj.finish()?;

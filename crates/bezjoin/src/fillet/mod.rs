@@ -58,7 +58,7 @@ pub use deviation::{
 
 use crate::bezier::BezierCurve;
 use crate::bspline::BSplineCurve;
-use crate::connect::{ConnectOptions, connect};
+use crate::connect::{ConnectOptions, connect, connect_auto_scale};
 use crate::error::{BezjoinError, Result, check_finite_scalar, check_positive};
 use crate::intersect::{IntersectOptions, Intersection, IntersectionKind, intersect};
 
@@ -81,6 +81,15 @@ pub struct FilletOptions {
     pub p_scale: f64,
     /// `beta > 0`; default 1, the paper.
     pub q_scale: f64,
+    /// Choose `alpha = beta = s` automatically instead of `p_scale`,
+    /// `q_scale` (which are then ignored): `s` minimises the blend's fairness
+    /// energy `integral |R''|^2`, as [`connect_auto_scale`] does; the chosen
+    /// `s` is reported in [`Fillet::p_scale`] and [`Fillet::q_scale`].
+    /// Default `false` (the paper's fixed scales). With scale 1 a blend
+    /// whose ends move fast (`|P'(u0)|` large against the setback) puts its
+    /// inner control points past the corner and can loop; the automatic
+    /// scale keeps them near the natural `|R(1) - R(0)| / |P'(u0)|`.
+    pub auto_scale: bool,
     /// The setbacks are met to `relative_length_accuracy * setback`;
     /// default [`DEFAULT_RELATIVE_LENGTH_ACCURACY`] (`1e-12`).
     pub relative_length_accuracy: f64,
@@ -98,6 +107,7 @@ impl FilletOptions {
             q_order,
             p_scale: 1.0,
             q_scale: 1.0,
+            auto_scale: false,
             relative_length_accuracy: DEFAULT_RELATIVE_LENGTH_ACCURACY,
             intersect: IntersectOptions::default(),
         }
@@ -112,6 +122,14 @@ impl FilletOptions {
     pub fn with_scales(mut self, p_scale: f64, q_scale: f64) -> Self {
         self.p_scale = p_scale;
         self.q_scale = q_scale;
+        self.auto_scale = false;
+        self
+    }
+
+    /// The same options with the scale chosen automatically
+    /// ([`FilletOptions::auto_scale`]).
+    pub fn with_auto_scale(mut self) -> Self {
+        self.auto_scale = true;
         self
     }
 }
@@ -271,8 +289,10 @@ pub(crate) fn validate_shape(
             curve: "Q".into(),
         });
     }
-    check_positive("p_scale", options.p_scale)?;
-    check_positive("q_scale", options.q_scale)?;
+    if !options.auto_scale {
+        check_positive("p_scale", options.p_scale)?;
+        check_positive("q_scale", options.q_scale)?;
+    }
     check_finite_scalar("relative_length_accuracy", options.relative_length_accuracy)?;
     if !(options.relative_length_accuracy > 0.0 && options.relative_length_accuracy < 1.0) {
         return Err(BezjoinError::out_of_range(
@@ -338,7 +358,11 @@ pub(crate) fn fillet_at_validated(
     let mut connect_options = ConnectOptions::new(options.p_order, options.q_order);
     connect_options.p_scale = options.p_scale;
     connect_options.q_scale = options.q_scale;
-    let connection = connect(p, u0, q, v0, &connect_options)?;
+    let connection = if options.auto_scale {
+        connect_auto_scale(p, u0, q, v0, &connect_options)?
+    } else {
+        connect(p, u0, q, v0, &connect_options)?
+    };
     Ok(Fillet {
         p_trimmed: p.segment(0.0, u0)?,
         blend: connection.curve,
