@@ -210,12 +210,31 @@ class RoundCornerJudgedByFreeCAD(unittest.TestCase, CommandDriver):
         self.assertLessEqual(gap(cross.OrderedVertexes[0].Point, (0, 0, 0)), 1e-12)
         self.assertLessEqual(gap(cross.OrderedVertexes[-1].Point, (4, 0, 0)), 1e-12)
 
+    def test_round_corner_with_auto_scale_stays_inside_the_corner(self):
+        # Long lines, short setback: scale 1 loops past the corner (2, 0, 0);
+        # the automatic scale keeps the blend inside the corner's quadrant.
+        first = Part.makeLine(V(-6, 0, 0), V(2, 0, 0))
+        second = Part.makeLine(V(2, 0, 0), V(2, 8, 0))
+        for auto, inside in ((False, False), (True, True)):
+            wire = operations.round_corner(first, second, setback=0.5, p_order=2, q_order=2,
+                                           auto_scale=auto)
+            blend = wire.OrderedEdges[1].Curve
+            poles = blend.getPoles()
+            self.assertEqual(all(p.x <= 2 + 1e-12 and p.y >= -1e-12 for p in poles), inside,
+                             (auto, poles))
+            edges = wire.OrderedEdges
+            for left, right in zip(edges, edges[1:]):
+                self.assertLessEqual(gap(left.valueAt(left.LastParameter),
+                                         right.valueAt(right.FirstParameter)), 1e-12)
+                self.assertLessEqual(gap(left.tangentAt(left.LastParameter),
+                                         right.tangentAt(right.FirstParameter)), 1e-9)
+
     def test_round_corner_command(self):
         first = Part.makeLine(V(0, 0, 0), V(2, 0, 0))
         second = Part.makeLine(V(2, 0, 0), V(2, 2, 0))
         parameters = {"setback": 0.5, "second_setback": 0.8, "p_order": None, "q_order": None,
-                      "p_scale": 1.0, "q_scale": 1.0, "reverse_first": False,
-                      "reverse_second": False}
+                      "p_scale": 1.0, "q_scale": 1.0, "auto_scale": False,
+                      "reverse_first": False, "reverse_second": False}
         made, shown = self.drive(commands.RoundCornerCommand(), [first, second], parameters)
         self.assertEqual(shown, [])
         self.assertEqual([name for name, _shape, _report in made], ["RoundedCorner"])

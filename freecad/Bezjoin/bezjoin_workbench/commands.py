@@ -155,6 +155,7 @@ class RoundCornerCommand(Command):
         ("setback", "Setback along the first edge", "float", 1.0, (1e-9, 1e9)),
         ("second_setback", "Setback along the second edge", "float", 1.0, (1e-9, 1e9)),
     ] + ORDER_FIELDS + [
+        ("auto_scale", "Choose the scales automatically (least bending)", "bool", False, None),
         ("reverse_first", "Reverse the first edge (crossing edges)", "bool", False, None),
         ("reverse_second", "Reverse the second edge (crossing edges)", "bool", False, None),
     ]

@@ -94,8 +94,8 @@ def blend_edges(first_edge, second_edge, *, u0=1.0, v0=0.0, p_order=None, q_orde
 
 
 def round_corner(first_edge, second_edge, *, setback, second_setback=None, p_order=None,
-                 q_order=None, p_scale=1.0, q_scale=1.0, reverse_first=False,
-                 reverse_second=False):
+                 q_order=None, p_scale=1.0, q_scale=1.0, auto_scale=False,
+                 reverse_first=False, reverse_second=False):
     """The rounded path "along the first edge to the corner, then along the second"
     as a ``Part.Wire`` of three edges (kept part of the first edge, the blend,
     kept part of the second edge), by :func:`bezjoin.fillet`.
@@ -112,6 +112,9 @@ def round_corner(first_edge, second_edge, *, setback, second_setback=None, p_ord
     ``setback`` is the arc length kept off the corner along the first edge,
     ``second_setback`` (default: the same) along the second. Orders above an
     edge's degree are allowed (the edge is elevated first, exactly).
+    With ``auto_scale`` the scales are ignored and chosen by the library
+    (:func:`bezjoin.fillet` with ``auto_scale=True``: least bending energy);
+    use it when the edges are long against the setback, where scale 1 loops.
     """
     second_setback = setback if second_setback is None else second_setback
     with edge_curve(first_edge, "first edge") as p, edge_curve(second_edge, "second edge") as q:
@@ -128,7 +131,7 @@ def round_corner(first_edge, second_edge, *, setback, second_setback=None, p_ord
                 _raised_for_order(q_work, q_order) as q_raised, \
                 bezjoin.fillet(p_raised, q_raised, p_setback=setback, q_setback=second_setback,
                                p_order=p_order, q_order=q_order, p_scale=p_scale,
-                               q_scale=q_scale) as result:
+                               q_scale=q_scale, auto_scale=auto_scale) as result:
             return _wire(result.curves())
 
 
