@@ -8,10 +8,12 @@
 //! never `BZJ_ERR_INTERNAL` (a caught panic is a bug too); a failed call
 //! leaves a message and NULL handles; a successful one returns handles
 //! that answer `bzj_curve_degree`/`bzj_curve_dim`. Sizes are bounded
-//! (degree <= 40, dim <= 4) so one input cannot run for long.
+//! (degree <= 40, dim <= 4, chains <= 16 curves) so one input cannot run
+//! for long.
 
 use std::ffi::CStr;
 use std::ptr::null_mut;
+use std::sync::OnceLock;
 
 pub use bezjoin::*;
 
@@ -19,6 +21,14 @@ pub use bezjoin::*;
 pub const MAX_DEGREE: usize = 40;
 /// Largest dimension a target builds.
 pub const MAX_DIM: usize = 4;
+/// Largest number of curves in a chain a target builds.
+pub const MAX_CHAIN: usize = 16;
+
+/// What a target writes into handle slots before a call, to see which ones
+/// the library wrote (never dereferenced).
+pub fn sentinel() -> *mut BzjCurve {
+    std::ptr::dangling_mut::<BzjCurve>()
+}
 
 /// A cursor over the fuzzer's bytes; reads past the end give zeros.
 pub struct Input<'a> {
@@ -56,6 +66,18 @@ impl<'a> Input<'a> {
             1 => usize::MAX / 2 + 1,
             2 => 0,
             _ => self.below(small + 1),
+        }
+    }
+
+    /// A count that no array of elements of 8 bytes or more can have (more
+    /// than `isize::MAX` bytes): `SIZE_MAX`, `SIZE_MAX / 2 + 1` or
+    /// `isize::MAX / 8 + 1`. The library must refuse it before reading, so it
+    /// may be passed with a real (short) buffer.
+    pub fn impossible_count(&mut self) -> usize {
+        match self.byte() % 3 {
+            0 => usize::MAX,
+            1 => usize::MAX / 2 + 1,
+            _ => isize::MAX as usize / 8 + 1,
         }
     }
 
@@ -121,7 +143,15 @@ pub fn last_error() -> String {
 
 /// The oracle for one call's status: never `BZJ_ERR_INTERNAL`, and a failed
 /// call leaves a message.
+///
+/// With `BEZJOIN_FUZZ_TRACE` set in the environment every status is printed
+/// to stderr with its message (to see which path a seed reaches:
+/// `BEZJOIN_FUZZ_TRACE=1 cargo +nightly fuzz run <target> fuzz/seeds/<target>/*`).
 pub fn check(status: BzjStatus, call: &str) {
+    static TRACE: OnceLock<bool> = OnceLock::new();
+    if *TRACE.get_or_init(|| std::env::var_os("BEZJOIN_FUZZ_TRACE").is_some()) {
+        eprintln!("{call}: {status:?} {}", last_error());
+    }
     assert_ne!(
         status,
         BzjStatus::BZJ_ERR_INTERNAL,
@@ -170,7 +200,13 @@ pub fn check_and_free(status: BzjStatus, handle: *mut BzjCurve, call: &str) {
 /// status is checked either way). Free it with `bzj_curve_free`.
 pub fn curve(input: &mut Input) -> Option<*mut BzjCurve> {
     let dim = 1 + input.below(MAX_DIM);
-    let degree = input.below(MAX_DEGREE + 1);
+    curve_in(input, dim, MAX_DEGREE)
+}
+
+/// A curve of dimension `dim` and degree `<= max_degree` built as by
+/// [`curve`] (chains share one dimension so that they reach the success path).
+pub fn curve_in(input: &mut Input, dim: usize, max_degree: usize) -> Option<*mut BzjCurve> {
+    let degree = input.below(max_degree + 1);
     let points: Vec<f64> = (0..(degree + 1) * dim)
         .map(|_| input.coordinate())
         .collect();
@@ -184,5 +220,43 @@ pub fn curve(input: &mut Input) -> Option<*mut BzjCurve> {
     } else {
         assert!(out.is_null());
         None
+    }
+}
+
+/// Check an array of handle slots after a call that clears the first
+/// `declared` slots and, on success, writes `written <= declared` handles:
+/// those must be live (they are freed), the rest of the declared slots NULL,
+/// and every slot past `declared` still [`sentinel`] (never written).
+///
+/// `slots` must hold NULL, [`sentinel`] or handles the library just wrote.
+pub fn check_handle_slots(
+    status: BzjStatus,
+    slots: &[*mut BzjCurve],
+    written: usize,
+    declared: usize,
+    call: &str,
+) {
+    check(status, call);
+    for (i, &s) in slots.iter().enumerate() {
+        if i >= declared {
+            assert_eq!(
+                s,
+                sentinel(),
+                "{call} wrote slot {i} past the declared {declared}"
+            );
+        } else if status == BzjStatus::BZJ_OK && i < written {
+            assert_ne!(s, sentinel(), "{call}: slot {i} not written");
+            check_and_free(status, s, call);
+        } else {
+            assert!(s.is_null(), "{call}: slot {i} not NULL after {status:?}");
+        }
+    }
+}
+
+/// Release the handles of a chain the target built.
+pub fn free_all(handles: &[*mut BzjCurve]) {
+    for &h in handles {
+        // SAFETY: live handles from `curve`/`curve_in`, each released once.
+        unsafe { bzj_curve_free(h) };
     }
 }

@@ -604,7 +604,9 @@ impl<'a> Search<'a> {
             let flat_b = b.is_flat(self.flatness);
             if (flat_a && flat_b) || depth >= self.options.max_depth {
                 self.leaf(&a, &b);
-                if self.candidates.len() > 4 * self.options.max_hits + 64 {
+                // Saturating: any max_hits is valid, up to usize::MAX.
+                let threshold = self.options.max_hits.saturating_mul(4).saturating_add(64);
+                if self.candidates.len() > threshold {
                     self.merge_candidates();
                 }
                 continue;

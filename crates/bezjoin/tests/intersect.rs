@@ -435,3 +435,24 @@ fn work_is_bounded() {
         "{h:?}"
     );
 }
+
+#[test]
+fn work_bounds_up_to_usize_max_are_accepted() {
+    // Fuzz finding F5 (docs/reliability.md): the candidate-merging threshold
+    // `4 * max_hits + 64` overflowed for max_hits > usize::MAX / 4 (a panic,
+    // i.e. BZJ_ERR_INTERNAL, with overflow checks; a threshold of 60 without).
+    let p = curve(&[&[0.0, 0.0], &[2.0, 2.0]]);
+    let q = curve(&[&[0.0, 2.0], &[1.0, 0.0], &[2.0, 0.0]]);
+    let expected = hits(&p, &q);
+    assert_eq!(expected.len(), 1);
+    for big in [usize::MAX / 4 + 1, usize::MAX / 2 + 1, usize::MAX] {
+        let options = IntersectOptions {
+            max_depth: big,
+            max_box_pairs: big,
+            max_hits: big,
+            ..IntersectOptions::default()
+        };
+        let h = intersect(&p, &q, &options).unwrap();
+        assert_eq!(h, expected, "bounds {big}");
+    }
+}
