@@ -908,8 +908,9 @@ BzjStatus bzj_fillet_deviation(const struct BzjCurve *p, const struct BzjCurve *
  * `2 * curve_count - 1` handles for an open chain, `2 * curve_count` for a
  * closed one (ending with the blend back to the start). The number needed
  * is written into `count`; `capacity == 0` with `out_pieces == NULL` is a
- * valid "count only" query (nothing is computed). Release every handle
- * with `bzj_curve_free`.
+ * valid "count only" query (nothing is computed, but the arguments are
+ * checked as below up to the count: NULL handles, `closed`, fewer than 2
+ * curves). Release every handle with `bzj_curve_free`.
  *
  * @return BZJ_ERR_NULL_POINTER if `curves`, one of its handles, `options`
  *         or `count` is NULL, or `out_pieces` is NULL while `capacity > 0`;

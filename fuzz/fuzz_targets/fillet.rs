@@ -1,5 +1,6 @@
-//! `bzj_fillet` on fuzzed curve pairs with fuzzed setbacks (any double),
-//! orders (also `SIZE_MAX`) and scales; sometimes one out-pointer NULL.
+//! `bzj_fillet` and `bzj_fillet_auto_scale` on fuzzed curve pairs with
+//! fuzzed setbacks (any double), orders (also `SIZE_MAX`) and scales;
+//! sometimes one out-pointer NULL.
 #![no_main]
 
 use bezjoin_fuzz::*;
@@ -42,8 +43,24 @@ fuzz_target!(|data: &[u8]| {
     let pa: *mut *mut BzjCurve = if drop_one == 1 { null_mut() } else { &mut a };
     let pb: *mut *mut BzjCurve = if drop_one == 2 { null_mut() } else { &mut b };
     let pc: *mut *mut BzjCurve = if drop_one == 3 { null_mut() } else { &mut c };
+    // Sometimes the automatic scale (the given scales are then ignored),
+    // with or without somewhere to write the chosen scale.
+    let auto = input.byte() % 4;
+    let mut scale = f64::NAN;
     // SAFETY: live handles, readable options, out-pointers valid or NULL.
-    let status = unsafe { bzj_fillet(p, q, &options, pa, pb, pc) };
+    let status = unsafe {
+        match auto {
+            0 => bzj_fillet_auto_scale(p, q, &options, pa, pb, pc, &mut scale),
+            1 => bzj_fillet_auto_scale(p, q, &options, pa, pb, pc, null_mut()),
+            _ => bzj_fillet(p, q, &options, pa, pb, pc),
+        }
+    };
+    if auto == 0 && status == BzjStatus::BZJ_OK {
+        assert!(
+            scale.is_finite() && scale > 0.0,
+            "bzj_fillet_auto_scale reported the scale {scale}"
+        );
+    }
     if (1..=3).contains(&drop_one) {
         assert_eq!(
             status,

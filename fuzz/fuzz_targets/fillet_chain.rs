@@ -166,17 +166,30 @@ fuzz_target!(|data: &[u8]| {
             BzjStatus::BZJ_ERR_INVALID_ARGUMENT,
             "{call}: closed = {closed}, curve_count = {curve_count} of {n}"
         );
+    } else if null_entry.is_some_and(|i| i < curve_count) {
+        // Refused before the count, also in a count-only query.
+        assert_eq!(
+            status,
+            BzjStatus::BZJ_ERR_NULL_POINTER,
+            "{call}: NULL handle"
+        );
+    } else if curve_count < 2 {
+        assert_eq!(
+            status,
+            BzjStatus::BZJ_ERR_INVALID_ARGUMENT,
+            "{call}: fewer than 2 curves"
+        );
     } else {
         assert_eq!(count, needed, "{call}: count");
         if count_only {
             assert_eq!(status, BzjStatus::BZJ_OK, "{call}: count-only query");
-        } else if pieces_ptr.is_null() || null_entry.is_some_and(|i| i < curve_count) {
+        } else if pieces_ptr.is_null() {
             assert_eq!(
                 status,
                 BzjStatus::BZJ_ERR_NULL_POINTER,
-                "{call}: NULL array/handle"
+                "{call}: NULL array"
             );
-        } else if curve_count >= 2 && capacity < needed {
+        } else if capacity < needed {
             assert_eq!(
                 status,
                 BzjStatus::BZJ_ERR_BUFFER_TOO_SMALL,
@@ -184,7 +197,14 @@ fuzz_target!(|data: &[u8]| {
             );
         }
     }
-    if count_null || curves_null || options_null || !closed_valid || curve_count > n {
+    if count_null
+        || curves_null
+        || options_null
+        || !closed_valid
+        || curve_count > n
+        || null_entry.is_some_and(|i| i < curve_count)
+        || curve_count < 2
+    {
         assert_eq!(count, usize::MAX, "{call} wrote count before refusing");
     }
     if pieces_ptr.is_null() {

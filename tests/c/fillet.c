@@ -324,6 +324,13 @@ static void test_chain(void) {
     with_null[2] = owned[2];
     EXPECT_STATUS(bzj_fillet_chain(with_null, 3, &o, 0, pieces, 6, &count), BZJ_ERR_NULL_POINTER);
     expect_message("curves[1]");
+    /* The count-only query refuses what the real call would refuse. */
+    count = 77;
+    EXPECT_STATUS(bzj_fillet_chain(with_null, 3, &o, 0, NULL, 0, &count), BZJ_ERR_NULL_POINTER);
+    expect_message("curves[1]");
+    CHECK(count == 77, "count written by a refused query: %zu", count);
+    EXPECT_STATUS(bzj_fillet_chain(curves, 1, &o, 0, NULL, 0, &count), BZJ_ERR_INVALID_ARGUMENT);
+    expect_message("at least 2");
     EXPECT_STATUS(bzj_fillet_chain(NULL, 3, &o, 0, pieces, 6, &count), BZJ_ERR_NULL_POINTER);
     EXPECT_STATUS(bzj_fillet_chain(curves, 3, &o, 0, pieces, 6, NULL), BZJ_ERR_NULL_POINTER);
     EXPECT_STATUS(bzj_fillet_chain(curves, 3, &o, 0, NULL, 6, &count), BZJ_ERR_NULL_POINTER);

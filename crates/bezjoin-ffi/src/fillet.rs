@@ -515,8 +515,9 @@ pub unsafe extern "C" fn bzj_fillet_deviation(
 /// `2 * curve_count - 1` handles for an open chain, `2 * curve_count` for a
 /// closed one (ending with the blend back to the start). The number needed
 /// is written into `count`; `capacity == 0` with `out_pieces == NULL` is a
-/// valid "count only" query (nothing is computed). Release every handle
-/// with `bzj_curve_free`.
+/// valid "count only" query (nothing is computed, but the arguments are
+/// checked as below up to the count: NULL handles, `closed`, fewer than 2
+/// curves). Release every handle with `bzj_curve_free`.
 ///
 /// @return BZJ_ERR_NULL_POINTER if `curves`, one of its handles, `options`
 ///         or `count` is NULL, or `out_pieces` is NULL while `capacity > 0`;
@@ -571,6 +572,18 @@ pub unsafe extern "C" fn bzj_fillet_chain(
         };
         // SAFETY: caller promises `curve_count` readable pointers.
         let handles = unsafe { input_slice(curves, curve_count, "curves") }?;
+        // Checked before the count, so that a "count only" query already
+        // refuses what the real call would refuse without computing.
+        if let Some(i) = handles.iter().position(|h| h.is_null()) {
+            return Err(FfiError::NullPointer(format!("curves[{i}]")));
+        }
+        if curve_count < 2 {
+            return Err(BezjoinError::invalid(
+                "curves",
+                format!("a chain needs at least 2 curves, {curve_count} given"),
+            )
+            .into());
+        }
         let needed = if closed {
             curve_count.saturating_mul(2)
         } else {
@@ -589,7 +602,7 @@ pub unsafe extern "C" fn bzj_fillet_chain(
             // SAFETY: each is NULL or a live handle (caller contract).
             owned.push(unsafe { curve_ref(h, &format!("curves[{i}]")) }?.clone());
         }
-        if capacity < needed && curve_count >= 2 {
+        if capacity < needed {
             return Err(FfiError::BufferTooSmall {
                 name: "out_pieces (handles)".into(),
                 needed,
