@@ -9,35 +9,10 @@ use std::ptr::null_mut;
 
 fuzz_target!(|data: &[u8]| {
     let mut input = Input::new(data);
-    let Some(p) = curve(&mut input) else { return };
-    let Some(q) = curve(&mut input) else {
-        // SAFETY: live handle, released once.
-        unsafe { bzj_curve_free(p) };
+    let Some((p, q)) = curve_pair(&mut input) else {
         return;
     };
-    let setback = |input: &mut Input| {
-        if input.byte() % 4 == 0 {
-            input.double()
-        } else {
-            input.ordinary().abs() / 20.0
-        }
-    };
-    let options = BzjFilletOptions {
-        p_setback: setback(&mut input),
-        q_setback: setback(&mut input),
-        p_order: input.size(6),
-        q_order: input.size(6),
-        p_scale: if input.byte() % 4 == 0 {
-            input.double()
-        } else {
-            1.0
-        },
-        q_scale: if input.byte() % 4 == 0 {
-            input.double()
-        } else {
-            1.0
-        },
-    };
+    let options = fillet_options(&mut input);
     let drop_one = input.byte() % 16;
     let (mut a, mut b, mut c) = (null_mut(), null_mut(), null_mut());
     let pa: *mut *mut BzjCurve = if drop_one == 1 { null_mut() } else { &mut a };

@@ -73,14 +73,7 @@ fuzz_target!(|data: &[u8]| {
         handles.extend(c);
     }
     let n = handles.len();
-    let mut curves: Vec<*const BzjCurve> = handles.iter().map(|&h| h.cast_const()).collect();
-    let null_entry = if n > 0 && input.byte().is_multiple_of(16) {
-        let i = input.below(n);
-        curves[i] = null();
-        Some(i)
-    } else {
-        None
-    };
+    let (curves, null_entry) = handle_array(&mut input, &handles);
     let curves_null = input.byte().is_multiple_of(32);
     let curve_count = match input.byte() % 16 {
         _ if curves_null => input.size(MAX_CHAIN),
@@ -88,29 +81,7 @@ fuzz_target!(|data: &[u8]| {
         1 | 2 => input.below(n + 1),
         _ => n,
     };
-    let setback = |input: &mut Input| {
-        if input.byte().is_multiple_of(4) {
-            input.double()
-        } else {
-            input.ordinary().abs() / 20.0
-        }
-    };
-    let options = BzjFilletOptions {
-        p_setback: setback(&mut input),
-        q_setback: setback(&mut input),
-        p_order: input.size(6),
-        q_order: input.size(6),
-        p_scale: if input.byte().is_multiple_of(4) {
-            input.double()
-        } else {
-            1.0
-        },
-        q_scale: if input.byte().is_multiple_of(4) {
-            input.double()
-        } else {
-            1.0
-        },
-    };
+    let options = fillet_options(&mut input);
     let options_null = input.byte().is_multiple_of(32);
     let closed = match input.byte() % 8 {
         0 => i32::from_le_bytes([input.byte(), input.byte(), input.byte(), input.byte()]),

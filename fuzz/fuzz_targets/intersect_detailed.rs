@@ -66,10 +66,7 @@ fn bound(input: &mut Input, default: usize, small: usize) -> usize {
 
 fuzz_target!(|data: &[u8]| {
     let mut input = Input::new(data);
-    let Some(p) = curve(&mut input) else { return };
-    let Some(q) = curve(&mut input) else {
-        // SAFETY: live handle, released once.
-        unsafe { bzj_curve_free(p) };
+    let Some((p, q)) = curve_pair(&mut input) else {
         return;
     };
     let mut defaults = BzjIntersectOptions {

@@ -51,10 +51,7 @@ fn keep_points(input: &mut Input) -> Vec<BzjKeepPoint> {
 
 fuzz_target!(|data: &[u8]| {
     let mut input = Input::new(data);
-    let Some(p) = curve(&mut input) else { return };
-    let Some(q) = curve(&mut input) else {
-        // SAFETY: live handle, released once.
-        unsafe { bzj_curve_free(p) };
+    let Some((p, q)) = curve_pair(&mut input) else {
         return;
     };
     let p_points = keep_points(&mut input);

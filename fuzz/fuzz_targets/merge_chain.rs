@@ -100,14 +100,7 @@ fuzz_target!(|data: &[u8]| {
         }
     }
     let n = handles.len();
-    let mut curves: Vec<*const BzjCurve> = handles.iter().map(|&h| h.cast_const()).collect();
-    let null_entry = if n > 0 && input.byte().is_multiple_of(16) {
-        let i = input.below(n);
-        curves[i] = null();
-        Some(i)
-    } else {
-        None
-    };
+    let (curves, null_entry) = handle_array(&mut input, &handles);
     let curves_null = input.byte().is_multiple_of(32);
     let curve_count = if curves_null {
         input.size(MAX_CHAIN)

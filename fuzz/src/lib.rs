@@ -203,6 +203,72 @@ pub fn curve(input: &mut Input) -> Option<*mut BzjCurve> {
     curve_in(input, dim, MAX_DEGREE)
 }
 
+/// `BzjFilletOptions` from the input: setbacks mostly short and positive,
+/// sometimes any double; orders up to 6 (or `SIZE_MAX`, see
+/// [`Input::size`]); scales 1 or any double.
+pub fn fillet_options(input: &mut Input) -> BzjFilletOptions {
+    let mut setback = || {
+        if input.byte().is_multiple_of(4) {
+            input.double()
+        } else {
+            input.ordinary().abs() / 20.0
+        }
+    };
+    let p_setback = setback();
+    let q_setback = setback();
+    let p_order = input.size(6);
+    let q_order = input.size(6);
+    let mut scale = || {
+        if input.byte().is_multiple_of(4) {
+            input.double()
+        } else {
+            1.0
+        }
+    };
+    let p_scale = scale();
+    let q_scale = scale();
+    BzjFilletOptions {
+        p_setback,
+        q_setback,
+        p_order,
+        q_order,
+        p_scale,
+        q_scale,
+    }
+}
+
+/// `handles` as a C array of `const BzjCurve*`, one entry sometimes (1 in
+/// 16) replaced by NULL: the array and the index of that entry.
+pub fn handle_array(
+    input: &mut Input,
+    handles: &[*mut BzjCurve],
+) -> (Vec<*const BzjCurve>, Option<usize>) {
+    let n = handles.len();
+    let mut curves: Vec<*const BzjCurve> = handles.iter().map(|&h| h.cast_const()).collect();
+    let null_entry = if n > 0 && input.byte().is_multiple_of(16) {
+        let i = input.below(n);
+        curves[i] = std::ptr::null();
+        Some(i)
+    } else {
+        None
+    };
+    (curves, null_entry)
+}
+
+/// Two curves built as by [`curve`], or `None` (nothing left to free) when
+/// either is invalid. Free both with `bzj_curve_free`.
+pub fn curve_pair(input: &mut Input) -> Option<(*mut BzjCurve, *mut BzjCurve)> {
+    let p = curve(input)?;
+    match curve(input) {
+        Some(q) => Some((p, q)),
+        None => {
+            // SAFETY: live handle, released once.
+            unsafe { bzj_curve_free(p) };
+            None
+        }
+    }
+}
+
 /// A curve of dimension `dim` and degree `<= max_degree` built as by
 /// [`curve`] (chains share one dimension so that they reach the success path).
 pub fn curve_in(input: &mut Input, dim: usize, max_degree: usize) -> Option<*mut BzjCurve> {
