@@ -84,6 +84,41 @@ int main(void) {
         expect_message("points[2]");
         CHECK(bad == NULL, "out cleared on NaN");
     }
+    /* Degree above the maximum (MAX_DEGREE = 4096 in crates/bezjoin/src/bezier.rs),
+       with a points array of exactly the right length: refused for the
+       degree alone. The maximum itself is accepted. */
+    {
+        enum { MAX_DEGREE = 4096 };
+        static double zeros[MAX_DEGREE + 2]; /* zero-initialised */
+        bad = sentinel;
+        EXPECT_STATUS(bzj_curve_new(1, MAX_DEGREE + 1, zeros, MAX_DEGREE + 2, &bad),
+                      BZJ_ERR_INVALID_ARGUMENT);
+        CHECK(bad == NULL, "out cleared on a degree above the maximum");
+        expect_message("degree");
+        expect_message("4097");
+        BzjCurve* top = NULL;
+        EXPECT_STATUS(bzj_curve_new(1, MAX_DEGREE, zeros, MAX_DEGREE + 1, &top), BZJ_OK);
+        CHECK(top != NULL, "the maximum degree is accepted");
+        bzj_curve_free(top);
+    }
+    /* (degree + 1) * dim overflows size_t: refused from the numbers alone,
+       before points is read (it holds only 8 doubles). */
+    bad = sentinel;
+    EXPECT_STATUS(bzj_curve_new(2, SIZE_MAX, pts, 8, &bad), BZJ_ERR_INVALID_ARGUMENT);
+    CHECK(bad == NULL, "out cleared when degree + 1 overflows");
+    expect_message("degree");
+    expect_message("overflows");
+    bad = sentinel;
+    EXPECT_STATUS(bzj_curve_new(SIZE_MAX, 3, pts, 8, &bad), BZJ_ERR_INVALID_ARGUMENT);
+    CHECK(bad == NULL, "out cleared when (degree + 1) * dim overflows");
+    expect_message("dim");
+    expect_message("overflows");
+    bad = sentinel;
+    EXPECT_STATUS(bzj_curve_new(SIZE_MAX / 2 + 1, 1, pts, 8, &bad), BZJ_ERR_INVALID_ARGUMENT);
+    CHECK(bad == NULL, "out cleared when 2 * dim overflows");
+    bad = sentinel;
+    EXPECT_STATUS(bzj_curve_new(SIZE_MAX, SIZE_MAX, pts, 8, &bad), BZJ_ERR_INVALID_ARGUMENT);
+    CHECK(bad == NULL, "out cleared when both are SIZE_MAX");
 
     /* degree, dim, points */
     EXPECT_STATUS(bzj_curve_degree(c, &n), BZJ_OK);
@@ -120,11 +155,53 @@ int main(void) {
         CHECK(fabs(v[2] - 3.0) < 1e-14 && fabs(v[3] - 6.0) < 1e-14, "first derivative at 0");
         CHECK(fabs(v[6] - 6.0 * (4.0 - 3 * 3.0 + 3 * 1.0 - 0.0)) < 1e-12, "third derivative x");
         EXPECT_STATUS(bzj_curve_eval(c, 0.5, 3, v, 7), BZJ_ERR_BUFFER_TOO_SMALL);
+        expect_message("out");
+        {
+            /* Nothing is written to a buffer that is too short. */
+            double shortbuf[7];
+            for (int i = 0; i < 7; i++) shortbuf[i] = -7.25;
+            EXPECT_STATUS(bzj_curve_eval(c, 0.5, 3, shortbuf, 7), BZJ_ERR_BUFFER_TOO_SMALL);
+            EXPECT_STATUS(bzj_curve_eval(c, 0.5, 0, shortbuf, 1), BZJ_ERR_BUFFER_TOO_SMALL);
+            int untouched = 1;
+            for (int i = 0; i < 7; i++) untouched = untouched && shortbuf[i] == -7.25;
+            CHECK(untouched, "eval wrote into a too-short buffer");
+        }
         EXPECT_STATUS(bzj_curve_eval(c, NAN, 0, v, 2), BZJ_ERR_NON_FINITE);
         expect_message("t");
         EXPECT_STATUS(bzj_curve_eval(c, 0.5, 0, NULL, 2), BZJ_ERR_NULL_POINTER);
         EXPECT_STATUS(bzj_curve_eval(NULL, 0.5, 0, v, 2), BZJ_ERR_NULL_POINTER);
         EXPECT_STATUS(bzj_curve_eval(c, 0.5, (size_t)-1, v, 8), BZJ_ERR_INVALID_ARGUMENT);
+    }
+
+    /* eval outside [0, 1] continues the polynomial: at t = a and t = b it
+       equals the extrapolated segment s -> c(a + (b - a) s) at s = 0 and
+       s = 1 (computed by blossoming, a different route), and the k-th
+       derivatives satisfy seg^(k)(s) = (b - a)^k c^(k)(a + (b - a) s).
+       Orders above the degree are zero. */
+    {
+        const double a = -0.5, b = 1.5;
+        BzjCurve* seg = NULL;
+        EXPECT_STATUS(bzj_curve_segment(c, a, b, &seg), BZJ_OK);
+        for (int end = 0; end <= 1; end++) {
+            double t = end ? b : a;
+            double direct[12], via[12];
+            EXPECT_STATUS(bzj_curve_eval(c, t, 5, direct, 12), BZJ_OK);
+            EXPECT_STATUS(bzj_curve_eval(seg, (double)end, 5, via, 12), BZJ_OK);
+            double factor = 1.0;
+            for (int k = 0; k <= 5; k++) {
+                double want[2] = {factor * direct[2 * k], factor * direct[2 * k + 1]};
+                double size = sqrt(want[0] * want[0] + want[1] * want[1]);
+                CHECK(dist2(&via[2 * k], want) <= 1e-12 * (size > 1.0 ? size : 1.0),
+                      "t = %g, order %d: segment gives (%.17g, %.17g), eval (%.17g, %.17g)", t, k,
+                      via[2 * k], via[2 * k + 1], want[0], want[1]);
+                if (k > 3) {
+                    CHECK(direct[2 * k] == 0.0 && direct[2 * k + 1] == 0.0,
+                          "order %d above the degree is not zero at t = %g", k, t);
+                }
+                factor *= b - a;
+            }
+        }
+        bzj_curve_free(seg);
     }
 
     /* elevate: same values */
@@ -225,8 +302,33 @@ int main(void) {
         EXPECT_STATUS(bzj_curve_length(l, 1.0, 0.0, &len), BZJ_OK);
         CHECK(fabs(len + 5.0) < 1e-12, "reversed length %.17g", len);
         EXPECT_STATUS(bzj_curve_length(l, 0.0, NAN, &len), BZJ_ERR_NON_FINITE);
+        expect_message("b = NaN");
+        /* On every error `out` is left as it was. */
+        len = 42.5;
+        EXPECT_STATUS(bzj_curve_length(l, NAN, 1.0, &len), BZJ_ERR_NON_FINITE);
+        CHECK(strcmp(bzj_last_error(), "a = NaN is not finite") == 0, "message '%s'", bzj_last_error());
+        CHECK(len == 42.5, "out written on NaN a: %.17g", len);
+        EXPECT_STATUS(bzj_curve_length(l, -INFINITY, 1.0, &len), BZJ_ERR_NON_FINITE);
+        expect_message("a = -inf");
+        CHECK(len == 42.5, "out written on infinite a: %.17g", len);
+        /* A range so long that the length overflows the double range
+           (|c(t)| ~ t^3 for the cubic, t^2 for this non-uniform line):
+           BZJ_ERR_INVALID_ARGUMENT naming a and b, as documented. */
+        EXPECT_STATUS(bzj_curve_length(c, -1e200, 1e200, &len), BZJ_ERR_INVALID_ARGUMENT);
+        expect_message("a, b");
+        expect_message("overflows");
+        CHECK(len == 42.5, "out written on an overflowing length: %.17g", len);
+        EXPECT_STATUS(bzj_curve_length(l, 1e200, -1e200, &len), BZJ_ERR_INVALID_ARGUMENT);
+        expect_message("overflows");
+        CHECK(len == 42.5, "out written on an overflowing reversed length: %.17g", len);
         EXPECT_STATUS(bzj_curve_length(l, 0.0, 1.0, NULL), BZJ_ERR_NULL_POINTER);
+        expect_message("out");
         EXPECT_STATUS(bzj_curve_length(NULL, 0.0, 1.0, &len), BZJ_ERR_NULL_POINTER);
+        expect_message("c");
+        CHECK(len == 42.5, "out written on a NULL curve: %.17g", len);
+        /* Long but representable: a finite value (rounding-level accuracy). */
+        EXPECT_STATUS(bzj_curve_length(c, -1e4, 1e4, &len), BZJ_OK);
+        CHECK(isfinite(len) && len > 0.0, "long extrapolated length %.17g", len);
         bzj_curve_free(l);
     }
 

@@ -12,8 +12,11 @@ use crate::guard::{
 /// `points_len == (degree + 1) * dim` row-major coordinates.
 ///
 /// @return BZJ_ERR_NULL_POINTER if `points` or `out` is NULL;
-///         BZJ_ERR_INVALID_ARGUMENT if `dim == 0` or `points_len` is wrong;
+///         BZJ_ERR_INVALID_ARGUMENT if `dim == 0`, `degree` is above the
+///         maximum degree 4096, `(degree + 1) * dim` overflows `size_t`, or
+///         `points_len` is wrong (all checked before `points` is read);
 ///         BZJ_ERR_NON_FINITE if a coordinate is NaN or infinite.
+///         On any error `*out` is set to NULL.
 ///
 /// # Safety
 /// `points` points to `points_len` readable doubles; `out` is writable.
@@ -39,7 +42,12 @@ pub unsafe extern "C" fn bzj_curve_new(
         let expected = degree
             .checked_add(1)
             .and_then(|n| n.checked_mul(dim))
-            .ok_or_else(|| BezjoinError::invalid("degree", format!("{degree} is too large")))?;
+            .ok_or_else(|| {
+                BezjoinError::invalid(
+                    "degree, dim",
+                    format!("(degree + 1) * dim = ({degree} + 1) * {dim} overflows"),
+                )
+            })?;
         if points_len != expected {
             return Err(BezjoinError::LengthMismatch {
                 name: "points".into(),
@@ -112,6 +120,7 @@ pub unsafe extern "C" fn bzj_curve_dim(c: *const BzjCurve, out: *mut usize) -> B
 /// Copy the `(degree + 1) * dim` row-major control points of `c` into `out`.
 ///
 /// @return BZJ_ERR_NULL_POINTER if `c` or `out` is NULL;
+///         BZJ_ERR_INVALID_ARGUMENT if `out_len` is larger than any array can be;
 ///         BZJ_ERR_BUFFER_TOO_SMALL if `out_len < (degree + 1) * dim` (nothing written).
 ///
 /// # Safety
@@ -138,6 +147,8 @@ pub unsafe extern "C" fn bzj_curve_points(
 ///
 /// @return BZJ_ERR_NULL_POINTER if `c` or `out` is NULL;
 ///         BZJ_ERR_NON_FINITE if `t` is NaN or infinite;
+///         BZJ_ERR_INVALID_ARGUMENT if `(max_order + 1) * dim` overflows
+///         `size_t` or `out_len` is larger than any array can be;
 ///         BZJ_ERR_BUFFER_TOO_SMALL if `out_len` is short (nothing written).
 ///
 /// # Safety
@@ -174,7 +185,8 @@ pub unsafe extern "C" fn bzj_curve_eval(
 /// The same curve written with degree `new_degree >= degree` (exact).
 ///
 /// @return BZJ_ERR_NULL_POINTER if `c` or `out` is NULL;
-///         BZJ_ERR_INVALID_ARGUMENT if `new_degree` is below the degree.
+///         BZJ_ERR_INVALID_ARGUMENT if `new_degree` is below the degree or
+///         above the maximum degree 4096.
 ///
 /// # Safety
 /// `c` is NULL or a live handle; `out` is NULL or writable.
@@ -294,7 +306,12 @@ pub unsafe extern "C" fn bzj_curve_reverse(
 ///
 /// @return BZJ_ERR_NULL_POINTER if `c` or `out` is NULL;
 ///         BZJ_ERR_NON_FINITE if `a` or `b` is NaN or infinite;
-///         BZJ_ERR_INVALID_ARGUMENT if the length overflows the double range.
+///         BZJ_ERR_INVALID_ARGUMENT if the length overflows the double range
+///         (e.g. `a = -1e200, b = 1e200`; the message names `a, b`);
+///         BZJ_ERR_ILL_CONDITIONED if the adaptive rule spends its work
+///         budget (about 10^6 speed evaluations, 40 bisections) without
+///         reaching the accuracy above; the message carries the estimated
+///         relative error. On any error `*out` is left unchanged.
 ///
 /// # Safety
 /// `c` is NULL or a live handle; `out` is NULL or writable.

@@ -2,7 +2,7 @@
 //! and the pointer helpers every entry point uses.
 
 use std::cell::RefCell;
-use std::ffi::{CString, c_char};
+use std::ffi::{CStr, CString, c_char};
 use std::panic::{AssertUnwindSafe, catch_unwind};
 
 use bezjoin_core::{BezierCurve, BezjoinError};
@@ -67,6 +67,30 @@ impl From<BezjoinError> for FfiError {
 }
 
 impl FfiError {
+    /// The status code of this error: exactly one per variant, several
+    /// variants sharing a code (the message tells them apart). The `match`
+    /// is exhaustive without a wildcard, so a new core variant does not
+    /// compile until it is given a code here (and in the table of
+    /// [`BezjoinError`] and the test `every_error_variant_has_its_one_status`).
+    ///
+    /// | Error                                   | Status                       |
+    /// |-----------------------------------------|------------------------------|
+    /// | `NullPointer`                           | `BZJ_ERR_NULL_POINTER` (1)       |
+    /// | `BufferTooSmall`, `HandleArrayTooSmall` | `BZJ_ERR_BUFFER_TOO_SMALL` (5)   |
+    /// | `Core(ParameterOutOfRange)`             | `BZJ_ERR_INVALID_ARGUMENT` (2)   |
+    /// | `Core(OrderAboveDegree)`                | `BZJ_ERR_INVALID_ARGUMENT` (2)   |
+    /// | `Core(LengthMismatch)`                  | `BZJ_ERR_INVALID_ARGUMENT` (2)   |
+    /// | `Core(InvalidArgument)`                 | `BZJ_ERR_INVALID_ARGUMENT` (2)   |
+    /// | `Core(NonFinite)`                       | `BZJ_ERR_NON_FINITE` (3)         |
+    /// | `Core(NonFiniteScalar)`                 | `BZJ_ERR_NON_FINITE` (3)         |
+    /// | `Core(DimensionMismatch)`               | `BZJ_ERR_DIMENSION_MISMATCH` (4) |
+    /// | `Core(Inconsistent)`                    | `BZJ_ERR_INCONSISTENT` (6)       |
+    /// | `Core(Singular)`                        | `BZJ_ERR_SINGULAR` (7)           |
+    /// | `Core(IllConditioned)`                  | `BZJ_ERR_ILL_CONDITIONED` (8)    |
+    /// | `Core(NoIntersection)`                  | `BZJ_ERR_NO_INTERSECTION` (9)    |
+    ///
+    /// `BZJ_ERR_INTERNAL` (99) is not an error value: [`guard`] returns it
+    /// for a caught panic.
     pub(crate) fn status(&self) -> BzjStatus {
         use BzjStatus::*;
         match self {
@@ -119,15 +143,32 @@ thread_local! {
     static LAST_ERROR: RefCell<CString> = RefCell::new(CString::default());
 }
 
+/// Returned by [`bzj_last_error`] when the thread's message cannot be read
+/// (its thread-local storage already destroyed, during thread exit).
+static NO_MESSAGE: &CStr = c"";
+
+/// Store the calling thread's message. Never panics: while the thread-local
+/// is being destroyed (a call from another thread-local's destructor at
+/// thread exit) the message is dropped, and the status still returned.
 fn set_last_error(message: &str) {
-    LAST_ERROR.with(|e| {
+    let _ = LAST_ERROR.try_with(|e| {
         // A success after a success: nothing to store (no allocation on the
         // hot path of evaluation calls).
-        if message.is_empty() && e.borrow().as_bytes().is_empty() {
+        if message.is_empty() && e.try_borrow().is_ok_and(|m| m.as_bytes().is_empty()) {
             return;
         }
-        *e.borrow_mut() = CString::new(message.replace('\0', " ")).unwrap_or_default();
+        let text = CString::new(message.replace('\0', " ")).unwrap_or_default();
+        if let Ok(mut slot) = e.try_borrow_mut() {
+            *slot = text;
+        }
     });
+}
+
+/// Run the body of an entry point that cannot report a status (it returns
+/// a pointer) inside catch_unwind: a panic, which the body is written never
+/// to raise, gives `fallback` instead of unwinding into C.
+fn no_unwind<T>(fallback: T, body: impl FnOnce() -> T) -> T {
+    catch_unwind(AssertUnwindSafe(body)).unwrap_or(fallback)
 }
 
 /// Run one entry point's body: a panic becomes `BZJ_ERR_INTERNAL`, an error
@@ -284,20 +325,33 @@ static VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "\0");
 /// The library version, `"MAJOR.MINOR.PATCH"` (a static string).
 #[unsafe(no_mangle)]
 pub extern "C" fn bzj_version() -> *const c_char {
-    VERSION.as_ptr().cast()
+    // Cannot panic (a static's address); inside `no_unwind` all the same, so
+    // that every extern "C" body runs under catch_unwind without exception.
+    let version: *const c_char = VERSION.as_ptr().cast();
+    no_unwind(version, || version)
 }
 
 /// The message of the calling thread's last failed call (empty after a
-/// success). Valid until this thread's next bezjoin call; never NULL.
+/// success). Valid until this thread's next bezjoin call; never NULL (an
+/// empty static string when called during thread exit, after the thread's
+/// message storage is gone).
 #[unsafe(no_mangle)]
 pub extern "C" fn bzj_last_error() -> *const c_char {
-    LAST_ERROR.with(|e| e.borrow().as_ptr())
+    no_unwind(NO_MESSAGE.as_ptr(), || {
+        LAST_ERROR
+            .try_with(|e| e.try_borrow().map_or(NO_MESSAGE.as_ptr(), |m| m.as_ptr()))
+            .unwrap_or(NO_MESSAGE.as_ptr())
+    })
 }
 
 /// The name of a status code as a static string (`"BZJ_ERR_SINGULAR"`),
 /// `"BZJ_UNKNOWN_STATUS"` for a value that is not one.
 #[unsafe(no_mangle)]
 pub extern "C" fn bzj_status_name(status: i32) -> *const c_char {
+    no_unwind(c"BZJ_UNKNOWN_STATUS".as_ptr(), || status_name(status))
+}
+
+fn status_name(status: i32) -> *const c_char {
     let name: &'static str = match status {
         0 => "BZJ_OK\0",
         1 => "BZJ_ERR_NULL_POINTER\0",
@@ -319,14 +373,292 @@ pub extern "C" fn bzj_status_name(status: i32) -> *const c_char {
 mod tests {
     use super::*;
 
+    fn text(p: *const c_char) -> String {
+        assert!(!p.is_null());
+        // SAFETY: the library's strings are NUL-terminated and live long enough.
+        unsafe { CStr::from_ptr(p) }.to_str().unwrap().to_owned()
+    }
+
+    fn last_error() -> String {
+        text(bzj_last_error())
+    }
+
     #[test]
     fn panic_becomes_internal_with_message() {
         let s = guard(|| panic!("boom"));
         assert_eq!(s, BzjStatus::BZJ_ERR_INTERNAL);
-        let msg = unsafe { std::ffi::CStr::from_ptr(bzj_last_error()) }
-            .to_str()
-            .unwrap()
-            .to_owned();
+        let msg = last_error();
         assert!(msg.contains("boom"), "{msg}");
+    }
+
+    /// Which variant an error is. No wildcard: a new variant of either enum
+    /// stops this test compiling until the table below gives it a status.
+    fn variant(e: &FfiError) -> &'static str {
+        use BezjoinError as E;
+        match e {
+            FfiError::NullPointer(_) => "NullPointer",
+            FfiError::BufferTooSmall { .. } => "BufferTooSmall",
+            FfiError::HandleArrayTooSmall { .. } => "HandleArrayTooSmall",
+            FfiError::Core(core) => match core {
+                E::ParameterOutOfRange { .. } => "ParameterOutOfRange",
+                E::OrderAboveDegree { .. } => "OrderAboveDegree",
+                E::LengthMismatch { .. } => "LengthMismatch",
+                E::InvalidArgument { .. } => "InvalidArgument",
+                E::NonFinite { .. } => "NonFinite",
+                E::NonFiniteScalar { .. } => "NonFiniteScalar",
+                E::DimensionMismatch { .. } => "DimensionMismatch",
+                E::Inconsistent { .. } => "Inconsistent",
+                E::Singular { .. } => "Singular",
+                E::IllConditioned { .. } => "IllConditioned",
+                E::NoIntersection { .. } => "NoIntersection",
+            },
+        }
+    }
+
+    /// The documented mapping (the tables at `BezjoinError` and
+    /// `FfiError::status`), with the values and names the C contract fixes:
+    /// each variant exactly once, each with exactly one status; through the
+    /// guard the status and the variant's own message reach the caller.
+    #[test]
+    fn every_error_variant_has_its_one_status() {
+        use BezjoinError as E;
+        use BzjStatus::*;
+        let core = |e: E| FfiError::Core(e);
+        let table: Vec<(FfiError, BzjStatus, i32, &str)> = vec![
+            (
+                FfiError::NullPointer("points".into()),
+                BZJ_ERR_NULL_POINTER,
+                1,
+                "BZJ_ERR_NULL_POINTER",
+            ),
+            (
+                FfiError::BufferTooSmall {
+                    name: "out".into(),
+                    needed: 8,
+                    given: 7,
+                },
+                BZJ_ERR_BUFFER_TOO_SMALL,
+                5,
+                "BZJ_ERR_BUFFER_TOO_SMALL",
+            ),
+            (
+                FfiError::HandleArrayTooSmall {
+                    name: "out".into(),
+                    needed: 3,
+                    given: 2,
+                },
+                BZJ_ERR_BUFFER_TOO_SMALL,
+                5,
+                "BZJ_ERR_BUFFER_TOO_SMALL",
+            ),
+            (
+                core(E::out_of_range("u0", 1.5, "[0, 1]")),
+                BZJ_ERR_INVALID_ARGUMENT,
+                2,
+                "BZJ_ERR_INVALID_ARGUMENT",
+            ),
+            (
+                core(E::OrderAboveDegree {
+                    name: "kp".into(),
+                    order: 4,
+                    degree: 3,
+                    curve: "P".into(),
+                }),
+                BZJ_ERR_INVALID_ARGUMENT,
+                2,
+                "BZJ_ERR_INVALID_ARGUMENT",
+            ),
+            (
+                core(E::LengthMismatch {
+                    name: "points".into(),
+                    expected: 8,
+                    actual: 7,
+                }),
+                BZJ_ERR_INVALID_ARGUMENT,
+                2,
+                "BZJ_ERR_INVALID_ARGUMENT",
+            ),
+            (
+                core(E::invalid("dim", "must be at least 1")),
+                BZJ_ERR_INVALID_ARGUMENT,
+                2,
+                "BZJ_ERR_INVALID_ARGUMENT",
+            ),
+            (
+                core(E::NonFinite {
+                    name: "points".into(),
+                    index: 2,
+                    value: f64::NAN,
+                }),
+                BZJ_ERR_NON_FINITE,
+                3,
+                "BZJ_ERR_NON_FINITE",
+            ),
+            (
+                core(E::NonFiniteScalar {
+                    name: "t".into(),
+                    value: f64::INFINITY,
+                }),
+                BZJ_ERR_NON_FINITE,
+                3,
+                "BZJ_ERR_NON_FINITE",
+            ),
+            (
+                core(E::DimensionMismatch {
+                    name: "q".into(),
+                    expected: 2,
+                    actual: 3,
+                }),
+                BZJ_ERR_DIMENSION_MISMATCH,
+                4,
+                "BZJ_ERR_DIMENSION_MISMATCH",
+            ),
+            (
+                core(E::Inconsistent {
+                    reason: "keep P and keep Q".into(),
+                }),
+                BZJ_ERR_INCONSISTENT,
+                6,
+                "BZJ_ERR_INCONSISTENT",
+            ),
+            (
+                core(E::Singular {
+                    what: "the middle block".into(),
+                }),
+                BZJ_ERR_SINGULAR,
+                7,
+                "BZJ_ERR_SINGULAR",
+            ),
+            (
+                core(E::IllConditioned {
+                    what: "connect".into(),
+                    estimate: 1e-6,
+                    limit: 1e-8,
+                }),
+                BZJ_ERR_ILL_CONDITIONED,
+                8,
+                "BZJ_ERR_ILL_CONDITIONED",
+            ),
+            (
+                core(E::NoIntersection {
+                    reason: "the curves only touch".into(),
+                }),
+                BZJ_ERR_NO_INTERSECTION,
+                9,
+                "BZJ_ERR_NO_INTERSECTION",
+            ),
+        ];
+        let mut seen = std::collections::BTreeMap::new();
+        for (error, status, value, name) in &table {
+            *seen.entry(variant(error)).or_insert(0) += 1;
+            assert_eq!(error.status(), *status, "{error:?}");
+            assert_eq!(*status as i32, *value, "{name}");
+            assert_eq!(text(bzj_status_name(*value)), *name);
+            let message = error.message();
+            assert!(!message.is_empty(), "{error:?}");
+            let returned = guard(|| {
+                Err(match error {
+                    FfiError::Core(e) => FfiError::Core(e.clone()),
+                    FfiError::NullPointer(n) => FfiError::NullPointer(n.clone()),
+                    FfiError::BufferTooSmall {
+                        name,
+                        needed,
+                        given,
+                    } => FfiError::BufferTooSmall {
+                        name: name.clone(),
+                        needed: *needed,
+                        given: *given,
+                    },
+                    FfiError::HandleArrayTooSmall {
+                        name,
+                        needed,
+                        given,
+                    } => FfiError::HandleArrayTooSmall {
+                        name: name.clone(),
+                        needed: *needed,
+                        given: *given,
+                    },
+                })
+            });
+            assert_eq!(returned, *status, "{error:?}");
+            assert_eq!(last_error(), message);
+            if let FfiError::Core(e) = error {
+                assert_eq!(message, e.to_string());
+            }
+        }
+        // 3 boundary variants + 11 core variants, each exactly once.
+        assert_eq!(seen.len(), 14, "{seen:?}");
+        assert!(seen.values().all(|&k| k == 1), "{seen:?}");
+        // No error value maps to success or to the panic code.
+        assert!(
+            table
+                .iter()
+                .all(|(e, ..)| !matches!(e.status(), BZJ_OK | BZJ_ERR_INTERNAL))
+        );
+        assert_eq!(guard(|| Ok(())), BZJ_OK);
+        assert_eq!(last_error(), "");
+    }
+
+    #[test]
+    fn status_names_and_version_are_static_strings() {
+        for (value, name) in [
+            (0, "BZJ_OK"),
+            (99, "BZJ_ERR_INTERNAL"),
+            (10, "BZJ_UNKNOWN_STATUS"),
+            (-1, "BZJ_UNKNOWN_STATUS"),
+            (i32::MIN, "BZJ_UNKNOWN_STATUS"),
+        ] {
+            assert_eq!(text(bzj_status_name(value)), name);
+        }
+        assert_eq!(text(bzj_version()), env!("CARGO_PKG_VERSION"));
+        assert_eq!(bzj_version(), bzj_version());
+    }
+
+    /// Calls made from another thread-local's destructor at thread exit,
+    /// after `LAST_ERROR` is gone: `bzj_last_error` returns an empty string
+    /// (with `LocalKey::with` it panicked, and a panic there aborts the
+    /// process), an entry point still returns its status.
+    #[test]
+    fn last_error_during_thread_exit_is_empty_not_a_panic() {
+        use std::sync::Mutex;
+        static SEEN: Mutex<Vec<(bool, String, BzjStatus, String)>> = Mutex::new(Vec::new());
+
+        struct CallsAtExit;
+        impl Drop for CallsAtExit {
+            fn drop(&mut self) {
+                let gone = LAST_ERROR.try_with(|_| ()).is_err();
+                let before = text(bzj_last_error());
+                let status = guard(|| Err(FfiError::NullPointer("late".into())));
+                let after = text(bzj_last_error());
+                SEEN.lock().unwrap().push((gone, before, status, after));
+            }
+        }
+        thread_local! {
+            static AT_EXIT: CallsAtExit = const { CallsAtExit };
+        }
+
+        std::thread::spawn(|| {
+            // Registered first, so destroyed after LAST_ERROR (destructors
+            // run in reverse order of registration on this platform).
+            AT_EXIT.with(|_| ());
+            let s = guard(|| Err(FfiError::NullPointer("early".into())));
+            assert_eq!(s, BzjStatus::BZJ_ERR_NULL_POINTER);
+            assert_eq!(last_error(), "early is a null pointer");
+        })
+        .join()
+        .expect("the thread exits cleanly");
+
+        let seen = SEEN.lock().unwrap();
+        assert_eq!(seen.len(), 1);
+        let (gone, before, status, after) = &seen[0];
+        assert_eq!(*status, BzjStatus::BZJ_ERR_NULL_POINTER);
+        if *gone {
+            assert_eq!(before, "");
+            assert_eq!(after, "");
+        } else {
+            // Another destructor order: the storage is still there.
+            assert_eq!(before, "early is a null pointer");
+            assert_eq!(after, "late is a null pointer");
+        }
     }
 }

@@ -667,9 +667,6 @@ mod tests {
 
     #[test]
     fn straight_line_is_exact() {
-        let line =
-            BezierCurve::from_rows(&[[0.0, 0.0], [1.0, 1.0], [3.0, 3.0], [3.0, 4.0]]).unwrap();
-        let _ = line;
         let l = BezierCurve::from_rows(&[[1.0, 2.0], [4.0, 6.0]]).unwrap();
         let len = l.arc_length(0.0, 1.0, 1e-14).unwrap();
         assert!((len - 5.0).abs() < 1e-14);
@@ -677,7 +674,7 @@ mod tests {
     }
 
     #[test]
-    fn quarter_circle_approximation_and_parabola() {
+    fn parabola_length_matches_closed_form() {
         // Parabola y = x^2 on [0, 1]: (t, t^2) as a quadratic Bezier.
         let p = BezierCurve::from_rows(&[[0.0, 0.0], [0.5, 0.0], [1.0, 1.0]]).unwrap();
         let exact = (2.0f64 * 5.0f64.sqrt() + (2.0 + 5.0f64.sqrt()).ln()) / 4.0;

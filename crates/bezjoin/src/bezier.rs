@@ -56,7 +56,12 @@ impl BezierCurve {
         let expected = degree
             .checked_add(1)
             .and_then(|n| n.checked_mul(dim))
-            .ok_or_else(|| BezjoinError::invalid("degree", format!("{degree} is too large")))?;
+            .ok_or_else(|| {
+                BezjoinError::invalid(
+                    "degree, dim",
+                    format!("(degree + 1) * dim = ({degree} + 1) * {dim} overflows"),
+                )
+            })?;
         if points.len() != expected {
             return Err(BezjoinError::LengthMismatch {
                 name: "points".into(),
@@ -606,6 +611,39 @@ mod tests {
             BezierCurve::new(1, 1, vec![0.0, f64::INFINITY]),
             Err(BezjoinError::NonFinite { index: 1, .. })
         ));
+    }
+
+    #[test]
+    fn no_control_points_is_an_error_naming_points() {
+        let expected = BezjoinError::InvalidArgument {
+            name: "points".into(),
+            reason: "at least one control point is needed".into(),
+        };
+        let no_rows: [[f64; 2]; 0] = [];
+        assert_eq!(BezierCurve::from_rows(&no_rows).unwrap_err(), expected);
+        let no_slices: Vec<Vec<f64>> = Vec::new();
+        assert_eq!(BezierCurve::from_rows(&no_slices).unwrap_err(), expected);
+        for cols in [0, 1, 3] {
+            assert_eq!(
+                BezierCurve::from_matrix(&DMatrix::zeros(0, cols)).unwrap_err(),
+                expected,
+                "0 x {cols} matrix"
+            );
+        }
+        // Rows without coordinates: dimension 0, refused by the constructor.
+        assert!(matches!(
+            BezierCurve::from_matrix(&DMatrix::zeros(3, 0)),
+            Err(BezjoinError::InvalidArgument { ref name, .. }) if name == "dim"
+        ));
+        let empty_rows: [[f64; 0]; 2] = [[], []];
+        assert!(matches!(
+            BezierCurve::from_rows(&empty_rows),
+            Err(BezjoinError::InvalidArgument { ref name, .. }) if name == "dim"
+        ));
+        // One row is enough: a degree-0 curve (a point).
+        let point = BezierCurve::from_matrix(&DMatrix::from_row_slice(1, 2, &[1.0, 2.0])).unwrap();
+        assert_eq!((point.degree(), point.dim()), (0, 2));
+        assert_eq!(point.eval(0.7), vec![1.0, 2.0]);
     }
 
     #[test]

@@ -10,6 +10,33 @@
 pub type Result<T, E = BezjoinError> = std::result::Result<T, E>;
 
 /// Everything that can go wrong in a bezjoin operation.
+///
+/// # Status codes of the C ABI
+///
+/// Every variant maps onto exactly one status code of the C contract
+/// (`../shared/spec/c-api.md`); several variants share a code (the message
+/// from `bzj_last_error()` tells them apart). The mapping is the exhaustive
+/// `match` in `FfiError::status` (crate `bezjoin-ffi`, `guard.rs`), and a unit
+/// test there checks this table variant by variant:
+///
+/// | Variant                | Status                       | Value |
+/// |------------------------|------------------------------|-------|
+/// | [`ParameterOutOfRange`](Self::ParameterOutOfRange) | `BZJ_ERR_INVALID_ARGUMENT`   | 2 |
+/// | [`OrderAboveDegree`](Self::OrderAboveDegree)       | `BZJ_ERR_INVALID_ARGUMENT`   | 2 |
+/// | [`LengthMismatch`](Self::LengthMismatch)           | `BZJ_ERR_INVALID_ARGUMENT`   | 2 |
+/// | [`InvalidArgument`](Self::InvalidArgument)         | `BZJ_ERR_INVALID_ARGUMENT`   | 2 |
+/// | [`NonFinite`](Self::NonFinite)                     | `BZJ_ERR_NON_FINITE`         | 3 |
+/// | [`NonFiniteScalar`](Self::NonFiniteScalar)         | `BZJ_ERR_NON_FINITE`         | 3 |
+/// | [`DimensionMismatch`](Self::DimensionMismatch)     | `BZJ_ERR_DIMENSION_MISMATCH` | 4 |
+/// | [`Inconsistent`](Self::Inconsistent)               | `BZJ_ERR_INCONSISTENT`       | 6 |
+/// | [`Singular`](Self::Singular)                       | `BZJ_ERR_SINGULAR`           | 7 |
+/// | [`IllConditioned`](Self::IllConditioned)           | `BZJ_ERR_ILL_CONDITIONED`    | 8 |
+/// | [`NoIntersection`](Self::NoIntersection)           | `BZJ_ERR_NO_INTERSECTION`    | 9 |
+///
+/// The remaining codes come from the boundary alone: `BZJ_ERR_NULL_POINTER`
+/// (1, a NULL pointer), `BZJ_ERR_BUFFER_TOO_SMALL` (5, a caller's array too
+/// short) and `BZJ_ERR_INTERNAL` (99, a caught panic); no core error maps
+/// to them, and `BZJ_OK` (0) is success.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum BezjoinError {
     /// A scalar parameter lies outside its domain.
