@@ -1,9 +1,11 @@
 /* bzj_connect and bzj_connect_auto_scale through the C ABI: continuity
  * checked by evaluating both curves with bzj_curve_eval, and every error
- * path (null pointers, bad parameters, order above degree, bad constraints).
+ * path (null pointers, bad parameters, order above degree, bad constraints,
+ * an ill-posed problem refused by its residual check, a degree above 31).
  * Returns 0 on success, 1 with a message on the first failure. */
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "bezjoin.h"
@@ -172,6 +174,64 @@ int main(void) {
     CHECK(strstr(bzj_last_error(), "constraints[1].t") != NULL, "message: %s",
           bzj_last_error());
     CHECK(r == NULL, "out not cleared after errors");
+
+    /* An ill-posed problem far below the degree cap: two constraint points
+     * 1e-4 apart whose positions differ by 2 with equal tangents. The
+     * solve is done (degree 11) and refused by its own residual check, with
+     * a finite estimate above the promised 1e-8 in the message. */
+    {
+        const double p2_points[] = {0, 0, 1, 2, 2, 2, 3, 0};
+        const double q2_points[] = {6, 0, 7, -2, 8, -2, 9, 0};
+        const double first[] = {4.5, 1.0, 1.0, 0.0};
+        const double second[] = {4.5, -1.0, 1.0, 0.0};
+        BzjCurve *p2 = NULL, *q2 = NULL;
+        EXPECT_STATUS(bzj_curve_new(2, 3, p2_points, 8, &p2), BZJ_OK);
+        EXPECT_STATUS(bzj_curve_new(2, 3, q2_points, 8, &q2), BZJ_OK);
+        BzjPointConstraint crowded[2] = {{0.5, 1, first}, {0.5001, 1, second}};
+        BzjConnectOptions ill = {3, 3, 1.0, 1.0, crowded, 2};
+        r = sentinel;
+        EXPECT_STATUS(bzj_connect(p2, 1.0, q2, 0.0, &ill, &r), BZJ_ERR_ILL_CONDITIONED);
+        CHECK(r == NULL, "out not cleared");
+        const char* message = bzj_last_error();
+        CHECK(strncmp(message, "connect (degree 11): ", 21) == 0, "message: %s", message);
+        const char* key = "estimated relative error ";
+        const char* at = strstr(message, key);
+        CHECK(at != NULL, "no estimate in: %s", message);
+        if (at != NULL) {
+            char* end = NULL;
+            double estimate = strtod(at + strlen(key), &end);
+            CHECK(end != at + strlen(key), "estimate not a number: %s", message);
+            CHECK(isfinite(estimate) && estimate > 1e-8, "estimate %g in: %s", estimate,
+                  message);
+            CHECK(strstr(end, "exceeds the promised 1e-8") != NULL, "message: %s", message);
+        }
+        /* The same points 1e-2 apart are answered. */
+        crowded[1].t = 0.51;
+        EXPECT_STATUS(bzj_connect(p2, 1.0, q2, 0.0, &ill, &r), BZJ_OK);
+        check_match(r, 0.0, p2, 1.0, 3, 1.0, 2, "relaxed P end");
+        check_match(r, 1.0, q2, 0.0, 3, 1.0, 2, "relaxed Q end");
+        bzj_curve_free(r);
+        r = NULL;
+
+        /* Degree 3 + 3 + 1 + 25 = 32: refused before solving; the message
+         * names the degree, the estimate is inf (nothing was solved). */
+        double many[25 * 2] = {0};
+        BzjPointConstraint high = {0.5, 24, many};
+        BzjConnectOptions over = {3, 3, 1.0, 1.0, &high, 1};
+        r = sentinel;
+        EXPECT_STATUS(bzj_connect(p2, 1.0, q2, 0.0, &over, &r), BZJ_ERR_ILL_CONDITIONED);
+        CHECK(r == NULL, "out not cleared");
+        message = bzj_last_error();
+        CHECK(strstr(message, "result degree 32 is above the supported maximum 31") != NULL,
+              "message: %s", message);
+        CHECK(strstr(message, "estimated relative error inf") != NULL, "message: %s", message);
+        high.max_order = 23; /* degree 31 exactly is solved */
+        EXPECT_STATUS(bzj_connect(p2, 1.0, q2, 0.0, &over, &r), BZJ_OK);
+        bzj_curve_free(r);
+        r = NULL;
+        bzj_curve_free(p2);
+        bzj_curve_free(q2);
+    }
 
     bzj_curve_free(p);
     bzj_curve_free(q);

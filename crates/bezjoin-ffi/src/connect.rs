@@ -114,7 +114,10 @@ unsafe fn read_options(options: &BzjConnectOptions, dim: usize) -> FfiResult<Con
 ///         BZJ_ERR_DIMENSION_MISMATCH if `p` and `q` have different dimensions;
 ///         BZJ_ERR_SINGULAR if the interior system is numerically singular;
 ///         BZJ_ERR_ILL_CONDITIONED if the result cannot be trusted to 1e-8
-///         (message carries the estimate) or its degree is above 31.
+///         (the message carries the finite estimate, "estimated relative
+///         error E exceeds the promised 1e-8") or its degree is above 31
+///         (refused before solving: the message names the degree and the
+///         estimate is inf, as no answer exists to check).
 ///
 /// # Safety
 /// `p`, `q` are NULL or live handles; `options` is NULL or readable, with
@@ -305,12 +308,16 @@ mod tests {
             unsafe { bzj_connect(p, 0.5, q, 0.2, &o, &mut bad) },
             BzjStatus::BZJ_ERR_ILL_CONDITIONED
         );
+        // `r` still holds the first result: release it before reusing `r`.
+        unsafe { bzj_curve_free(r) };
+        r = std::ptr::null_mut();
         let mut scale = 0.0;
         assert_eq!(
             unsafe { bzj_connect_auto_scale(p, 1.0, q, 0.0, &options, &mut r, &mut scale) },
             BzjStatus::BZJ_OK
         );
         assert!(scale > 0.0);
+        assert!(!r.is_null());
         unsafe {
             bzj_curve_free(r);
             bzj_curve_free(p);

@@ -3,14 +3,44 @@
 //! `P|[0,u0]`, `R`, `Q|[v0,1]` is a C^k B-spline, the structured and the
 //! dense solves agree, a split curve is reproduced, and the automatic scale
 //! minimises its energy.
+//!
+//! Residuals are always recomputed here, from evaluations of the returned
+//! curve, never taken from the solver. The bounds every answer is held to
+//! ([`assert_conditions`], docs/accuracy.md, Connect):
+//! * the published promise `CONNECT_RESIDUAL_LIMIT` (1e-8), always;
+//! * 1e-10 for result degrees up to [`STRICT_DEGREE`] and, at any degree,
+//!   whenever the amplification `A = max |R_i| / S` (the connecting curve's
+//!   control-point size over the data scale) is at most
+//!   [`STRICT_AMPLIFICATION`];
+//! * the rounding floor of a backward-stable solve, `8 (n + 1) u A`
+//!   (`u` = unit roundoff), or 1e-10 if larger, always.
 
 use bezjoin_core::basis::bezier_basis_derivatives;
 use bezjoin_core::connect::{
-    AUTO_SCALE_SEARCH_DECADES, CONNECT_RESIDUAL_LIMIT, ConnectOptions, Connection, PointConstraint,
-    connect, connect_auto_scale, connect_dense_reference, connect_unchecked, fairness_energy,
+    AUTO_SCALE_SEARCH_DECADES, CONNECT_RESIDUAL_LIMIT, ConnectOptions, Connection,
+    MAX_CONNECT_DEGREE, PointConstraint, connect, connect_auto_scale, connect_dense_reference,
+    connect_unchecked, fairness_energy,
 };
 use bezjoin_core::{BSplineCurve, BezierCurve, BezjoinError, KnotSide};
 use proptest::prelude::*;
+
+/// The residual the issue asks for (issue 3, item 5).
+const STRICT: f64 = 1e-10;
+
+/// Result degrees up to which [`STRICT`] holds for every answer, whatever
+/// the data: measured over [`exhaustive_cases`] (worst 1.9e-13 up to degree
+/// 8, and at most 7.5e-12 over earlier seeds of the same generator; answers
+/// above 1e-10 appear from degree 9 or 10, from ill-posed constraint data
+/// with `A` of 1e5 to 1e7, confirmed by the exact-rational reference;
+/// docs/accuracy.md, Connect).
+const STRICT_DEGREE: usize = 8;
+
+/// Amplification `A = max |R_i| / S` up to which [`STRICT`] holds at every
+/// degree (measured worst 3.2e-11 for `A` in [1e3, 1e4)).
+const STRICT_AMPLIFICATION: f64 = 1e4;
+
+/// Unit roundoff.
+const U: f64 = f64::EPSILON / 2.0;
 
 fn curve_from(dim: usize, degree: usize, raw: &[f64]) -> BezierCurve {
     BezierCurve::new(dim, degree, raw[..(degree + 1) * dim].to_vec()).unwrap()
@@ -49,8 +79,9 @@ struct Case {
     options: ConnectOptions,
 }
 
-/// Random P, Q (2D/3D, degrees 1..=8), orders, scales, 0..=max constraints
-/// with K <= 3 whose data are the derivatives of a random cubic (realistic sizes).
+/// Random P, Q (2D/3D, degrees 1..=8), orders `kp`, `kq` uniform in
+/// `0..=np`, `0..=nq`, scales, 0..=max constraints with K <= 3 whose data are
+/// the derivatives of a random cubic (unrelated to P and Q: often ill-posed).
 fn case_strategy(max_constraints: usize) -> impl Strategy<Value = Case> {
     (
         2usize..=3,
@@ -60,12 +91,15 @@ fn case_strategy(max_constraints: usize) -> impl Strategy<Value = Case> {
         prop::collection::vec(-10.0f64..10.0, 27),
         prop::collection::vec(-10.0f64..10.0, 12),
         (0.0f64..=1.0, 0.0f64..=1.0, 0.3f64..3.0, 0.3f64..3.0),
-        (0usize..=8, 0usize..=8),
+        (0.0f64..1.0, 0.0f64..1.0),
         prop::collection::vec((0usize..=3, 0.0f64..1.0), 0..=max_constraints),
         prop::bool::ANY,
     )
         .prop_map(
-            |(dim, np, nq, rp, rq, rc, (u0, v0, alpha, beta), (kp, kq), cons, endpoints)| {
+            |(dim, np, nq, rp, rq, rc, (u0, v0, alpha, beta), (fp, fq), cons, endpoints)| {
+                // kp uniform in 0..=np, kq uniform in 0..=nq.
+                let kp = ((fp * (np + 1) as f64) as usize).min(np);
+                let kq = ((fq * (nq + 1) as f64) as usize).min(nq);
                 let p = curve_from(dim, np, &rp);
                 let q = curve_from(dim, nq, &rq);
                 let (u0, v0) = if endpoints { (1.0, 0.0) } else { (u0, v0) };
@@ -86,8 +120,8 @@ fn case_strategy(max_constraints: usize) -> impl Strategy<Value = Case> {
                     u0,
                     v0,
                     options: ConnectOptions {
-                        p_order: kp.min(np),
-                        q_order: kq.min(nq),
+                        p_order: kp,
+                        q_order: kq,
                         p_scale: alpha,
                         q_scale: beta,
                         constraints,
@@ -132,19 +166,38 @@ fn data_scale(case: &Case, p_scale: f64, q_scale: f64) -> f64 {
     s
 }
 
-/// Check (1') and (2) by evaluating the curves, independently of the solver:
-/// the worst relative residual is within `tolerance` (1e-10 in these tests),
-/// unless the data are ill-conditioned (control points far larger than the
-/// data), where it must still be within the solver's own estimate (a bound;
-/// a factor 2 covers this test's own evaluation rounding) and the promise.
-fn assert_conditions(case: &Case, c: &Connection, tolerance: f64) {
+/// `A = max |R_i| / S`: how much larger the connecting curve's control
+/// points are than the data scale (at least 1). Computed from the answer.
+fn amplification(case: &Case, c: &Connection) -> f64 {
+    (c.curve.coordinate_scale() / data_scale(case, c.p_scale, c.q_scale)).max(1.0)
+}
+
+/// Check (1') and (2) by evaluating the curves, independently of the solver
+/// (its `error_estimate` plays no part): the worst relative residual `w`
+/// meets the promise (1e-8); `w <= 1e-10` for result degrees up to
+/// [`STRICT_DEGREE`] or amplification up to [`STRICT_AMPLIFICATION`]; and
+/// `w <= max(1e-10, 8 (n + 1) u A)`, the rounding floor of a backward-stable
+/// solve (representing `R` in f64 alone costs up to `u A`; measured worst
+/// `2.4 (n + 1) u A`).
+fn assert_conditions(case: &Case, c: &Connection) {
     let worst = worst_residual(case, c);
-    let allowed = tolerance.max(2.0 * c.error_estimate);
+    let n = c.curve.degree();
+    let a = amplification(case, c);
+    let floor = 8.0 * (n + 1) as f64 * U * a;
     assert!(
-        worst <= allowed && worst <= CONNECT_RESIDUAL_LIMIT,
-        "worst relative residual {worst:e}, estimate {:e}",
-        c.error_estimate
+        worst <= CONNECT_RESIDUAL_LIMIT,
+        "degree {n}: worst relative residual {worst:e} above the promise"
     );
+    assert!(
+        worst <= STRICT.max(floor),
+        "degree {n}: worst relative residual {worst:e} above the rounding floor {floor:e} (A = {a:e})"
+    );
+    if n <= STRICT_DEGREE || a <= STRICT_AMPLIFICATION {
+        assert!(
+            worst <= STRICT,
+            "degree {n}, A = {a:e}: worst relative residual {worst:e} above {STRICT:e}"
+        );
+    }
 }
 
 /// The worst relative residual of (1') and (2), from curve evaluations.
@@ -195,6 +248,9 @@ fn solve_or_refuse(case: &Case) -> Option<Connection> {
         }
         Err(BezjoinError::IllConditioned { estimate, .. }) => {
             assert!(estimate > CONNECT_RESIDUAL_LIMIT);
+            if case.options.result_degree() > MAX_CONNECT_DEGREE {
+                return None;
+            }
             let unchecked =
                 connect_unchecked(&case.p, case.u0, &case.q, case.v0, &case.options).unwrap();
             assert_eq!(unchecked.error_estimate, estimate);
@@ -215,7 +271,7 @@ proptest! {
     #[test]
     fn continuity_and_constraints_hold(case in case_strategy(3)) {
         if let Some(c) = solve_or_refuse(&case) {
-            assert_conditions(&case, &c, 1e-10);
+            assert_conditions(&case, &c);
         }
     }
 
@@ -227,15 +283,27 @@ proptest! {
             Err(BezjoinError::IllConditioned { .. }) => return Ok(()),
             Err(e) => panic!("dense reference failed: {e}"),
         };
-        assert_conditions(&case, &d, 1e-10);
+        assert_conditions(&case, &d);
+        // Both are backward stable, so their control points differ by about
+        // u times the condition number of the system (the dense reference
+        // reports the 1-norm condition estimate of the whole row-scaled
+        // system): allowed 16 u cond. Measured: at most 0.76 u cond, and
+        // never above 2.9e-12 of the coordinate scale over the cases of
+        // `exhaustive_cases` nor above 3e-11 over 20 000 cases of this
+        // strategy, hence the cap at 1e-10.
         let scale = s.curve.coordinate_scale().max(d.curve.coordinate_scale());
+        let tolerance = (16.0 * U * d.constraint_condition.max(1.0)).min(1e-10);
         for (a, b) in s.curve.points().iter().zip(d.curve.points()) {
-            prop_assert!((a - b).abs() <= 1e-7 * scale, "{a} vs {b}");
+            prop_assert!(
+                (a - b).abs() <= tolerance * scale,
+                "{a} vs {b} (tolerance {tolerance:e}, condition {:e})",
+                d.constraint_condition
+            );
         }
     }
 
     #[test]
-    fn chain_is_a_ck_bspline(case in case_strategy(2)) {
+    fn chain_is_a_ck_bspline(case in case_strategy(3)) {
         let Some(c) = solve_or_refuse(&case) else { return Ok(()) };
         let (alpha, beta) = (c.p_scale, c.q_scale);
         let mut pieces = Vec::new();
@@ -307,6 +375,47 @@ proptest! {
     }
 
     #[test]
+    fn a_split_curve_is_reproduced_over_the_full_range(
+        dim in 2usize..=3,
+        n in 1usize..=8,
+        raw in prop::collection::vec(-10.0f64..10.0, 27),
+        s in 0.02f64..0.98,
+        u0 in 0.0f64..=1.0,
+        v0 in 0.0f64..=1.0,
+    ) {
+        // Any u0, v0 (l > 0), s in [0.02, 0.98]: alpha = l/s and beta =
+        // l/(1-s) reach 50. R is then C's segment over [s u0, s u0 + l],
+        // i.e. P (or Q) extrapolated to u0 + alpha (v0 - beta), and rounding
+        // grows like (1 + max(alpha, beta))^n (docs/accuracy.md: measured
+        // at most 1.6e2 u |C| (1 + max(alpha, beta))^n).
+        let c = curve_from(dim, n, &raw);
+        let (p, q) = c.split_at(s).unwrap();
+        let l = s * (1.0 - u0) + (1.0 - s) * v0;
+        prop_assume!(l > 1e-9);
+        let (alpha, beta) = (l / s, l / (1.0 - s));
+        let case = Case {
+            p,
+            q,
+            u0,
+            v0,
+            options: ConnectOptions::new(n, n).with_scales(alpha, beta),
+        };
+        // Strong extrapolation may be refused; the refusal must be honest.
+        let Some(r) = solve_or_refuse(&case) else { return Ok(()) };
+        prop_assert_eq!(r.curve.degree(), 2 * n + 1);
+        let a = s * u0;
+        let expected = c.segment(a, a + l).unwrap().elevate_degree(2 * n + 1).unwrap();
+        let amplification = (1.0 + alpha.max(beta)).powi(n as i32);
+        let tolerance = 1e3 * U * c.coordinate_scale() * amplification;
+        for (x, y) in r.curve.points().iter().zip(expected.points()) {
+            prop_assert!(
+                (x - y).abs() <= tolerance,
+                "{x} vs {y}: tolerance {tolerance:e}, alpha {alpha}, beta {beta}"
+            );
+        }
+    }
+
+    #[test]
     fn auto_scale_minimises_the_energy(case in case_strategy(1), factor in 0.5f64..2.0) {
         let c = match connect_auto_scale(&case.p, case.u0, &case.q, case.v0, &case.options) {
             Ok(c) => c,
@@ -319,7 +428,7 @@ proptest! {
         prop_assert_eq!(c.p_scale, c.q_scale);
         let o = ConnectOptions { p_scale: c.p_scale, q_scale: c.q_scale, ..case.options.clone() };
         let checked = Case { options: o.clone(), ..case.clone() };
-        assert_conditions(&checked, &c, 1e-10);
+        assert_conditions(&checked, &c);
         let best = fairness_energy(&c.curve);
         // The documented search range: AUTO_SCALE_SEARCH_DECADES either side
         // of s0 = |Q(v0) - P(u0)| / mean(|P'(u0)|, |Q'(v0)|) (1 if undefined).
@@ -383,11 +492,308 @@ fn paper_example_shape_and_degree() {
 fn too_high_a_degree_is_refused_with_an_estimate() {
     let p = BezierCurve::new(1, 30, (0..31).map(|i| ((i * 37) % 11) as f64).collect()).unwrap();
     let q = BezierCurve::new(1, 30, (0..31).map(|i| ((i * 53) % 13) as f64).collect()).unwrap();
-    let err = connect(&p, 0.3, &q, 0.6, &ConnectOptions::new(30, 30)).unwrap_err();
-    match err {
-        BezjoinError::IllConditioned {
-            estimate, limit, ..
-        } => assert!(estimate > limit && limit == CONNECT_RESIDUAL_LIMIT),
-        e => panic!("expected IllConditioned, got {e}"),
+    // Degree 31 exactly is solved; every degree above it is refused before
+    // any work, whether reached by the orders or by constraints. No answer
+    // is computed, so there is no residual to bound: the estimate is
+    // infinite (docs/accuracy.md).
+    let at_cap = ConnectOptions::new(15, 15);
+    assert_eq!(at_cap.result_degree(), MAX_CONNECT_DEGREE);
+    assert!(connect(&p, 0.3, &q, 0.6, &at_cap).is_ok());
+    let constraint = |t: f64, rows: usize| PointConstraint::new(t, vec![vec![1.0]; rows]);
+    for options in [
+        ConnectOptions::new(30, 30),
+        ConnectOptions::new(16, 15),
+        ConnectOptions::new(15, 15).with_constraint(constraint(0.5, 1)),
+        ConnectOptions::new(8, 8)
+            .with_constraint(constraint(0.25, 4))
+            .with_constraint(constraint(0.5, 4))
+            .with_constraint(constraint(0.75, 4))
+            .with_constraint(constraint(0.9, 4)),
+    ] {
+        let degree = options.result_degree();
+        assert!(degree > MAX_CONNECT_DEGREE);
+        match connect(&p, 0.3, &q, 0.6, &options).unwrap_err() {
+            BezjoinError::IllConditioned {
+                what,
+                estimate,
+                limit,
+            } => {
+                assert!(estimate > limit && limit == CONNECT_RESIDUAL_LIMIT);
+                assert!(
+                    what.contains(&format!("result degree {degree} is above")),
+                    "{what}"
+                );
+            }
+            e => panic!("expected IllConditioned, got {e}"),
+        }
     }
+}
+
+/// Two constraint points 1e-4 apart with positions 2 apart and equal
+/// tangents: the curve must swing by about 1e4 times its size between them,
+/// and its control points become 1e12 times the data. The solve is done
+/// (degree 11, far below the cap) and refused by its own residual check.
+fn crowded_constraints() -> Case {
+    let p = BezierCurve::from_rows(&[[0.0, 0.0], [1.0, 2.0], [2.0, 2.0], [3.0, 0.0]]).unwrap();
+    let q = BezierCurve::from_rows(&[[6.0, 0.0], [7.0, -2.0], [8.0, -2.0], [9.0, 0.0]]).unwrap();
+    let options = ConnectOptions::new(3, 3)
+        .with_constraint(PointConstraint::new(
+            0.5,
+            vec![vec![4.5, 1.0], vec![1.0, 0.0]],
+        ))
+        .with_constraint(PointConstraint::new(
+            0.5001,
+            vec![vec![4.5, -1.0], vec![1.0, 0.0]],
+        ));
+    Case {
+        p,
+        q,
+        u0: 1.0,
+        v0: 0.0,
+        options,
+    }
+}
+
+#[test]
+fn ill_posed_constraints_below_the_degree_cap_are_refused_by_the_residual_check() {
+    let case = crowded_constraints();
+    assert_eq!(case.options.result_degree(), 11);
+    let err = connect(&case.p, case.u0, &case.q, case.v0, &case.options).unwrap_err();
+    let message = err.to_string();
+    let BezjoinError::IllConditioned {
+        what,
+        estimate,
+        limit,
+    } = err
+    else {
+        panic!("expected IllConditioned, got {message}");
+    };
+    assert_eq!(limit, CONNECT_RESIDUAL_LIMIT);
+    assert!(
+        estimate.is_finite() && estimate > CONNECT_RESIDUAL_LIMIT,
+        "{estimate:e}"
+    );
+    assert_eq!(what, "connect (degree 11)");
+    assert!(
+        message.starts_with("connect (degree 11): estimated relative error ")
+            && message.ends_with(" exceeds the promised 1e-8"),
+        "{message}"
+    );
+    // The refusal is honest: the unchecked answer, measured here, really
+    // misses the promise, and the estimate bounds what was measured.
+    let unchecked = connect_unchecked(&case.p, case.u0, &case.q, case.v0, &case.options).unwrap();
+    assert_eq!(unchecked.error_estimate, estimate);
+    let measured = worst_residual(&case, &unchecked);
+    assert!(
+        measured > CONNECT_RESIDUAL_LIMIT && measured <= estimate,
+        "measured {measured:e}, estimate {estimate:e}"
+    );
+    // The same points 1e-2 apart are answered and meet the bounds.
+    let mut relaxed = case.clone();
+    relaxed.options.constraints[1].t = 0.51;
+    let c = connect(&relaxed.p, 1.0, &relaxed.q, 0.0, &relaxed.options).unwrap();
+    assert_conditions(&relaxed, &c);
+}
+
+/// Deterministic xorshift64* generator for the exhaustive test.
+struct Random(u64);
+
+impl Random {
+    fn next(&mut self) -> f64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        (self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64
+    }
+    fn range(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * self.next()
+    }
+    fn curve(&mut self, dim: usize, degree: usize) -> BezierCurve {
+        let points = (0..(degree + 1) * dim)
+            .map(|_| self.range(-10.0, 10.0))
+            .collect();
+        BezierCurve::new(dim, degree, points).unwrap()
+    }
+}
+
+/// Where the constraint data of an exhaustive case come from.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum ConstraintData {
+    /// The derivatives of the unconstrained connection (same P, Q, orders,
+    /// scales) at `t_j`, each coordinate scaled by a factor in [0.9, 1.1]:
+    /// what a user nudging the natural shape asks for.
+    Natural,
+    /// The derivatives of an unrelated random cubic: often ill-posed.
+    Unrelated,
+}
+
+/// One random case: P, Q with coordinates in [-10, 10]; `u0`, `v0` uniform
+/// in [0, 1], a quarter of the cases at the ends (1, 0); scales log-uniform
+/// in [0.3, 3]; one constraint per entry of `orders` (its `K_j`), at `t_j`
+/// spread over (0, 1), with data as `data` says.
+#[allow(clippy::too_many_arguments)]
+fn random_case(
+    rng: &mut Random,
+    dim: usize,
+    (np, nq): (usize, usize),
+    (kp, kq): (usize, usize),
+    orders: &[usize],
+    data: ConstraintData,
+) -> Case {
+    let p = rng.curve(dim, np);
+    let q = rng.curve(dim, nq);
+    let (u0, v0) = if rng.next() < 0.25 {
+        (1.0, 0.0)
+    } else {
+        (rng.next(), rng.next())
+    };
+    let alpha = rng.range(0.3f64.ln(), 3f64.ln()).exp();
+    let beta = rng.range(0.3f64.ln(), 3f64.ln()).exp();
+    let mut options = ConnectOptions::new(kp, kq).with_scales(alpha, beta);
+    let shape = match data {
+        ConstraintData::Natural => connect(&p, u0, &q, v0, &options).unwrap().curve,
+        ConstraintData::Unrelated => rng.curve(dim, 3),
+    };
+    let m = orders.len();
+    for (j, &order) in orders.iter().enumerate() {
+        let t = (j as f64 + 0.2 + 0.6 * rng.next()) / m as f64;
+        let d = shape.eval_derivatives(t, order);
+        let values = (0..=order)
+            .map(|k| {
+                row(&d, k)
+                    .iter()
+                    .map(|v| match data {
+                        ConstraintData::Natural => v * rng.range(0.9, 1.1),
+                        ConstraintData::Unrelated => *v,
+                    })
+                    .collect()
+            })
+            .collect();
+        options = options.with_constraint(PointConstraint::new(t, values));
+    }
+    Case {
+        p,
+        q,
+        u0,
+        v0,
+        options,
+    }
+}
+
+/// Every `np, nq` in `1..=8`, every `kp <= np`, `kq <= nq`, each in 2D and
+/// in 3D (one with [`ConstraintData::Natural`], the other with
+/// [`ConstraintData::Unrelated`], alternating), with the number of
+/// constraints cycling through 0..=3 and their orders `K_j` through 0..=3
+/// ([`random_case`]); then, for every `np, nq` at the highest orders
+/// `kp = np`, `kq = nq`, three constraints with `K = 3` each (result degrees
+/// 15..=29, the largest this range allows). Deterministic (seeded xorshift).
+fn exhaustive_cases() -> Vec<(Case, ConstraintData)> {
+    let mut rng = Random(0x5EED_C0DE_2026_0003);
+    let mut cases = Vec::new();
+    let mut index = 0usize;
+    let data_for = |dim: usize, flip: bool| {
+        if (dim == 2) != flip {
+            ConstraintData::Natural
+        } else {
+            ConstraintData::Unrelated
+        }
+    };
+    for np in 1..=8 {
+        for nq in 1..=8 {
+            for kp in 0..=np {
+                for kq in 0..=nq {
+                    let flip = (np + nq + kp + kq) % 2 == 1;
+                    for dim in [2, 3] {
+                        let data = data_for(dim, flip);
+                        let orders: Vec<usize> =
+                            (0..index % 4).map(|j| (index / 4 + j) % 4).collect();
+                        let case = random_case(&mut rng, dim, (np, nq), (kp, kq), &orders, data);
+                        cases.push((case, data));
+                        index += 1;
+                    }
+                }
+            }
+            for dim in [2, 3] {
+                let data = data_for(dim, (np + nq) % 2 == 1);
+                let case = random_case(&mut rng, dim, (np, nq), (np, nq), &[3, 3, 3], data);
+                cases.push((case, data));
+            }
+        }
+    }
+    cases
+}
+
+/// Issue 3, item 5, exhaustively: every order combination, 0..=3
+/// constraints with K up to 3. Every answer meets the bounds of
+/// [`assert_conditions`] (residuals recomputed here); every refusal is
+/// honest ([`solve_or_refuse`]); result degrees above the cap are refused
+/// (none occur here: the largest is 29); and problems of result degree up to
+/// [`STRICT_DEGREE`] are all answered (measured: the first refusals, of
+/// ill-posed data, appear at degree 10).
+#[test]
+fn every_order_combination_meets_the_residual_bounds() {
+    let cases = exhaustive_cases();
+    assert_eq!(cases.len(), 2 * 44 * 44 + 2 * 64);
+    let mut answered = 0;
+    let mut orders_seen = std::collections::HashSet::new();
+    for (case, _) in &cases {
+        let o = &case.options;
+        orders_seen.insert((case.p.degree(), case.q.degree(), o.p_order, o.q_order));
+        let degree = o.result_degree();
+        match solve_or_refuse(case) {
+            Some(c) => {
+                assert!(degree <= MAX_CONNECT_DEGREE);
+                assert_conditions(case, &c);
+                answered += 1;
+            }
+            None => assert!(degree > STRICT_DEGREE, "degree {degree} refused: {case:?}"),
+        }
+    }
+    assert_eq!(orders_seen.len(), 44 * 44);
+    // Refusals are the exception (measured: about 4 %).
+    assert!(
+        answered * 10 >= cases.len() * 9,
+        "{answered} of {}",
+        cases.len()
+    );
+}
+
+/// Prints the worst measured residual per result degree and per decade of
+/// amplification for the exhaustive cases (the numbers in docs/accuracy.md).
+#[test]
+#[ignore = "prints the exhaustive residual table for docs/accuracy.md"]
+fn print_exhaustive_residuals() {
+    let cases = exhaustive_cases();
+    let mut by_degree = vec![(0usize, 0usize, 0.0f64, 0.0f64); MAX_CONNECT_DEGREE + 1];
+    let mut by_amplification = [0.0f64; 10];
+    let mut floor_ratio = 0.0f64;
+    for (case, data) in &cases {
+        let n = case.options.result_degree();
+        by_degree[n].0 += 1;
+        let Some(c) = solve_or_refuse(case) else {
+            by_degree[n].1 += 1;
+            continue;
+        };
+        let worst = worst_residual(case, &c);
+        let a = amplification(case, &c);
+        match data {
+            ConstraintData::Natural => by_degree[n].2 = by_degree[n].2.max(worst),
+            ConstraintData::Unrelated => by_degree[n].3 = by_degree[n].3.max(worst),
+        }
+        let decade = (a.log10().floor() as usize).min(9);
+        by_amplification[decade] = by_amplification[decade].max(worst);
+        floor_ratio = floor_ratio.max(worst / ((n + 1) as f64 * U * a));
+    }
+    println!("| result degree | cases | refused | worst, natural data | worst, unrelated data |");
+    println!("|---:|---:|---:|---:|---:|");
+    for (n, (count, refused, natural, unrelated)) in by_degree.iter().enumerate() {
+        if *count > 0 {
+            println!("| {n} | {count} | {refused} | {natural:.1e} | {unrelated:.1e} |");
+        }
+    }
+    println!("\n| amplification A | worst residual |\n|---|---:|");
+    for (decade, worst) in by_amplification.iter().enumerate() {
+        println!("| [1e{decade}, 1e{}) | {worst:.1e} |", decade + 1);
+    }
+    println!("\nmax residual / ((n + 1) u A) = {floor_ratio:.2}");
 }
