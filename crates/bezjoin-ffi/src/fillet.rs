@@ -148,8 +148,10 @@ impl From<&Intersection> for BzjIntersection {
 #[repr(C)]
 #[derive(Debug, Clone, Copy)]
 pub struct BzjDeviationFilletOptions {
-    /// eps > 0: the blend passes at this distance from the corner point
-    /// (min over t of |R(t) - X|, X the crossing).
+    /// eps > 0: the largest distance allowed between the corner point X
+    /// (the crossing) and the blend R, min over t of |R(t) - X|; the
+    /// result's distance is in [eps (1 - 1e-9), eps (1 - 2.5e-10)], never
+    /// above eps.
     pub max_deviation: f64,
     /// dq / dp > 0; 1.0 = symmetric rounding.
     pub setback_ratio: f64,
@@ -171,7 +173,8 @@ pub struct BzjDeviationFilletReport {
     pub p_setback: f64,
     /// dq = setback_ratio * dp.
     pub q_setback: f64,
-    /// The achieved deviation, within 1e-9 relative of max_deviation.
+    /// The achieved deviation min over t of |R(t) - X|: at most
+    /// max_deviation (1 - 2.5e-10) and at least max_deviation (1 - 1e-9).
     pub deviation: f64,
     /// Where P was cut.
     pub u0: f64,
@@ -432,12 +435,15 @@ unsafe fn fillet_with_scale(
     })
 }
 
-/// Round the corner at the first crossing so that the blend passes at the
-/// distance `max_deviation` from the corner point X (the crossing):
-/// `min over t of |R(t) - X| = max_deviation` to 1e-9 relative, with setbacks
-/// `dp` and `dq = setback_ratio * dp` found by a bracketing search (1.0 =
-/// symmetric). Outputs as `bzj_fillet`; `report` (may be NULL) receives the
-/// setbacks, the deviation achieved and the cut parameters.
+/// Round the corner at the first crossing so that the blend passes within
+/// `max_deviation` of the corner point X (the crossing), using nearly all of
+/// it: `max_deviation (1 - 1e-9) <= min over t of |R(t) - X| <=
+/// max_deviation (1 - 2.5e-10)`, a strict bound (a blend above
+/// `max_deviation` is never returned; the margin covers the rounding of the
+/// computed distance), with setbacks `dp` and `dq = setback_ratio * dp`
+/// found by a bracketing search (1.0 = symmetric). Outputs as
+/// `bzj_fillet`; `report` (may be NULL) receives the setbacks, the deviation
+/// achieved and the cut parameters.
 ///
 /// @return BZJ_ERR_NULL_POINTER if a required pointer is NULL;
 ///         BZJ_ERR_DIMENSION_MISMATCH if the curves' dimensions differ;
@@ -447,8 +453,8 @@ unsafe fn fillet_with_scale(
 ///         deviation cannot be reached even with the longest setbacks the
 ///         curves allow (the message gives the largest possible);
 ///         BZJ_ERR_NO_INTERSECTION if the curves do not cross or only touch;
-///         BZJ_ERR_ILL_CONDITIONED if the connection or the search cannot be
-///         trusted.
+///         BZJ_ERR_ILL_CONDITIONED if the connection cannot be trusted or no
+///         setback the search tries gives a deviation in that window.
 ///
 /// # Safety
 /// `p`, `q` are NULL or live handles; `options` is NULL or readable; the

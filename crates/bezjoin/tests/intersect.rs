@@ -168,6 +168,47 @@ fn crossings_at_and_near_end_points() {
         let end = p.segment(0.0, 1.0 + shift).unwrap();
         let h = hits(&end, &q);
         assert_eq!(h.len(), expect, "shift {shift}: {h:?}");
+        if expect == 0 {
+            continue;
+        }
+        // The constructed answer. Extended: end(u) = P(u (1 + shift)) is
+        // X = P(1) = Q(v0) at u = 1 / (1 + shift), v = v0. Shortened within
+        // the tolerance: the closest approach, u = 1 (the end of the
+        // shortened P) and v the foot of end(1) on Q, found here by Newton
+        // on Q'(v) . (Q(v) - end(1)) = 0 from v0.
+        let (u_expected, v_expected) = if shift > 0.0 {
+            (1.0 / (1.0 + shift), v0)
+        } else {
+            let y = end.eval(1.0);
+            let mut v = v0;
+            for _ in 0..20 {
+                let (qv, d1, d2) = (q.eval(v), q.derivative_at(v, 1), q.derivative_at(v, 2));
+                let r: Vec<f64> = (0..2).map(|c| qv[c] - y[c]).collect();
+                let f = d1[0] * r[0] + d1[1] * r[1];
+                let df = d2[0] * r[0] + d2[1] * r[1] + d1[0] * d1[0] + d1[1] * d1[1];
+                v -= f / df;
+            }
+            (1.0, v)
+        };
+        assert_eq!(
+            h[0].kind,
+            IntersectionKind::Crossing,
+            "shift {shift}: {h:?}"
+        );
+        assert!(
+            (h[0].u - u_expected).abs() <= 1e-12,
+            "shift {shift}: u = {} vs {u_expected}",
+            h[0].u
+        );
+        assert!(
+            (h[0].v - v_expected).abs() <= 1e-12,
+            "shift {shift}: v = {} vs {v_expected}",
+            h[0].v
+        );
+        // The shortened case is a real test of the foot: v moved from v0.
+        if shift < 0.0 {
+            assert!((v_expected - v0).abs() > 1e-12, "{v_expected} vs {v0}");
+        }
     }
 }
 

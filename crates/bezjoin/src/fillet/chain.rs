@@ -89,8 +89,11 @@ pub struct ChainFillet {
 ///
 /// Errors: fewer than 2 curves; curves of different dimensions (naming
 /// `curves[i]`); the option errors of [`super::fillet`]; at a corner, no
-/// crossing, a tangential (smooth) joint, or a setback too long — the
-/// message starts with `corner i`; two cuts on one curve that pass each other
+/// crossing, a tangential (smooth) joint, a setback too long, or an
+/// intersection search or connection that cannot be trusted
+/// (IllConditioned, e.g. a work bound of [`FilletOptions::intersect`]
+/// reached) — the message starts with `corner i` (for InvalidArgument the
+/// argument name does); two cuts on one curve that pass each other
 /// (InvalidArgument naming the curve).
 ///
 /// ```
@@ -177,7 +180,7 @@ fn round_corner(
     q: &BezierCurve,
     options: &FilletOptions,
 ) -> Result<Fillet> {
-    let hits = intersect(p, q, &options.intersect)?;
+    let hits = intersect(p, q, &options.intersect).map_err(|e| in_corner(e, index))?;
     let nearest = hits
         .into_iter()
         .min_by(|a, b| ((1.0 - a.u) + a.v).total_cmp(&((1.0 - b.u) + b.v)));

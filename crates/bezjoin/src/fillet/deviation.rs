@@ -13,18 +13,39 @@
 //! i.e. how far the rounded path passes from the corner it replaces (the
 //! trimmed pieces lie on the original curves, so only `R` deviates). Given
 //! `eps > 0` and a ratio `rho = dq / dp` (1 = symmetric), the setbacks
-//! `dp`, `dq = rho dp` are chosen so that `deviation = eps` to
-//! `relative_deviation_accuracy * eps`.
+//! `dp`, `dq = rho dp` are chosen so that the blend stays within `eps` of
+//! the corner and uses nearly all of it.
+//!
+//! # Guarantee
+//! With `a = relative_deviation_accuracy` (default `1e-9`), the returned
+//! blend satisfies
+//!
+//! ```text
+//! eps (1 - a) <= deviation <= eps (1 - a/4) < eps
+//! ```
+//!
+//! with `deviation` as computed by [`distance_to_curve`] (the reported
+//! [`DeviationFillet::deviation`]). The bound is one-sided: a blend whose
+//! deviation is above `eps` is never returned, however close. The margin
+//! `a/4 eps` below `eps` covers the rounding of the computed distance (about
+//! `n` units in the last place of the coordinates, far below `a/4 eps` unless
+//! `eps` is below about `1e-5` times the coordinate size with the default
+//! `a`). When no setback on
+//! the search's path gives a deviation in the window, the answer is an
+//! IllConditioned error, not a blend outside it.
 //!
 //! # Search
-//! `g(dp) = deviation(dp) - eps` tends to `-eps` as `dp -> 0` (the blend
-//! shrinks onto `X`). The search starts at `dp = eps / 2` and doubles `dp`
-//! (halves it, if the first deviation is already above `eps`) until `g`
-//! changes sign, never beyond the longest setbacks the curves allow,
-//! `dp_max = (1 - 1e-9) min(len(P before X), len(Q after X) / rho)`; if the
-//! deviation is still below `eps` there, that is an error. The root in the
-//! bracket is then found by the Illinois variant of false position
-//! (bisection when a step would leave the bracket), at most 100 steps.
+//! `h(dp) = deviation(dp) - eps (1 - a/2)` (the middle of the window, the
+//! search's target) tends to `-eps` as `dp -> 0` (the blend shrinks onto
+//! `X`). The search starts at `dp = eps / 2` and doubles `dp` (halves it, if
+//! the first deviation is already above the target) until `h` changes sign,
+//! never beyond the longest setbacks the curves allow, `dp_max = (1 - 1e-9)
+//! min(len(P before X), len(Q after X) / rho)`; if the deviation is still
+//! below the window there, that is an error. The root in the bracket is then
+//! found by the Illinois variant of false position (bisection when a step
+//! would leave the bracket), at most 100 steps; the end of the bracket on
+//! the short side always has a deviation below the window, and every trial
+//! is returned only if its deviation lies in the window.
 //!
 //! Monotonicity: for two lines the deviation is exactly proportional to the
 //! setback; for curved corners it grows monotonically while the setbacks are
@@ -50,15 +71,18 @@ pub const DEFAULT_RELATIVE_DEVIATION_ACCURACY: f64 = 1e-9;
 /// Options of [`fillet_within_deviation`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct DeviationFilletOptions {
-    /// `eps > 0`: the distance from the corner point to the blend.
+    /// `eps > 0`: the largest distance allowed from the corner point to the
+    /// blend (module documentation: the result is in `[eps (1 - a), eps
+    /// (1 - a/4)]`, `a` = [`Self::relative_deviation_accuracy`]).
     pub max_deviation: f64,
     /// `dq / dp > 0`; 1 (the default) is symmetric rounding.
     pub setback_ratio: f64,
     /// Orders, scales, accuracies and intersection options as in
     /// [`FilletOptions`] (its setbacks are ignored).
     pub shape: FilletOptions,
-    /// The deviation meets `eps` to `relative_deviation_accuracy * eps`;
-    /// default [`DEFAULT_RELATIVE_DEVIATION_ACCURACY`] (`1e-9`).
+    /// `a > 0`: the deviation is at least `eps (1 - a)` (and never above
+    /// `eps (1 - a/4)`); default [`DEFAULT_RELATIVE_DEVIATION_ACCURACY`]
+    /// (`1e-9`).
     pub relative_deviation_accuracy: f64,
 }
 
@@ -90,7 +114,8 @@ pub struct DeviationFillet {
     pub p_setback: f64,
     /// `dq = ratio * dp`.
     pub q_setback: f64,
-    /// The achieved deviation `min_t |R(t) - X|`.
+    /// The achieved deviation `min_t |R(t) - X|`, in `[eps (1 - a), eps
+    /// (1 - a/4)]`.
     pub deviation: f64,
     /// The `t` on the blend where it is attained.
     pub deviation_parameter: f64,
@@ -129,13 +154,16 @@ pub fn distance_to_curve(curve: &BezierCurve, point: &[f64]) -> (f64, f64) {
 }
 
 /// Round the corner at the first crossing of `p` and `q` so that the blend
-/// passes at distance `max_deviation` from the corner point (module
-/// documentation for the definition and the search).
+/// passes within `max_deviation` of the corner point, and no closer than
+/// `max_deviation (1 - relative_deviation_accuracy)` (module documentation
+/// for the definition, the guarantee and the search).
 ///
 /// Errors: as [`super::fillet`] for the curves, orders and scales;
 /// `max_deviation` or `setback_ratio` non-finite or not positive; a bound that
 /// even the longest possible setbacks do not reach (InvalidArgument naming
-/// `max_deviation`, with the largest deviation possible).
+/// `max_deviation`, with the largest deviation possible); a deviation that
+/// jumps over the acceptance window (IllConditioned, with the relative gap
+/// left below `max_deviation`).
 ///
 /// ```
 /// use bezjoin_core::BezierCurve;
@@ -143,7 +171,7 @@ pub fn distance_to_curve(curve: &BezierCurve, point: &[f64]) -> (f64, f64) {
 /// let p = BezierCurve::from_rows(&[[-2.0, 0.0], [0.0, 0.0], [2.0, 0.0]]).unwrap();
 /// let q = BezierCurve::from_rows(&[[0.0, -2.0], [0.0, 0.0], [0.0, 2.0]]).unwrap();
 /// let r = fillet_within_deviation(&p, &q, &DeviationFilletOptions::new(0.1, 2)).unwrap();
-/// assert!((r.deviation - 0.1).abs() <= 1e-9 * 0.1);
+/// assert!(r.deviation <= 0.1 && r.deviation >= 0.1 * (1.0 - 1e-9));
 /// ```
 pub fn fillet_within_deviation(
     p: &BezierCurve,
@@ -186,20 +214,31 @@ pub fn fillet_within_deviation(
             deviation_parameter: t,
         })
     };
-    let tolerance = options.relative_deviation_accuracy * eps;
-    // Bracket the smallest root: walk up from a short setback by doubling
-    // (or down by halving when the first one is already too deviant).
-    let (mut lo, mut g_lo) = (0.0, -eps);
+    // The bound is strict: only a deviation in the window [low, high]
+    // below eps is accepted, and the search aims inside it, at `target`;
+    // `high` keeps a margin of a/4 eps for the rounding of the computed
+    // distance.
+    let a = options.relative_deviation_accuracy.min(1.0);
+    let low = eps * (1.0 - a);
+    let high = eps * (1.0 - 0.25 * a);
+    let target = eps * (1.0 - 0.5 * a);
+    let accepted = |d: f64| (low..=high).contains(&d);
+    // Bracket the smallest root of h(dp) = deviation(dp) - target: walk up
+    // from a short setback by doubling (or down by halving when the first
+    // one is already too deviant). `lo` has h < 0, `hi` has h > 0.
+    let (mut lo, mut h_lo) = (0.0, -target);
+    // The trial below the window that came closest to it; never one above.
+    let mut best_safe: Option<DeviationFillet> = None;
     let mut dp = (0.5 * eps).min(longest);
     let mut trial = attempt(dp)?;
-    let mut g = trial.deviation - eps;
-    if g.abs() <= tolerance {
+    if accepted(trial.deviation) {
         return Ok(trial);
     }
-    if g < 0.0 {
+    let mut h = trial.deviation - target;
+    if h < 0.0 {
         loop {
             lo = dp;
-            g_lo = g;
+            h_lo = h;
             if dp >= longest {
                 return Err(BezjoinError::invalid(
                     "max_deviation",
@@ -210,13 +249,14 @@ pub fn fillet_within_deviation(
                     ),
                 ));
             }
+            best_safe = Some(trial);
             dp = (2.0 * dp).min(longest);
             trial = attempt(dp)?;
-            g = trial.deviation - eps;
-            if g.abs() <= tolerance {
+            if accepted(trial.deviation) {
                 return Ok(trial);
             }
-            if g > 0.0 {
+            h = trial.deviation - target;
+            if h > 0.0 {
                 break;
             }
         }
@@ -224,49 +264,51 @@ pub fn fillet_within_deviation(
         for _ in 0..60 {
             let shorter = 0.5 * dp;
             let t = attempt(shorter)?;
-            let gs = t.deviation - eps;
-            if gs.abs() <= tolerance {
+            if accepted(t.deviation) {
                 return Ok(t);
             }
-            if gs < 0.0 {
+            let hs = t.deviation - target;
+            if hs < 0.0 {
                 lo = shorter;
-                g_lo = gs;
+                h_lo = hs;
+                best_safe = Some(t);
                 break;
             }
             dp = shorter;
-            trial = t;
-            g = gs;
+            h = hs;
         }
     }
-    let (mut hi, mut g_hi) = (dp, g);
-    let mut best = trial;
-    // Illinois false position on g(dp) = deviation - eps over [lo, hi].
+    let (mut hi, mut h_hi) = (dp, h);
+    // Illinois false position on h over [lo, hi].
     let mut side = 0i32;
     for _ in 0..100 {
-        let mut dp = (lo * g_hi - hi * g_lo) / (g_hi - g_lo);
+        let mut dp = (lo * h_hi - hi * h_lo) / (h_hi - h_lo);
         if !(dp > lo && dp < hi) {
             dp = 0.5 * (lo + hi);
         }
         let trial = attempt(dp)?;
-        let g = trial.deviation - eps;
-        if g.abs() < (best.deviation - eps).abs() {
-            best = trial;
+        if accepted(trial.deviation) {
+            return Ok(trial);
         }
-        if g.abs() <= tolerance {
-            return Ok(best);
-        }
-        if g < 0.0 {
+        let h = trial.deviation - target;
+        if h < 0.0 {
             lo = dp;
-            g_lo = g;
+            h_lo = h;
             if side == -1 {
-                g_hi *= 0.5;
+                h_hi *= 0.5;
             }
             side = -1;
+            if best_safe
+                .as_ref()
+                .is_none_or(|b| trial.deviation > b.deviation)
+            {
+                best_safe = Some(trial);
+            }
         } else {
             hi = dp;
-            g_hi = g;
+            h_hi = h;
             if side == 1 {
-                g_lo *= 0.5;
+                h_lo *= 0.5;
             }
             side = 1;
         }
@@ -274,16 +316,14 @@ pub fn fillet_within_deviation(
             break;
         }
     }
-    let miss = (best.deviation - eps).abs() / eps;
-    if miss <= options.relative_deviation_accuracy {
-        return Ok(best);
-    }
+    let closest = best_safe.map_or(0.0, |b| b.deviation);
     Err(BezjoinError::IllConditioned {
         what: format!(
-            "deviation search: the closest deviation found is {} for max_deviation = {eps}",
-            best.deviation
+            "deviation search: no setback gives a deviation in [{low}, {high}] for \
+             max_deviation = {eps} (the deviation jumps over the window; the closest below \
+             it is {closest})"
         ),
-        estimate: miss,
+        estimate: (eps - closest) / eps,
         limit: options.relative_deviation_accuracy,
     })
 }
