@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # FreeCAD-side tests of the bezjoin bindings and workbench, run headless by freecadcmd.
 # Installs FreeCAD (Debian's freecad-python3) if missing, builds the release library
-# if missing or older than the sources, and fails unless every test passed.
+# (cargo build --release -p bezjoin-ffi; a no-op when it is up to date) unless
+# BEZJOIN_LIBRARY names one, and fails unless every test passed.
 # freecadcmd exits 0 even when a script raises, so the outcome is read from both the
 # exit status and a marker file the test runner writes only on success.
 set -euo pipefail
@@ -16,12 +17,16 @@ if ! command -v freecadcmd >/dev/null 2>&1; then
     apt-get install -y --no-install-recommends freecad-python3
 fi
 
-library="$repository/target/release/libbezjoin.so"
 if [[ -n "${BEZJOIN_LIBRARY:-}" ]]; then
     library="$BEZJOIN_LIBRARY"
-elif [[ ! -f "$library" ]] || [[ -n "$(find crates/bezjoin/src crates/bezjoin-ffi/src \
-        -newer "$library" -print -quit)" ]]; then
+else
+    # Always (re)build: cargo does nothing when the library is up to date.
     cargo build --release -p bezjoin-ffi
+    library="$repository/target/release/libbezjoin.so"
+fi
+if [[ ! -f "$library" ]]; then
+    echo "freecad/run-tests.sh: no library at $library" >&2
+    exit 1
 fi
 export BEZJOIN_LIBRARY="$library"
 

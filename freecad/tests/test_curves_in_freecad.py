@@ -64,6 +64,7 @@ class RoundTrip(unittest.TestCase):
             # FreeCAD's own segment of the Bezier curve agrees pole by pole
             reference = original.copy()
             reference.segment(0.2, 0.7)
+            self.assertEqual(len(curve.points), len(poles(reference)))
             for ours, theirs in zip(curve.points, poles(reference)):
                 self.assertLess(gap(ours, theirs), 1e-13 * scale)
 
@@ -153,6 +154,7 @@ class ExactOperationsAgreeWithFreeCAD(unittest.TestCase):
         with Curve.from_freecad(original) as curve, curve.elevate(9) as elevated:
             reference = original.copy()
             reference.increase(9)
+            self.assertEqual(len(elevated.points), len(poles(reference)))
             for ours, theirs in zip(elevated.points, poles(reference)):
                 self.assertLess(gap(ours, theirs), 1e-13 * size([original]))
 

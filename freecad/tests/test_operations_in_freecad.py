@@ -176,6 +176,7 @@ class RoundCornerJudgedByFreeCAD(unittest.TestCase, CommandDriver):
             self.assertLessEqual(gap(p_freecad.value(u0), pieces[0].EndPoint), 1e-9)
             kept = p_freecad.copy()
             kept.segment(0.0, u0)
+            self.assertEqual(len(poles(pieces[0])), len(poles(kept)))
             for ours, theirs in zip(poles(pieces[0]), poles(kept)):
                 self.assertLessEqual(gap(ours, theirs), 1e-9)
             assert_chain_smooth(self, pieces, [u0, alpha, (1 - v0) * alpha / beta], order)
@@ -299,6 +300,9 @@ class MergeJudgedByFreeCAD(unittest.TestCase, CommandDriver):
             left.segment(0.0, used)
             right.segment(used, 1.0)
             scale = size([merged])
+            self.assertEqual(len(p_hat), merged.NbPoles)
+            self.assertEqual(len(p_hat), len(poles(left)))
+            self.assertEqual(len(q_hat), len(poles(right)))
             for ours, theirs in zip(p_hat, poles(left)):
                 self.assertLessEqual(gap(ours, theirs), 1e-12 * scale)
             for ours, theirs in zip(q_hat, poles(right)):

@@ -84,10 +84,20 @@ class Commands(unittest.TestCase):
                 del FreeCADGui.addCommand
             else:
                 FreeCADGui.addCommand = original
-        expected = [name for name, (_command, operation) in commands.COMMANDS.items()
-                    if hasattr(bezjoin, operation)]
+        # The four commands of issue 9, with the operation each one runs.
+        expected = ["Bezjoin_Blend", "Bezjoin_RoundCorner", "Bezjoin_Merge", "Bezjoin_Spline"]
         self.assertEqual(names, expected)
         self.assertEqual(sorted(registered), sorted(expected))
+        operations_run = {name: operation for name, (_c, operation) in commands.COMMANDS.items()}
+        self.assertEqual(operations_run, {"Bezjoin_Blend": "connect",
+                                          "Bezjoin_RoundCorner": "fillet",
+                                          "Bezjoin_Merge": "merge",
+                                          "Bezjoin_Spline": "lagrange_spline"})
+        for operation in operations_run.values():
+            self.assertTrue(callable(getattr(bezjoin, operation, None)), operation)
+        menu_texts = [registered[name].GetResources()["MenuText"] for name in expected]
+        self.assertEqual(menu_texts, ["Blend two edges", "Round corner", "Merge two edges",
+                                      "Spline through on-curve points"])
         for command in registered.values():
             resources = command.GetResources()
             self.assertTrue(resources["MenuText"])

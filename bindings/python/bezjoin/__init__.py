@@ -19,7 +19,7 @@ from ._library import (
     status_name,
 )
 from ._connect import AutoScaledConnection, connect, connect_auto_scale
-from ._fillet import FilletResult, fillet, intersect
+from ._fillet import FilletResult, Intersection, fillet, intersect, intersect_detailed
 from ._lagrange import lagrange_spline
 from ._merge import MergeResult, merge
 from .curve import Curve
@@ -32,6 +32,7 @@ __all__ = [
     "BezjoinError",
     "Curve",
     "FilletResult",
+    "Intersection",
     "LibraryNotFoundError",
     "MergeResult",
     "UnsupportedGeometryError",
@@ -41,6 +42,7 @@ __all__ = [
     "fillet",
     "find_library",
     "intersect",
+    "intersect_detailed",
     "lagrange_spline",
     "library_path",
     "library_version",

@@ -1,5 +1,5 @@
-"""Round the corner where two curves cross (``bzj_fillet``) and find the crossings
-(``bzj_intersect``).
+"""Round the corner where two curves cross (``bzj_fillet``) and find where they meet
+(``bzj_intersect``, and ``bzj_intersect_detailed`` for the kind of each hit).
 
 Krivosheev, Mavrin, Starkova, "Bezier curve conjugation for smooth curve
 joining and corner rounding", Omsk Scientific Bulletin, 2025, Fig. 2
@@ -7,6 +7,7 @@ joining and corner rounding", Omsk Scientific Bulletin, 2025, Fig. 2
 """
 
 import ctypes
+from collections import namedtuple
 
 from ._convert import index_argument, real_argument
 from ._library import CurvePointer, library, register_prototype
@@ -48,9 +49,59 @@ register_prototype(
 )
 
 
-#: Crossings asked for in the first call of :func:`intersect`; when there are more,
-#: it asks again with room for all of them.
+
+class IntersectOptionsStruct(ctypes.Structure):
+    """``BzjIntersectOptions`` (layout fixed by the C header)."""
+
+    _fields_ = [
+        ("relative_distance_tolerance", ctypes.c_double),
+        ("tangent_tolerance", ctypes.c_double),
+        ("max_depth", ctypes.c_size_t),
+        ("max_box_pairs", ctypes.c_size_t),
+        ("max_hits", ctypes.c_size_t),
+    ]
+
+
+class IntersectionStruct(ctypes.Structure):
+    """``BzjIntersection`` (layout fixed by the C header)."""
+
+    _fields_ = [
+        ("u", ctypes.c_double),
+        ("v", ctypes.c_double),
+        ("u_end", ctypes.c_double),
+        ("v_end", ctypes.c_double),
+        ("distance", ctypes.c_double),
+        ("kind", ctypes.c_int32),
+    ]
+
+
+register_prototype(
+    "bzj_intersect_options_default",
+    ctypes.c_int32,
+    [ctypes.POINTER(IntersectOptionsStruct)],
+)
+register_prototype(
+    "bzj_intersect_detailed",
+    ctypes.c_int32,
+    [CurvePointer, CurvePointer, ctypes.POINTER(IntersectOptionsStruct),
+     ctypes.POINTER(IntersectionStruct), ctypes.c_size_t, ctypes.POINTER(ctypes.c_size_t)],
+)
+
+
+#: Crossings asked for in the first call of :func:`intersect` and
+#: :func:`intersect_detailed`; when there are more, they ask again with room for all.
 FIRST_CAPACITY = 16
+
+#: ``BzjIntersectionKind`` values and their names in :class:`Intersection`.
+INTERSECTION_KINDS = {0: "crossing", 1: "touching", 2: "overlap"}
+
+Intersection = namedtuple("Intersection", "u v u_end v_end distance kind")
+Intersection.__doc__ = """One place where two curves meet (``BzjIntersection``).
+
+``kind`` is ``"crossing"``, ``"touching"`` or ``"overlap"``. ``u``, ``v``: the
+parameters on P and Q (for an overlap, of its start); ``u_end``, ``v_end``: the
+end of an overlap (P(u_end) = Q(v_end)), equal to ``u``, ``v`` otherwise;
+``distance = |P(u) - Q(v)|``."""
 
 
 class FilletResult(CurveGroup):
@@ -134,4 +185,49 @@ def intersect(p, q):
                        ctypes.byref(count))
         if count.value <= capacity:
             return [(buffer[2 * i], buffer[2 * i + 1]) for i in range(count.value)]
+        capacity = count.value
+
+
+def intersect_detailed(p, q, *, relative_distance_tolerance=None, tangent_tolerance=None,
+                       max_depth=None, max_box_pairs=None, max_hits=None):
+    """All places where ``p`` and ``q`` meet, ordered by ``u``, as :class:`Intersection`
+    tuples that say what each hit is: a crossing, a touching point, or an overlap
+    with its range (``bzj_intersect_detailed``).
+
+    The keyword options are those of ``BzjIntersectOptions``; ``None`` keeps the
+    library's default (``bzj_intersect_options_default``). :func:`intersect` is the
+    same search with the default options, returning only the ``(u, v)`` pairs.
+
+    Raises:
+        BezjoinError: ``BZJ_ERR_INVALID_ARGUMENT`` for an option out of its range or
+            curves of dimension 1, ``BZJ_ERR_NON_FINITE`` for a NaN or infinite
+            tolerance, ``BZJ_ERR_DIMENSION_MISMATCH``, ``BZJ_ERR_ILL_CONDITIONED``
+            when a work bound is reached.
+    """
+    p_handle, q_handle = handle_of(p, "p"), handle_of(q, "q")
+    options = IntersectOptionsStruct()
+    library().call("bzj_intersect_options_default", ctypes.byref(options))
+    for name, value, convert in (
+            ("relative_distance_tolerance", relative_distance_tolerance, real_argument),
+            ("tangent_tolerance", tangent_tolerance, real_argument),
+            ("max_depth", max_depth, index_argument),
+            ("max_box_pairs", max_box_pairs, index_argument),
+            ("max_hits", max_hits, index_argument)):
+        if value is not None:
+            setattr(options, name, convert(value, name))
+    capacity = FIRST_CAPACITY
+    while True:
+        buffer = (IntersectionStruct * capacity)()
+        count = ctypes.c_size_t()
+        library().call("bzj_intersect_detailed", p_handle, q_handle, ctypes.byref(options),
+                       buffer, capacity, ctypes.byref(count))
+        if count.value <= capacity:
+            hits = []
+            for hit in buffer[:count.value]:
+                if hit.kind not in INTERSECTION_KINDS:
+                    raise RuntimeError(f"libbezjoin returned intersection kind {hit.kind}, "
+                                       "unknown to these bindings")
+                hits.append(Intersection(hit.u, hit.v, hit.u_end, hit.v_end, hit.distance,
+                                         INTERSECTION_KINDS[hit.kind]))
+            return hits
         capacity = count.value

@@ -59,6 +59,9 @@ def pieces_of(r_points, mu):
 
 
 def close_points(a, b, relative):
+    # zip would stop at the shorter list: the pole counts must agree first.
+    assert len(a) == len(b), f"{len(a)} poles against {len(b)}"
+    assert a, "no poles"
     scale = max([1.0] + [math.sqrt(sum(x * x for x in p)) for p in b])
     return max(distance(x, y) for x, y in zip(a, b)) <= relative * scale
 

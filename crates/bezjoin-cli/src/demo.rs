@@ -112,19 +112,19 @@ pub fn summary_table(ran: &[Ran]) -> String {
     let mut s = String::new();
     let _ = writeln!(
         s,
-        "{:<name_width$}  {:>6}  {:>16}  {:>13}  deviation measured from",
-        "scenario", "degree", "worst C^k jump", "max deviation"
+        "{:<name_width$}  {:>6}  {:>26}  {:>13}  deviation measured from",
+        "scenario", "degree", "worst continuity residual", "max deviation"
     );
     let _ = writeln!(
         s,
         "{}",
-        "-".repeat(name_width + 2 + 6 + 2 + 16 + 2 + 13 + 25)
+        "-".repeat(name_width + 2 + 6 + 2 + 26 + 2 + 13 + 25)
     );
     for r in ran {
         let sum = &r.outcome.summary;
         let _ = writeln!(
             s,
-            "{:<name_width$}  {:>6}  {:>16}  {:>13}  {}",
+            "{:<name_width$}  {:>6}  {:>26}  {:>13}  {}",
             r.scenario.name,
             sum.degree,
             number(sum.worst_continuity_jump),
@@ -138,8 +138,9 @@ pub fn summary_table(ran: &[Ran]) -> String {
     }
     let _ = writeln!(
         s,
-        "\nworst C^k jump: largest relative jump |left^(j) - right^(j)| / max(|left^(j)|, |right^(j)|), j = 0..k,\n\
-         measured by the tool from the returned control points at every join, in the chain's global parameter."
+        "\nworst continuity residual: largest relative jump |left^(j) - right^(j)| / max(|left^(j)|, |right^(j)|),\n\
+         j = 0..k for the promised C^k, measured by the tool from the returned control points at every join,\n\
+         in the chain's global parameter (for merges: between P^ and Q^ at R(mu), k = degree)."
     );
     s
 }
@@ -162,7 +163,7 @@ fn index_html(ran: &[Ran]) -> String {
          One comb scale per picture, so a comb that continues smoothly across a join point shows continuous curvature; a step shows a jump. \
          Every picture has its job next to it (<code>NAME.job.json</code>, accepted as it is by the subcommand named) and its result (<code>NAME.result.json</code>).</p>\n",
     );
-    s.push_str("<h2>Summary</h2>\n<table>\n<tr><th>scenario</th><th>subcommand</th><th>degree</th><th>worst C<sup>k</sup> jump</th><th>max deviation</th><th>deviation measured from</th></tr>\n");
+    s.push_str("<h2>Summary</h2>\n<table>\n<tr><th>scenario</th><th>subcommand</th><th>degree</th><th>worst continuity residual (C<sup>k</sup> jump)</th><th>max deviation</th><th>deviation measured from</th></tr>\n");
     for r in ran {
         let sum = &r.outcome.summary;
         let _ = writeln!(

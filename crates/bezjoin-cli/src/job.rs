@@ -44,6 +44,19 @@ impl std::error::Error for JobError {}
 /// Result of reading part of a job.
 pub type JobResult<T> = Result<T, JobError>;
 
+/// The bytes of a job as text; bytes that are not UTF-8 are a job error
+/// naming the source, the byte offset and the line of the first bad byte.
+pub fn decode_text(source_name: &str, bytes: Vec<u8>) -> JobResult<String> {
+    String::from_utf8(bytes).map_err(|e| {
+        let at = e.utf8_error().valid_up_to();
+        let line = 1 + e.as_bytes()[..at].iter().filter(|&&b| b == b'\n').count();
+        JobError::new(
+            source_name,
+            format!("is not UTF-8 text: invalid byte at offset {at} (line {line})"),
+        )
+    })
+}
+
 /// Parse the text of a job; syntax errors name the line and column.
 pub fn parse_text(source_name: &str, text: &str) -> JobResult<Value> {
     serde_json::from_str(text).map_err(|e| {

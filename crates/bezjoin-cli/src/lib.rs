@@ -1,10 +1,18 @@
 //! The `bezjoin` command-line tool as a library: JSON jobs in, JSON results
 //! and SVG pictures out, and the demo.
 //!
-//! Every subcommand reads one JSON job (see `crates/bezjoin-cli/README.md`
-//! and the files in `examples/`), calls `bezjoin_core` directly, and returns
-//! an [`Outcome`]: the JSON result, a [`svg::Figure`] and a one-line
-//! [`Summary`] (what the demo's table prints).
+//! Every subcommand reads one JSON job, calls `bezjoin_core` directly, and
+//! returns an [`Outcome`]: the JSON result, a [`svg::Figure`] and a one-line
+//! [`Summary`] (what the demo's table prints). The job formats are
+//! documented per subcommand in `crates/bezjoin-cli/README-connect.md`,
+//! `README-fillet.md` (fillet and intersect), `README-merge.md` and
+//! `README-spline.md`, with an example job each in `examples/`.
+//!
+//! Exit codes of the `bezjoin` binary: 0 success; 1 a file or standard
+//! input/output could not be read or written; 2 the job is invalid (not
+//! UTF-8, not JSON, or a bad field or value, the message naming the field);
+//! 3 an internal error (a panic, which is a bug), reported as one line on
+//! standard error instead of a panic trace.
 #![forbid(unsafe_code)]
 
 pub mod arc;

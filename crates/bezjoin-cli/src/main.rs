@@ -10,7 +10,15 @@ use clap::{Parser, Subcommand};
 /// Smooth joins of Bezier curves: JSON jobs in, JSON results and SVG pictures
 /// (with curvature combs) out.
 #[derive(Parser)]
-#[command(name = "bezjoin", version, about, long_about = None)]
+#[command(
+    name = "bezjoin",
+    version,
+    about,
+    long_about = None,
+    after_help = "Exit codes: 0 success; 1 a file or standard input/output could not be read or written; \
+                  2 the job is invalid (not UTF-8, not JSON, or a bad field or value; the message names the field); \
+                  3 internal error (a bug: one line on standard error instead of a panic trace)."
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -28,8 +36,20 @@ enum Command {
     },
 }
 
+/// Exit code after an internal error (a panic, which is a bug): distinct from
+/// 1 (input/output error) and 2 (bad job).
+const EXIT_INTERNAL: i32 = 3;
+
+/// Set to make the tool panic on purpose after parsing its arguments (how
+/// the tests check the panic hook).
+const PANIC_TEST_VARIABLE: &str = "BEZJOIN_CLI_TEST_PANIC";
+
 fn main() -> ExitCode {
+    install_panic_hook();
     let cli = Cli::parse();
+    if std::env::var_os(PANIC_TEST_VARIABLE).is_some() {
+        panic!("deliberate panic requested by {PANIC_TEST_VARIABLE}");
+    }
     let result = match cli.command {
         Command::Demo { out } => demo::run(&out).and_then(|table| print_stdout(&table)),
         Command::Operation(op) => run_operation(op),
@@ -69,20 +89,44 @@ fn print_stdout(text: &str) -> Result<(), CliError> {
     }
 }
 
+/// Read the job's bytes (a file, or standard input for `-` or nothing);
+/// bytes that are not UTF-8 text are a bad job (exit 2), not an I/O error.
 fn read_job(path: Option<&Path>) -> Result<(String, String), CliError> {
-    match path {
-        None => read_stdin(),
-        Some(p) if p == Path::new("-") => read_stdin(),
-        Some(p) => std::fs::read_to_string(p)
-            .map(|t| (p.display().to_string(), t))
-            .map_err(|e| CliError::Io(format!("cannot read {}: {e}", p.display()))),
-    }
+    let (source, bytes) = match path {
+        None => read_stdin()?,
+        Some(p) if p == Path::new("-") => read_stdin()?,
+        Some(p) => std::fs::read(p)
+            .map(|b| (p.display().to_string(), b))
+            .map_err(|e| CliError::Io(format!("cannot read {}: {e}", p.display())))?,
+    };
+    let text = job::decode_text(&source, bytes)?;
+    Ok((source, text))
 }
 
-fn read_stdin() -> Result<(String, String), CliError> {
-    let mut text = String::new();
+fn read_stdin() -> Result<(String, Vec<u8>), CliError> {
+    let mut bytes = Vec::new();
     std::io::stdin()
-        .read_to_string(&mut text)
+        .read_to_end(&mut bytes)
         .map_err(|e| CliError::Io(format!("cannot read standard input: {e}")))?;
-    Ok(("<stdin>".into(), text))
+    Ok(("<stdin>".into(), bytes))
+}
+
+/// Replace the panic trace by one line on standard error and exit with
+/// [`EXIT_INTERNAL`]: a panic is a bug in the tool, not a bad job.
+fn install_panic_hook() {
+    std::panic::set_hook(Box::new(|info| {
+        let payload = info.payload();
+        let message = payload
+            .downcast_ref::<&str>()
+            .copied()
+            .or_else(|| payload.downcast_ref::<String>().map(String::as_str))
+            .unwrap_or("unknown cause");
+        let at = info
+            .location()
+            .map(|l| format!(" ({}:{})", l.file(), l.line()))
+            .unwrap_or_default();
+        let message = message.lines().collect::<Vec<_>>().join(" ");
+        eprintln!("bezjoin: internal error: {message}{at}; this is a bug, please report it");
+        std::process::exit(EXIT_INTERNAL);
+    }));
 }

@@ -26,6 +26,139 @@ fn listed_scenarios(index: &str) -> Vec<String> {
     names
 }
 
+/// The demo's scenarios: connections without and with interior constraints,
+/// symmetric and asymmetric corner rounding, merges with each metric and
+/// each constraint kind, Lagrange splines, and an intersection.
+const SCENARIOS: [&str; 14] = [
+    "connect-plain",
+    "connect-constrained",
+    "connect-auto-scale",
+    "fillet-symmetric-c2",
+    "fillet-asymmetric-c3",
+    "merge-discrete",
+    "merge-integral-optimal",
+    "merge-keep-p",
+    "merge-keep-q",
+    "merge-fix-ends",
+    "merge-keep-point",
+    "spline-cubic-c1",
+    "spline-quintic-c2",
+    "intersect-wavy-cubics",
+];
+
+/// The printed table: a header naming the columns scenario, degree, worst
+/// continuity residual and max deviation, then one row per scenario whose
+/// degree is the result's and whose continuity residual is the worst
+/// promised jump the result reports (merges: P^ and Q^ meet as pieces of
+/// one polynomial, so at rounding level).
+fn assert_summary_table(table: &str, out: &Path) {
+    let header = table.lines().next().expect("a table");
+    let mut at = 0;
+    for column in [
+        "scenario",
+        "degree",
+        "worst continuity residual",
+        "max deviation",
+    ] {
+        let i = header[at..]
+            .find(column)
+            .unwrap_or_else(|| panic!("column {column:?} missing or out of order in {header:?}"));
+        at += i + column.len();
+    }
+    for name in SCENARIOS {
+        let row = table
+            .lines()
+            .find(|l| l.split_whitespace().next() == Some(name))
+            .unwrap_or_else(|| panic!("{name} has no row in the summary table"));
+        let cells: Vec<&str> = row.split_whitespace().collect();
+        let result = read_json(&out.join(format!("{name}.result.json")));
+        let degree = ["curve", "blend"]
+            .iter()
+            .find_map(|k| result[k]["degree"].as_u64())
+            .or_else(|| result["degree"].as_u64());
+        if let Some(degree) = degree {
+            assert_eq!(cells[1], degree.to_string(), "{name}: degree column");
+        }
+        let residual = cells[2];
+        if let Some(joins) = result["report"]["measured_continuity"].as_array() {
+            let worst = joins
+                .iter()
+                .map(|j| j["worst_promised_jump"].as_f64().unwrap())
+                .fold(0.0, f64::max);
+            let printed: f64 = residual.parse().expect("a number");
+            assert!(
+                (printed - worst).abs() <= 0.01 * worst.max(1e-300),
+                "{name}: table says {printed}, result says {worst}"
+            );
+        } else if name.starts_with("merge") {
+            let printed: f64 = residual.parse().expect("a number");
+            assert!(printed < 1e-9, "{name}: P^|Q^ residual {printed}");
+        }
+    }
+}
+
+/// A fillet picture draws, next to the blend, the plain circular-arc
+/// fillet for comparison: a dashed curve labelled as such, starting where
+/// the blend starts (at P(u0)), whose drawn points lie on one circle, and a
+/// caption line naming it.
+fn assert_circular_arc_reference(name: &str, svg: &str) {
+    let curves = &svg[svg.find("<g id=\"curves\"").expect("a curves group")..];
+    let curves = &curves[..curves.find("</g>").unwrap()];
+    let drawn = |label: &str| -> (String, Vec<[f64; 2]>) {
+        let end = curves
+            .find(&format!("><title>{label}"))
+            .unwrap_or_else(|| panic!("{name}: no curve labelled {label:?}"));
+        let start = curves[..end].rfind("<polyline ").unwrap();
+        let tag = &curves[start..end];
+        let points = tag
+            .split("points=\"")
+            .nth(1)
+            .unwrap()
+            .split('"')
+            .next()
+            .unwrap();
+        let points = points
+            .split_whitespace()
+            .map(|p| {
+                let (x, y) = p.split_once(',').unwrap();
+                [x.parse().unwrap(), y.parse().unwrap()]
+            })
+            .collect();
+        (tag.to_string(), points)
+    };
+    let (arc_tag, arc) = drawn("circular-arc fillet");
+    let (_, blend) = drawn("blend R");
+    assert!(
+        arc_tag.contains("stroke-dasharray"),
+        "{name}: the reference is dashed"
+    );
+    let d = |a: [f64; 2], b: [f64; 2]| (a[0] - b[0]).hypot(a[1] - b[1]);
+    assert!(
+        d(arc[0], blend[0]) < 0.05,
+        "{name}: the arc starts at P(u0)"
+    );
+    // Circle through the first, middle and last drawn points.
+    let (a, b, c) = (arc[0], arc[arc.len() / 2], arc[arc.len() - 1]);
+    let det = 2.0 * (a[0] * (b[1] - c[1]) + b[0] * (c[1] - a[1]) + c[0] * (a[1] - b[1]));
+    assert!(det.abs() > 1e-6, "{name}: the reference is not straight");
+    let sq = |p: [f64; 2]| p[0] * p[0] + p[1] * p[1];
+    let centre = [
+        (sq(a) * (b[1] - c[1]) + sq(b) * (c[1] - a[1]) + sq(c) * (a[1] - b[1])) / det,
+        (sq(a) * (c[0] - b[0]) + sq(b) * (a[0] - c[0]) + sq(c) * (b[0] - a[0])) / det,
+    ];
+    let radius = d(a, centre);
+    for p in &arc {
+        assert!(
+            (d(*p, centre) - radius).abs() < 0.05,
+            "{name}: the reference is not a circular arc"
+        );
+    }
+    assert!(
+        svg.contains("Reference: circular arc tangent to P at P(u0)"),
+        "{name}: the caption names the reference"
+    );
+}
+
 fn out_dir() -> PathBuf {
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("demo-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
@@ -86,11 +219,14 @@ fn demo_writes_every_listed_scenario() {
     );
     let index = std::fs::read_to_string(out.join("index.html")).expect("index.html written");
     let names = listed_scenarios(&index);
-    // The connect scenarios are part of the demo.
-    for expected in ["connect-plain", "connect-constrained", "connect-auto-scale"] {
-        assert!(names.iter().any(|n| n == expected), "{expected} not listed");
-    }
+    // Every scenario of the papers (issue 8, item 3), once each, in order.
+    assert_eq!(names, SCENARIOS, "the scenarios index.html lists");
     let table = String::from_utf8_lossy(&run.stdout);
+    assert_summary_table(&table, &out);
+    for name in names.iter().filter(|n| n.starts_with("fillet")) {
+        let svg = std::fs::read_to_string(out.join(format!("{name}.svg"))).unwrap();
+        assert_circular_arc_reference(name, &svg);
+    }
     for name in &names {
         assert!(
             table.contains(name.as_str()),

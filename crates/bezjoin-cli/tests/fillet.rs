@@ -381,11 +381,16 @@ fn bad_jobs_exit_2_naming_the_field() {
         &format!("{{{lines}, \"max_depth\": \"x\"}}"),
         "max_depth",
     );
-    assert_exit_2_naming("intersect", "{\"p\": [[0, 0], [1, 0]]}", "q");
+    // "q" alone would be found inside "required": name the field as printed.
+    assert_exit_2_naming(
+        "intersect",
+        "{\"p\": [[0, 0], [1, 0]]}",
+        "invalid job: q: is required",
+    );
     assert_exit_2_naming(
         "intersect",
         "{\"p\": [[0, 0], [1, 0]], \"q\": [[0, 0, 1], [1, 0, 1]]}",
-        "q",
+        "invalid job: q has dimension 3, expected 2",
     );
     assert_exit_2_naming("intersect", "{\"p\": [[0, 0], [1, 0]", "line");
 }

@@ -235,15 +235,21 @@ fn assert_job_error(job: &Value, field: &str) {
 
 #[test]
 fn bad_jobs_exit_2_naming_the_field() {
-    assert_job_error(&variant(json!({"metric": "l3"})), "metric");
-    assert_job_error(&variant(json!({"split": "half", "mu": 0.3})), "mu");
-    assert_job_error(&variant(json!({"split": "given"})), "mu");
-    assert_job_error(&variant(json!({"mu": 1.5})), "mu");
+    assert_job_error(&variant(json!({"metric": "l3"})), "metric: \"l3\"");
+    assert_job_error(
+        &variant(json!({"split": "half", "mu": 0.3})),
+        "mu: is only used with",
+    );
+    assert_job_error(&variant(json!({"split": "given"})), "mu: is required");
+    assert_job_error(
+        &variant(json!({"split": "given", "mu": 1.5})),
+        "mu: 1.5 is outside",
+    );
     assert_job_error(
         &variant(json!({"p_points": [{"param": 1.5, "max_order": 1}]})),
-        "param",
+        "p_points[0].param:",
     );
-    assert_job_error(&variant(json!({"keep_p": "yes"})), "keep_p");
+    assert_job_error(&variant(json!({"keep_p": "yes"})), "keep_p:");
     assert_job_error(&variant(json!({"colour": 1})), "colour");
     // Contradictory: keep P and keep Q, but they do not join.
     assert_job_error(&variant(json!({"keep_p": true, "keep_q": true})), "keep Q");
@@ -253,7 +259,7 @@ fn bad_jobs_exit_2_naming_the_field() {
     );
     let mut job = example();
     job["q"] = json!([[0.0, 0.0, 0.0], [1.0, 1.0, 1.0]]);
-    assert_job_error(&job, "q");
+    assert_job_error(&job, "invalid job: q has dimension 3, expected 2");
 }
 
 #[test]

@@ -13,7 +13,7 @@ use bezjoin_core::bspline::relative_jump;
 use bezjoin_core::merge::{KeepPoint, Merge, MergeMetric, MergeOptions, SplitParameter, merge};
 use serde_json::{Value, json};
 
-use crate::check::curve_json;
+use crate::check::{JoinCheck, curve_json};
 use crate::demo::Scenario;
 use crate::job::{JobError, Located};
 use crate::svg::{CurveItem, Figure, Marker, MarkerKind, Role};
@@ -345,12 +345,27 @@ fn outcome(job: &MergeJob, m: &Merge) -> Outcome {
             "Worst measured constraint residual (distance or relative derivative jump): {w:.1e}"
         ));
     }
+    // P^ and Q^ are the pieces of one polynomial R: they join at R(mu) with
+    // every derivative (C^n, n = degree), measured from their control points.
+    let split_join = (report.mu > 0.0 && report.mu < 1.0).then(|| {
+        JoinCheck::measure(
+            "P^|Q^ at R(mu)",
+            &m.p_hat,
+            report.mu,
+            &m.q_hat,
+            1.0 - report.mu,
+            r.degree(),
+        )
+    });
+    if let Some(check) = &split_join {
+        figure.line(check.describe());
+    }
     Outcome {
         json,
         figure,
         summary: Summary {
             degree: r.degree(),
-            worst_continuity_jump: None,
+            worst_continuity_jump: split_join.as_ref().map(JoinCheck::worst_promised),
             max_deviation: Some(checks.r_vs_p_then_q),
             deviation_meaning: "R against P then Q (sampled)",
         },
