@@ -42,18 +42,39 @@
 //!   measured >= the true error against an exact rational reference, test
 //!   `merge_exact`), must stay below `accuracy` (default
 //!   [`DEFAULT_MERGE_ACCURACY`]), otherwise the answer is `IllConditioned`
-//!   with the estimate.
+//!   with the estimate. Estimates and checks are relative to the larger of
+//!   the input's and the result's coordinate scale (keep P with a small `mu`
+//!   makes `Q^` far larger than `P` and `Q`).
 //! * `R` restricted to each piece's interval reproduces the stage-1 pieces to
 //!   `accuracy` relative to the coordinate scale, otherwise `IllConditioned`.
 //! * Constraints: rows are scaled to unit length and tested against the
-//!   continuity rows and the constraints before them (QR / Gram-Schmidt, a
-//!   remainder below [`RANK_TOLERANCE`] means linearly dependent). A
-//!   dependent row that the solution satisfies (to [`CONSISTENCY_TOLERANCE`]
-//!   times the coordinate scale) is *redundant but consistent* and accepted
-//!   (for example "keep P" together with "fix ends"); one that it does not
-//!   satisfy is *contradictory*, an [`BezjoinError::Inconsistent`] error
-//!   naming it. Beyond continuity, at most `n + 1` independent conditions
-//!   per coordinate fit.
+//!   continuity rows and the constraints before them (QR / Gram-Schmidt; a
+//!   remainder at the rounding level, [`RANK_TOLERANCE`] `sqrt(N)`, means
+//!   linearly dependent; any larger remainder keeps the row and its
+//!   ill-conditioning goes into the estimate). A dependent row that the
+//!   solution satisfies (to [`CONSISTENCY_TOLERANCE`] times the coordinate
+//!   scale of input and result) is *redundant but consistent* and accepted
+//!   (for example three points with first derivatives on a cubic `P`); one
+//!   that it misses by more than [`CONTRADICTION_MARGIN`] times what the
+//!   rounding explains (`sqrt(N)` times the error estimate, plus the rows'
+//!   own rounding) is *contradictory*, an [`BezjoinError::Inconsistent`]
+//!   error naming it; in between, `IllConditioned`. Beyond continuity, at
+//!   most `n + 1` independent conditions per coordinate fit.
+//! * Keep P / keep Q (a kept curve of a chain): nothing is minimised, since
+//!   (3) makes the pieces one curve `R` and a kept piece fixes `R` (its
+//!   extension). The other pieces are computed directly from the kept one
+//!   (the one with the shortest extrapolation if several are kept) by
+//!   compensated de Casteljau (error-free transformations, double-double
+//!   parameters), with the bound `2 eps |x| + 2 (3 n eps)^2 |blossom|` per
+//!   control point as the error estimate: a few ulps even for a small kept
+//!   piece (plain arithmetic would lose `(2/mu - 1)^n` ulps). The kept curve
+//!   is returned bit for bit. Every other condition (another kept curve,
+//!   fix ends, keep points) is then dependent and checked as above, what
+//!   rounding explains being that bound plus the data's own half-ulp
+//!   rounding magnified by the extension, `eps |blossom|`: keep P with fix
+//!   ends on unrelated curves is `Inconsistent`, on the two pieces of one
+//!   curve it is answered (or `IllConditioned` when the extension magnifies
+//!   the pieces' rounding beyond the tolerance).
 //! * Every merge reports `mu`, the metric value and the largest distance
 //!   between `R` and "P then Q" ([`DEVIATION_SAMPLES`] + 1 samples on each
 //!   piece, `R(mu u)` against `P(u)`, `R(mu + (1-mu) v)` against `Q(v)`).
@@ -73,7 +94,10 @@ use crate::error::{
 };
 use crate::minimize::minimize_on_grid_then_brent;
 
-pub use solver::{CONSISTENCY_TOLERANCE, DEVIATION_SAMPLES, RANK_TOLERANCE, bernstein_gram_matrix};
+pub use solver::{
+    CONSISTENCY_TOLERANCE, CONTRADICTION_MARGIN, DEVIATION_SAMPLES, RANK_TOLERANCE,
+    bernstein_gram_matrix,
+};
 use solver::{PieceInput, StageOne, StageOneCheck, max_deviation, solve_stage_one, stage_two};
 
 /// The default `accuracy` of a merge: the largest accepted relative error
@@ -356,7 +380,7 @@ impl<'a> PairProblem<'a> {
     fn solve(&self, mu: f64, check: StageOneCheck) -> Result<StageOne> {
         solve_stage_one(
             &self.pieces,
-            &[mu, 1.0 - mu],
+            &[0.0, mu, 1.0],
             self.metric,
             self.fix_ends,
             self.accuracy,
@@ -552,10 +576,9 @@ pub fn merge_chain(curves: &[BezierCurve], options: &ChainMergeOptions) -> Resul
             polygon_breakpoints(&refs, &names)?
         }
     };
-    let lengths: Vec<f64> = breakpoints.windows(2).map(|w| w[1] - w[0]).collect();
     let stage_one = solve_stage_one(
         &pieces,
-        &lengths,
+        &breakpoints,
         options.metric,
         options.fix_ends,
         options.accuracy,
