@@ -372,8 +372,10 @@ typedef struct BzjFilletOptions {
  */
 typedef struct BzjDeviationFilletOptions {
   /**
-   * eps > 0: the blend passes at this distance from the corner point
-   * (min over t of |R(t) - X|, X the crossing).
+   * eps > 0: the largest distance allowed between the corner point X
+   * (the crossing) and the blend R, min over t of |R(t) - X|; the
+   * result's distance is in [eps (1 - 1e-9), eps (1 - 2.5e-10)], never
+   * above eps.
    */
   double max_deviation;
   /**
@@ -411,7 +413,8 @@ typedef struct BzjDeviationFilletReport {
    */
   double q_setback;
   /**
-   * The achieved deviation, within 1e-9 relative of max_deviation.
+   * The achieved deviation min over t of |R(t) - X|: at most
+   * max_deviation (1 - 2.5e-10) and at least max_deviation (1 - 1e-9).
    */
   double deviation;
   /**
@@ -590,7 +593,9 @@ const char *bzj_version(void);
 
 /**
  * The message of the calling thread's last failed call (empty after a
- * success). Valid until this thread's next bezjoin call; never NULL.
+ * success). Valid until this thread's next bezjoin call; never NULL (an
+ * empty static string when called during thread exit, after the thread's
+ * message storage is gone).
  */
 const char *bzj_last_error(void);
 
@@ -618,7 +623,10 @@ const char *bzj_status_name(int32_t status);
  *         BZJ_ERR_DIMENSION_MISMATCH if `p` and `q` have different dimensions;
  *         BZJ_ERR_SINGULAR if the interior system is numerically singular;
  *         BZJ_ERR_ILL_CONDITIONED if the result cannot be trusted to 1e-8
- *         (message carries the estimate) or its degree is above 31.
+ *         (the message carries the finite estimate, "estimated relative
+ *         error E exceeds the promised 1e-8") or its degree is above 31
+ *         (refused before solving: the message names the degree and the
+ *         estimate is inf, as no answer exists to check).
  *
  * # Safety
  * `p`, `q` are NULL or live handles; `options` is NULL or readable, with
@@ -648,8 +656,11 @@ BzjStatus bzj_connect_auto_scale(const struct BzjCurve *p, double u0, const stru
  * `points_len == (degree + 1) * dim` row-major coordinates.
  *
  * @return BZJ_ERR_NULL_POINTER if `points` or `out` is NULL;
- *         BZJ_ERR_INVALID_ARGUMENT if `dim == 0` or `points_len` is wrong;
+ *         BZJ_ERR_INVALID_ARGUMENT if `dim == 0`, `degree` is above the
+ *         maximum degree 4096, `(degree + 1) * dim` overflows `size_t`, or
+ *         `points_len` is wrong (all checked before `points` is read);
  *         BZJ_ERR_NON_FINITE if a coordinate is NaN or infinite.
+ *         On any error `*out` is set to NULL.
  *
  * # Safety
  * `points` points to `points_len` readable doubles; `out` is writable.
@@ -689,6 +700,7 @@ BzjStatus bzj_curve_dim(const struct BzjCurve *c, size_t *out);
  * Copy the `(degree + 1) * dim` row-major control points of `c` into `out`.
  *
  * @return BZJ_ERR_NULL_POINTER if `c` or `out` is NULL;
+ *         BZJ_ERR_INVALID_ARGUMENT if `out_len` is larger than any array can be;
  *         BZJ_ERR_BUFFER_TOO_SMALL if `out_len < (degree + 1) * dim` (nothing written).
  *
  * # Safety
@@ -703,6 +715,8 @@ BzjStatus bzj_curve_points(const struct BzjCurve *c, double *out, size_t out_len
  *
  * @return BZJ_ERR_NULL_POINTER if `c` or `out` is NULL;
  *         BZJ_ERR_NON_FINITE if `t` is NaN or infinite;
+ *         BZJ_ERR_INVALID_ARGUMENT if `(max_order + 1) * dim` overflows
+ *         `size_t` or `out_len` is larger than any array can be;
  *         BZJ_ERR_BUFFER_TOO_SMALL if `out_len` is short (nothing written).
  *
  * # Safety
@@ -714,7 +728,8 @@ BzjStatus bzj_curve_eval(const struct BzjCurve *c, double t, size_t max_order, d
  * The same curve written with degree `new_degree >= degree` (exact).
  *
  * @return BZJ_ERR_NULL_POINTER if `c` or `out` is NULL;
- *         BZJ_ERR_INVALID_ARGUMENT if `new_degree` is below the degree.
+ *         BZJ_ERR_INVALID_ARGUMENT if `new_degree` is below the degree or
+ *         above the maximum degree 4096.
  *
  * # Safety
  * `c` is NULL or a live handle; `out` is NULL or writable.
@@ -767,7 +782,12 @@ BzjStatus bzj_curve_reverse(const struct BzjCurve *c, struct BzjCurve **out);
  *
  * @return BZJ_ERR_NULL_POINTER if `c` or `out` is NULL;
  *         BZJ_ERR_NON_FINITE if `a` or `b` is NaN or infinite;
- *         BZJ_ERR_INVALID_ARGUMENT if the length overflows the double range.
+ *         BZJ_ERR_INVALID_ARGUMENT if the length overflows the double range
+ *         (e.g. `a = -1e200, b = 1e200`; the message names `a, b`);
+ *         BZJ_ERR_ILL_CONDITIONED if the adaptive rule spends its work
+ *         budget (about 10^6 speed evaluations, 40 bisections) without
+ *         reaching the accuracy above; the message carries the estimated
+ *         relative error. On any error `*out` is left unchanged.
  *
  * # Safety
  * `c` is NULL or a live handle; `out` is NULL or writable.
@@ -872,12 +892,15 @@ BzjStatus bzj_fillet(const struct BzjCurve *p, const struct BzjCurve *q, const s
 BzjStatus bzj_fillet_auto_scale(const struct BzjCurve *p, const struct BzjCurve *q, const struct BzjFilletOptions *options, struct BzjCurve **p_trimmed, struct BzjCurve **blend, struct BzjCurve **q_trimmed, double *scale_out);
 
 /**
- * Round the corner at the first crossing so that the blend passes at the
- * distance `max_deviation` from the corner point X (the crossing):
- * `min over t of |R(t) - X| = max_deviation` to 1e-9 relative, with setbacks
- * `dp` and `dq = setback_ratio * dp` found by a bracketing search (1.0 =
- * symmetric). Outputs as `bzj_fillet`; `report` (may be NULL) receives the
- * setbacks, the deviation achieved and the cut parameters.
+ * Round the corner at the first crossing so that the blend passes within
+ * `max_deviation` of the corner point X (the crossing), using nearly all of
+ * it: `max_deviation (1 - 1e-9) <= min over t of |R(t) - X| <=
+ * max_deviation (1 - 2.5e-10)`, a strict bound (a blend above
+ * `max_deviation` is never returned; the margin covers the rounding of the
+ * computed distance), with setbacks `dp` and `dq = setback_ratio * dp`
+ * found by a bracketing search (1.0 = symmetric). Outputs as
+ * `bzj_fillet`; `report` (may be NULL) receives the setbacks, the deviation
+ * achieved and the cut parameters.
  *
  * @return BZJ_ERR_NULL_POINTER if a required pointer is NULL;
  *         BZJ_ERR_DIMENSION_MISMATCH if the curves' dimensions differ;
@@ -887,8 +910,8 @@ BzjStatus bzj_fillet_auto_scale(const struct BzjCurve *p, const struct BzjCurve 
  *         deviation cannot be reached even with the longest setbacks the
  *         curves allow (the message gives the largest possible);
  *         BZJ_ERR_NO_INTERSECTION if the curves do not cross or only touch;
- *         BZJ_ERR_ILL_CONDITIONED if the connection or the search cannot be
- *         trusted.
+ *         BZJ_ERR_ILL_CONDITIONED if the connection cannot be trusted or no
+ *         setback the search tries gives a deviation in that window.
  *
  * # Safety
  * `p`, `q` are NULL or live handles; `options` is NULL or readable; the
