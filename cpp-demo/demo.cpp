@@ -732,7 +732,6 @@ void time_evaluation(Report& report, std::vector<Timing>& timings, const Options
     });
 }
 
-#if BEZJOIN_HAS_CONNECT
 // The connect system C R = F assembled with OCCT's B-spline basis
 // (BSplCLib::EvalBsplineBasis on the Bezier knot vector) and right-hand side
 // (Geom_BezierCurve::DN), solved per coordinate with math_Gauss. Returns R's
@@ -917,9 +916,7 @@ void check_connect(Report& report, StepScene& scene, std::vector<Timing>& timing
         (void)bezjoin::connect(p, 0.5, p, 0.5, opts);
     });
 }
-#endif  // BEZJOIN_HAS_CONNECT
 
-#if BEZJOIN_HAS_FILLET
 // d. fillet: our crossing vs Geom2dAPI_InterCurveCurve, setbacks by OCCT's
 // arc length, continuity as in c, and OCCT's circular fillet of the same corner.
 void check_fillet(Report& report, StepScene& scene, std::vector<Timing>& timings,
@@ -1100,9 +1097,7 @@ void check_fillet(Report& report, StepScene& scene, std::vector<Timing>& timings
         (void)bezjoin::fillet(low, high, opts);
     });
 }
-#endif  // BEZJOIN_HAS_FILLET
 
-#if BEZJOIN_HAS_MERGE
 // e. merge: Segment of R at mu gives back P^ and Q^; our deviation vs OCCT's
 // best one-span fit of the same two curves.
 void check_merge(Report& report, StepScene& scene, std::vector<Timing>& timings,
@@ -1138,7 +1133,8 @@ void check_merge(Report& report, StepScene& scene, std::vector<Timing>& timings,
                    format("reported %.6e, OCCT-evaluated %.6e (2001 samples per curve)", reported,
                           measured));
 
-        // OCCT's best single-span fit of the same samples, same degree.
+        // OCCT's least-squares fit of the same samples: one span, same degree.
+        const int degree = static_cast<int>(m.merged.degree());
         const int samples = 101;
         TColgp_Array1OfPnt points(1, 2 * samples - 1);
         for (int i = 0; i < samples; ++i) {
@@ -1147,28 +1143,50 @@ void check_merge(Report& report, StepScene& scene, std::vector<Timing>& timings,
         for (int i = 1; i < samples; ++i) {
             points(samples + i) = occ_q->Value(i / double(samples - 1));
         }
-        GeomAPI_PointsToBSpline fit(points, 3, 3, GeomAbs_C2, 1.0);
+        GeomAPI_PointsToBSpline fit(points, degree, degree, GeomAbs_C2, 1.0);
         if (!fit.IsDone()) {
             throw std::runtime_error("GeomAPI_PointsToBSpline failed");
         }
         const Handle(Geom_BSplineCurve) occ_fit = fit.Curve();
-        // Same geometric measure for both: distance from P-then-Q samples to the curve.
+        const bool one_span = occ_fit->NbKnots() == 2 && occ_fit->Degree() == degree;
+        report.row(one_span, "e.OCCT-fit-one-span-same-degree",
+                   std::abs(occ_fit->NbKnots() - 2) + std::abs(occ_fit->Degree() - degree), 0.0,
+                   format("GeomAPI_PointsToBSpline of %d samples: %d knots, degree %d (ours %d)",
+                          points.Upper(), occ_fit->NbKnots(), occ_fit->Degree(), degree));
+        // Same geometric measure for both: the largest distance from a sample
+        // of P-then-Q to the (bounded) curve: the nearest orthogonal
+        // projection or the nearer curve end, whichever is closer.
         auto distance_to = [&](const Handle(Geom_Curve)& curve) {
+            const gp_Pnt first = curve->Value(curve->FirstParameter());
+            const gp_Pnt last = curve->Value(curve->LastParameter());
             double worst = 0.0;
             for (int i = 1; i <= points.Upper(); ++i) {
+                double d = std::min(points(i).Distance(first), points(i).Distance(last));
                 GeomAPI_ProjectPointOnCurve projection(points(i), curve);
                 if (projection.NbPoints() > 0) {
-                    worst = std::max(worst, projection.LowerDistance());
+                    d = std::min(d, projection.LowerDistance());
                 }
+                worst = std::max(worst, d);
             }
             return worst;
         };
         const double ours_geometric = distance_to(r);
         const double occt_geometric = distance_to(occ_fit);
-        report.info("e.merge-vs-PointsToBSpline",
-                    format("max distance of P-then-Q to the curve: ours %.3e (parametric %.3e), "
-                           "OCCT one-span cubic fit %.3e (%d knots)",
-                           ours_geometric, reported, occt_geometric, occ_fit->NbKnots()));
+        // Criterion: ours within 2x of OCCT's least-squares fit. Ours minimises
+        // the change of control points (L2 metric) under C^n at mu, not the
+        // distance, so "ours <= OCCT" does not hold by construction; measured
+        // ratio 0.45 here and 0.12-1.67 on 40 random cubic pairs. The samples
+        // are among the 2001 per curve above, so the distance to our curve
+        // cannot exceed the parametric deviation measured there.
+        const double factor = 2.0;
+        const double ratio = ours_geometric / occt_geometric;
+        const bool comparable = std::isfinite(ours_geometric) && std::isfinite(reported) &&
+                                std::isfinite(occt_geometric) && occt_geometric > 0.0 &&
+                                ours_geometric <= measured * (1.0 + 1e-9) && ratio <= factor;
+        report.row(one_span && comparable, "e.merge-vs-OCCT-fit ours<=2x LSQ", ratio, factor,
+                   format("max distance of P-then-Q to the curve: ours %.3e (parametric %.3e), "
+                          "OCCT one-span fit %.3e",
+                          ours_geometric, reported, occt_geometric));
         scene.add(m.merged, gp_Vec(0.0, 9.0, 0.0));
         scene.add(Handle(Geom_Curve)(occ_fit), gp_Vec(0.0, 10.0, 0.0));
         scene.add(p, gp_Vec(0.0, 11.0, 0.0));
@@ -1182,7 +1200,7 @@ void check_merge(Report& report, StepScene& scene, std::vector<Timing>& timings,
             },
             options.quick ? 1 : 100,
             [&](int) {
-                GeomAPI_PointsToBSpline again(points, 3, 3, GeomAbs_C2, 1.0);
+                GeomAPI_PointsToBSpline again(points, degree, degree, GeomAbs_C2, 1.0);
                 g_sink = g_sink + static_cast<double>(again.Curve()->NbPoles());
             });
         timings.push_back({"merge two cubics into one", "bzj_merge L2 optimal mu",
@@ -1200,7 +1218,7 @@ void check_merge(Report& report, StepScene& scene, std::vector<Timing>& timings,
             },
             options.quick ? 1 : 100,
             [&](int) {
-                GeomAPI_PointsToBSpline again(points, 3, 3, GeomAbs_C2, 1.0);
+                GeomAPI_PointsToBSpline again(points, degree, degree, GeomAbs_C2, 1.0);
                 g_sink = g_sink + static_cast<double>(again.Curve()->NbPoles());
             });
         timings.push_back({"merge two cubics into one (paper)", "bzj_merge discrete mu=1/2",
@@ -1219,9 +1237,7 @@ void check_merge(Report& report, StepScene& scene, std::vector<Timing>& timings,
         (void)bezjoin::merge(p, q, bad);  // P and Q are not one curve: nothing may change
     });
 }
-#endif  // BEZJOIN_HAS_MERGE
 
-#if BEZJOIN_HAS_LAGRANGE
 // f. Lagrange spline: the given points lie on OCCT's curve; C1 by OCCT.
 void check_lagrange(Report& report, StepScene& scene) {
     guarded(report, "f.lagrange-points-on-curve", [&] {
@@ -1292,7 +1308,6 @@ void check_lagrange(Report& report, StepScene& scene) {
         (void)bezjoin::lagrange_spline(2, nodes, {0.0, 1.0, 0.5}, {0.3, 0.1, 0.6, 0.1}, {1.6, 0.6});
     });
 }
-#endif  // BEZJOIN_HAS_LAGRANGE
 
 void write_step(Report& report, StepScene& scene, std::mt19937_64& rng, const Options& options) {
     guarded(report, "step.write-and-read-back", [&] {
@@ -1354,26 +1369,10 @@ int main(int argc, char** argv) {
     check_values_and_derivatives(report, rng);
     check_exact_operations(report, rng);
     check_error_path(report);
-#if BEZJOIN_HAS_CONNECT
     check_connect(report, scene, timings, options);
-#else
-    report.info("c.connect", "not checked: this bezjoin.h has no bzj_connect");
-#endif
-#if BEZJOIN_HAS_FILLET
     check_fillet(report, scene, timings, options);
-#else
-    report.info("d.fillet", "not checked: this bezjoin.h has no bzj_fillet/bzj_intersect");
-#endif
-#if BEZJOIN_HAS_MERGE
     check_merge(report, scene, timings, options);
-#else
-    report.info("e.merge", "not checked: this bezjoin.h has no bzj_merge");
-#endif
-#if BEZJOIN_HAS_LAGRANGE
     check_lagrange(report, scene);
-#else
-    report.info("f.lagrange", "not checked: this bezjoin.h has no bzj_lagrange_spline");
-#endif
     time_evaluation(report, timings, options);
     write_step(report, scene, rng, options);
 

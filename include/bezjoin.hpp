@@ -9,9 +9,10 @@
 //
 // The operation groups (connect, fillet/intersect, merge, Lagrange spline) are
 // compiled only when BEZJOIN_HAS_<GROUP> is non-zero. They default to 1 (all of
-// the contract in shared/spec/c-api.md); a build against an older bezjoin.h that
-// lacks a group defines the macro to 0 (cpp-demo/CMakeLists.txt probes the
-// header and does that).
+// the contract in shared/spec/c-api.md); a host building against an older
+// bezjoin.h that lacks a group may define the macro to 0. (cpp-demo/ does not:
+// its CMakeLists.txt stops with an error when the header lacks a group, so no
+// check can silently drop out of the demo.)
 //
 // Contract: shared/spec/c-api.md. Mathematics: shared/spec/mathematics.md.
 

@@ -3,7 +3,8 @@
 # run a C consumer (pkg-config) and a C++ consumer (CMake package, shared and
 # static, and after moving the prefix), the thread stress test (plain,
 # ThreadSanitizer on the C++ side, helgrind on fewer iterations), memcheck of
-# the C consumer and the stress test, and a short run of every fuzz target.
+# the C consumer, of every C program in tests/c/ (with a planted-leak
+# self-test) and of the stress test, and a short run of every fuzz target.
 #
 #   bash scripts/ci-embedding.sh
 # Environment: FUZZ_SECONDS (per target, default 20; 0 skips fuzzing),
@@ -72,6 +73,47 @@ cc -std=c11 -Wall -Wextra -Werror -pedantic scripts/consumer/c/smoke.c -o "$TMP/
 ldd "$TMP/smoke" | grep "libbezjoin.so.$MAJOR => $PREFIX/lib/" >/dev/null
 step "C consumer under valgrind memcheck"
 "${VALGRIND[@]}" "$TMP/smoke"
+
+# --- the C programs of tests/c/ under memcheck -------------------------------
+# cargo test (tests/tests/c_programs.rs) builds them against the static
+# archive and runs them without valgrind. Here each one is built as smoke.c
+# is (same flags as c_programs.rs: C11, -Wall -Wextra -Werror -pedantic, the
+# installed header, no defines) against the installed shared library, and
+# run under memcheck: it must exit 0 with no invalid access and no definite
+# or indirect leak (exit 3 = valgrind found an error).
+c_programs=(tests/c/*.c)
+[ -f "${c_programs[0]}" ] || { echo "no C programs in tests/c/" >&2; exit 1; }
+for src in "${c_programs[@]}"; do
+    name="$(basename "$src" .c)"
+    step "tests/c/$name.c under valgrind memcheck"
+    # shellcheck disable=SC2046
+    cc -std=c11 -O1 -g -Wall -Wextra -Werror -pedantic "$src" -o "$TMP/c-$name" \
+        $(pkg-config --cflags --libs bezjoin) -lm -Wl,-rpath,"$PREFIX/lib"
+    set +e
+    "${VALGRIND[@]}" --log-file="$TMP/c-$name.valgrind" "$TMP/c-$name" >"$TMP/c-$name.out" 2>&1
+    code=$?
+    set -e
+    if [ "$code" -ne 0 ]; then
+        cat "$TMP/c-$name.out" "$TMP/c-$name.valgrind" >&2
+        echo "tests/c/$name.c under memcheck: exit $code (3 = memory error or leak)" >&2
+        exit 1
+    fi
+    echo "tests/c/$name.c: exit 0, memcheck clean" >&2
+done
+step "memcheck self-test: a bezjoin curve leaked on purpose must be caught"
+# shellcheck disable=SC2046
+cc -std=c11 -g -Wall -Wextra -Werror -pedantic scripts/consumer/c/leak_on_purpose.c \
+    -o "$TMP/leak_on_purpose" $(pkg-config --cflags --libs bezjoin) -Wl,-rpath,"$PREFIX/lib"
+set +e
+"${VALGRIND[@]}" --num-callers=30 --log-file="$TMP/leak_on_purpose.valgrind" "$TMP/leak_on_purpose" >/dev/null 2>&1
+code=$?
+set -e
+if [ "$code" -ne 3 ] || ! grep "bzj_curve_new" "$TMP/leak_on_purpose.valgrind" >/dev/null; then
+    cat "$TMP/leak_on_purpose.valgrind" >&2
+    echo "memcheck did not report the planted leak (exit $code): the leak check is blind" >&2
+    exit 1
+fi
+echo "memcheck caught the planted leak (exit 3, allocated in bzj_curve_new): the check works" >&2
 
 # --- C++ consumer through the CMake package --------------------------------
 cmake_consumer() {  # $1 = build name, $2 = prefix, rest = extra cmake args
