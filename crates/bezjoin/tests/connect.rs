@@ -15,6 +15,7 @@
 //! * the rounding floor of a backward-stable solve, `8 (n + 1) u A`
 //!   (`u` = unit roundoff), or 1e-10 if larger, always.
 
+mod common;
 use bezjoin_core::basis::bezier_basis_derivatives;
 use bezjoin_core::connect::{
     AUTO_SCALE_SEARCH_DECADES, CONNECT_RESIDUAL_LIMIT, ConnectOptions, Connection,
@@ -22,6 +23,7 @@ use bezjoin_core::connect::{
     connect_unchecked, fairness_energy,
 };
 use bezjoin_core::{BSplineCurve, BezierCurve, BezjoinError, KnotSide};
+use common::Random;
 use proptest::prelude::*;
 
 /// The residual the issue asks for (issue 3, item 5).
@@ -595,27 +597,6 @@ fn ill_posed_constraints_below_the_degree_cap_are_refused_by_the_residual_check(
     assert_conditions(&relaxed, &c);
 }
 
-/// Deterministic xorshift64* generator for the exhaustive test.
-struct Random(u64);
-
-impl Random {
-    fn next(&mut self) -> f64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        (self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.next()
-    }
-    fn curve(&mut self, dim: usize, degree: usize) -> BezierCurve {
-        let points = (0..(degree + 1) * dim)
-            .map(|_| self.range(-10.0, 10.0))
-            .collect();
-        BezierCurve::new(dim, degree, points).unwrap()
-    }
-}
-
 /// Where the constraint data of an exhaustive case come from.
 #[derive(Debug, Clone, Copy, PartialEq)]
 enum ConstraintData {
@@ -640,8 +621,8 @@ fn random_case(
     orders: &[usize],
     data: ConstraintData,
 ) -> Case {
-    let p = rng.curve(dim, np);
-    let q = rng.curve(dim, nq);
+    let p = rng.curve(dim, np, 10.0);
+    let q = rng.curve(dim, nq, 10.0);
     let (u0, v0) = if rng.next() < 0.25 {
         (1.0, 0.0)
     } else {
@@ -652,7 +633,7 @@ fn random_case(
     let mut options = ConnectOptions::new(kp, kq).with_scales(alpha, beta);
     let shape = match data {
         ConstraintData::Natural => connect(&p, u0, &q, v0, &options).unwrap().curve,
-        ConstraintData::Unrelated => rng.curve(dim, 3),
+        ConstraintData::Unrelated => rng.curve(dim, 3, 10.0),
     };
     let m = orders.len();
     for (j, &order) in orders.iter().enumerate() {

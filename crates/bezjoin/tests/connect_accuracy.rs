@@ -10,10 +10,12 @@
 //! Regenerate the table in docs/accuracy.md (Connect section) with
 //! `cargo test --release -p bezjoin-core --test connect_accuracy -- --ignored --nocapture`.
 
+mod common;
 use bezjoin_core::BezierCurve;
 use bezjoin_core::connect::{
     CONNECT_RESIDUAL_LIMIT, ConnectOptions, PointConstraint, connect, connect_unchecked,
 };
+use common::Random;
 use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{One, Signed, ToPrimitive, Zero};
@@ -212,31 +214,6 @@ fn forward_error(exact_points: &[Vec<Q>], curve: &BezierCurve) -> f64 {
     worst / scale
 }
 
-/// Deterministic xorshift64* generator (no extra dependency).
-struct Random(u64);
-
-impl Random {
-    fn next(&mut self) -> f64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        (self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.next()
-    }
-    fn below(&mut self, n: usize) -> usize {
-        ((self.next() * n as f64) as usize).min(n - 1)
-    }
-}
-
-fn random_curve(rng: &mut Random, dim: usize, degree: usize) -> BezierCurve {
-    let pts = (0..(degree + 1) * dim)
-        .map(|_| rng.range(-1.0, 1.0))
-        .collect();
-    BezierCurve::new(dim, degree, pts).unwrap()
-}
-
 /// A random connect problem of result degree `degree`: `kp`, `kq` about
 /// half each; with `constrained`, up to two interior points whose data are
 /// those of the unconstrained connection, perturbed by 10%.
@@ -257,8 +234,8 @@ fn random_case(
     let kq = ends - kp;
     let np = kp + rng.below(3).max(usize::from(kp == 0));
     let nq = kq + rng.below(3).max(usize::from(kq == 0));
-    let p = random_curve(rng, dim, np);
-    let q = random_curve(rng, dim, nq);
+    let p = rng.curve(dim, np, 1.0);
+    let q = rng.curve(dim, nq, 1.0);
     let (u0, v0) = (rng.range(0.0, 1.0), rng.range(0.0, 1.0));
     // Scales log-uniform in `scales`, independently for alpha and beta.
     let (lo, hi) = (scales.0.ln(), scales.1.ln());

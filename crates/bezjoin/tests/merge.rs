@@ -4,6 +4,7 @@
 //! matrices written out here from the blossom, the constraints' null space
 //! from an SVD, and the least-squares problem solved by SVD (no KKT system).
 
+mod common;
 use bezjoin_core::BezierCurve;
 use bezjoin_core::BezjoinError;
 use bezjoin_core::basis::bezier_basis_derivatives;
@@ -11,28 +12,8 @@ use bezjoin_core::merge::{
     ChainBreakpoints, ChainKeepPoint, ChainMergeOptions, KeepPoint, MergeMetric, MergeOptions,
     SplitParameter, merge, merge_chain, merge_metric_at,
 };
+use common::Random;
 use nalgebra::DMatrix;
-
-/// Deterministic pseudo-random numbers (xorshift64*).
-struct Random(u64);
-
-impl Random {
-    fn next(&mut self) -> f64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        (self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.next()
-    }
-    fn curve(&mut self, dim: usize, degree: usize) -> BezierCurve {
-        let pts = (0..(degree + 1) * dim)
-            .map(|_| self.range(-2.0, 2.0))
-            .collect();
-        BezierCurve::new(dim, degree, pts).unwrap()
-    }
-}
 
 fn choose(n: usize, k: usize) -> f64 {
     (0..k).fold(1.0, |c, i| c * (n - i) as f64 / (i + 1) as f64)
@@ -308,8 +289,8 @@ fn agrees_with_independent_formulation() {
             for kind in KINDS {
                 for _ in 0..3 {
                     let dim = 1 + (rng.next() * 3.0) as usize;
-                    let p = rng.curve(dim, n);
-                    let q = rng.curve(dim, n);
+                    let p = rng.curve(dim, n, 2.0);
+                    let q = rng.curve(dim, n, 2.0);
                     // Keep P / keep Q: R is the extrapolation of the kept
                     // piece, of relative length m = mu / 1 - mu; mu stays
                     // where the reference's loss is at most the merge's
@@ -374,8 +355,8 @@ fn continuity_conditions_and_split_hold() {
     let mut rng = Random(42);
     for n in 0..=9 {
         for metric in [MergeMetric::Discrete, MergeMetric::Integral] {
-            let p = rng.curve(3, n);
-            let q = rng.curve(3, n);
+            let p = rng.curve(3, n, 2.0);
+            let q = rng.curve(3, n, 2.0);
             let mu = rng.range(0.1, 0.9);
             let o = MergeOptions::default()
                 .with_metric(metric)
@@ -434,8 +415,8 @@ fn no_feasible_perturbation_lowers_the_metric() {
     for n in [2, 3, 5, 7] {
         for metric in [MergeMetric::Discrete, MergeMetric::Integral] {
             for kind in KINDS {
-                let p = rng.curve(2, n);
-                let q = rng.curve(2, n);
+                let p = rng.curve(2, n, 2.0);
+                let q = rng.curve(2, n, 2.0);
                 let mu = rng.range(0.2, 0.8);
                 let o = options_for(kind, n, metric, mu, &mut rng);
                 let m = merge(&p, &q, &o).unwrap();
@@ -498,8 +479,8 @@ fn no_feasible_perturbation_lowers_the_metric() {
 fn constraints_hold() {
     let mut rng = Random(99);
     let n = 6;
-    let p = rng.curve(3, n);
-    let q = rng.curve(3, n);
+    let p = rng.curve(3, n, 2.0);
+    let q = rng.curve(3, n, 2.0);
     let scale = scale_of(&[&p, &q]);
     for metric in [MergeMetric::Discrete, MergeMetric::Integral] {
         let mut o = MergeOptions::default().with_metric(metric);
@@ -578,8 +559,8 @@ fn half_split_is_the_papers_system_and_other_splits_are_not() {
     let mut rng = Random(5);
     for n in 1..=7 {
         for metric in [MergeMetric::Discrete, MergeMetric::Integral] {
-            let p = rng.curve(2, n);
-            let q = rng.curve(2, n);
+            let p = rng.curve(2, n, 2.0);
+            let q = rng.curve(2, n, 2.0);
             let paper = paper_unscaled(&p, &q, metric);
             let m = merge(&p, &q, &MergeOptions::default().with_metric(metric)).unwrap();
             let scale = scale_of(&[&p, &q]);
@@ -626,7 +607,7 @@ fn pieces_of_one_curve_merge_back_and_optimal_mu_finds_the_split() {
     let mut rng = Random(11);
     for n in 1..=8 {
         for metric in [MergeMetric::Discrete, MergeMetric::Integral] {
-            let original = rng.curve(2, n);
+            let original = rng.curve(2, n, 2.0);
             let t = rng.range(0.1, 0.9);
             let (p, q) = original.split_at(t).unwrap();
             let scale = original.coordinate_scale();
@@ -672,8 +653,8 @@ fn optimal_mu_is_a_minimum_of_the_metric() {
     let mut rng = Random(17);
     for n in [3, 7] {
         for metric in [MergeMetric::Discrete, MergeMetric::Integral] {
-            let p = rng.curve(2, n);
-            let q = rng.curve(2, n);
+            let p = rng.curve(2, n, 2.0);
+            let q = rng.curve(2, n, 2.0);
             let o = MergeOptions::default()
                 .with_metric(metric)
                 .with_split(SplitParameter::Optimal);
@@ -695,8 +676,8 @@ fn optimal_mu_is_a_minimum_of_the_metric() {
 #[test]
 fn unequal_degrees_are_elevated_and_higher_degree_on_request() {
     let mut rng = Random(23);
-    let p = rng.curve(2, 3);
-    let q = rng.curve(2, 5);
+    let p = rng.curve(2, 3, 2.0);
+    let q = rng.curve(2, 5, 2.0);
     let m = merge(&p, &q, &MergeOptions::default()).unwrap();
     assert_eq!(m.merged.degree(), 5);
     let pe = p.elevate_degree(5).unwrap();
@@ -740,8 +721,8 @@ fn expect_inconsistent(result: Result<bezjoin_core::merge::Merge, BezjoinError>,
 #[test]
 fn errors_name_the_problem() {
     let mut rng = Random(31);
-    let p = rng.curve(2, 3);
-    let q = rng.curve(2, 3);
+    let p = rng.curve(2, 3, 2.0);
+    let q = rng.curve(2, 3, 2.0);
     // Contradictory: keep both of two unrelated curves.
     let o = MergeOptions {
         keep_p: true,
@@ -857,7 +838,7 @@ fn errors_name_the_problem() {
         merge(&p, &q, &o).unwrap_err(),
         BezjoinError::InvalidArgument { .. }
     ));
-    let q3 = rng.curve(3, 3);
+    let q3 = rng.curve(3, 3, 2.0);
     assert!(matches!(
         merge(&p, &q3, &MergeOptions::default()).unwrap_err(),
         BezjoinError::DimensionMismatch { .. }
@@ -894,8 +875,8 @@ fn errors_name_the_problem() {
 #[test]
 fn bad_keep_point_parameters_and_mu_are_named() {
     let mut rng = Random(77);
-    let p = rng.curve(2, 3);
-    let q = rng.curve(2, 3);
+    let p = rng.curve(2, 3, 2.0);
+    let q = rng.curve(2, 3, 2.0);
     let point = |param: f64| KeepPoint {
         param,
         max_order: 0,
@@ -982,7 +963,7 @@ fn chain_of_pieces_merges_back_into_their_curve() {
     let mut rng = Random(47);
     for n in [2, 4, 7] {
         for metric in [MergeMetric::Discrete, MergeMetric::Integral] {
-            let original = rng.curve(3, n);
+            let original = rng.curve(3, n, 2.0);
             let cuts = [0.0, 0.2, 0.45, 0.8, 1.0];
             let pieces: Vec<BezierCurve> = cuts
                 .windows(2)
@@ -1007,8 +988,8 @@ fn chain_of_pieces_merges_back_into_their_curve() {
 #[test]
 fn chain_of_two_is_merge_and_chain_constraints_hold() {
     let mut rng = Random(53);
-    let p = rng.curve(2, 4);
-    let q = rng.curve(2, 3);
+    let p = rng.curve(2, 4, 2.0);
+    let q = rng.curve(2, 3, 2.0);
     let pair = merge(
         &p,
         &q,
@@ -1019,7 +1000,7 @@ fn chain_of_two_is_merge_and_chain_constraints_hold() {
     assert_eq!(pair.merged, chain.merged);
     assert_eq!(chain.report.breakpoints[1], pair.report.mu);
 
-    let curves: Vec<BezierCurve> = (0..4).map(|_| rng.curve(2, 5)).collect();
+    let curves: Vec<BezierCurve> = (0..4).map(|_| rng.curve(2, 5, 2.0)).collect();
     for metric in [MergeMetric::Discrete, MergeMetric::Integral] {
         let o = ChainMergeOptions {
             metric,
@@ -1107,7 +1088,7 @@ fn chain_no_feasible_perturbation_lowers_the_summed_metric() {
     let mut rng = Random(61);
     for metric in [MergeMetric::Discrete, MergeMetric::Integral] {
         for fix_ends in [false, true] {
-            let curves: Vec<BezierCurve> = (0..3).map(|_| rng.curve(2, 4)).collect();
+            let curves: Vec<BezierCurve> = (0..3).map(|_| rng.curve(2, 4, 2.0)).collect();
             let o = ChainMergeOptions {
                 metric,
                 breakpoints: ChainBreakpoints::Given(vec![0.3, 0.55]),

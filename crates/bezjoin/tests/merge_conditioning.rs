@@ -22,6 +22,7 @@
 //! `cargo test -p bezjoin-core --test merge_conditioning -- --nocapture`
 //! prints the counts quoted in docs/accuracy.md (Merge section).
 
+mod common;
 use bezjoin_core::BezierCurve;
 use bezjoin_core::BezjoinError;
 use bezjoin_core::basis::bezier_basis_derivatives;
@@ -29,29 +30,12 @@ use bezjoin_core::merge::{
     CONSISTENCY_TOLERANCE, ChainBreakpoints, ChainMergeOptions, DEFAULT_MERGE_ACCURACY, KeepPoint,
     Merge, MergeOptions, SplitParameter, merge, merge_chain,
 };
+use common::Random;
 use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{One, Signed, ToPrimitive, Zero};
 
 type Q = BigRational;
-
-/// Deterministic pseudo-random numbers (xorshift64*).
-struct Random(u64);
-
-impl Random {
-    fn next(&mut self) -> f64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        (self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn curve(&mut self, dim: usize, degree: usize) -> BezierCurve {
-        let pts = (0..(degree + 1) * dim)
-            .map(|_| self.next() * 4.0 - 2.0)
-            .collect();
-        BezierCurve::new(dim, degree, pts).unwrap()
-    }
-}
 
 /// Split parameters swept, `(0.02 .. 0.98)`, including the reported 0.08 and
 /// 0.057, their mirror images, and the dyadic `2^-k`, `1 - 2^-k`.
@@ -294,8 +278,8 @@ fn reported_small_mu_cases_are_answered() {
     let mut rng = Random(0x5eed_0001);
     for (degree, mu) in [(9, 0.08), (10, 0.057)] {
         for _ in 0..3 {
-            let p = rng.curve(2, degree);
-            let q = rng.curve(2, degree);
+            let p = rng.curve(2, degree, 2.0);
+            let q = rng.curve(2, degree, 2.0);
             for (kept, m) in [(Kept::P, mu), (Kept::Q, 1.0 - mu)] {
                 let what = format!("degree {degree} {kept:?} mu {m}");
                 let outcome = check_keep(kept, &p, &q, m, &what);
@@ -331,10 +315,10 @@ fn keep_one_curve_is_never_inconsistent_and_answers_hold_their_estimate() {
                         continue;
                     }
                     let dim = 1 + (rng.next() * 3.0) as usize;
-                    let (mut p, mut q) = (rng.curve(dim, degree), rng.curve(dim, degree));
+                    let (mut p, mut q) = (rng.curve(dim, degree, 2.0), rng.curve(dim, degree, 2.0));
                     let whole = match data {
                         Data::Random => None,
-                        Data::Piece => Some(rng.curve(dim, degree)),
+                        Data::Piece => Some(rng.curve(dim, degree, 2.0)),
                         Data::ExactPiece => Some(integer_curve(&mut rng, dim, degree)),
                     };
                     if let Some(whole) = &whole {
@@ -397,8 +381,8 @@ fn contradictory_combinations_are_inconsistent_over_the_sweep() {
     };
     for degree in 1..=12 {
         for &mu in &MUS {
-            let p = rng.curve(2, degree);
-            let q = rng.curve(2, degree);
+            let p = rng.curve(2, degree, 2.0);
+            let q = rng.curve(2, degree, 2.0);
             let base = MergeOptions {
                 split: SplitParameter::Given(mu),
                 ..MergeOptions::default()
@@ -462,7 +446,7 @@ fn consistent_dependent_combinations_are_never_inconsistent() {
     let (mut answered, mut refused) = (0, 0);
     for degree in 1..=12 {
         for &mu in &MUS {
-            let curve = rng.curve(2, degree);
+            let curve = rng.curve(2, degree, 2.0);
             let (p, q) = curve.split_at(mu).unwrap();
             let base = MergeOptions {
                 split: SplitParameter::Given(mu),
@@ -575,7 +559,7 @@ fn consistent_dependent_combinations_are_never_inconsistent() {
 fn chain_with_kept_curves_on_both_sides_of_a_free_one() {
     let mut rng = Random(0xc4a1);
     for degree in [2, 5, 8] {
-        let curve = rng.curve(2, degree);
+        let curve = rng.curve(2, degree, 2.0);
         let pieces: Vec<BezierCurve> = [(0.0, 0.25), (0.25, 0.75), (0.75, 1.0)]
             .iter()
             .map(|&(a, b)| curve.segment(a, b).unwrap())
@@ -591,7 +575,7 @@ fn chain_with_kept_curves_on_both_sides_of_a_free_one() {
             error <= 1e-9 * curve.coordinate_scale(),
             "degree {degree}: {error:e}"
         );
-        let unrelated: Vec<BezierCurve> = (0..3).map(|_| rng.curve(2, degree)).collect();
+        let unrelated: Vec<BezierCurve> = (0..3).map(|_| rng.curve(2, degree, 2.0)).collect();
         match merge_chain(&unrelated, &o) {
             Err(BezjoinError::Inconsistent { reason }) => {
                 assert!(reason.contains("keep curves[2] unchanged"), "{reason}")
