@@ -6,9 +6,8 @@
 mod common;
 use common::assert_well_formed_xml;
 
-use std::io::Write as _;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output, Stdio};
+use std::process::{Command, Output};
 
 use bezjoin_core::BezierCurve;
 use serde_json::{Value, json};
@@ -34,20 +33,7 @@ fn run_with_file(job: &Path, svg: Option<&Path>) -> Output {
 }
 
 fn run_with_stdin(job: &str) -> Output {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_bezjoin"))
-        .args(["connect", "-"])
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("the bezjoin binary starts");
-    child
-        .stdin
-        .take()
-        .unwrap()
-        .write_all(job.as_bytes())
-        .unwrap();
-    child.wait_with_output().expect("the bezjoin binary runs")
+    common::run_bezjoin(&["connect", "-"], job.as_bytes())
 }
 
 fn success_json(out: &Output) -> Value {

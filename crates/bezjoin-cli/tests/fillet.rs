@@ -6,9 +6,8 @@
 mod common;
 use common::assert_well_formed_xml;
 
-use std::io::Write;
+use std::ffi::OsString;
 use std::path::PathBuf;
-use std::process::{Command, Stdio};
 
 use bezjoin_core::BezierCurve;
 use serde_json::Value;
@@ -21,24 +20,12 @@ fn repo_file(name: &str) -> PathBuf {
 
 /// Run `bezjoin <op> -` with `job` on stdin, optionally `--svg`.
 fn run(op: &str, job: &str, svg: Option<&PathBuf>) -> (i32, String, String) {
-    let mut cmd = Command::new(env!("CARGO_BIN_EXE_bezjoin"));
-    cmd.arg(op).arg("-");
+    let mut args = vec![OsString::from(op), OsString::from("-")];
     if let Some(path) = svg {
-        cmd.arg("--svg").arg(path);
+        args.push("--svg".into());
+        args.push(path.into());
     }
-    let mut child = cmd
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("spawn bezjoin");
-    child
-        .stdin
-        .take()
-        .unwrap()
-        .write_all(job.as_bytes())
-        .unwrap();
-    let out = child.wait_with_output().unwrap();
+    let out = common::run_bezjoin(&args, job.as_bytes());
     (
         out.status.code().unwrap_or(-1),
         String::from_utf8_lossy(&out.stdout).into_owned(),

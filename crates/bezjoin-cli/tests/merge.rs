@@ -4,8 +4,7 @@
 mod common;
 use common::assert_well_formed_xml;
 
-use std::io::Write;
-use std::process::{Command, Output, Stdio};
+use std::process::{Command, Output};
 
 use bezjoin_core::BezierCurve;
 use serde_json::{Value, json};
@@ -19,21 +18,8 @@ fn example() -> Value {
 }
 
 fn run_stdin(job: &Value, extra: &[&str]) -> Output {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_bezjoin"))
-        .arg("merge")
-        .args(extra)
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
-    child
-        .stdin
-        .take()
-        .unwrap()
-        .write_all(job.to_string().as_bytes())
-        .unwrap();
-    child.wait_with_output().unwrap()
+    let args: Vec<&str> = ["merge"].iter().chain(extra).copied().collect();
+    common::run_bezjoin(&args, job.to_string().as_bytes())
 }
 
 fn run_ok(job: &Value) -> Value {

@@ -7,9 +7,8 @@
 mod common;
 use common::assert_well_formed_xml;
 
-use std::io::Write;
 use std::path::PathBuf;
-use std::process::{Command, Output, Stdio};
+use std::process::{Command, Output};
 
 use serde_json::{Value, json};
 
@@ -18,21 +17,8 @@ fn example_path() -> PathBuf {
 }
 
 fn run_stdin(job: &Value, extra: &[&str]) -> Output {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_bezjoin"))
-        .arg("spline")
-        .args(extra)
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("start bezjoin");
-    child
-        .stdin
-        .take()
-        .unwrap()
-        .write_all(job.to_string().as_bytes())
-        .unwrap();
-    child.wait_with_output().unwrap()
+    let args: Vec<&str> = ["spline"].iter().chain(extra).copied().collect();
+    common::run_bezjoin(&args, job.to_string().as_bytes())
 }
 
 fn points(v: &Value) -> Vec<Vec<f64>> {

@@ -9,9 +9,8 @@
 mod common;
 use common::assert_well_formed_xml;
 
-use std::io::Write as _;
+use std::ffi::OsStr;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Stdio};
 
 use serde_json::{Value, json};
 
@@ -37,21 +36,13 @@ fn run(op: &str, job: &Value) -> (Value, String) {
         std::process::id(),
         std::thread::current().id()
     ));
-    let mut child = Command::new(env!("CARGO_BIN_EXE_bezjoin"))
-        .args([op, "-", "--svg"])
-        .arg(&svg)
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("the bezjoin binary runs");
-    child
-        .stdin
-        .take()
-        .unwrap()
-        .write_all(job.to_string().as_bytes())
-        .unwrap();
-    let out = child.wait_with_output().unwrap();
+    let args = [
+        OsStr::new(op),
+        OsStr::new("-"),
+        OsStr::new("--svg"),
+        svg.as_os_str(),
+    ];
+    let out = common::run_bezjoin(&args, job.to_string().as_bytes());
     assert!(
         out.status.success(),
         "bezjoin {op}: {}",

@@ -1,4 +1,24 @@
 //! Helpers shared by the CLI's process tests.
+#![allow(dead_code)] // each test binary uses its own subset
+
+use std::ffi::OsStr;
+use std::io::Write as _;
+use std::process::{Command, Output, Stdio};
+
+/// Runs the `bezjoin` binary with `args`, writing `stdin` to its standard
+/// input, and returns what it printed and its exit status.
+pub fn run_bezjoin<S: AsRef<OsStr>>(args: &[S], stdin: &[u8]) -> Output {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_bezjoin"))
+        .args(args)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("the bezjoin binary starts");
+    // A job the tool refuses early may close its stdin before all is written.
+    child.stdin.take().unwrap().write_all(stdin).ok();
+    child.wait_with_output().expect("the bezjoin binary runs")
+}
 
 /// Minimal XML well-formedness check: one root element, every start tag
 /// closed by a matching end tag in order, quoted attribute values, no raw
