@@ -849,7 +849,10 @@ pub fn lagrange_spline(
                 return Err(BezjoinError::out_of_range(
                     format!("params[{}]", i + 1),
                     p[i + 1],
-                    format!("> params[{i}] = {} (strictly increasing)", p[i]),
+                    format!(
+                        "(params[{i}], inf) = ({}, inf): the parameters must increase strictly",
+                        p[i]
+                    ),
                 ));
             }
             p.to_vec()
