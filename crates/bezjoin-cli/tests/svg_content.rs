@@ -421,6 +421,24 @@ fn result_stroke(svg: &str, label_start: &str) -> String {
         .stroke
 }
 
+/// The caption of a connect or fillet picture names the result's degree and,
+/// at both joins, the continuity order the job asked for, promised and
+/// measured.
+fn assert_caption_names_degree_and_join_orders(svg: &str, job: &Value, degree: u64) {
+    let (kp, kq) = (
+        job["p_order"].as_u64().unwrap(),
+        job["q_order"].as_u64().unwrap(),
+    );
+    assert_caption_has(
+        svg,
+        &[
+            format!("degree {degree}"),
+            format!("P|R: C{kp} promised, C{kp} measured"),
+            format!("R|Q: C{kq} promised, C{kq} measured"),
+        ],
+    );
+}
+
 #[test]
 fn connect_picture_shows_polygon_combs_joins_and_caption() {
     let job = read_json(&example("connect.json"));
@@ -432,18 +450,7 @@ fn connect_picture_shows_polygon_combs_joins_and_caption() {
     assert!(assert_combs(&svg, &["R,"]) >= 3);
     // The join markers are R(0) = P(u0) and R(1) = Q(v0).
     assert_join_markers(&svg, &map, &[r[0], *r.last().unwrap()]);
-    let (kp, kq) = (
-        job["p_order"].as_u64().unwrap(),
-        job["q_order"].as_u64().unwrap(),
-    );
-    assert_caption_has(
-        &svg,
-        &[
-            format!("degree {degree}"),
-            format!("P|R: C{kp} promised, C{kp} measured"),
-            format!("R|Q: C{kq} promised, C{kq} measured"),
-        ],
-    );
+    assert_caption_names_degree_and_join_orders(&svg, &job, degree);
     assert!(
         !caption(&svg).contains(TOP_VIEW_NOTE),
         "a 2D job is not projected"
@@ -464,18 +471,7 @@ fn fillet_picture_shows_polygon_combs_joins_and_caption() {
     // The kept parts of P and Q, the blend and the circular-arc reference.
     assert!(assert_combs(&svg, &["blend R", "circular-arc"]) >= 4);
     assert_join_markers(&svg, &map, &[r[0], *r.last().unwrap()]);
-    let (kp, kq) = (
-        job["p_order"].as_u64().unwrap(),
-        job["q_order"].as_u64().unwrap(),
-    );
-    assert_caption_has(
-        &svg,
-        &[
-            format!("degree {degree}"),
-            format!("P|R: C{kp} promised, C{kp} measured"),
-            format!("R|Q: C{kq} promised, C{kq} measured"),
-        ],
-    );
+    assert_caption_names_degree_and_join_orders(&svg, &job, degree);
     assert!(!caption(&svg).contains(TOP_VIEW_NOTE));
 }
 
