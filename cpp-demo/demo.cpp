@@ -58,6 +58,7 @@
 #include <cstdio>
 #include <cstring>
 #include <exception>
+#include <fstream>
 #include <functional>
 #include <random>
 #include <string>
@@ -1332,6 +1333,9 @@ void write_step(Report& report, StepScene& scene, std::mt19937_64& rng, const Op
             ++edges;
         }
         const bool pass = edges == scene.edges;
+        // How many edges the file holds, for FreeCAD's own reading of it
+        // (freecad/tests/test_step_in_freecad.py).
+        std::ofstream(options.step_path + ".edges") << scene.edges << "\n";
         report.row(pass, "step.write-and-read-back", std::abs(edges - scene.edges), 0.0,
                    format("%s: %d edges written, %d read back", options.step_path.c_str(), scene.edges,
                           edges));
