@@ -49,7 +49,6 @@ register_prototype(
 )
 
 
-
 class IntersectOptionsStruct(ctypes.Structure):
     """``BzjIntersectOptions`` (layout fixed by the C header)."""
 
@@ -177,14 +176,25 @@ def fillet(p, q, *, setback=None, p_setback=None, q_setback=None, p_order=None, 
 def intersect(p, q):
     """All crossings of ``p`` and ``q`` as ``(u, v)`` pairs ordered by ``u``."""
     p_handle, q_handle = handle_of(p, "p"), handle_of(q, "q")
+    buffer, count = _all_hits(
+        lambda capacity: (ctypes.c_double * (2 * capacity))(),
+        lambda buffer, capacity, count: library().call(
+            "bzj_intersect", p_handle, q_handle, buffer, capacity, count))
+    return [(buffer[2 * i], buffer[2 * i + 1]) for i in range(count)]
+
+
+def _all_hits(make_buffer, call):
+    """Call ``call(buffer, capacity, count_pointer)`` with a buffer from
+    ``make_buffer(capacity)``, first with room for :data:`FIRST_CAPACITY` hits and,
+    when the library reports more, once more with room for all; return the buffer
+    and the number of hits."""
     capacity = FIRST_CAPACITY
     while True:
-        buffer = (ctypes.c_double * (2 * capacity))()
+        buffer = make_buffer(capacity)
         count = ctypes.c_size_t()
-        library().call("bzj_intersect", p_handle, q_handle, buffer, capacity,
-                       ctypes.byref(count))
+        call(buffer, capacity, ctypes.byref(count))
         if count.value <= capacity:
-            return [(buffer[2 * i], buffer[2 * i + 1]) for i in range(count.value)]
+            return buffer, count.value
         capacity = count.value
 
 
@@ -215,19 +225,16 @@ def intersect_detailed(p, q, *, relative_distance_tolerance=None, tangent_tolera
             ("max_hits", max_hits, index_argument)):
         if value is not None:
             setattr(options, name, convert(value, name))
-    capacity = FIRST_CAPACITY
-    while True:
-        buffer = (IntersectionStruct * capacity)()
-        count = ctypes.c_size_t()
-        library().call("bzj_intersect_detailed", p_handle, q_handle, ctypes.byref(options),
-                       buffer, capacity, ctypes.byref(count))
-        if count.value <= capacity:
-            hits = []
-            for hit in buffer[:count.value]:
-                if hit.kind not in INTERSECTION_KINDS:
-                    raise RuntimeError(f"libbezjoin returned intersection kind {hit.kind}, "
-                                       "unknown to these bindings")
-                hits.append(Intersection(hit.u, hit.v, hit.u_end, hit.v_end, hit.distance,
-                                         INTERSECTION_KINDS[hit.kind]))
-            return hits
-        capacity = count.value
+    buffer, count = _all_hits(
+        lambda capacity: (IntersectionStruct * capacity)(),
+        lambda buffer, capacity, count: library().call(
+            "bzj_intersect_detailed", p_handle, q_handle, ctypes.byref(options),
+            buffer, capacity, count))
+    hits = []
+    for hit in buffer[:count]:
+        if hit.kind not in INTERSECTION_KINDS:
+            raise RuntimeError(f"libbezjoin returned intersection kind {hit.kind}, "
+                               "unknown to these bindings")
+        hits.append(Intersection(hit.u, hit.v, hit.u_end, hit.v_end, hit.distance,
+                                 INTERSECTION_KINDS[hit.kind]))
+    return hits
