@@ -291,15 +291,33 @@ fn classify(residual: f64, tolerance: f64, explained: f64) -> Dependent {
     }
 }
 
-fn undecided_error(label: &str, residual: f64, scale: f64, accuracy: f64) -> BezjoinError {
-    BezjoinError::IllConditioned {
-        what: format!(
-            "merge stage 1 ({label} depends linearly on the conditions before it and is missed \
-             by {residual:e}, within what the rounding explains: consistent or contradictory \
-             cannot be told)"
-        ),
-        estimate: residual / scale,
-        limit: accuracy,
+/// The dependent condition with the largest residual among those that are
+/// undecided (missed by more than the tolerance, within what rounding
+/// explains): reported as `IllConditioned` once every condition was checked
+/// and none contradicted.
+#[derive(Default)]
+struct WorstUndecided(Option<(f64, String)>);
+
+impl WorstUndecided {
+    fn note(&mut self, residual: f64, label: &str) {
+        if self.0.as_ref().is_none_or(|(r, _)| residual > *r) {
+            self.0 = Some((residual, label.to_owned()));
+        }
+    }
+
+    fn into_result(self, scale: f64, accuracy: f64) -> Result<()> {
+        match self.0 {
+            None => Ok(()),
+            Some((residual, label)) => Err(BezjoinError::IllConditioned {
+                what: format!(
+                    "merge stage 1 ({label} depends linearly on the conditions before it and \
+                     is missed by {residual:e}, within what the rounding explains: consistent \
+                     or contradictory cannot be told)"
+                ),
+                estimate: residual / scale,
+                limit: accuracy,
+            }),
+        }
     }
 }
 
@@ -485,7 +503,7 @@ fn kkt_solution(
     let tolerance = CONSISTENCY_TOLERANCE.max(accuracy) * result_scale;
     let root = (unknowns as f64).sqrt();
     let explained = root * (estimate + unknowns as f64 * f64::EPSILON) * result_scale;
-    let mut undecided: Option<(f64, &str)> = None;
+    let mut undecided = WorstUndecided::default();
     for row in &dependent {
         let residual = (e.transpose() * &row.coefficients - &row.rhs).amax();
         match classify(residual, tolerance, explained) {
@@ -499,9 +517,7 @@ fn kkt_solution(
                     kept.len(),
                 ));
             }
-            Dependent::Undecided if undecided.is_none_or(|(r, _)| residual > r) => {
-                undecided = Some((residual, &row.label));
-            }
+            Dependent::Undecided => undecided.note(residual, &row.label),
             _ => {}
         }
     }
@@ -515,9 +531,7 @@ fn kkt_solution(
             limit: accuracy,
         });
     }
-    if let Some((residual, label)) = undecided {
-        return Err(undecided_error(label, residual, result_scale, accuracy));
-    }
+    undecided.into_result(result_scale, accuracy)?;
     Ok((x0 + e, estimate))
 }
 
@@ -589,7 +603,7 @@ fn kept_solution(
     };
     let independent = points_per_piece;
     let source_label = format!("keep {} unchanged", pieces[source].name);
-    let mut undecided: Option<(f64, String)> = None;
+    let mut undecided = WorstUndecided::default();
     for k in (0..count).filter(|&k| k != source && pieces[k].keep) {
         let block = k * points_per_piece;
         let residual = e.rows(block, points_per_piece).amax();
@@ -611,9 +625,7 @@ fn kept_solution(
                     ),
                 });
             }
-            Dependent::Undecided if undecided.as_ref().is_none_or(|(r, _)| residual > *r) => {
-                undecided = Some((residual, label));
-            }
+            Dependent::Undecided => undecided.note(residual, &label),
             _ => {}
         }
     }
@@ -633,9 +645,7 @@ fn kept_solution(
                     independent,
                 ));
             }
-            Dependent::Undecided if undecided.as_ref().is_none_or(|(r, _)| residual > *r) => {
-                undecided = Some((residual, row.label.clone()));
-            }
+            Dependent::Undecided => undecided.note(residual, &row.label),
             _ => {}
         }
     }
@@ -651,9 +661,7 @@ fn kept_solution(
             limit: accuracy,
         });
     }
-    if let Some((residual, label)) = undecided {
-        return Err(undecided_error(&label, residual, result_scale, accuracy));
-    }
+    undecided.into_result(result_scale, accuracy)?;
     // The other kept pieces agree with the extension (checked above) and are
     // returned exactly as given.
     for k in (0..count).filter(|&k| k != source && pieces[k].keep) {
