@@ -227,8 +227,8 @@ pub fn fillet_within_deviation(
     // from a short setback by doubling (or down by halving when the first
     // one is already too deviant). `lo` has h < 0, `hi` has h > 0.
     let (mut lo, mut h_lo) = (0.0, -target);
-    // The trial below the window that came closest to it; never one above.
-    let mut best_safe: Option<DeviationFillet> = None;
+    // The largest deviation found below the window (for the error message).
+    let mut closest_below = 0.0f64;
     let mut dp = (0.5 * eps).min(longest);
     let mut trial = attempt(dp)?;
     if accepted(trial.deviation) {
@@ -249,7 +249,7 @@ pub fn fillet_within_deviation(
                     ),
                 ));
             }
-            best_safe = Some(trial);
+            closest_below = closest_below.max(trial.deviation);
             dp = (2.0 * dp).min(longest);
             trial = attempt(dp)?;
             if accepted(trial.deviation) {
@@ -271,7 +271,7 @@ pub fn fillet_within_deviation(
             if hs < 0.0 {
                 lo = shorter;
                 h_lo = hs;
-                best_safe = Some(t);
+                closest_below = closest_below.max(t.deviation);
                 break;
             }
             dp = shorter;
@@ -298,12 +298,7 @@ pub fn fillet_within_deviation(
                 h_hi *= 0.5;
             }
             side = -1;
-            if best_safe
-                .as_ref()
-                .is_none_or(|b| trial.deviation > b.deviation)
-            {
-                best_safe = Some(trial);
-            }
+            closest_below = closest_below.max(trial.deviation);
         } else {
             hi = dp;
             h_hi = h;
@@ -316,14 +311,13 @@ pub fn fillet_within_deviation(
             break;
         }
     }
-    let closest = best_safe.map_or(0.0, |b| b.deviation);
     Err(BezjoinError::IllConditioned {
         what: format!(
             "deviation search: no setback gives a deviation in [{low}, {high}] for \
              max_deviation = {eps} (the deviation jumps over the window; the closest below \
-             it is {closest})"
+             it is {closest_below})"
         ),
-        estimate: (eps - closest) / eps,
+        estimate: (eps - closest_below) / eps,
         limit: options.relative_deviation_accuracy,
     })
 }
