@@ -4,10 +4,12 @@
 # static, and after moving the prefix), the thread stress test (plain,
 # ThreadSanitizer on the C++ side, helgrind on fewer iterations), memcheck of
 # the C consumer, of every C program in tests/c/ (with a planted-leak
-# self-test) and of the stress test, and a short run of every fuzz target.
+# self-test) and of the stress test, and a reproducible run of every fuzz
+# target (fixed seed and execution counts, scripts/fuzz-short.sh).
 #
 #   bash scripts/ci-embedding.sh
-# Environment: FUZZ_SECONDS (per target, default 20; 0 skips fuzzing),
+# Environment: FUZZ_SCALE (multiplies every target's execution count,
+#              default 1; 0 skips fuzzing),
 #              STRESS_ITERATIONS (per thread, default 100000),
 #              KEEP_TMP=1 keeps the temporary directory.
 set -euo pipefail
@@ -16,7 +18,7 @@ set -euo pipefail
 # `grep ... >/dev/null` reads all of its input.
 ROOT="$(cd "$(dirname "$0")/.." && pwd)"
 cd "$ROOT"
-FUZZ_SECONDS="${FUZZ_SECONDS:-20}"
+FUZZ_SCALE="${FUZZ_SCALE:-1}"
 STRESS_ITERATIONS="${STRESS_ITERATIONS:-100000}"
 step() { printf '\n=== %s\n' "$*" >&2; }
 
@@ -163,8 +165,8 @@ step "stress test under memcheck (8 threads x 5000 calls)"
 "${VALGRIND[@]}" "$TMP/stress" 5000 8
 
 # --- fuzzing -----------------------------------------------------------------
-if [ "$FUZZ_SECONDS" != 0 ]; then
-    step "fuzz targets, $FUZZ_SECONDS s each"
-    bash scripts/fuzz-short.sh "$FUZZ_SECONDS"
+if [ "$FUZZ_SCALE" != 0 ]; then
+    step "fuzz targets: seed replay, then fixed seed and execution counts (x$FUZZ_SCALE)"
+    bash scripts/fuzz-short.sh "$FUZZ_SCALE"
 fi
 step "embedding checks passed"

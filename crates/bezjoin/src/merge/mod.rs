@@ -690,9 +690,15 @@ fn optimal_mu(mut metric: impl FnMut(f64) -> Result<f64>) -> Result<f64> {
         MU_SEARCH_TOLERANCE,
         MU_SEARCH_MAX_STEPS,
     );
-    match minimum {
-        Some(m) => Ok(m.x),
-        None => Err(first_error.expect("an error for every sample")),
+    match (minimum, first_error) {
+        (Some(m), _) => Ok(m.x),
+        (None, Some(e)) => Err(e),
+        // Every sample returned a non-finite value without an error: the
+        // metric overflows everywhere.
+        (None, None) => Err(BezjoinError::NonFiniteScalar {
+            name: "merge metric at every sampled mu".into(),
+            value: f64::INFINITY,
+        }),
     }
 }
 

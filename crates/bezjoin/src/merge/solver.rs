@@ -385,6 +385,20 @@ pub(crate) fn solve_stage_one(
         metric_value += (ej.transpose() * &weight * ej).trace();
         new_pieces.push(x.rows(j * points_per_piece, points_per_piece).into_owned());
     }
+    // Coordinates near the top of the f64 range can overflow the squared
+    // changes (or the solution itself) without any NaN in the input; the
+    // optimal-`mu` search would then see no finite value at all.
+    if !metric_value.is_finite() || x.iter().any(|v| !v.is_finite()) {
+        return Err(BezjoinError::NonFiniteScalar {
+            name: format!(
+                "merge metric at mu = {} (the control-point changes overflow f64: \
+                 coordinates of about {:e} are too large for this metric; scale the curves down)",
+                breakpoints[1],
+                problem.scale
+            ),
+            value: metric_value,
+        });
+    }
     Ok(StageOne {
         pieces: new_pieces,
         metric_value: metric_value.max(0.0),
