@@ -4,7 +4,7 @@
 //! p. 72), for a general non-decreasing knot vector. A Bezier curve of degree
 //! `n` is the special case of the clamped knot vector `0^(n+1) 1^(n+1)`
 //! ([`bezier_basis_derivatives`]); the papers behind bezjoin insist on this
-//! form (mathematics.md, section 0), and every solver takes its derivative
+//! form (docs/mathematics.md#bezier-basics), and every solver takes its derivative
 //! rows from here.
 //!
 //! Guarantee: for a parameter inside the knot span the returned row `k` holds
@@ -33,7 +33,7 @@ pub enum KnotSide {
 ///
 /// # Panics
 /// If `knots.len() < 2 * degree + 2` (not a valid clamped knot vector).
-pub fn find_span(knots: &[f64], degree: usize, t: f64, side: KnotSide) -> usize {
+pub(crate) fn find_span(knots: &[f64], degree: usize, t: f64, side: KnotSide) -> usize {
     assert!(
         knots.len() >= 2 * degree + 2,
         "knot vector too short for degree {degree}"
@@ -63,7 +63,7 @@ pub fn find_span(knots: &[f64], degree: usize, t: f64, side: KnotSide) -> usize 
 /// Returns a `(max_order + 1) x (degree + 1)` matrix: entry `(k, j)` is the
 /// k-th derivative of `N_(span - degree + j)` at `t`. Orders above `degree`
 /// give zero rows.
-pub fn basis_derivatives(
+pub(crate) fn basis_derivatives(
     knots: &[f64],
     degree: usize,
     span: usize,
@@ -144,7 +144,7 @@ pub fn basis_derivatives(
 }
 
 /// The clamped Bezier knot vector `0^(n+1) 1^(n+1)`.
-pub fn bezier_knots(degree: usize) -> Vec<f64> {
+pub(crate) fn bezier_knots(degree: usize) -> Vec<f64> {
     let mut knots = vec![0.0; degree + 1];
     knots.extend(std::iter::repeat_n(1.0, degree + 1));
     knots
@@ -154,9 +154,9 @@ pub fn bezier_knots(degree: usize) -> Vec<f64> {
 /// `max_order` at `t`, through A2.3 on the knots `0^(n+1) 1^(n+1)`.
 ///
 /// Row `k` holds the k-th derivatives of `B_0^n .. B_n^n`; `D(0)` is lower
-/// triangular and `D(1)` anti-triangular (mathematics.md, section 0). Any
+/// triangular and `D(1)` anti-triangular (docs/mathematics.md#bezier-basics). Any
 /// finite `t` is accepted (the polynomials are continued outside `[0, 1]`).
-pub fn bezier_basis_derivatives(degree: usize, t: f64, max_order: usize) -> DMatrix<f64> {
+pub(crate) fn bezier_basis_derivatives(degree: usize, t: f64, max_order: usize) -> DMatrix<f64> {
     if degree == 0 {
         let mut d = DMatrix::zeros(max_order + 1, 1);
         d[(0, 0)] = 1.0;
@@ -167,7 +167,7 @@ pub fn bezier_basis_derivatives(degree: usize, t: f64, max_order: usize) -> DMat
 }
 
 /// Binomial coefficient `C(n, k)` as `f64` (exact while it is below 2^53).
-pub fn binomial(n: usize, k: usize) -> f64 {
+pub(crate) fn binomial(n: usize, k: usize) -> f64 {
     if k > n {
         return 0.0;
     }

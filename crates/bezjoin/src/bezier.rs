@@ -1,6 +1,6 @@
 //! Bezier curves of any degree in any dimension, and their exact operations.
 //!
-//! `P(t) = sum_i B_i^n(t) P_i` (mathematics.md, section 0). Control points are
+//! `P(t) = sum_i B_i^n(t) P_i` (docs/mathematics.md#bezier-basics). Control points are
 //! stored row-major (`point i, coordinate c` at `[i * dim + c]`), the layout
 //! of the C ABI. Every operation here is exact in the sense that it
 //! introduces no approximation beyond floating-point rounding: evaluation,
@@ -102,7 +102,7 @@ impl BezierCurve {
     }
 
     /// A curve from an `(n + 1) x dim` matrix of control points (one per row).
-    pub fn from_matrix(m: &DMatrix<f64>) -> Result<Self> {
+    pub(crate) fn from_matrix(m: &DMatrix<f64>) -> Result<Self> {
         if m.nrows() == 0 {
             return Err(BezjoinError::invalid(
                 "points",
@@ -154,7 +154,7 @@ impl BezierCurve {
     }
 
     /// Control points as an `(n + 1) x dim` matrix.
-    pub fn control_matrix(&self) -> DMatrix<f64> {
+    pub(crate) fn control_matrix(&self) -> DMatrix<f64> {
         DMatrix::from_row_slice(self.degree + 1, self.dim, &self.points)
     }
 
@@ -198,17 +198,14 @@ impl BezierCurve {
     /// `P(t)` by de Casteljau's algorithm (slower, the most stable; the
     /// reference that the fast path is tested against).
     pub fn eval_de_casteljau(&self, t: f64) -> Vec<f64> {
-        let d = self.dim;
-        let mut w = self.points.clone();
-        for level in 1..=self.degree {
-            for i in 0..=(self.degree - level) {
-                for c in 0..d {
-                    w[i * d + c] = (1.0 - t) * w[i * d + c] + t * w[(i + 1) * d + c];
-                }
-            }
-        }
-        w.truncate(d);
-        w
+        let mut work = Vec::new();
+        blossom(
+            &self.points,
+            self.dim,
+            std::iter::repeat_n(t, self.degree),
+            &mut work,
+        )
+        .to_vec()
     }
 
     /// Value and derivatives `0..=max_order` at `t`, written row-major into
@@ -260,7 +257,7 @@ impl BezierCurve {
     }
 
     /// Value and derivatives `0..=max_order` at `t` from the A2.3 basis matrix
-    /// `D(t)` times the control points (mathematics.md, section 0); row-major
+    /// `D(t)` times the control points (docs/mathematics.md#bezier-basics); row-major
     /// into `out` like [`Self::eval_derivatives_into`].
     ///
     /// # Panics
@@ -284,17 +281,19 @@ impl BezierCurve {
         }
     }
 
-    /// Value and derivatives `0..=max_order` at `t` as a `(max_order + 1) x dim` matrix.
-    pub fn eval_derivatives(&self, t: f64, max_order: usize) -> DMatrix<f64> {
+    /// Value and derivatives `0..=max_order` at `t`, row-major
+    /// (`(max_order + 1) * dim` values, row `k` is `P^(k)(t)`).
+    pub fn eval_derivatives(&self, t: f64, max_order: usize) -> Vec<f64> {
         let mut out = vec![0.0; (max_order + 1) * self.dim];
         self.eval_derivatives_into(t, max_order, &mut out);
-        DMatrix::from_row_slice(max_order + 1, self.dim, &out)
+        out
     }
 
     /// The k-th derivative `P^(k)(t)`.
     pub fn derivative_at(&self, t: f64, order: usize) -> Vec<f64> {
-        let m = self.eval_derivatives(t, order);
-        m.row(order).iter().copied().collect()
+        let mut all = self.eval_derivatives(t, order);
+        all.drain(..order * self.dim);
+        all
     }
 
     /// The hodograph `P'` as a Bezier curve of degree `n - 1`
@@ -399,11 +398,7 @@ impl BezierCurve {
         left.extend_from_slice(&w[0..d]);
         right[n * d..].copy_from_slice(&w[n * d..]);
         for level in 1..=n {
-            for i in 0..=(n - level) {
-                for c in 0..d {
-                    w[i * d + c] = (1.0 - t) * w[i * d + c] + t * w[(i + 1) * d + c];
-                }
-            }
+            de_casteljau_step(&mut w, n + 2 - level, d, t);
             left.extend_from_slice(&w[0..d]);
             let k = n - level;
             right[k * d..(k + 1) * d].copy_from_slice(&w[k * d..(k + 1) * d]);
@@ -448,27 +443,20 @@ impl BezierCurve {
         // levels_b[i] holds the points after i de Casteljau steps at b
         // (n + 1 - i points), i.e. blossom values P[b^i, ...].
         let mut level = self.points.clone();
-        let mut work = vec![0.0; (n + 1) * d];
+        let mut work = Vec::with_capacity((n + 1) * d);
         for i in 0..=n {
-            // Apply n - i steps at a to the current b-level (n + 1 - i points).
+            // n - i steps at a on the current b-level (n + 1 - i points).
             let count = n + 1 - i;
-            work[..count * d].copy_from_slice(&level[..count * d]);
-            for step in 1..count {
-                for j in 0..(count - step) {
-                    for c in 0..d {
-                        work[j * d + c] = (1.0 - a) * work[j * d + c] + a * work[(j + 1) * d + c];
-                    }
-                }
-            }
-            out[i * d..(i + 1) * d].copy_from_slice(&work[..d]);
+            let point = blossom(
+                &level[..count * d],
+                d,
+                std::iter::repeat_n(a, count - 1),
+                &mut work,
+            );
+            out[i * d..(i + 1) * d].copy_from_slice(point);
             // One more step at b.
             if i < n {
-                for j in 0..(count - 1) {
-                    for c in 0..d {
-                        level[j * d + c] =
-                            (1.0 - b) * level[j * d + c] + b * level[(j + 1) * d + c];
-                    }
-                }
+                de_casteljau_step(&mut level, count, d, b);
             }
         }
         BezierCurve::from_parts(d, n, out)
@@ -499,6 +487,38 @@ impl BezierCurve {
             })
             .fold(0.0, f64::max)
     }
+}
+
+/// One de Casteljau step at `t` on the first `count` points of `points`
+/// (row-major, `dim` values each), in place: point `i < count - 1` becomes
+/// `(1 - t) P_i + t P_{i+1}`. Every de Casteljau evaluation, subdivision and
+/// blossom of the crate is made of this step.
+pub(crate) fn de_casteljau_step(points: &mut [f64], count: usize, dim: usize, t: f64) {
+    for i in 0..count.saturating_sub(1) {
+        for c in 0..dim {
+            points[i * dim + c] = (1.0 - t) * points[i * dim + c] + t * points[(i + 1) * dim + c];
+        }
+    }
+}
+
+/// The blossom (polar form) `P[t_1, ..., t_n]` of the degree-`n` Bezier
+/// control points `points` (`n + 1` rows of `dim` values; `args` yields the
+/// `n` arguments): de Casteljau with argument `t_k` at level `k`. With every
+/// argument `t` it is `P(t)`. `work` is scratch space; the result is its
+/// first `dim` values.
+pub(crate) fn blossom<'w>(
+    points: &[f64],
+    dim: usize,
+    args: impl IntoIterator<Item = f64>,
+    work: &'w mut Vec<f64>,
+) -> &'w [f64] {
+    work.clear();
+    work.extend_from_slice(points);
+    let count = points.len() / dim;
+    for (level, t) in args.into_iter().enumerate() {
+        de_casteljau_step(work, count - level, dim, t);
+    }
+    &work[..dim]
 }
 
 /// Highest degree evaluated by the Bernstein-Horner scheme: `C(n, n/2)` and
@@ -552,7 +572,7 @@ fn bernstein_horner(points: &[f64], n: usize, dim: usize, t: f64, scale: f64, ou
 }
 
 /// Euclidean distance between two points of equal dimension.
-pub fn distance(a: &[f64], b: &[f64]) -> f64 {
+pub(crate) fn distance(a: &[f64], b: &[f64]) -> f64 {
     a.iter()
         .zip(b)
         .map(|(x, y)| (x - y) * (x - y))
@@ -561,7 +581,7 @@ pub fn distance(a: &[f64], b: &[f64]) -> f64 {
 }
 
 /// Euclidean norm.
-pub fn norm(a: &[f64]) -> f64 {
+pub(crate) fn norm(a: &[f64]) -> f64 {
     a.iter().map(|x| x * x).sum::<f64>().sqrt()
 }
 

@@ -3,14 +3,13 @@
 //!
 //! The papers state their continuity promises for the chain
 //! `P|[0,u0], R, Q|[v0,1]` read as ONE B-spline whose knot intervals are the
-//! lengths of the pieces' parameter ranges (mathematics.md, sections 1-2).
+//! lengths of the pieces' parameter ranges (docs/mathematics.md#b-spline-chains).
 //! [`BSplineCurve::from_bezier_chain`] builds exactly that curve (every
 //! interior knot of full multiplicity, so it is the chain itself), and
 //! [`BSplineCurve::eval_derivatives_side`] evaluates it from either side of a
 //! knot with the same A2.3 basis routine as everything else: continuity is
 //! judged by the derivatives of one curve, not by a formula of ours.
 
-use nalgebra::DMatrix;
 
 use crate::basis::{KnotSide, basis_derivatives, find_span};
 use crate::bezier::BezierCurve;
@@ -199,18 +198,20 @@ impl BSplineCurve {
     }
 
     /// Value and derivatives `0..=max_order` at `t`, taken from the span on
-    /// `side` of `t` when `t` is a knot; `(max_order + 1) x dim`.
-    pub fn eval_derivatives_side(&self, t: f64, max_order: usize, side: KnotSide) -> DMatrix<f64> {
+    /// `side` of `t` when `t` is a knot; row-major, `(max_order + 1) * dim`
+    /// values (row `k` is the `k`-th derivative).
+    pub fn eval_derivatives_side(&self, t: f64, max_order: usize, side: KnotSide) -> Vec<f64> {
         let p = self.degree;
         let span = find_span(&self.knots, p, t, side);
         let basis = basis_derivatives(&self.knots, p, span, t, max_order);
-        let mut out = DMatrix::zeros(max_order + 1, self.dim);
+        let d = self.dim;
+        let mut out = vec![0.0; (max_order + 1) * d];
         for k in 0..=max_order {
             for j in 0..=p {
                 let b = basis[(k, j)];
                 let row = span - p + j;
-                for c in 0..self.dim {
-                    out[(k, c)] += b * self.points[row * self.dim + c];
+                for c in 0..d {
+                    out[k * d + c] += b * self.points[row * d + c];
                 }
             }
         }
@@ -218,7 +219,7 @@ impl BSplineCurve {
     }
 
     /// Value and derivatives at `t` (from the right at a knot).
-    pub fn eval_derivatives(&self, t: f64, max_order: usize) -> DMatrix<f64> {
+    pub fn eval_derivatives(&self, t: f64, max_order: usize) -> Vec<f64> {
         self.eval_derivatives_side(t, max_order, KnotSide::Right)
     }
 
@@ -232,8 +233,8 @@ impl BSplineCurve {
         let mut order = None;
         for k in 0..=self.degree {
             if relative_jump(
-                &left.row(k).iter().copied().collect::<Vec<_>>(),
-                &right.row(k).iter().copied().collect::<Vec<_>>(),
+                &left[k * self.dim..(k + 1) * self.dim],
+                &right[k * self.dim..(k + 1) * self.dim],
             ) > relative_tolerance
             {
                 break;
@@ -252,7 +253,7 @@ pub fn relative_jump(a: &[f64], b: &[f64]) -> f64 {
 }
 
 /// Distinct values of a sorted knot vector and how often each occurs.
-pub fn distinct_with_multiplicities(knots: &[f64]) -> (Vec<f64>, Vec<usize>) {
+pub(crate) fn distinct_with_multiplicities(knots: &[f64]) -> (Vec<f64>, Vec<usize>) {
     let mut distinct = Vec::new();
     let mut mults: Vec<usize> = Vec::new();
     for &k in knots {
@@ -277,14 +278,15 @@ pub fn join_jumps(
     right_interval: f64,
     max_order: usize,
 ) -> Vec<f64> {
+    let d = left.dim();
     let l = left.eval_derivatives(1.0, max_order);
     let r = right.eval_derivatives(0.0, max_order);
     (0..=max_order)
         .map(|k| {
             let sl = left_interval.powi(k as i32);
             let sr = right_interval.powi(k as i32);
-            let a: Vec<f64> = l.row(k).iter().map(|v| v / sl).collect();
-            let b: Vec<f64> = r.row(k).iter().map(|v| v / sr).collect();
+            let a: Vec<f64> = l[k * d..(k + 1) * d].iter().map(|v| v / sl).collect();
+            let b: Vec<f64> = r[k * d..(k + 1) * d].iter().map(|v| v / sr).collect();
             relative_jump(&a, &b)
         })
         .collect()

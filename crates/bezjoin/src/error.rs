@@ -14,7 +14,7 @@ pub type Result<T, E = BezjoinError> = std::result::Result<T, E>;
 /// # Status codes of the C ABI
 ///
 /// Every variant maps onto exactly one status code of the C contract
-/// (`../shared/spec/c-api.md`); several variants share a code (the message
+/// (`include/bezjoin.h`); several variants share a code (the message
 /// from `bzj_last_error()` tells them apart). The mapping is the exhaustive
 /// `match` in `FfiError::status` (crate `bezjoin-ffi`, `guard.rs`), and a unit
 /// test there checks this table variant by variant:
@@ -187,7 +187,7 @@ impl BezjoinError {
 }
 
 /// Check that every value of `values` is finite; name the first one that is not.
-pub fn check_finite(name: &str, values: &[f64]) -> Result<()> {
+pub(crate) fn check_finite(name: &str, values: &[f64]) -> Result<()> {
     match values.iter().position(|v| !v.is_finite()) {
         None => Ok(()),
         Some(index) => Err(BezjoinError::NonFinite {
@@ -199,7 +199,7 @@ pub fn check_finite(name: &str, values: &[f64]) -> Result<()> {
 }
 
 /// Check a scalar is finite.
-pub fn check_finite_scalar(name: &str, value: f64) -> Result<()> {
+pub(crate) fn check_finite_scalar(name: &str, value: f64) -> Result<()> {
     if value.is_finite() {
         Ok(())
     } else {
@@ -211,7 +211,7 @@ pub fn check_finite_scalar(name: &str, value: f64) -> Result<()> {
 }
 
 /// Check `value` is finite and in the closed interval `[lo, hi]`.
-pub fn check_closed_range(name: &str, value: f64, lo: f64, hi: f64) -> Result<()> {
+pub(crate) fn check_closed_range(name: &str, value: f64, lo: f64, hi: f64) -> Result<()> {
     check_finite_scalar(name, value)?;
     if value < lo || value > hi {
         return Err(BezjoinError::out_of_range(
@@ -224,7 +224,7 @@ pub fn check_closed_range(name: &str, value: f64, lo: f64, hi: f64) -> Result<()
 }
 
 /// Check `value` is finite and in the open interval `(lo, hi)`.
-pub fn check_open_range(name: &str, value: f64, lo: f64, hi: f64) -> Result<()> {
+pub(crate) fn check_open_range(name: &str, value: f64, lo: f64, hi: f64) -> Result<()> {
     check_finite_scalar(name, value)?;
     if value <= lo || value >= hi {
         return Err(BezjoinError::out_of_range(
@@ -237,7 +237,7 @@ pub fn check_open_range(name: &str, value: f64, lo: f64, hi: f64) -> Result<()> 
 }
 
 /// Check `value` is finite and strictly positive.
-pub fn check_positive(name: &str, value: f64) -> Result<()> {
+pub(crate) fn check_positive(name: &str, value: f64) -> Result<()> {
     check_finite_scalar(name, value)?;
     if value <= 0.0 {
         return Err(BezjoinError::out_of_range(name, value, "> 0"));

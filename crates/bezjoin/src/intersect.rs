@@ -1,5 +1,5 @@
-//! Curve-curve intersection of Bezier curves of any degree (mathematics.md,
-//! section 2: "robust curve-curve intersection of arbitrary degree ...
+//! Curve-curve intersection of Bezier curves of any degree (docs/mathematics.md#intersection,
+//! "robust curve-curve intersection of arbitrary degree ...
 //! subdivision with bounding boxes, then Newton polishing, all crossings
 //! reported in order; in 3D curves must meet within a tolerance").
 //!
@@ -147,7 +147,7 @@ pub struct Intersection {
 ///
 /// ```
 /// use bezjoin_core::BezierCurve;
-/// use bezjoin_core::intersect::{IntersectOptions, IntersectionKind, intersect};
+/// use bezjoin_core::{IntersectOptions, IntersectionKind, intersect};
 /// let p = BezierCurve::from_rows(&[[0.0, 0.0], [2.0, 2.0]]).unwrap();
 /// let q = BezierCurve::from_rows(&[[0.0, 2.0], [1.0, 0.0], [2.0, 0.0]]).unwrap();
 /// let hits = intersect(&p, &q, &IntersectOptions::default()).unwrap();
@@ -854,14 +854,3 @@ impl<'a> Search<'a> {
     }
 }
 
-/// Only the crossings (transversal meetings) of `p` and `q`, ordered by `u`.
-pub fn crossings(
-    p: &BezierCurve,
-    q: &BezierCurve,
-    options: &IntersectOptions,
-) -> Result<Vec<Intersection>> {
-    Ok(intersect(p, q, options)?
-        .into_iter()
-        .filter(|h| h.kind == IntersectionKind::Crossing)
-        .collect())
-}

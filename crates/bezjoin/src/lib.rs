@@ -1,7 +1,7 @@
 //! # bezjoin
 //!
 //! Smooth joins of Bezier curves of any degree in any dimension, after four
-//! papers restated in `shared/spec/mathematics.md`:
+//! papers stated in `docs/mathematics.md`:
 //!
 //! * [`connect`] — a connecting Bezier curve with C^k continuity at both ends
 //!   and interior point/derivative constraints (Krivosheev, Mavrin, Starkova 2025);
@@ -14,42 +14,69 @@
 //! The ground they stand on: [`BezierCurve`] with exact evaluation,
 //! derivatives (The NURBS Book A2.3 in [`basis`]), degree elevation,
 //! subdivision, segments and arc length; [`BSplineCurve`] for chains.
+//!
+//! # The public surface
+//!
+//! Everything public is re-exported here, at the crate root; the modules
+//! themselves are private, so a path is always `bezjoin_core::Name`.
+//!
+//! **Points are flat row-major `f64` arrays everywhere**: a curve's control
+//! points, a value with its derivatives, a constraint's prescribed
+//! derivatives are `&[f64]` in and `Vec<f64>` out, `dim` values per point
+//! (point `i`, coordinate `c` at `[i * dim + c]`). It is the layout of the C
+//! ABI (`include/bezjoin.h`), of NumPy arrays and of OpenCASCADE's
+//! `TColgp_Array1OfPnt` read coordinate by coordinate, so nothing is copied
+//! or reshaped at a boundary, and it needs no linear-algebra type in the
+//! caller's code. [`BezierCurve::from_rows`] is only a convenience for
+//! literals (`&[[0.0, 0.0], [1.0, 2.0]]`); it builds the same flat array.
+
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
-pub mod arclength;
-pub mod basis;
-pub mod bezier;
-pub mod bspline;
-pub mod connect;
-pub mod error;
-pub mod fillet;
-pub mod intersect;
-pub mod lagrange;
-pub mod linalg;
-pub mod merge;
+mod arclength;
+mod basis;
+mod bezier;
+mod bspline;
+mod compensated;
+mod connect;
+mod error;
+mod fillet;
+mod intersect;
+mod lagrange;
+mod linalg;
+mod merge;
 mod minimize;
 
 pub use arclength::DEFAULT_ARC_LENGTH_ACCURACY;
 pub use basis::KnotSide;
 pub use bezier::{BezierCurve, MAX_DEGREE};
-pub use bspline::BSplineCurve;
+pub use bspline::{BSplineCurve, join_jumps, relative_jump};
 pub use connect::{
-    CONNECT_RESIDUAL_LIMIT, ConnectOptions, Connection, MAX_CONNECT_DEGREE, PointConstraint,
-    connect, connect_auto_scale, connect_dense_reference, connect_unchecked, fairness_energy,
+    AUTO_SCALE_SEARCH_DECADES, CONNECT_RESIDUAL_LIMIT, ConnectOptions, Connection,
+    MAX_CONNECT_DEGREE, PointConstraint, ShapeScale, connect, connect_dense_reference,
+    connect_unchecked, fairness_energy,
 };
 pub use error::{BezjoinError, Result};
 pub use fillet::{
-    ChainCorner, ChainFillet, ChainFilletOptions, DeviationFillet, DeviationFilletOptions, Fillet,
-    FilletOptions, fillet, fillet_at, fillet_chain, fillet_within_deviation,
+    ChainCorner, ChainFillet, ChainFilletOptions, DEFAULT_PARALLEL_THRESHOLD,
+    DEFAULT_RELATIVE_DEVIATION_ACCURACY, DEFAULT_RELATIVE_LENGTH_ACCURACY, DeviationFillet,
+    DeviationFilletOptions, Fillet, FilletOptions, distance_to_curve, fillet, fillet_at,
+    fillet_chain, fillet_within_deviation,
 };
-pub use intersect::{IntersectOptions, Intersection, IntersectionKind, intersect};
+pub use intersect::{
+    DEFAULT_MAX_BOX_PAIRS, DEFAULT_MAX_DEPTH, DEFAULT_MAX_HITS,
+    DEFAULT_RELATIVE_DISTANCE_TOLERANCE, DEFAULT_TANGENT_TOLERANCE, IntersectOptions,
+    Intersection, IntersectionKind, intersect,
+};
 pub use lagrange::{
     BuildDirection, DEFAULT_LAGRANGE_ACCURACY, DerivedPoints, LagrangeOptions, LagrangeSpline,
-    bezier_from_lagrange_points, lagrange_points_of_bezier, lagrange_spline,
+    bezier_from_lagrange_points, chord_length_params, lagrange_points_of_bezier,
+    lagrange_spline,
 };
 pub use merge::{
-    ChainBreakpoints, ChainKeepPoint, ChainMerge, ChainMergeOptions, ChainMergeReport,
-    DEFAULT_MERGE_ACCURACY, KeepPoint, Merge, MergeMetric, MergeOptions, MergeReport,
-    SplitParameter, merge, merge_chain, merge_metric_at,
+    CONSISTENCY_TOLERANCE, CONTRADICTION_MARGIN, ChainBreakpoints, ChainKeepPoint, ChainMerge,
+    ChainMergeOptions, ChainMergeReport, DEFAULT_MERGE_ACCURACY, DEVIATION_SAMPLES, KeepPoint,
+    MU_SEARCH_MAX_STEPS, MU_SEARCH_MIN, MU_SEARCH_SAMPLES, MU_SEARCH_TOLERANCE, Merge,
+    MergeMetric, MergeOptions, MergeReport, RANK_TOLERANCE, SplitParameter, merge, merge_chain,
+    merge_metric_at,
 };

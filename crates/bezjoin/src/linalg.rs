@@ -10,13 +10,13 @@ use crate::error::{BezjoinError, Result};
 
 /// A solution of `A X = B` with its quality measures.
 #[derive(Debug, Clone)]
-pub struct CheckedSolution {
+pub(crate) struct CheckedSolution {
     /// The solution `X` (as many columns as `B`).
-    pub x: DMatrix<f64>,
+    pub(crate) x: DMatrix<f64>,
     /// `||A X - B||_inf / (||A||_inf ||X||_inf + ||B||_inf)`: the backward error.
-    pub backward_error: f64,
+    pub(crate) backward_error: f64,
     /// An estimate of the 1-norm condition number of `A` (from the LU factors).
-    pub condition: f64,
+    pub(crate) condition: f64,
 }
 
 impl CheckedSolution {
@@ -27,7 +27,7 @@ impl CheckedSolution {
 }
 
 /// Infinity norm (largest absolute row sum).
-pub fn norm_inf(m: &DMatrix<f64>) -> f64 {
+pub(crate) fn norm_inf(m: &DMatrix<f64>) -> f64 {
     (0..m.nrows())
         .map(|i| m.row(i).iter().map(|v| v.abs()).sum::<f64>())
         .fold(0.0, f64::max)
@@ -39,7 +39,7 @@ pub fn norm_inf(m: &DMatrix<f64>) -> f64 {
 /// factors: these systems are small).
 ///
 /// Errors: `Singular { what }` when a pivot vanishes.
-pub fn solve_checked(a: &DMatrix<f64>, b: &DMatrix<f64>, what: &str) -> Result<CheckedSolution> {
+pub(crate) fn solve_checked(a: &DMatrix<f64>, b: &DMatrix<f64>, what: &str) -> Result<CheckedSolution> {
     assert_eq!(a.nrows(), a.ncols());
     assert_eq!(a.nrows(), b.nrows());
     let n = a.nrows();
@@ -86,7 +86,7 @@ pub fn solve_checked(a: &DMatrix<f64>, b: &DMatrix<f64>, what: &str) -> Result<C
 }
 
 /// 1-norm (largest absolute column sum).
-pub fn norm_1(m: &DMatrix<f64>) -> f64 {
+pub(crate) fn norm_1(m: &DMatrix<f64>) -> f64 {
     (0..m.ncols())
         .map(|j| m.column(j).iter().map(|v| v.abs()).sum::<f64>())
         .fold(0.0, f64::max)

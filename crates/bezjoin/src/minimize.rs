@@ -1,6 +1,6 @@
 //! One-dimensional minimisation over a bounded interval, shared by the
 //! searches of the library: the optimal split `mu` of [`crate::merge`] and
-//! the automatic scale of [`crate::connect::connect_auto_scale`].
+//! the automatic scale ([`crate::connect::ShapeScale::Auto`]).
 //!
 //! Method: the function is sampled on an even grid (the global part: the
 //! best sample is the global minimum's neighbourhood whenever the function

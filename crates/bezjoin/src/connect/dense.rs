@@ -5,7 +5,7 @@ use nalgebra::DMatrix;
 
 use super::{ConnectOptions, Connection, condition_rows, finish, prepare};
 use crate::bezier::BezierCurve;
-use crate::error::{Result, check_positive};
+use crate::error::{BezjoinError, Result};
 use crate::linalg::solve_checked;
 
 /// [`super::connect`] by a plain dense solve of the whole system (rows
@@ -21,9 +21,9 @@ pub fn connect_dense_reference(
     options: &ConnectOptions,
 ) -> Result<Connection> {
     let problem = prepare(p, u0, q, v0, options)?;
-    check_positive("p_scale", options.p_scale)?;
-    check_positive("q_scale", options.q_scale)?;
-    let (alpha, beta) = (options.p_scale, options.q_scale);
+    let (alpha, beta) = options.scale.checked()?.ok_or_else(|| {
+        BezjoinError::invalid("scale", "the dense reference takes given scales, not Auto")
+    })?;
     let conditions = condition_rows(&problem, alpha, beta);
     let size = conditions.rows.nrows();
     let mut a = DMatrix::<f64>::zeros(size, size);

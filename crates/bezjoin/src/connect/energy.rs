@@ -1,4 +1,4 @@
-//! The fairness energy and the automatic scale of [`super::connect_auto_scale`].
+//! The fairness energy and the automatic scale ([`super::ShapeScale::Auto`]).
 
 use super::{Connection, Problem, solve_structured};
 use crate::basis::binomial;

@@ -1,5 +1,5 @@
 //! Connect two curves with C^k continuity and interior constraints
-//! (mathematics.md, section 1).
+//! (docs/mathematics.md#connect).
 //!
 //! After Krivosheev, Mavrin, Starkova, *Bezier curve conjugation for smooth
 //! curve joining and corner rounding*, Omsk Scientific Bulletin, 2025
@@ -43,7 +43,7 @@
 //!   specification requires for the solvers.
 //!
 //! The end rows are the hot path of [`connect`] (and of every trial scale of
-//! [`connect_auto_scale`]); the closed form avoids A2.3's allocations there.
+//! [`ShapeScale::Auto`]); the closed form avoids A2.3's allocations there.
 //! The residual check works on the stored rows without temporary matrices.
 //!
 //! # Relative residual
@@ -75,19 +75,8 @@
 //! is computed then, so there is no residual to bound and the reported
 //! estimate is infinite.
 //!
-//! Measured (docs/accuracy.md, exact-rational reference): for random data the
-//! true worst residual with end conditions only stays below 1e-13 up to
-//! degree 31 with scales in [0.5, 2] (worst 5.2e-14) and below 5e-13 with
-//! scales in [0.1, 10] (1.2e-13 at degree 29, 4.4e-13 at degree 31); with
-//! interior constraints it grows with the degree, to 3e-10 at degree 30.
-//! The estimate is above the true residual by a factor 2 to 100. Over every
-//! order combination of degrees 1..8 with up to three constraints
-//! (tests/connect.rs), answers hold 1e-10 up to result degree 8 and, at any
-//! degree, whenever the control points of `R` are at most 1e4 times the data
-//! scale; beyond that the residual follows the rounding floor
-//! `~ (n + 1) u max|R_i| / S` and only the 1e-8 promise holds. Refusals come
-//! from ill-posed data (control points many orders of magnitude larger than
-//! the data, e.g. constraint points crowded together).
+//! The measured residuals and estimates versus degree, against an exact
+//! rational reference, are in `docs/accuracy.md` (Connect).
 
 mod dense;
 mod energy;
@@ -120,39 +109,39 @@ pub const CONNECT_RESIDUAL_LIMIT: f64 = 1e-8;
 /// residual exists to bound (a finite number would be a guess).
 pub const MAX_CONNECT_DEGREE: usize = 31;
 
-/// An interior constraint (2): `R^(k)(t) = derivatives[k]`, `k = 0..=K`.
+/// An interior constraint (2): `R^(k)(t)` prescribed for `k = 0..=K`
+/// (the C ABI's `BzjPointConstraint`).
 #[derive(Debug, Clone, PartialEq)]
 pub struct PointConstraint {
     /// Parameter on the connecting curve, in `(0, 1)`.
     pub t: f64,
-    /// `derivatives[k] = R^(k)(t)`, `k = 0..=K`, each with `dim` values;
-    /// at least the position (`K >= 0`).
-    pub derivatives: Vec<Vec<f64>>,
+    /// `K`: derivatives `0..=K` are prescribed (`K = 0`: the position only).
+    pub max_order: usize,
+    /// `(K + 1) * dim` values, row-major: row `k` is `R^(k)(t)`.
+    pub values: Vec<f64>,
 }
 
 impl PointConstraint {
-    /// A constraint at `t` with the value and derivatives `0..=K`.
-    pub fn new(t: f64, derivatives: Vec<Vec<f64>>) -> Self {
-        Self { t, derivatives }
-    }
-
-    /// `K`, the highest prescribed order (`derivatives.len() - 1`).
-    pub fn max_order(&self) -> usize {
-        self.derivatives.len().saturating_sub(1)
+    /// A constraint at `t` on derivatives `0..=max_order`, `values` row-major.
+    pub fn new(t: f64, max_order: usize, values: Vec<f64>) -> Self {
+        Self {
+            t,
+            max_order,
+            values,
+        }
     }
 }
 
-/// What to connect and how (mathematics.md, section 1).
+/// What to connect and how (docs/mathematics.md#connect).
 #[derive(Debug, Clone, PartialEq)]
 pub struct ConnectOptions {
     /// `kp <= degree of P`: derivatives `0..=kp` of `P` at `u0` are matched.
     pub p_order: usize,
     /// `kq <= degree of Q`: derivatives `0..=kq` of `Q` at `v0` are matched.
     pub q_order: usize,
-    /// `alpha > 0`; `1.0` is the paper.
-    pub p_scale: f64,
-    /// `beta > 0`; `1.0` is the paper.
-    pub q_scale: f64,
+    /// How the shape scales `alpha`, `beta` are chosen; default
+    /// `ShapeScale::Given { p: 1.0, q: 1.0 }`, the paper.
+    pub scale: ShapeScale,
     /// Interior constraints at distinct parameters in `(0, 1)`, any order.
     pub constraints: Vec<PointConstraint>,
 }
@@ -163,16 +152,23 @@ impl ConnectOptions {
         Self {
             p_order,
             q_order,
-            p_scale: 1.0,
-            q_scale: 1.0,
+            scale: ShapeScale::default(),
             constraints: Vec::new(),
         }
     }
 
-    /// The same options with scales `alpha`, `beta`.
+    /// The same options with scales `alpha`, `beta` ([`ShapeScale::Given`]).
     pub fn with_scales(mut self, p_scale: f64, q_scale: f64) -> Self {
-        self.p_scale = p_scale;
-        self.q_scale = q_scale;
+        self.scale = ShapeScale::Given {
+            p: p_scale,
+            q: q_scale,
+        };
+        self
+    }
+
+    /// The same options with the scale chosen for fairness ([`ShapeScale::Auto`]).
+    pub fn with_auto_scale(mut self) -> Self {
+        self.scale = ShapeScale::Auto;
         self
     }
 
@@ -190,8 +186,57 @@ impl ConnectOptions {
             + self
                 .constraints
                 .iter()
-                .map(|c| c.derivatives.len())
+                .map(|c| c.max_order + 1)
                 .sum::<usize>()
+    }
+}
+
+/// How the shape scales `alpha` (at `P`) and `beta` (at `Q`) of a
+/// connecting curve are chosen (section 1, eq. (1'): the end derivatives of
+/// `R` are those of `P` and `Q` times `alpha^r`, `beta^r`). One choice for
+/// [`connect`] and for [`crate::fillet`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ShapeScale {
+    /// The caller's `alpha = p > 0` and `beta = q > 0`; `p = q = 1` is the paper.
+    Given {
+        /// `alpha > 0`.
+        p: f64,
+        /// `beta > 0`.
+        q: f64,
+    },
+    /// `alpha = beta = s` minimising the fairness energy
+    /// `E(s) = integral_0^1 |R_s''(t)|^2 dt` (computed exactly,
+    /// [`fairness_energy`]) by a bounded 1-D search on `log s` over
+    /// [`AUTO_SCALE_SEARCH_DECADES`] decades either side of the natural scale
+    /// `s0 = |Q(v0) - P(u0)| / mean(|P'(u0)|, |Q'(v0)|)` (1 when the gap or
+    /// the speeds vanish): a grid of 33 points, then Brent's method around
+    /// the best, to a relative precision of about 1e-9 in `s`. When
+    /// `kp = kq = 0` the result does not depend on `s` and `s = 1`. Keeps
+    /// blends whose ends move fast (`|P'(u0)|` large against the gap) from
+    /// looping, which scale 1 does not. The chosen `s` is reported in
+    /// [`Connection::p_scale`] and [`Connection::q_scale`].
+    Auto,
+}
+
+impl Default for ShapeScale {
+    /// `Given { p: 1.0, q: 1.0 }`, the paper.
+    fn default() -> Self {
+        ShapeScale::Given { p: 1.0, q: 1.0 }
+    }
+}
+
+impl ShapeScale {
+    /// The given scales, checked `> 0` (named `p_scale`, `q_scale`); `None`
+    /// for [`ShapeScale::Auto`].
+    pub(crate) fn checked(&self) -> Result<Option<(f64, f64)>> {
+        match *self {
+            ShapeScale::Given { p, q } => {
+                check_positive("p_scale", p)?;
+                check_positive("q_scale", q)?;
+                Ok(Some((p, q)))
+            }
+            ShapeScale::Auto => Ok(None),
+        }
     }
 }
 
@@ -360,28 +405,22 @@ pub(crate) fn prepare(
     let data_scale = p.coordinate_scale().max(q.coordinate_scale());
     for (j, c) in options.constraints.iter().enumerate() {
         check_open_range(&format!("constraints[{j}].t"), c.t, 0.0, 1.0)?;
-        if c.derivatives.is_empty() {
-            return Err(BezjoinError::invalid(
-                format!("constraints[{j}].derivatives"),
-                "is empty; at least the position (order 0) is needed",
-            ));
+        let name = format!("constraints[{j}].values");
+        let rows = c.max_order.checked_add(1).ok_or_else(|| {
+            BezjoinError::invalid(format!("constraints[{j}].max_order"), "is too large")
+        })?;
+        let expected = rows.checked_mul(dim).ok_or_else(|| {
+            BezjoinError::invalid(format!("constraints[{j}].max_order"), "is too large")
+        })?;
+        if c.values.len() != expected {
+            return Err(BezjoinError::LengthMismatch {
+                name,
+                expected,
+                actual: c.values.len(),
+            });
         }
-        let rows = c.derivatives.len();
-        let mut values = DMatrix::zeros(rows, dim);
-        for (k, row) in c.derivatives.iter().enumerate() {
-            let name = format!("constraints[{j}].derivatives[{k}]");
-            if row.len() != dim {
-                return Err(BezjoinError::LengthMismatch {
-                    name,
-                    expected: dim,
-                    actual: row.len(),
-                });
-            }
-            check_finite(&name, row)?;
-            for (col, v) in row.iter().enumerate() {
-                values[(k, col)] = *v;
-            }
-        }
+        check_finite(&name, &c.values)?;
+        let values = DMatrix::from_row_slice(rows, dim, &c.values);
         if let Some(i) = options.constraints[..j].iter().position(|o| o.t == c.t) {
             return Err(BezjoinError::invalid(
                 format!("constraints[{j}].t"),
@@ -397,7 +436,7 @@ pub(crate) fn prepare(
         .constraints
         .iter()
         .try_fold(options.p_order + options.q_order + 1, |acc, c| {
-            acc.checked_add(c.derivatives.len())
+            acc.checked_add(c.max_order)?.checked_add(1)
         })
         .unwrap_or(usize::MAX);
     if degree > MAX_CONNECT_DEGREE {
@@ -469,8 +508,7 @@ pub(crate) fn condition_rows(problem: &Problem, alpha: f64, beta: f64) -> Condit
                 targets[(r, c)] = v;
                 square += v * v;
             }
-            // alpha^k by powi, as the bound was stated; factor (repeated
-            // products) scales the target exactly like the previous code.
+            // alpha^k by powi, as the bound is stated.
             let error =
                 scale.powi(k as i32) * errors[k] + (k + 1) as f64 * unit_roundoff() * square.sqrt();
             target_errors.push(error);
@@ -674,7 +712,7 @@ fn structured_points(
 }
 
 /// The curve `R` connecting `P` at `u0` to `Q` at `v0` with C^k continuity
-/// (1') and the interior constraints (2) (mathematics.md, section 1;
+/// (1') and the interior constraints (2) (docs/mathematics.md#connect;
 /// Krivosheev, Mavrin, Starkova 2025, Theorems 1 and 2), by the structured
 /// solve.
 ///
@@ -689,11 +727,11 @@ fn structured_points(
 /// # Errors
 /// * `DimensionMismatch` (`q`) when `P` and `Q` have different dimensions;
 /// * `ParameterOutOfRange` / `NonFinite` for `u0`, `v0` outside `[0, 1]`,
-///   `p_scale`, `q_scale` not `> 0`, `constraints[j].t` outside `(0, 1)`;
+///   given `p_scale`, `q_scale` not `> 0`, `constraints[j].t` outside `(0, 1)`;
 /// * `OrderAboveDegree` for `p_order > deg P`, `q_order > deg Q`;
 /// * `InvalidArgument` for a repeated `constraints[j].t` or an empty
-///   `constraints[j].derivatives`;
-/// * `LengthMismatch` / `NonFinite` for `constraints[j].derivatives[k]`;
+///   `constraints[j].max_order` so large that `(K + 1) * dim` overflows;
+/// * `LengthMismatch` / `NonFinite` for `constraints[j].values`;
 /// * `Singular` if the interior block is singular (it is not in exact
 ///   arithmetic: Hermite interpolation at distinct points is unisolvent);
 /// * `IllConditioned` when the accuracy cannot be guaranteed or the degree
@@ -701,7 +739,7 @@ fn structured_points(
 ///
 /// ```
 /// use bezjoin_core::BezierCurve;
-/// use bezjoin_core::connect::{ConnectOptions, connect};
+/// use bezjoin_core::{ConnectOptions, connect};
 /// let p = BezierCurve::from_rows(&[[0.0, 0.0], [1.0, 1.0], [2.0, 0.0], [3.0, 1.0]]).unwrap();
 /// let q = BezierCurve::from_rows(&[[5.0, 0.0], [6.0, 2.0], [7.0, 0.0], [8.0, 1.0]]).unwrap();
 /// let joined = connect(&p, 1.0, &q, 0.0, &ConnectOptions::new(3, 3)).unwrap();
@@ -716,14 +754,16 @@ pub fn connect(
     options: &ConnectOptions,
 ) -> Result<Connection> {
     let problem = prepare(p, u0, q, v0, options)?;
-    check_positive("p_scale", options.p_scale)?;
-    check_positive("q_scale", options.q_scale)?;
-    solve_structured(&problem, options.p_scale, options.q_scale)
+    match options.scale.checked()? {
+        Some((alpha, beta)) => solve_structured(&problem, alpha, beta),
+        None => energy::auto_scale(&problem),
+    }
 }
 
 /// [`connect`] without the accuracy refusal: the answer is returned even when
 /// its [`Connection::error_estimate`] exceeds [`CONNECT_RESIDUAL_LIMIT`]
-/// (input errors and a singular interior block are still errors).
+/// (input errors and a singular interior block are still errors). Given
+/// scales only: [`ShapeScale::Auto`] is `InvalidArgument` (`scale`).
 ///
 /// For measurements (the accuracy table in docs/accuracy.md) and for callers
 /// that apply their own acceptance test to `error_estimate`; prefer
@@ -736,9 +776,9 @@ pub fn connect_unchecked(
     options: &ConnectOptions,
 ) -> Result<Connection> {
     let problem = prepare(p, u0, q, v0, options)?;
-    check_positive("p_scale", options.p_scale)?;
-    check_positive("q_scale", options.q_scale)?;
-    let (alpha, beta) = (options.p_scale, options.q_scale);
+    let (alpha, beta) = options.scale.checked()?.ok_or_else(|| {
+        BezjoinError::invalid("scale", "connect_unchecked takes given scales, not Auto")
+    })?;
     let (conditions, points, constraint_condition) = structured_points(&problem, alpha, beta)?;
     let (max_residual, error_estimate) = check_residuals(&problem, &conditions, &points);
     Ok(Connection {
@@ -749,27 +789,6 @@ pub fn connect_unchecked(
         error_estimate,
         constraint_condition,
     })
-}
-
-/// [`connect`] with `alpha = beta = s` chosen automatically: `s` minimises
-/// the fairness energy `E(s) = integral_0^1 |R_s''(t)|^2 dt` (computed
-/// exactly, [`fairness_energy`]) by a bounded 1-D search on `log s` over
-/// [`AUTO_SCALE_SEARCH_DECADES`] decades either side of the natural scale
-/// `s0 = |Q(v0) - P(u0)| / mean(|P'(u0)|, |Q'(v0)|)` (1 when the gap or the
-/// speeds vanish): a grid of 33 points, then Brent's method (parabolic
-/// interpolation safeguarded by golden section) around the best, to a
-/// relative precision of about 1e-9 in `s`. When `kp = kq = 0` the result
-/// does not depend on `s` and `s = 1`. The scales in `options` are
-/// ignored; the chosen `s` is reported in `p_scale` and `q_scale`. Same guarantee and errors as [`connect`].
-pub fn connect_auto_scale(
-    p: &BezierCurve,
-    u0: f64,
-    q: &BezierCurve,
-    v0: f64,
-    options: &ConnectOptions,
-) -> Result<Connection> {
-    let problem = prepare(p, u0, q, v0, options)?;
-    energy::auto_scale(&problem)
 }
 
 #[cfg(test)]
@@ -808,7 +827,7 @@ mod tests {
             err(1.0, 0.0, ConnectOptions::new(1, 1).with_scales(1.0, -1.0))
                 .starts_with("q_scale = -1")
         );
-        let c = |t: f64| PointConstraint::new(t, vec![vec![1.0, 2.0]]);
+        let c = |t: f64| PointConstraint::new(t, 0, vec![1.0, 2.0]);
         assert!(
             err(1.0, 0.0, ConnectOptions::new(1, 1).with_constraint(c(1.0)))
                 .starts_with("constraints[0].t = 1")
@@ -828,27 +847,30 @@ mod tests {
                 format!("constraints[1].t = {t} is outside (0, 1)")
             );
         }
-        // An empty derivative list (no position) is refused, naming it.
-        let o = ConnectOptions::new(1, 1).with_constraint(PointConstraint::new(0.5, Vec::new()));
+        // An empty value list (no position) is refused, naming it.
+        let o = ConnectOptions::new(1, 1).with_constraint(PointConstraint::new(0.5, 0, Vec::new()));
         let e = connect(&p, 1.0, &q, 0.0, &o).unwrap_err();
-        assert!(matches!(e, BezjoinError::InvalidArgument { .. }), "{e:?}");
+        assert!(matches!(e, BezjoinError::LengthMismatch { .. }), "{e:?}");
         assert_eq!(
             e.to_string(),
-            "constraints[0].derivatives: is empty; at least the position (order 0) is needed"
+            "constraints[0].values has 0 values, expected 2"
         );
         let o = ConnectOptions::new(1, 1)
             .with_constraint(c(0.5))
             .with_constraint(c(0.5));
         assert!(err(1.0, 0.0, o).starts_with("constraints[1].t"));
         let o = ConnectOptions::new(1, 1)
-            .with_constraint(PointConstraint::new(0.5, vec![vec![1.0, 2.0], vec![1.0]]));
+            .with_constraint(PointConstraint::new(0.5, 1, vec![1.0, 2.0, 1.0]));
         assert_eq!(
             err(1.0, 0.0, o),
-            "constraints[0].derivatives[1] has 1 values, expected 2"
+            "constraints[0].values has 3 values, expected 4"
         );
         let o = ConnectOptions::new(1, 1)
-            .with_constraint(PointConstraint::new(0.5, vec![vec![1.0, f64::NAN]]));
-        assert!(err(1.0, 0.0, o).starts_with("constraints[0].derivatives[0][1] = NaN"));
+            .with_constraint(PointConstraint::new(0.5, 0, vec![1.0, f64::NAN]));
+        assert!(err(1.0, 0.0, o).starts_with("constraints[0].values[1] = NaN"));
+        let o = ConnectOptions::new(1, 1)
+            .with_constraint(PointConstraint::new(0.5, usize::MAX, vec![1.0, 2.0]));
+        assert_eq!(err(1.0, 0.0, o), "constraints[0].max_order: is too large");
         let q3 = BezierCurve::from_rows(&[[0.0, 0.0, 0.0], [1.0, 1.0, 1.0]]).unwrap();
         assert!(matches!(
             connect(&p, 1.0, &q3, 0.0, &ConnectOptions::new(1, 1)),
@@ -890,10 +912,7 @@ mod tests {
         let q = cubic(5.0);
         let o = ConnectOptions::new(3, 2)
             .with_scales(0.7, 1.3)
-            .with_constraint(PointConstraint::new(
-                0.4,
-                vec![vec![4.0, 3.0], vec![2.0, 0.0]],
-            ));
+            .with_constraint(PointConstraint::new(0.4, 1, vec![4.0, 3.0, 2.0, 0.0]));
         let s = connect(&p, 0.8, &q, 0.1, &o).unwrap();
         let d = connect_dense_reference(&p, 0.8, &q, 0.1, &o).unwrap();
         assert_eq!(s.curve.degree(), 3 + 2 + 1 + 2);

@@ -1,5 +1,5 @@
 //! **[beyond]** Rounding every corner of a chain of curves in one call
-//! (mathematics.md, section 2: "rounding every corner of a chain of curves").
+//! (docs/mathematics.md#fillet-chains).
 //!
 //! Corner `i` lies between `curves[i]` and `curves[i + 1]` (and, for a closed
 //! chain, between the last curve and the first). Its crossing is the hit of
@@ -98,7 +98,7 @@ pub struct ChainFillet {
 ///
 /// ```
 /// use bezjoin_core::BezierCurve;
-/// use bezjoin_core::fillet::{ChainFilletOptions, FilletOptions, fillet_chain};
+/// use bezjoin_core::{ChainFilletOptions, FilletOptions, fillet_chain};
 /// // A closed triangle of lines.
 /// let a = BezierCurve::from_rows(&[[0.0, 0.0], [4.0, 0.0]]).unwrap();
 /// let b = BezierCurve::from_rows(&[[4.0, 0.0], [0.0, 3.0]]).unwrap();

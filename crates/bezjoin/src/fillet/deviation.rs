@@ -1,4 +1,4 @@
-//! **[beyond]** Rounding within a deviation bound (mathematics.md, section 2:
+//! **[beyond]** Rounding within a deviation bound (docs/mathematics.md#fillet-deviation-bound:
 //! "a bound on the deviation from the sharp corner instead of a setback, as
 //! CNC corner smoothing asks").
 //!
@@ -167,7 +167,7 @@ pub fn distance_to_curve(curve: &BezierCurve, point: &[f64]) -> (f64, f64) {
 ///
 /// ```
 /// use bezjoin_core::BezierCurve;
-/// use bezjoin_core::fillet::{DeviationFilletOptions, fillet_within_deviation};
+/// use bezjoin_core::{DeviationFilletOptions, fillet_within_deviation};
 /// let p = BezierCurve::from_rows(&[[-2.0, 0.0], [0.0, 0.0], [2.0, 0.0]]).unwrap();
 /// let q = BezierCurve::from_rows(&[[0.0, -2.0], [0.0, 0.0], [0.0, 2.0]]).unwrap();
 /// let r = fillet_within_deviation(&p, &q, &DeviationFilletOptions::new(0.1, 2)).unwrap();

@@ -1,5 +1,5 @@
-//! Rounding the corner between two crossing curves (mathematics.md,
-//! section 2; Krivosheev, Mavrin, Starkova, *Bezier curve conjugation for
+//! Rounding the corner between two crossing curves (docs/mathematics.md#fillet;
+//! Krivosheev, Mavrin, Starkova, *Bezier curve conjugation for
 //! smooth curve joining and corner rounding*, Omsk Scientific Bulletin, 2025,
 //! Fig. 2).
 //!
@@ -28,7 +28,7 @@
 //!
 //! ```
 //! use bezjoin_core::BezierCurve;
-//! use bezjoin_core::fillet::{FilletOptions, fillet};
+//! use bezjoin_core::{FilletOptions, fillet};
 //! // Two lines crossing at the origin.
 //! let p = BezierCurve::from_rows(&[[-2.0, 0.0], [2.0, 0.0]]).unwrap();
 //! let q = BezierCurve::from_rows(&[[0.0, -2.0], [0.0, 2.0]]).unwrap();
@@ -58,7 +58,7 @@ pub use deviation::{
 
 use crate::bezier::BezierCurve;
 use crate::bspline::BSplineCurve;
-use crate::connect::{ConnectOptions, connect, connect_auto_scale};
+use crate::connect::{ConnectOptions, ShapeScale, connect};
 use crate::error::{BezjoinError, Result, check_finite_scalar, check_positive};
 use crate::intersect::{IntersectOptions, Intersection, IntersectionKind, intersect};
 
@@ -77,19 +77,13 @@ pub struct FilletOptions {
     pub p_order: usize,
     /// `kq <= degree of Q`: continuity order at `Q(v0)`.
     pub q_order: usize,
-    /// `alpha > 0` (section 1, eq. 1'); default 1, the paper.
-    pub p_scale: f64,
-    /// `beta > 0`; default 1, the paper.
-    pub q_scale: f64,
-    /// Choose `alpha = beta = s` automatically instead of `p_scale`,
-    /// `q_scale` (which are then ignored): `s` minimises the blend's fairness
-    /// energy `integral |R''|^2`, as [`connect_auto_scale`] does; the chosen
-    /// `s` is reported in [`Fillet::p_scale`] and [`Fillet::q_scale`].
-    /// Default `false` (the paper's fixed scales). With scale 1 a blend
-    /// whose ends move fast (`|P'(u0)|` large against the setback) puts its
-    /// inner control points past the corner and can loop; the automatic
-    /// scale keeps them near the natural `|R(1) - R(0)| / |P'(u0)|`.
-    pub auto_scale: bool,
+    /// The blend's shape scales `alpha`, `beta` ([`ShapeScale`]); default
+    /// `Given { p: 1.0, q: 1.0 }`, the paper. With scale 1 a blend whose ends
+    /// move fast (`|P'(u0)|` large against the setback) puts its inner
+    /// control points past the corner and can loop; [`ShapeScale::Auto`]
+    /// keeps them near the natural `|R(1) - R(0)| / |P'(u0)|`. The scales
+    /// used are reported in [`Fillet::p_scale`] and [`Fillet::q_scale`].
+    pub scale: ShapeScale,
     /// The setbacks are met to `relative_length_accuracy * setback`;
     /// default [`DEFAULT_RELATIVE_LENGTH_ACCURACY`] (`1e-12`).
     pub relative_length_accuracy: f64,
@@ -105,9 +99,7 @@ impl FilletOptions {
             q_setback,
             p_order,
             q_order,
-            p_scale: 1.0,
-            q_scale: 1.0,
-            auto_scale: false,
+            scale: ShapeScale::default(),
             relative_length_accuracy: DEFAULT_RELATIVE_LENGTH_ACCURACY,
             intersect: IntersectOptions::default(),
         }
@@ -120,16 +112,16 @@ impl FilletOptions {
 
     /// The same options with scales `alpha`, `beta`.
     pub fn with_scales(mut self, p_scale: f64, q_scale: f64) -> Self {
-        self.p_scale = p_scale;
-        self.q_scale = q_scale;
-        self.auto_scale = false;
+        self.scale = ShapeScale::Given {
+            p: p_scale,
+            q: q_scale,
+        };
         self
     }
 
-    /// The same options with the scale chosen automatically
-    /// ([`FilletOptions::auto_scale`]).
+    /// The same options with the scale chosen for fairness ([`ShapeScale::Auto`]).
     pub fn with_auto_scale(mut self) -> Self {
-        self.auto_scale = true;
+        self.scale = ShapeScale::Auto;
         self
     }
 }
@@ -289,10 +281,7 @@ pub(crate) fn validate_shape(
             curve: "Q".into(),
         });
     }
-    if !options.auto_scale {
-        check_positive("p_scale", options.p_scale)?;
-        check_positive("q_scale", options.q_scale)?;
-    }
+    options.scale.checked()?;
     check_finite_scalar("relative_length_accuracy", options.relative_length_accuracy)?;
     if !(options.relative_length_accuracy > 0.0 && options.relative_length_accuracy < 1.0) {
         return Err(BezjoinError::out_of_range(
@@ -356,13 +345,8 @@ pub(crate) fn fillet_at_validated(
         Err(e) => return Err(e),
     };
     let mut connect_options = ConnectOptions::new(options.p_order, options.q_order);
-    connect_options.p_scale = options.p_scale;
-    connect_options.q_scale = options.q_scale;
-    let connection = if options.auto_scale {
-        connect_auto_scale(p, u0, q, v0, &connect_options)?
-    } else {
-        connect(p, u0, q, v0, &connect_options)?
-    };
+    connect_options.scale = options.scale;
+    let connection = connect(p, u0, q, v0, &connect_options)?;
     Ok(Fillet {
         p_trimmed: p.segment(0.0, u0)?,
         blend: connection.curve,

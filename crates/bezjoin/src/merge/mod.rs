@@ -1,5 +1,5 @@
 //! Approximate merging of consecutive Bezier curves into one curve
-//! (mathematics.md, section 3).
+//! (docs/mathematics.md#merge).
 //!
 //! After Ganchuk, Krivosheev, Mavrin, Ryzhov, "Approximation of conjugation
 //! of Bezier curves with preservation of smoothness order and additional
@@ -86,7 +86,11 @@
 //!   elevated to `m` (exact) and the degree-`m` problem is solved;
 //! * [`merge_chain`]: `N >= 2` consecutive curves into one, see there.
 
-mod solver;
+mod kept;
+mod kkt;
+mod rows;
+mod stage_one;
+mod stage_two;
 
 use crate::bezier::BezierCurve;
 use crate::error::{
@@ -94,11 +98,9 @@ use crate::error::{
 };
 use crate::minimize::minimize_on_grid_then_brent;
 
-pub use solver::{
-    CONSISTENCY_TOLERANCE, CONTRADICTION_MARGIN, DEVIATION_SAMPLES, RANK_TOLERANCE,
-    bernstein_gram_matrix,
-};
-use solver::{PieceInput, StageOne, StageOneCheck, max_deviation, solve_stage_one, stage_two};
+pub use stage_one::{CONSISTENCY_TOLERANCE, CONTRADICTION_MARGIN, DEVIATION_SAMPLES, RANK_TOLERANCE};
+use stage_one::{PieceInput, StageOne, StageOneCheck, solve_stage_one};
+use stage_two::{max_deviation, stage_two};
 
 /// The default `accuracy` of a merge: the largest accepted relative error
 /// estimate of the stage-1 solve and of the stage-2 check.
@@ -127,7 +129,7 @@ pub enum MergeMetric {
     Discrete,
     /// The paper's eq. (12): `int_0^1 |P^(u) - P(u)|^2 du + int_0^1 |Q^(v) -
     /// Q(v)|^2 dv`, each curve in its own parameter, equal weights, with the
-    /// exact Bernstein Gram matrix ([`bernstein_gram_matrix`]).
+    /// exact Bernstein Gram matrix (`G_ij = C(n,i) C(n,j) / ((2n+1) C(2n,i+j))`).
     Integral,
 }
 
@@ -245,7 +247,7 @@ pub struct Merge {
     pub report: MergeReport,
 }
 
-/// Merge `P` and `Q` into one Bezier curve `R` (mathematics.md, section 3;
+/// Merge `P` and `Q` into one Bezier curve `R` (docs/mathematics.md#merge;
 /// Ganchuk et al. 2024 with the `mu`-scaled continuity conditions).
 ///
 /// Guarantee: `P^`, `Q^` are the pieces of `R` at `mu` (checked to
@@ -253,7 +255,7 @@ pub struct Merge {
 /// among all such pairs; see the module documentation for the checks.
 ///
 /// ```
-/// # use bezjoin_core::{BezierCurve, merge::{merge, MergeOptions, SplitParameter}};
+/// # use bezjoin_core::{BezierCurve, MergeOptions, SplitParameter, merge};
 /// let r = BezierCurve::from_rows(&[[0.0, 0.0], [1.0, 2.0], [3.0, 2.0], [4.0, 0.0]]).unwrap();
 /// let (p, q) = r.split_at(0.3).unwrap();
 /// let options = MergeOptions::default().with_split(SplitParameter::Optimal);

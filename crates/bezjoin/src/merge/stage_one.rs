@@ -1,0 +1,190 @@
+//! Stage 1 (the constrained least-change problem, solved by Lagrange
+//! multipliers) and stage 2 (the single curve `R`) for `N >= 2` consecutive
+//! pieces; two pieces are the paper's case.
+//!
+//! Unknowns: the perturbations `e_j` of the control points of every piece
+//! `j` (degree `m`, all coordinates at once: the constraint matrix is the
+//! same for every coordinate, so the KKT system has `dim` right-hand sides).
+//! Piece `j` is to be `R` on `[t_j, t_{j+1}]`, of length `h_j`; the pieces
+//! are one polynomial exactly when, at every join,
+//!
+//! ```text
+//! h_{j+1}^r C^_j^(r)(1) = h_j^r C^_{j+1}^(r)(0),   r = 0..m
+//! ```
+//!
+//! (docs/mathematics.md#merge-the-problem, eq. (3), with `h_0 = mu`, `h_1 = 1 - mu`). With a kept
+//! piece there is nothing to minimise (see [`solve_stage_one`]).
+
+use nalgebra::DMatrix;
+
+use crate::basis::binomial;
+use crate::bezier::BezierCurve;
+use crate::error::{BezjoinError, Result};
+
+use super::kept::kept_solution;
+use super::kkt::kkt_solution;
+use super::rows::Problem;
+use super::{KeepPoint, MergeMetric};
+
+/// A constraint row whose remainder, after projecting out the rows kept
+/// before it (rows scaled to unit 2-norm), is at most `RANK_TOLERANCE *
+/// sqrt(N)` (`N` the number of unknowns) is treated as linearly
+/// dependent on them. This is the rounding-noise level of the projection
+/// itself (a few units in the last place per unknown), not a guess at
+/// "nearly dependent": a row above it is kept however small its remainder,
+/// and the ill-conditioning it brings is measured by the error estimate
+/// (an untrustworthy answer is `IllConditioned`, never `Inconsistent`).
+pub const RANK_TOLERANCE: f64 = 64.0 * f64::EPSILON;
+
+/// A dependent row is consistent when the solution of the kept rows
+/// satisfies it to this tolerance relative to the coordinate scale (the
+/// larger of the input's and the result's; or to the requested accuracy, if
+/// that is looser).
+pub const CONSISTENCY_TOLERANCE: f64 = 1e-8;
+
+/// A dependent row that the solution misses by more than
+/// [`CONSISTENCY_TOLERANCE`] contradicts the others only if it misses by
+/// more than this factor times what the rounding can explain: `sqrt(N)`
+/// times (the stage-1 error estimate plus `N` units in the last place),
+/// times the coordinate scale; with a kept piece, the rounding bound of its
+/// extension plus the data's half-ulp rounding magnified by it. In between,
+/// a consistent dependent row is not ruled out and the answer is
+/// `IllConditioned`.
+pub const CONTRADICTION_MARGIN: f64 = 16.0;
+
+/// Evenly spaced samples per piece for the reported deviation.
+pub const DEVIATION_SAMPLES: usize = 256;
+
+/// Safety margin of the data-rounding term of the stage-1 KKT error estimate
+/// (measured against an exact rational reference, test `merge_exact`).
+pub const DATA_ROUNDING_MARGIN: f64 = 4.0;
+
+/// One input piece with its constraints, already at the working degree.
+pub(crate) struct PieceInput<'a> {
+    pub curve: BezierCurve,
+    /// "P", "Q", "curves[2]" ...
+    pub name: String,
+    /// Name of its keep-point list ("p_points", "keep_points" ...).
+    pub points_name: String,
+    pub keep: bool,
+    /// (index in the caller's list, keep point)
+    pub points: Vec<(usize, &'a KeepPoint)>,
+}
+
+/// The result of stage 1.
+pub(crate) struct StageOne {
+    /// New control points of every piece, `(m + 1) x dim` each.
+    pub pieces: Vec<DMatrix<f64>>,
+    /// The minimised metric.
+    pub metric_value: f64,
+    /// Relative error estimate of the KKT solve (condition x backward error).
+    pub error_estimate: f64,
+}
+
+/// The exact Bernstein Gram matrix `G_ij = int_0^1 B_i^n B_j^n =
+/// C(n,i) C(n,j) / ((2n+1) C(2n,i+j))`.
+pub(crate) fn bernstein_gram_matrix(degree: usize) -> DMatrix<f64> {
+    let n = degree;
+    DMatrix::from_fn(n + 1, n + 1, |i, j| {
+        binomial(n, i) * binomial(n, j) / ((2 * n + 1) as f64 * binomial(2 * n, i + j))
+    })
+}
+
+/// How much of the a-posteriori check a stage-1 solve runs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum StageOneCheck {
+    /// Every check: the KKT solve's own condition and backward error, the
+    /// rounding carried by the constraint rows (their SVD) magnified by the
+    /// reduced problem (an eigen-decomposition), the residuals of (3) and
+    /// the consistency of dependent rows. Every answer a caller receives.
+    Full,
+    /// All of `Full` except the rounding carried by the constraint rows: for
+    /// the trial values of the optimal-`mu` search only. The winner is solved
+    /// again with `Full`; if that fails, the search is repeated with `Full`
+    /// at every trial ([`super::merge`]), so the answer is never less checked.
+    Trial,
+}
+
+/// Solve stage 1 for pieces of equal degree and dimension, piece `j` on
+/// `[breakpoints[j], breakpoints[j + 1]]` (`0 = t_0 < ... < t_N = 1`).
+///
+/// Without kept pieces: the KKT system of the metric and the rows.
+///
+/// With a kept piece there is nothing to minimise: (3) makes all pieces one
+/// curve `R`, and a kept piece fixes `R` (its extension to `[0, 1]`), hence
+/// every piece. They are computed directly, by blossoming the kept piece
+/// (the one with the shortest extrapolation, if several are kept), with a
+/// first-order bound on the rounding of every control point; every other
+/// condition (another kept piece, fix ends, keep points) is then dependent
+/// and only checked. (Written as unit rows among the continuity rows, as
+/// before, keep P with a small `mu` left the last unit rows with remainders
+/// of about `(mu / (1 - mu))^n`, which a fixed rank tolerance took for
+/// exact dependence and the consistency test for a contradiction.)
+pub(crate) fn solve_stage_one(
+    pieces: &[PieceInput<'_>],
+    breakpoints: &[f64],
+    metric: MergeMetric,
+    fix_ends: bool,
+    accuracy: f64,
+    check: StageOneCheck,
+) -> Result<StageOne> {
+    let count = pieces.len();
+    debug_assert!(count >= 2 && breakpoints.len() == count + 1);
+    let lengths: Vec<f64> = breakpoints.windows(2).map(|w| w[1] - w[0]).collect();
+    let m = pieces[0].curve.degree();
+    let problem = Problem::new(pieces, &lengths, fix_ends);
+    let (x, estimate) = if pieces.iter().any(|p| p.keep) {
+        kept_solution(&problem, breakpoints, &lengths, accuracy)?
+    } else {
+        kkt_solution(&problem, metric, accuracy, check)?
+    };
+    let e = &x - &problem.x0;
+
+    // The continuity conditions (3) themselves, on the original rows (unit
+    // length), relative to the coordinate scale of the input and result.
+    let result_scale = x.amax().max(problem.scale);
+    let continuity_residual = problem
+        .continuity
+        .iter()
+        .map(|row| (x.transpose() * &row.coefficients).amax())
+        .fold(0.0f64, f64::max)
+        / result_scale;
+    if continuity_residual.is_nan() || continuity_residual > accuracy {
+        return Err(BezjoinError::IllConditioned {
+            what: "merge stage 1 (residual of the continuity conditions (3))".into(),
+            estimate: continuity_residual,
+            limit: accuracy,
+        });
+    }
+
+    let points_per_piece = problem.points_per_piece;
+    let mut metric_value = 0.0;
+    let weight = match metric {
+        MergeMetric::Discrete => DMatrix::identity(points_per_piece, points_per_piece),
+        MergeMetric::Integral => bernstein_gram_matrix(m),
+    };
+    let mut new_pieces = Vec::with_capacity(count);
+    for j in 0..count {
+        let ej = e.rows(j * points_per_piece, points_per_piece);
+        metric_value += (ej.transpose() * &weight * ej).trace();
+        new_pieces.push(x.rows(j * points_per_piece, points_per_piece).into_owned());
+    }
+    // Coordinates near the top of the f64 range can overflow the squared
+    // changes (or the solution itself) without any NaN in the input; the
+    // optimal-`mu` search would then see no finite value at all.
+    if !metric_value.is_finite() || x.iter().any(|v| !v.is_finite()) {
+        return Err(BezjoinError::NonFiniteScalar {
+            name: format!(
+                "merge metric at mu = {} (the control-point changes overflow f64: \
+                 coordinates of about {:e} are too large for this metric; scale the curves down)",
+                breakpoints[1], problem.scale
+            ),
+            value: metric_value,
+        });
+    }
+    Ok(StageOne {
+        pieces: new_pieces,
+        metric_value: metric_value.max(0.0),
+        error_estimate: estimate,
+    })
+}

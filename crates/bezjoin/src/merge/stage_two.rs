@@ -1,0 +1,133 @@
+//! Stage 2: the single curve `R` from the stage-1 pieces, checked by
+//! restricting it back to every piece, and the measured deviation.
+
+use nalgebra::DMatrix;
+
+use crate::bezier::BezierCurve;
+use crate::error::{BezjoinError, Result};
+
+use super::stage_one::DEVIATION_SAMPLES;
+
+/// Stage 2: the single curve `R` from the pieces, extrapolated from the
+/// piece that reaches `[0, 1]` with the shortest extrapolation (for two
+/// pieces the longer one: the error factor `(2/mu - 1)^m` is smallest
+/// there), then checked: `R` restricted to every `[t_j, t_{j+1}]` must
+/// give back that piece. Returns `R` and the largest control-point
+/// difference of that check relative to the coordinate scale.
+pub(crate) fn stage_two(
+    pieces: &[DMatrix<f64>],
+    breakpoints: &[f64],
+    accuracy: f64,
+) -> Result<(BezierCurve, f64)> {
+    let lengths: Vec<f64> = breakpoints.windows(2).map(|w| w[1] - w[0]).collect();
+    // Extrapolating piece j to [0, 1] runs de Casteljau steps at parameters
+    // down to -t_j / h_j and up to 1 + (1 - t_{j+1}) / h_j; each step at a
+    // distance s outside [0, 1] multiplies rounding errors by up to 1 + 2s.
+    // Take the piece with the shortest reach (for two pieces: the longer).
+    let reach = |j: usize| breakpoints[j].max(1.0 - breakpoints[j + 1]) / lengths[j];
+    let longest = (0..lengths.len())
+        .min_by(|&a, &b| reach(a).total_cmp(&reach(b)))
+        .unwrap_or(0);
+    let piece = BezierCurve::from_matrix(&pieces[longest])?;
+    let h = lengths[longest];
+    let start = -breakpoints[longest] / h;
+    let end = (1.0 - breakpoints[longest]) / h;
+    let mut merged = piece.segment(start, end)?;
+    // Refinement: the extrapolation amplifies rounding by up to (2/h - 1)^m;
+    // two steps of least-squares correction against ALL pieces (the stacked
+    // restriction matrices [S_0; S_1; ...] are well conditioned together,
+    // unlike any one of them) remove most of it.
+    refine(&mut merged, pieces, breakpoints);
+    let scale = pieces
+        .iter()
+        .map(|p| p.amax())
+        .fold(0.0f64, f64::max)
+        .max(f64::MIN_POSITIVE);
+    let mut worst = 0.0f64;
+    for (j, p) in pieces.iter().enumerate() {
+        let back = merged.segment(breakpoints[j], breakpoints[j + 1])?;
+        let diff = (back.control_matrix() - p).amax();
+        worst = worst.max(diff / scale);
+    }
+    if worst.is_nan() || worst > accuracy {
+        return Err(BezjoinError::IllConditioned {
+            what: format!(
+                "merge stage 2 (R of degree {} restricted to the pieces does not give them back)",
+                merged.degree()
+            ),
+            estimate: worst,
+            limit: accuracy,
+        });
+    }
+    Ok((merged, worst))
+}
+
+/// Restriction matrices: row block `j` maps `R`'s control points to those of
+/// `R` on `[t_j, t_{j+1}]` (exact segments of the unit coefficient vectors).
+pub(super) fn restriction_matrix(degree: usize, breakpoints: &[f64]) -> DMatrix<f64> {
+    let count = breakpoints.len() - 1;
+    let points = degree + 1;
+    let mut s = DMatrix::zeros(count * points, points);
+    for k in 0..points {
+        let mut unit = vec![0.0; points];
+        unit[k] = 1.0;
+        let basis_curve = BezierCurve::from_parts(1, degree, unit);
+        for j in 0..count {
+            let seg = basis_curve.segment_unchecked(breakpoints[j], breakpoints[j + 1]);
+            for i in 0..points {
+                s[(j * points + i, k)] = seg.points()[i];
+            }
+        }
+    }
+    s
+}
+
+pub(super) fn refine(merged: &mut BezierCurve, pieces: &[DMatrix<f64>], breakpoints: &[f64]) {
+    let degree = merged.degree();
+    let points = degree + 1;
+    let s = restriction_matrix(degree, breakpoints);
+    let mut target = DMatrix::zeros(s.nrows(), merged.dim());
+    for (j, p) in pieces.iter().enumerate() {
+        target.rows_mut(j * points, points).copy_from(p);
+    }
+    let qr = s.clone().qr();
+    let (q, r) = (qr.q(), qr.r());
+    let mut current = merged.control_matrix();
+    for _ in 0..2 {
+        let residual = &target - &s * &current;
+        let Some(correction) = r.solve_upper_triangular(&(q.transpose() * residual)) else {
+            return;
+        };
+        if correction.iter().any(|v| !v.is_finite()) {
+            return;
+        }
+        current += correction;
+    }
+    if let Ok(better) = BezierCurve::from_matrix(&current) {
+        *merged = better;
+    }
+}
+
+/// Largest distance between `R` and the original pieces, each compared in
+/// its own parameter: `R(t_j + h_j u)` against `C_j(u)` at
+/// [`DEVIATION_SAMPLES`]` + 1` evenly spaced `u`.
+pub(crate) fn max_deviation(
+    merged: &BezierCurve,
+    originals: &[&BezierCurve],
+    breakpoints: &[f64],
+) -> f64 {
+    let dim = merged.dim();
+    let mut a = vec![0.0; dim];
+    let mut b = vec![0.0; dim];
+    let mut worst = 0.0f64;
+    for (j, c) in originals.iter().enumerate() {
+        let (t0, t1) = (breakpoints[j], breakpoints[j + 1]);
+        for s in 0..=DEVIATION_SAMPLES {
+            let u = s as f64 / DEVIATION_SAMPLES as f64;
+            merged.eval_into(t0 + (t1 - t0) * u, &mut a);
+            c.eval_into(u, &mut b);
+            worst = worst.max(crate::bezier::distance(&a, &b));
+        }
+    }
+    worst
+}
