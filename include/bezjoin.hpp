@@ -126,6 +126,15 @@ public:
         return out;
     }
 
+    /// Value and derivatives 0..max_order at every parameter of `ts` in one
+    /// call, parameter-major: `out[(i * (max_order + 1) + k) * dim + c]`.
+    std::vector<double> eval_many(const std::vector<double>& ts, std::size_t max_order = 0) const {
+        std::vector<double> out(ts.size() * (max_order + 1) * dim());
+        check(bzj_curve_eval_many(handle_, ts.data(), ts.size(), max_order, out.data(), out.size()),
+              "bzj_curve_eval_many");
+        return out;
+    }
+
     /// As eval(), into a caller buffer of `out_len >= (max_order + 1) * dim`
     /// doubles (no allocation; for hot loops).
     void eval_into(double t, std::size_t max_order, double* out, std::size_t out_len) const {
