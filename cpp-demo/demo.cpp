@@ -25,6 +25,7 @@
 #include <Geom2d_BezierCurve.hxx>
 #include <GeomAPI_PointsToBSpline.hxx>
 #include <GeomAPI_ProjectPointOnCurve.hxx>
+#include <GeomAdaptor_Curve.hxx>
 #include <GeomLProp_CLProps.hxx>
 #include <Geom_BSplineCurve.hxx>
 #include <Geom_BezierCurve.hxx>
@@ -61,6 +62,7 @@
 #include <fstream>
 #include <functional>
 #include <random>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -1310,6 +1312,534 @@ void check_lagrange(Report& report, StepScene& scene) {
     });
 }
 
+// g. The other wrappers of bezjoin.hpp (every C function has one; a-f cover
+// the first ones): each is called and its result checked by its defining
+// property, with OCCT as the judge where it has an opinion.
+
+// The chord-linear cubic from a to b bulged by h (normal, 2D): its
+// coordinate along b - a is exactly t, so t = <X - a, b - a> / |b - a|^2 for
+// any point X on it.
+std::vector<double> bulged_side(const double* a, const double* b, double h) {
+    const double nx = -(b[1] - a[1]);
+    const double ny = b[0] - a[0];
+    std::vector<double> points;
+    for (int i = 0; i <= 3; ++i) {
+        const double f = i / 3.0;
+        const double bulge = (i == 1 || i == 2) ? h : 0.0;
+        points.push_back(a[0] + f * (b[0] - a[0]) + bulge * nx);
+        points.push_back(a[1] + f * (b[1] - a[1]) + bulge * ny);
+    }
+    return points;
+}
+
+double chord_parameter(const double* a, const double* b, const std::vector<double>& x) {
+    const double dx = b[0] - a[0];
+    const double dy = b[1] - a[1];
+    return ((x[0] - a[0]) * dx + (x[1] - a[1]) * dy) / (dx * dx + dy * dy);
+}
+
+// C^k of pieces on knot intervals `widths` by OCCT (RemoveKnot and the
+// one-sided derivatives at every interior knot); the worst jump, or INFINITY
+// when RemoveKnot refuses a join.
+double chain_defect(const std::vector<const Curve*>& pieces, const std::vector<double>& widths, int k,
+                    double tolerance) {
+    const Chain chain = make_chain(pieces, widths);
+    double worst = chain.pole_gap;
+    for (int index = 2; index < static_cast<int>(chain.knots.size()); ++index) {
+        const JoinVerdict verdict = judge_join(chain, index, k, tolerance * chain.size);
+        worst = std::max(worst, verdict.removable ? verdict.jump : INFINITY);
+    }
+    return worst;
+}
+
+void check_auto_scale(Report& report) {
+    const double tolerance = 1e-8;  // the residual bezjoin.h promises for connect
+    guarded(report, "g.connect_auto_scale", [&] {
+        // A cubic P and a quartic Q round a gap: the fairest scale is interior
+        // to the library's search range.
+        const Curve p(3, 3, {0.0, 0.0, 0.0, 1.0, 0.3, 0.1, 2.0, 0.1, 0.2, 3.0, 0.0, 0.0});
+        const Curve q(3, 4, {4.0, 1.0, 0.0, 4.2, 2.0, 0.1, 4.1, 3.0, -0.1, 4.0, 4.0, 0.0, 3.8, 5.0, 0.0});
+        bezjoin::ConnectOptions opts;
+        opts.p_order = 2;
+        opts.q_order = 3;
+        opts.p_scale = -1.0;  // ignored
+        const double u0 = 0.8;
+        const double v0 = 0.2;
+        const bezjoin::AutoScaledConnection r = bezjoin::connect_auto_scale(p, u0, q, v0, opts);
+        const double s = r.scale;
+        // R^(k)(0) = s^k P^(k)(u0), k <= 2, and R^(k)(1) = s^k Q^(k)(v0), k <= 3,
+        // with P's and Q's derivatives by OCCT (relative to max(1, |value|)).
+        const Handle(Geom_BezierCurve) occ_p = occ_bezier(p);
+        const Handle(Geom_BezierCurve) occ_q = occ_bezier(q);
+        double worst = 0.0;
+        for (int k = 0; k <= 3; ++k) {
+            for (int end = 0; end < 2; ++end) {
+                if (end == 0 && k > 2) {
+                    continue;
+                }
+                const gp_Vec theirs = (k == 0 ? gp_Vec((end == 0 ? occ_p->Value(u0) : occ_q->Value(v0)).XYZ())
+                                              : (end == 0 ? occ_p->DN(u0, k) : occ_q->DN(v0, k))) *
+                                      std::pow(s, k);
+                const std::vector<double> ours = r.curve.eval(end == 0 ? 0.0 : 1.0, 3);
+                const gp_Vec mine(ours[3 * k], ours[3 * k + 1], ours[3 * k + 2]);
+                worst = std::max(worst, (mine - theirs).Magnitude() / std::max(1.0, theirs.Magnitude()));
+            }
+        }
+        // s minimises the fairness energy integral |R''|^2: connect() with a
+        // scale 1.01 times larger or smaller gives no fairer blend (OCCT's DN,
+        // Simpson's rule on 400 intervals).
+        auto energy = [&](const Curve& c) {
+            const Handle(Geom_BezierCurve) occ = occ_bezier(c);
+            double sum = 0.0;
+            for (int i = 0; i <= 400; ++i) {
+                const double w = (i == 0 || i == 400) ? 1.0 : (i % 2 == 1 ? 4.0 : 2.0);
+                sum += w * occ->DN(i / 400.0, 2).SquareMagnitude();
+            }
+            return sum / (3.0 * 400.0);
+        };
+        const double e = energy(r.curve);
+        double e_other = INFINITY;
+        for (double factor : {1.01, 1.0 / 1.01}) {
+            bezjoin::ConnectOptions fixed = opts;
+            fixed.p_scale = s * factor;
+            fixed.q_scale = s * factor;
+            e_other = std::min(e_other, energy(bezjoin::connect(p, u0, q, v0, fixed)));
+        }
+        const bool pass = s > 0.0 && std::isfinite(s) && r.curve.degree() == 6 && e <= e_other &&
+                          worst <= tolerance;
+        report.row(pass, "g.connect_auto_scale", worst, tolerance,
+                   format("s = %.6f: ends match s^k P^(k)(u0), s^k Q^(k)(v0) by OCCT; energy %.4e <= %.4e "
+                          "at s * 1.01^+-1",
+                          s, e, e_other));
+    });
+    guarded(report, "g.fillet_auto_scale", [&] {
+        // Lines of speed 8 as cubics crossing at the origin, C^3, setback 0.5:
+        // the chosen scale keeps the blend's control polygon in the corner.
+        const Curve p(2, 3, {-4.0, 0.0, -4.0 / 3.0, 0.0, 4.0 / 3.0, 0.0, 4.0, 0.0});
+        const Curve q(2, 3, {0.0, -4.0, 0.0, -4.0 / 3.0, 0.0, 4.0 / 3.0, 0.0, 4.0});
+        bezjoin::FilletOptions opts;
+        opts.p_setback = 0.5;
+        opts.q_setback = 0.5;
+        opts.p_order = 3;
+        opts.q_order = 3;
+        const bezjoin::AutoScaledFillet f = bezjoin::fillet_auto_scale(p, q, opts);
+        const double s = f.scale;
+        const double u0 = 0.5 - 0.5 / 8.0;
+        const double v0 = 0.5 + 0.5 / 8.0;
+        const double worst = chain_defect({&f.p_trimmed, &f.blend, &f.q_trimmed}, {u0, s, 1.0 - v0}, 3,
+                                          tolerance);
+        bool inside = true;
+        const std::vector<double> blend = f.blend.points();
+        for (std::size_t i = 0; i < blend.size(); i += 2) {
+            inside = inside && blend[i] <= 1e-15 && blend[i + 1] >= -1e-15;
+        }
+        const bool pass = s > 0.0 && s < 1.0 && inside && worst <= tolerance;
+        report.row(pass, "g.fillet_auto_scale", worst, tolerance,
+                   format("s = %.6f; blend polygon inside the corner: %s; C3 by OCCT", s,
+                          inside ? "yes" : "NO"));
+    });
+}
+
+void check_intersect_detailed(Report& report) {
+    guarded(report, "g.intersect_options_default", [&] {
+        const BzjIntersectOptions o = bezjoin::intersect_options_default();
+        // The defaults bezjoin.h documents.
+        const bool pass = o.relative_distance_tolerance == 1e-9 && o.tangent_tolerance == 1e-6 &&
+                          o.max_depth == 60 && o.max_box_pairs == 200000 && o.max_hits == 10000;
+        report.row(pass, "g.intersect_options_default", pass ? 0.0 : 1.0, 0.0,
+                   format("%g %g %zu %zu %zu", o.relative_distance_tolerance, o.tangent_tolerance,
+                          o.max_depth, o.max_box_pairs, o.max_hits));
+    });
+    guarded(report, "g.intersect_detailed", [&] {
+        // Three crossings (the same as intersect()), a touching point, an overlap.
+        const Curve wave(2, 3, {0.0, -1.0, 1.0, 3.0, 2.0, -3.0, 3.0, 1.0});
+        const Curve line(2, 1, {-0.5, 0.1, 3.5, -0.1});
+        const auto hits = bezjoin::intersect_detailed(wave, line);
+        const auto pairs = bezjoin::intersect(wave, line);
+        bool pass = hits.size() == 3 && pairs.size() == 3;
+        double worst = 0.0;
+        Geom2dAPI_InterCurveCurve occ(occ_bezier2d(wave), occ_bezier2d(line), 1e-12);
+        pass = pass && occ.NbPoints() == 3;
+        for (std::size_t i = 0; i < hits.size() && pass; ++i) {
+            const BzjIntersection& h = hits[i];
+            pass = pass && h.kind == BZJ_INTERSECTION_CROSSING && h.u == pairs[i].first &&
+                   h.v == pairs[i].second && h.u_end == h.u && h.v_end == h.v;
+            double best = INFINITY;
+            for (int j = 1; j <= occ.NbPoints(); ++j) {
+                const IntRes2d_IntersectionPoint& point = occ.Intersector().Point(j);
+                best = std::min(best, std::max(std::abs(point.ParamOnFirst() - h.u),
+                                               std::abs(point.ParamOnSecond() - h.v)));
+            }
+            worst = std::max({worst, best, h.distance});
+        }
+        const Curve bowl(2, 2, {-1.0, 1.0, 0.0, -1.0, 1.0, 1.0});  // y = (1 - 2t)^2
+        const Curve axis(2, 1, {-2.0, 0.0, 2.0, 0.0});
+        const auto touch = bezjoin::intersect_detailed(bowl, axis);
+        pass = pass && touch.size() == 1 && touch[0].kind == BZJ_INTERSECTION_TOUCHING &&
+               std::abs(touch[0].u - 0.5) <= 1e-6;
+        const Curve base(2, 1, {0.0, 0.0, 2.0, 0.0});
+        const Curve over(2, 1, {3.0, 0.0, 1.0, 0.0});  // overlaps base on u in [0.5, 1], backwards
+        const auto overlap = bezjoin::intersect_detailed(base, over);
+        pass = pass && overlap.size() == 1 && overlap[0].kind == BZJ_INTERSECTION_OVERLAP &&
+               std::abs(overlap[0].u - 0.5) <= 1e-9 && std::abs(overlap[0].u_end - 1.0) <= 1e-9 &&
+               std::abs(overlap[0].v - 1.0) <= 1e-9 && std::abs(overlap[0].v_end - 0.5) <= 1e-9;
+        report.row(pass && worst <= 1e-10, "g.intersect_detailed", worst, 1e-10,
+                   "3 crossings = intersect() and OCCT's, 1 touching, 1 overlap [0.5, 1] -> [1, 0.5]");
+    });
+    expect_status(report, "g.intersect_detailed-options-reach", BZJ_ERR_ILL_CONDITIONED, [&] {
+        const Curve wave(2, 3, {0.0, -1.0, 1.0, 3.0, 2.0, -3.0, 3.0, 1.0});
+        const Curve line(2, 1, {-0.5, 0.1, 3.5, -0.1});
+        BzjIntersectOptions o = bezjoin::intersect_options_default();
+        o.max_hits = 2;  // three crossings
+        (void)bezjoin::intersect_detailed(wave, line, o);
+    });
+}
+
+void check_fillet_deviation(Report& report) {
+    guarded(report, "g.fillet_deviation", [&] {
+        const Curve p(2, 3, {0.0, 0.0, 0.8, 0.3, 1.5, -0.2, 2.2, 0.4});
+        const Curve q(2, 3, {1.0, -1.0, 1.3, -0.2, 0.8, 0.6, 1.2, 1.4});
+        const auto crossings = bezjoin::intersect(p, q);
+        if (crossings.empty()) {
+            throw std::runtime_error("no crossing");
+        }
+        const double u_star = crossings.front().first;
+        const double v_star = crossings.front().second;
+        bezjoin::DeviationFilletOptions opts;
+        opts.max_deviation = 0.05;
+        opts.setback_ratio = 1.5;
+        opts.p_order = 2;
+        opts.q_order = 2;
+        const bezjoin::DeviationFillet f = bezjoin::fillet_deviation(p, q, opts);
+        const BzjDeviationFilletReport& r = f.report;
+        const Handle(Geom_BezierCurve) occ_p = occ_bezier(p);
+        const Handle(Geom_BezierCurve) occ_q = occ_bezier(q);
+        // OCCT's distance from the corner X to the blend: the reported deviation.
+        const gp_Pnt corner = occ_p->Value(u_star);
+        const Handle(Geom_BezierCurve) blend = occ_bezier(f.blend);
+        GeomAPI_ProjectPointOnCurve projection(corner, blend);
+        double occt_distance = std::min(corner.Distance(blend->StartPoint()),
+                                        corner.Distance(blend->EndPoint()));
+        if (projection.NbPoints() > 0) {
+            occt_distance = std::min(occt_distance, projection.LowerDistance());
+        }
+        const double eps = opts.max_deviation;
+        const bool window = r.deviation <= eps && r.deviation >= eps * (1.0 - 1e-9);
+        const double distance_gap = std::abs(occt_distance - r.deviation) / eps;
+        // Setbacks by OCCT's arc length; trims at the reported cuts.
+        const double p_arc = GCPnts_AbscissaPoint::Length(GeomAdaptor_Curve(occ_p), r.u0, u_star, 1e-13);
+        const double q_arc = GCPnts_AbscissaPoint::Length(GeomAdaptor_Curve(occ_q), v_star, r.v0, 1e-13);
+        const double setback_gap = std::max({std::abs(p_arc - r.p_setback), std::abs(q_arc - r.q_setback),
+                                             std::abs(r.q_setback - 1.5 * r.p_setback)});
+        const double trim_gap = std::max(pole_difference(f.p_trimmed, occ_segment(occ_p, 0.0, r.u0)),
+                                         pole_difference(f.q_trimmed, occ_segment(occ_q, r.v0, 1.0)));
+        const double worst = std::max({distance_gap, setback_gap, trim_gap});
+        report.row(window && worst <= 1e-9, "g.fillet_deviation", worst, 1e-9,
+                   format("eps 0.05: deviation %.12f (OCCT projection %.12f) in [eps(1-1e-9), eps]: "
+                          "%s; setbacks %.6f / %.6f by OCCT arc length",
+                          r.deviation, occt_distance, window ? "yes" : "NO", r.p_setback, r.q_setback));
+    });
+    expect_status(report, "g.fillet_deviation-error-too-large", BZJ_ERR_INVALID_ARGUMENT, [&] {
+        const Curve p(2, 1, {0.0, 0.0, 4.0, 4.0});
+        const Curve q(2, 1, {0.0, 4.0, 4.0, 0.0});
+        bezjoin::DeviationFilletOptions opts;
+        opts.max_deviation = 100.0;
+        opts.p_order = 1;
+        opts.q_order = 1;
+        (void)bezjoin::fillet_deviation(p, q, opts);
+    });
+}
+
+void check_fillet_chain(Report& report, StepScene& scene) {
+    guarded(report, "g.fillet_chain", [&] {
+        // A closed curved triangle: three bulged cubic sides meeting end to end.
+        const double vertex[3][2] = {{0.0, 0.0}, {4.0, 0.0}, {1.0, 3.0}};
+        std::vector<Curve> sides;
+        for (int i = 0; i < 3; ++i) {
+            sides.emplace_back(2, 3, bulged_side(vertex[i], vertex[(i + 1) % 3], -0.08));
+        }
+        bezjoin::FilletOptions opts;
+        opts.p_setback = 0.5;
+        opts.q_setback = 0.4;
+        opts.p_order = 2;
+        opts.q_order = 2;
+        const std::vector<Curve> closed = bezjoin::fillet_chain(sides, opts, true);
+        const std::vector<Curve> open = bezjoin::fillet_chain({&sides[0], &sides[1], &sides[2]}, opts);
+        bool pass = closed.size() == 6 && open.size() == 5;
+        double worst = pass ? 0.0 : INFINITY;
+        if (pass) {
+            // Trimmed side i (piece 2i) is side i on [a, b]: its knot interval
+            // is b - a; the blends' intervals are the scales (1).
+            std::vector<const Curve*> pieces;
+            std::vector<double> widths;
+            for (int i = 0; i < 7; ++i) {
+                const Curve& piece = closed[static_cast<std::size_t>(i % 6)];
+                pieces.push_back(&piece);
+                if (i % 2 == 0) {
+                    const double* a = vertex[(i / 2) % 3];
+                    const double* b = vertex[(i / 2 + 1) % 3];
+                    widths.push_back(chord_parameter(a, b, piece.eval(1.0)) -
+                                     chord_parameter(a, b, piece.eval(0.0)));
+                } else {
+                    widths.push_back(1.0);
+                }
+            }
+            worst = chain_defect(pieces, widths, 2, 1e-9);  // the closing join included
+            // The open chain: the same corners 0 and 1, side 0 kept from its start.
+            const std::vector<double> start = open.front().eval(0.0);
+            const std::vector<double> end = open.back().eval(1.0);
+            worst = std::max({worst, std::hypot(start[0] - vertex[0][0], start[1] - vertex[0][1]),
+                              std::hypot(end[0] - vertex[0][0], end[1] - vertex[0][1])});
+            for (std::size_t i = 1; i < 4; ++i) {
+                worst = std::max(worst, pole_difference(open[i], occ_bezier(closed[i])));
+            }
+            for (const Curve& piece : closed) {
+                scene.add(piece, gp_Vec(0.0, 17.0, 0.0));
+            }
+        }
+        report.row(pass && worst <= 1e-9, "g.fillet_chain", worst, 1e-9,
+                   "closed triangle of cubics: 6 pieces C2 by OCCT at every join incl. the closing one; "
+                   "open: 5 pieces, same inner corners");
+    });
+    expect_status(report, "g.fillet_chain-error-one-curve", BZJ_ERR_INVALID_ARGUMENT, [&] {
+        const Curve p(2, 1, {0.0, 0.0, 4.0, 4.0});
+        bezjoin::FilletOptions opts;
+        opts.p_setback = 0.5;
+        opts.q_setback = 0.5;
+        (void)bezjoin::fillet_chain({&p}, opts);
+    });
+}
+
+void check_lagrange_degree(Report& report) {
+    guarded(report, "g.lagrange_spline_degree", [&] {
+        // Degree 5, C^2 on a helix: every given point at its parameter on
+        // OCCT's B-spline, and C^2 by OCCT at every node.
+        const std::size_t dim = 3;
+        const std::size_t degree = 5;
+        const std::vector<double> params = {0.0, 0.8, 1.5, 2.4, 3.0};
+        auto helix = [](double x) { return gp_Pnt(std::cos(x), std::sin(x), 0.3 * x); };
+        std::vector<double> nodes;
+        std::vector<double> start_inner;
+        std::vector<double> free_inner;
+        std::vector<double> given_at = params;
+        for (double x : params) {
+            const gp_Pnt pt = helix(x);
+            nodes.insert(nodes.end(), {pt.X(), pt.Y(), pt.Z()});
+        }
+        for (std::size_t j = 1; j < degree; ++j) {  // all inner points of segment 0
+            const double x = params[0] + (params[1] - params[0]) * j / double(degree);
+            const gp_Pnt pt = helix(x);
+            start_inner.insert(start_inner.end(), {pt.X(), pt.Y(), pt.Z()});
+            given_at.push_back(x);
+        }
+        for (std::size_t i = 1; i + 1 < params.size(); ++i) {  // u = 3/5, 4/5 of the others
+            for (double f : {3.0 / 5.0, 4.0 / 5.0}) {
+                const double x = params[i] + (params[i + 1] - params[i]) * f;
+                const gp_Pnt pt = helix(x);
+                free_inner.insert(free_inner.end(), {pt.X(), pt.Y(), pt.Z()});
+                given_at.push_back(x);
+            }
+        }
+        const std::vector<Curve> segments = bezjoin::lagrange_spline_degree(
+            dim, degree, 2, 0, nodes, params, start_inner, free_inner);
+        std::vector<const Curve*> pieces;
+        std::vector<double> intervals;
+        bool degrees = segments.size() == params.size() - 1;
+        for (std::size_t i = 0; i < segments.size(); ++i) {
+            pieces.push_back(&segments[i]);
+            intervals.push_back(params[i + 1] - params[i]);
+            degrees = degrees && segments[i].degree() == degree;
+        }
+        const Chain chain = make_chain(pieces, intervals, params[0]);
+        double miss = chain.pole_gap;
+        for (double x : given_at) {
+            miss = std::max(miss, chain.curve->Value(x).Distance(helix(x)) / chain.size);
+        }
+        double jump = 0.0;
+        for (int index = 2; index < static_cast<int>(chain.knots.size()); ++index) {
+            const JoinVerdict verdict = judge_join(chain, index, 2, 1e-9 * chain.size);
+            jump = std::max(jump, verdict.removable ? verdict.jump : INFINITY);
+        }
+        const double worst = std::max(miss, jump);
+        report.row(degrees && worst <= 1e-9, "g.lagrange_spline_degree", worst, 1e-9,
+                   format("degree 5 C2: %zu given points on OCCT's B-spline (miss %.1e), C2 jump %.1e",
+                          given_at.size(), miss, jump));
+        // BACKWARD, degree 3, C^1: both inner points of the last segment are
+        // given, then the u = 1/3 point of every earlier one.
+        const std::size_t last = params.size() - 2;
+        std::vector<double> cubic_start;
+        std::vector<double> cubic_free;
+        std::vector<double> back_given_at = params;
+        for (double f : {1.0 / 3.0, 2.0 / 3.0}) {
+            const double x = params[last] + (params[last + 1] - params[last]) * f;
+            const gp_Pnt pt = helix(x);
+            cubic_start.insert(cubic_start.end(), {pt.X(), pt.Y(), pt.Z()});
+            back_given_at.push_back(x);
+        }
+        for (std::size_t i = 0; i < last; ++i) {
+            const double x = params[i] + (params[i + 1] - params[i]) / 3.0;
+            const gp_Pnt pt = helix(x);
+            cubic_free.insert(cubic_free.end(), {pt.X(), pt.Y(), pt.Z()});
+            back_given_at.push_back(x);
+        }
+        const std::vector<Curve> backward = bezjoin::lagrange_spline_degree(
+            dim, 3, 1, BZJ_LAGRANGE_BACKWARD, nodes, params, cubic_start, cubic_free);
+        std::vector<const Curve*> back_pieces;
+        for (const Curve& c : backward) {
+            back_pieces.push_back(&c);
+        }
+        const Chain back_chain = make_chain(back_pieces, intervals, params[0]);
+        double back_miss = back_chain.pole_gap;
+        for (double x : back_given_at) {
+            back_miss = std::max(back_miss, back_chain.curve->Value(x).Distance(helix(x)) / back_chain.size);
+        }
+        const double back = std::max(back_miss, chain_defect(back_pieces, intervals, 1, 1e-9));
+        report.row(backward.size() == 4 && back <= 1e-9, "g.lagrange_spline_degree-backward", back, 1e-9,
+                   format("degree 3, C1, BZJ_LAGRANGE_BACKWARD: %zu given points on OCCT's curve, C1 by OCCT",
+                          back_given_at.size()));
+    });
+    guarded(report, "g.lagrange_spline_degree-size-check", [&] {
+        try {
+            (void)bezjoin::lagrange_spline_degree(2, 4, 1, 0, {0.0, 0.0, 1.0, 0.0, 2.0, 1.0}, {},
+                                                  {0.3, 0.1}, {});  // start_inner needs 3 points
+            report.fail("g.lagrange_spline_degree-size-check", "no exception for a short start_inner");
+        } catch (const std::invalid_argument& e) {
+            const bool ok = std::strstr(e.what(), "start_inner") != nullptr;
+            report.row(ok, "g.lagrange_spline_degree-size-check", ok ? 0.0 : 1.0, 0.0, e.what());
+        }
+    });
+    expect_status(report, "g.lagrange_spline_degree-error-degree", BZJ_ERR_INVALID_ARGUMENT, [&] {
+        (void)bezjoin::lagrange_spline_degree(2, 6, 1, 0, {0.0, 0.0, 1.0, 0.0}, {}, {0.3, 0.1}, {});
+    });
+}
+
+void check_merge_degree_and_chain(Report& report) {
+    const double tolerance = 1e-12;
+    guarded(report, "g.merge_to_degree", [&] {
+        const Curve p(3, 3, {0.0, 0.0, 0.0, 0.4, 0.5, 0.1, 0.9, 0.7, 0.2, 1.4, 0.75, 0.2});
+        const Curve q(3, 3, {1.4, 0.75, 0.2, 1.9, 0.8, 0.2, 2.4, 0.5, 0.1, 2.8, 0.0, 0.0});
+        bezjoin::MergeOptions opts;
+        opts.metric = BZJ_METRIC_L2;
+        opts.split = BZJ_SPLIT_POLYGON;
+        const bezjoin::Merge m6 = bezjoin::merge_to_degree(p, q, opts, 6);
+        const bezjoin::Merge m3 = bezjoin::merge(p, q, opts);
+        const double mu = m6.report.mu;
+        const Handle(Geom_BezierCurve) r = occ_bezier(m6.merged);
+        const double gap = std::max(pole_difference(m6.p_hat, occ_segment(r, 0.0, mu)),
+                                    pole_difference(m6.q_hat, occ_segment(r, mu, 1.0)));
+        const bool pass = m6.merged.degree() == 6 && mu == m3.report.mu &&
+                          m6.report.metric_value <= m3.report.metric_value * (1.0 + 1e-12) &&
+                          gap <= tolerance;
+        report.row(pass, "g.merge_to_degree", gap, tolerance,
+                   format("degree 6: pieces = OCCT Segment at mu = %.6f; metric %.3e <= degree 3's %.3e",
+                          mu, m6.report.metric_value, m3.report.metric_value));
+    });
+    expect_status(report, "g.merge_to_degree-error-below", BZJ_ERR_INVALID_ARGUMENT, [&] {
+        const Curve p(2, 3, {0.0, 0.0, 1.0, 1.0, 2.0, 1.0, 3.0, 0.0});
+        (void)bezjoin::merge_to_degree(p, p, bezjoin::MergeOptions{}, 2);
+    });
+    guarded(report, "g.merge_chain", [&] {
+        // Three pieces of one cubic, breakpoints given where it was cut: the
+        // merge gives the cubic back, unchanged pieces, zero deviation.
+        const Curve original(2, 3, {0.0, 0.0, 1.0, 2.0, 3.0, 2.5, 4.0, 0.0});
+        const std::vector<Curve> parts = [&] {
+            std::vector<Curve> out;
+            out.push_back(original.segment(0.0, 0.2));
+            out.push_back(original.segment(0.2, 0.7));
+            out.push_back(original.segment(0.7, 1.0));
+            return out;
+        }();
+        bezjoin::ChainMergeOptions opts;
+        opts.metric = BZJ_METRIC_L2;
+        opts.split = BZJ_CHAIN_SPLIT_GIVEN;
+        opts.breakpoints = {0.2, 0.7};
+        const bezjoin::ChainMerge back = bezjoin::merge_chain(parts, opts);
+        double worst = pole_difference(back.merged, occ_bezier(original));
+        bool pass = back.pieces.size() == 3 && back.breakpoints.size() == 4 &&
+                    back.breakpoints == std::vector<double>({0.0, 0.2, 0.7, 1.0});
+        for (std::size_t j = 0; j < back.pieces.size() && pass; ++j) {
+            worst = std::max(worst, pole_difference(back.pieces[j], occ_bezier(parts[j])));
+        }
+        worst = std::max(worst, back.report.max_deviation);
+        report.row(pass && worst <= 1e-9, "g.merge_chain-gives-back", worst, 1e-9,
+                   "3 pieces of a cubic merge back into it (breakpoints 0.2, 0.7)");
+
+        // Unrelated curves, uniform split, degree 5, ends fixed, a keep flag and
+        // a keep point: the pieces are OCCT's Segments of the merged curve.
+        const Curve a(2, 3, {0.0, 0.0, 1.0, 1.0, 2.0, 1.0, 3.0, 0.0});
+        const Curve b(2, 3, {3.1, 0.1, 4.0, -1.0, 5.0, -1.0, 6.0, 0.5});
+        const Curve c(2, 2, {6.0, 0.4, 7.0, 1.5, 8.0, 1.0});
+        bezjoin::ChainMergeOptions free;
+        free.degree = 5;
+        free.fix_ends = true;
+        free.keep = {false, false, false};
+        free.keep_points = {bezjoin::ChainKeepPoint{1, 0.5, 1}};
+        const bezjoin::ChainMerge m = bezjoin::merge_chain({&a, &b, &c}, free);
+        const Handle(Geom_BezierCurve) r = occ_bezier(m.merged);
+        double piece_gap = 0.0;
+        for (std::size_t j = 0; j < 3; ++j) {
+            piece_gap = std::max(piece_gap, pole_difference(m.pieces[j],
+                                                            occ_segment(r, m.breakpoints[j], m.breakpoints[j + 1])));
+        }
+        // The kept point of b: the piece has b's value and first derivative at 0.5.
+        const std::vector<double> kept = m.pieces[1].eval(0.5, 1);
+        const std::vector<double> wanted = b.eval(0.5, 1);
+        double kept_gap = 0.0;
+        for (std::size_t i = 0; i < kept.size(); ++i) {
+            kept_gap = std::max(kept_gap, std::abs(kept[i] - wanted[i]) / std::max(1.0, max_abs(wanted)));
+        }
+        const bool uniform = std::abs(m.breakpoints[1] - 1.0 / 3.0) <= 1e-15 &&
+                             std::abs(m.breakpoints[2] - 2.0 / 3.0) <= 1e-15;
+        const double free_worst = std::max(piece_gap, kept_gap);
+        report.row(m.merged.degree() == 5 && uniform && free_worst <= 1e-9, "g.merge_chain", free_worst,
+                   1e-9,
+                   format("degree 5, uniform split: pieces = OCCT Segments; kept point miss %.1e; "
+                          "deviation %.3e",
+                          kept_gap, m.report.max_deviation));
+    });
+    guarded(report, "g.merge_chain-keep-size-check", [&] {
+        const Curve a(2, 1, {0.0, 0.0, 1.0, 0.0});
+        bezjoin::ChainMergeOptions opts;
+        opts.keep = {true};
+        try {
+            (void)bezjoin::merge_chain({&a, &a}, opts);
+            report.fail("g.merge_chain-keep-size-check", "no exception for 1 keep flag, 2 curves");
+        } catch (const std::invalid_argument& e) {
+            const bool ok = std::strstr(e.what(), "keep") != nullptr;
+            report.row(ok, "g.merge_chain-keep-size-check", ok ? 0.0 : 1.0, 0.0, e.what());
+        }
+    });
+    expect_status(report, "g.merge_chain-error-breakpoints", BZJ_ERR_INVALID_ARGUMENT, [&] {
+        const Curve a(2, 1, {0.0, 0.0, 1.0, 0.0});
+        bezjoin::ChainMergeOptions opts;
+        opts.split = BZJ_CHAIN_SPLIT_GIVEN;
+        opts.breakpoints = {0.6, 0.4};
+        (void)bezjoin::merge_chain({&a, &a, &a}, opts);
+    });
+}
+
+// status_name() and last_error(), the two functions bezjoin::Error reads.
+void check_status_and_message(Report& report) {
+    guarded(report, "g.status_name+last_error", [&] {
+        bool pass = bezjoin::status_name(BZJ_ERR_SINGULAR) == "BZJ_ERR_SINGULAR" &&
+                    bezjoin::status_name(12345) == "BZJ_UNKNOWN_STATUS";
+        std::string during;
+        std::string what;
+        const Curve c(2, 1, {0.0, 0.0, 1.0, 1.0});
+        try {
+            (void)c.split(1.5);
+        } catch (const bezjoin::Error& e) {
+            during = bezjoin::last_error();
+            what = e.what();
+        }
+        pass = pass && !during.empty() && during.find("1.5") != std::string::npos &&
+               what.find(during) != std::string::npos;
+        (void)c.degree();  // a success clears the message
+        pass = pass && bezjoin::last_error().empty();
+        report.row(pass, "g.status_name+last_error", pass ? 0.0 : 1.0, 0.0, during);
+    });
+}
+
 void write_step(Report& report, StepScene& scene, std::mt19937_64& rng, const Options& options) {
     guarded(report, "step.write-and-read-back", [&] {
         // Plus a few plain curves of ours, degrees 2..5, in a row.
@@ -1377,6 +1907,13 @@ int main(int argc, char** argv) {
     check_fillet(report, scene, timings, options);
     check_merge(report, scene, timings, options);
     check_lagrange(report, scene);
+    check_auto_scale(report);
+    check_intersect_detailed(report);
+    check_fillet_deviation(report);
+    check_fillet_chain(report, scene);
+    check_lagrange_degree(report);
+    check_merge_degree_and_chain(report);
+    check_status_and_message(report);
     time_evaluation(report, timings, options);
     write_step(report, scene, rng, options);
 

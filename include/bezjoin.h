@@ -795,6 +795,28 @@ BzjStatus bzj_curve_reverse(const struct BzjCurve *c, struct BzjCurve **out);
 BzjStatus bzj_curve_length(const struct BzjCurve *c, double a, double b, double *out);
 
 /**
+ * Values and derivatives `0..=max_order` of `c` at the `n` parameters
+ * `ts` in one call (a host tessellating a curve for display), written
+ * parameter-major: `out[(i * (max_order + 1) + k) * dim + c]` is
+ * coordinate `c` of the k-th derivative at `ts[i]`;
+ * `n * (max_order + 1) * dim` doubles. Block `i` is exactly what
+ * `bzj_curve_eval(c, ts[i], max_order, ...)` writes. Every parameter is
+ * checked before anything is written. `n == 0` writes nothing (`ts` and
+ * `out` may then be NULL).
+ *
+ * @return BZJ_ERR_NULL_POINTER if `c`, or `ts` or `out` with `n > 0`, is NULL;
+ *         BZJ_ERR_NON_FINITE if some `ts[i]` is NaN or infinite (named);
+ *         BZJ_ERR_INVALID_ARGUMENT if `n * (max_order + 1) * dim` overflows
+ *         `size_t`, or `n` or `out_len` is larger than any array can be;
+ *         BZJ_ERR_BUFFER_TOO_SMALL if `out_len` is short (nothing written).
+ *
+ * # Safety
+ * `c` is NULL or a live handle; `ts` points to `n` readable doubles; `out`
+ * points to `out_len` writable doubles.
+ */
+BzjStatus bzj_curve_eval_many(const struct BzjCurve *c, const double *ts, size_t n, size_t max_order, double *out, size_t out_len);
+
+/**
  * All places where `p` and `q` meet, ordered by u: crossings, touching
  * points, and each overlap by its start pair. Writes the first
  * `min(capacity, total)` pairs `(u, v)` into `out` (`2 * capacity` doubles)

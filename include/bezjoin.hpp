@@ -7,12 +7,9 @@
 // * Control points and derivative blocks are row-major std::vector<double>,
 //   exactly as in the C contract: point i, coordinate c at [i * dim + c].
 //
-// The operation groups (connect, fillet/intersect, merge, Lagrange spline) are
-// compiled only when BEZJOIN_HAS_<GROUP> is non-zero. They default to 1 (all of
-// the contract in shared/spec/c-api.md); a host building against an older
-// bezjoin.h that lacks a group may define the macro to 0. (cpp-demo/ does not:
-// its CMakeLists.txt stops with an error when the header lacks a group, so no
-// check can silently drop out of the demo.)
+// Every function of bezjoin.h has a wrapper here (bezjoin_demo in cpp-demo/
+// calls each one); option structs mirror the C ones with the C defaults, and
+// report structs are the C ones (BzjMergeReport, ...), returned by value.
 //
 // Contract: shared/spec/c-api.md. Mathematics: shared/spec/mathematics.md.
 
@@ -22,38 +19,39 @@
 #include "bezjoin.h"
 
 #include <cstddef>
+#include <cstdint>
+#include <initializer_list>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
 
-#ifndef BEZJOIN_HAS_CONNECT
-#define BEZJOIN_HAS_CONNECT 1
-#endif
-#ifndef BEZJOIN_HAS_FILLET
-#define BEZJOIN_HAS_FILLET 1
-#endif
-#ifndef BEZJOIN_HAS_MERGE
-#define BEZJOIN_HAS_MERGE 1
-#endif
-#ifndef BEZJOIN_HAS_LAGRANGE
-#define BEZJOIN_HAS_LAGRANGE 1
-#endif
-
 namespace bezjoin {
+
+/// The name of a status value as the library spells it ("BZJ_ERR_SINGULAR";
+/// "BZJ_UNKNOWN_STATUS" for a value that is none) (bzj_status_name).
+inline std::string status_name(int32_t status) { return bzj_status_name(status); }
+
+/// The calling thread's message of its last failed call, empty after a
+/// success (bzj_last_error). bezjoin::Error carries it already.
+inline std::string last_error() { return bzj_last_error(); }
 
 /// A failed bezjoin call: the status code and the library's message.
 class Error : public std::runtime_error {
 public:
     Error(BzjStatus status, const std::string& operation)
-        : std::runtime_error(operation + ": " + bzj_status_name(static_cast<int32_t>(status)) +
-                             ": " + bzj_last_error()),
-          status_(status) {}
+        : std::runtime_error(describe(status, operation)), status_(status) {}
 
     /// The status the C function returned (never BZJ_OK).
     BzjStatus status() const noexcept { return status_; }
 
 private:
+    static std::string describe(BzjStatus status, const std::string& operation) {
+        const std::string message = last_error();  // before any other library call
+        return operation + ": " + status_name(static_cast<int32_t>(status)) + ": " + message;
+    }
+
     BzjStatus status_;
 };
 
@@ -128,6 +126,15 @@ public:
         return out;
     }
 
+    /// Value and derivatives 0..max_order at every parameter of `ts` in one
+    /// call, parameter-major: `out[(i * (max_order + 1) + k) * dim + c]`.
+    std::vector<double> eval_many(const std::vector<double>& ts, std::size_t max_order = 0) const {
+        std::vector<double> out(ts.size() * (max_order + 1) * dim());
+        check(bzj_curve_eval_many(handle_, ts.data(), ts.size(), max_order, out.data(), out.size()),
+              "bzj_curve_eval_many");
+        return out;
+    }
+
     /// As eval(), into a caller buffer of `out_len >= (max_order + 1) * dim`
     /// doubles (no allocation; for hot loops).
     void eval_into(double t, std::size_t max_order, double* out, std::size_t out_len) const {
@@ -174,7 +181,6 @@ private:
     BzjCurve* handle_ = nullptr;
 };
 
-#if BEZJOIN_HAS_CONNECT
 /// R^(k)(t) = values row k, k = 0..max_order, at an interior parameter t.
 struct PointConstraint {
     double t = 0.5;
@@ -191,33 +197,93 @@ struct ConnectOptions {
     std::vector<PointConstraint> constraints;
 };
 
+namespace detail {
+
+/// The C view of ConnectOptions; points into `options` and into itself, so it
+/// is neither copied nor moved (build it in place, pass raw()).
+class RawConnectOptions {
+public:
+    explicit RawConnectOptions(const ConnectOptions& options) {
+        constraints_.reserve(options.constraints.size());
+        for (const PointConstraint& c : options.constraints) {
+            BzjPointConstraint raw{};
+            raw.t = c.t;
+            raw.max_order = c.max_order;
+            raw.values = c.values.data();
+            constraints_.push_back(raw);
+        }
+        raw_.p_order = options.p_order;
+        raw_.q_order = options.q_order;
+        raw_.p_scale = options.p_scale;
+        raw_.q_scale = options.q_scale;
+        raw_.constraints = constraints_.empty() ? nullptr : constraints_.data();
+        raw_.constraint_count = constraints_.size();
+    }
+    RawConnectOptions(const RawConnectOptions&) = delete;
+    RawConnectOptions& operator=(const RawConnectOptions&) = delete;
+
+    const BzjConnectOptions* raw() const noexcept { return &raw_; }
+
+private:
+    std::vector<BzjPointConstraint> constraints_;
+    BzjConnectOptions raw_{};
+};
+
+/// The C handles of `curves` (borrowed; a null pointer or an empty Curve
+/// gives NULL, which the library refuses with BZJ_ERR_NULL_POINTER).
+inline std::vector<const BzjCurve*> handles(const std::vector<const Curve*>& curves) {
+    std::vector<const BzjCurve*> out;
+    out.reserve(curves.size());
+    for (const Curve* c : curves) {
+        out.push_back(c != nullptr ? c->get() : nullptr);
+    }
+    return out;
+}
+
+/// Adopt every handle of `raw` (NULL ones give empty Curves), then throw if
+/// `status` is a failure: nothing the library wrote is leaked either way.
+inline std::vector<Curve> adopt_all(const std::vector<BzjCurve*>& raw, BzjStatus status,
+                                    const char* operation) {
+    std::vector<Curve> out;
+    out.reserve(raw.size());
+    for (BzjCurve* handle : raw) {
+        out.emplace_back(handle);
+    }
+    check(status, operation);
+    return out;
+}
+
+}  // namespace detail
+
 /// The connecting curve R with R^(k)(0) = alpha^k P^(k)(u0), k <= kp, and
 /// R^(k)(1) = beta^k Q^(k)(v0), k <= kq (mathematics.md section 1).
 inline Curve connect(const Curve& p, double u0, const Curve& q, double v0,
                      const ConnectOptions& options) {
-    std::vector<BzjPointConstraint> constraints;
-    constraints.reserve(options.constraints.size());
-    for (const PointConstraint& c : options.constraints) {
-        BzjPointConstraint raw{};
-        raw.t = c.t;
-        raw.max_order = c.max_order;
-        raw.values = c.values.data();
-        constraints.push_back(raw);
-    }
-    BzjConnectOptions raw{};
-    raw.p_order = options.p_order;
-    raw.q_order = options.q_order;
-    raw.p_scale = options.p_scale;
-    raw.q_scale = options.q_scale;
-    raw.constraints = constraints.empty() ? nullptr : constraints.data();
-    raw.constraint_count = constraints.size();
+    const detail::RawConnectOptions raw(options);
     BzjCurve* out = nullptr;
-    check(bzj_connect(p.get(), u0, q.get(), v0, &raw, &out), "bzj_connect");
+    check(bzj_connect(p.get(), u0, q.get(), v0, raw.raw(), &out), "bzj_connect");
     return Curve(out);
 }
-#endif  // BEZJOIN_HAS_CONNECT
 
-#if BEZJOIN_HAS_FILLET
+/// connect() with alpha = beta = scale chosen by the library.
+struct AutoScaledConnection {
+    Curve curve;
+    double scale = 0.0;  // the s = alpha = beta used
+};
+
+/// connect() with alpha = beta = s chosen to minimise the fairness energy
+/// integral |R''|^2 (bzj_connect_auto_scale); options.p_scale and
+/// options.q_scale are ignored.
+inline AutoScaledConnection connect_auto_scale(const Curve& p, double u0, const Curve& q, double v0,
+                                               const ConnectOptions& options) {
+    const detail::RawConnectOptions raw(options);
+    BzjCurve* out = nullptr;
+    double scale = 0.0;
+    check(bzj_connect_auto_scale(p.get(), u0, q.get(), v0, raw.raw(), &out, &scale),
+          "bzj_connect_auto_scale");
+    return AutoScaledConnection{Curve(out), scale};
+}
+
 /// Options of fillet(): arc-length setbacks from the crossing, orders, scales.
 struct FilletOptions {
     double p_setback = 0.0;  // arc length along P back from the crossing, > 0
@@ -235,8 +301,9 @@ struct Fillet {
     Curve q_trimmed;
 };
 
-/// Round the corner at the first crossing of P and Q (mathematics.md section 2).
-inline Fillet fillet(const Curve& p, const Curve& q, const FilletOptions& options) {
+namespace detail {
+
+inline BzjFilletOptions raw_fillet_options(const FilletOptions& options) {
     BzjFilletOptions raw{};
     raw.p_setback = options.p_setback;
     raw.q_setback = options.q_setback;
@@ -244,11 +311,120 @@ inline Fillet fillet(const Curve& p, const Curve& q, const FilletOptions& option
     raw.q_order = options.q_order;
     raw.p_scale = options.p_scale;
     raw.q_scale = options.q_scale;
+    return raw;
+}
+
+}  // namespace detail
+
+/// Round the corner at the first crossing of P and Q (mathematics.md section 2).
+inline Fillet fillet(const Curve& p, const Curve& q, const FilletOptions& options) {
+    const BzjFilletOptions raw = detail::raw_fillet_options(options);
     BzjCurve* p_trimmed = nullptr;
     BzjCurve* blend = nullptr;
     BzjCurve* q_trimmed = nullptr;
     check(bzj_fillet(p.get(), q.get(), &raw, &p_trimmed, &blend, &q_trimmed), "bzj_fillet");
     return Fillet{Curve(p_trimmed), Curve(blend), Curve(q_trimmed)};
+}
+
+/// fillet() with p_scale = q_scale = scale chosen by the library.
+struct AutoScaledFillet {
+    Curve p_trimmed;
+    Curve blend;
+    Curve q_trimmed;
+    double scale = 0.0;  // the s = alpha = beta used
+};
+
+/// fillet() with alpha = beta = s chosen to minimise the blend's fairness
+/// energy (bzj_fillet_auto_scale); options.p_scale and options.q_scale are
+/// ignored. The chain has knot intervals (u0, s, 1 - v0).
+inline AutoScaledFillet fillet_auto_scale(const Curve& p, const Curve& q,
+                                          const FilletOptions& options) {
+    const BzjFilletOptions raw = detail::raw_fillet_options(options);
+    BzjCurve* p_trimmed = nullptr;
+    BzjCurve* blend = nullptr;
+    BzjCurve* q_trimmed = nullptr;
+    double scale = 0.0;
+    check(bzj_fillet_auto_scale(p.get(), q.get(), &raw, &p_trimmed, &blend, &q_trimmed, &scale),
+          "bzj_fillet_auto_scale");
+    return AutoScaledFillet{Curve(p_trimmed), Curve(blend), Curve(q_trimmed), scale};
+}
+
+/// Options of fillet_deviation(): the largest distance of the blend from the
+/// corner point, the setback ratio dq / dp, orders, scales.
+struct DeviationFilletOptions {
+    double max_deviation = 0.0;  // eps > 0
+    double setback_ratio = 1.0;  // dq / dp > 0; 1.0 = symmetric
+    std::size_t p_order = 0;
+    std::size_t q_order = 0;
+    double p_scale = 1.0;
+    double q_scale = 1.0;
+};
+
+/// The rounded corner of fillet_deviation() and what was chosen and achieved
+/// (setbacks, deviation, cut parameters u0 and v0).
+struct DeviationFillet {
+    Curve p_trimmed;
+    Curve blend;
+    Curve q_trimmed;
+    BzjDeviationFilletReport report;
+};
+
+/// Round the corner at the first crossing X so that min over t of |R(t) - X|
+/// lies in [eps (1 - 1e-9), eps (1 - 2.5e-10)], never above eps
+/// (bzj_fillet_deviation).
+inline DeviationFillet fillet_deviation(const Curve& p, const Curve& q,
+                                        const DeviationFilletOptions& options) {
+    BzjDeviationFilletOptions raw{};
+    raw.max_deviation = options.max_deviation;
+    raw.setback_ratio = options.setback_ratio;
+    raw.p_order = options.p_order;
+    raw.q_order = options.q_order;
+    raw.p_scale = options.p_scale;
+    raw.q_scale = options.q_scale;
+    BzjCurve* p_trimmed = nullptr;
+    BzjCurve* blend = nullptr;
+    BzjCurve* q_trimmed = nullptr;
+    BzjDeviationFilletReport report{};
+    check(bzj_fillet_deviation(p.get(), q.get(), &raw, &p_trimmed, &blend, &q_trimmed, &report),
+          "bzj_fillet_deviation");
+    return DeviationFillet{Curve(p_trimmed), Curve(blend), Curve(q_trimmed), report};
+}
+
+/// Round every corner of a chain of curves (corner i between curves[i] and
+/// curves[i + 1], and from the last to the first when `closed`) with the same
+/// options (bzj_fillet_chain). The pieces in path order: trimmed curve 0,
+/// blend 0, trimmed curve 1, ...: 2n - 1 curves (open) or 2n (closed, ending
+/// with the blend back to the start).
+inline std::vector<Curve> fillet_chain(const std::vector<const Curve*>& curves,
+                                       const FilletOptions& options, bool closed = false) {
+    const std::vector<const BzjCurve*> handles = detail::handles(curves);
+    const BzjFilletOptions raw = detail::raw_fillet_options(options);
+    const int32_t closed_flag = closed ? 1 : 0;
+    std::size_t count = 0;
+    check(bzj_fillet_chain(handles.data(), handles.size(), &raw, closed_flag, nullptr, 0, &count),
+          "bzj_fillet_chain");
+    std::vector<BzjCurve*> pieces(count, nullptr);
+    const BzjStatus status = bzj_fillet_chain(handles.data(), handles.size(), &raw, closed_flag,
+                                              pieces.data(), pieces.size(), &count);
+    return detail::adopt_all(pieces, status, "bzj_fillet_chain");
+}
+
+/// fillet_chain() of curves held in a vector.
+inline std::vector<Curve> fillet_chain(const std::vector<Curve>& curves, const FilletOptions& options,
+                                       bool closed = false) {
+    std::vector<const Curve*> pointers;
+    pointers.reserve(curves.size());
+    for (const Curve& c : curves) {
+        pointers.push_back(&c);
+    }
+    return fillet_chain(pointers, options, closed);
+}
+
+/// fillet_chain({&a, &b, &c}, options): a braced list of curve pointers (this
+/// overload keeps the list from reading as a vector<Curve> iterator pair).
+inline std::vector<Curve> fillet_chain(std::initializer_list<const Curve*> curves,
+                                       const FilletOptions& options, bool closed = false) {
+    return fillet_chain(std::vector<const Curve*>(curves), options, closed);
 }
 
 /// All crossings of P and Q, ordered by u: pairs (u on P, v on Q).
@@ -268,9 +444,38 @@ inline std::vector<std::pair<double, double>> intersect(const Curve& p, const Cu
     }
     return out;
 }
-#endif  // BEZJOIN_HAS_FILLET
 
-#if BEZJOIN_HAS_MERGE
+/// The library's default intersection tolerances and work bounds
+/// (bzj_intersect_options_default): change what you need and pass the result
+/// to intersect_detailed().
+inline BzjIntersectOptions intersect_options_default() {
+    BzjIntersectOptions out{};
+    check(bzj_intersect_options_default(&out), "bzj_intersect_options_default");
+    return out;
+}
+
+/// Every place where P and Q meet, ordered by u, with its kind (crossing,
+/// touching, overlap with its range) (bzj_intersect_detailed).
+inline std::vector<BzjIntersection> intersect_detailed(const Curve& p, const Curve& q,
+                                                       const BzjIntersectOptions& options) {
+    std::size_t count = 0;
+    std::vector<BzjIntersection> out(16);
+    check(bzj_intersect_detailed(p.get(), q.get(), &options, out.data(), out.size(), &count),
+          "bzj_intersect_detailed");
+    if (count > out.size()) {
+        out.assign(count, BzjIntersection{});
+        check(bzj_intersect_detailed(p.get(), q.get(), &options, out.data(), out.size(), &count),
+              "bzj_intersect_detailed");
+    }
+    out.resize(count);
+    return out;
+}
+
+/// intersect_detailed() with the default options.
+inline std::vector<BzjIntersection> intersect_detailed(const Curve& p, const Curve& q) {
+    return intersect_detailed(p, q, intersect_options_default());
+}
+
 /// Keep P^(s)(param) (or Q's) unchanged for s = 0..max_order.
 struct KeepPoint {
     double param = 0.0;
@@ -298,7 +503,10 @@ struct Merge {
     BzjMergeReport report;
 };
 
-inline Merge merge(const Curve& p, const Curve& q, const MergeOptions& options) {
+namespace detail {
+
+/// Merge with the library's degree (`degree == 0`) or with `degree`.
+inline Merge merge(const Curve& p, const Curve& q, const MergeOptions& options, std::size_t degree) {
     std::vector<BzjKeepPoint> p_points;
     std::vector<BzjKeepPoint> q_points;
     for (const KeepPoint& k : options.p_points) {
@@ -328,12 +536,154 @@ inline Merge merge(const Curve& p, const Curve& q, const MergeOptions& options) 
     BzjCurve* p_hat = nullptr;
     BzjCurve* q_hat = nullptr;
     BzjMergeReport report{};
-    check(bzj_merge(p.get(), q.get(), &raw, &merged, &p_hat, &q_hat, &report), "bzj_merge");
+    if (degree == 0) {
+        check(bzj_merge(p.get(), q.get(), &raw, &merged, &p_hat, &q_hat, &report), "bzj_merge");
+    } else {
+        check(bzj_merge_to_degree(p.get(), q.get(), &raw, degree, &merged, &p_hat, &q_hat, &report),
+              "bzj_merge_to_degree");
+    }
     return Merge{Curve(merged), Curve(p_hat), Curve(q_hat), report};
 }
-#endif  // BEZJOIN_HAS_MERGE
 
-#if BEZJOIN_HAS_LAGRANGE
+}  // namespace detail
+
+inline Merge merge(const Curve& p, const Curve& q, const MergeOptions& options) {
+    return detail::merge(p, q, options, 0);
+}
+
+/// merge() into a curve of degree `degree` (at least both curves' degrees;
+/// both are elevated first) (bzj_merge_to_degree).
+inline Merge merge_to_degree(const Curve& p, const Curve& q, const MergeOptions& options,
+                             std::size_t degree) {
+    if (degree == 0) {
+        // 0 would select bzj_merge above; the library refuses it as below the degrees.
+        throw std::invalid_argument("merge_to_degree: degree = 0 is below the curves' degrees");
+    }
+    return detail::merge(p, q, options, degree);
+}
+
+/// Keep the point of curve `curve` at `param` with derivatives 0..max_order.
+struct ChainKeepPoint {
+    std::size_t curve = 0;
+    double param = 0.0;
+    std::size_t max_order = 0;
+};
+
+/// Options of merge_chain().
+struct ChainMergeOptions {
+    BzjMetric metric = BZJ_METRIC_DISCRETE;
+    BzjChainSplit split = BZJ_CHAIN_SPLIT_UNIFORM;
+    std::vector<double> breakpoints;  // curve count - 1 interior values, for BZJ_CHAIN_SPLIT_GIVEN
+    std::size_t degree = 0;           // 0: the highest degree of the curves
+    bool fix_ends = false;
+    std::vector<bool> keep;           // empty, or one "unchanged" flag per curve
+    std::vector<ChainKeepPoint> keep_points;
+};
+
+/// One curve R and its pieces (curve j changed into R on [t_j, t_{j+1}]),
+/// the breakpoints t_0 = 0 < ... < t_N = 1, and the report.
+struct ChainMerge {
+    Curve merged;
+    std::vector<Curve> pieces;
+    std::vector<double> breakpoints;
+    BzjChainMergeReport report;
+};
+
+/// Merge N >= 2 consecutive curves into one Bezier curve (bzj_merge_chain).
+inline ChainMerge merge_chain(const std::vector<const Curve*>& curves,
+                              const ChainMergeOptions& options) {
+    const std::vector<const BzjCurve*> handles = detail::handles(curves);
+    if (!options.keep.empty() && options.keep.size() != curves.size()) {
+        throw std::invalid_argument("merge_chain: keep has " + std::to_string(options.keep.size()) +
+                                    " flags for " + std::to_string(curves.size()) + " curves");
+    }
+    // std::vector<bool> is not an array of bool.
+    std::unique_ptr<bool[]> keep(new bool[options.keep.size() + 1]());
+    for (std::size_t i = 0; i < options.keep.size(); ++i) {
+        keep[i] = options.keep[i];
+    }
+    std::vector<BzjChainKeepPoint> keep_points;
+    for (const ChainKeepPoint& k : options.keep_points) {
+        BzjChainKeepPoint raw{};
+        raw.curve = k.curve;
+        raw.param = k.param;
+        raw.max_order = k.max_order;
+        keep_points.push_back(raw);
+    }
+    BzjChainMergeOptions raw{};
+    raw.metric = options.metric;
+    raw.split = options.split;
+    raw.breakpoints = options.breakpoints.empty() ? nullptr : options.breakpoints.data();
+    raw.breakpoint_count = options.breakpoints.size();
+    raw.degree = options.degree;
+    raw.fix_ends = options.fix_ends;
+    raw.keep = options.keep.empty() ? nullptr : keep.get();
+    raw.keep_points = keep_points.empty() ? nullptr : keep_points.data();
+    raw.keep_point_count = keep_points.size();
+    BzjCurve* merged = nullptr;
+    std::vector<BzjCurve*> pieces(curves.size(), nullptr);
+    std::vector<double> breakpoints(curves.size() + 1, 0.0);
+    BzjChainMergeReport report{};
+    const BzjStatus status = bzj_merge_chain(
+        handles.data(), handles.size(), &raw, &merged, pieces.data(), pieces.size(),
+        breakpoints.data(), breakpoints.size(), &report);
+    Curve owned(merged);
+    std::vector<Curve> owned_pieces = detail::adopt_all(pieces, status, "bzj_merge_chain");
+    return ChainMerge{std::move(owned), std::move(owned_pieces), std::move(breakpoints), report};
+}
+
+/// merge_chain() of curves held in a vector.
+inline ChainMerge merge_chain(const std::vector<Curve>& curves, const ChainMergeOptions& options) {
+    std::vector<const Curve*> pointers;
+    pointers.reserve(curves.size());
+    for (const Curve& c : curves) {
+        pointers.push_back(&c);
+    }
+    return merge_chain(pointers, options);
+}
+
+/// merge_chain({&a, &b, &c}, options): a braced list of curve pointers.
+inline ChainMerge merge_chain(std::initializer_list<const Curve*> curves,
+                              const ChainMergeOptions& options) {
+    return merge_chain(std::vector<const Curve*>(curves), options);
+}
+
+namespace detail {
+
+/// The number of points in `nodes` (a multiple of `dim`), else std::invalid_argument.
+inline std::size_t node_count(const char* operation, std::size_t dim,
+                              const std::vector<double>& nodes) {
+    if (dim == 0 || nodes.size() % dim != 0) {
+        throw std::invalid_argument(std::string(operation) + ": nodes.size() = " +
+                                    std::to_string(nodes.size()) +
+                                    " is not a multiple of dim = " + std::to_string(dim));
+    }
+    return nodes.size() / dim;
+}
+
+/// The C function reads as many doubles as its counts imply: a shorter (or
+/// longer) vector is refused here with std::invalid_argument.
+inline void expect_size(const char* operation, const char* name, const std::vector<double>& values,
+                        std::size_t wanted) {
+    if (values.size() != wanted) {
+        throw std::invalid_argument(std::string(operation) + ": " + name + ".size() = " +
+                                    std::to_string(values.size()) + ", expected " +
+                                    std::to_string(wanted));
+    }
+}
+
+/// Call a Lagrange spline function writing node_count - 1 handles into a
+/// buffer; adopt them (owning whatever was written, even on failure) and check.
+template <typename Call>
+std::vector<Curve> lagrange_segments(std::size_t node_count, const char* operation, Call&& call) {
+    const std::size_t segment_count = node_count >= 1 ? node_count - 1 : 0;
+    std::vector<BzjCurve*> raw(segment_count, nullptr);
+    const BzjStatus status = call(raw.data(), raw.size());
+    return adopt_all(raw, status, operation);
+}
+
+}  // namespace detail
+
 /// The C1 chain of cubic Bezier segments through `nodes` (node_count * dim)
 /// whose inner points at u = 1/3, 2/3 lie on the curve (mathematics.md
 /// section 4). `params` has node_count values, or is empty for chord length;
@@ -343,26 +693,57 @@ inline std::vector<Curve> lagrange_spline(std::size_t dim, const std::vector<dou
                                           const std::vector<double>& params,
                                           const std::vector<double>& first_inner,
                                           const std::vector<double>& second_inner) {
-    if (dim == 0 || nodes.size() % dim != 0) {
-        throw std::invalid_argument("lagrange_spline: nodes.size() = " +
-                                    std::to_string(nodes.size()) +
-                                    " is not a multiple of dim = " + std::to_string(dim));
+    const char* operation = "lagrange_spline";
+    const std::size_t node_count = detail::node_count(operation, dim, nodes);
+    if (node_count >= 2) {  // fewer: the library refuses node_count itself
+        detail::expect_size(operation, "first_inner", first_inner, 2 * dim);
+        detail::expect_size(operation, "second_inner", second_inner, (node_count - 2) * dim);
+        if (!params.empty()) {
+            detail::expect_size(operation, "params", params, node_count);
+        }
     }
-    const std::size_t node_count = nodes.size() / dim;
-    const std::size_t segment_count = node_count >= 1 ? node_count - 1 : 0;
-    std::vector<BzjCurve*> raw(segment_count, nullptr);
-    const BzjStatus status = bzj_lagrange_spline(
-        dim, node_count, nodes.data(), params.empty() ? nullptr : params.data(),
-        first_inner.data(), second_inner.data(), raw.data(), raw.size());
-    std::vector<Curve> out;
-    out.reserve(raw.size());
-    for (BzjCurve* handle : raw) {
-        out.emplace_back(handle);  // owns whatever was written, even on failure
-    }
-    check(status, "bzj_lagrange_spline");
-    return out;
+    return detail::lagrange_segments(node_count, "bzj_lagrange_spline", [&](BzjCurve** out,
+                                                                             std::size_t capacity) {
+        return bzj_lagrange_spline(dim, node_count, nodes.data(),
+                                   params.empty() ? nullptr : params.data(), first_inner.data(),
+                                   second_inner.empty() ? nullptr : second_inner.data(), out,
+                                   capacity);
+    });
 }
-#endif  // BEZJOIN_HAS_LAGRANGE
+
+/// The generalisation of lagrange_spline(): segments of degree `degree`
+/// (3, 4 or 5) through points on them at u = j / degree, joined
+/// C^`continuity` (1 ..= degree - 2) at every node (bzj_lagrange_spline_degree).
+/// `flags`: 0 or BZJ_LAGRANGE_BACKWARD | BZJ_LAGRANGE_MIRRORED. `start_inner`:
+/// the (degree - 1) inner points of the starting segment; `free_inner`: the
+/// (degree - 1 - continuity) free inner points of every other segment, in
+/// segment order ((node_count - 2) * (degree - 1 - continuity) * dim doubles).
+inline std::vector<Curve> lagrange_spline_degree(std::size_t dim, std::size_t degree,
+                                                 std::size_t continuity, uint32_t flags,
+                                                 const std::vector<double>& nodes,
+                                                 const std::vector<double>& params,
+                                                 const std::vector<double>& start_inner,
+                                                 const std::vector<double>& free_inner) {
+    const char* operation = "lagrange_spline_degree";
+    const std::size_t node_count = detail::node_count(operation, dim, nodes);
+    // Outside these ranges the library refuses degree, continuity or node_count.
+    if (node_count >= 2 && degree >= 3 && degree <= 5 && continuity >= 1 &&
+        continuity + 2 <= degree) {
+        detail::expect_size(operation, "start_inner", start_inner, (degree - 1) * dim);
+        detail::expect_size(operation, "free_inner", free_inner,
+                            (node_count - 2) * (degree - 1 - continuity) * dim);
+        if (!params.empty()) {
+            detail::expect_size(operation, "params", params, node_count);
+        }
+    }
+    return detail::lagrange_segments(
+        node_count, "bzj_lagrange_spline_degree", [&](BzjCurve** out, std::size_t capacity) {
+            return bzj_lagrange_spline_degree(
+                dim, degree, continuity, flags, node_count, nodes.data(),
+                params.empty() ? nullptr : params.data(), start_inner.data(),
+                free_inner.empty() ? nullptr : free_inner.data(), out, capacity);
+        });
+}
 
 }  // namespace bezjoin
 

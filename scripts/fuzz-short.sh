@@ -23,14 +23,14 @@ SCALE="${1:-1}"
 shift || true
 SEED="${FUZZ_SEED:-1}"
 
-# Executions per target after the seed replay: about 20 s each under
-# AddressSanitizer on the 2-core CI machine (rates in docs/reliability.md).
+# Executions per target after the seed replay: about 15-20 s each under
+# AddressSanitizer on a busy 2-core machine (rates in docs/reliability.md).
 declare -A RUNS=(
-    [curve_new]=200000 [curve_eval]=200000 [curve_segment]=40000
-    [curve_ops]=40000 [curve_length]=20000 [lagrange_spline]=100000
-    [merge]=3000 [merge_chain]=8000 [connect]=15000 [intersect]=3000
-    [intersect_detailed]=20000 [fillet]=6000 [fillet_deviation]=10000
-    [fillet_chain]=15000
+    [curve_new]=100000 [curve_eval]=50000 [curve_segment]=12000
+    [curve_ops]=40000 [curve_length]=6000 [lagrange_spline]=50000
+    [merge]=10000 [merge_chain]=30000 [connect]=20000 [intersect]=8000
+    [intersect_detailed]=30000 [fillet]=4000 [fillet_deviation]=16000
+    [fillet_chain]=40000
 )
 DEFAULT_RUNS=5000
 

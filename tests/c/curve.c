@@ -173,6 +173,40 @@ int main(void) {
         EXPECT_STATUS(bzj_curve_eval(c, 0.5, (size_t)-1, v, 8), BZJ_ERR_INVALID_ARGUMENT);
     }
 
+    /* eval_many: block i is exactly what eval writes at ts[i], parameter-major */
+    {
+        const double ts[5] = {-0.25, 0.0, 0.3, 1.0, 1.75};
+        double many[5 * 3 * 2], one[3 * 2];
+        EXPECT_STATUS(bzj_curve_eval_many(c, ts, 5, 2, many, 30), BZJ_OK);
+        for (int i = 0; i < 5; i++) {
+            EXPECT_STATUS(bzj_curve_eval(c, ts[i], 2, one, 6), BZJ_OK);
+            for (int k = 0; k < 6; k++) CHECK(many[i * 6 + k] == one[k], "eval_many block %d entry %d", i, k);
+        }
+        double values[5 * 2];
+        EXPECT_STATUS(bzj_curve_eval_many(c, ts, 5, 0, values, 10), BZJ_OK);
+        for (int i = 0; i < 5; i++) {
+            EXPECT_STATUS(bzj_curve_eval(c, ts[i], 0, one, 2), BZJ_OK);
+            CHECK(values[2 * i] == one[0] && values[2 * i + 1] == one[1], "eval_many value %d", i);
+        }
+        /* every parameter is checked before anything is written */
+        const double bad[3] = {0.1, 0.2, INFINITY};
+        for (int k = 0; k < 30; k++) many[k] = -7.25;
+        EXPECT_STATUS(bzj_curve_eval_many(c, bad, 3, 2, many, 30), BZJ_ERR_NON_FINITE);
+        expect_message("ts[2]");
+        EXPECT_STATUS(bzj_curve_eval_many(c, ts, 5, 2, many, 29), BZJ_ERR_BUFFER_TOO_SMALL);
+        expect_message("out");
+        int untouched = 1;
+        for (int k = 0; k < 30; k++) untouched = untouched && many[k] == -7.25;
+        CHECK(untouched, "eval_many wrote after a failure");
+        EXPECT_STATUS(bzj_curve_eval_many(c, NULL, 0, 3, NULL, 0), BZJ_OK);
+        EXPECT_STATUS(bzj_curve_eval_many(c, NULL, 2, 0, values, 10), BZJ_ERR_NULL_POINTER);
+        expect_message("ts");
+        EXPECT_STATUS(bzj_curve_eval_many(c, ts, 2, 0, NULL, 10), BZJ_ERR_NULL_POINTER);
+        EXPECT_STATUS(bzj_curve_eval_many(NULL, ts, 2, 0, values, 10), BZJ_ERR_NULL_POINTER);
+        EXPECT_STATUS(bzj_curve_eval_many(c, ts, (size_t)1 << 62, 3, values, 10), BZJ_ERR_INVALID_ARGUMENT);
+        EXPECT_STATUS(bzj_curve_eval_many(c, ts, 2, (size_t)-1, values, 10), BZJ_ERR_INVALID_ARGUMENT);
+    }
+
     /* eval outside [0, 1] continues the polynomial: at t = a and t = b it
        equals the extrapolated segment s -> c(a + (b - a) s) at s = 0 and
        s = 1 (computed by blossoming, a different route), and the k-th

@@ -19,9 +19,19 @@ from ._library import (
     status_name,
 )
 from ._connect import AutoScaledConnection, connect, connect_auto_scale
-from ._fillet import FilletResult, Intersection, fillet, intersect, intersect_detailed
-from ._lagrange import lagrange_spline
-from ._merge import MergeResult, merge
+from ._fillet import (
+    DeviationFilletResult,
+    FilletChainResult,
+    FilletResult,
+    Intersection,
+    fillet,
+    fillet_chain,
+    fillet_deviation,
+    intersect,
+    intersect_detailed,
+)
+from ._lagrange import lagrange_spline, lagrange_spline_degree
+from ._merge import ChainMergeResult, MergeResult, merge, merge_chain
 from .curve import Curve
 from .errors import STATUS_NAMES, BezjoinError, LibraryNotFoundError, UnsupportedGeometryError
 
@@ -30,7 +40,10 @@ __all__ = [
     "ENVIRONMENT_VARIABLE",
     "STATUS_NAMES",
     "BezjoinError",
+    "ChainMergeResult",
     "Curve",
+    "DeviationFilletResult",
+    "FilletChainResult",
     "FilletResult",
     "Intersection",
     "LibraryNotFoundError",
@@ -40,12 +53,16 @@ __all__ = [
     "connect",
     "connect_auto_scale",
     "fillet",
+    "fillet_chain",
+    "fillet_deviation",
     "find_library",
     "intersect",
     "intersect_detailed",
     "lagrange_spline",
+    "lagrange_spline_degree",
     "library_path",
     "library_version",
     "merge",
+    "merge_chain",
     "status_name",
 ]

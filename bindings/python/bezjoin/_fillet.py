@@ -1,5 +1,7 @@
-"""Round the corner where two curves cross (``bzj_fillet``) and find where they meet
-(``bzj_intersect``, and ``bzj_intersect_detailed`` for the kind of each hit).
+"""Round the corner where two curves cross (``bzj_fillet``, ``bzj_fillet_auto_scale``;
+``bzj_fillet_deviation`` sized by the distance from the corner; ``bzj_fillet_chain``
+for every corner of a chain) and find where they meet (``bzj_intersect``, and
+``bzj_intersect_detailed`` for the kind of each hit).
 
 Krivosheev, Mavrin, Starkova, "Bezier curve conjugation for smooth curve
 joining and corner rounding", Omsk Scientific Bulletin, 2025, Fig. 2
@@ -238,3 +240,181 @@ def intersect_detailed(p, q, *, relative_distance_tolerance=None, tangent_tolera
         hits.append(Intersection(hit.u, hit.v, hit.u_end, hit.v_end, hit.distance,
                                  INTERSECTION_KINDS[hit.kind]))
     return hits
+
+
+class DeviationFilletOptionsStruct(ctypes.Structure):
+    """``BzjDeviationFilletOptions`` (layout fixed by the C header)."""
+
+    _fields_ = [
+        ("max_deviation", ctypes.c_double),
+        ("setback_ratio", ctypes.c_double),
+        ("p_order", ctypes.c_size_t),
+        ("q_order", ctypes.c_size_t),
+        ("p_scale", ctypes.c_double),
+        ("q_scale", ctypes.c_double),
+    ]
+
+
+class DeviationFilletReportStruct(ctypes.Structure):
+    """``BzjDeviationFilletReport`` (layout fixed by the C header)."""
+
+    _fields_ = [
+        ("p_setback", ctypes.c_double),
+        ("q_setback", ctypes.c_double),
+        ("deviation", ctypes.c_double),
+        ("u0", ctypes.c_double),
+        ("v0", ctypes.c_double),
+    ]
+
+
+register_prototype(
+    "bzj_fillet_deviation",
+    ctypes.c_int32,
+    [CurvePointer, CurvePointer, ctypes.POINTER(DeviationFilletOptionsStruct), _curve_out,
+     _curve_out, _curve_out, ctypes.POINTER(DeviationFilletReportStruct)],
+)
+register_prototype(
+    "bzj_fillet_chain",
+    ctypes.c_int32,
+    [ctypes.POINTER(CurvePointer), ctypes.c_size_t, ctypes.POINTER(FilletOptionsStruct),
+     ctypes.c_int32, ctypes.POINTER(CurvePointer), ctypes.c_size_t,
+     ctypes.POINTER(ctypes.c_size_t)],
+)
+
+
+class DeviationFilletResult(FilletResult):
+    """The corner rounded by :func:`fillet_deviation`: ``p_trimmed``, ``blend``,
+    ``q_trimmed`` as in :class:`FilletResult`, and the report: the setbacks found
+    (``p_setback``, ``q_setback = setback_ratio * p_setback``, arc lengths from the
+    crossing), the ``deviation`` achieved (``min_t |R(t) - X|``) and the cut
+    parameters ``u0`` on P and ``v0`` on Q."""
+
+    def __init__(self, p_trimmed, blend, q_trimmed, report):
+        super().__init__(p_trimmed, blend, q_trimmed)
+        self.p_setback = report.p_setback
+        self.q_setback = report.q_setback
+        self.deviation = report.deviation
+        self.u0 = report.u0
+        self.v0 = report.v0
+
+    def _fields(self):
+        return self._curve_fields + ("p_setback", "q_setback", "deviation", "u0", "v0")
+
+
+def fillet_deviation(p, q, max_deviation, *, setback_ratio=1.0, p_order=None, q_order=None,
+                     p_scale=1.0, q_scale=1.0):
+    """Round the corner at the first crossing ``X`` so that the blend passes within
+    ``max_deviation`` of ``X``, using nearly all of it (``bzj_fillet_deviation``):
+    ``max_deviation (1 - 1e-9) <= min_t |R(t) - X| <= max_deviation (1 - 2.5e-10)``,
+    never above. The setbacks ``dp`` and ``dq = setback_ratio * dp`` are found by
+    the library; the blend is that of :func:`fillet` with them.
+
+    Args:
+        max_deviation: the largest distance allowed between ``X`` and the blend, > 0.
+        setback_ratio: ``dq / dp`` > 0 (1.0 = symmetric rounding).
+        p_order, q_order: continuity orders (default: the curve's degree).
+        p_scale, q_scale: shape scales (1.0 = the paper).
+
+    Returns:
+        :class:`DeviationFilletResult`.
+
+    Raises:
+        BezjoinError: ``BZJ_ERR_INVALID_ARGUMENT`` when ``max_deviation`` cannot be
+            reached even with the longest setbacks (the message gives the largest
+            possible), ``BZJ_ERR_NO_INTERSECTION`` when the curves do not cross, ...
+    """
+    p_handle, q_handle = handle_of(p, "p"), handle_of(q, "q")
+    p_order = p.degree if p_order is None else index_argument(p_order, "p_order")
+    q_order = q.degree if q_order is None else index_argument(q_order, "q_order")
+    options = DeviationFilletOptionsStruct(
+        real_argument(max_deviation, "max_deviation"),
+        real_argument(setback_ratio, "setback_ratio"), p_order, q_order,
+        real_argument(p_scale, "p_scale"), real_argument(q_scale, "q_scale"),
+    )
+    p_trimmed, blend, q_trimmed = CurvePointer(), CurvePointer(), CurvePointer()
+    report = DeviationFilletReportStruct()
+    library().call("bzj_fillet_deviation", p_handle, q_handle, ctypes.byref(options),
+                   ctypes.byref(p_trimmed), ctypes.byref(blend), ctypes.byref(q_trimmed),
+                   ctypes.byref(report))
+    return DeviationFilletResult(Curve._adopt(p_trimmed), Curve._adopt(blend),
+                                 Curve._adopt(q_trimmed), report)
+
+
+class FilletChainResult(CurveGroup):
+    """Every corner of a chain rounded (:func:`fillet_chain`): ``pieces`` in path
+    order, trimmed curve 0, blend 0, trimmed curve 1, ... (``2n - 1`` curves for an
+    open chain of ``n`` curves, ``2n`` for a closed one, ending with the blend back
+    to the start). ``trimmed`` and ``blends`` are the two kinds, each in order.
+    ``close()`` releases them all."""
+
+    _curve_fields = ("pieces",)
+
+    def __init__(self, pieces, closed):
+        self.pieces = pieces
+        self.closed = closed
+
+    @property
+    def trimmed(self):
+        """The kept part of every curve, in chain order."""
+        return self.pieces[0::2]
+
+    @property
+    def blends(self):
+        """The blend of every corner, in chain order."""
+        return self.pieces[1::2]
+
+    def _fields(self):
+        return self._curve_fields + ("closed",)
+
+
+def fillet_chain(curves, *, setback=None, p_setback=None, q_setback=None, p_order=None,
+                 q_order=None, p_scale=1.0, q_scale=1.0, closed=False):
+    """Round every corner of a chain of curves in one call (``bzj_fillet_chain``).
+
+    Corner ``i`` lies between ``curves[i]`` and ``curves[i + 1]`` (and, with
+    ``closed=True``, between the last curve and the first); its crossing is the
+    one nearest the shared end, rounded as :func:`fillet` rounds one corner, with
+    the same options at every corner (``p`` is the curve before the corner, ``q``
+    the one after). Each curve is kept between the cuts of its two corners.
+
+    Args:
+        curves: at least two :class:`Curve` objects of one dimension.
+        setback, p_setback, q_setback, p_scale, q_scale: as for :func:`fillet`.
+        p_order, q_order: continuity orders (default: the lowest degree of the
+            curves).
+        closed: round the corner from the last curve back to the first too.
+
+    Returns:
+        :class:`FilletChainResult`.
+
+    Raises:
+        BezjoinError: ``BZJ_ERR_NO_INTERSECTION`` naming the corner whose curves do
+            not cross, ``BZJ_ERR_INVALID_ARGUMENT`` for a setback too long at a
+            corner or fewer than two curves, ...
+    """
+    curves = list(curves)
+    handles = [handle_of(c, f"curves[{i}]") for i, c in enumerate(curves)]
+    if setback is not None:
+        if p_setback is not None or q_setback is not None:
+            raise TypeError("give either setback or p_setback/q_setback, not both")
+        p_setback = q_setback = setback
+    if p_setback is None or q_setback is None:
+        raise TypeError("fillet_chain needs setback, or both p_setback and q_setback")
+    if not isinstance(closed, bool):
+        raise TypeError(f"closed must be a bool, not {type(closed).__name__}")
+    lowest = min((c.degree for c in curves), default=0)
+    p_order = lowest if p_order is None else index_argument(p_order, "p_order")
+    q_order = lowest if q_order is None else index_argument(q_order, "q_order")
+    options = FilletOptionsStruct(
+        real_argument(p_setback, "p_setback"), real_argument(q_setback, "q_setback"),
+        p_order, q_order, real_argument(p_scale, "p_scale"), real_argument(q_scale, "q_scale"),
+    )
+    array = (CurvePointer * max(len(handles), 1))(*handles)
+    count = ctypes.c_size_t()
+    # The count-only query checks the curves and `closed` the way the real call does.
+    library().call("bzj_fillet_chain", array, len(handles), ctypes.byref(options), int(closed),
+                   None, 0, ctypes.byref(count))
+    pieces = (CurvePointer * max(count.value, 1))()
+    library().call("bzj_fillet_chain", array, len(handles), ctypes.byref(options), int(closed),
+                   pieces, count.value, ctypes.byref(count))
+    return FilletChainResult([Curve._adopt(pieces[i]) for i in range(count.value)], closed)

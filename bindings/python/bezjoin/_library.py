@@ -101,6 +101,10 @@ _PROTOTYPES = {
     "bzj_curve_dim": (_status, [CurvePointer, _size_pointer]),
     "bzj_curve_points": (_status, [CurvePointer, _double_pointer, _size]),
     "bzj_curve_eval": (_status, [CurvePointer, _double, _size, _double_pointer, _size]),
+    "bzj_curve_eval_many": (
+        _status,
+        [CurvePointer, _double_pointer, _size, _size, _double_pointer, _size],
+    ),
     "bzj_curve_elevate": (_status, [CurvePointer, _size, _curve_out]),
     "bzj_curve_split": (_status, [CurvePointer, _double, _curve_out, _curve_out]),
     "bzj_curve_segment": (_status, [CurvePointer, _double, _double, _curve_out]),

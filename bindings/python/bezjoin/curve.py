@@ -167,6 +167,25 @@ class Curve:
         library().call("bzj_curve_eval", handle, t, max_order, buffer, length)
         return rows_of(buffer, max_order + 1, dim)
 
+    def derivatives_many(self, ts, max_order=0):
+        """Value and derivatives ``0..max_order`` at every parameter of ``ts``
+        in one library call (for tessellation).
+
+        Returns a list with one item per parameter, each as
+        :meth:`derivatives` returns it.
+        """
+        handle = self._live()
+        ts = [real_argument(t, f"ts[{i}]") for i, t in enumerate(ts)]
+        max_order = index_argument(max_order, "max_order")
+        dim = self.dim
+        block = (max_order + 1) * dim
+        length = len(ts) * block
+        params = (ctypes.c_double * len(ts))(*ts)
+        buffer = (ctypes.c_double * length)()
+        library().call("bzj_curve_eval_many", handle, params, len(ts), max_order, buffer, length)
+        rows = rows_of(buffer, len(ts) * (max_order + 1), dim)
+        return [rows[i * (max_order + 1):(i + 1) * (max_order + 1)] for i in range(len(ts))]
+
     def evaluate(self, t):
         """The point at ``t`` (outside ``[0, 1]`` the polynomial is continued)."""
         return self.derivatives(t, 0)[0]

@@ -7,8 +7,16 @@ class CurveGroup:
     _curve_fields = ()
 
     def curves(self):
-        """The curves of this result, in field order (missing ones skipped)."""
-        return [c for c in (getattr(self, name) for name in self._curve_fields) if c is not None]
+        """The curves of this result, in field order (missing ones skipped; a field
+        holding a list of curves contributes them all, in order)."""
+        out = []
+        for name in self._curve_fields:
+            value = getattr(self, name)
+            if isinstance(value, list):
+                out.extend(c for c in value if c is not None)
+            elif value is not None:
+                out.append(value)
+        return out
 
     def close(self):
         """Release every curve of the result (idempotent)."""

@@ -80,6 +80,22 @@ def test_derivatives_match_hodographs(rng, degree, dim):
             assert rows[-1] == tuple(0.0 for _ in range(dim))
 
 
+def test_derivatives_many_is_derivatives_at_every_parameter(rng):
+    curve = Curve(random_points(rng, 5, 3))
+    ts = [-0.5, 0.0, 0.125, 0.7, 1.0, 1.5]
+    for max_order in (0, 2, 7):
+        many = curve.derivatives_many(ts, max_order)
+        assert len(many) == len(ts)
+        for t, rows in zip(ts, many):
+            assert rows == curve.derivatives(t, max_order)
+    assert curve.derivatives_many([], 3) == []
+
+
+def test_derivatives_many_names_the_bad_parameter(rng):
+    curve = Curve(random_points(rng, 3, 2))
+    expect_error("BZJ_ERR_NON_FINITE", lambda: curve.derivatives_many([0.1, 0.2, math.nan], 1), "ts[2]")
+
+
 def test_derivatives_agree_with_finite_differences(rng):
     points = random_points(rng, 5, 2)
     with Curve(points) as curve:

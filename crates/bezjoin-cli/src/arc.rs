@@ -158,7 +158,7 @@ pub fn circular_fillet(
 }
 
 #[cfg(test)]
-mod tests {
+mod circular_fillet_tests {
     use super::*;
     use crate::svg::signed_curvature;
 

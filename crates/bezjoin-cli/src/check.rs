@@ -136,7 +136,7 @@ pub fn curve_json(curve: &BezierCurve) -> Value {
 }
 
 #[cfg(test)]
-mod tests {
+mod join_check_tests {
     use super::*;
 
     #[test]

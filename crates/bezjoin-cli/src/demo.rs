@@ -12,29 +12,9 @@ use std::path::Path;
 
 use serde_json::Value;
 
-use crate::job::Located;
+use crate::ops::{self, Scenario};
 use crate::svg::escape;
-use crate::{CliError, Outcome, ops};
-
-/// One scenario of the demo.
-#[derive(Debug, Clone)]
-pub struct Scenario {
-    /// File stem of its outputs.
-    pub name: &'static str,
-    /// Subcommand that runs it.
-    pub operation: &'static str,
-    /// Title of its picture.
-    pub title: &'static str,
-    /// What it shows and where it comes from.
-    pub description: &'static str,
-    /// The job.
-    pub job: Value,
-}
-
-/// All scenarios, in the order the index shows them.
-pub fn scenarios() -> Vec<Scenario> {
-    ops::demo_scenarios()
-}
+use crate::{CliError, Outcome};
 
 /// One scenario's result.
 pub struct Ran {
@@ -49,8 +29,9 @@ pub fn run(out: &Path) -> Result<String, CliError> {
     std::fs::create_dir_all(out)
         .map_err(|e| CliError::Io(format!("cannot create {}: {e}", out.display())))?;
     let mut ran = Vec::new();
-    for scenario in scenarios() {
-        let mut outcome = ops::run_named(scenario.operation, &Located::root(&scenario.job))
+    for scenario in ops::scenarios() {
+        let mut outcome = scenario
+            .run()
             .map_err(|e| CliError::Operation(format!("demo scenario {}: {e}", scenario.name)))?;
         outcome.figure.title = scenario.title.to_string();
         write(
@@ -170,7 +151,7 @@ fn index_html(ran: &[Ran]) -> String {
             s,
             "<tr><td><a href=\"#{n}\">{n}</a></td><td>{op}</td><td>{d}</td><td>{j}</td><td>{m}</td><td>{w}</td></tr>",
             n = escape(r.scenario.name),
-            op = r.scenario.operation,
+            op = r.scenario.operation.name(),
             d = sum.degree,
             j = number(sum.worst_continuity_jump),
             m = number(sum.max_deviation),
@@ -198,7 +179,7 @@ fn index_html(ran: &[Ran]) -> String {
                 .map(|l| escape(l))
                 .collect::<Vec<_>>()
                 .join("<br>\n"),
-            op = r.scenario.operation,
+            op = r.scenario.operation.name(),
         );
     }
     s.push_str("</body>\n</html>\n");

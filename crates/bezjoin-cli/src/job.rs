@@ -339,7 +339,7 @@ impl<'a> ObjectReader<'a> {
 }
 
 #[cfg(test)]
-mod tests {
+mod job_reading_tests {
     use super::*;
 
     fn root(text: &str) -> Value {

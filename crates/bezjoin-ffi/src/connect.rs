@@ -6,10 +6,10 @@ use bezjoin_core::connect::{
     ConnectOptions, MAX_CONNECT_DEGREE, PointConstraint, connect, connect_auto_scale,
 };
 
-use crate::guard::{
-    BzjCurve, BzjStatus, FfiResult, clear_handle, curve_ref, guard, input_ref, input_slice,
-    require_out, write_handle,
-};
+use crate::guard::guard;
+use crate::handles::{BzjCurve, HandleOut};
+use crate::pointers::{curve_ref, input_ref, input_slice, write_optional};
+use crate::status::{BzjStatus, FfiError, FfiResult};
 
 /// An interior constraint: `R^(k)(t) = values[k*dim .. (k+1)*dim]`, `k = 0..=max_order`.
 #[repr(C)]
@@ -87,7 +87,7 @@ unsafe fn read_options(options: &BzjConnectOptions, dim: usize) -> FfiResult<Con
         // Bounded by MAX_CONNECT_DEGREE above, so no overflow.
         let len = rows * dim;
         if c.values.is_null() {
-            return Err(crate::guard::FfiError::NullPointer(name));
+            return Err(FfiError::NullPointer(name));
         }
         // SAFETY: caller promises (max_order + 1) * dim readable doubles.
         let values = unsafe { input_slice(c.values, len, &name) }?;
@@ -133,14 +133,12 @@ pub unsafe extern "C" fn bzj_connect(
     out: *mut *mut BzjCurve,
 ) -> BzjStatus {
     // SAFETY: `out` is null or writable (caller contract).
-    unsafe { clear_handle(out) };
+    let out = unsafe { HandleOut::cleared(out, "out") };
     guard(|| {
-        let out = require_out(out, "out")?;
+        let out = out.require()?;
         // SAFETY: caller contract for every pointer.
         let (p, q, options) = unsafe { read_inputs(p, q, options) }?;
-        let connection = connect(p, u0, q, v0, &options)?;
-        // SAFETY: `out` checked non-null.
-        unsafe { write_handle(out, connection.curve) };
+        out.write(connect(p, u0, q, v0, &options)?.curve);
         Ok(())
     })
 }
@@ -168,18 +166,15 @@ pub unsafe extern "C" fn bzj_connect_auto_scale(
     scale_out: *mut f64,
 ) -> BzjStatus {
     // SAFETY: `out` is null or writable (caller contract).
-    unsafe { clear_handle(out) };
+    let out = unsafe { HandleOut::cleared(out, "out") };
     guard(|| {
-        let out = require_out(out, "out")?;
+        let out = out.require()?;
         // SAFETY: caller contract for every pointer.
         let (p, q, options) = unsafe { read_inputs(p, q, options) }?;
         let connection = connect_auto_scale(p, u0, q, v0, &options)?;
-        if !scale_out.is_null() {
-            // SAFETY: non-null and writable by the caller contract.
-            unsafe { scale_out.write(connection.p_scale) };
-        }
-        // SAFETY: `out` checked non-null.
-        unsafe { write_handle(out, connection.curve) };
+        // SAFETY: NULL or writable by the caller contract.
+        unsafe { write_optional(scale_out, connection.p_scale) };
+        out.write(connection.curve);
         Ok(())
     })
 }

@@ -3,10 +3,10 @@
 use bezjoin_core::BezierCurve;
 use bezjoin_core::error::{BezjoinError, check_finite_scalar};
 
-use crate::guard::{
-    BzjCurve, BzjStatus, FfiError, clear_handle, curve_ref, guard, guard_release, input_slice,
-    output_slice, require_out, write_handle,
-};
+use crate::guard::{guard, guard_release};
+use crate::handles::{BzjCurve, HandleOut, require_all};
+use crate::pointers::{curve_ref, input_slice, output_slice, require_out};
+use crate::status::{BzjStatus, FfiError};
 
 /// Create a Bezier curve of degree `degree` in dimension `dim` from
 /// `points_len == (degree + 1) * dim` row-major coordinates.
@@ -29,38 +29,17 @@ pub unsafe extern "C" fn bzj_curve_new(
     out: *mut *mut BzjCurve,
 ) -> BzjStatus {
     // SAFETY: `out` is null or writable (caller contract).
-    unsafe { clear_handle(out) };
+    let out = unsafe { HandleOut::cleared(out, "out") };
     guard(|| {
-        let out = require_out(out, "out")?;
+        let out = out.require()?;
         if points.is_null() {
             return Err(FfiError::NullPointer("points".into()));
         }
         // Check the length from the numbers alone before touching memory.
-        if dim == 0 {
-            return Err(BezjoinError::invalid("dim", "must be at least 1").into());
-        }
-        let expected = degree
-            .checked_add(1)
-            .and_then(|n| n.checked_mul(dim))
-            .ok_or_else(|| {
-                BezjoinError::invalid(
-                    "degree, dim",
-                    format!("(degree + 1) * dim = ({degree} + 1) * {dim} overflows"),
-                )
-            })?;
-        if points_len != expected {
-            return Err(BezjoinError::LengthMismatch {
-                name: "points".into(),
-                expected,
-                actual: points_len,
-            }
-            .into());
-        }
+        BezierCurve::check_shape(dim, degree, points_len)?;
         // SAFETY: caller promises `points_len` readable doubles.
         let pts = unsafe { input_slice(points, points_len, "points") }?;
-        let curve = BezierCurve::new(dim, degree, pts.to_vec())?;
-        // SAFETY: `out` checked non-null above.
-        unsafe { write_handle(out, curve) };
+        out.write(BezierCurve::new(dim, degree, pts.to_vec())?);
         Ok(())
     })
 }
@@ -197,14 +176,12 @@ pub unsafe extern "C" fn bzj_curve_elevate(
     out: *mut *mut BzjCurve,
 ) -> BzjStatus {
     // SAFETY: caller contract.
-    unsafe { clear_handle(out) };
+    let out = unsafe { HandleOut::cleared(out, "out") };
     guard(|| {
         // SAFETY: caller contract.
         let curve = unsafe { curve_ref(c, "c") }?;
-        let out = require_out(out, "out")?;
-        let elevated = curve.elevate_degree(new_degree)?;
-        // SAFETY: checked non-null.
-        unsafe { write_handle(out, elevated) };
+        let out = out.require()?;
+        out.write(curve.elevate_degree(new_degree)?);
         Ok(())
     })
 }
@@ -225,21 +202,19 @@ pub unsafe extern "C" fn bzj_curve_split(
     right: *mut *mut BzjCurve,
 ) -> BzjStatus {
     // SAFETY: caller contract.
-    unsafe {
-        clear_handle(left);
-        clear_handle(right);
-    }
+    let outs = unsafe {
+        [
+            HandleOut::cleared(left, "left"),
+            HandleOut::cleared(right, "right"),
+        ]
+    };
     guard(|| {
         // SAFETY: caller contract.
         let curve = unsafe { curve_ref(c, "c") }?;
-        let left = require_out(left, "left")?;
-        let right = require_out(right, "right")?;
+        let [left, right] = require_all(outs)?;
         let (a, b) = curve.split_at(t)?;
-        // SAFETY: both checked non-null.
-        unsafe {
-            write_handle(left, a);
-            write_handle(right, b);
-        }
+        left.write(a);
+        right.write(b);
         Ok(())
     })
 }
@@ -262,14 +237,12 @@ pub unsafe extern "C" fn bzj_curve_segment(
     out: *mut *mut BzjCurve,
 ) -> BzjStatus {
     // SAFETY: caller contract.
-    unsafe { clear_handle(out) };
+    let out = unsafe { HandleOut::cleared(out, "out") };
     guard(|| {
         // SAFETY: caller contract.
         let curve = unsafe { curve_ref(c, "c") }?;
-        let out = require_out(out, "out")?;
-        let seg = curve.segment(a, b)?;
-        // SAFETY: checked non-null.
-        unsafe { write_handle(out, seg) };
+        let out = out.require()?;
+        out.write(curve.segment(a, b)?);
         Ok(())
     })
 }
@@ -286,13 +259,12 @@ pub unsafe extern "C" fn bzj_curve_reverse(
     out: *mut *mut BzjCurve,
 ) -> BzjStatus {
     // SAFETY: caller contract.
-    unsafe { clear_handle(out) };
+    let out = unsafe { HandleOut::cleared(out, "out") };
     guard(|| {
         // SAFETY: caller contract.
         let curve = unsafe { curve_ref(c, "c") }?;
-        let out = require_out(out, "out")?;
-        // SAFETY: checked non-null.
-        unsafe { write_handle(out, curve.reverse()) };
+        let out = out.require()?;
+        out.write(curve.reverse());
         Ok(())
     })
 }
@@ -329,6 +301,77 @@ pub unsafe extern "C" fn bzj_curve_length(
         let len = curve.arc_length_default(a, b)?;
         // SAFETY: checked non-null.
         unsafe { out.write(len) };
+        Ok(())
+    })
+}
+
+/// Values and derivatives `0..=max_order` of `c` at the `n` parameters
+/// `ts` in one call (a host tessellating a curve for display), written
+/// parameter-major: `out[(i * (max_order + 1) + k) * dim + c]` is
+/// coordinate `c` of the k-th derivative at `ts[i]`;
+/// `n * (max_order + 1) * dim` doubles. Block `i` is exactly what
+/// `bzj_curve_eval(c, ts[i], max_order, ...)` writes. Every parameter is
+/// checked before anything is written. `n == 0` writes nothing (`ts` and
+/// `out` may then be NULL).
+///
+/// @return BZJ_ERR_NULL_POINTER if `c`, or `ts` or `out` with `n > 0`, is NULL;
+///         BZJ_ERR_NON_FINITE if some `ts[i]` is NaN or infinite (named);
+///         BZJ_ERR_INVALID_ARGUMENT if `n * (max_order + 1) * dim` overflows
+///         `size_t`, or `n` or `out_len` is larger than any array can be;
+///         BZJ_ERR_BUFFER_TOO_SMALL if `out_len` is short (nothing written).
+///
+/// # Safety
+/// `c` is NULL or a live handle; `ts` points to `n` readable doubles; `out`
+/// points to `out_len` writable doubles.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn bzj_curve_eval_many(
+    c: *const BzjCurve,
+    ts: *const f64,
+    n: usize,
+    max_order: usize,
+    out: *mut f64,
+    out_len: usize,
+) -> BzjStatus {
+    guard(|| {
+        // SAFETY: caller contract.
+        let curve = unsafe { curve_ref(c, "c") }?;
+        // SAFETY: caller contract.
+        let ts = unsafe { input_slice(ts, n, "ts") }?;
+        if let Some(i) = ts.iter().position(|t| !t.is_finite()) {
+            return Err(BezjoinError::NonFinite {
+                name: "ts".into(),
+                index: i,
+                value: ts[i],
+            }
+            .into());
+        }
+        let block = max_order
+            .checked_add(1)
+            .and_then(|k| k.checked_mul(curve.dim()))
+            .ok_or_else(|| {
+                BezjoinError::invalid("max_order", format!("{max_order} is too large"))
+            })?;
+        let needed = block.checked_mul(n).ok_or_else(|| {
+            BezjoinError::invalid(
+                "n, max_order",
+                format!(
+                    "n * (max_order + 1) * dim = {n} * ({max_order} + 1) * {} overflows",
+                    curve.dim()
+                ),
+            )
+        })?;
+        if n == 0 {
+            return Ok(());
+        }
+        // SAFETY: caller contract.
+        let buf = unsafe { output_slice(out, out_len, needed, "out") }?;
+        for (&t, row) in ts.iter().zip(buf.chunks_exact_mut(block)) {
+            if max_order == 0 {
+                curve.eval_into(t, row);
+            } else {
+                curve.eval_derivatives_into(t, max_order, row);
+            }
+        }
         Ok(())
     })
 }

@@ -11,10 +11,10 @@ use bezjoin_core::fillet::{
 };
 use bezjoin_core::intersect::{IntersectOptions, Intersection, IntersectionKind, intersect};
 
-use crate::guard::{
-    BzjCurve, BzjStatus, FfiError, FfiResult, clear_handle, curve_ref, guard, input_ref,
-    input_slice, new_handle, require_out, write_handle,
-};
+use crate::guard::guard;
+use crate::handles::{BzjCurve, HandleArray, HandleOut, ShortArray, require_all};
+use crate::pointers::{curve_ref, input_ref, input_slice, require_out, write_optional};
+use crate::status::{BzjStatus, FfiError, FfiResult};
 
 /// Options of `bzj_fillet` (contract layout; every field is read).
 #[repr(C)]
@@ -389,6 +389,25 @@ pub unsafe extern "C" fn bzj_fillet_auto_scale(
     unsafe { fillet_with_scale(p, q, options, true, p_trimmed, blend, q_trimmed, scale_out) }
 }
 
+/// The three handle outputs of a fillet, cleared.
+///
+/// # Safety
+/// Each is NULL or writable.
+unsafe fn fillet_outputs(
+    p_trimmed: *mut *mut BzjCurve,
+    blend: *mut *mut BzjCurve,
+    q_trimmed: *mut *mut BzjCurve,
+) -> [HandleOut; 3] {
+    // SAFETY: forwarded.
+    unsafe {
+        [
+            HandleOut::cleared(p_trimmed, "p_trimmed"),
+            HandleOut::cleared(blend, "blend"),
+            HandleOut::cleared(q_trimmed, "q_trimmed"),
+        ]
+    }
+}
+
 /// The body of `bzj_fillet` and `bzj_fillet_auto_scale`.
 ///
 /// # Safety
@@ -405,32 +424,21 @@ unsafe fn fillet_with_scale(
     scale_out: *mut f64,
 ) -> BzjStatus {
     // SAFETY: caller contract.
-    unsafe {
-        clear_handle(p_trimmed);
-        clear_handle(blend);
-        clear_handle(q_trimmed);
-    }
+    let outs = unsafe { fillet_outputs(p_trimmed, blend, q_trimmed) };
     guard(|| {
         // SAFETY: caller contract.
         let (p, q) = unsafe { (curve_ref(p, "p")?, curve_ref(q, "q")?) };
         // SAFETY: caller contract.
         let options = unsafe { input_ref(options, "options") }?;
-        let p_out = require_out(p_trimmed, "p_trimmed")?;
-        let blend_out = require_out(blend, "blend")?;
-        let q_out = require_out(q_trimmed, "q_trimmed")?;
+        let [p_out, blend_out, q_out] = require_all(outs)?;
         let mut core_options = options.to_core();
         core_options.auto_scale = auto_scale;
         let result = fillet(p, q, &core_options)?;
-        if !scale_out.is_null() {
-            // SAFETY: non-null and writable by the caller contract.
-            unsafe { scale_out.write(result.p_scale) };
-        }
-        // SAFETY: all three checked non-null.
-        unsafe {
-            write_handle(p_out, result.p_trimmed);
-            write_handle(blend_out, result.blend);
-            write_handle(q_out, result.q_trimmed);
-        }
+        // SAFETY: NULL or writable by the caller contract.
+        unsafe { write_optional(scale_out, result.p_scale) };
+        p_out.write(result.p_trimmed);
+        blend_out.write(result.blend);
+        q_out.write(result.q_trimmed);
         Ok(())
     })
 }
@@ -470,42 +478,30 @@ pub unsafe extern "C" fn bzj_fillet_deviation(
     report: *mut BzjDeviationFilletReport,
 ) -> BzjStatus {
     // SAFETY: caller contract.
-    unsafe {
-        clear_handle(p_trimmed);
-        clear_handle(blend);
-        clear_handle(q_trimmed);
-    }
+    let outs = unsafe { fillet_outputs(p_trimmed, blend, q_trimmed) };
     guard(|| {
         // SAFETY: caller contract.
         let (p, q) = unsafe { (curve_ref(p, "p")?, curve_ref(q, "q")?) };
         // SAFETY: caller contract.
         let o = unsafe { input_ref(options, "options") }?;
-        let p_out = require_out(p_trimmed, "p_trimmed")?;
-        let blend_out = require_out(blend, "blend")?;
-        let q_out = require_out(q_trimmed, "q_trimmed")?;
+        let [p_out, blend_out, q_out] = require_all(outs)?;
         let mut core =
             DeviationFilletOptions::new(o.max_deviation, 0).with_setback_ratio(o.setback_ratio);
         core.shape =
             FilletOptions::new(1.0, 1.0, o.p_order, o.q_order).with_scales(o.p_scale, o.q_scale);
         let r = fillet_within_deviation(p, q, &core)?;
-        if !report.is_null() {
-            // SAFETY: non-null and writable (caller contract).
-            unsafe {
-                report.write(BzjDeviationFilletReport {
-                    p_setback: r.p_setback,
-                    q_setback: r.q_setback,
-                    deviation: r.deviation,
-                    u0: r.fillet.u0,
-                    v0: r.fillet.v0,
-                })
-            };
-        }
-        // SAFETY: all three checked non-null.
-        unsafe {
-            write_handle(p_out, r.fillet.p_trimmed);
-            write_handle(blend_out, r.fillet.blend);
-            write_handle(q_out, r.fillet.q_trimmed);
-        }
+        let summary = BzjDeviationFilletReport {
+            p_setback: r.p_setback,
+            q_setback: r.q_setback,
+            deviation: r.deviation,
+            u0: r.fillet.u0,
+            v0: r.fillet.v0,
+        };
+        // SAFETY: NULL or writable (caller contract).
+        unsafe { write_optional(report, summary) };
+        p_out.write(r.fillet.p_trimmed);
+        blend_out.write(r.fillet.blend);
+        q_out.write(r.fillet.q_trimmed);
         Ok(())
     })
 }
@@ -552,12 +548,15 @@ pub unsafe extern "C" fn bzj_fillet_chain(
     capacity: usize,
     count: *mut usize,
 ) -> BzjStatus {
-    if !out_pieces.is_null() {
-        for i in 0..capacity {
-            // SAFETY: caller promises `capacity` writable handle pointers.
-            unsafe { clear_handle(out_pieces.add(i)) };
-        }
-    }
+    // SAFETY: caller promises NULL or `capacity` writable handle pointers.
+    let pieces = unsafe {
+        HandleArray::cleared(
+            out_pieces,
+            capacity,
+            "out_pieces",
+            ShortArray::AsDoubles("out_pieces (handles)"),
+        )
+    };
     guard(|| {
         let count = require_out(count, "count")?;
         if curves.is_null() {
@@ -597,31 +596,19 @@ pub unsafe extern "C" fn bzj_fillet_chain(
         };
         // SAFETY: checked non-null.
         unsafe { count.write(needed) };
-        if capacity == 0 && out_pieces.is_null() {
+        if capacity == 0 && pieces.is_null() {
             return Ok(());
         }
-        if out_pieces.is_null() {
-            return Err(FfiError::NullPointer("out_pieces".into()));
-        }
+        let pieces = pieces.require()?;
         let mut owned = Vec::with_capacity(curve_count);
         for (i, &h) in handles.iter().enumerate() {
             // SAFETY: each is NULL or a live handle (caller contract).
             owned.push(unsafe { curve_ref(h, &format!("curves[{i}]")) }?.clone());
         }
-        if capacity < needed {
-            return Err(FfiError::BufferTooSmall {
-                name: "out_pieces (handles)".into(),
-                needed,
-                given: capacity,
-            });
-        }
+        pieces.check_room(needed)?;
         let mut chain = ChainFilletOptions::open(options.to_core());
         chain.closed = closed;
-        let result = fillet_chain(&owned, &chain)?;
-        for (i, piece) in result.pieces.into_iter().enumerate() {
-            // SAFETY: `i < needed <= capacity` writable handle pointers.
-            unsafe { out_pieces.add(i).write(new_handle(piece)) };
-        }
+        pieces.write(fillet_chain(&owned, &chain)?.pieces);
         Ok(())
     })
 }

@@ -9,7 +9,10 @@ use bezjoin_core::BezierCurve;
 use bezjoin_core::error::BezjoinError;
 use bezjoin_core::lagrange::{BuildDirection, DerivedPoints, LagrangeOptions, lagrange_spline};
 
-use crate::guard::{BzjCurve, BzjStatus, FfiError, FfiResult, guard, input_slice, new_handle};
+use crate::guard::guard;
+use crate::handles::{BzjCurve, HandleArray, ShortArray};
+use crate::pointers::input_slice;
+use crate::status::{BzjStatus, FfiError, FfiResult};
 
 /// Flag for [`bzj_lagrange_spline_degree`]: build from the last segment
 /// backwards (the last segment's inner points are all given).
@@ -27,6 +30,24 @@ fn length(name: &str, factors: &[usize]) -> FfiResult<usize> {
         .ok_or_else(|| FfiError::Core(BezjoinError::invalid(name, "length overflows size_t")))
 }
 
+/// The caller's `out_segments`, not yet written: BUFFER_TOO_SMALL writes
+/// nothing, so the slots are cleared only once their room is checked.
+///
+/// # Safety
+/// `out_segments` is NULL or points to `segment_capacity` writable handle
+/// pointers.
+unsafe fn segments_array(out_segments: *mut *mut BzjCurve, segment_capacity: usize) -> HandleArray {
+    // SAFETY: forwarded.
+    unsafe {
+        HandleArray::untouched(
+            out_segments,
+            segment_capacity,
+            "out_segments",
+            ShortArray::Handles,
+        )
+    }
+}
+
 /// The shared body: checks the handle array, builds, writes the handles only
 /// when everything succeeded (so an error leaks nothing).
 ///
@@ -41,12 +62,9 @@ unsafe fn build_into(
     start_inner: (*const f64, &str),
     free_inner: (*const f64, &str),
     options: &LagrangeOptions,
-    out_segments: *mut *mut BzjCurve,
-    segment_capacity: usize,
+    out_segments: HandleArray,
 ) -> FfiResult {
-    if out_segments.is_null() {
-        return Err(FfiError::NullPointer("out_segments".into()));
-    }
+    let out = out_segments.require()?;
     if node_count < 2 {
         return Err(BezjoinError::invalid(
             "node_count",
@@ -55,16 +73,8 @@ unsafe fn build_into(
         .into());
     }
     let segment_count = node_count - 1;
-    if segment_capacity < segment_count {
-        return Err(FfiError::HandleArrayTooSmall {
-            name: "out_segments".into(),
-            needed: segment_count,
-            given: segment_capacity,
-        });
-    }
-    // SAFETY: the caller promises `segment_capacity >= segment_count` writable handles.
-    let out = unsafe { std::slice::from_raw_parts_mut(out_segments, segment_count) };
-    out.fill(std::ptr::null_mut());
+    out.check_room(segment_count)?;
+    out.clear_first(segment_count);
     options.validate()?;
     if dim == 0 {
         return Err(BezjoinError::invalid("dim", "must be at least 1").into());
@@ -92,9 +102,7 @@ unsafe fn build_into(
         FfiError::Core(rename(e, start_inner.1, free_inner.1))
     })?;
     let segments: Vec<BezierCurve> = spline.into_segments();
-    for (slot, curve) in out.iter_mut().zip(segments) {
-        *slot = new_handle(curve);
-    }
+    out.write(segments);
     Ok(())
 }
 
@@ -168,6 +176,8 @@ pub unsafe extern "C" fn bzj_lagrange_spline(
     out_segments: *mut *mut BzjCurve,
     segment_capacity: usize,
 ) -> BzjStatus {
+    // SAFETY: caller contract.
+    let out_segments = unsafe { segments_array(out_segments, segment_capacity) };
     guard(|| {
         // SAFETY: forwarded caller contract.
         unsafe {
@@ -180,7 +190,6 @@ pub unsafe extern "C" fn bzj_lagrange_spline(
                 (second_inner, "second_inner"),
                 &LagrangeOptions::default(),
                 out_segments,
-                segment_capacity,
             )
         }
     })
@@ -242,14 +251,16 @@ pub unsafe extern "C" fn bzj_lagrange_spline_degree(
     out_segments: *mut *mut BzjCurve,
     segment_capacity: usize,
 ) -> BzjStatus {
+    // SAFETY: caller contract.
+    let out_segments = unsafe { segments_array(out_segments, segment_capacity) };
     guard(|| {
         let known = BZJ_LAGRANGE_BACKWARD | BZJ_LAGRANGE_MIRRORED;
         if flags & !known != 0 {
             // validate the handle array first so the error contract holds
-            if !out_segments.is_null() && node_count >= 2 && segment_capacity >= node_count - 1 {
-                // SAFETY: caller promises `segment_capacity` writable handles.
-                unsafe { std::slice::from_raw_parts_mut(out_segments, node_count - 1) }
-                    .fill(std::ptr::null_mut());
+            if let Some(out) = out_segments.given() {
+                if node_count >= 2 && out.has_room(node_count - 1) {
+                    out.clear_first(node_count - 1);
+                }
             }
             return Err(BezjoinError::invalid(
                 "flags",
@@ -283,7 +294,6 @@ pub unsafe extern "C" fn bzj_lagrange_spline_degree(
                 (free_inner, "free_inner"),
                 &options,
                 out_segments,
-                segment_capacity,
             )
         }
     })

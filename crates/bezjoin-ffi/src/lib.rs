@@ -16,7 +16,12 @@
 //! integers and validated, so an out-of-range value is an error, never
 //! undefined behaviour.
 
+// The order of the modules is the order of their items in the generated
+// header (cbindgen follows it): keep `guard` first.
 mod guard;
+mod handles;
+mod pointers;
+mod status;
 
 mod connect;
 mod curve;
@@ -28,7 +33,9 @@ mod version;
 pub use connect::*;
 pub use curve::*;
 pub use fillet::*;
-pub use guard::{BzjCurve, BzjStatus, bzj_last_error, bzj_status_name, bzj_version};
+pub use guard::{bzj_last_error, bzj_version};
+pub use handles::BzjCurve;
 pub use lagrange::*;
 pub use merge::*;
+pub use status::{BzjStatus, bzj_status_name};
 pub use version::*;

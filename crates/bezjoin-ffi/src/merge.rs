@@ -15,10 +15,10 @@ use bezjoin_core::merge::{
     MergeOptions, SplitParameter, merge, merge_chain,
 };
 
-use crate::guard::{
-    BzjCurve, BzjStatus, FfiError, FfiResult, clear_handle, curve_ref, guard, input_ref,
-    input_slice, output_slice, require_out, write_handle,
-};
+use crate::guard::guard;
+use crate::handles::{BzjCurve, CheckedOut, HandleArray, HandleOut, ShortArray};
+use crate::pointers::{curve_ref, input_ref, input_slice, output_slice, write_optional};
+use crate::status::{BzjStatus, FfiError, FfiResult};
 
 /// What stage 1 minimises.
 #[repr(i32)]
@@ -199,35 +199,53 @@ unsafe fn read_options(options: *const BzjMergeOptions) -> FfiResult<MergeOption
     })
 }
 
-/// Write the results of a two-curve merge.
+/// The handle outputs of a two-curve merge, cleared: `merged` (required),
+/// `p_hat` and `q_hat` (optional).
 ///
 /// # Safety
-/// `merged` is non-null and writable; the others null or writable.
-unsafe fn write_merge(
-    result: Merge,
+/// Each is NULL or writable.
+unsafe fn merge_outputs(
     merged: *mut *mut BzjCurve,
     p_hat: *mut *mut BzjCurve,
     q_hat: *mut *mut BzjCurve,
+) -> [HandleOut; 3] {
+    // SAFETY: forwarded.
+    unsafe {
+        [
+            HandleOut::cleared(merged, "merged"),
+            HandleOut::cleared(p_hat, "p_hat"),
+            HandleOut::cleared(q_hat, "q_hat"),
+        ]
+    }
+}
+
+/// Write the results of a two-curve merge: the optional outputs the
+/// caller gave, then `merged`.
+///
+/// # Safety
+/// `report` is null or writable.
+unsafe fn write_merge(
+    result: Merge,
+    merged: CheckedOut,
+    p_hat: HandleOut,
+    q_hat: HandleOut,
     report: *mut BzjMergeReport,
 ) {
     let r = result.report;
-    // SAFETY: caller contract for every pointer.
-    unsafe {
-        if !report.is_null() {
-            report.write(BzjMergeReport {
-                mu: r.mu,
-                metric_value: r.metric_value,
-                max_deviation: r.max_deviation,
-            });
-        }
-        if !p_hat.is_null() {
-            write_handle(p_hat, result.p_hat);
-        }
-        if !q_hat.is_null() {
-            write_handle(q_hat, result.q_hat);
-        }
-        write_handle(merged, result.merged);
+    let summary = BzjMergeReport {
+        mu: r.mu,
+        metric_value: r.metric_value,
+        max_deviation: r.max_deviation,
+    };
+    // SAFETY: caller contract.
+    unsafe { write_optional(report, summary) };
+    if let Some(out) = p_hat.given() {
+        out.write(result.p_hat);
     }
+    if let Some(out) = q_hat.given() {
+        out.write(result.q_hat);
+    }
+    merged.write(result.merged);
 }
 
 /// Merge `p` and `q` into one Bezier curve `merged` (mathematics.md,
@@ -269,19 +287,15 @@ pub unsafe extern "C" fn bzj_merge(
     report: *mut BzjMergeReport,
 ) -> BzjStatus {
     // SAFETY: each is null or writable (caller contract).
-    unsafe {
-        clear_handle(merged);
-        clear_handle(p_hat);
-        clear_handle(q_hat);
-    }
+    let [merged, p_hat, q_hat] = unsafe { merge_outputs(merged, p_hat, q_hat) };
     guard(|| {
         // SAFETY: caller contract.
         let (p, q) = unsafe { (curve_ref(p, "p")?, curve_ref(q, "q")?) };
-        let merged = require_out(merged, "merged")?;
+        let merged = merged.require()?;
         // SAFETY: caller contract.
         let options = unsafe { read_options(options) }?;
         let result = merge(p, q, &options)?;
-        // SAFETY: `merged` checked; the rest null or writable.
+        // SAFETY: `report` null or writable (caller contract).
         unsafe { write_merge(result, merged, p_hat, q_hat, report) };
         Ok(())
     })
@@ -309,20 +323,16 @@ pub unsafe extern "C" fn bzj_merge_to_degree(
     report: *mut BzjMergeReport,
 ) -> BzjStatus {
     // SAFETY: each is null or writable (caller contract).
-    unsafe {
-        clear_handle(merged);
-        clear_handle(p_hat);
-        clear_handle(q_hat);
-    }
+    let [merged, p_hat, q_hat] = unsafe { merge_outputs(merged, p_hat, q_hat) };
     guard(|| {
         // SAFETY: caller contract.
         let (p, q) = unsafe { (curve_ref(p, "p")?, curve_ref(q, "q")?) };
-        let merged = require_out(merged, "merged")?;
+        let merged = merged.require()?;
         // SAFETY: caller contract.
         let mut options = unsafe { read_options(options) }?;
         options.degree = Some(degree);
         let result = merge(p, q, &options)?;
-        // SAFETY: `merged` checked; the rest null or writable.
+        // SAFETY: `report` null or writable (caller contract).
         unsafe { write_merge(result, merged, p_hat, q_hat, report) };
         Ok(())
     })
@@ -458,16 +468,21 @@ pub unsafe extern "C" fn bzj_merge_chain(
     breakpoints_len: usize,
     report: *mut BzjChainMergeReport,
 ) -> BzjStatus {
-    // SAFETY: caller contract: `merged` null or writable.
-    unsafe { clear_handle(merged) };
-    if !pieces.is_null() {
-        for k in 0..piece_capacity {
-            // SAFETY: `piece_capacity` writable slots (caller contract).
-            unsafe { clear_handle(pieces.add(k)) };
-        }
-    }
+    // SAFETY: caller contract: `merged` null or writable, `pieces` null or
+    // `piece_capacity` writable slots.
+    let (merged, pieces) = unsafe {
+        (
+            HandleOut::cleared(merged, "merged"),
+            HandleArray::cleared(
+                pieces,
+                piece_capacity,
+                "pieces",
+                ShortArray::AsDoubles("pieces"),
+            ),
+        )
+    };
     guard(|| {
-        let merged = require_out(merged, "merged")?;
+        let merged = merged.require()?;
         if curves.is_null() {
             return Err(FfiError::NullPointer("curves".into()));
         }
@@ -532,12 +547,9 @@ pub unsafe extern "C" fn bzj_merge_chain(
             accuracy: bezjoin_core::merge::DEFAULT_MERGE_ACCURACY,
         };
         // Check the output buffers before computing anything.
-        if !pieces.is_null() && piece_capacity < curve_count {
-            return Err(FfiError::BufferTooSmall {
-                name: "pieces".into(),
-                needed: curve_count,
-                given: piece_capacity,
-            });
+        let pieces = pieces.given();
+        if let Some(pieces) = &pieces {
+            pieces.check_room(curve_count)?;
         }
         let breakpoint_buffer = if breakpoints_out.is_null() {
             None
@@ -556,23 +568,16 @@ pub unsafe extern "C" fn bzj_merge_chain(
         if let Some(buffer) = breakpoint_buffer {
             buffer.copy_from_slice(&result.report.breakpoints);
         }
-        if !report.is_null() {
-            // SAFETY: non-null, writable (caller contract).
-            unsafe {
-                report.write(BzjChainMergeReport {
-                    metric_value: result.report.metric_value,
-                    max_deviation: result.report.max_deviation,
-                })
-            };
+        let summary = BzjChainMergeReport {
+            metric_value: result.report.metric_value,
+            max_deviation: result.report.max_deviation,
+        };
+        // SAFETY: NULL or writable (caller contract).
+        unsafe { write_optional(report, summary) };
+        if let Some(pieces) = pieces {
+            pieces.write(result.pieces);
         }
-        if !pieces.is_null() {
-            for (k, piece) in result.pieces.into_iter().enumerate() {
-                // SAFETY: `k < curve_count <= piece_capacity` writable slots.
-                unsafe { write_handle(pieces.add(k), piece) };
-            }
-        }
-        // SAFETY: checked non-null.
-        unsafe { write_handle(merged, result.merged) };
+        merged.write(result.merged);
         Ok(())
     })
 }

@@ -32,6 +32,14 @@ fn check_degree_supported(name: &str, degree: usize) -> Result<()> {
     Ok(())
 }
 
+/// `InvalidArgument` naming `dim` when `dim == 0`.
+fn check_dim(dim: usize) -> Result<()> {
+    if dim == 0 {
+        return Err(BezjoinError::invalid("dim", "must be at least 1"));
+    }
+    Ok(())
+}
+
 /// A polynomial Bezier curve of degree `n >= 0` in dimension `dim >= 1`
 /// (`n <= MAX_DEGREE`).
 ///
@@ -46,13 +54,31 @@ pub struct BezierCurve {
 impl BezierCurve {
     /// A curve from `(degree + 1) * dim` row-major coordinates.
     ///
-    /// Errors: `dim == 0` (InvalidArgument), wrong length (LengthMismatch),
-    /// NaN/infinity (NonFinite, naming the first bad index).
+    /// Errors: `dim == 0` (InvalidArgument), `degree` above [`MAX_DEGREE`]
+    /// (InvalidArgument), then the size checks of
+    /// [`check_shape`](Self::check_shape), NaN/infinity (NonFinite, naming
+    /// the first bad index).
     pub fn new(dim: usize, degree: usize, points: Vec<f64>) -> Result<Self> {
-        if dim == 0 {
-            return Err(BezjoinError::invalid("dim", "must be at least 1"));
-        }
+        check_dim(dim)?;
         check_degree_supported("degree", degree)?;
+        Self::check_shape(dim, degree, points.len())?;
+        check_finite("points", &points)?;
+        Ok(Self {
+            degree,
+            dim,
+            points,
+        })
+    }
+
+    /// The size checks of [`new`](Self::new) from the numbers alone, for
+    /// callers that must refuse a bad size before reading the coordinates
+    /// (the C ABI): `dim >= 1` (InvalidArgument naming `dim`),
+    /// `(degree + 1) * dim` representable (InvalidArgument naming
+    /// `degree, dim`) and `len` equal to it (LengthMismatch naming `points`),
+    /// in this order. Returns `(degree + 1) * dim`. The degree cap
+    /// [`MAX_DEGREE`] is not part of it (`new` checks it).
+    pub fn check_shape(dim: usize, degree: usize, len: usize) -> Result<usize> {
+        check_dim(dim)?;
         let expected = degree
             .checked_add(1)
             .and_then(|n| n.checked_mul(dim))
@@ -62,19 +88,14 @@ impl BezierCurve {
                     format!("(degree + 1) * dim = ({degree} + 1) * {dim} overflows"),
                 )
             })?;
-        if points.len() != expected {
+        if len != expected {
             return Err(BezjoinError::LengthMismatch {
                 name: "points".into(),
                 expected,
-                actual: points.len(),
+                actual: len,
             });
         }
-        check_finite("points", &points)?;
-        Ok(Self {
-            degree,
-            dim,
-            points,
-        })
+        Ok(expected)
     }
 
     /// A curve from a list of control points (each a slice of `dim` coordinates).
@@ -535,17 +556,7 @@ const HORNER_MAX_DEGREE: usize = 512;
 fn bernstein_horner(points: &[f64], n: usize, dim: usize, t: f64, scale: f64, out: &mut [f64]) {
     let d = dim;
     if n > HORNER_MAX_DEGREE {
-        let mut w = points[..(n + 1) * d].to_vec();
-        for level in 1..=n {
-            for i in 0..=(n - level) {
-                for c in 0..d {
-                    w[i * d + c] = (1.0 - t) * w[i * d + c] + t * w[(i + 1) * d + c];
-                }
-            }
-        }
-        for c in 0..d {
-            out[c] = w[c] * scale;
-        }
+        de_casteljau_into(points, n, d, t, scale, out);
         return;
     }
     let s = 1.0 - t;
@@ -569,20 +580,64 @@ fn bernstein_horner(points: &[f64], n: usize, dim: usize, t: f64, scale: f64, ou
     for v in out.iter_mut() {
         *v *= factor;
     }
+    // Coordinates near the top of the f64 range overflow the binomial-
+    // weighted Horner sums (degree 40, coordinates 1e291: `C(40, 20) P_i`
+    // is infinite, then `inf - inf` is NaN) although the value itself, a
+    // convex combination for `t` in `[0, 1]`, is finite. De Casteljau never
+    // leaves the hull of the points there; where the result is really out
+    // of range (far extrapolation, huge derivatives) it overflows too.
+    if out.iter().any(|v| !v.is_finite()) {
+        de_casteljau_into(points, n, d, t, scale, out);
+    }
+}
+
+/// `scale * P(t)` by de Casteljau's algorithm (allocating), for
+/// [`bernstein_horner`] above [`HORNER_MAX_DEGREE`] or when its sums overflow.
+fn de_casteljau_into(points: &[f64], n: usize, d: usize, t: f64, scale: f64, out: &mut [f64]) {
+    let mut work = Vec::with_capacity((n + 1) * d);
+    let value = blossom(&points[..(n + 1) * d], d, std::iter::repeat_n(t, n), &mut work);
+    for c in 0..d {
+        out[c] = value[c] * scale;
+    }
 }
 
 /// Euclidean distance between two points of equal dimension.
 pub(crate) fn distance(a: &[f64], b: &[f64]) -> f64 {
-    a.iter()
-        .zip(b)
-        .map(|(x, y)| (x - y) * (x - y))
-        .sum::<f64>()
-        .sqrt()
+    let square = a.iter().zip(b).map(|(x, y)| (x - y) * (x - y)).sum::<f64>();
+    if square.is_normal() {
+        return square.sqrt();
+    }
+    scaled_norm(a.iter().zip(b).map(|(x, y)| x - y))
 }
 
 /// Euclidean norm.
 pub(crate) fn norm(a: &[f64]) -> f64 {
-    a.iter().map(|x| x * x).sum::<f64>().sqrt()
+    let square = a.iter().map(|x| x * x).sum::<f64>();
+    if square.is_normal() {
+        return square.sqrt();
+    }
+    scaled_norm(a.iter().copied())
+}
+
+/// The Euclidean norm of `values` computed as `m |values / m|`, `m` the
+/// largest magnitude: the path of [`distance`] and [`norm`] when the plain
+/// sum of squares is not a normal number, i.e. overflows (components above
+/// about `1e154`) or underflows (components below about `1e-154`) although
+/// the norm itself is in range. Zero when every value is zero; infinite when
+/// one is; NaN when one is NaN (as the plain sum).
+fn scaled_norm(values: impl Iterator<Item = f64> + Clone) -> f64 {
+    if values.clone().any(f64::is_nan) {
+        return f64::NAN;
+    }
+    let largest = values.clone().fold(0.0f64, |m, v| m.max(v.abs()));
+    if largest == 0.0 || !largest.is_finite() {
+        return largest;
+    }
+    largest
+        * values
+            .map(|v| (v / largest) * (v / largest))
+            .sum::<f64>()
+            .sqrt()
 }
 
 #[cfg(test)]
@@ -664,6 +719,16 @@ mod tests {
         let point = BezierCurve::from_matrix(&DMatrix::from_row_slice(1, 2, &[1.0, 2.0])).unwrap();
         assert_eq!((point.degree(), point.dim()), (0, 2));
         assert_eq!(point.eval(0.7), vec![1.0, 2.0]);
+    }
+
+    #[test]
+    fn check_shape_gives_the_size_errors_of_new() {
+        assert_eq!(BezierCurve::check_shape(2, 3, 8).unwrap(), 8);
+        for (dim, degree, len) in [(0, 3, 8), (usize::MAX, 3, 8), (2, 3, 7)] {
+            let shape = BezierCurve::check_shape(dim, degree, len).unwrap_err();
+            let new = BezierCurve::new(dim, degree, vec![0.0; len]).unwrap_err();
+            assert_eq!(shape.to_string(), new.to_string());
+        }
     }
 
     #[test]

@@ -9,7 +9,7 @@ use serde_json::json;
 
 use crate::check::{JoinCheck, curve_json, worst};
 use crate::job::{JobError, Located};
-use crate::ops::draw_part;
+use crate::ops::{OperationKind, Scenario, draw_part};
 use crate::svg::{CurveItem, Figure, Marker, MarkerKind, Role};
 use crate::{CliError, Outcome, Summary};
 
@@ -253,12 +253,11 @@ fn demo_q() -> serde_json::Value {
 /// connection through the prescribed point R(0.5) = (12, 14) with
 /// R'(0.5) = (8.1, 1.4) and R''(0.5) = (-5, -39), and the unconstrained
 /// connection with the scale chosen automatically.
-pub fn demo_scenarios() -> Vec<crate::demo::Scenario> {
-    use crate::demo::Scenario;
+pub fn demo_scenarios() -> Vec<Scenario> {
     vec![
         Scenario {
             name: "connect-plain",
-            operation: "connect",
+            operation: OperationKind::Connect,
             title: "Connection of two cubics, C2 at both joins",
             description: "R joins the end of P to the start of Q with continuity of orders \
                           0..2 on both sides at scales alpha = beta = 1; no interior \
@@ -276,7 +275,7 @@ pub fn demo_scenarios() -> Vec<crate::demo::Scenario> {
         },
         Scenario {
             name: "connect-constrained",
-            operation: "connect",
+            operation: OperationKind::Connect,
             title: "Connection through a prescribed point with derivatives",
             description: "The papers' interior constraint: R(0.5) = (12, 14), \
                           R'(0.5) = (8.1, 1.4), R''(0.5) = (-5, -39), with C2 joins to P \
@@ -297,7 +296,7 @@ pub fn demo_scenarios() -> Vec<crate::demo::Scenario> {
         },
         Scenario {
             name: "connect-auto-scale",
-            operation: "connect",
+            operation: OperationKind::Connect,
             title: "Connection with the scale chosen automatically",
             description: "The same cubics, joined at interior parameters u0 = 0.9 and \
                           v0 = 0.1 with C2 joins; the scales alpha and beta are chosen \

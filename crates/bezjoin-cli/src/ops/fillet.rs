@@ -18,9 +18,8 @@ use serde_json::{Value, json};
 
 use crate::arc::circular_fillet;
 use crate::check::{JoinCheck, curve_json, worst};
-use crate::demo::Scenario;
 use crate::job::{JobError, Located};
-use crate::ops::draw_part;
+use crate::ops::{OperationKind, Scenario, draw_part};
 use crate::svg::{CurveItem, Figure, Marker, MarkerKind, Role};
 use crate::{CliError, Outcome, Summary};
 
@@ -368,14 +367,14 @@ pub fn demo_scenarios() -> Vec<Scenario> {
     vec![
         Scenario {
             name: "fillet-symmetric-c2",
-            operation: "fillet",
+            operation: OperationKind::Fillet,
             title: "Fillet: symmetric C2 rounding of a corner between two cubics",
             description: "Equal setbacks 0.6 along both cubics from their crossing; the blend of degree 5 is C2 at both ends (scales alpha = beta = 0.15 keep it from looping). The purple dashed circular arc of the same corner (tangent at P(u0)) is drawn for comparison: its comb jumps at the ends, ours does not.",
             job: corner_job((0.6, 0.6), (2, 2)),
         },
         Scenario {
             name: "fillet-asymmetric-c3",
-            operation: "fillet",
+            operation: OperationKind::Fillet,
             title: "Fillet: asymmetric C3 rounding (setbacks 0.4 and 0.9)",
             description: "Setbacks 0.4 along P and 0.9 along Q; the blend of degree 7 is C3 at both ends, next to the circular arc of the same corner.",
             job: corner_job((0.4, 0.9), (3, 3)),

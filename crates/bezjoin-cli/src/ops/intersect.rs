@@ -10,8 +10,8 @@ use bezjoin_core::intersect::{IntersectOptions, Intersection, IntersectionKind, 
 use serde_json::{Value, json};
 
 use crate::check::curve_json;
-use crate::demo::Scenario;
 use crate::job::{JobError, Located};
+use crate::ops::{OperationKind, Scenario};
 use crate::svg::{CurveItem, Figure, Marker, MarkerKind, Role};
 use crate::{CliError, Outcome, Summary};
 
@@ -163,7 +163,7 @@ fn outcome(job: &IntersectJob, hits: &[Intersection]) -> Outcome {
 pub fn demo_scenarios() -> Vec<Scenario> {
     vec![Scenario {
         name: "intersect-wavy-cubics",
-        operation: "intersect",
+        operation: OperationKind::Intersect,
         title: "Intersect: two cubics crossing several times",
         description: "Two wavy cubics of opposite phase meet at several points; every hit is marked with its parameters u on P and v on Q.",
         job: json!({

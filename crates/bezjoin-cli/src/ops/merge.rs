@@ -14,8 +14,8 @@ use bezjoin_core::merge::{KeepPoint, Merge, MergeMetric, MergeOptions, SplitPara
 use serde_json::{Value, json};
 
 use crate::check::{JoinCheck, curve_json};
-use crate::demo::Scenario;
 use crate::job::{JobError, Located};
+use crate::ops::{OperationKind, Scenario};
 use crate::svg::{CurveItem, Figure, Marker, MarkerKind, Role};
 use crate::{CliError, Outcome, Summary};
 
@@ -394,7 +394,7 @@ fn scenario(
     }
     Scenario {
         name,
-        operation: "merge",
+        operation: OperationKind::Merge,
         title,
         description,
         job,

@@ -1,13 +1,13 @@
 //! The subcommands: one module per operation, each turning a JSON job into
-//! an [`Outcome`].
+//! an [`Outcome`], and the demo's [`Scenario`]s of every operation.
 
 use std::path::PathBuf;
 
 use clap::{Args, Subcommand};
 
 use bezjoin_core::BezierCurve;
+use serde_json::Value;
 
-use crate::demo::Scenario;
 use crate::job::Located;
 use crate::svg::{CurveItem, Figure, Role};
 use crate::{CliError, Outcome};
@@ -55,37 +55,88 @@ impl Operation {
         }
     }
 
-    /// The subcommand's name.
-    pub fn name(&self) -> &'static str {
+    /// Which operation this subcommand runs.
+    pub fn kind(&self) -> OperationKind {
         match self {
-            Operation::Connect(_) => "connect",
-            Operation::Fillet(_) => "fillet",
-            Operation::Merge(_) => "merge",
-            Operation::Spline(_) => "spline",
-            Operation::Intersect(_) => "intersect",
+            Operation::Connect(_) => OperationKind::Connect,
+            Operation::Fillet(_) => OperationKind::Fillet,
+            Operation::Merge(_) => OperationKind::Merge,
+            Operation::Spline(_) => OperationKind::Spline,
+            Operation::Intersect(_) => OperationKind::Intersect,
         }
     }
 
     /// Run the job.
     pub fn run(&self, job: &Located) -> Result<Outcome, CliError> {
-        run_named(self.name(), job)
+        self.kind().run(job)
     }
 }
 
-/// Run the operation called `name` (as on the command line) on `job`.
-pub fn run_named(name: &str, job: &Located) -> Result<Outcome, CliError> {
-    match name {
-        "connect" => connect::run(job),
-        "fillet" => fillet::run(job),
-        "merge" => merge::run(job),
-        "spline" => spline::run(job),
-        "intersect" => intersect::run(job),
-        _ => Err(CliError::Operation(format!("unknown operation {name:?}"))),
+/// The operations without their command-line arguments: what a demo
+/// [`Scenario`] runs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum OperationKind {
+    /// `bezjoin connect`.
+    Connect,
+    /// `bezjoin fillet`.
+    Fillet,
+    /// `bezjoin merge`.
+    Merge,
+    /// `bezjoin spline`.
+    Spline,
+    /// `bezjoin intersect`.
+    Intersect,
+}
+
+impl OperationKind {
+    /// The subcommand's name.
+    pub fn name(self) -> &'static str {
+        match self {
+            OperationKind::Connect => "connect",
+            OperationKind::Fillet => "fillet",
+            OperationKind::Merge => "merge",
+            OperationKind::Spline => "spline",
+            OperationKind::Intersect => "intersect",
+        }
+    }
+
+    /// Run `job` through this operation.
+    pub fn run(self, job: &Located) -> Result<Outcome, CliError> {
+        match self {
+            OperationKind::Connect => connect::run(job),
+            OperationKind::Fillet => fillet::run(job),
+            OperationKind::Merge => merge::run(job),
+            OperationKind::Spline => spline::run(job),
+            OperationKind::Intersect => intersect::run(job),
+        }
+    }
+}
+
+/// One scenario of the demo: an ordinary job of one operation, with the
+/// names and texts its outputs are shown under.
+#[derive(Debug, Clone)]
+pub struct Scenario {
+    /// File stem of its outputs.
+    pub name: &'static str,
+    /// The operation (subcommand) that runs it.
+    pub operation: OperationKind,
+    /// Title of its picture.
+    pub title: &'static str,
+    /// What it shows and where it comes from.
+    pub description: &'static str,
+    /// The job.
+    pub job: Value,
+}
+
+impl Scenario {
+    /// Run the scenario's job through its operation.
+    pub fn run(&self) -> Result<Outcome, CliError> {
+        self.operation.run(&Located::root(&self.job))
     }
 }
 
 /// The demo's scenarios of every operation, in the order the index shows them.
-pub fn demo_scenarios() -> Vec<Scenario> {
+pub fn scenarios() -> Vec<Scenario> {
     let mut all = connect::demo_scenarios();
     all.extend(fillet::demo_scenarios());
     all.extend(merge::demo_scenarios());

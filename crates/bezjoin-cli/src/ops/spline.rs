@@ -16,8 +16,8 @@ use bezjoin_core::lagrange::{
 use serde_json::{Value, json};
 
 use crate::check::{JoinCheck, curve_json, worst};
-use crate::demo::Scenario;
 use crate::job::{JobError, Located};
+use crate::ops::{OperationKind, Scenario};
 use crate::svg::{CurveItem, Figure, Marker, MarkerKind, Role};
 use crate::{CliError, Outcome, Summary};
 
@@ -432,7 +432,7 @@ pub fn demo_scenarios() -> Vec<Scenario> {
     vec![
         Scenario {
             name: "spline-cubic-c1",
-            operation: "spline",
+            operation: OperationKind::Spline,
             title: "Cubic C1 spline through points of a sine wave",
             description: "Six nodes and the inner points of y = sin(x): the paper's construction \
                           (cubic, C1, forwards, the u = 1/3 point of every later segment derived).",
@@ -440,7 +440,7 @@ pub fn demo_scenarios() -> Vec<Scenario> {
         },
         Scenario {
             name: "spline-quintic-c2",
-            operation: "spline",
+            operation: OperationKind::Spline,
             title: "Degree-5 C2 spline through points of a sine wave",
             description: "Five nodes of y = sin(x); every later segment gets two free inner points, \
                           the two next to the join follow from C2.",

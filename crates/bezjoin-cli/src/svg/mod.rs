@@ -1,0 +1,361 @@
+//! SVG pictures with control polygons and curvature combs, written by hand.
+//!
+//! What a picture shows: every curve, its control polygon (dashed, with the
+//! control points as small squares), and its **curvature comb** — spikes
+//! perpendicular to the curve, of length proportional to the signed
+//! curvature `k = (x'y'' - y'x'') / |r'|^3`, drawn on the side away from the
+//! centre of curvature, with their tips joined. One comb scale is used for
+//! every curve of a picture, so a comb that runs on smoothly across a join
+//! point shows curvature continuity (G2/C2), a step in the comb shows a
+//! curvature jump, and a kink in the tip line shows a jump of the curvature's
+//! derivative.
+//!
+//! Coordinates: the model's `y` axis points up (the SVG's is flipped).
+//! Curves of dimension 3 or more are drawn in top view (the `x`-`y`
+//! projection) and their combs show the curvature of that projection; a
+//! curve of dimension 1 is drawn as the graph `(t, x(t))`.
+
+use bezjoin_core::BezierCurve;
+
+mod bounds;
+mod comb;
+mod layout;
+mod output;
+
+/// The drawable geometry of one curve.
+#[derive(Debug, Clone)]
+pub enum Shape {
+    /// A Bezier curve of any degree and dimension.
+    Bezier(BezierCurve),
+    /// A circular arc in the x-y plane: `center + radius (cos a, sin a)`,
+    /// `a = start_angle + sweep * t`, `t in [0, 1]`.
+    Arc {
+        /// Centre of the circle.
+        center: [f64; 2],
+        /// Radius, > 0.
+        radius: f64,
+        /// Angle of the start point, radians.
+        start_angle: f64,
+        /// Signed angle swept (positive = counter-clockwise).
+        sweep: f64,
+    },
+}
+
+impl Shape {
+    /// Projected point, first and second derivative at `t`.
+    pub fn jet(&self, t: f64) -> [[f64; 2]; 3] {
+        match self {
+            Shape::Bezier(c) => {
+                let d = c.eval_derivatives(t, 2);
+                if c.dim() == 1 {
+                    [[t, d[(0, 0)]], [1.0, d[(1, 0)]], [0.0, d[(2, 0)]]]
+                } else {
+                    [
+                        [d[(0, 0)], d[(0, 1)]],
+                        [d[(1, 0)], d[(1, 1)]],
+                        [d[(2, 0)], d[(2, 1)]],
+                    ]
+                }
+            }
+            Shape::Arc {
+                center,
+                radius,
+                start_angle,
+                sweep,
+            } => {
+                let a = start_angle + sweep * t;
+                let (s, c) = a.sin_cos();
+                [
+                    [center[0] + radius * c, center[1] + radius * s],
+                    [-radius * sweep * s, radius * sweep * c],
+                    [-radius * sweep * sweep * c, -radius * sweep * sweep * s],
+                ]
+            }
+        }
+    }
+
+    /// Projected control polygon (empty for an arc).
+    fn polygon(&self) -> Vec<[f64; 2]> {
+        match self {
+            Shape::Bezier(c) => (0..c.point_count())
+                .map(|i| {
+                    let p = c.point(i);
+                    if c.dim() == 1 {
+                        [i as f64 / c.degree().max(1) as f64, p[0]]
+                    } else {
+                        [p[0], p[1]]
+                    }
+                })
+                .collect(),
+            Shape::Arc { .. } => Vec::new(),
+        }
+    }
+
+    fn dim(&self) -> usize {
+        match self {
+            Shape::Bezier(c) => c.dim(),
+            Shape::Arc { .. } => 2,
+        }
+    }
+}
+
+/// Signed curvature of a plane curve from its first two derivatives.
+pub fn signed_curvature(d1: [f64; 2], d2: [f64; 2]) -> f64 {
+    let speed = d1[0].hypot(d1[1]);
+    if speed == 0.0 {
+        return 0.0;
+    }
+    (d1[0] * d2[1] - d1[1] * d2[0]) / (speed * speed * speed)
+}
+
+/// What a curve is in the picture; decides its colour and style.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Role {
+    /// A given curve.
+    Input,
+    /// The computed curve.
+    Result,
+    /// A given curve after the operation changed it (merge's P^, Q^).
+    Modified,
+    /// A comparison curve (the circular-arc fillet).
+    Reference,
+    /// A part of a given curve that the result no longer uses.
+    Discarded,
+}
+
+impl Role {
+    fn stroke(self) -> &'static str {
+        match self {
+            Role::Input => "#1f5fa8",
+            Role::Result => "#d1420f",
+            Role::Modified => "#1b8a4a",
+            Role::Reference => "#7d3c98",
+            Role::Discarded => "#a8a8a8",
+        }
+    }
+
+    fn comb(self) -> &'static str {
+        match self {
+            Role::Input => "#8fb3de",
+            Role::Result => "#f2a27f",
+            Role::Modified => "#8fd1aa",
+            Role::Reference => "#c7a3d6",
+            Role::Discarded => "#dddddd",
+        }
+    }
+
+    fn dash(self) -> &'static str {
+        match self {
+            Role::Discarded => " stroke-dasharray=\"6 4\"",
+            Role::Reference => " stroke-dasharray=\"10 3\"",
+            _ => "",
+        }
+    }
+}
+
+/// One curve of a picture.
+#[derive(Debug, Clone)]
+pub struct CurveItem {
+    /// Its geometry.
+    pub shape: Shape,
+    /// Its colour and style.
+    pub role: Role,
+    /// Legend text.
+    pub label: String,
+    /// Draw the control polygon.
+    pub polygon: bool,
+    /// Draw the curvature comb.
+    pub comb: bool,
+}
+
+impl CurveItem {
+    /// A Bezier curve with polygon and comb.
+    pub fn bezier(curve: &BezierCurve, role: Role, label: impl Into<String>) -> Self {
+        CurveItem {
+            shape: Shape::Bezier(curve.clone()),
+            role,
+            label: label.into(),
+            polygon: role != Role::Discarded,
+            comb: role != Role::Discarded,
+        }
+    }
+
+    /// Same item without control polygon.
+    pub fn without_polygon(mut self) -> Self {
+        self.polygon = false;
+        self
+    }
+}
+
+/// Kinds of marked points.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MarkerKind {
+    /// Where two curves of the result meet.
+    Join,
+    /// A crossing of the given curves.
+    Crossing,
+    /// A prescribed point (constraint, kept point, on-curve point).
+    Constraint,
+}
+
+/// A marked point.
+#[derive(Debug, Clone)]
+pub struct Marker {
+    /// Position (first two coordinates are used).
+    pub at: Vec<f64>,
+    /// Kind.
+    pub kind: MarkerKind,
+    /// Short text next to it (may be empty).
+    pub label: String,
+}
+
+impl Marker {
+    /// A marker of `kind` at `at`.
+    pub fn new(kind: MarkerKind, at: &[f64], label: impl Into<String>) -> Self {
+        Marker {
+            at: at.to_vec(),
+            kind,
+            label: label.into(),
+        }
+    }
+}
+
+/// A whole picture.
+#[derive(Debug, Clone, Default)]
+pub struct Figure {
+    /// Bold first caption line.
+    pub title: String,
+    /// Further caption lines (degree, continuity orders, report).
+    pub caption: Vec<String>,
+    /// Curves, drawn in order.
+    pub curves: Vec<CurveItem>,
+    /// Marked points.
+    pub markers: Vec<Marker>,
+}
+
+impl Figure {
+    /// An empty figure titled `title`.
+    pub fn new(title: impl Into<String>) -> Self {
+        Figure {
+            title: title.into(),
+            ..Default::default()
+        }
+    }
+
+    /// Add a curve.
+    pub fn curve(&mut self, item: CurveItem) -> &mut Self {
+        self.curves.push(item);
+        self
+    }
+
+    /// Add a marker.
+    pub fn marker(&mut self, marker: Marker) -> &mut Self {
+        self.markers.push(marker);
+        self
+    }
+
+    /// Add a caption line.
+    pub fn line(&mut self, text: impl Into<String>) -> &mut Self {
+        self.caption.push(text.into());
+        self
+    }
+
+    /// The picture as an SVG document.
+    pub fn to_svg(&self) -> String {
+        render(self)
+    }
+}
+
+/// Escape text for XML content and attribute values.
+pub fn escape(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    for ch in text.chars() {
+        match ch {
+            '&' => out.push_str("&amp;"),
+            '<' => out.push_str("&lt;"),
+            '>' => out.push_str("&gt;"),
+            '"' => out.push_str("&quot;"),
+            '\'' => out.push_str("&apos;"),
+            c => out.push(c),
+        }
+    }
+    out
+}
+
+/// Draw `figure`: model bounds of everything but the combs, the comb scale
+/// and comb tips (which widen the bounds), the page layout, then the SVG.
+fn render(figure: &Figure) -> String {
+    let curve_points = bounds::sample_curves(figure);
+    let mut bounds = bounds::model_bounds(figure, &curve_points);
+    let size = bounds.size().max(1e-12);
+    let combs = comb::Combs::new(figure, size);
+    combs.tips().for_each(|p| bounds.add(p));
+    let layout = layout::Layout::new(figure, &bounds, size, &combs);
+    output::svg(figure, &curve_points, &combs, &layout)
+}
+
+/// Where a marker is drawn: its first two coordinates (0 where missing).
+fn marker_xy(m: &Marker) -> [f64; 2] {
+    [
+        m.at.first().copied().unwrap_or(0.0),
+        m.at.get(1).copied().unwrap_or(0.0),
+    ]
+}
+
+#[cfg(test)]
+mod curvature_escape_and_layout_tests {
+    use super::*;
+
+    #[test]
+    fn curvature_of_a_circle_is_one_over_radius_with_sign() {
+        let ccw = Shape::Arc {
+            center: [1.0, 2.0],
+            radius: 3.0,
+            start_angle: 0.3,
+            sweep: 1.0,
+        };
+        let [_, d1, d2] = ccw.jet(0.4);
+        assert!((signed_curvature(d1, d2) - 1.0 / 3.0).abs() < 1e-14);
+        let cw = Shape::Arc {
+            center: [1.0, 2.0],
+            radius: 3.0,
+            start_angle: 0.3,
+            sweep: -1.0,
+        };
+        let [_, d1, d2] = cw.jet(0.4);
+        assert!((signed_curvature(d1, d2) + 1.0 / 3.0).abs() < 1e-14);
+    }
+
+    #[test]
+    fn parabola_curvature_matches_formula() {
+        // y = x^2 as a quadratic Bezier on x in [-1, 1]: k(x) = 2 / (1 + 4x^2)^1.5.
+        let c = BezierCurve::from_rows(&[[-1.0, 1.0], [0.0, -1.0], [1.0, 1.0]]).unwrap();
+        let shape = Shape::Bezier(c);
+        for i in 0..=10 {
+            let t = i as f64 / 10.0;
+            let [p, d1, d2] = shape.jet(t);
+            let x = p[0];
+            let expected = 2.0 / (1.0 + 4.0 * x * x).powf(1.5);
+            assert!((signed_curvature(d1, d2) - expected).abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn escape_handles_markup() {
+        assert_eq!(escape("a<b & \"c\""), "a&lt;b &amp; &quot;c&quot;");
+    }
+
+    #[test]
+    fn flipped_y_puts_higher_points_nearer_the_top() {
+        let mut f = Figure::new("t");
+        f.marker(Marker::new(MarkerKind::Join, &[0.0, 0.0], "low"));
+        f.marker(Marker::new(MarkerKind::Join, &[0.0, 10.0], "high"));
+        let svg = f.to_svg();
+        let y_of = |label: &str| -> f64 {
+            let end = svg.find(&format!(">{label}</text>")).unwrap();
+            let start = svg[..end].rfind("y=\"").unwrap() + 3;
+            svg[start..].split('"').next().unwrap().parse().unwrap()
+        };
+        assert!(y_of("high") < y_of("low"));
+    }
+}

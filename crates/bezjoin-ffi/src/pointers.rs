@@ -1,0 +1,107 @@
+//! Pointer helpers for the inputs and the non-handle outputs of the entry
+//! points: a curve handle to read, input arrays and values, output buffers
+//! of doubles, out-pointers for one value. Handle outputs are in `handles.rs`.
+
+use bezjoin_core::{BezierCurve, BezjoinError};
+
+use crate::handles::BzjCurve;
+use crate::status::{FfiError, FfiResult};
+
+/// The caller's curve behind `ptr`, or NULL_POINTER naming `name`.
+///
+/// # Safety
+/// `ptr` is null or a live handle from this library.
+pub(crate) unsafe fn curve_ref<'a>(ptr: *const BzjCurve, name: &str) -> FfiResult<&'a BezierCurve> {
+    // SAFETY: the caller promises a live handle or null.
+    unsafe { ptr.as_ref() }
+        .map(|h| &h.curve)
+        .ok_or_else(|| FfiError::NullPointer(name.into()))
+}
+
+/// The caller's array of `len` doubles; a null pointer is accepted only when `len == 0`.
+///
+/// # Safety
+/// `ptr` is null or points to `len` readable doubles.
+pub(crate) unsafe fn input_slice<'a, T>(
+    ptr: *const T,
+    len: usize,
+    name: &str,
+) -> FfiResult<&'a [T]> {
+    if len == 0 {
+        return Ok(&[]);
+    }
+    if ptr.is_null() {
+        return Err(FfiError::NullPointer(name.into()));
+    }
+    check_possible_length::<T>(len, name)?;
+    // SAFETY: non-null and the caller promises `len` readable elements.
+    Ok(unsafe { std::slice::from_raw_parts(ptr, len) })
+}
+
+/// The caller's output buffer, checked against the length needed.
+///
+/// # Safety
+/// `ptr` is null or points to `given` writable doubles.
+pub(crate) unsafe fn output_slice<'a>(
+    ptr: *mut f64,
+    given: usize,
+    needed: usize,
+    name: &str,
+) -> FfiResult<&'a mut [f64]> {
+    if ptr.is_null() {
+        return Err(FfiError::NullPointer(name.into()));
+    }
+    check_possible_length::<f64>(given, name)?;
+    if given < needed {
+        return Err(FfiError::BufferTooSmall {
+            name: name.into(),
+            needed,
+            given,
+        });
+    }
+    // SAFETY: non-null and the caller promises `given >= needed` writable doubles.
+    Ok(unsafe { std::slice::from_raw_parts_mut(ptr, needed) })
+}
+
+/// A length no array can have (more than `isize::MAX` bytes) is a caller
+/// error, reported before any slice is made (making one would be UB).
+fn check_possible_length<T>(len: usize, name: &str) -> FfiResult {
+    let largest = isize::MAX as usize / std::mem::size_of::<T>().max(1);
+    if len > largest {
+        return Err(FfiError::Core(BezjoinError::invalid(
+            format!("length of {name}"),
+            format!("{len} is larger than any array can be"),
+        )));
+    }
+    Ok(())
+}
+
+/// A required pointer to one value to read.
+///
+/// # Safety
+/// `ptr` is null or valid for reads.
+pub(crate) unsafe fn input_ref<'a, T>(ptr: *const T, name: &str) -> FfiResult<&'a T> {
+    // SAFETY: the caller promises null or a valid pointer.
+    unsafe { ptr.as_ref() }.ok_or_else(|| FfiError::NullPointer(name.into()))
+}
+
+/// A required out-pointer for one value.
+pub(crate) fn require_out<T>(ptr: *mut T, name: &str) -> FfiResult<*mut T> {
+    if ptr.is_null() {
+        Err(FfiError::NullPointer(name.into()))
+    } else {
+        Ok(ptr)
+    }
+}
+
+/// Write `value` through an optional out-pointer (a report, a chosen
+/// scale): nothing when the caller passed NULL.
+///
+/// # Safety
+/// `ptr` is null or valid for writes.
+pub(crate) unsafe fn write_optional<T>(ptr: *mut T, value: T) {
+    if !ptr.is_null() {
+        // SAFETY: non-null, the caller promises it is writable.
+        unsafe { ptr.write(value) };
+    }
+}
