@@ -2,9 +2,7 @@
 //! (mathematics.md, section 1; `bezjoin_core::connect`).
 
 use bezjoin_core::BezjoinError;
-use bezjoin_core::connect::{
-    ConnectOptions, MAX_CONNECT_DEGREE, PointConstraint, connect, connect_auto_scale,
-};
+use bezjoin_core::{ConnectOptions, MAX_CONNECT_DEGREE, PointConstraint, connect};
 
 use crate::guard::guard;
 use crate::handles::{BzjCurve, HandleOut};
@@ -74,7 +72,7 @@ unsafe fn read_options(options: &BzjConnectOptions, dim: usize) -> FfiResult<Con
                     degree.map_or_else(|| "(overflow)".to_string(), |d| d.to_string())
                 ),
                 estimate: f64::INFINITY,
-                limit: bezjoin_core::connect::CONNECT_RESIDUAL_LIMIT,
+                limit: bezjoin_core::CONNECT_RESIDUAL_LIMIT,
             }
             .into());
         }
@@ -91,8 +89,8 @@ unsafe fn read_options(options: &BzjConnectOptions, dim: usize) -> FfiResult<Con
         }
         // SAFETY: caller promises (max_order + 1) * dim readable doubles.
         let values = unsafe { input_slice(c.values, len, &name) }?;
-        let derivatives = values.chunks(dim).map(<[f64]>::to_vec).collect();
-        out.constraints.push(PointConstraint::new(c.t, derivatives));
+        out.constraints
+            .push(PointConstraint::new(c.t, c.max_order, values.to_vec()));
     }
     Ok(out)
 }
@@ -171,7 +169,7 @@ pub unsafe extern "C" fn bzj_connect_auto_scale(
         let out = out.require()?;
         // SAFETY: caller contract for every pointer.
         let (p, q, options) = unsafe { read_inputs(p, q, options) }?;
-        let connection = connect_auto_scale(p, u0, q, v0, &options)?;
+        let connection = connect(p, u0, q, v0, &options.with_auto_scale())?;
         // SAFETY: NULL or writable by the caller contract.
         unsafe { write_optional(scale_out, connection.p_scale) };
         out.write(connection.curve);

@@ -1,7 +1,7 @@
 //! Curve handles: create, inspect, evaluate, and the exact operations.
 
 use bezjoin_core::BezierCurve;
-use bezjoin_core::error::{BezjoinError, check_finite_scalar};
+use bezjoin_core::BezjoinError;
 
 use crate::guard::{guard, guard_release};
 use crate::handles::{BzjCurve, HandleOut, require_all};
@@ -143,7 +143,13 @@ pub unsafe extern "C" fn bzj_curve_eval(
     guard(|| {
         // SAFETY: caller contract.
         let curve = unsafe { curve_ref(c, "c") }?;
-        check_finite_scalar("t", t)?;
+        if !t.is_finite() {
+            return Err(BezjoinError::NonFiniteScalar {
+                name: "t".into(),
+                value: t,
+            }
+            .into());
+        }
         let needed = max_order
             .checked_add(1)
             .and_then(|k| k.checked_mul(curve.dim()))

@@ -4,12 +4,12 @@
 //! `bzj_fillet_auto_scale`, `bzj_fillet_deviation` and `bzj_fillet_chain`.
 
 use bezjoin_core::BezierCurve;
-use bezjoin_core::error::BezjoinError;
-use bezjoin_core::fillet::{
-    ChainFilletOptions, DeviationFilletOptions, FilletOptions, fillet, fillet_chain,
+use bezjoin_core::BezjoinError;
+use bezjoin_core::{
+    ChainFilletOptions, DeviationFilletOptions, FilletOptions, ShapeScale, fillet, fillet_chain,
     fillet_within_deviation,
 };
-use bezjoin_core::intersect::{IntersectOptions, Intersection, IntersectionKind, intersect};
+use bezjoin_core::{IntersectOptions, Intersection, IntersectionKind, intersect};
 
 use crate::guard::guard;
 use crate::handles::{BzjCurve, HandleArray, HandleOut, ShortArray, require_all};
@@ -432,7 +432,9 @@ unsafe fn fillet_with_scale(
         let options = unsafe { input_ref(options, "options") }?;
         let [p_out, blend_out, q_out] = require_all(outs)?;
         let mut core_options = options.to_core();
-        core_options.auto_scale = auto_scale;
+        if auto_scale {
+            core_options.scale = ShapeScale::Auto;
+        }
         let result = fillet(p, q, &core_options)?;
         // SAFETY: NULL or writable by the caller contract.
         unsafe { write_optional(scale_out, result.p_scale) };

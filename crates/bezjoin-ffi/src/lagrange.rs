@@ -6,8 +6,8 @@
 //! documented in `bezjoin_core::lagrange`.
 
 use bezjoin_core::BezierCurve;
-use bezjoin_core::error::BezjoinError;
-use bezjoin_core::lagrange::{BuildDirection, DerivedPoints, LagrangeOptions, lagrange_spline};
+use bezjoin_core::BezjoinError;
+use bezjoin_core::{BuildDirection, DerivedPoints, LagrangeOptions, lagrange_spline};
 
 use crate::guard::guard;
 use crate::handles::{BzjCurve, HandleArray, ShortArray};
@@ -303,7 +303,7 @@ pub unsafe extern "C" fn bzj_lagrange_spline_degree(
 mod tests {
     use super::*;
     use crate::bzj_curve_free;
-    use bezjoin_core::lagrange::lagrange_spline;
+    use bezjoin_core::lagrange_spline;
 
     #[test]
     fn contract_function_equals_the_core_default() {

@@ -9,8 +9,8 @@
 use std::mem::{align_of, offset_of, size_of};
 
 use bezjoin_core::BezierCurve;
-use bezjoin_core::error::BezjoinError;
-use bezjoin_core::merge::{
+use bezjoin_core::BezjoinError;
+use bezjoin_core::{
     ChainBreakpoints, ChainKeepPoint, ChainMergeOptions, KeepPoint, Merge, MergeMetric,
     MergeOptions, SplitParameter, merge, merge_chain,
 };
@@ -195,7 +195,7 @@ unsafe fn read_options(options: *const BzjMergeOptions) -> FfiResult<MergeOption
         p_points: keep_points(p_points),
         q_points: keep_points(q_points),
         degree: None,
-        accuracy: bezjoin_core::merge::DEFAULT_MERGE_ACCURACY,
+        accuracy: bezjoin_core::DEFAULT_MERGE_ACCURACY,
     })
 }
 
@@ -544,7 +544,7 @@ pub unsafe extern "C" fn bzj_merge_chain(
                 })
                 .collect(),
             degree: if o.degree == 0 { None } else { Some(o.degree) },
-            accuracy: bezjoin_core::merge::DEFAULT_MERGE_ACCURACY,
+            accuracy: bezjoin_core::DEFAULT_MERGE_ACCURACY,
         };
         // Check the output buffers before computing anything.
         let pieces = pieces.given();
