@@ -3,11 +3,10 @@
 //! The library reports its own residuals; the tool re-measures continuity
 //! from the returned control points, by evaluating the derivatives on both
 //! sides of every join in the chain's global parameter
-//! ([`bezjoin_core::bspline::join_jumps`]), and prints both.
+//! ([`bezjoin_core::join_jumps`]), and prints both.
 
 use bezjoin_core::BezierCurve;
-use bezjoin_core::bspline::{join_jumps, relative_jump};
-use nalgebra::DMatrix;
+use bezjoin_core::{join_jumps, relative_jump};
 use serde_json::{Value, json};
 
 /// Relative derivative jump up to which a join counts as continuous of that
@@ -44,24 +43,27 @@ impl JoinCheck {
         }
     }
 
-    /// Measure a join from the derivative rows of both sides (row `k` =
-    /// `k`-th derivative in each side's own parameter), each side read in a
-    /// global parameter where it spans `*_interval`.
+    /// Measure a join from the derivative rows of both sides (flat
+    /// row-major, `dim` values per row as [`BezierCurve::eval_derivatives`]
+    /// returns them; row `k` = `k`-th derivative in each side's own
+    /// parameter), each side read in a global parameter where it spans
+    /// `*_interval`.
     pub fn from_derivatives(
         name: impl Into<String>,
-        left: &DMatrix<f64>,
+        dim: usize,
+        left: &[f64],
         left_interval: f64,
-        right: &DMatrix<f64>,
+        right: &[f64],
         right_interval: f64,
         promised_order: usize,
     ) -> Self {
-        let orders = left.nrows().min(right.nrows());
+        let orders = (left.len() / dim).min(right.len() / dim);
         let relative_jumps = (0..orders)
             .map(|k| {
                 let sl = left_interval.powi(k as i32);
                 let sr = right_interval.powi(k as i32);
-                let a: Vec<f64> = left.row(k).iter().map(|v| v / sl).collect();
-                let b: Vec<f64> = right.row(k).iter().map(|v| v / sr).collect();
+                let a: Vec<f64> = row(left, dim, k).iter().map(|v| v / sl).collect();
+                let b: Vec<f64> = row(right, dim, k).iter().map(|v| v / sr).collect();
                 relative_jump(&a, &b)
             })
             .collect();
@@ -124,6 +126,41 @@ pub fn worst(checks: &[JoinCheck]) -> f64 {
         .iter()
         .map(JoinCheck::worst_promised)
         .fold(0.0, f64::max)
+}
+
+/// Row `k` (`dim` values) of flat row-major derivatives.
+pub fn row(values: &[f64], dim: usize, k: usize) -> &[f64] {
+    &values[k * dim..(k + 1) * dim]
+}
+
+/// Euclidean distance between two points of equal dimension (the sum of
+/// squares, rescaled by the largest difference when it overflows or
+/// underflows).
+pub fn distance(a: &[f64], b: &[f64]) -> f64 {
+    let square = a.iter().zip(b).map(|(x, y)| (x - y) * (x - y)).sum::<f64>();
+    if square.is_normal() {
+        return square.sqrt();
+    }
+    scaled_norm(a.iter().zip(b).map(|(x, y)| x - y))
+}
+
+/// The Euclidean norm of `values` computed as `m |values / m|`, `m` the
+/// largest magnitude: the path of [`distance`] when the plain sum of squares
+/// is not a normal number. Zero when every value is zero; infinite when one
+/// is; NaN when one is NaN (as the plain sum).
+fn scaled_norm(values: impl Iterator<Item = f64> + Clone) -> f64 {
+    if values.clone().any(f64::is_nan) {
+        return f64::NAN;
+    }
+    let largest = values.clone().fold(0.0f64, |m, v| m.max(v.abs()));
+    if largest == 0.0 || !largest.is_finite() {
+        return largest;
+    }
+    largest
+        * values
+            .map(|v| (v / largest) * (v / largest))
+            .sum::<f64>()
+            .sqrt()
 }
 
 /// A curve as JSON: `{"degree", "dim", "points": [[...], ...]}`.

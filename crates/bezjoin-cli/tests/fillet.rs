@@ -61,8 +61,14 @@ fn jump(
 ) -> f64 {
     let a = left.eval_derivatives(tl, k);
     let b = right.eval_derivatives(tr, k);
-    let a: Vec<f64> = a.row(k).iter().map(|x| x / il.powi(k as i32)).collect();
-    let b: Vec<f64> = b.row(k).iter().map(|x| x / ir.powi(k as i32)).collect();
+    let a: Vec<f64> = a[k * left.dim()..]
+        .iter()
+        .map(|x| x / il.powi(k as i32))
+        .collect();
+    let b: Vec<f64> = b[k * right.dim()..]
+        .iter()
+        .map(|x| x / ir.powi(k as i32))
+        .collect();
     let d: Vec<f64> = a.iter().zip(&b).map(|(x, y)| x - y).collect();
     norm(&d) / norm(&a).max(norm(&b)).max(1e-300)
 }
@@ -72,16 +78,7 @@ fn jump(
 fn length(c: &BezierCurve, a: f64, b: f64) -> f64 {
     let n = 20000;
     let h = (b - a) / n as f64;
-    let speed = |t: f64| {
-        norm(
-            c.eval_derivatives(t, 1)
-                .row(1)
-                .iter()
-                .copied()
-                .collect::<Vec<_>>()
-                .as_slice(),
-        )
-    };
+    let speed = |t: f64| norm(&c.eval_derivatives(t, 1)[c.dim()..]);
     let mut s = speed(a) + speed(b);
     for i in 1..n {
         let w = if i % 2 == 1 { 4.0 } else { 2.0 };

@@ -1,13 +1,11 @@
 //! `bezjoin connect`: the connecting curve of mathematics.md section 1.
 
-use bezjoin_core::BezierCurve;
-use bezjoin_core::bspline::relative_jump;
-use bezjoin_core::connect::{
-    ConnectOptions, Connection, PointConstraint, connect, connect_auto_scale,
+use bezjoin_core::{
+    BezierCurve, BezjoinError, ConnectOptions, Connection, PointConstraint, connect, relative_jump,
 };
 use serde_json::json;
 
-use crate::check::{JoinCheck, curve_json, worst};
+use crate::check::{JoinCheck, curve_json, distance, row, worst};
 use crate::job::{JobError, Located};
 use crate::ops::{OperationKind, Scenario, draw_part};
 use crate::svg::{CurveItem, Figure, Marker, MarkerKind, Role};
@@ -25,8 +23,12 @@ pub struct ConnectJob {
     pub v0: f64,
     /// Orders, scales and interior constraints.
     pub options: ConnectOptions,
-    /// Choose the scale automatically (`connect_auto_scale`).
+    /// Choose the scale automatically (`ShapeScale::Auto` in `options`).
     pub auto_scale: bool,
+    /// Indices of the constraints whose `"derivatives"` list is empty: the
+    /// library needs at least the position, and the tool names the job's
+    /// field when it refuses them ([`run`]).
+    pub empty_constraints: Vec<usize>,
 }
 
 /// Read a connect job.
@@ -68,20 +70,29 @@ pub fn parse(job: &Located) -> Result<ConnectJob, JobError> {
                 "cannot be given together with \"auto_scale\": true",
             ));
         }
+        options = options.with_auto_scale();
+    } else {
+        let p_scale = p_scale.map(|f| f.number()).transpose()?;
+        let q_scale = q_scale.map(|f| f.number()).transpose()?;
+        options = options.with_scales(p_scale.unwrap_or(1.0), q_scale.unwrap_or(1.0));
     }
-    if let Some(f) = p_scale {
-        options.p_scale = f.number()?;
-    }
-    if let Some(f) = q_scale {
-        options.q_scale = f.number()?;
-    }
+    let mut empty_constraints = Vec::new();
     if let Some(list) = obj.optional("constraints") {
-        for item in list.array()? {
+        for (j, item) in list.array()?.iter().enumerate() {
             let c = item.object()?;
             let t = c.required("t")?.number()?;
             let derivatives = c.required("derivatives")?.points(Some(p.dim()))?;
             c.finish()?;
-            options.constraints.push(PointConstraint { t, derivatives });
+            if derivatives.is_empty() {
+                empty_constraints.push(j);
+            }
+            // The job's rows, flattened row-major; an empty list becomes a
+            // position-only constraint without values, which the library
+            // refuses at the same point of its checks as before ([`run`]).
+            let max_order = derivatives.len().saturating_sub(1);
+            options
+                .constraints
+                .push(PointConstraint::new(t, max_order, derivatives.concat()));
         }
     }
     obj.finish()?;
@@ -92,18 +103,36 @@ pub fn parse(job: &Located) -> Result<ConnectJob, JobError> {
         v0,
         options,
         auto_scale,
+        empty_constraints,
     })
 }
 
 /// Run a connect job.
 pub fn run(job: &Located) -> Result<Outcome, CliError> {
     let job = parse(job)?;
-    let connection = if job.auto_scale {
-        connect_auto_scale(&job.p, job.u0, &job.q, job.v0, &job.options)?
-    } else {
-        connect(&job.p, job.u0, &job.q, job.v0, &job.options)?
-    };
+    let connection = connect(&job.p, job.u0, &job.q, job.v0, &job.options)
+        .map_err(|e| empty_constraint_error(&job, e))?;
     Ok(outcome(&job, &connection))
+}
+
+/// The library's refusal of a constraint without values (an empty
+/// `"derivatives"` list, [`ConnectJob::empty_constraints`]) as the job's
+/// own field: `constraints[j].derivatives: is empty; ...`. Every other
+/// error is passed on unchanged.
+fn empty_constraint_error(job: &ConnectJob, e: BezjoinError) -> BezjoinError {
+    if let BezjoinError::LengthMismatch { name, .. } = &e {
+        let refused = job
+            .empty_constraints
+            .iter()
+            .find(|j| *name == format!("constraints[{j}].values"));
+        if let Some(j) = refused {
+            return BezjoinError::invalid(
+                format!("constraints[{j}].derivatives"),
+                "is empty; at least the position (order 0) is needed",
+            );
+        }
+    }
+    e
 }
 
 /// The joins of P, R and Q measured by the tool: `R^(k)(0) / alpha^k`
@@ -119,18 +148,28 @@ pub fn measure_joins(
     (p_scale, q_scale): (f64, f64),
     (p_order, q_order): (usize, usize),
 ) -> [JoinCheck; 2] {
+    let dim = r.dim();
     let left = p.eval_derivatives(u0, p.degree().min(r.degree()));
     let start = r.eval_derivatives(0.0, p.degree().min(r.degree()));
     let end = r.eval_derivatives(1.0, q.degree().min(r.degree()));
     let right = q.eval_derivatives(v0, q.degree().min(r.degree()));
     [
-        JoinCheck::from_derivatives("P|R", &left, 1.0, &start, p_scale, p_order),
-        JoinCheck::from_derivatives("R|Q", &end, p_scale, &right, p_scale / q_scale, q_order),
+        JoinCheck::from_derivatives("P|R", dim, &left, 1.0, &start, p_scale, p_order),
+        JoinCheck::from_derivatives(
+            "R|Q",
+            dim,
+            &end,
+            p_scale,
+            &right,
+            p_scale / q_scale,
+            q_order,
+        ),
     ]
 }
 
 fn outcome(job: &ConnectJob, c: &Connection) -> Outcome {
     let r = &c.curve;
+    let dim = r.dim();
     let checks = measure_joins(
         &job.p,
         job.u0,
@@ -143,18 +182,12 @@ fn outcome(job: &ConnectJob, c: &Connection) -> Outcome {
     let mut constraint_reports = Vec::new();
     let mut max_point_distance: Option<f64> = None;
     for (j, con) in job.options.constraints.iter().enumerate() {
-        let d = r.eval_derivatives(con.t, con.derivatives.len() - 1);
-        let jumps: Vec<f64> = con
-            .derivatives
-            .iter()
-            .enumerate()
-            .map(|(k, want)| {
-                let got: Vec<f64> = d.row(k).iter().copied().collect();
-                relative_jump(&got, want)
-            })
+        let d = r.eval_derivatives(con.t, con.max_order);
+        let jumps: Vec<f64> = (0..=con.max_order)
+            .map(|k| relative_jump(row(&d, dim, k), row(&con.values, dim, k)))
             .collect();
         let at = r.eval(con.t);
-        let distance = bezjoin_core::bezier::distance(&at, &con.derivatives[0]);
+        let distance = distance(&at, row(&con.values, dim, 0));
         max_point_distance = Some(max_point_distance.unwrap_or(0.0).max(distance));
         constraint_reports.push(json!({
             "index": j,
@@ -184,7 +217,7 @@ fn outcome(job: &ConnectJob, c: &Connection) -> Outcome {
         .options
         .constraints
         .iter()
-        .map(|c| c.derivatives.len())
+        .map(|c| c.max_order + 1)
         .sum();
     figure.curve(CurveItem::bezier(
         r,
@@ -196,12 +229,8 @@ fn outcome(job: &ConnectJob, c: &Connection) -> Outcome {
     for con in &job.options.constraints {
         figure.marker(Marker::new(
             MarkerKind::Constraint,
-            &con.derivatives[0],
-            format!(
-                "R({}) prescribed, orders 0..{}",
-                con.t,
-                con.derivatives.len() - 1
-            ),
+            row(&con.values, dim, 0),
+            format!("R({}) prescribed, orders 0..{}", con.t, con.max_order),
         ));
     }
     figure.line(format!(

@@ -10,14 +10,13 @@
 //! the `k`-th derivative of each piece is divided by its interval^k) and the
 //! setbacks as arc lengths of the original curves from the crossing.
 
-use bezjoin_core::BezierCurve;
-use bezjoin_core::fillet::{
-    DeviationFilletOptions, Fillet, FilletOptions, fillet, fillet_within_deviation,
+use bezjoin_core::{
+    BezierCurve, DeviationFilletOptions, Fillet, FilletOptions, fillet, fillet_within_deviation,
 };
 use serde_json::{Value, json};
 
 use crate::arc::circular_fillet;
-use crate::check::{JoinCheck, curve_json, worst};
+use crate::check::{JoinCheck, curve_json, distance, worst};
 use crate::job::{JobError, Located};
 use crate::ops::{OperationKind, Scenario, draw_part};
 use crate::svg::{CurveItem, Figure, Marker, MarkerKind, Role};
@@ -120,13 +119,11 @@ pub fn parse(job: &Located) -> Result<FilletJob, JobError> {
                 "cannot be given together with \"auto_scale\": true",
             ));
         }
-        options.auto_scale = true;
-    }
-    if let Some(f) = p_scale {
-        options.p_scale = f.positive()?;
-    }
-    if let Some(f) = q_scale {
-        options.q_scale = f.positive()?;
+        options = options.with_auto_scale();
+    } else {
+        let p_scale = p_scale.map(|f| f.positive()).transpose()?;
+        let q_scale = q_scale.map(|f| f.positive()).transpose()?;
+        options = options.with_scales(p_scale.unwrap_or(1.0), q_scale.unwrap_or(1.0));
     }
     obj.finish()?;
     Ok(FilletJob {
@@ -171,6 +168,7 @@ fn outcome(job: &FilletJob, f: &Fillet, max_deviation: Option<f64>) -> Outcome {
     let original = [
         JoinCheck::from_derivatives(
             "P(u0)|R(0)",
+            p.dim(),
             &p.eval_derivatives(f.u0, p.degree().min(f.blend.degree())),
             1.0,
             &f.blend
@@ -180,6 +178,7 @@ fn outcome(job: &FilletJob, f: &Fillet, max_deviation: Option<f64>) -> Outcome {
         ),
         JoinCheck::from_derivatives(
             "R(1)|Q(v0)",
+            q.dim(),
             &f.blend
                 .eval_derivatives(1.0, q.degree().min(f.blend.degree())),
             b,
@@ -189,7 +188,7 @@ fn outcome(job: &FilletJob, f: &Fillet, max_deviation: Option<f64>) -> Outcome {
         ),
     ];
     let x = &f.crossing;
-    let crossing_gap = bezjoin_core::bezier::distance(&p.eval(x.u), &q.eval(x.v));
+    let crossing_gap = distance(&p.eval(x.u), &q.eval(x.v));
     let p_setback = p.arc_length_default(f.u0, x.u).unwrap_or(f64::NAN);
     let q_setback = q.arc_length_default(x.v, f.v0).unwrap_or(f64::NAN);
     let (want_p, want_q) = match job.mode {
@@ -322,7 +321,7 @@ fn outcome(job: &FilletJob, f: &Fillet, max_deviation: Option<f64>) -> Outcome {
 /// Closest point of `curve` to `point`: `(distance, t)`, by 2001 samples
 /// and golden-section refinement around the best one.
 fn distance_to(curve: &BezierCurve, point: &[f64]) -> (f64, f64) {
-    let d = |t: f64| bezjoin_core::bezier::distance(&curve.eval(t), point);
+    let d = |t: f64| distance(&curve.eval(t), point);
     let n = 2000;
     let best = (0..=n)
         .map(|i| i as f64 / n as f64)

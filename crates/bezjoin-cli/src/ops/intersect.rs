@@ -1,15 +1,14 @@
 //! `bezjoin intersect`: all meeting points of two curves
-//! ([`bezjoin_core::intersect::intersect`]).
+//! ([`bezjoin_core::intersect`]).
 //!
 //! The job gives `P`, `Q` and optional tolerances; the result lists every
 //! hit with `u`, `v`, the point and its kind (crossing, touching, overlap).
 //! The report re-measures `|P(u) - Q(v)|` for every hit from the curves.
 
-use bezjoin_core::BezierCurve;
-use bezjoin_core::intersect::{IntersectOptions, Intersection, IntersectionKind, intersect};
+use bezjoin_core::{BezierCurve, IntersectOptions, Intersection, IntersectionKind, intersect};
 use serde_json::{Value, json};
 
-use crate::check::curve_json;
+use crate::check::{curve_json, distance};
 use crate::job::{JobError, Located};
 use crate::ops::{OperationKind, Scenario};
 use crate::svg::{CurveItem, Figure, Marker, MarkerKind, Role};
@@ -66,7 +65,7 @@ fn kind_name(kind: &IntersectionKind) -> &'static str {
 }
 
 fn hit_json(p: &BezierCurve, q: &BezierCurve, hit: &Intersection) -> (Value, f64) {
-    let gap = bezjoin_core::bezier::distance(&p.eval(hit.u), &q.eval(hit.v));
+    let gap = distance(&p.eval(hit.u), &q.eval(hit.v));
     let mut value = json!({
         "u": hit.u,
         "v": hit.v,
@@ -75,7 +74,7 @@ fn hit_json(p: &BezierCurve, q: &BezierCurve, hit: &Intersection) -> (Value, f64
         "measured_distance": gap,
     });
     if let IntersectionKind::Overlap { u_range, v_range } = hit.kind {
-        let end_gap = bezjoin_core::bezier::distance(&p.eval(u_range.1), &q.eval(v_range.1));
+        let end_gap = distance(&p.eval(u_range.1), &q.eval(v_range.1));
         value["u_range"] = json!([u_range.0, u_range.1]);
         value["v_range"] = json!([v_range.0, v_range.1]);
         value["measured_end_distance"] = json!(end_gap);

@@ -1,19 +1,18 @@
 //! `bezjoin merge`: approximate merging of two consecutive Bezier curves
 //! into one (mathematics.md section 3; Ganchuk et al. 2024 after Hu, Tong,
-//! Ju, Sun 2001), through [`bezjoin_core::merge::merge`].
+//! Ju, Sun 2001), through [`bezjoin_core::merge`].
 //!
 //! Everything in the result's `"checks"` is measured by the tool from the
 //! returned control points, not copied from the library's report: `R` split
 //! at `mu` against `P^` and `Q^`, `R` against "P then Q", and every
 //! constraint of the job.
 
-use bezjoin_core::BezierCurve;
-use bezjoin_core::bezier::distance;
-use bezjoin_core::bspline::relative_jump;
-use bezjoin_core::merge::{KeepPoint, Merge, MergeMetric, MergeOptions, SplitParameter, merge};
+use bezjoin_core::{
+    BezierCurve, KeepPoint, Merge, MergeMetric, MergeOptions, SplitParameter, merge, relative_jump,
+};
 use serde_json::{Value, json};
 
-use crate::check::{JoinCheck, curve_json};
+use crate::check::{JoinCheck, curve_json, distance, row};
 use crate::job::{JobError, Located};
 use crate::ops::{OperationKind, Scenario};
 use crate::svg::{CurveItem, Figure, Marker, MarkerKind, Role};
@@ -140,15 +139,16 @@ fn keep_point_check(
     let orders = point.max_order.min(r.degree());
     let want = curve.eval_derivatives(point.param, orders.min(curve.degree()));
     let got = r.eval_derivatives(a + (b - a) * point.param, orders);
+    let dim = curve.dim();
     let mut worst: f64 = 0.0;
     let residuals: Vec<f64> = (0..=orders)
         .map(|k| {
             let scale = (b - a).powi(k as i32);
-            let g: Vec<f64> = got.row(k).iter().map(|x| x * scale).collect();
-            let w: Vec<f64> = if k < want.nrows() {
-                want.row(k).iter().copied().collect()
+            let g: Vec<f64> = row(&got, dim, k).iter().map(|x| x * scale).collect();
+            let w: Vec<f64> = if k < want.len() / dim {
+                row(&want, dim, k).to_vec()
             } else {
-                vec![0.0; curve.dim()]
+                vec![0.0; dim]
             };
             let jump = relative_jump(&g, &w);
             worst = worst.max(jump);

@@ -1,21 +1,19 @@
 //! `bezjoin spline`: the spline whose defining points lie on the curve
 //! (mathematics.md section 4, Kovtun, seed 004), built by
-//! [`bezjoin_core::lagrange::lagrange_spline`].
+//! [`bezjoin_core::lagrange_spline`].
 //!
 //! The tool re-measures the result from the returned Bezier segments: the
 //! distance of every given on-curve point from its segment at `u = j / n`,
 //! and the derivative jumps at every node in the global parameter (the
 //! `m`-th derivative of segment `i` divided by `h_i^m`).
 
-use bezjoin_core::BezierCurve;
-use bezjoin_core::bezier::distance;
-use bezjoin_core::lagrange::{
-    BuildDirection, DEFAULT_LAGRANGE_ACCURACY, DerivedPoints, LagrangeOptions, LagrangeSpline,
-    lagrange_spline,
+use bezjoin_core::{
+    BezierCurve, BuildDirection, DEFAULT_LAGRANGE_ACCURACY, DerivedPoints, LagrangeOptions,
+    LagrangeSpline, lagrange_spline,
 };
 use serde_json::{Value, json};
 
-use crate::check::{JoinCheck, curve_json, worst};
+use crate::check::{JoinCheck, curve_json, distance, worst};
 use crate::job::{JobError, Located};
 use crate::ops::{OperationKind, Scenario};
 use crate::svg::{CurveItem, Figure, Marker, MarkerKind, Role};

@@ -47,13 +47,14 @@ impl Shape {
         match self {
             Shape::Bezier(c) => {
                 let d = c.eval_derivatives(t, 2);
-                if c.dim() == 1 {
-                    [[t, d[(0, 0)]], [1.0, d[(1, 0)]], [0.0, d[(2, 0)]]]
+                let dim = c.dim();
+                if dim == 1 {
+                    [[t, d[0]], [1.0, d[1]], [0.0, d[2]]]
                 } else {
                     [
-                        [d[(0, 0)], d[(0, 1)]],
-                        [d[(1, 0)], d[(1, 1)]],
-                        [d[(2, 0)], d[(2, 1)]],
+                        [d[0], d[1]],
+                        [d[dim], d[dim + 1]],
+                        [d[2 * dim], d[2 * dim + 1]],
                     ]
                 }
             }
