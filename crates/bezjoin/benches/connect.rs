@@ -4,9 +4,7 @@
 use std::hint::black_box;
 
 use bezjoin_core::BezierCurve;
-use bezjoin_core::connect::{
-    ConnectOptions, PointConstraint, connect, connect_auto_scale, connect_dense_reference,
-};
+use bezjoin_core::{ConnectOptions, PointConstraint, connect, connect_dense_reference};
 use criterion::{Criterion, criterion_group, criterion_main};
 
 fn cubic(dim: usize, offset: f64) -> BezierCurve {
@@ -22,15 +20,18 @@ fn bench_connect(c: &mut Criterion) {
         let q = cubic(dim, 20.0);
         let plain = ConnectOptions::new(3, 3);
         let base = connect(&p, 1.0, &q, 0.0, &plain).unwrap();
-        let d = base.curve.eval_derivatives(0.5, 2);
-        let derivatives = (0..3)
-            .map(|k| d.row(k).iter().map(|v| v * 1.05).collect())
+        let values = base
+            .curve
+            .eval_derivatives(0.5, 2)
+            .iter()
+            .map(|v| v * 1.05)
             .collect();
         let constrained = plain
             .clone()
-            .with_constraint(PointConstraint::new(0.5, derivatives));
+            .with_constraint(PointConstraint::new(0.5, 2, values));
+        let auto = plain.clone().with_auto_scale();
         c.bench_function(&format!("connect_auto_scale/c3/{dim}d"), |b| {
-            b.iter(|| connect_auto_scale(black_box(&p), 1.0, black_box(&q), 0.0, &plain).unwrap())
+            b.iter(|| connect(black_box(&p), 1.0, black_box(&q), 0.0, &auto).unwrap())
         });
         for (label, options) in [("c3", &plain), ("c3_k2", &constrained)] {
             c.bench_function(&format!("connect_structured/{label}/{dim}d"), |b| {

@@ -4,11 +4,11 @@
 use std::hint::black_box;
 
 use bezjoin_core::BezierCurve;
-use bezjoin_core::fillet::{
+use bezjoin_core::{
     ChainFilletOptions, DeviationFilletOptions, FilletOptions, fillet, fillet_chain,
     fillet_within_deviation,
 };
-use bezjoin_core::intersect::{IntersectOptions, intersect};
+use bezjoin_core::{IntersectOptions, intersect};
 use criterion::{Criterion, criterion_group, criterion_main};
 
 fn cubic(rows: [[f64; 2]; 4]) -> BezierCurve {

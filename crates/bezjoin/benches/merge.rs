@@ -3,7 +3,7 @@
 use std::hint::black_box;
 
 use bezjoin_core::BezierCurve;
-use bezjoin_core::merge::{MergeMetric, MergeOptions, SplitParameter, merge};
+use bezjoin_core::{MergeMetric, MergeOptions, SplitParameter, merge};
 use criterion::{Criterion, criterion_group, criterion_main};
 
 fn pair(degree: usize) -> (BezierCurve, BezierCurve) {

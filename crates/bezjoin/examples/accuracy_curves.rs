@@ -9,7 +9,6 @@
 //! original curve (the most stable evaluation there is).
 
 use bezjoin_core::BezierCurve;
-use bezjoin_core::bezier::distance;
 
 /// A small deterministic generator (xorshift), so the table is reproducible.
 struct Rng(u64);
@@ -73,4 +72,13 @@ fn main() {
             worst[0], worst[1], worst[2], worst[3], worst[4], worst[5]
         );
     }
+}
+
+/// Euclidean distance between two points of equal dimension.
+fn distance(a: &[f64], b: &[f64]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y) * (x - y))
+        .sum::<f64>()
+        .sqrt()
 }

@@ -853,4 +853,3 @@ impl<'a> Search<'a> {
         Some(if cross >= 0.0 { d } else { -d })
     }
 }
-

@@ -65,18 +65,16 @@ pub use fillet::{
 };
 pub use intersect::{
     DEFAULT_MAX_BOX_PAIRS, DEFAULT_MAX_DEPTH, DEFAULT_MAX_HITS,
-    DEFAULT_RELATIVE_DISTANCE_TOLERANCE, DEFAULT_TANGENT_TOLERANCE, IntersectOptions,
-    Intersection, IntersectionKind, intersect,
+    DEFAULT_RELATIVE_DISTANCE_TOLERANCE, DEFAULT_TANGENT_TOLERANCE, IntersectOptions, Intersection,
+    IntersectionKind, intersect,
 };
 pub use lagrange::{
     BuildDirection, DEFAULT_LAGRANGE_ACCURACY, DerivedPoints, LagrangeOptions, LagrangeSpline,
-    bezier_from_lagrange_points, chord_length_params, lagrange_points_of_bezier,
-    lagrange_spline,
+    bezier_from_lagrange_points, chord_length_params, lagrange_points_of_bezier, lagrange_spline,
 };
 pub use merge::{
     CONSISTENCY_TOLERANCE, CONTRADICTION_MARGIN, ChainBreakpoints, ChainKeepPoint, ChainMerge,
     ChainMergeOptions, ChainMergeReport, DEFAULT_MERGE_ACCURACY, DEVIATION_SAMPLES, KeepPoint,
-    MU_SEARCH_MAX_STEPS, MU_SEARCH_MIN, MU_SEARCH_SAMPLES, MU_SEARCH_TOLERANCE, Merge,
-    MergeMetric, MergeOptions, MergeReport, RANK_TOLERANCE, SplitParameter, merge, merge_chain,
-    merge_metric_at,
+    MU_SEARCH_MAX_STEPS, MU_SEARCH_MIN, MU_SEARCH_SAMPLES, MU_SEARCH_TOLERANCE, Merge, MergeMetric,
+    MergeOptions, MergeReport, RANK_TOLERANCE, SplitParameter, merge, merge_chain, merge_metric_at,
 };

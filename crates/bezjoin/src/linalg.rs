@@ -39,7 +39,11 @@ pub(crate) fn norm_inf(m: &DMatrix<f64>) -> f64 {
 /// factors: these systems are small).
 ///
 /// Errors: `Singular { what }` when a pivot vanishes.
-pub(crate) fn solve_checked(a: &DMatrix<f64>, b: &DMatrix<f64>, what: &str) -> Result<CheckedSolution> {
+pub(crate) fn solve_checked(
+    a: &DMatrix<f64>,
+    b: &DMatrix<f64>,
+    what: &str,
+) -> Result<CheckedSolution> {
     assert_eq!(a.nrows(), a.ncols());
     assert_eq!(a.nrows(), b.nrows());
     let n = a.nrows();

@@ -16,14 +16,13 @@
 //!   (`u` = unit roundoff), or 1e-10 if larger, always.
 
 mod common;
-use bezjoin_core::basis::bezier_basis_derivatives;
-use bezjoin_core::connect::{
+use bezjoin_core::{
     AUTO_SCALE_SEARCH_DECADES, CONNECT_RESIDUAL_LIMIT, ConnectOptions, Connection,
-    MAX_CONNECT_DEGREE, PointConstraint, connect, connect_auto_scale, connect_dense_reference,
+    MAX_CONNECT_DEGREE, PointConstraint, ShapeScale, connect, connect_dense_reference,
     connect_unchecked, fairness_energy,
 };
 use bezjoin_core::{BSplineCurve, BezierCurve, BezjoinError, KnotSide};
-use common::Random;
+use common::{Random, bezier_basis_derivatives};
 use proptest::prelude::*;
 
 /// The residual the issue asks for (issue 3, item 5).
@@ -52,8 +51,9 @@ fn norm(v: &[f64]) -> f64 {
     v.iter().map(|x| x * x).sum::<f64>().sqrt()
 }
 
-fn row(m: &nalgebra::DMatrix<f64>, k: usize) -> Vec<f64> {
-    m.row(k).iter().copied().collect()
+/// Row `k` (the k-th derivative) of row-major derivatives with `dim` values per row.
+fn row(m: &[f64], dim: usize, k: usize) -> Vec<f64> {
+    m[k * dim..(k + 1) * dim].to_vec()
 }
 
 /// The relative residual of the module documentation, computed here from
@@ -112,8 +112,7 @@ fn case_strategy(max_constraints: usize) -> impl Strategy<Value = Case> {
                     .enumerate()
                     .map(|(j, &(order, jitter))| {
                         let t = (j as f64 + 0.2 + 0.6 * jitter) / m as f64;
-                        let d = shape.eval_derivatives(t, order);
-                        PointConstraint::new(t, (0..=order).map(|k| row(&d, k)).collect())
+                        PointConstraint::new(t, order, shape.eval_derivatives(t, order))
                     })
                     .collect();
                 Case {
@@ -124,8 +123,7 @@ fn case_strategy(max_constraints: usize) -> impl Strategy<Value = Case> {
                     options: ConnectOptions {
                         p_order: kp,
                         q_order: kq,
-                        p_scale: alpha,
-                        q_scale: beta,
+                        scale: ShapeScale::Given { p: alpha, q: beta },
                         constraints,
                     },
                 }
@@ -138,6 +136,7 @@ fn case_strategy(max_constraints: usize) -> impl Strategy<Value = Case> {
 fn data_scale(case: &Case, p_scale: f64, q_scale: f64) -> f64 {
     let o = &case.options;
     let n = o.result_degree();
+    let dim = case.p.dim();
     let mut s = case.p.coordinate_scale().max(case.q.coordinate_scale());
     let mut take = |want: &[f64], t: f64, k: usize| {
         let basis = bezier_basis_derivatives(n, t, k);
@@ -146,7 +145,7 @@ fn data_scale(case: &Case, p_scale: f64, q_scale: f64) -> f64 {
     };
     let pp = case.p.eval_derivatives(case.u0, o.p_order);
     for k in 0..=o.p_order {
-        let want: Vec<f64> = row(&pp, k)
+        let want: Vec<f64> = row(&pp, dim, k)
             .iter()
             .map(|v| v * p_scale.powi(k as i32))
             .collect();
@@ -154,14 +153,14 @@ fn data_scale(case: &Case, p_scale: f64, q_scale: f64) -> f64 {
     }
     let qq = case.q.eval_derivatives(case.v0, o.q_order);
     for k in 0..=o.q_order {
-        let want: Vec<f64> = row(&qq, k)
+        let want: Vec<f64> = row(&qq, dim, k)
             .iter()
             .map(|v| v * q_scale.powi(k as i32))
             .collect();
         take(&want, 1.0, k);
     }
     for c in &o.constraints {
-        for (k, d) in c.derivatives.iter().enumerate() {
+        for (k, d) in c.values.chunks(dim).enumerate() {
             take(d, c.t, k);
         }
     }
@@ -208,30 +207,31 @@ fn worst_residual(case: &Case, c: &Connection) -> f64 {
     let o = &case.options;
     let r = &c.curve;
     let n = r.degree();
+    let dim = r.dim();
     assert_eq!(n, o.result_degree());
     let s = data_scale(case, c.p_scale, c.q_scale);
     let rp = r.eval_derivatives(0.0, o.p_order);
     let pp = case.p.eval_derivatives(case.u0, o.p_order);
     for k in 0..=o.p_order {
-        let want: Vec<f64> = row(&pp, k)
+        let want: Vec<f64> = row(&pp, dim, k)
             .iter()
             .map(|v| v * c.p_scale.powi(k as i32))
             .collect();
-        worst = worst.max(relative_residual(&row(&rp, k), &want, s, n, 0.0, k));
+        worst = worst.max(relative_residual(&row(&rp, dim, k), &want, s, n, 0.0, k));
     }
     let rq = r.eval_derivatives(1.0, o.q_order);
     let qq = case.q.eval_derivatives(case.v0, o.q_order);
     for k in 0..=o.q_order {
-        let want: Vec<f64> = row(&qq, k)
+        let want: Vec<f64> = row(&qq, dim, k)
             .iter()
             .map(|v| v * c.q_scale.powi(k as i32))
             .collect();
-        worst = worst.max(relative_residual(&row(&rq, k), &want, s, n, 1.0, k));
+        worst = worst.max(relative_residual(&row(&rq, dim, k), &want, s, n, 1.0, k));
     }
     for pc in &o.constraints {
-        let rt = r.eval_derivatives(pc.t, pc.max_order());
-        for (k, want) in pc.derivatives.iter().enumerate() {
-            worst = worst.max(relative_residual(&row(&rt, k), want, s, n, pc.t, k));
+        let rt = r.eval_derivatives(pc.t, pc.max_order);
+        for (k, want) in pc.values.chunks(dim).enumerate() {
+            worst = worst.max(relative_residual(&row(&rt, dim, k), want, s, n, pc.t, k));
         }
     }
     worst
@@ -338,7 +338,7 @@ proptest! {
             let left = chain.eval_derivatives_side(x, degree, KnotSide::Left);
             let right = chain.eval_derivatives_side(x, degree, KnotSide::Right);
             for k in 0..=order {
-                let (l, r) = (row(&left, k), row(&right, k));
+                let (l, r) = (row(&left, chain.dim(), k), row(&right, chain.dim(), k));
                 // Natural size of a k-th derivative of a piece of degree
                 // `degree`, control points of size S, interval h.
                 let falling: f64 = (0..k).map(|i| (degree.max(n) - i) as f64).product();
@@ -419,7 +419,8 @@ proptest! {
 
     #[test]
     fn auto_scale_minimises_the_energy(case in case_strategy(1), factor in 0.5f64..2.0) {
-        let c = match connect_auto_scale(&case.p, case.u0, &case.q, case.v0, &case.options) {
+        let auto = case.options.clone().with_auto_scale();
+        let c = match connect(&case.p, case.u0, &case.q, case.v0, &auto) {
             Ok(c) => c,
             Err(BezjoinError::IllConditioned { estimate, .. }) => {
                 prop_assert!(estimate > CONNECT_RESIDUAL_LIMIT);
@@ -428,7 +429,10 @@ proptest! {
             Err(e) => panic!("{e}"),
         };
         prop_assert_eq!(c.p_scale, c.q_scale);
-        let o = ConnectOptions { p_scale: c.p_scale, q_scale: c.q_scale, ..case.options.clone() };
+        let o = ConnectOptions {
+            scale: ShapeScale::Given { p: c.p_scale, q: c.q_scale },
+            ..case.options.clone()
+        };
         let checked = Case { options: o.clone(), ..case.clone() };
         assert_conditions(&checked, &c);
         let best = fairness_energy(&c.curve);
@@ -477,10 +481,7 @@ fn paper_example_shape_and_degree() {
     let plain = connect(&p, 1.0, &q, 0.0, &ConnectOptions::new(3, 3)).unwrap();
     assert_eq!(plain.curve.degree(), 7);
     let mid = plain.curve.eval_derivatives(0.5, 2);
-    let o = ConnectOptions::new(3, 3).with_constraint(PointConstraint::new(
-        0.5,
-        vec![row(&mid, 0), row(&mid, 1), row(&mid, 2)],
-    ));
+    let o = ConnectOptions::new(3, 3).with_constraint(PointConstraint::new(0.5, 2, mid));
     let constrained = connect(&p, 1.0, &q, 0.0, &o).unwrap();
     assert_eq!(constrained.curve.degree(), 10);
     // Prescribing what the degree-7 curve already does reproduces it.
@@ -501,7 +502,7 @@ fn too_high_a_degree_is_refused_with_an_estimate() {
     let at_cap = ConnectOptions::new(15, 15);
     assert_eq!(at_cap.result_degree(), MAX_CONNECT_DEGREE);
     assert!(connect(&p, 0.3, &q, 0.6, &at_cap).is_ok());
-    let constraint = |t: f64, rows: usize| PointConstraint::new(t, vec![vec![1.0]; rows]);
+    let constraint = |t: f64, rows: usize| PointConstraint::new(t, rows - 1, vec![1.0; rows]);
     for options in [
         ConnectOptions::new(30, 30),
         ConnectOptions::new(16, 15),
@@ -539,14 +540,8 @@ fn crowded_constraints() -> Case {
     let p = BezierCurve::from_rows(&[[0.0, 0.0], [1.0, 2.0], [2.0, 2.0], [3.0, 0.0]]).unwrap();
     let q = BezierCurve::from_rows(&[[6.0, 0.0], [7.0, -2.0], [8.0, -2.0], [9.0, 0.0]]).unwrap();
     let options = ConnectOptions::new(3, 3)
-        .with_constraint(PointConstraint::new(
-            0.5,
-            vec![vec![4.5, 1.0], vec![1.0, 0.0]],
-        ))
-        .with_constraint(PointConstraint::new(
-            0.5001,
-            vec![vec![4.5, -1.0], vec![1.0, 0.0]],
-        ));
+        .with_constraint(PointConstraint::new(0.5, 1, vec![4.5, 1.0, 1.0, 0.0]))
+        .with_constraint(PointConstraint::new(0.5001, 1, vec![4.5, -1.0, 1.0, 0.0]));
     Case {
         p,
         q,
@@ -638,19 +633,17 @@ fn random_case(
     let m = orders.len();
     for (j, &order) in orders.iter().enumerate() {
         let t = (j as f64 + 0.2 + 0.6 * rng.next()) / m as f64;
-        let d = shape.eval_derivatives(t, order);
-        let values = (0..=order)
-            .map(|k| {
-                row(&d, k)
-                    .iter()
-                    .map(|v| match data {
-                        ConstraintData::Natural => v * rng.range(0.9, 1.1),
-                        ConstraintData::Unrelated => *v,
-                    })
-                    .collect()
+        // Row-major, derivative by derivative: the same order of draws as
+        // one row per derivative.
+        let values = shape
+            .eval_derivatives(t, order)
+            .iter()
+            .map(|v| match data {
+                ConstraintData::Natural => v * rng.range(0.9, 1.1),
+                ConstraintData::Unrelated => *v,
             })
             .collect();
-        options = options.with_constraint(PointConstraint::new(t, values));
+        options = options.with_constraint(PointConstraint::new(t, order, values));
     }
     Case {
         p,

@@ -12,8 +12,8 @@
 
 mod common;
 use bezjoin_core::BezierCurve;
-use bezjoin_core::connect::{
-    CONNECT_RESIDUAL_LIMIT, ConnectOptions, PointConstraint, connect, connect_unchecked,
+use bezjoin_core::{
+    CONNECT_RESIDUAL_LIMIT, ConnectOptions, PointConstraint, ShapeScale, connect, connect_unchecked,
 };
 use common::Random;
 use num_bigint::BigInt;
@@ -112,7 +112,14 @@ fn exact_system(
     let (pe, qe) = (curve_exact(p), curve_exact(q));
     let mut rows = Vec::new();
     let mut targets: Vec<Vec<Q>> = Vec::new();
-    let (alpha, beta) = (exact(o.p_scale), exact(o.q_scale));
+    let ShapeScale::Given {
+        p: p_scale,
+        q: q_scale,
+    } = o.scale
+    else {
+        panic!("the exact reference takes given scales");
+    };
+    let (alpha, beta) = (exact(p_scale), exact(q_scale));
     let mut power = Q::one();
     for k in 0..=o.p_order {
         rows.push(basis_row(n, &Q::zero(), k));
@@ -128,7 +135,7 @@ fn exact_system(
         power *= &beta;
     }
     for c in &o.constraints {
-        for (k, d) in c.derivatives.iter().enumerate() {
+        for (k, d) in c.values.chunks(p.dim()).enumerate() {
             rows.push(basis_row(n, &exact(c.t), k));
             targets.push(d.iter().map(|&v| exact(v)).collect());
         }
@@ -253,11 +260,13 @@ fn random_case(
         };
         for (j, count) in orders.into_iter().enumerate() {
             let t = (j as f64 + rng.range(0.25, 0.75)) / points as f64;
-            let d = base.curve.eval_derivatives(t, count - 1);
-            let derivatives = (0..count)
-                .map(|k| d.row(k).iter().map(|v| v * rng.range(0.9, 1.1)).collect())
+            let values = base
+                .curve
+                .eval_derivatives(t, count - 1)
+                .iter()
+                .map(|v| v * rng.range(0.9, 1.1))
                 .collect();
-            options = options.with_constraint(PointConstraint::new(t, derivatives));
+            options = options.with_constraint(PointConstraint::new(t, count - 1, values));
         }
     }
     assert_eq!(options.result_degree(), degree);

@@ -2,14 +2,15 @@
 //! sense, setback arc lengths, mirror symmetry), the deviation bound, chains
 //! (sequential and parallel identical) and every error path.
 
-use bezjoin_core::bezier::distance;
-use bezjoin_core::bspline::{BSplineCurve, join_jumps, relative_jump};
-use bezjoin_core::fillet::{
+mod common;
+use bezjoin_core::{BSplineCurve, join_jumps, relative_jump};
+use bezjoin_core::{BezierCurve, BezjoinError, KnotSide};
+use bezjoin_core::{
     ChainFilletOptions, DeviationFilletOptions, FilletOptions, distance_to_curve, fillet,
     fillet_chain, fillet_within_deviation,
 };
-use bezjoin_core::intersect::{IntersectOptions, IntersectionKind, intersect};
-use bezjoin_core::{BezierCurve, BezjoinError, KnotSide};
+use bezjoin_core::{IntersectOptions, IntersectionKind, intersect};
+use common::{distance, norm};
 
 struct Lcg(u64);
 impl Lcg {
@@ -57,9 +58,10 @@ fn cubic_through(rng: &mut Lcg, x: [f64; 2], t: f64, angle: f64) -> BezierCurve 
 fn assert_continuous(spline: &BSplineCurve, t: f64, k: usize, tol: f64, what: &str) {
     let left = spline.eval_derivatives_side(t, k, KnotSide::Left);
     let right = spline.eval_derivatives_side(t, k, KnotSide::Right);
+    let dim = spline.dim();
     for order in 0..=k {
-        let a: Vec<f64> = left.row(order).iter().copied().collect();
-        let b: Vec<f64> = right.row(order).iter().copied().collect();
+        let a: Vec<f64> = left[order * dim..(order + 1) * dim].to_vec();
+        let b: Vec<f64> = right[order * dim..(order + 1) * dim].to_vec();
         let jump = relative_jump(&a, &b);
         assert!(
             jump <= tol,
@@ -593,11 +595,13 @@ fn auto_scale_keeps_a_fast_corner_inside_and_minimises_the_energy() {
     for t in [intervals[0], intervals[0] + s] {
         let left = spline.eval_derivatives_side(t, order, KnotSide::Left);
         let right = spline.eval_derivatives_side(t, order, KnotSide::Right);
+        let dim = spline.dim();
+        let row = |d: &[f64], k: usize| d[k * dim..(k + 1) * dim].to_vec();
         let size = (0..=order)
-            .map(|k| left.row(k).norm().max(right.row(k).norm()))
+            .map(|k| norm(&row(&left, k)).max(norm(&row(&right, k))))
             .fold(0.0, f64::max);
         for k in 0..=order {
-            let jump = (left.row(k) - right.row(k)).norm();
+            let jump = distance(&row(&left, k), &row(&right, k));
             assert!(
                 jump <= 1e-9 * size,
                 "t = {t}: derivative {k} jumps by {jump:e} (size {size:e})"
@@ -619,10 +623,12 @@ fn auto_scale_keeps_a_fast_corner_inside_and_minimises_the_energy() {
             fairness_energy(&other.blend)
         );
     }
-    // The scales given with auto_scale are ignored, not validated.
-    let mut ignored = options.clone();
-    ignored.p_scale = -1.0;
-    ignored.q_scale = f64::NAN;
+    // Scales given before switching to the automatic scale are replaced,
+    // not validated.
+    let ignored = options
+        .clone()
+        .with_scales(-1.0, f64::NAN)
+        .with_auto_scale();
     assert_eq!(fillet(&p, &q, &ignored).unwrap(), auto);
 }
 

@@ -2,15 +2,16 @@
 //! the hard cases (ends, tangency, degenerate control points, overlaps, 3D),
 //! and random curves against a fine polyline.
 
+mod common;
 use bezjoin_core::BezierCurve;
-use bezjoin_core::bezier::distance;
-use bezjoin_core::intersect::{IntersectOptions, IntersectionKind, intersect};
+use bezjoin_core::{IntersectOptions, IntersectionKind, intersect};
+use common::distance;
 
 fn curve(rows: &[&[f64]]) -> BezierCurve {
     BezierCurve::from_rows(rows).unwrap()
 }
 
-fn hits(p: &BezierCurve, q: &BezierCurve) -> Vec<bezjoin_core::intersect::Intersection> {
+fn hits(p: &BezierCurve, q: &BezierCurve) -> Vec<bezjoin_core::Intersection> {
     intersect(p, q, &IntersectOptions::default()).unwrap()
 }
 
@@ -399,7 +400,7 @@ fn random_curves_against_dense_polylines() {
             let a = p.derivative_at(x.u, 1);
             let b = q.derivative_at(x.v, 1);
             let cross = (a[0] * b[1] - a[1] * b[0]).abs();
-            cross < 0.05 * bezjoin_core::bezier::norm(&a) * bezjoin_core::bezier::norm(&b)
+            cross < 0.05 * common::norm(&a) * common::norm(&b)
                 || !(0.01..=0.99).contains(&x.u)
                 || !(0.01..=0.99).contains(&x.v)
         });

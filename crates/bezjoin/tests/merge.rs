@@ -7,12 +7,13 @@
 mod common;
 use bezjoin_core::BezierCurve;
 use bezjoin_core::BezjoinError;
-use bezjoin_core::basis::bezier_basis_derivatives;
-use bezjoin_core::merge::{
+use bezjoin_core::{
     ChainBreakpoints, ChainKeepPoint, ChainMergeOptions, KeepPoint, MergeMetric, MergeOptions,
     SplitParameter, merge, merge_chain, merge_metric_at,
 };
-use common::Random;
+use common::{
+    Random, bezier_basis_derivatives, control_matrix, curve_from_matrix, max_abs_gap, rows_matrix,
+};
 use nalgebra::DMatrix;
 
 fn choose(n: usize, k: usize) -> f64 {
@@ -166,8 +167,8 @@ fn reference_merge(p: &BezierCurve, q: &BezierCurve, mu: f64, o: &MergeOptions) 
     let d = p.dim();
     let sl = left_subdivision(n, mu);
     let sr = right_subdivision(n, mu);
-    let pm = p.control_matrix();
-    let qm = q.control_matrix();
+    let pm = control_matrix(p);
+    let qm = control_matrix(q);
     // Constraints C r = b.
     let mut rows: Vec<(Vec<f64>, Vec<f64>)> = Vec::new();
     let mut push_rows = |s: &DMatrix<f64>, target: &DMatrix<f64>, coefficients: &DMatrix<f64>| {
@@ -315,9 +316,9 @@ fn agrees_with_independent_formulation() {
                     // Compared: the stage-1 pieces (the reference's S_L r, S_R r) and R.
                     let sl = left_subdivision(n, mu);
                     let sr = right_subdivision(n, mu);
-                    let dp = max_abs_diff(&result.p_hat.control_matrix(), &(&sl * &r)) / scale;
-                    let dq = max_abs_diff(&result.q_hat.control_matrix(), &(&sr * &r)) / scale;
-                    let dr = max_abs_diff(&result.merged.control_matrix(), &r) / scale;
+                    let dp = max_abs_diff(&control_matrix(&result.p_hat), &(&sl * &r)) / scale;
+                    let dq = max_abs_diff(&control_matrix(&result.q_hat), &(&sr * &r)) / scale;
+                    let dr = max_abs_diff(&control_matrix(&result.merged), &r) / scale;
                     let diff = dp.max(dq).max(dr);
                     let tolerance = match extrapolated {
                         Some(m) => 1e-10f64.max(reference_loss(n, m)),
@@ -332,8 +333,8 @@ fn agrees_with_independent_formulation() {
                         "n={n} {metric:?} {kind:?} mu={mu} (tolerance {tolerance:e}): differ by {dp:e} (P^), {dq:e} (Q^), {dr:e} (R)"
                     );
                     // The metric value reported is the metric of the change.
-                    let change_p = result.p_hat.control_matrix() - p.control_matrix();
-                    let change_q = result.q_hat.control_matrix() - q.control_matrix();
+                    let change_p = control_matrix(&result.p_hat) - control_matrix(&p);
+                    let change_q = control_matrix(&result.q_hat) - control_matrix(&q);
                     let value = metric_of(metric, n, &change_p) + metric_of(metric, n, &change_q);
                     assert!(
                         (value - result.report.metric_value).abs() <= 1e-10 * (1.0 + value),
@@ -363,9 +364,9 @@ fn continuity_conditions_and_split_hold() {
                 .with_split(SplitParameter::Given(mu));
             let m = merge(&p, &q, &o).unwrap();
             // (3): (1-mu)^r P^^(r)(1) = mu^r Q^^(r)(0), derivatives evaluated.
-            let dp = m.p_hat.eval_derivatives(1.0, n);
-            let dq = m.q_hat.eval_derivatives(0.0, n);
-            let dr = m.merged.eval_derivatives(mu, n);
+            let dp = rows_matrix(&m.p_hat.eval_derivatives(1.0, n), 3);
+            let dq = rows_matrix(&m.q_hat.eval_derivatives(0.0, n), 3);
+            let dr = rows_matrix(&m.merged.eval_derivatives(mu, n), 3);
             let points_scale = scale_of(&[&m.p_hat, &m.q_hat]);
             for r in 0..=n {
                 let left = dp.row(r) * (1.0 - mu).powi(r as i32);
@@ -383,8 +384,8 @@ fn continuity_conditions_and_split_hold() {
             // R split at mu gives back P^ and Q^.
             let (a, b) = m.merged.split_at(mu).unwrap();
             let scale = scale_of(&[&m.p_hat, &m.q_hat]);
-            assert!(max_abs_diff(&a.control_matrix(), &m.p_hat.control_matrix()) < 1e-11 * scale);
-            assert!(max_abs_diff(&b.control_matrix(), &m.q_hat.control_matrix()) < 1e-11 * scale);
+            assert!(max_abs_diff(&control_matrix(&a), &control_matrix(&m.p_hat)) < 1e-11 * scale);
+            assert!(max_abs_diff(&control_matrix(&b), &control_matrix(&m.q_hat)) < 1e-11 * scale);
             // The report's deviation is the deviation, measured here densely.
             let mut worst = 0.0f64;
             for s in 0..=1000 {
@@ -453,10 +454,10 @@ fn no_feasible_perturbation_lowers_the_metric() {
                 } else {
                     null_space(&c).0
                 };
-                let base = m.merged.control_matrix();
+                let base = control_matrix(&m.merged);
                 let value_at = |r: &DMatrix<f64>| {
-                    metric_of(metric, n, &(&sl * r - p.control_matrix()))
-                        + metric_of(metric, n, &(&sr * r - q.control_matrix()))
+                    metric_of(metric, n, &(&sl * r - control_matrix(&p)))
+                        + metric_of(metric, n, &(&sr * r - control_matrix(&q)))
                 };
                 let best = value_at(&base);
                 assert!((best - m.report.metric_value).abs() <= 1e-8 * (1.0 + best));
@@ -486,11 +487,11 @@ fn constraints_hold() {
         let mut o = MergeOptions::default().with_metric(metric);
         o.keep_p = true;
         let m = merge(&p, &q, &o).unwrap();
-        assert!(max_abs_diff(&m.p_hat.control_matrix(), &p.control_matrix()) < 1e-13 * scale);
+        assert!(max_abs_diff(&control_matrix(&m.p_hat), &control_matrix(&p)) < 1e-13 * scale);
         let mut o = MergeOptions::default().with_metric(metric);
         o.keep_q = true;
         let m = merge(&p, &q, &o).unwrap();
-        assert!(max_abs_diff(&m.q_hat.control_matrix(), &q.control_matrix()) < 1e-13 * scale);
+        assert!(max_abs_diff(&control_matrix(&m.q_hat), &control_matrix(&q)) < 1e-13 * scale);
         let mut o = MergeOptions::default()
             .with_metric(metric)
             .with_split(SplitParameter::PolygonLength);
@@ -517,10 +518,10 @@ fn constraints_hold() {
         }
         let dp = p.eval_derivatives(0.3, 2);
         let dh = m.p_hat.eval_derivatives(0.3, 2);
-        assert!((dp - dh).amax() < 1e-11 * scale * 100.0);
+        assert!(max_abs_gap(&dp, &dh) < 1e-11 * scale * 100.0);
         let dq = q.eval_derivatives(0.7, 1);
         let dh = m.q_hat.eval_derivatives(0.7, 1);
-        assert!((dq - dh).amax() < 1e-11 * scale * 10.0);
+        assert!(max_abs_gap(&dq, &dh) < 1e-11 * scale * 10.0);
         let expected = p.polygon_length() / (p.polygon_length() + q.polygon_length());
         assert!((m.report.mu - expected).abs() < 1e-15);
     }
@@ -538,9 +539,9 @@ fn paper_unscaled(p: &BezierCurve, q: &BezierCurve, metric: MergeMetric) -> DMat
     let mut rhs = DMatrix::zeros(size, p.dim());
     k.view_mut((0, 0), (n + 1, n + 1)).copy_from(&w);
     k.view_mut((n + 1, n + 1), (n + 1, n + 1)).copy_from(&w);
-    rhs.rows_mut(0, n + 1).copy_from(&(&w * p.control_matrix()));
+    rhs.rows_mut(0, n + 1).copy_from(&(&w * control_matrix(p)));
     rhs.rows_mut(n + 1, n + 1)
-        .copy_from(&(&w * q.control_matrix()));
+        .copy_from(&(&w * control_matrix(q)));
     let d1 = bezier_basis_derivatives(n, 1.0, n);
     let d0 = bezier_basis_derivatives(n, 0.0, n);
     for r in 0..=n {
@@ -567,13 +568,13 @@ fn half_split_is_the_papers_system_and_other_splits_are_not() {
             assert!(
                 max_abs_diff(
                     &paper.rows(0, n + 1).into_owned(),
-                    &m.p_hat.control_matrix()
+                    &control_matrix(&m.p_hat)
                 ) < 1e-11 * scale
             );
             assert!(
                 max_abs_diff(
                     &paper.rows(n + 1, n + 1).into_owned(),
-                    &m.q_hat.control_matrix()
+                    &control_matrix(&m.q_hat)
                 ) < 1e-11 * scale
             );
             if n >= 2 {
@@ -585,16 +586,14 @@ fn half_split_is_the_papers_system_and_other_splits_are_not() {
                 let m = merge(&p, &q, &o).unwrap();
                 let (a, _) = m.merged.split_at(0.3).unwrap();
                 assert!(
-                    max_abs_diff(&a.control_matrix(), &m.p_hat.control_matrix()) < 1e-11 * scale
+                    max_abs_diff(&control_matrix(&a), &control_matrix(&m.p_hat)) < 1e-11 * scale
                 );
-                let unscaled_p =
-                    BezierCurve::from_matrix(&paper.rows(0, n + 1).into_owned()).unwrap();
-                let unscaled_q =
-                    BezierCurve::from_matrix(&paper.rows(n + 1, n + 1).into_owned()).unwrap();
+                let unscaled_p = curve_from_matrix(&paper.rows(0, n + 1).into_owned());
+                let unscaled_q = curve_from_matrix(&paper.rows(n + 1, n + 1).into_owned());
                 let r = unscaled_p.segment(0.0, 1.0 / 0.3).unwrap();
                 let (_, right) = r.split_at(0.3).unwrap();
                 assert!(
-                    max_abs_diff(&right.control_matrix(), &unscaled_q.control_matrix())
+                    max_abs_diff(&control_matrix(&right), &control_matrix(&unscaled_q))
                         > 1e-6 * scale
                 );
             }
@@ -616,7 +615,7 @@ fn pieces_of_one_curve_merge_back_and_optimal_mu_finds_the_split() {
                 .with_split(SplitParameter::Given(t));
             let m = merge(&p, &q, &o).unwrap();
             assert!(
-                max_abs_diff(&m.merged.control_matrix(), &original.control_matrix())
+                max_abs_diff(&control_matrix(&m.merged), &control_matrix(&original))
                     < 1e-11 * scale
             );
             assert!(m.report.max_deviation < 1e-12 * scale);
@@ -641,7 +640,7 @@ fn pieces_of_one_curve_merge_back_and_optimal_mu_finds_the_split() {
             both.keep_q = true;
             let m = merge(&p, &q, &both).unwrap();
             assert!(
-                max_abs_diff(&m.merged.control_matrix(), &original.control_matrix())
+                max_abs_diff(&control_matrix(&m.merged), &control_matrix(&original))
                     < 1e-10 * scale
             );
         }
@@ -702,11 +701,11 @@ fn unequal_degrees_are_elevated_and_higher_degree_on_request() {
     assert!(high.report.metric_value <= low.report.metric_value * (1.0 + 1e-9));
     let (a, b) = high.merged.split_at(0.5).unwrap();
     let scale = scale_of(&[&p, &q]);
-    assert!(max_abs_diff(&a.control_matrix(), &high.p_hat.control_matrix()) < 1e-11 * scale);
-    assert!(max_abs_diff(&b.control_matrix(), &high.q_hat.control_matrix()) < 1e-11 * scale);
+    assert!(max_abs_diff(&control_matrix(&a), &control_matrix(&high.p_hat)) < 1e-11 * scale);
+    assert!(max_abs_diff(&control_matrix(&b), &control_matrix(&high.q_hat)) < 1e-11 * scale);
 }
 
-fn expect_inconsistent(result: Result<bezjoin_core::merge::Merge, BezjoinError>, needle: &str) {
+fn expect_inconsistent(result: Result<bezjoin_core::Merge, BezjoinError>, needle: &str) {
     match result {
         Err(BezjoinError::Inconsistent { reason }) => {
             assert!(
@@ -761,7 +760,7 @@ fn errors_name_the_problem() {
         ..MergeOptions::default()
     };
     let m = merge(&p, &q, &o).unwrap();
-    assert!(max_abs_diff(&m.p_hat.control_matrix(), &p.control_matrix()) < 1e-12);
+    assert!(max_abs_diff(&control_matrix(&m.p_hat), &control_matrix(&p)) < 1e-12);
     // ... and one more point on Q is too many: it contradicts them.
     let o = MergeOptions {
         p_points: three,
@@ -977,7 +976,7 @@ fn chain_of_pieces_merges_back_into_their_curve() {
             let m = merge_chain(&pieces, &o).unwrap();
             let scale = original.coordinate_scale();
             assert!(
-                max_abs_diff(&m.merged.control_matrix(), &original.control_matrix())
+                max_abs_diff(&control_matrix(&m.merged), &control_matrix(&original))
                     < 1e-11 * scale
             );
             assert!(m.report.max_deviation < 1e-12 * scale);
@@ -1026,10 +1025,13 @@ fn chain_of_two_is_merge_and_chain_constraints_hold() {
                 .segment(j as f64 / 4.0, (j + 1) as f64 / 4.0)
                 .unwrap();
             assert!(
-                max_abs_diff(&back.control_matrix(), &m.pieces[j].control_matrix()) < 1e-9 * scale
+                max_abs_diff(&control_matrix(&back), &control_matrix(&m.pieces[j])) < 1e-9 * scale
             );
         }
-        let d = (curves[3].eval_derivatives(0.5, 1) - m.pieces[3].eval_derivatives(0.5, 1)).amax();
+        let d = max_abs_gap(
+            &curves[3].eval_derivatives(0.5, 1),
+            &m.pieces[3].eval_derivatives(0.5, 1),
+        );
         assert!(d < 1e-11 * scale * 10.0);
         for (a, b) in m.pieces[0].point(0).iter().zip(curves[0].point(0)) {
             assert!((a - b).abs() < 1e-13 * scale);
@@ -1046,12 +1048,12 @@ fn chain_of_two_is_merge_and_chain_constraints_hold() {
         };
         let k = merge_chain(&curves, &keep_one).unwrap();
         assert!(
-            max_abs_diff(&k.pieces[1].control_matrix(), &curves[1].control_matrix())
+            max_abs_diff(&control_matrix(&k.pieces[1]), &control_matrix(&curves[1]))
                 < 1e-13 * scale
         );
         let extension = curves[1].segment(-1.0, 3.0).unwrap();
         assert!(
-            max_abs_diff(&k.merged.control_matrix(), &extension.control_matrix())
+            max_abs_diff(&control_matrix(&k.merged), &control_matrix(&extension))
                 < 1e-9 * extension.coordinate_scale()
         );
         let given = ChainMergeOptions {
@@ -1104,7 +1106,7 @@ fn chain_no_feasible_perturbation_lowers_the_summed_metric() {
                         metric_of(
                             metric,
                             4,
-                            &(piece.control_matrix() - curves[j].control_matrix()),
+                            &(control_matrix(&piece) - control_matrix(&curves[j])),
                         )
                     })
                     .sum()

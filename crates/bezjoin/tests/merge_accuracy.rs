@@ -8,9 +8,7 @@
 
 use bezjoin_core::BezierCurve;
 use bezjoin_core::BezjoinError;
-use bezjoin_core::merge::{
-    DEFAULT_MERGE_ACCURACY, MergeMetric, MergeOptions, SplitParameter, merge,
-};
+use bezjoin_core::{DEFAULT_MERGE_ACCURACY, MergeMetric, MergeOptions, SplitParameter, merge};
 
 fn curve(degree: usize, seed: u64) -> BezierCurve {
     let mut state = seed;

@@ -20,7 +20,7 @@
 
 use bezjoin_core::BezierCurve;
 use bezjoin_core::BezjoinError;
-use bezjoin_core::merge::{
+use bezjoin_core::{
     DEFAULT_MERGE_ACCURACY, KeepPoint, MergeMetric, MergeOptions, SplitParameter, merge,
 };
 use num_bigint::BigInt;

@@ -859,17 +859,26 @@ mod tests {
             .with_constraint(c(0.5))
             .with_constraint(c(0.5));
         assert!(err(1.0, 0.0, o).starts_with("constraints[1].t"));
-        let o = ConnectOptions::new(1, 1)
-            .with_constraint(PointConstraint::new(0.5, 1, vec![1.0, 2.0, 1.0]));
+        let o = ConnectOptions::new(1, 1).with_constraint(PointConstraint::new(
+            0.5,
+            1,
+            vec![1.0, 2.0, 1.0],
+        ));
         assert_eq!(
             err(1.0, 0.0, o),
             "constraints[0].values has 3 values, expected 4"
         );
-        let o = ConnectOptions::new(1, 1)
-            .with_constraint(PointConstraint::new(0.5, 0, vec![1.0, f64::NAN]));
+        let o = ConnectOptions::new(1, 1).with_constraint(PointConstraint::new(
+            0.5,
+            0,
+            vec![1.0, f64::NAN],
+        ));
         assert!(err(1.0, 0.0, o).starts_with("constraints[0].values[1] = NaN"));
-        let o = ConnectOptions::new(1, 1)
-            .with_constraint(PointConstraint::new(0.5, usize::MAX, vec![1.0, 2.0]));
+        let o = ConnectOptions::new(1, 1).with_constraint(PointConstraint::new(
+            0.5,
+            usize::MAX,
+            vec![1.0, 2.0],
+        ));
         assert_eq!(err(1.0, 0.0, o), "constraints[0].max_order: is too large");
         let q3 = BezierCurve::from_rows(&[[0.0, 0.0, 0.0], [1.0, 1.0, 1.0]]).unwrap();
         assert!(matches!(

@@ -450,7 +450,10 @@ pub(super) fn check_spline(spline: &LagrangeSpline, accuracy: f64) -> Result<f64
         let local_scale = left.coordinate_scale().max(right.coordinate_scale());
         for m in 1..=k {
             let row = m * d..(m + 1) * d;
-            let a: Vec<f64> = l[row.clone()].iter().map(|v| v / hl.powi(m as i32)).collect();
+            let a: Vec<f64> = l[row.clone()]
+                .iter()
+                .map(|v| v / hl.powi(m as i32))
+                .collect();
             let b: Vec<f64> = r[row].iter().map(|v| v / hr.powi(m as i32)).collect();
             // the size a derivative of this order can have on these pieces
             let falling: f64 = (n - m + 1..=n).map(|v| v as f64).product();

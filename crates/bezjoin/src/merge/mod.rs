@@ -98,7 +98,9 @@ use crate::error::{
 };
 use crate::minimize::minimize_on_grid_then_brent;
 
-pub use stage_one::{CONSISTENCY_TOLERANCE, CONTRADICTION_MARGIN, DEVIATION_SAMPLES, RANK_TOLERANCE};
+pub use stage_one::{
+    CONSISTENCY_TOLERANCE, CONTRADICTION_MARGIN, DEVIATION_SAMPLES, RANK_TOLERANCE,
+};
 use stage_one::{PieceInput, StageOne, StageOneCheck, solve_stage_one};
 use stage_two::{max_deviation, stage_two};
 

@@ -35,3 +35,105 @@ impl Random {
         BezierCurve::new(dim, degree, points).unwrap()
     }
 }
+
+/// Euclidean distance between two points of equal dimension.
+pub fn distance(a: &[f64], b: &[f64]) -> f64 {
+    assert_eq!(a.len(), b.len(), "points of different dimensions");
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y) * (x - y))
+        .sum::<f64>()
+        .sqrt()
+}
+
+/// Euclidean norm.
+pub fn norm(a: &[f64]) -> f64 {
+    a.iter().map(|x| x * x).sum::<f64>().sqrt()
+}
+
+/// Binomial coefficient `C(n, k)` as `f64` by the multiplicative formula
+/// (exact while the intermediate products stay below 2^53).
+pub fn binomial(n: usize, k: usize) -> f64 {
+    if k > n {
+        return 0.0;
+    }
+    let k = k.min(n - k);
+    let mut c = 1.0;
+    for i in 0..k {
+        c = c * (n - i) as f64 / (i + 1) as f64;
+    }
+    c
+}
+
+/// Independent reference for the derivatives of the Bernstein basis: the
+/// `(max_order + 1) x (degree + 1)` matrix whose entry `(r, i)` is
+/// `d^r/dt^r B_i^n(t)`, from the recursion
+/// `d/dt B_i^n = n (B_{i-1}^{n-1} - B_i^{n-1})` (with `B_{-1} = B_n^{n-1} = 0`)
+/// applied `r` times, down to the Bernstein polynomials of degree `n - r`
+/// evaluated by their triangular recurrence
+/// `B_i^m = (1 - t) B_i^{m-1} + t B_{i-1}^{m-1}`. Orders above `n` are zero.
+/// Any finite `t` is accepted.
+pub fn bezier_basis_derivatives(degree: usize, t: f64, max_order: usize) -> nalgebra::DMatrix<f64> {
+    let n = degree;
+    // bernstein[m][i] = B_i^m(t), m = 0..=n.
+    let mut bernstein: Vec<Vec<f64>> = vec![vec![1.0]];
+    for m in 1..=n {
+        let prev = &bernstein[m - 1];
+        let row: Vec<f64> = (0..=m)
+            .map(|i| {
+                let keep = if i < m { (1.0 - t) * prev[i] } else { 0.0 };
+                let shift = if i > 0 { t * prev[i - 1] } else { 0.0 };
+                keep + shift
+            })
+            .collect();
+        bernstein.push(row);
+    }
+    let mut d = nalgebra::DMatrix::zeros(max_order + 1, n + 1);
+    for r in 0..=max_order.min(n) {
+        // The r-th derivative of B_i^n is n!/(n-r)! times the r-th backward
+        // difference of the degree-(n - r) basis:
+        // sum_j (-1)^(r-j) C(r, j) B_{i-j}^{n-r}.
+        let falling: f64 = (0..r).map(|j| (n - j) as f64).product();
+        let low = &bernstein[n - r];
+        for i in 0..=n {
+            let mut sum = 0.0;
+            for j in 0..=r {
+                if j <= i && i - j <= n - r {
+                    let sign = if (r - j) % 2 == 0 { 1.0 } else { -1.0 };
+                    sum += sign * binomial(r, j) * low[i - j];
+                }
+            }
+            d[(r, i)] = falling * sum;
+        }
+    }
+    d
+}
+
+/// Row-major values, `dim` per row, as a matrix (one row per point or per
+/// derivative), for tests that check with matrix algebra.
+pub fn rows_matrix(values: &[f64], dim: usize) -> nalgebra::DMatrix<f64> {
+    assert_eq!(values.len() % dim, 0, "not a whole number of rows");
+    nalgebra::DMatrix::from_row_slice(values.len() / dim, dim, values)
+}
+
+/// The control points of `c` as an `(n + 1) x dim` matrix (one per row).
+pub fn control_matrix(c: &BezierCurve) -> nalgebra::DMatrix<f64> {
+    rows_matrix(c.points(), c.dim())
+}
+
+/// The curve whose control points are the rows of `m`.
+pub fn curve_from_matrix(m: &nalgebra::DMatrix<f64>) -> BezierCurve {
+    let points = (0..m.nrows())
+        .flat_map(|i| m.row(i).iter().copied().collect::<Vec<_>>())
+        .collect();
+    BezierCurve::new(m.ncols(), m.nrows() - 1, points).unwrap()
+}
+
+/// `max_i |a_i - b_i|` over two arrays of equal length.
+pub fn max_abs_gap(a: &[f64], b: &[f64]) -> f64 {
+    assert_eq!(a.len(), b.len(), "arrays of different lengths");
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max)
+}
