@@ -393,8 +393,7 @@ pub(crate) fn solve_stage_one(
             name: format!(
                 "merge metric at mu = {} (the control-point changes overflow f64: \
                  coordinates of about {:e} are too large for this metric; scale the curves down)",
-                breakpoints[1],
-                problem.scale
+                breakpoints[1], problem.scale
             ),
             value: metric_value,
         });
