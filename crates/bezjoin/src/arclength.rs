@@ -249,6 +249,17 @@ impl BezierCurve {
         );
         check_resolved(&pass, range_lo, range_hi, accuracy * 0.1)?;
         let available = pass.length;
+        if available.is_nan() {
+            // Speeds that overflow to infinity on both sides of a panel
+            // (`inf - inf`): no length to invert.
+            return Err(BezjoinError::NonFiniteScalar {
+                name: format!(
+                    "arc length from t = {start} to t = {} (the curve's speed overflows f64)",
+                    if forward { 1 } else { 0 }
+                ),
+                value: available,
+            });
+        }
         if length.abs() > available.abs() + accuracy {
             return Err(BezjoinError::invalid(
                 "length",

@@ -65,6 +65,25 @@ impl BSplineCurve {
                 format!("decrease at index {}", i + 1),
             ));
         }
+        // The basis (A2.2/A2.3) divides by knot differences: a non-zero one
+        // whose reciprocal overflows (a subnormal interval, e.g. a chain
+        // piece of length 5e-324) makes `0 * inf = NaN` of the values.
+        if let Some(i) = knots
+            .windows(2)
+            .position(|w| w[1] > w[0] && !(1.0 / (w[1] - w[0])).is_finite())
+        {
+            return Err(BezjoinError::invalid(
+                "knots",
+                format!(
+                    "the interval [{}, {}] at index {} is too short: its length {:e} has no \
+                     finite reciprocal",
+                    knots[i],
+                    knots[i + 1],
+                    i + 1,
+                    knots[i + 1] - knots[i]
+                ),
+            ));
+        }
         let (distinct, mults) = distinct_with_multiplicities(&knots);
         if distinct.len() < 2 || mults[0] != degree + 1 || *mults.last().unwrap() != degree + 1 {
             return Err(BezjoinError::invalid(

@@ -38,14 +38,27 @@ pub(crate) fn norm_inf(m: &DMatrix<f64>) -> f64 {
 /// condition estimate (`||A||_1 ||A^-1||_1`, the inverse formed from the
 /// factors: these systems are small).
 ///
-/// Errors: `Singular { what }` when a pivot vanishes.
+/// Errors: `Singular { what }` when a pivot vanishes; `DimensionMismatch`
+/// when `A` is not square or `B` has another number of rows.
 pub(crate) fn solve_checked(
     a: &DMatrix<f64>,
     b: &DMatrix<f64>,
     what: &str,
 ) -> Result<CheckedSolution> {
-    assert_eq!(a.nrows(), a.ncols());
-    assert_eq!(a.nrows(), b.nrows());
+    if a.nrows() != a.ncols() {
+        return Err(BezjoinError::DimensionMismatch {
+            name: format!("{what}: columns of A"),
+            expected: a.nrows(),
+            actual: a.ncols(),
+        });
+    }
+    if b.nrows() != a.nrows() {
+        return Err(BezjoinError::DimensionMismatch {
+            name: format!("{what}: rows of B"),
+            expected: a.nrows(),
+            actual: b.nrows(),
+        });
+    }
     let n = a.nrows();
     if n == 0 {
         return Ok(CheckedSolution {

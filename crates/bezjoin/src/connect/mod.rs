@@ -781,6 +781,19 @@ pub fn connect_unchecked(
     })?;
     let (conditions, points, constraint_condition) = structured_points(&problem, alpha, beta)?;
     let (max_residual, error_estimate) = check_residuals(&problem, &conditions, &points);
+    // Residuals that overflow (coordinates near the top of the f64 range
+    // against tiny scales) leave no estimate at all: refuse rather than
+    // return an infinite one.
+    if !error_estimate.is_finite() || !max_residual.is_finite() {
+        return Err(BezjoinError::IllConditioned {
+            what: format!(
+                "connect (unchecked, degree {}): the residuals overflow f64",
+                problem.degree
+            ),
+            estimate: error_estimate,
+            limit: CONNECT_RESIDUAL_LIMIT,
+        });
+    }
     Ok(Connection {
         curve: BezierCurve::from_matrix(&points)?,
         p_scale: alpha,
