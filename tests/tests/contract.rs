@@ -198,7 +198,10 @@ fn parse(text: &str) -> Declarations {
 
 /// The committed contract, by section, in file order.
 fn reference() -> Vec<(String, Declarations)> {
-    sections().into_iter().map(|s| (s.name, s.declarations)).collect()
+    sections()
+        .into_iter()
+        .map(|s| (s.name, s.declarations))
+        .collect()
 }
 
 /// One `@section` of the committed contract.
@@ -594,7 +597,8 @@ fn pending_sections_name_their_issue() {
                 s.name
             );
             assert!(
-                !["core", "curve", "connect", "fillet", "merge", "spline"].contains(&s.name.as_str()),
+                !["core", "curve", "connect", "fillet", "merge", "spline"]
+                    .contains(&s.name.as_str()),
                 "released section {} cannot be pending",
                 s.name
             );
