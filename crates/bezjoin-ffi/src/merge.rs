@@ -11,8 +11,8 @@ use std::mem::{align_of, offset_of, size_of};
 use bezjoin_core::BezierCurve;
 use bezjoin_core::BezjoinError;
 use bezjoin_core::{
-    ChainBreakpoints, ChainKeepPoint, ChainMergeOptions, KeepPoint, Merge, MergeMetric,
-    MergeOptions, SplitParameter, merge, merge_chain,
+    Breakpoints, ChainKeepPoint, ChainMergeOptions, KeepPoint, Merge, MergeMetric, MergeOptions,
+    merge, merge_chain,
 };
 
 use crate::guard::guard;
@@ -170,10 +170,10 @@ unsafe fn read_options(options: *const BzjMergeOptions) -> FfiResult<MergeOption
     let o = unsafe { input_ref(options.cast::<MergeOptionsMirror>(), "options") }?;
     let metric = metric_from(o.metric, "options.metric")?;
     let split = match o.split {
-        0 => SplitParameter::Given(o.mu),
-        1 => SplitParameter::Half,
-        2 => SplitParameter::PolygonLength,
-        3 => SplitParameter::Optimal,
+        0 => Breakpoints::Given(vec![o.mu]),
+        1 => Breakpoints::Uniform,
+        2 => Breakpoints::PolygonLength,
+        3 => Breakpoints::Optimal,
         v => {
             return Err(BezjoinError::invalid(
                 "options.split",
@@ -502,10 +502,10 @@ pub unsafe extern "C" fn bzj_merge_chain(
                 let b = unsafe {
                     input_slice(o.breakpoints, o.breakpoint_count, "options.breakpoints")
                 }?;
-                ChainBreakpoints::Given(b.to_vec())
+                Breakpoints::Given(b.to_vec())
             }
-            1 => ChainBreakpoints::Uniform,
-            2 => ChainBreakpoints::PolygonLength,
+            1 => Breakpoints::Uniform,
+            2 => Breakpoints::PolygonLength,
             v => {
                 return Err(BezjoinError::invalid(
                     "options.split",

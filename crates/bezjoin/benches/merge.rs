@@ -3,7 +3,7 @@
 use std::hint::black_box;
 
 use bezjoin_core::BezierCurve;
-use bezjoin_core::{MergeMetric, MergeOptions, SplitParameter, merge};
+use bezjoin_core::{Breakpoints, MergeMetric, MergeOptions, merge};
 use criterion::{Criterion, criterion_group, criterion_main};
 
 fn pair(degree: usize) -> (BezierCurve, BezierCurve) {
@@ -24,8 +24,8 @@ fn bench_merge(c: &mut Criterion) {
             (MergeMetric::Integral, "integral"),
         ] {
             for (split, split_name) in [
-                (SplitParameter::Given(0.4), "given_mu"),
-                (SplitParameter::Optimal, "optimal_mu"),
+                (Breakpoints::Given(vec![0.4]), "given_mu"),
+                (Breakpoints::Optimal, "optimal_mu"),
             ] {
                 let options = MergeOptions::default()
                     .with_metric(metric)

@@ -73,8 +73,8 @@ pub use lagrange::{
     bezier_from_lagrange_points, chord_length_params, lagrange_points_of_bezier, lagrange_spline,
 };
 pub use merge::{
-    CONSISTENCY_TOLERANCE, CONTRADICTION_MARGIN, ChainBreakpoints, ChainKeepPoint, ChainMerge,
+    Breakpoints, CONSISTENCY_TOLERANCE, CONTRADICTION_MARGIN, ChainKeepPoint, ChainMerge,
     ChainMergeOptions, ChainMergeReport, DEFAULT_MERGE_ACCURACY, DEVIATION_SAMPLES, KeepPoint,
     MU_SEARCH_MAX_STEPS, MU_SEARCH_MIN, MU_SEARCH_SAMPLES, MU_SEARCH_TOLERANCE, Merge, MergeMetric,
-    MergeOptions, MergeReport, RANK_TOLERANCE, SplitParameter, merge, merge_chain, merge_metric_at,
+    MergeOptions, MergeReport, RANK_TOLERANCE, merge, merge_chain, merge_metric_at,
 };

@@ -27,11 +27,11 @@ use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::time::{Duration, Instant};
 
 use bezjoin_core::{
-    BSplineCurve, BezierCurve, BezjoinError, ChainBreakpoints, ChainFillet, ChainFilletOptions,
+    BSplineCurve, BezierCurve, BezjoinError, Breakpoints, ChainFillet, ChainFilletOptions,
     ChainMerge, ChainMergeOptions, ConnectOptions, Connection, DeviationFillet,
     DeviationFilletOptions, Fillet, FilletOptions, IntersectOptions, Intersection,
     IntersectionKind, KeepPoint, LagrangeOptions, LagrangeSpline, Merge, MergeMetric, MergeOptions,
-    PointConstraint, SplitParameter, bezier_from_lagrange_points, chord_length_params, connect,
+    PointConstraint, bezier_from_lagrange_points, chord_length_params, connect,
     connect_dense_reference, connect_unchecked, distance_to_curve, fairness_energy, fillet,
     fillet_at, fillet_chain, fillet_within_deviation, intersect, lagrange_points_of_bezier,
     lagrange_spline, merge, merge_chain, merge_metric_at,
@@ -834,11 +834,11 @@ fn merge_survives_hostile_inputs() {
             };
             let base = MergeOptions::default().with_metric(metric);
             for split in [
-                SplitParameter::Half,
-                SplitParameter::Given(mu),
-                SplitParameter::PolygonLength,
+                Breakpoints::Uniform,
+                Breakpoints::Given(vec![mu]),
+                Breakpoints::PolygonLength,
             ] {
-                checked("merge", &(&input, split), || {
+                checked("merge", &(&input, split.clone()), || {
                     merge(&p, &q, &base.clone().with_split(split))
                 })?;
             }
@@ -846,7 +846,7 @@ fn merge_survives_hostile_inputs() {
             // degree so the case count stays affordable.
             if p.degree().max(q.degree()) <= 12 {
                 checked("merge (optimal mu)", &input, || {
-                    merge(&p, &q, &base.clone().with_split(SplitParameter::Optimal))
+                    merge(&p, &q, &base.clone().with_split(Breakpoints::Optimal))
                 })?;
             }
             let constrained = MergeOptions {
@@ -865,9 +865,9 @@ fn merge_survives_hostile_inputs() {
                 merge_metric_at(&p, &q, &base, mu)
             })?;
             for breakpoints in [
-                ChainBreakpoints::Uniform,
-                ChainBreakpoints::PolygonLength,
-                ChainBreakpoints::Given(vec![mu]),
+                Breakpoints::Uniform,
+                Breakpoints::PolygonLength,
+                Breakpoints::Given(vec![mu]),
             ] {
                 let options = ChainMergeOptions {
                     metric,

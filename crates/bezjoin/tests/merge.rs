@@ -8,8 +8,8 @@ mod common;
 use bezjoin_core::BezierCurve;
 use bezjoin_core::BezjoinError;
 use bezjoin_core::{
-    ChainBreakpoints, ChainKeepPoint, ChainMergeOptions, KeepPoint, MergeMetric, MergeOptions,
-    SplitParameter, merge, merge_chain, merge_metric_at,
+    Breakpoints, ChainKeepPoint, ChainMergeOptions, KeepPoint, MergeMetric, MergeOptions, merge,
+    merge_chain, merge_metric_at,
 };
 use common::{
     Random, bezier_basis_derivatives, control_matrix, curve_from_matrix, max_abs_gap, rows_matrix,
@@ -100,7 +100,7 @@ fn options_for(
 ) -> MergeOptions {
     let mut o = MergeOptions::default()
         .with_metric(metric)
-        .with_split(SplitParameter::Given(mu));
+        .with_split(Breakpoints::Given(vec![mu]));
     let order = |rng: &mut Random, cap: usize| ((rng.next() * (cap + 1) as f64) as usize).min(cap);
     match kind {
         Kind::Free => {}
@@ -361,7 +361,7 @@ fn continuity_conditions_and_split_hold() {
             let mu = rng.range(0.1, 0.9);
             let o = MergeOptions::default()
                 .with_metric(metric)
-                .with_split(SplitParameter::Given(mu));
+                .with_split(Breakpoints::Given(vec![mu]));
             let m = merge(&p, &q, &o).unwrap();
             // (3): (1-mu)^r P^^(r)(1) = mu^r Q^^(r)(0), derivatives evaluated.
             let dp = rows_matrix(&m.p_hat.eval_derivatives(1.0, n), 3);
@@ -494,7 +494,7 @@ fn constraints_hold() {
         assert!(max_abs_diff(&control_matrix(&m.q_hat), &control_matrix(&q)) < 1e-13 * scale);
         let mut o = MergeOptions::default()
             .with_metric(metric)
-            .with_split(SplitParameter::PolygonLength);
+            .with_split(Breakpoints::PolygonLength);
         o.fix_ends = true;
         o.p_points.push(KeepPoint {
             param: 0.3,
@@ -582,7 +582,7 @@ fn half_split_is_the_papers_system_and_other_splits_are_not() {
                 // split at 0.3, the scaled ones are.
                 let o = MergeOptions::default()
                     .with_metric(metric)
-                    .with_split(SplitParameter::Given(0.3));
+                    .with_split(Breakpoints::Given(vec![0.3]));
                 let m = merge(&p, &q, &o).unwrap();
                 let (a, _) = m.merged.split_at(0.3).unwrap();
                 assert!(
@@ -612,7 +612,7 @@ fn pieces_of_one_curve_merge_back_and_optimal_mu_finds_the_split() {
             let scale = original.coordinate_scale();
             let o = MergeOptions::default()
                 .with_metric(metric)
-                .with_split(SplitParameter::Given(t));
+                .with_split(Breakpoints::Given(vec![t]));
             let m = merge(&p, &q, &o).unwrap();
             assert!(
                 max_abs_diff(&control_matrix(&m.merged), &control_matrix(&original))
@@ -620,7 +620,7 @@ fn pieces_of_one_curve_merge_back_and_optimal_mu_finds_the_split() {
             );
             assert!(m.report.max_deviation < 1e-12 * scale);
             assert!(m.report.metric_value < 1e-24 * scale * scale);
-            let o = o.with_split(SplitParameter::Optimal);
+            let o = o.with_split(Breakpoints::Optimal);
             let m = merge(&p, &q, &o).unwrap();
             assert!(
                 (m.report.mu - t).abs() < 1e-6,
@@ -635,7 +635,7 @@ fn pieces_of_one_curve_merge_back_and_optimal_mu_finds_the_split() {
             // Even keeping both pieces is consistent here (redundant rows).
             let mut both = MergeOptions::default()
                 .with_metric(metric)
-                .with_split(SplitParameter::Given(t));
+                .with_split(Breakpoints::Given(vec![t]));
             both.keep_p = true;
             both.keep_q = true;
             let m = merge(&p, &q, &both).unwrap();
@@ -656,7 +656,7 @@ fn optimal_mu_is_a_minimum_of_the_metric() {
             let q = rng.curve(2, n, 2.0);
             let o = MergeOptions::default()
                 .with_metric(metric)
-                .with_split(SplitParameter::Optimal);
+                .with_split(Breakpoints::Optimal);
             let m = merge(&p, &q, &o).unwrap();
             let best = m.report.metric_value;
             for k in 1..200 {
@@ -792,14 +792,14 @@ fn errors_name_the_problem() {
     let e = merge(
         &p,
         &q,
-        &MergeOptions::default().with_split(SplitParameter::Given(1.0)),
+        &MergeOptions::default().with_split(Breakpoints::Given(vec![1.0])),
     )
     .unwrap_err();
     assert_eq!(e.to_string(), "mu = 1 is outside (0, 1)");
     let e = merge(
         &p,
         &q,
-        &MergeOptions::default().with_split(SplitParameter::Given(f64::NAN)),
+        &MergeOptions::default().with_split(Breakpoints::Given(vec![f64::NAN])),
     )
     .unwrap_err();
     assert!(matches!(e, BezjoinError::NonFiniteScalar { .. }), "{e}");
@@ -846,7 +846,7 @@ fn errors_name_the_problem() {
     let e = merge(
         &p,
         &point,
-        &MergeOptions::default().with_split(SplitParameter::PolygonLength),
+        &MergeOptions::default().with_split(Breakpoints::PolygonLength),
     )
     .unwrap_err();
     assert!(
@@ -925,7 +925,7 @@ fn bad_keep_point_parameters_and_mu_are_named() {
         let e = merge(
             &p,
             &q,
-            &MergeOptions::default().with_split(SplitParameter::Given(mu)),
+            &MergeOptions::default().with_split(Breakpoints::Given(vec![mu])),
         )
         .unwrap_err();
         assert!(
@@ -938,7 +938,7 @@ fn bad_keep_point_parameters_and_mu_are_named() {
         let e = merge(
             &p,
             &q,
-            &MergeOptions::default().with_split(SplitParameter::Given(mu)),
+            &MergeOptions::default().with_split(Breakpoints::Given(vec![mu])),
         )
         .unwrap_err();
         assert!(
@@ -950,7 +950,7 @@ fn bad_keep_point_parameters_and_mu_are_named() {
     match merge(
         &p,
         &q,
-        &MergeOptions::default().with_split(SplitParameter::Given(1e-3)),
+        &MergeOptions::default().with_split(Breakpoints::Given(vec![1e-3])),
     ) {
         Ok(_) | Err(BezjoinError::IllConditioned { .. }) => {}
         Err(e) => panic!("mu = 1e-3: {e}"),
@@ -970,7 +970,7 @@ fn chain_of_pieces_merges_back_into_their_curve() {
                 .collect();
             let o = ChainMergeOptions {
                 metric,
-                breakpoints: ChainBreakpoints::Given(cuts[1..4].to_vec()),
+                breakpoints: Breakpoints::Given(cuts[1..4].to_vec()),
                 ..ChainMergeOptions::default()
             };
             let m = merge_chain(&pieces, &o).unwrap();
@@ -992,7 +992,7 @@ fn chain_of_two_is_merge_and_chain_constraints_hold() {
     let pair = merge(
         &p,
         &q,
-        &MergeOptions::default().with_split(SplitParameter::PolygonLength),
+        &MergeOptions::default().with_split(Breakpoints::PolygonLength),
     )
     .unwrap();
     let chain = merge_chain(&[p.clone(), q.clone()], &ChainMergeOptions::default()).unwrap();
@@ -1003,7 +1003,7 @@ fn chain_of_two_is_merge_and_chain_constraints_hold() {
     for metric in [MergeMetric::Discrete, MergeMetric::Integral] {
         let o = ChainMergeOptions {
             metric,
-            breakpoints: ChainBreakpoints::Uniform,
+            breakpoints: Breakpoints::Uniform,
             fix_ends: true,
             keep_points: vec![ChainKeepPoint {
                 curve: 3,
@@ -1042,7 +1042,7 @@ fn chain_of_two_is_merge_and_chain_constraints_hold() {
         // Keeping one whole curve fixes R: it is that curve's extension.
         let keep_one = ChainMergeOptions {
             metric,
-            breakpoints: ChainBreakpoints::Uniform,
+            breakpoints: Breakpoints::Uniform,
             keep: vec![false, true, false, false],
             ..ChainMergeOptions::default()
         };
@@ -1057,7 +1057,7 @@ fn chain_of_two_is_merge_and_chain_constraints_hold() {
                 < 1e-9 * extension.coordinate_scale()
         );
         let given = ChainMergeOptions {
-            breakpoints: ChainBreakpoints::Given(vec![0.25, 0.5, 0.75]),
+            breakpoints: Breakpoints::Given(vec![0.25, 0.5, 0.75]),
             ..o.clone()
         };
         assert_eq!(merge_chain(&curves, &given).unwrap().merged, m.merged);
@@ -1066,7 +1066,7 @@ fn chain_of_two_is_merge_and_chain_constraints_hold() {
     let e = merge_chain(&curves[..1], &ChainMergeOptions::default()).unwrap_err();
     assert!(e.to_string().contains("at least 2"), "{e}");
     let o = ChainMergeOptions {
-        breakpoints: ChainBreakpoints::Given(vec![0.5, 0.4, 0.9]),
+        breakpoints: Breakpoints::Given(vec![0.5, 0.4, 0.9]),
         ..ChainMergeOptions::default()
     };
     assert!(
@@ -1093,7 +1093,7 @@ fn chain_no_feasible_perturbation_lowers_the_summed_metric() {
             let curves: Vec<BezierCurve> = (0..3).map(|_| rng.curve(2, 4, 2.0)).collect();
             let o = ChainMergeOptions {
                 metric,
-                breakpoints: ChainBreakpoints::Given(vec![0.3, 0.55]),
+                breakpoints: Breakpoints::Given(vec![0.3, 0.55]),
                 fix_ends,
                 ..ChainMergeOptions::default()
             };
@@ -1130,4 +1130,46 @@ fn chain_no_feasible_perturbation_lowers_the_summed_metric() {
             }
         }
     }
+}
+
+/// One `Breakpoints` type for both merges: a pair takes exactly one given
+/// value (named `mu`), and only a pair searches the optimal split.
+#[test]
+fn breakpoints_are_one_type_for_pairs_and_chains() {
+    let mut rng = Random(47);
+    let p = rng.curve(2, 3, 2.0);
+    let q = rng.curve(2, 3, 2.0);
+    let given = |v: Vec<f64>| MergeOptions::default().with_split(Breakpoints::Given(v));
+    let e = merge(&p, &q, &given(vec![0.3, 0.6])).unwrap_err();
+    assert_eq!(e.to_string(), "mu has 2 values, expected 1");
+    let e = merge(&p, &q, &given(vec![1.5])).unwrap_err();
+    assert_eq!(e.to_string(), "mu = 1.5 is outside (0, 1)");
+    // Uniform is mu = 1/2; a given mu is the chain's one interior breakpoint.
+    let half = merge(&p, &q, &MergeOptions::default()).unwrap();
+    assert_eq!(half.report.mu, 0.5);
+    let at = merge(&p, &q, &given(vec![0.3])).unwrap();
+    let chain = merge_chain(
+        &[p.clone(), q.clone()],
+        &ChainMergeOptions {
+            breakpoints: Breakpoints::Given(vec![0.3]),
+            ..ChainMergeOptions::default()
+        },
+    )
+    .unwrap();
+    assert_eq!(chain.report.breakpoints, vec![0.0, 0.3, 1.0]);
+    let gap = at.merged.max_distance_sampled(&chain.merged, 64);
+    assert!(gap <= 1e-12 * at.merged.coordinate_scale(), "{gap}");
+    let e = merge_chain(
+        &[p.clone(), q.clone(), p],
+        &ChainMergeOptions {
+            breakpoints: Breakpoints::Optimal,
+            ..ChainMergeOptions::default()
+        },
+    )
+    .unwrap_err();
+    assert!(matches!(e, BezjoinError::InvalidArgument { .. }), "{e:?}");
+    assert!(
+        e.to_string()
+            .starts_with("breakpoints: Optimal is searched for two curves only")
+    );
 }

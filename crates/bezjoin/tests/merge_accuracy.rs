@@ -8,7 +8,7 @@
 
 use bezjoin_core::BezierCurve;
 use bezjoin_core::BezjoinError;
-use bezjoin_core::{DEFAULT_MERGE_ACCURACY, MergeMetric, MergeOptions, SplitParameter, merge};
+use bezjoin_core::{Breakpoints, DEFAULT_MERGE_ACCURACY, MergeMetric, MergeOptions, merge};
 
 fn curve(degree: usize, seed: u64) -> BezierCurve {
     let mut state = seed;
@@ -36,7 +36,7 @@ fn merge_back_accuracy_by_degree() {
                 let (p, q) = original.split_at(t).unwrap();
                 let options = MergeOptions::default()
                     .with_metric(metric)
-                    .with_split(SplitParameter::Given(t));
+                    .with_split(Breakpoints::Given(vec![t]));
                 let scale = original.coordinate_scale();
                 match merge(&p, &q, &options) {
                     Ok(m) => {

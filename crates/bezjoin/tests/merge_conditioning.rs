@@ -26,8 +26,8 @@ mod common;
 use bezjoin_core::BezierCurve;
 use bezjoin_core::BezjoinError;
 use bezjoin_core::{
-    CONSISTENCY_TOLERANCE, ChainBreakpoints, ChainMergeOptions, DEFAULT_MERGE_ACCURACY, KeepPoint,
-    Merge, MergeOptions, SplitParameter, merge, merge_chain,
+    Breakpoints, CONSISTENCY_TOLERANCE, ChainMergeOptions, DEFAULT_MERGE_ACCURACY, KeepPoint,
+    Merge, MergeOptions, merge, merge_chain,
 };
 use common::{Random, bezier_basis_derivatives, control_matrix};
 use num_bigint::BigInt;
@@ -171,7 +171,7 @@ fn keep_options(kept: Kept, mu: f64, accuracy: f64) -> MergeOptions {
     MergeOptions {
         keep_p: kept == Kept::P,
         keep_q: kept == Kept::Q,
-        split: SplitParameter::Given(mu),
+        split: Breakpoints::Given(vec![mu]),
         accuracy,
         ..MergeOptions::default()
     }
@@ -383,7 +383,7 @@ fn contradictory_combinations_are_inconsistent_over_the_sweep() {
             let p = rng.curve(2, degree, 2.0);
             let q = rng.curve(2, degree, 2.0);
             let base = MergeOptions {
-                split: SplitParameter::Given(mu),
+                split: Breakpoints::Given(vec![mu]),
                 ..MergeOptions::default()
             };
             let cases = [
@@ -448,7 +448,7 @@ fn consistent_dependent_combinations_are_never_inconsistent() {
             let curve = rng.curve(2, degree, 2.0);
             let (p, q) = curve.split_at(mu).unwrap();
             let base = MergeOptions {
-                split: SplitParameter::Given(mu),
+                split: Breakpoints::Given(vec![mu]),
                 ..MergeOptions::default()
             };
             let on_q = KeepPoint {
@@ -565,7 +565,7 @@ fn chain_with_kept_curves_on_both_sides_of_a_free_one() {
             .collect();
         let o = ChainMergeOptions {
             keep: vec![true, false, true],
-            breakpoints: ChainBreakpoints::Given(vec![0.25, 0.75]),
+            breakpoints: Breakpoints::Given(vec![0.25, 0.75]),
             ..ChainMergeOptions::default()
         };
         let m = merge_chain(&pieces, &o).unwrap();

@@ -21,7 +21,7 @@
 use bezjoin_core::BezierCurve;
 use bezjoin_core::BezjoinError;
 use bezjoin_core::{
-    DEFAULT_MERGE_ACCURACY, KeepPoint, MergeMetric, MergeOptions, SplitParameter, merge,
+    Breakpoints, DEFAULT_MERGE_ACCURACY, KeepPoint, MergeMetric, MergeOptions, merge,
 };
 use num_bigint::BigInt;
 use num_rational::BigRational;
@@ -264,7 +264,7 @@ fn exact_pieces(
 fn options(mu: f64, metric: MergeMetric, constrained: bool, accuracy: f64) -> MergeOptions {
     MergeOptions {
         metric,
-        split: SplitParameter::Given(mu),
+        split: Breakpoints::Given(vec![mu]),
         accuracy,
         fix_ends: constrained,
         ..MergeOptions::default()

@@ -8,7 +8,7 @@
 //! constraint of the job.
 
 use bezjoin_core::{
-    BezierCurve, KeepPoint, Merge, MergeMetric, MergeOptions, SplitParameter, merge, relative_jump,
+    BezierCurve, Breakpoints, KeepPoint, Merge, MergeMetric, MergeOptions, merge, relative_jump,
 };
 use serde_json::{Value, json};
 
@@ -68,7 +68,7 @@ pub fn parse(job: &Located) -> Result<MergeJob, JobError> {
     options.split = match split {
         "given" => {
             let f = obj.required("mu")?;
-            SplitParameter::Given(f.number_in(0.0, 1.0)?)
+            Breakpoints::Given(vec![f.number_in(0.0, 1.0)?])
         }
         other => {
             if let Some(f) = mu {
@@ -78,9 +78,9 @@ pub fn parse(job: &Located) -> Result<MergeJob, JobError> {
                 ));
             }
             match other {
-                "half" => SplitParameter::Half,
-                "polygon" => SplitParameter::PolygonLength,
-                _ => SplitParameter::Optimal,
+                "half" => Breakpoints::Uniform,
+                "polygon" => Breakpoints::PolygonLength,
+                _ => Breakpoints::Optimal,
             }
         }
     };
@@ -237,12 +237,12 @@ fn metric_name(metric: MergeMetric) -> &'static str {
     }
 }
 
-fn split_name(split: SplitParameter) -> &'static str {
+fn split_name(split: &Breakpoints) -> &'static str {
     match split {
-        SplitParameter::Given(_) => "given",
-        SplitParameter::Half => "half",
-        SplitParameter::PolygonLength => "polygon",
-        SplitParameter::Optimal => "optimal",
+        Breakpoints::Given(_) => "given",
+        Breakpoints::Uniform => "half",
+        Breakpoints::PolygonLength => "polygon",
+        Breakpoints::Optimal => "optimal",
     }
 }
 
@@ -259,7 +259,7 @@ fn outcome(job: &MergeJob, m: &Merge) -> Outcome {
         "report": {
             "degree": r.degree(),
             "metric": metric_name(o.metric),
-            "split": split_name(o.split),
+            "split": split_name(&o.split),
             "mu": report.mu,
             "metric_value": report.metric_value,
             "max_deviation": report.max_deviation,
@@ -329,7 +329,7 @@ fn outcome(job: &MergeJob, m: &Merge) -> Outcome {
         metric_name(o.metric),
         report.metric_value,
         report.mu,
-        split_name(o.split),
+        split_name(&o.split),
         if kept.is_empty() {
             "none".to_string()
         } else {

@@ -81,7 +81,7 @@
 //!
 //! # Beyond the paper
 //!
-//! * the `mu` minimising the metric ([`SplitParameter::Optimal`]);
+//! * the `mu` minimising the metric ([`Breakpoints::Optimal`]);
 //! * a merged degree `m > n` ([`MergeOptions::degree`]): `P` and `Q` are
 //!   elevated to `m` (exact) and the degree-`m` problem is solved;
 //! * [`merge_chain`]: `N >= 2` consecutive curves into one, see there.
@@ -135,28 +135,6 @@ pub enum MergeMetric {
     Integral,
 }
 
-/// How the split parameter `mu` is chosen.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub enum SplitParameter {
-    /// The caller's value, in `(0, 1)`.
-    Given(f64),
-    /// `mu = 1/2`, the paper's examples.
-    #[default]
-    Half,
-    /// `mu = L_P / (L_P + L_Q)` with the control-polygon lengths (the
-    /// paper's suggestion).
-    PolygonLength,
-    /// The `mu` minimising the metric: the metric is sampled at
-    /// [`MU_SEARCH_SAMPLES`] evenly spaced values in
-    /// `[MU_SEARCH_MIN, 1 - MU_SEARCH_MIN]`, the best sample and its
-    /// neighbours bracket Brent's method (parabolic interpolation
-    /// safeguarded by golden section) that stops at a bracket of about
-    /// [`MU_SEARCH_TOLERANCE`] (or after [`MU_SEARCH_MAX_STEPS`] steps). This finds the global
-    /// minimum when the metric has one minimum per sampling interval; values
-    /// of `mu` where stage 1 fails count as infinitely bad.
-    Optimal,
-}
-
 /// Keep the point and its derivatives `0..=max_order` of a curve at `param`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct KeepPoint {
@@ -172,7 +150,7 @@ pub struct MergeOptions {
     /// The metric minimised in stage 1.
     pub metric: MergeMetric,
     /// How `mu` is chosen.
-    pub split: SplitParameter,
+    pub split: Breakpoints,
     /// `P` unchanged (`eps = 0`).
     pub keep_p: bool,
     /// `Q` unchanged (`delta = 0`).
@@ -194,7 +172,7 @@ impl Default for MergeOptions {
     fn default() -> Self {
         Self {
             metric: MergeMetric::Discrete,
-            split: SplitParameter::Half,
+            split: Breakpoints::Uniform,
             keep_p: false,
             keep_q: false,
             fix_ends: false,
@@ -214,7 +192,7 @@ impl MergeOptions {
     }
 
     /// These options with another split choice.
-    pub fn with_split(mut self, split: SplitParameter) -> Self {
+    pub fn with_split(mut self, split: Breakpoints) -> Self {
         self.split = split;
         self
     }
@@ -257,10 +235,10 @@ pub struct Merge {
 /// among all such pairs; see the module documentation for the checks.
 ///
 /// ```
-/// # use bezjoin_core::{BezierCurve, MergeOptions, SplitParameter, merge};
+/// # use bezjoin_core::{BezierCurve, Breakpoints, MergeOptions, merge};
 /// let r = BezierCurve::from_rows(&[[0.0, 0.0], [1.0, 2.0], [3.0, 2.0], [4.0, 0.0]]).unwrap();
 /// let (p, q) = r.split_at(0.3).unwrap();
-/// let options = MergeOptions::default().with_split(SplitParameter::Optimal);
+/// let options = MergeOptions::default().with_split(Breakpoints::Optimal);
 /// let result = merge(&p, &q, &options).unwrap();
 /// assert!((result.report.mu - 0.3).abs() < 1e-6);
 /// assert!(result.report.max_deviation < 1e-9);
@@ -269,23 +247,30 @@ pub struct Merge {
 /// Errors: dimensions differ (DimensionMismatch); `mu` outside `(0, 1)`,
 /// a keep-point parameter outside `[0, 1]` (ParameterOutOfRange); an order
 /// above the working degree (OrderAboveDegree); a degree below the curves'
-/// or a zero-length control polygon for [`SplitParameter::PolygonLength`]
+/// or a zero-length control polygon for [`Breakpoints::PolygonLength`]
 /// (InvalidArgument); NaN/infinity (NonFinite); too many or contradictory
 /// constraints (Inconsistent, naming the constraint); an untrustworthy
 /// solve (IllConditioned, with the estimate).
 pub fn merge(p: &BezierCurve, q: &BezierCurve, options: &MergeOptions) -> Result<Merge> {
     let problem = PairProblem::new(p, q, options)?;
-    let (mu, stage_one) = match options.split {
-        SplitParameter::Given(mu) => {
+    let (mu, stage_one) = match &options.split {
+        Breakpoints::Given(inner) => {
+            let &[mu] = inner.as_slice() else {
+                return Err(BezjoinError::LengthMismatch {
+                    name: "mu".into(),
+                    expected: 1,
+                    actual: inner.len(),
+                });
+            };
             check_open_range("mu", mu, 0.0, 1.0)?;
             (mu, problem.solve(mu, StageOneCheck::Full)?)
         }
-        SplitParameter::Half => (0.5, problem.solve(0.5, StageOneCheck::Full)?),
-        SplitParameter::PolygonLength => {
+        Breakpoints::Uniform => (0.5, problem.solve(0.5, StageOneCheck::Full)?),
+        Breakpoints::PolygonLength => {
             let mu = polygon_breakpoints(&[p, q], &["P", "Q"])?[1];
             (mu, problem.solve(mu, StageOneCheck::Full)?)
         }
-        SplitParameter::Optimal => {
+        Breakpoints::Optimal => {
             let mu = problem.optimal_mu(StageOneCheck::Trial)?;
             match problem.solve(mu, StageOneCheck::Full) {
                 // The quick search's winner failed the full check: search
@@ -319,7 +304,7 @@ pub fn merge(p: &BezierCurve, q: &BezierCurve, options: &MergeOptions) -> Result
 }
 
 /// The metric value of the stage-1 optimum at a given `mu` (no stage 2),
-/// the function [`SplitParameter::Optimal`] minimises. `options.split` is
+/// the function [`Breakpoints::Optimal`] minimises. `options.split` is
 /// ignored.
 pub fn merge_metric_at(
     p: &BezierCurve,
@@ -392,23 +377,40 @@ impl<'a> PairProblem<'a> {
         )
     }
 
-    /// The search of [`SplitParameter::Optimal`], each trial solved with
+    /// The search of [`Breakpoints::Optimal`], each trial solved with
     /// `check`.
     fn optimal_mu(&self, check: StageOneCheck) -> Result<f64> {
         optimal_mu(|mu| self.solve(mu, check).map(|s| s.metric_value))
     }
 }
 
-/// How the breakpoints of [`merge_chain`] are chosen.
-#[derive(Debug, Clone, PartialEq, Default)]
-pub enum ChainBreakpoints {
-    /// The caller's interior breakpoints `0 < t_1 < ... < t_{N-1} < 1`.
+/// How the breakpoints `0 = t_0 < t_1 < ... < t_N = 1` of a merge of `N`
+/// curves are chosen: curve `j` becomes `R` on `[t_j, t_{j+1}]`. For two
+/// curves ([`merge`]) `t_1` is the split parameter `mu`. One type for
+/// [`merge`] ([`MergeOptions::split`], default [`Breakpoints::Uniform`],
+/// `mu = 1/2` as in the paper's examples) and [`merge_chain`]
+/// ([`ChainMergeOptions::breakpoints`], default
+/// [`Breakpoints::PolygonLength`]).
+#[derive(Debug, Clone, PartialEq)]
+pub enum Breakpoints {
+    /// The caller's interior breakpoints `0 < t_1 < ... < t_{N-1} < 1`
+    /// (for [`merge`], the one value `mu`, named `mu` in errors).
     Given(Vec<f64>),
-    /// `t_j = j / N`.
+    /// `t_j = j / N` (`mu = 1/2`).
     Uniform,
-    /// Proportional to the control-polygon lengths.
-    #[default]
+    /// Proportional to the control-polygon lengths (for two curves
+    /// `mu = L_P / (L_P + L_Q)`, the paper's suggestion).
     PolygonLength,
+    /// For [`merge`] only: the `mu` minimising the metric. The metric is
+    /// sampled at [`MU_SEARCH_SAMPLES`] + 1 evenly spaced values in
+    /// `[MU_SEARCH_MIN, 1 - MU_SEARCH_MIN]`, the best sample and its
+    /// neighbours bracket Brent's method (parabolic interpolation
+    /// safeguarded by golden section) that stops at a bracket of about
+    /// [`MU_SEARCH_TOLERANCE`] (or after [`MU_SEARCH_MAX_STEPS`] steps).
+    /// This finds the global minimum when the metric has one minimum per
+    /// sampling interval; values of `mu` where stage 1 fails count as
+    /// infinitely bad. [`merge_chain`] refuses it (InvalidArgument).
+    Optimal,
 }
 
 /// A keep-point on one curve of a chain.
@@ -426,7 +428,7 @@ pub struct ChainMergeOptions {
     /// The metric, summed over the pieces.
     pub metric: MergeMetric,
     /// How the breakpoints are chosen.
-    pub breakpoints: ChainBreakpoints,
+    pub breakpoints: Breakpoints,
     /// Curves kept unchanged: empty (none), or one flag per curve.
     pub keep: Vec<bool>,
     /// First point of the first curve and last point of the last unchanged.
@@ -443,7 +445,7 @@ impl Default for ChainMergeOptions {
     fn default() -> Self {
         Self {
             metric: MergeMetric::Discrete,
-            breakpoints: ChainBreakpoints::PolygonLength,
+            breakpoints: Breakpoints::PolygonLength,
             keep: Vec::new(),
             fix_ends: false,
             keep_points: Vec::new(),
@@ -551,7 +553,7 @@ pub fn merge_chain(curves: &[BezierCurve], options: &ChainMergeOptions) -> Resul
         )?);
     }
     let breakpoints = match &options.breakpoints {
-        ChainBreakpoints::Given(inner) => {
+        Breakpoints::Given(inner) => {
             if inner.len() != count - 1 {
                 return Err(BezjoinError::LengthMismatch {
                     name: "breakpoints".into(),
@@ -574,8 +576,15 @@ pub fn merge_chain(curves: &[BezierCurve], options: &ChainMergeOptions) -> Resul
             all.push(1.0);
             all
         }
-        ChainBreakpoints::Uniform => (0..=count).map(|j| j as f64 / count as f64).collect(),
-        ChainBreakpoints::PolygonLength => {
+        Breakpoints::Uniform => (0..=count).map(|j| j as f64 / count as f64).collect(),
+        Breakpoints::Optimal => {
+            return Err(BezjoinError::invalid(
+                "breakpoints",
+                "Optimal is searched for two curves only (merge); give the breakpoints, \
+                 Uniform or PolygonLength",
+            ));
+        }
+        Breakpoints::PolygonLength => {
             let names: Vec<&str> = names.iter().map(String::as_str).collect();
             polygon_breakpoints(&refs, &names)?
         }
@@ -738,7 +747,7 @@ mod tests {
                 let (p, q) = (curve(&mut state, degree), curve(&mut state, degree));
                 let options = MergeOptions::default()
                     .with_metric(MergeMetric::Integral)
-                    .with_split(SplitParameter::Optimal);
+                    .with_split(Breakpoints::Optimal);
                 let problem = PairProblem::new(&p, &q, &options).unwrap();
                 let Ok(quick) = problem.optimal_mu(StageOneCheck::Trial) else {
                     continue;
