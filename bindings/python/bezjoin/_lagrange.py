@@ -74,13 +74,7 @@ def lagrange_spline(nodes, first_inner, second_inner, params=None):
         raise BezjoinError.invalid_argument(
             f"second_inner has {len(second_rows)} points; {node_count} nodes need "
             f"{max(node_count - 2, 0)}")
-    parameter_array = None
-    if params is not None:
-        values = [real_argument(x, f"params[{i}]") for i, x in enumerate(params)]
-        if len(values) != node_count:
-            raise BezjoinError.invalid_argument(
-                f"params has {len(values)} values; there are {node_count} nodes")
-        parameter_array, _ = double_array(values)
+    parameter_array = _parameter_array(params, node_count)
     node_array, _ = double_array(flat(node_rows))
     first_array, _ = double_array(flat(first_rows))
     second_array, _ = double_array(flat(second_rows))
@@ -147,13 +141,7 @@ def lagrange_spline_degree(nodes, start_inner, free_inner, *, degree, continuity
                 raise BezjoinError.invalid_argument(
                     f"{name} has {len(rows)} points; degree {degree}, C^{continuity} and "
                     f"{node_count} nodes need {wanted}")
-    parameter_array = None
-    if params is not None:
-        values = [real_argument(x, f"params[{i}]") for i, x in enumerate(params)]
-        if len(values) != node_count:
-            raise BezjoinError.invalid_argument(
-                f"params has {len(values)} values; there are {node_count} nodes")
-        parameter_array, _ = double_array(values)
+    parameter_array = _parameter_array(params, node_count)
     node_array, _ = double_array(flat(node_rows))
     start_array, _ = double_array(flat(start_rows))
     free_array, free_length = double_array(flat(free_rows))
@@ -175,3 +163,14 @@ def _rows_of_dimension(points, name, dim):
         raise BezjoinError.dimension_mismatch(
             f"{name} has dimension {row_dim} but nodes have dimension {dim}")
     return rows
+
+
+def _parameter_array(params, node_count):
+    """The ``node_count`` global parameters as a C array, or None (chord length)."""
+    if params is None:
+        return None
+    values = [real_argument(x, f"params[{i}]") for i, x in enumerate(params)]
+    if len(values) != node_count:
+        raise BezjoinError.invalid_argument(
+            f"params has {len(values)} values; there are {node_count} nodes")
+    return double_array(values)[0]

@@ -6,6 +6,7 @@
 //! ([`bezjoin_core::join_jumps`]), and prints both.
 
 use bezjoin_core::BezierCurve;
+pub use bezjoin_core::distance;
 use bezjoin_core::{join_jumps, relative_jump};
 use serde_json::{Value, json};
 
@@ -131,36 +132,6 @@ pub fn worst(checks: &[JoinCheck]) -> f64 {
 /// Row `k` (`dim` values) of flat row-major derivatives.
 pub fn row(values: &[f64], dim: usize, k: usize) -> &[f64] {
     &values[k * dim..(k + 1) * dim]
-}
-
-/// Euclidean distance between two points of equal dimension (the sum of
-/// squares, rescaled by the largest difference when it overflows or
-/// underflows).
-pub fn distance(a: &[f64], b: &[f64]) -> f64 {
-    let square = a.iter().zip(b).map(|(x, y)| (x - y) * (x - y)).sum::<f64>();
-    if square.is_normal() {
-        return square.sqrt();
-    }
-    scaled_norm(a.iter().zip(b).map(|(x, y)| x - y))
-}
-
-/// The Euclidean norm of `values` computed as `m |values / m|`, `m` the
-/// largest magnitude: the path of [`distance`] when the plain sum of squares
-/// is not a normal number. Zero when every value is zero; infinite when one
-/// is; NaN when one is NaN (as the plain sum).
-fn scaled_norm(values: impl Iterator<Item = f64> + Clone) -> f64 {
-    if values.clone().any(f64::is_nan) {
-        return f64::NAN;
-    }
-    let largest = values.clone().fold(0.0f64, |m, v| m.max(v.abs()));
-    if largest == 0.0 || !largest.is_finite() {
-        return largest;
-    }
-    largest
-        * values
-            .map(|v| (v / largest) * (v / largest))
-            .sum::<f64>()
-            .sqrt()
 }
 
 /// A curve as JSON: `{"degree", "dim", "points": [[...], ...]}`.

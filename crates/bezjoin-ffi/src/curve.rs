@@ -150,12 +150,7 @@ pub unsafe extern "C" fn bzj_curve_eval(
             }
             .into());
         }
-        let needed = max_order
-            .checked_add(1)
-            .and_then(|k| k.checked_mul(curve.dim()))
-            .ok_or_else(|| {
-                BezjoinError::invalid("max_order", format!("{max_order} is too large"))
-            })?;
+        let needed = derivative_rows_len(max_order, curve.dim())?;
         // SAFETY: caller contract.
         let buf = unsafe { output_slice(out, out_len, needed, "out") }?;
         if max_order == 0 {
@@ -351,12 +346,7 @@ pub unsafe extern "C" fn bzj_curve_eval_many(
             }
             .into());
         }
-        let block = max_order
-            .checked_add(1)
-            .and_then(|k| k.checked_mul(curve.dim()))
-            .ok_or_else(|| {
-                BezjoinError::invalid("max_order", format!("{max_order} is too large"))
-            })?;
+        let block = derivative_rows_len(max_order, curve.dim())?;
         let needed = block.checked_mul(n).ok_or_else(|| {
             BezjoinError::invalid(
                 "n, max_order",
@@ -380,6 +370,16 @@ pub unsafe extern "C" fn bzj_curve_eval_many(
         }
         Ok(())
     })
+}
+
+/// `(max_order + 1) * dim`, the doubles of one value-and-derivatives block
+/// (`bzj_curve_eval`, each parameter of `bzj_curve_eval_many`), or
+/// INVALID_ARGUMENT naming `max_order` when it overflows.
+fn derivative_rows_len(max_order: usize, dim: usize) -> Result<usize, BezjoinError> {
+    max_order
+        .checked_add(1)
+        .and_then(|k| k.checked_mul(dim))
+        .ok_or_else(|| BezjoinError::invalid("max_order", format!("{max_order} is too large")))
 }
 
 #[cfg(test)]

@@ -606,8 +606,10 @@ fn de_casteljau_into(points: &[f64], n: usize, d: usize, t: f64, scale: f64, out
     }
 }
 
-/// Euclidean distance between two points of equal dimension.
-pub(crate) fn distance(a: &[f64], b: &[f64]) -> f64 {
+/// Euclidean distance between two points of equal dimension, without
+/// overflow or underflow of the squares: when the plain sum of squares is
+/// not a normal number the differences are scaled by the largest one first.
+pub fn distance(a: &[f64], b: &[f64]) -> f64 {
     let square = a.iter().zip(b).map(|(x, y)| (x - y) * (x - y)).sum::<f64>();
     if square.is_normal() {
         return square.sqrt();

@@ -49,7 +49,7 @@ mod minimize;
 
 pub use arclength::DEFAULT_ARC_LENGTH_ACCURACY;
 pub use basis::KnotSide;
-pub use bezier::{BezierCurve, MAX_DEGREE};
+pub use bezier::{BezierCurve, MAX_DEGREE, distance};
 pub use bspline::{BSplineCurve, join_jumps, relative_jump};
 pub use connect::{
     AUTO_SCALE_SEARCH_DECADES, CONNECT_RESIDUAL_LIMIT, ConnectOptions, Connection,
