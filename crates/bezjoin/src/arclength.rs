@@ -22,7 +22,7 @@
 //! `start`.
 
 use crate::basis::binomial;
-use crate::bezier::{BezierCurve, norm};
+use crate::bezier::{BezierCurve, bernstein_horner, norm};
 use crate::error::{BezjoinError, Result, check_finite_scalar};
 
 /// Default absolute accuracy factor: lengths are computed to
@@ -645,6 +645,30 @@ fn isolate(coefficients: &[f64], s0: f64, s1: f64, roots: &mut Vec<f64>, budget:
         }
     }
     if changes == 0 {
+        return;
+    }
+    // One sign change: exactly one root in (s0, s1) (the Bernstein
+    // coefficients' variation bounds the roots' count, and the end values
+    // have opposite signs). Bisection on values to the same width as the
+    // subdivision below, O(n) per step instead of O(n^2).
+    if changes == 1 && first != 0.0 && last != 0.0 {
+        if first < 0.0 && last > 0.0 {
+            let n = coefficients.len() - 1;
+            let (mut a, mut b) = (0.0f64, 1.0f64);
+            let mut value = [0.0];
+            while (b - a) * (s1 - s0) > 2f64.powi(-44) {
+                let m = 0.5 * (a + b);
+                bernstein_horner(coefficients, n, 1, m, 1.0, &mut value);
+                if value[0] < 0.0 {
+                    a = m;
+                } else if value[0] > 0.0 {
+                    b = m;
+                } else {
+                    (a, b) = (m, m);
+                }
+            }
+            roots.push(s0 + 0.5 * (a + b) * (s1 - s0));
+        }
         return;
     }
     if s1 - s0 <= 2f64.powi(-44) {

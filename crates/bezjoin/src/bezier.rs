@@ -553,7 +553,14 @@ const HORNER_MAX_DEGREE: usize = 512;
 ///
 /// Above [`HORNER_MAX_DEGREE`] the binomials and powers would leave the
 /// `f64` range, so de Casteljau's algorithm (allocating) is used instead.
-fn bernstein_horner(points: &[f64], n: usize, dim: usize, t: f64, scale: f64, out: &mut [f64]) {
+pub(crate) fn bernstein_horner(
+    points: &[f64],
+    n: usize,
+    dim: usize,
+    t: f64,
+    scale: f64,
+    out: &mut [f64],
+) {
     let d = dim;
     if n > HORNER_MAX_DEGREE {
         de_casteljau_into(points, n, d, t, scale, out);
