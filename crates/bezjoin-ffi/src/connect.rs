@@ -2,7 +2,7 @@
 //! (mathematics.md, section 1; `bezjoin_core::connect`).
 
 use bezjoin_core::BezjoinError;
-use bezjoin_core::{ConnectOptions, MAX_CONNECT_DEGREE, PointConstraint, connect};
+use bezjoin_core::{ConnectOptions, PointConstraint, check_connect_degree, connect};
 
 use crate::guard::guard;
 use crate::handles::{BzjCurve, HandleOut};
@@ -54,29 +54,11 @@ unsafe fn read_options(options: &BzjConnectOptions, dim: usize) -> FfiResult<Con
         )
     }?;
     // Refuse an impossible degree before reading any values array.
-    let mut degree = options
-        .p_order
-        .checked_add(options.q_order)
-        .and_then(|d| d.checked_add(1));
-    for c in constraints {
-        degree = degree
-            .and_then(|d| d.checked_add(c.max_order))
-            .and_then(|d| d.checked_add(1));
-    }
-    match degree {
-        Some(d) if d <= MAX_CONNECT_DEGREE => {}
-        _ => {
-            return Err(BezjoinError::IllConditioned {
-                what: format!(
-                    "connect: result degree {} is above the supported maximum {MAX_CONNECT_DEGREE}",
-                    degree.map_or_else(|| "(overflow)".to_string(), |d| d.to_string())
-                ),
-                estimate: f64::INFINITY,
-                limit: bezjoin_core::CONNECT_RESIDUAL_LIMIT,
-            }
-            .into());
-        }
-    }
+    check_connect_degree(
+        options.p_order,
+        options.q_order,
+        constraints.iter().map(|c| c.max_order),
+    )?;
     let mut out = ConnectOptions::new(options.p_order, options.q_order)
         .with_scales(options.p_scale, options.q_scale);
     for (j, c) in constraints.iter().enumerate() {

@@ -76,9 +76,7 @@ unsafe fn build_into(
     out.check_room(segment_count)?;
     out.clear_first(segment_count);
     options.validate()?;
-    if dim == 0 {
-        return Err(BezjoinError::invalid("dim", "must be at least 1").into());
-    }
+    // dim == 0 makes every length 0 (nothing is read); the core refuses it.
     let node_len = length("nodes", &[node_count, dim])?;
     let start_len = length(start_inner.1, &[options.degree - 1, dim])?;
     let free_len = length(

@@ -53,8 +53,8 @@ pub use bezier::{BezierCurve, MAX_DEGREE, distance};
 pub use bspline::{BSplineCurve, join_jumps, relative_jump};
 pub use connect::{
     AUTO_SCALE_SEARCH_DECADES, CONNECT_RESIDUAL_LIMIT, ConnectOptions, Connection,
-    MAX_CONNECT_DEGREE, PointConstraint, ShapeScale, connect, connect_dense_reference,
-    connect_unchecked, fairness_energy,
+    MAX_CONNECT_DEGREE, PointConstraint, ShapeScale, check_connect_degree, connect,
+    connect_dense_reference, connect_unchecked, fairness_energy,
 };
 pub use error::{BezjoinError, Result};
 pub use fillet::{

@@ -109,6 +109,36 @@ pub const CONNECT_RESIDUAL_LIMIT: f64 = 1e-8;
 /// residual exists to bound (a finite number would be a guess).
 pub const MAX_CONNECT_DEGREE: usize = 31;
 
+/// The degree `kp + kq + 1 + sum (K_j + 1)` of a connecting curve with
+/// orders `p_order`, `q_order` and interior constraints of orders
+/// `constraint_orders` (`K_j`), or `IllConditioned` (estimate infinite:
+/// nothing is solved) when it is above [`MAX_CONNECT_DEGREE`] or
+/// overflows. [`connect`] checks it first; the C ABI calls it before it
+/// reads the constraints' value arrays, whose lengths depend on the orders.
+pub fn check_connect_degree(
+    p_order: usize,
+    q_order: usize,
+    constraint_orders: impl IntoIterator<Item = usize>,
+) -> Result<usize> {
+    let mut degree = p_order.checked_add(q_order).and_then(|d| d.checked_add(1));
+    for k in constraint_orders {
+        degree = degree
+            .and_then(|d| d.checked_add(k))
+            .and_then(|d| d.checked_add(1));
+    }
+    match degree {
+        Some(d) if d <= MAX_CONNECT_DEGREE => Ok(d),
+        _ => Err(BezjoinError::IllConditioned {
+            what: format!(
+                "connect: result degree {} is above the supported maximum {MAX_CONNECT_DEGREE}",
+                degree.map_or_else(|| "(overflow)".to_string(), |d| d.to_string())
+            ),
+            estimate: f64::INFINITY,
+            limit: CONNECT_RESIDUAL_LIMIT,
+        }),
+    }
+}
+
 /// An interior constraint (2): `R^(k)(t)` prescribed for `k = 0..=K`
 /// (the C ABI's `BzjPointConstraint`).
 #[derive(Debug, Clone, PartialEq)]
@@ -432,22 +462,11 @@ pub(crate) fn prepare(
         }
         constraints.push((c.t, values));
     }
-    let degree = options
-        .constraints
-        .iter()
-        .try_fold(options.p_order + options.q_order + 1, |acc, c| {
-            acc.checked_add(c.max_order)?.checked_add(1)
-        })
-        .unwrap_or(usize::MAX);
-    if degree > MAX_CONNECT_DEGREE {
-        return Err(BezjoinError::IllConditioned {
-            what: format!(
-                "connect: result degree {degree} is above the supported maximum {MAX_CONNECT_DEGREE}"
-            ),
-            estimate: f64::INFINITY,
-            limit: CONNECT_RESIDUAL_LIMIT,
-        });
-    }
+    let degree = check_connect_degree(
+        options.p_order,
+        options.q_order,
+        options.constraints.iter().map(|c| c.max_order),
+    )?;
     constraints.sort_by(|a, b| a.0.total_cmp(&b.0));
     let (p_derivatives, p_derivative_error) = derivatives_with_error(p, u0, options.p_order);
     let (q_derivatives, q_derivative_error) = derivatives_with_error(q, v0, options.q_order);
