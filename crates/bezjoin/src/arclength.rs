@@ -730,7 +730,7 @@ mod tests {
 }
 
 #[cfg(test)]
-mod review_tests {
+mod rounding_floor_tests {
     use super::*;
 
     fn cubic() -> BezierCurve {

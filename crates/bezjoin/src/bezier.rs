@@ -775,7 +775,7 @@ mod tests {
 }
 
 #[cfg(test)]
-mod review_tests {
+mod high_degree_elevation_tests {
     use super::*;
 
     fn wiggly(degree: usize) -> BezierCurve {
@@ -834,7 +834,7 @@ mod review_tests {
 }
 
 #[cfg(test)]
-mod review_eval_tests {
+mod high_degree_evaluation_tests {
     use super::*;
 
     #[test]

@@ -343,7 +343,7 @@ mod tests {
 }
 
 #[cfg(test)]
-mod review_tests {
+mod degenerate_input_tests {
     use super::*;
 
     #[test]
