@@ -219,14 +219,16 @@ impl BezierCurve {
     /// `P(t)` by de Casteljau's algorithm (slower, the most stable; the
     /// reference that the fast path is tested against).
     pub fn eval_de_casteljau(&self, t: f64) -> Vec<f64> {
-        let mut work = Vec::new();
+        let mut work = Vec::with_capacity(self.points.len());
         blossom(
             &self.points,
             self.dim,
             std::iter::repeat_n(t, self.degree),
             &mut work,
-        )
-        .to_vec()
+        );
+        // The value is the work buffer's first point: one allocation.
+        work.truncate(self.dim);
+        work
     }
 
     /// Value and derivatives `0..=max_order` at `t`, written row-major into
