@@ -223,7 +223,9 @@ typedef int32_t BzjChainSplit;
 #endif // __cplusplus
 
 /**
- * Opaque, immutable Bezier curve handle (degree `n >= 0`, dimension `dim >= 1`).
+ * Opaque, immutable curve handle: a Bezier curve (degree `n >= 0`,
+ * dimension `dim >= 1`, parameter in `[0, 1]`) or a NURBS curve (degree
+ * `p >= 1`, parameter in its domain; `bzj_curve_is_nurbs`).
  */
 typedef struct BzjCurve BzjCurve;
 
@@ -250,11 +252,12 @@ typedef struct BzjPointConstraint {
  */
 typedef struct BzjConnectOptions {
   /**
-   * kp <= degree of P.
+   * kp: derivatives 0..kp of P are matched (any order; above P's degree
+   * they are those of P's polynomial or rational form).
    */
   size_t p_order;
   /**
-   * kq <= degree of Q.
+   * kq: derivatives 0..kq of Q are matched (any order).
    */
   size_t q_order;
   /**
@@ -350,11 +353,11 @@ typedef struct BzjFilletOptions {
    */
   double q_setback;
   /**
-   * kp <= degree of P.
+   * kp: the blend's continuity order at P (any order, as for connect).
    */
   size_t p_order;
   /**
-   * kq <= degree of Q.
+   * kq: the blend's continuity order at Q (any order).
    */
   size_t q_order;
   /**
@@ -383,11 +386,11 @@ typedef struct BzjDeviationFilletOptions {
    */
   double setback_ratio;
   /**
-   * kp <= degree of P.
+   * kp: the blend's continuity order at P (any order, as for connect).
    */
   size_t p_order;
   /**
-   * kq <= degree of Q.
+   * kq: the blend's continuity order at Q (any order).
    */
   size_t q_order;
   /**
@@ -614,11 +617,19 @@ const char *bzj_status_name(int32_t status);
  * to a relative residual of 1e-8 (definition in the Rust documentation of
  * `bezjoin_core::connect`), or the call fails with BZJ_ERR_ILL_CONDITIONED.
  *
+ * `p` and `q` may each be a Bezier or a NURBS handle: `u0` lies in P's
+ * domain and `v0` in Q's (`[0, 1]` for a Bezier, `bzj_curve_domain`); the
+ * orders `kp`, `kq` may exceed the degrees (a polynomial's higher
+ * derivatives are 0, a rational curve's are not). At a knot of a NURBS
+ * curve P's derivatives are taken from the left of `u0` (the side P
+ * arrives from) and Q's from the right of `v0` (the side Q leaves to). The
+ * result is always a Bezier handle.
+ *
  * @return BZJ_ERR_NULL_POINTER if `p`, `q`, `options`, `out`, a
  *         non-empty `options->constraints` or a constraint's `values` is NULL;
- *         BZJ_ERR_INVALID_ARGUMENT if `u0` or `v0` is outside [0,1], an order
- *         is above its curve's degree, a scale is not > 0, a constraint's `t`
- *         is outside (0,1) or repeated;
+ *         BZJ_ERR_INVALID_ARGUMENT if `u0` is outside P's domain or `v0`
+ *         outside Q's, a scale is not > 0, a constraint's `t` is outside
+ *         (0,1) or repeated;
  *         BZJ_ERR_NON_FINITE if `u0`, `v0`, a scale, a `t` or a value is NaN or infinite;
  *         BZJ_ERR_DIMENSION_MISMATCH if `p` and `q` have different dimensions;
  *         BZJ_ERR_SINGULAR if the interior system is numerically singular;
@@ -677,7 +688,7 @@ BzjStatus bzj_curve_new(size_t dim, size_t degree, const double *points, size_t 
 void bzj_curve_free(struct BzjCurve *curve);
 
 /**
- * The degree of `c`.
+ * The degree of `c` (Bezier or NURBS).
  *
  * @return BZJ_ERR_NULL_POINTER if `c` or `out` is NULL.
  *
@@ -687,7 +698,7 @@ void bzj_curve_free(struct BzjCurve *curve);
 BzjStatus bzj_curve_degree(const struct BzjCurve *c, size_t *out);
 
 /**
- * The dimension of `c`.
+ * The dimension of `c` (Bezier or NURBS).
  *
  * @return BZJ_ERR_NULL_POINTER if `c` or `out` is NULL.
  *
@@ -697,11 +708,14 @@ BzjStatus bzj_curve_degree(const struct BzjCurve *c, size_t *out);
 BzjStatus bzj_curve_dim(const struct BzjCurve *c, size_t *out);
 
 /**
- * Copy the `(degree + 1) * dim` row-major control points of `c` into `out`.
+ * Copy the `(degree + 1) * dim` row-major control points of `c` into `out`;
+ * for a NURBS handle its `pole_count * dim` poles (Cartesian, not
+ * multiplied by the weights; `bzj_curve_pole_count`, `bzj_curve_weights`).
  *
  * @return BZJ_ERR_NULL_POINTER if `c` or `out` is NULL;
  *         BZJ_ERR_INVALID_ARGUMENT if `out_len` is larger than any array can be;
- *         BZJ_ERR_BUFFER_TOO_SMALL if `out_len < (degree + 1) * dim` (nothing written).
+ *         BZJ_ERR_BUFFER_TOO_SMALL if `out_len` is below the number of
+ *         coordinates (nothing written).
  *
  * # Safety
  * `c` is NULL or a live handle; `out` points to `out_len` writable doubles.
@@ -709,14 +723,20 @@ BzjStatus bzj_curve_dim(const struct BzjCurve *c, size_t *out);
 BzjStatus bzj_curve_points(const struct BzjCurve *c, double *out, size_t out_len);
 
 /**
- * Value and derivatives `0..=max_order` of `c` at `t` (any finite `t`;
- * outside `[0, 1]` the polynomial is continued), written row-major: row `k`
- * (`dim` doubles) is the k-th derivative; `(max_order + 1) * dim` doubles.
+ * Value and derivatives `0..=max_order` of `c` at `t`, written row-major:
+ * row `k` (`dim` doubles) is the k-th derivative; `(max_order + 1) * dim`
+ * doubles. Any `max_order` (above the degree a polynomial's derivatives
+ * are 0). A Bezier handle takes any finite `t` (outside `[0, 1]` the
+ * polynomial is continued). A NURBS handle takes `t` in its domain
+ * `[first, last]` only; at an interior knot the derivatives are those of
+ * the span on the right of `t`, at `last` those of the last span.
  *
  * @return BZJ_ERR_NULL_POINTER if `c` or `out` is NULL;
- *         BZJ_ERR_NON_FINITE if `t` is NaN or infinite;
- *         BZJ_ERR_INVALID_ARGUMENT if `(max_order + 1) * dim` overflows
- *         `size_t` or `out_len` is larger than any array can be;
+ *         BZJ_ERR_NON_FINITE if `t` is NaN or infinite, or (NURBS) a derivative
+ *         overflows `double` (extreme knot spacing; the message names its order);
+ *         BZJ_ERR_INVALID_ARGUMENT if `t` is outside a NURBS handle's
+ *         domain, `(max_order + 1) * dim` overflows `size_t` or `out_len`
+ *         is larger than any array can be;
  *         BZJ_ERR_BUFFER_TOO_SMALL if `out_len` is short (nothing written).
  *
  * # Safety
@@ -725,11 +745,18 @@ BzjStatus bzj_curve_points(const struct BzjCurve *c, double *out, size_t out_len
 BzjStatus bzj_curve_eval(const struct BzjCurve *c, double t, size_t max_order, double *out, size_t out_len);
 
 /**
- * The same curve written with degree `new_degree >= degree` (exact).
+ * The same curve written with degree `new_degree >= degree` (exact). A
+ * NURBS handle gives a NURBS handle on the same domain: every span is
+ * raised, the multiplicity of each interior knot grows by
+ * `new_degree - degree` (so the continuity there is kept), the ends are
+ * clamped; rational curves stay rational.
  *
  * @return BZJ_ERR_NULL_POINTER if `c` or `out` is NULL;
  *         BZJ_ERR_INVALID_ARGUMENT if `new_degree` is below the degree or
- *         above the maximum degree 4096.
+ *         above the maximum degree 4096;
+ *         BZJ_ERR_ILL_CONDITIONED (NURBS) if removing a knot the raised
+ *         spans do not need, exact in exact arithmetic, leaves an error
+ *         above 1e-10 of the largest homogeneous coordinate.
  *
  * # Safety
  * `c` is NULL or a live handle; `out` is NULL or writable.
@@ -738,10 +765,15 @@ BzjStatus bzj_curve_elevate(const struct BzjCurve *c, size_t new_degree, struct 
 
 /**
  * Split `c` at `t in [0, 1]` into the pieces on `[0, t]` and `[t, 1]`,
- * each reparametrised to `[0, 1]` (de Casteljau, exact).
+ * each reparametrised to `[0, 1]` (de Casteljau, exact). A NURBS handle is
+ * split at `t` strictly inside its domain `(first, last)` into two NURBS
+ * handles on `[first, t]` and `[t, last]` that keep the original
+ * parameters (knot insertion, exact; each piece clamped at `t`).
  *
  * @return BZJ_ERR_NULL_POINTER if a pointer is NULL;
- *         BZJ_ERR_NON_FINITE / BZJ_ERR_INVALID_ARGUMENT for a bad `t`.
+ *         BZJ_ERR_NON_FINITE if `t` is NaN or infinite;
+ *         BZJ_ERR_INVALID_ARGUMENT if `t` is outside `[0, 1]` (Bezier) or
+ *         outside the open domain `(first, last)` (NURBS).
  *
  * # Safety
  * `c` is NULL or a live handle; `left`, `right` are NULL or writable.
@@ -750,12 +782,16 @@ BzjStatus bzj_curve_split(const struct BzjCurve *c, double t, struct BzjCurve **
 
 /**
  * The curve `s -> c(a + (b - a) s)` for any finite `a`, `b` (extrapolation
- * and `a > b` allowed; `a == b` gives a constant curve).
+ * and `a > b` allowed; `a == b` gives a constant curve). For a NURBS
+ * handle: the piece on `[a, b]`, `first <= a < b <= last`, as a NURBS
+ * handle with the original parameters (its domain is `[a, b]`; exact, by
+ * knot insertion; clamped at both ends).
  *
  * @return BZJ_ERR_NULL_POINTER if `c` or `out` is NULL;
  *         BZJ_ERR_NON_FINITE if `a` or `b` is NaN or infinite;
  *         BZJ_ERR_INVALID_ARGUMENT if `a` or `b` lies so far outside
- *         `[0, 1]` that the segment's control points overflow.
+ *         `[0, 1]` that the segment's control points overflow (Bezier), or
+ *         `a` or `b` is outside the domain or `a >= b` (NURBS).
  *
  * # Safety
  * `c` is NULL or a live handle; `out` is NULL or writable.
@@ -763,7 +799,8 @@ BzjStatus bzj_curve_split(const struct BzjCurve *c, double t, struct BzjCurve **
 BzjStatus bzj_curve_segment(const struct BzjCurve *c, double a, double b, struct BzjCurve **out);
 
 /**
- * The curve traversed backwards, `s -> c(1 - s)`.
+ * The curve traversed backwards, `s -> c(1 - s)`; for a NURBS handle
+ * `u -> c(first + last - u)` on the same domain (a NURBS handle).
  *
  * @return BZJ_ERR_NULL_POINTER if `c` or `out` is NULL.
  *
@@ -773,21 +810,27 @@ BzjStatus bzj_curve_segment(const struct BzjCurve *c, double a, double b, struct
 BzjStatus bzj_curve_reverse(const struct BzjCurve *c, struct BzjCurve **out);
 
 /**
- * Signed arc length of `c` from parameter `a` to `b` (any finite values),
- * by adaptive Gauss-Legendre quadrature to an absolute accuracy of
+ * Signed arc length of `c` from parameter `a` to `b` (negative when
+ * `b < a`). A Bezier handle takes any finite `a`, `b` and is integrated by
+ * adaptive Gauss-Legendre quadrature to an absolute accuracy of
  * `1e-13 * max(1, control polygon length)`, or `16 * DBL_EPSILON` times
  * the length where that is larger (the rounding level, e.g. long
- * extrapolated ranges). The range is cut at cusps first, so the accuracy
- * holds across them.
+ * extrapolated ranges); the range is cut at cusps first, so the accuracy
+ * holds across them. A NURBS handle takes `a`, `b` in its domain and is
+ * integrated span by span to `1e-13 * max(1, length of the polygon of
+ * poles)`: polynomial spans as Bezier curves (above), rational spans by
+ * adaptive Gauss-Kronrod on the speed.
  *
  * @return BZJ_ERR_NULL_POINTER if `c` or `out` is NULL;
  *         BZJ_ERR_NON_FINITE if `a` or `b` is NaN or infinite;
  *         BZJ_ERR_INVALID_ARGUMENT if the length overflows the double range
- *         (e.g. `a = -1e200, b = 1e200`; the message names `a, b`);
+ *         (e.g. `a = -1e200, b = 1e200`; the message names `a, b`), or `a`
+ *         or `b` is outside a NURBS handle's domain (named);
  *         BZJ_ERR_ILL_CONDITIONED if the adaptive rule spends its work
- *         budget (about 10^6 speed evaluations, 40 bisections) without
- *         reaching the accuracy above; the message carries the estimated
- *         relative error. On any error `*out` is left unchanged.
+ *         budget (Bezier: about 10^6 speed evaluations, 40 bisections; a
+ *         rational span: 2^18 speed evaluations) without reaching the
+ *         accuracy above; the message carries the estimated relative error.
+ *         On any error `*out` is left unchanged.
  *
  * # Safety
  * `c` is NULL or a live handle; `out` is NULL or writable.
@@ -800,13 +843,16 @@ BzjStatus bzj_curve_length(const struct BzjCurve *c, double a, double b, double 
  * parameter-major: `out[(i * (max_order + 1) + k) * dim + c]` is
  * coordinate `c` of the k-th derivative at `ts[i]`;
  * `n * (max_order + 1) * dim` doubles. Block `i` is exactly what
- * `bzj_curve_eval(c, ts[i], max_order, ...)` writes. Every parameter is
- * checked before anything is written. `n == 0` writes nothing (`ts` and
- * `out` may then be NULL).
+ * `bzj_curve_eval(c, ts[i], max_order, ...)` writes (for a NURBS handle
+ * every `ts[i]` must lie in its domain). Every parameter is checked before
+ * anything is written. `n == 0` writes nothing (`ts` and `out` may then be
+ * NULL).
  *
  * @return BZJ_ERR_NULL_POINTER if `c`, or `ts` or `out` with `n > 0`, is NULL;
- *         BZJ_ERR_NON_FINITE if some `ts[i]` is NaN or infinite (named);
- *         BZJ_ERR_INVALID_ARGUMENT if `n * (max_order + 1) * dim` overflows
+ *         BZJ_ERR_NON_FINITE if some `ts[i]` is NaN or infinite (named), or
+ *         (NURBS) a derivative overflows `double`;
+ *         BZJ_ERR_INVALID_ARGUMENT if some `ts[i]` is outside a NURBS
+ *         handle's domain (named), `n * (max_order + 1) * dim` overflows
  *         `size_t`, or `n` or `out_len` is larger than any array can be;
  *         BZJ_ERR_BUFFER_TOO_SMALL if `out_len` is short (nothing written).
  *
@@ -823,7 +869,8 @@ BzjStatus bzj_curve_eval_many(const struct BzjCurve *c, const double *ts, size_t
  * and the total found into `count`. `capacity == 0` with `out == NULL` is a
  * valid "count only" query. Default tolerances (relative distance 1e-9);
  * use `bzj_intersect_detailed` for the kind of each hit and other
- * tolerances.
+ * tolerances. Bezier and NURBS handles: `u` and `v` are in each curve's
+ * domain (`[0, 1]` for a Bezier curve).
  *
  * @return BZJ_ERR_NULL_POINTER if `p`, `q` or `count` is NULL, or `out` is
  *         NULL while `capacity > 0`;
@@ -853,11 +900,12 @@ BzjStatus bzj_intersect_options_default(struct BzjIntersectOptions *out);
  * overlap with its range) and explicit tolerances: `options` may be NULL for
  * the defaults. Writes the first `min(capacity, total)` hits into `out` and
  * the total into `count`; `capacity == 0` with `out == NULL` counts only.
+ * Bezier and NURBS handles; parameters in each curve's domain.
  *
  * @return BZJ_ERR_NULL_POINTER if `p`, `q` or `count` is NULL, or `out` is
  *         NULL while `capacity > 0`;
  *         BZJ_ERR_DIMENSION_MISMATCH if the curves' dimensions differ;
- *         BZJ_ERR_INVALID_ARGUMENT for curves of dimension 1 or an option out
+ *         BZJ_ERR_INVALID_ARGUMENT for curves of dimension 1, an option out
  *         of its range (named in the message);
  *         BZJ_ERR_NON_FINITE if a tolerance is NaN or infinite;
  *         BZJ_ERR_ILL_CONDITIONED if a work bound is reached.
@@ -871,20 +919,27 @@ BzjStatus bzj_intersect_detailed(const struct BzjCurve *p, const struct BzjCurve
 
 /**
  * Round the corner between `p` and `q` at their first crossing (smallest u
- * on P; touching points and overlaps are skipped): keeps P on `[0, u0]` and
- * Q on `[v0, 1]`, where the arc length of P from u0 to the crossing is
+ * on P; touching points and overlaps are skipped): keeps P on `[a, u0]` and
+ * Q on `[v0, b]` (`a` the start of P's domain, `b` the end of Q's: 0 and 1
+ * for Bezier curves), where the arc length of P from u0 to the crossing is
  * `p_setback` and that of Q from the crossing to v0 is `q_setback`, and joins
- * them with the C^k curve of `bzj_connect` (degree `p_order + q_order + 1`).
- * The three curves form a C^k B-spline with knot intervals
- * `(u0, p_scale, (1 - v0) p_scale / q_scale)`. Other corners of the
- * crossing: pass `bzj_curve_reverse` of P and/or Q.
+ * them with the C^k curve of `bzj_connect` (degree `p_order + q_order + 1`;
+ * orders may exceed the degrees). The three curves form a C^k B-spline with
+ * knot intervals `(u0 - a, p_scale, (b - v0) p_scale / q_scale)`. Other
+ * corners of the crossing: pass `bzj_curve_reverse` of P and/or Q.
+ *
+ * NURBS handles: `p_trimmed` and `q_trimmed` are NURBS handles with the
+ * input's parameters (domains `[a, u0]` and `[v0, b]`, cut by knot
+ * insertion, exact); Bezier inputs give Bezier pieces on `[0, 1]`. The
+ * blend is always a Bezier handle. A corner at a shared vertex (P ends
+ * where Q starts, as in a wire) is `bzj_fillet_vertex`.
  *
  * @return BZJ_ERR_NULL_POINTER if a pointer is NULL;
  *         BZJ_ERR_DIMENSION_MISMATCH if the curves' dimensions differ;
  *         BZJ_ERR_NON_FINITE if an option is NaN or infinite;
- *         BZJ_ERR_INVALID_ARGUMENT if a setback or scale is not positive, an
- *         order is above its curve's degree, or a setback is not shorter
- *         than the part of the curve before / after the crossing;
+ *         BZJ_ERR_INVALID_ARGUMENT if a setback or scale is not positive, or
+ *         a setback is not shorter than the part of the curve before / after
+ *         the crossing;
  *         BZJ_ERR_NO_INTERSECTION if the curves do not cross or only touch;
  *         BZJ_ERR_ILL_CONDITIONED if the connection cannot be trusted.
  *
@@ -904,7 +959,7 @@ BzjStatus bzj_fillet(const struct BzjCurve *p, const struct BzjCurve *q, const s
  * scale 1 a blend whose ends move fast against the setback puts its inner
  * control points past the corner and can loop; this variant avoids that.
  * Same guarantee as [`bzj_fillet`], with knot intervals
- * `(u0, s, 1 - v0)`.
+ * `(u0 - a, s, b - v0)`.
  *
  * @return the statuses of [`bzj_fillet`] (except for the scales).
  *
@@ -912,6 +967,31 @@ BzjStatus bzj_fillet(const struct BzjCurve *p, const struct BzjCurve *q, const s
  * As [`bzj_fillet`]; `scale_out` is NULL or writable.
  */
 BzjStatus bzj_fillet_auto_scale(const struct BzjCurve *p, const struct BzjCurve *q, const struct BzjFilletOptions *options, struct BzjCurve **p_trimmed, struct BzjCurve **blend, struct BzjCurve **q_trimmed, double *scale_out);
+
+/**
+ * Round the corner at the vertex where `p` ends and `q` starts (a wire's
+ * or a sketch's vertex), whatever other crossings P and Q have (for those,
+ * `bzj_fillet` keeps its first-crossing rule): P's last point and Q's first
+ * point must lie within `gap >= 0` (absolute) of each other (sketch
+ * solvers leave 1e-7 and more). Setbacks are arc lengths measured back
+ * from P's end and on from Q's start. Outputs and guarantee as
+ * `bzj_fillet` (with the vertex as the crossing: `u*` = the end of P's
+ * domain, `v*` = the start of Q's), for Bezier and NURBS handles.
+ *
+ * @return BZJ_ERR_NULL_POINTER if a pointer is NULL;
+ *         BZJ_ERR_DIMENSION_MISMATCH if the curves' dimensions differ;
+ *         BZJ_ERR_NON_FINITE if an option or `gap` is NaN or infinite;
+ *         BZJ_ERR_INVALID_ARGUMENT if a setback or scale is not positive,
+ *         `gap` is negative, or a setback is not shorter than the curve;
+ *         BZJ_ERR_NO_INTERSECTION if P's end and Q's start are more than
+ *         `gap` apart (the message gives the distance);
+ *         BZJ_ERR_ILL_CONDITIONED if the connection cannot be trusted.
+ *
+ * # Safety
+ * `p`, `q` are NULL or live handles; `options` is NULL or readable; the
+ * three out-pointers are NULL or writable.
+ */
+BzjStatus bzj_fillet_vertex(const struct BzjCurve *p, const struct BzjCurve *q, const struct BzjFilletOptions *options, double gap, struct BzjCurve **p_trimmed, struct BzjCurve **blend, struct BzjCurve **q_trimmed);
 
 /**
  * Round the corner at the first crossing so that the blend passes within
@@ -928,9 +1008,10 @@ BzjStatus bzj_fillet_auto_scale(const struct BzjCurve *p, const struct BzjCurve 
  *         BZJ_ERR_DIMENSION_MISMATCH if the curves' dimensions differ;
  *         BZJ_ERR_NON_FINITE if an option is NaN or infinite;
  *         BZJ_ERR_INVALID_ARGUMENT if `max_deviation`, `setback_ratio` or a
- *         scale is not positive, an order is above its curve's degree, or the
- *         deviation cannot be reached even with the longest setbacks the
- *         curves allow (the message gives the largest possible);
+ *         scale is not positive, the deviation cannot be reached even with the longest setbacks the
+ *         curves allow (the message gives the largest possible), or `p` or
+ *         `q` is a NURBS handle (Bezier curves only until the NURBS fillet
+ *         lands, issue 16);
  *         BZJ_ERR_NO_INTERSECTION if the curves do not cross or only touch;
  *         BZJ_ERR_ILL_CONDITIONED if the connection cannot be trusted or no
  *         setback the search tries gives a deviation in that window.
@@ -945,7 +1026,10 @@ BzjStatus bzj_fillet_deviation(const struct BzjCurve *p, const struct BzjCurve *
  * Round every corner of a chain of curves in one call. Corner i lies
  * between `curves[i]` and `curves[i + 1]` (and, when `closed == 1`, between
  * the last curve and the first); its crossing is the one nearest the shared
- * end (smallest `(1 - u) + v`), rounded as `bzj_fillet` with `options`.
+ * end (smallest `(last - u) / |P's domain| + (v - first) / |Q's domain|`,
+ * i.e. `(1 - u) + v` for Bezier curves), rounded as `bzj_fillet` with
+ * `options`. Bezier and NURBS handles: trimmed pieces keep their kind and
+ * parameters; blends are Bezier handles.
  * Long chains (more than 64 corners) are computed in parallel; the result is
  * identical either way.
  *
@@ -963,7 +1047,8 @@ BzjStatus bzj_fillet_deviation(const struct BzjCurve *p, const struct BzjCurve *
  *         (no handles are written);
  *         BZJ_ERR_INVALID_ARGUMENT if `closed` is not 0 or 1, fewer than 2
  *         curves are given, an option is out of range, a setback is too long
- *         at a corner ("corner i ...") or two cuts pass each other on a curve;
+ *         at a corner ("corner i ..."), or two cuts pass each other on a
+ *         curve;
  *         BZJ_ERR_DIMENSION_MISMATCH if the curves' dimensions differ;
  *         BZJ_ERR_NON_FINITE if an option is NaN or infinite;
  *         BZJ_ERR_NO_INTERSECTION if consecutive curves do not cross or meet
@@ -1075,8 +1160,10 @@ BzjStatus bzj_lagrange_spline_degree(size_t dim, size_t degree, size_t continuit
  *         or a point array is NULL with a non-zero count;
  *         BZJ_ERR_INVALID_ARGUMENT if `mu` (with BZJ_SPLIT_GIVEN) is outside
  *         (0, 1), a keep-point parameter is outside [0, 1], an order is above
- *         the degree, an enum or bool field holds an invalid value, or a
- *         control polygon has zero length with BZJ_SPLIT_POLYGON;
+ *         the degree, an enum or bool field holds an invalid value, a
+ *         control polygon has zero length with BZJ_SPLIT_POLYGON, or `p` or
+ *         `q` is a NURBS handle (Bezier curves only until the B-spline merge
+ *         lands, issue 17);
  *         BZJ_ERR_NON_FINITE if `mu` or a keep-point parameter is NaN/infinite;
  *         BZJ_ERR_DIMENSION_MISMATCH if `p` and `q` differ in dimension;
  *         BZJ_ERR_INCONSISTENT if the constraints contradict each other or are
@@ -1125,7 +1212,9 @@ BzjStatus bzj_merge_to_degree(const struct BzjCurve *p, const struct BzjCurve *q
  *         strictly increasing in (0, 1) or not `curve_count - 1` of them,
  *         a keep point names a curve that does not exist, its parameter is
  *         outside [0, 1] or its order above the degree, `degree` is below
- *         a curve's degree, or an enum/bool field is invalid;
+ *         a curve's degree, an enum/bool field is invalid, or a curve is a
+ *         NURBS handle (Bezier curves only until the B-spline merge lands,
+ *         issue 17);
  *         BZJ_ERR_NON_FINITE, BZJ_ERR_DIMENSION_MISMATCH, BZJ_ERR_INCONSISTENT,
  *         BZJ_ERR_SINGULAR, BZJ_ERR_ILL_CONDITIONED as for [`bzj_merge`].
  *
@@ -1137,6 +1226,184 @@ BzjStatus bzj_merge_to_degree(const struct BzjCurve *p, const struct BzjCurve *q
  * `breakpoints_len` writable doubles; `report` NULL or writable.
  */
 BzjStatus bzj_merge_chain(const struct BzjCurve *const *curves, size_t curve_count, const struct BzjChainMergeOptions *options, struct BzjCurve **merged, struct BzjCurve **pieces, size_t piece_capacity, double *breakpoints_out, size_t breakpoints_len, struct BzjChainMergeReport *report);
+
+/**
+ * Create a NURBS curve of degree `degree >= 1` in dimension `dim` from
+ * `poles_len == pole_count * dim` row-major pole coordinates (Cartesian,
+ * not multiplied by the weights), `weights_len == pole_count` weights
+ * `> 0` (or `weights_len == 0` for a polynomial B-spline: `weights` is
+ * then not read and may be NULL), and the flat knot vector of
+ * `knots_len == pole_count + degree + 1` non-decreasing values: interior
+ * multiplicity `<= degree`, end multiplicity `<= degree + 1`, a non-empty
+ * domain `[knots[degree], knots[pole_count]]`. At least `degree + 1`
+ * poles. Weights that are all equal give a curve that is not rational
+ * (`bzj_curve_is_rational`). Every length is checked from the numbers
+ * before any array is read.
+ *
+ * @return BZJ_ERR_NULL_POINTER if `out`, `poles` or `knots` is NULL, or
+ *         `weights` is NULL while `weights_len > 0`;
+ *         BZJ_ERR_INVALID_ARGUMENT if `dim == 0`, `degree == 0` or above the
+ *         maximum degree 4096, `poles_len` is not a multiple of `dim` or
+ *         gives fewer than `degree + 1` poles, `weights_len` is neither 0
+ *         nor the pole count, `knots_len` is not `pole_count + degree + 1`,
+ *         a length is larger than any array can be, a weight is `<= 0`
+ *         (named, `weights[i]`), or the knots decrease, have a multiplicity
+ *         above the limits, an empty domain or an interval too short to
+ *         invert (the message names `knots` and says which);
+ *         BZJ_ERR_NON_FINITE if a pole coordinate, weight or knot is NaN or
+ *         infinite (named with its index).
+ *         On any error `*out` is set to NULL.
+ *
+ * # Safety
+ * `poles` points to `poles_len` readable doubles, `weights` to
+ * `weights_len`, `knots` to `knots_len`; `out` is NULL or writable.
+ */
+BzjStatus bzj_nurbs_new(size_t dim, size_t degree, const double *poles, size_t poles_len, const double *weights, size_t weights_len, const double *knots, size_t knots_len, struct BzjCurve **out);
+
+/**
+ * Whether `c` is a NURBS handle (`false`: a Bezier handle).
+ *
+ * @return BZJ_ERR_NULL_POINTER if `c` or `out` is NULL.
+ *
+ * # Safety
+ * `c` is NULL or a live handle; `out` is NULL or writable.
+ */
+BzjStatus bzj_curve_is_nurbs(const struct BzjCurve *c, bool *out);
+
+/**
+ * Whether `c` is rational: a NURBS handle whose weights are not all equal
+ * (equal weights cancel). `false` for every Bezier handle.
+ *
+ * @return BZJ_ERR_NULL_POINTER if `c` or `out` is NULL.
+ *
+ * # Safety
+ * `c` is NULL or a live handle; `out` is NULL or writable.
+ */
+BzjStatus bzj_curve_is_rational(const struct BzjCurve *c, bool *out);
+
+/**
+ * The number of poles of `c` (`degree + 1` control points for a Bezier
+ * handle): `bzj_curve_points` writes `pole_count * dim` doubles,
+ * `bzj_curve_weights` `pole_count`.
+ *
+ * @return BZJ_ERR_NULL_POINTER if `c` or `out` is NULL.
+ *
+ * # Safety
+ * `c` is NULL or a live handle; `out` is NULL or writable.
+ */
+BzjStatus bzj_curve_pole_count(const struct BzjCurve *c, size_t *out);
+
+/**
+ * The flat knot vector of `c` (`pole_count + degree + 1` values; a Bezier
+ * handle: 0 and 1, each `degree + 1` times). The number of knots is
+ * written into `count` whenever `c` and `count` are valid, even when the
+ * call then fails. `out == NULL` with `out_len == 0` is a size query:
+ * only `count` is written, and the call succeeds. Otherwise `out` receives
+ * the knots.
+ *
+ * @return BZJ_ERR_NULL_POINTER if `c` or `count` is NULL, or `out` is NULL
+ *         while `out_len > 0`;
+ *         BZJ_ERR_INVALID_ARGUMENT if `out_len` is larger than any array can be;
+ *         BZJ_ERR_BUFFER_TOO_SMALL if `out_len` is below the number of
+ *         knots (nothing written into `out`; `count` holds the number).
+ *
+ * # Safety
+ * `c` is NULL or a live handle; `out` is NULL or points to `out_len`
+ * writable doubles; `count` is NULL or writable.
+ */
+BzjStatus bzj_curve_knots(const struct BzjCurve *c, double *out, size_t out_len, size_t *count);
+
+/**
+ * The `pole_count` weights of `c` into `out`; all 1 when `c` is not
+ * rational (a Bezier handle, a polynomial B-spline, or weights that are
+ * all equal, which cancel: the curve is the same).
+ *
+ * @return BZJ_ERR_NULL_POINTER if `c` or `out` is NULL;
+ *         BZJ_ERR_INVALID_ARGUMENT if `out_len` is larger than any array can be;
+ *         BZJ_ERR_BUFFER_TOO_SMALL if `out_len < pole_count` (nothing written).
+ *
+ * # Safety
+ * `c` is NULL or a live handle; `out` points to `out_len` writable doubles.
+ */
+BzjStatus bzj_curve_weights(const struct BzjCurve *c, double *out, size_t out_len);
+
+/**
+ * The parameter domain of `c`: `[0, 1]` for a Bezier handle,
+ * `[knots[degree], knots[pole_count]]` for a NURBS handle. Both values
+ * are written on success only.
+ *
+ * @return BZJ_ERR_NULL_POINTER if `c`, `first` or `last` is NULL.
+ *
+ * # Safety
+ * `c` is NULL or a live handle; `first` and `last` are NULL or writable.
+ */
+BzjStatus bzj_curve_domain(const struct BzjCurve *c, double *first, double *last);
+
+/**
+ * The same curve as a NURBS handle: a Bezier handle becomes a one-span
+ * polynomial NURBS on `[0, 1]` (knots 0 and 1, each `degree + 1` times; a
+ * degree-0 curve, a point, is raised to degree 1, as a NURBS curve has
+ * degree `>= 1`); a NURBS handle is copied.
+ *
+ * @return BZJ_ERR_NULL_POINTER if `c` or `out` is NULL.
+ *         On any error `*out` is set to NULL.
+ *
+ * # Safety
+ * `c` is NULL or a live handle; `out` is NULL or writable.
+ */
+BzjStatus bzj_curve_to_nurbs(const struct BzjCurve *c, struct BzjCurve **out);
+
+/**
+ * The Bezier spans of `c`, in order, exactly (knot insertion): span `i`
+ * covers `[k_i, k_(i+1)]`, the distinct knots of the domain in order.
+ * A polynomial span comes back as a Bezier handle (that span
+ * reparametrised to `[0, 1]`: `s -> c(k_i + (k_(i+1) - k_i) s)`); a
+ * rational span as a one-span NURBS handle keeping the original parameters
+ * (its domain is `[k_i, k_(i+1)]`). A Bezier handle gives one span, a copy
+ * of itself. The number of spans is written into `count` whenever `c` and
+ * `count` are valid, even when the call then fails. `out == NULL` with
+ * `capacity == 0` is a size query: only `count` is written, and the call
+ * succeeds. Otherwise the first `count` slots of `out` receive new
+ * handles, each released with `bzj_curve_free`.
+ *
+ * @return BZJ_ERR_NULL_POINTER if `c` or `count` is NULL, or `out` is NULL
+ *         while `capacity > 0`;
+ *         BZJ_ERR_BUFFER_TOO_SMALL if `capacity` is below the number of
+ *         spans (no handle is written; `count` holds the number).
+ *         On any error the `capacity` slots of `out` are set to NULL.
+ *
+ * # Safety
+ * `c` is NULL or a live handle; `out` is NULL or points to `capacity`
+ * writable handle slots; `count` is NULL or writable.
+ */
+BzjStatus bzj_curve_bezier_spans(const struct BzjCurve *c, struct BzjCurve **out, size_t capacity, size_t *count);
+
+/**
+ * The elliptic arc `centre + x_radius cos(a) x_axis + y_radius sin(a)
+ * y_axis`, `a` from `a0` to `a1` (radians), as an exact rational quadratic
+ * NURBS handle in dimension 2 or 3 (a circle: `x_radius == y_radius`).
+ * `centre`, `x_axis` and `y_axis` hold `dim` doubles each; the axes are
+ * unit vectors and orthogonal, within 1e-9. `a0 < a1 <= a0 + 2 pi` (a
+ * full turn gives a closed curve). The arc is cut into `ceil((a1 - a0) /
+ * (pi/2))` spans of equal angle; the domain is `[a0, a1]` and the knots
+ * sit at the spans' angles, where the curve passes through the ellipse
+ * point of that angle (between knots the parameter is not the angle).
+ *
+ * @return BZJ_ERR_NULL_POINTER if `centre`, `x_axis`, `y_axis` or `out`
+ *         is NULL;
+ *         BZJ_ERR_INVALID_ARGUMENT if `dim` is not 2 or 3 (checked before
+ *         the arrays are read), an axis is not of unit length, the axes are
+ *         not orthogonal, a radius is not `> 0`, or `a1` is not in
+ *         `(a0, a0 + 2 pi]`;
+ *         BZJ_ERR_NON_FINITE if a coordinate, radius or angle is NaN or
+ *         infinite (named).
+ *         On any error `*out` is set to NULL.
+ *
+ * # Safety
+ * `centre`, `x_axis`, `y_axis` are NULL or point to `dim` readable doubles
+ * each; `out` is NULL or writable.
+ */
+BzjStatus bzj_nurbs_ellipse_arc(size_t dim, const double *centre, const double *x_axis, const double *y_axis, double x_radius, double y_radius, double a0, double a1, struct BzjCurve **out);
 
 #ifdef __cplusplus
 }  // extern "C"

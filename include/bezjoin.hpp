@@ -1,7 +1,9 @@
 // bezjoin.hpp: a small header-only C++17 wrapper over the C ABI in bezjoin.h.
 //
 // * bezjoin::Curve owns one BzjCurve handle (move-only; released with
-//   bzj_curve_free in the destructor).
+//   bzj_curve_free in the destructor): a Bezier curve (parameter in [0, 1]) or
+//   a NURBS curve (Curve::nurbs, Curve::ellipse_arc; parameter in its
+//   domain(), which the operations keep).
 // * Every failed call throws bezjoin::Error, which carries the BzjStatus and the
 //   library's message (bzj_last_error(), naming the offending argument).
 // * Control points and derivative blocks are row-major std::vector<double>,
@@ -66,7 +68,9 @@ inline void check(BzjStatus status, const char* operation) {
 /// The library version string, "MAJOR.MINOR.PATCH".
 inline std::string version() { return bzj_version(); }
 
-/// An owning, move-only handle to an immutable Bezier curve.
+/// An owning, move-only handle to an immutable curve: a Bezier curve on
+/// [0, 1], or a NURBS curve (polynomial or rational, any number of spans) on
+/// its domain().
 class Curve {
 public:
     /// An empty handle (owns nothing).
@@ -75,10 +79,50 @@ public:
     /// Take ownership of a handle returned by the C API (may be NULL).
     explicit Curve(BzjCurve* handle) noexcept : handle_(handle) {}
 
-    /// A curve of degree `degree` in dimension `dim` from `(degree + 1) * dim`
-    /// row-major coordinates.
+    /// A Bezier curve of degree `degree` in dimension `dim` from
+    /// `(degree + 1) * dim` row-major coordinates.
     Curve(std::size_t dim, std::size_t degree, const std::vector<double>& points) {
         check(bzj_curve_new(dim, degree, points.data(), points.size(), &handle_), "bzj_curve_new");
+    }
+
+    /// A NURBS curve of degree `degree >= 1` in dimension `dim`: row-major
+    /// poles (`pole_count * dim`, Cartesian), the flat knot vector
+    /// (`pole_count + degree + 1` non-decreasing values) and the weights
+    /// (`pole_count` values > 0; empty for a polynomial B-spline)
+    /// (bzj_nurbs_new).
+    static Curve nurbs(std::size_t dim, std::size_t degree, const std::vector<double>& poles,
+                       const std::vector<double>& knots,
+                       const std::vector<double>& weights = std::vector<double>()) {
+        BzjCurve* out = nullptr;
+        check(bzj_nurbs_new(dim, degree, poles.data(), poles.size(),
+                            weights.empty() ? nullptr : weights.data(), weights.size(),
+                            knots.data(), knots.size(), &out),
+              "bzj_nurbs_new");
+        return Curve(out);
+    }
+
+    /// The exact elliptic arc centre + x_radius cos(a) x_axis + y_radius sin(a)
+    /// y_axis, a from a0 to a1 (radians, a0 < a1 <= a0 + 2 pi), as a rational
+    /// quadratic NURBS curve in dimension 2 or 3 on the domain [a0, a1]; the
+    /// axes are orthogonal unit vectors (bzj_nurbs_ellipse_arc). `centre`,
+    /// `x_axis`, `y_axis` hold `dim` values each (else std::invalid_argument).
+    static Curve ellipse_arc(std::size_t dim, const std::vector<double>& centre,
+                             const std::vector<double>& x_axis, const std::vector<double>& y_axis,
+                             double x_radius, double y_radius, double a0, double a1) {
+        const std::pair<const char*, const std::vector<double>*> vectors[] = {
+            {"centre", &centre}, {"x_axis", &x_axis}, {"y_axis", &y_axis}};
+        for (const auto& v : vectors) {
+            if (v.second->size() != dim) {
+                throw std::invalid_argument(std::string("ellipse_arc: ") + v.first + ".size() = " +
+                                            std::to_string(v.second->size()) + ", expected dim = " +
+                                            std::to_string(dim));
+            }
+        }
+        BzjCurve* out = nullptr;
+        check(bzj_nurbs_ellipse_arc(dim, centre.data(), x_axis.data(), y_axis.data(), x_radius,
+                                    y_radius, a0, a1, &out),
+              "bzj_nurbs_ellipse_arc");
+        return Curve(out);
     }
 
     Curve(const Curve&) = delete;
@@ -111,15 +155,91 @@ public:
         return out;
     }
 
-    /// The `(degree + 1) * dim` row-major control points.
+    /// The `pole_count() * dim` row-major control points (Bezier: `degree + 1`
+    /// of them) or poles (NURBS: Cartesian, not multiplied by the weights).
     std::vector<double> points() const {
-        std::vector<double> out((degree() + 1) * dim());
+        std::vector<double> out(pole_count() * dim());
         check(bzj_curve_points(handle_, out.data(), out.size()), "bzj_curve_points");
         return out;
     }
 
-    /// Value and derivatives 0..max_order at `t`: row k (dim doubles) is the
-    /// k-th derivative.
+    /// Whether this is a NURBS curve (false: a Bezier curve) (bzj_curve_is_nurbs).
+    bool is_nurbs() const {
+        bool out = false;
+        check(bzj_curve_is_nurbs(handle_, &out), "bzj_curve_is_nurbs");
+        return out;
+    }
+
+    /// Whether this is a NURBS curve whose weights are not all equal
+    /// (bzj_curve_is_rational).
+    bool is_rational() const {
+        bool out = false;
+        check(bzj_curve_is_rational(handle_, &out), "bzj_curve_is_rational");
+        return out;
+    }
+
+    /// The number of poles (`degree + 1` for a Bezier curve) (bzj_curve_pole_count).
+    std::size_t pole_count() const {
+        std::size_t out = 0;
+        check(bzj_curve_pole_count(handle_, &out), "bzj_curve_pole_count");
+        return out;
+    }
+
+    /// The flat knot vector, `pole_count + degree + 1` values (a Bezier curve:
+    /// 0 and 1, each `degree + 1` times) (bzj_curve_knots).
+    std::vector<double> knots() const {
+        std::size_t count = 0;
+        check(bzj_curve_knots(handle_, nullptr, 0, &count), "bzj_curve_knots");
+        std::vector<double> out(count);
+        check(bzj_curve_knots(handle_, out.data(), out.size(), &count), "bzj_curve_knots");
+        return out;
+    }
+
+    /// The `pole_count` weights, all 1 when the curve is not rational
+    /// (bzj_curve_weights).
+    std::vector<double> weights() const {
+        std::vector<double> out(pole_count());
+        check(bzj_curve_weights(handle_, out.data(), out.size()), "bzj_curve_weights");
+        return out;
+    }
+
+    /// The parameter domain (first, last): (0, 1) for a Bezier curve
+    /// (bzj_curve_domain).
+    std::pair<double, double> domain() const {
+        double first = 0.0;
+        double last = 0.0;
+        check(bzj_curve_domain(handle_, &first, &last), "bzj_curve_domain");
+        return {first, last};
+    }
+
+    /// The same curve as a NURBS curve (a Bezier curve: one span on [0, 1], a
+    /// point raised to degree 1) (bzj_curve_to_nurbs).
+    Curve to_nurbs() const {
+        BzjCurve* out = nullptr;
+        check(bzj_curve_to_nurbs(handle_, &out), "bzj_curve_to_nurbs");
+        return Curve(out);
+    }
+
+    /// The Bezier spans in order (bzj_curve_bezier_spans): a polynomial span
+    /// as a Bezier curve (the span reparametrised to [0, 1]), a rational span
+    /// as a one-span NURBS curve with the original parameters.
+    std::vector<Curve> bezier_spans() const {
+        std::size_t count = 0;
+        check(bzj_curve_bezier_spans(handle_, nullptr, 0, &count), "bzj_curve_bezier_spans");
+        std::vector<Curve> out;
+        out.reserve(count);
+        std::vector<BzjCurve*> raw(count, nullptr);
+        const BzjStatus status = bzj_curve_bezier_spans(handle_, raw.data(), raw.size(), &count);
+        for (BzjCurve* span : raw) {
+            out.emplace_back(span);  // owned even if the call failed (then NULL)
+        }
+        check(status, "bzj_curve_bezier_spans");
+        return out;
+    }
+
+    /// Value and derivatives 0..max_order at `t` (any order; a NURBS curve
+    /// takes `t` in its domain only): row k (dim doubles) is the k-th
+    /// derivative.
     std::vector<double> eval(double t, std::size_t max_order = 0) const {
         std::vector<double> out((max_order + 1) * dim());
         check(bzj_curve_eval(handle_, t, max_order, out.data(), out.size()), "bzj_curve_eval");
@@ -141,14 +261,17 @@ public:
         check(bzj_curve_eval(handle_, t, max_order, out, out_len), "bzj_curve_eval");
     }
 
-    /// The same curve written with degree `new_degree >= degree()` (exact).
+    /// The same curve written with degree `new_degree >= degree()` (exact; a
+    /// NURBS curve: every span raised, same domain).
     Curve elevate(std::size_t new_degree) const {
         BzjCurve* out = nullptr;
         check(bzj_curve_elevate(handle_, new_degree, &out), "bzj_curve_elevate");
         return Curve(out);
     }
 
-    /// The pieces on [0, t] and [t, 1], each reparametrised to [0, 1].
+    /// The pieces on [0, t] and [t, 1], each reparametrised to [0, 1]; a NURBS
+    /// curve: t inside its domain (first, last), pieces on [first, t] and
+    /// [t, last] with the original parameters.
     std::pair<Curve, Curve> split(double t) const {
         BzjCurve* left = nullptr;
         BzjCurve* right = nullptr;
@@ -156,25 +279,37 @@ public:
         return {Curve(left), Curve(right)};
     }
 
-    /// s -> c(a + (b - a) s), any finite a, b (extrapolation allowed).
+    /// s -> c(a + (b - a) s), any finite a, b (extrapolation allowed); a NURBS
+    /// curve: the piece on [a, b] (first <= a < b <= last) with the original
+    /// parameters.
     Curve segment(double a, double b) const {
         BzjCurve* out = nullptr;
         check(bzj_curve_segment(handle_, a, b, &out), "bzj_curve_segment");
         return Curve(out);
     }
 
-    /// s -> c(1 - s).
+    /// s -> c(1 - s); a NURBS curve: u -> c(first + last - u), same domain.
     Curve reverse() const {
         BzjCurve* out = nullptr;
         check(bzj_curve_reverse(handle_, &out), "bzj_curve_reverse");
         return Curve(out);
     }
 
-    /// Signed arc length from parameter a to b.
-    double length(double a = 0.0, double b = 1.0) const {
+    /// Signed arc length from parameter a to b (a NURBS curve: both in its
+    /// domain).
+    double length(double a, double b) const {
         double out = 0.0;
         check(bzj_curve_length(handle_, a, b, &out), "bzj_curve_length");
         return out;
+    }
+
+    /// Arc length from parameter a to the end of the domain (1 for a Bezier curve).
+    double length(double a) const { return length(a, domain().second); }
+
+    /// Arc length of the whole curve (a Bezier curve: from 0 to 1).
+    double length() const {
+        const std::pair<double, double> d = domain();
+        return length(d.first, d.second);
     }
 
 private:
@@ -190,8 +325,8 @@ struct PointConstraint {
 
 /// Options of connect(): continuity orders, shape scales, extra constraints.
 struct ConnectOptions {
-    std::size_t p_order = 0;  // kp <= degree of P
-    std::size_t q_order = 0;  // kq <= degree of Q
+    std::size_t p_order = 0;  // kp (any order, also above the degree of P)
+    std::size_t q_order = 0;  // kq (any order)
     double p_scale = 1.0;     // alpha > 0; 1.0 = the paper
     double q_scale = 1.0;     // beta > 0; 1.0 = the paper
     std::vector<PointConstraint> constraints;
@@ -255,8 +390,10 @@ inline std::vector<Curve> adopt_all(const std::vector<BzjCurve*>& raw, BzjStatus
 
 }  // namespace detail
 
-/// The connecting curve R with R^(k)(0) = alpha^k P^(k)(u0), k <= kp, and
-/// R^(k)(1) = beta^k Q^(k)(v0), k <= kq (mathematics.md section 1).
+/// The connecting curve R (a Bezier curve) with R^(k)(0) = alpha^k P^(k)(u0),
+/// k <= kp, and R^(k)(1) = beta^k Q^(k)(v0), k <= kq (mathematics.md section
+/// 1). P and Q may be Bezier or NURBS curves; u0, v0 lie in their domains; at
+/// a knot P's derivatives are taken from the left, Q's from the right.
 inline Curve connect(const Curve& p, double u0, const Curve& q, double v0,
                      const ConnectOptions& options) {
     const detail::RawConnectOptions raw(options);
@@ -323,6 +460,21 @@ inline Fillet fillet(const Curve& p, const Curve& q, const FilletOptions& option
     BzjCurve* blend = nullptr;
     BzjCurve* q_trimmed = nullptr;
     check(bzj_fillet(p.get(), q.get(), &raw, &p_trimmed, &blend, &q_trimmed), "bzj_fillet");
+    return Fillet{Curve(p_trimmed), Curve(blend), Curve(q_trimmed)};
+}
+
+/// Round the corner at the vertex where P ends and Q starts (a wire's or a
+/// sketch's vertex, bzj_fillet_vertex), whatever other crossings P and Q
+/// have; P's end and Q's start must lie within `gap` (absolute). NURBS
+/// inputs give NURBS pieces with their own parameters.
+inline Fillet fillet_vertex(const Curve& p, const Curve& q, const FilletOptions& options,
+                            double gap) {
+    const BzjFilletOptions raw = detail::raw_fillet_options(options);
+    BzjCurve* p_trimmed = nullptr;
+    BzjCurve* blend = nullptr;
+    BzjCurve* q_trimmed = nullptr;
+    check(bzj_fillet_vertex(p.get(), q.get(), &raw, gap, &p_trimmed, &blend, &q_trimmed),
+          "bzj_fillet_vertex");
     return Fillet{Curve(p_trimmed), Curve(blend), Curve(q_trimmed)};
 }
 

@@ -95,27 +95,23 @@ class Rejections(unittest.TestCase):
         for word in words:
             self.assertIn(word, str(caught.exception))
 
-    def test_non_bezier_geometry_is_refused_with_a_reason(self):
-        self.assertRejected(Part.makeCircle(2.0), "Circle", "not a Bezier curve")
-        self.assertRejected(Part.Circle(), "Circle")
-        self.assertRejected(Part.Line(V(0, 0, 0), V(1, 0, 0)), "unbounded")
-        self.assertRejected("edge", "str")
+    def test_geometry_without_an_exact_nurbs_form_is_refused_with_what_to_do(self):
+        arc = Part.ArcOfCircle(Part.Circle(V(0, 0, 0), V(0, 0, 1), 2.0), 0.2, 1.5)
+        offset = Part.OffsetCurve(arc, 0.5, V(0, 0, 1))
+        for obj in (offset, offset.toShape()):
+            self.assertRejected(obj, "Part.OffsetCurve", "no exact NURBS form", "toBSpline",
+                                "approximateBSpline")
+        self.assertRejected(Part.Geom2d.Circle2d(), "Part.Geom2d.Circle2d", "2D", "toShape")
+        self.assertRejected(Part.Geom2d.BSplineCurve2d(), "Geom2d", "3D edge")
+        self.assertRejected("edge", "str", "not FreeCAD geometry", "Part.Edge")
 
-    def test_multi_span_and_periodic_and_rational_bsplines(self):
-        spline = Part.BSplineCurve()
-        spline.interpolate([V(0, 0, 0), V(1, 2, 0), V(3, 1, 0), V(4, 3, 1), V(6, 0, 0)])
-        self.assertRejected(spline, "spans", "single-span")
-        periodic = Part.BSplineCurve()
-        periodic.buildFromPolesMultsKnots([V(0, 0, 0), V(1, 0, 0), V(1, 1, 0), V(0, 1, 0)],
-                                          [1, 1, 1, 1, 1], [0, 0.25, 0.5, 0.75, 1], True, 2)
-        self.assertRejected(periodic, "periodic")
-        rational = Part.BSplineCurve()
-        rational.buildFromPolesMultsKnots([V(0, 0, 0), V(1, 1, 0), V(2, 0, 0)], [3, 3], [0, 1],
-                                          False, 2, [1.0, 0.5, 1.0])
-        self.assertRejected(rational, "rational")
-        rational_bezier = bezier([(0, 0), (1, 1), (2, 0)])
-        rational_bezier.setWeight(2, 0.5)
-        self.assertRejected(rational_bezier, "rational")
+    def test_unbounded_curves_are_refused_with_what_to_do(self):
+        self.assertRejected(Part.Line(V(0, 0, 0), V(1, 0, 0)), "Part.Line", "unbounded",
+                            "Part.Edge(curve, first, last)")
+        for conic in (Part.Parabola(), Part.Hyperbola()):
+            self.assertRejected(conic, "unbounded", "Part.ArcOfParabola")
+        self.assertRejected(Part.Edge(Part.Line(V(0, 0, 0), V(1, 0, 0))), "Line", "unbounded",
+                            "trim it")
 
     def test_shape_with_several_edges(self):
         box_edges = Part.makeBox(1, 1, 1)

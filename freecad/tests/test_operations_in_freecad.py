@@ -4,6 +4,7 @@ into one Part.BSplineCurve must have the promised continuity (knot removal and
 one-sided derivatives from getDN); the merged curve's FreeCAD segment at mu must be
 P^ and Q^. The workbench operations are driven the same way."""
 
+import math
 import random
 import unittest
 
@@ -127,11 +128,12 @@ class ConnectJudgedByFreeCAD(unittest.TestCase, CommandDriver):
         self.assertEqual(shown, [])
         self.assertEqual(len(made), 1)
         self.assertEqual(made[0][1].Edges[0].Curve.Degree, 2 + 1 + 1)
-        made, shown = self.drive(commands.BlendCommand(), [first, Part.makeCircle(1.0)],
-                                 parameters)
+        offset = Part.OffsetCurve(Part.Circle(), 0.5, FreeCAD.Vector(0, 0, 1)).toShape()
+        made, shown = self.drive(commands.BlendCommand(), [first, offset], parameters)
         self.assertEqual(made, [])
         self.assertEqual(len(shown), 1)
-        self.assertIn("second edge: a Circle", shown[0])
+        self.assertIn("second edge:", shown[0])
+        self.assertIn("OffsetCurve", shown[0])
         made, shown = self.drive(commands.BlendCommand(), [first, second],
                                  dict(parameters, p_scale=-1.0))
         self.assertEqual(made, [])
@@ -210,6 +212,44 @@ class RoundCornerJudgedByFreeCAD(unittest.TestCase, CommandDriver):
         self.assertEqual(len(cross.Edges), 3)
         self.assertLessEqual(gap(cross.OrderedVertexes[0].Point, (0, 0, 0)), 1e-12)
         self.assertLessEqual(gap(cross.OrderedVertexes[-1].Point, (4, 0, 0)), 1e-12)
+
+    def test_round_corner_of_an_arc_and_a_line_at_a_sketch_vertex(self):
+        # A sketch's arc (radius 3, a quarter turn) and a line leaving its end
+        # with a solver's gap of 3e-8: the vertex is rounded C2, the arc part
+        # stays on the circle, the curvature runs from 1/3 to 0.
+        arc = Part.ArcOfCircle(Part.Circle(V(0, 0, 0), V(0, 0, 1), 3.0), 0.0, 0.5 * math.pi)
+        arc_edge = arc.toShape()
+        line_edge = Part.makeLine(V(0, 3 + 3e-8, 0), V(-4, 3, 0))
+        for first, second in ((arc_edge, line_edge), (line_edge, arc_edge)):
+            wire = operations.round_corner(first, second, setback=0.6, p_order=2, q_order=2)
+            self.assertEqual(len(wire.Edges), 3)
+            edges = wire.OrderedEdges
+            for left, right in zip(edges, edges[1:]):
+                self.assertLessEqual(gap(left.valueAt(left.LastParameter),
+                                         right.valueAt(right.FirstParameter)), 1e-9)
+                self.assertLessEqual(gap(left.tangentAt(left.LastParameter),
+                                         right.tangentAt(right.FirstParameter)), 1e-8)
+                self.assertLessEqual(abs(left.curvatureAt(left.LastParameter)
+                                         - right.curvatureAt(right.FirstParameter)), 1e-7)
+            arc_part = [e for e in edges
+                        if abs(e.curvatureAt(0.5 * (e.FirstParameter + e.LastParameter))
+                               - 1 / 3) < 1e-9]
+            self.assertEqual(len(arc_part), 1)
+            for i in range(11):
+                t = arc_part[0].FirstParameter + i / 10 * (arc_part[0].LastParameter
+                                                           - arc_part[0].FirstParameter)
+                self.assertAlmostEqual(arc_part[0].valueAt(t).Length, 3.0, delta=1e-12)
+
+    def test_blend_from_an_arc_end_to_a_line(self):
+        arc = Part.ArcOfCircle(Part.Circle(V(0, 0, 0), V(0, 0, 1), 2.0), 0.3, 1.2).toShape()
+        line = Part.makeLine(V(-1, 4, 0), V(-3, 5, 0))
+        edge = operations.blend_edges(arc, line, p_order=2, q_order=1)
+        # the blend starts at the arc's end with its tangent direction
+        end = arc.valueAt(arc.LastParameter)
+        self.assertLessEqual(gap(edge.valueAt(edge.FirstParameter), end), 1e-12)
+        a = edge.tangentAt(edge.FirstParameter)
+        b = arc.tangentAt(arc.LastParameter)
+        self.assertLessEqual(gap(a, b), 1e-9)
 
     def test_round_corner_with_auto_scale_stays_inside_the_corner(self):
         # Long lines, short setback: scale 1 loops past the corner (2, 0, 0);

@@ -39,8 +39,11 @@ class FindingTheBindings(unittest.TestCase):
 class EdgeConversion(unittest.TestCase):
     def test_unsupported_edge_is_named(self):
         with self.assertRaises(bezjoin.UnsupportedGeometryError) as caught:
-            operations.edge_curve(Part.makeCircle(1.0), "second edge")
-        self.assertTrue(str(caught.exception).startswith("second edge: a Circle"))
+            operations.edge_curve(
+                Part.OffsetCurve(Part.Circle(), 0.5, FreeCAD.Vector(0, 0, 1)).toShape(),
+                "second edge")
+        self.assertTrue(str(caught.exception).startswith("second edge: "), caught.exception)
+        self.assertIn("OffsetCurve", str(caught.exception))
 
     def test_orientation_puts_the_nearest_ends_together(self):
         a = bezier([(0, 0, 0), (1, 1, 0), (2, 0, 0)])

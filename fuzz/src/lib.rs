@@ -180,13 +180,13 @@ pub fn check_and_free(status: BzjStatus, handle: *mut BzjCurve, call: &str) {
     }
     assert!(!handle.is_null(), "{call} succeeded without a handle");
     let mut dim = 0usize;
-    let mut degree = 0usize;
+    let mut poles = 0usize;
     // SAFETY: a live handle from the library; out-pointers are valid.
     unsafe {
         check(bzj_curve_dim(handle, &mut dim), "bzj_curve_dim");
-        check(bzj_curve_degree(handle, &mut degree), "bzj_curve_degree");
+        check(bzj_curve_pole_count(handle, &mut poles), "bzj_curve_pole_count");
         assert!(dim >= 1);
-        let mut points = vec![0.0; (degree + 1) * dim];
+        let mut points = vec![0.0; poles * dim];
         check(
             bzj_curve_points(handle, points.as_mut_ptr(), points.len()),
             "bzj_curve_points",
@@ -325,4 +325,65 @@ pub fn free_all(handles: &[*mut BzjCurve]) {
         // SAFETY: live handles from `curve`/`curve_in`, each released once.
         unsafe { bzj_curve_free(h) };
     }
+}
+
+/// A NURBS curve from the input through `bzj_nurbs_new`: dimension <= 4,
+/// degree 1..=8, `degree + 1 ..= degree + 12` poles; knots mostly a
+/// non-decreasing sequence with repeats (clamped or not), sometimes raw
+/// doubles; weights absent, ordinary positive, or any doubles. `None` when
+/// the library refuses it (the status is checked either way). Free it with
+/// `bzj_curve_free`.
+pub fn nurbs(input: &mut Input) -> Option<*mut BzjCurve> {
+    let dim = 1 + input.below(MAX_DIM);
+    let degree = 1 + input.below(8);
+    let count = degree + 1 + input.below(12);
+    let poles: Vec<f64> = (0..count * dim).map(|_| input.coordinate()).collect();
+    let weights: Vec<f64> = match input.byte() % 4 {
+        0 => Vec::new(),
+        1 => (0..count).map(|_| input.double()).collect(),
+        _ => (0..count).map(|_| 0.1 + input.ordinary().abs() / 10.0).collect(),
+    };
+    let len = count + degree + 1;
+    let knots: Vec<f64> = if input.byte().is_multiple_of(8) {
+        (0..len).map(|_| input.double()).collect()
+    } else {
+        let clamped = input.byte() % 2 == 0;
+        let mut knots = Vec::with_capacity(len);
+        let mut x = input.ordinary();
+        while knots.len() < len {
+            let repeat = if clamped && (knots.is_empty() || knots.len() + degree + 1 >= len) {
+                degree + 1
+            } else {
+                1 + input.below(degree)
+            };
+            for _ in 0..repeat {
+                if knots.len() < len {
+                    knots.push(x);
+                }
+            }
+            x += if input.byte().is_multiple_of(16) {
+                input.double().abs()
+            } else {
+                0.05 + input.ordinary().abs() / 50.0
+            };
+        }
+        knots
+    };
+    let mut out = std::ptr::null_mut();
+    // SAFETY: the arrays are live with the lengths given; `out` is writable.
+    let status = unsafe {
+        bzj_nurbs_new(
+            dim,
+            degree,
+            poles.as_ptr(),
+            poles.len(),
+            if weights.is_empty() { std::ptr::null() } else { weights.as_ptr() },
+            weights.len(),
+            knots.as_ptr(),
+            knots.len(),
+            &mut out,
+        )
+    };
+    check(status, "bzj_nurbs_new");
+    (status == BzjStatus::BZJ_OK).then_some(out)
 }

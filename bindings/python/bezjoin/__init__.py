@@ -27,6 +27,7 @@ from ._fillet import (
     fillet,
     fillet_chain,
     fillet_deviation,
+    fillet_vertex,
     intersect,
     intersect_detailed,
 )
@@ -55,6 +56,7 @@ __all__ = [
     "fillet",
     "fillet_chain",
     "fillet_deviation",
+    "fillet_vertex",
     "find_library",
     "intersect",
     "intersect_detailed",

@@ -63,11 +63,17 @@ def connect(p, u0, q, v0, *, p_order=None, q_order=None, p_scale=1.0, q_scale=1.
     The chain ``P|[0,u0]``, ``R``, ``Q|[v0,1]`` is a C^min(p_order, q_order)
     B-spline with knot intervals ``(u0, p_scale, (1 - v0) p_scale / q_scale)``.
 
+    ``p`` and ``q`` may be Bezier or NURBS curves; ``R`` is a Bezier curve. At
+    a knot of a NURBS curve, P's derivatives are taken from the left of ``u0``
+    and Q's from the right of ``v0``.
+
     Args:
         p, q: :class:`Curve` objects of the same dimension.
-        u0, v0: parameters in ``[0, 1]`` on ``p`` and ``q``.
-        p_order, q_order: continuity orders (default: the curve's degree, as
-            in the paper).
+        u0, v0: parameters in the domains of ``p`` and ``q`` (``[0, 1]`` for a
+            Bezier curve).
+        p_order, q_order: continuity orders, any (above a polynomial's degree
+            its derivatives are 0); default: the curve's degree, as in the
+            paper.
         p_scale, q_scale: shape scales ``alpha, beta > 0`` (1.0 = the paper).
         constraints: ``(t, derivatives)`` pairs: ``R`` passes at ``t`` in
             ``(0, 1)`` with ``R^(k)(t) = derivatives[k]``, ``k = 0..K``.

@@ -44,6 +44,12 @@ register_prototype(
      _curve_out, ctypes.POINTER(ctypes.c_double)],
 )
 register_prototype(
+    "bzj_fillet_vertex",
+    ctypes.c_int32,
+    [CurvePointer, CurvePointer, ctypes.POINTER(FilletOptionsStruct), ctypes.c_double,
+     _curve_out, _curve_out, _curve_out],
+)
+register_prototype(
     "bzj_intersect",
     ctypes.c_int32,
     [CurvePointer, CurvePointer, ctypes.POINTER(ctypes.c_double), ctypes.c_size_t,
@@ -124,6 +130,23 @@ class FilletResult(CurveGroup):
         self.scale = scale
 
 
+def _fillet_options(function, p, q, setback, p_setback, q_setback, p_order, q_order, p_scale,
+                    q_scale):
+    """``BzjFilletOptions`` from the keyword arguments of :func:`fillet`."""
+    if setback is not None:
+        if p_setback is not None or q_setback is not None:
+            raise TypeError("give either setback or p_setback/q_setback, not both")
+        p_setback = q_setback = setback
+    if p_setback is None or q_setback is None:
+        raise TypeError(f"{function} needs setback, or both p_setback and q_setback")
+    p_order = p.degree if p_order is None else index_argument(p_order, "p_order")
+    q_order = q.degree if q_order is None else index_argument(q_order, "q_order")
+    return FilletOptionsStruct(
+        real_argument(p_setback, "p_setback"), real_argument(q_setback, "q_setback"),
+        p_order, q_order, real_argument(p_scale, "p_scale"), real_argument(q_scale, "q_scale"),
+    )
+
+
 def fillet(p, q, *, setback=None, p_setback=None, q_setback=None, p_order=None, q_order=None,
            p_scale=1.0, q_scale=1.0, auto_scale=False):
     """Round the corner "along ``p`` up to the first crossing ``X``, then along ``q``".
@@ -151,18 +174,8 @@ def fillet(p, q, *, setback=None, p_setback=None, q_setback=None, p_order=None, 
             than the curve part, ...
     """
     p_handle, q_handle = handle_of(p, "p"), handle_of(q, "q")
-    if setback is not None:
-        if p_setback is not None or q_setback is not None:
-            raise TypeError("give either setback or p_setback/q_setback, not both")
-        p_setback = q_setback = setback
-    if p_setback is None or q_setback is None:
-        raise TypeError("fillet needs setback, or both p_setback and q_setback")
-    p_order = p.degree if p_order is None else index_argument(p_order, "p_order")
-    q_order = q.degree if q_order is None else index_argument(q_order, "q_order")
-    options = FilletOptionsStruct(
-        real_argument(p_setback, "p_setback"), real_argument(q_setback, "q_setback"),
-        p_order, q_order, real_argument(p_scale, "p_scale"), real_argument(q_scale, "q_scale"),
-    )
+    options = _fillet_options("fillet", p, q, setback, p_setback, q_setback, p_order, q_order,
+                              p_scale, q_scale)
     p_trimmed, blend, q_trimmed = CurvePointer(), CurvePointer(), CurvePointer()
     outputs = (ctypes.byref(p_trimmed), ctypes.byref(blend), ctypes.byref(q_trimmed))
     if auto_scale:
@@ -172,6 +185,32 @@ def fillet(p, q, *, setback=None, p_setback=None, q_setback=None, p_order=None, 
         return FilletResult(Curve._adopt(p_trimmed), Curve._adopt(blend),
                             Curve._adopt(q_trimmed), scale.value)
     library().call("bzj_fillet", p_handle, q_handle, ctypes.byref(options), *outputs)
+    return FilletResult(Curve._adopt(p_trimmed), Curve._adopt(blend), Curve._adopt(q_trimmed))
+
+
+def fillet_vertex(p, q, *, setback=None, p_setback=None, q_setback=None, p_order=None,
+                  q_order=None, p_scale=1.0, q_scale=1.0, gap=1e-7):
+    """Round the corner at the vertex where ``p`` ends and ``q`` starts
+    (``bzj_fillet_vertex``): a wire's or a sketch's vertex, whatever other
+    crossings ``p`` and ``q`` have. ``p``'s last point and ``q``'s first
+    point must lie within ``gap`` (absolute; sketch solvers leave 1e-7 and
+    more). Setbacks are arc lengths back from ``p``'s end and on from
+    ``q``'s start; the other arguments are those of :func:`fillet`. NURBS
+    inputs give NURBS pieces with their own parameters; the blend is a
+    Bezier curve.
+
+    Raises:
+        BezjoinError: ``BZJ_ERR_NO_INTERSECTION`` when the ends are more
+            than ``gap`` apart (the message gives the distance),
+            ``BZJ_ERR_INVALID_ARGUMENT`` for a setback longer than a curve.
+    """
+    p_handle, q_handle = handle_of(p, "p"), handle_of(q, "q")
+    options = _fillet_options("fillet_vertex", p, q, setback, p_setback, q_setback, p_order,
+                              q_order, p_scale, q_scale)
+    p_trimmed, blend, q_trimmed = CurvePointer(), CurvePointer(), CurvePointer()
+    library().call("bzj_fillet_vertex", p_handle, q_handle, ctypes.byref(options),
+                   real_argument(gap, "gap"), ctypes.byref(p_trimmed), ctypes.byref(blend),
+                   ctypes.byref(q_trimmed))
     return FilletResult(Curve._adopt(p_trimmed), Curve._adopt(blend), Curve._adopt(q_trimmed))
 
 

@@ -63,4 +63,4 @@ class LibraryNotFoundError(OSError):
 
 
 class UnsupportedGeometryError(ValueError):
-    """A FreeCAD object that has no exact Bezier form (or a curve with no FreeCAD form)."""
+    """A FreeCAD object that has no exact Bezier or NURBS form (or a curve with no FreeCAD form)."""

@@ -68,8 +68,9 @@ def test_connect_errors():
         expect_error("BZJ_ERR_INVALID_ARGUMENT", lambda: bezjoin.connect(p, 1.5, q, 0.0), "u0")
         expect_error("BZJ_ERR_INVALID_ARGUMENT", lambda: bezjoin.connect(p, 1.0, q, -0.5), "v0")
         expect_error("BZJ_ERR_NON_FINITE", lambda: bezjoin.connect(p, math.nan, q, 0.0), "u0")
-        expect_error("BZJ_ERR_INVALID_ARGUMENT",
-                     lambda: bezjoin.connect(p, 1.0, q, 0.0, p_order=3), "p_order")
+        # An order above the degree is accepted (the contract allows any order).
+        with bezjoin.connect(p, 1.0, q, 0.0, p_order=3) as above:
+            assert above.degree == 3 + 2 + 1
         expect_error("BZJ_ERR_INVALID_ARGUMENT",
                      lambda: bezjoin.connect(p, 1.0, q, 0.0, q_order=-1), "q_order = -1")
         expect_error("BZJ_ERR_INVALID_ARGUMENT",
@@ -129,8 +130,11 @@ def test_auto_scale_is_connect_at_the_best_scale_of_its_bracket(seed, order):
 
 def test_auto_scale_errors():
     with Curve([(0, 0), (1, 1), (2, 0)]) as p, Curve([(3, 0), (4, 1), (5, 0)]) as q:
+        # An order above the degree is accepted (the contract allows any order).
+        with bezjoin.connect_auto_scale(p, 1.0, q, 0.0, p_order=3) as above:
+            assert above.curve.degree == 3 + 2 + 1
         expect_error("BZJ_ERR_INVALID_ARGUMENT",
-                     lambda: bezjoin.connect_auto_scale(p, 1.0, q, 0.0, p_order=3), "p_order")
+                     lambda: bezjoin.connect_auto_scale(p, 1.5, q, 0.0), "u0")
         expect_error("BZJ_ERR_NON_FINITE",
                      lambda: bezjoin.connect_auto_scale(p, math.inf, q, 0.0), "u0")
         with pytest.raises(TypeError, match="q must be a bezjoin.Curve"):

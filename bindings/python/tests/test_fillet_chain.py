@@ -78,8 +78,9 @@ def test_fillet_deviation_errors():
         expect_error("BZJ_ERR_NON_FINITE",
                      lambda: bezjoin.fillet_deviation(p, q, 0.1, setback_ratio=math.nan),
                      "setback_ratio")
-        expect_error("BZJ_ERR_INVALID_ARGUMENT",
-                     lambda: bezjoin.fillet_deviation(p, q, 0.1, q_order=3), "q_order")
+        # An order above the degree is accepted, as for connect.
+        with bezjoin.fillet_deviation(p, q, 0.1, p_order=1, q_order=3) as above:
+            assert above.blend.degree == 1 + 3 + 1
         expect_error("BZJ_ERR_NO_INTERSECTION", lambda: bezjoin.fillet_deviation(p, away, 0.1))
         with pytest.raises(TypeError, match="q must be a bezjoin.Curve"):
             bezjoin.fillet_deviation(p, None, 0.1)

@@ -13,8 +13,9 @@
 //! crossing). The arc meets both curves with the same tangent (G1) but its
 //! curvature `1/r` differs from theirs: the combs show the jump.
 
-use bezjoin_core::BezierCurve;
+use bezjoin_core::{CurveRef, KnotSide};
 
+use crate::check::derivatives;
 use crate::svg::Shape;
 
 /// A solved circular fillet.
@@ -37,8 +38,10 @@ pub struct CircularFillet {
 /// Newton iterations allowed.
 const MAX_ITERATIONS: usize = 60;
 
-fn jet(curve: &BezierCurve, t: f64) -> [[f64; 2]; 3] {
-    let d = curve.eval_derivatives(t, 2);
+/// Point, first and second derivative of a plane curve at `t`, from `side`
+/// at a knot of a NURBS curve.
+fn jet(curve: CurveRef, t: f64, side: KnotSide) -> [[f64; 2]; 3] {
+    let d = derivatives(curve, t, 2, side);
     let dim = curve.dim();
     [
         [d[0], d[1]],
@@ -59,22 +62,25 @@ fn left(v: [f64; 2]) -> [f64; 2] {
 /// The circular fillet tangent to `p` at `p(u0)` and to `q` somewhere after
 /// the crossing `q(v_cross)`, for the corner turning at the crossing
 /// `(u_cross, v_cross)`; `v_guess` is where to start looking on `q`
-/// (bezjoin's own `v0` is a good guess). Plane curves only. `None` if the
-/// curves are not planar, the corner is degenerate, or Newton does not
-/// converge to `1e-10` of the picture's size inside `q`'s parameter range.
-pub fn circular_fillet(
-    p: &BezierCurve,
+/// (bezjoin's own `v0` is a good guess). `p`, `q`: Bezier or NURBS plane
+/// curves, parameters in their domains (P's derivatives from the left of a
+/// knot, Q's from the right). `None` if the curves are not planar, the
+/// corner is degenerate, or Newton does not converge to `1e-10` of the
+/// picture's size inside `q`'s parameter range.
+pub fn circular_fillet<'a, 'b>(
+    p: impl Into<CurveRef<'a>>,
     u0: f64,
-    q: &BezierCurve,
+    q: impl Into<CurveRef<'b>>,
     u_cross: f64,
     v_cross: f64,
     v_guess: f64,
 ) -> Option<CircularFillet> {
+    let (p, q) = (p.into(), q.into());
     if p.dim() != 2 || q.dim() != 2 {
         return None;
     }
-    let tp = unit(jet(p, u_cross)[1]);
-    let tq = unit(jet(q, v_cross)[1]);
+    let tp = unit(jet(p, u_cross, KnotSide::Left)[1]);
+    let tq = unit(jet(q, v_cross, KnotSide::Right)[1]);
     let cross = tp[0] * tq[1] - tp[1] * tq[0];
     let dot = tp[0] * tq[0] + tp[1] * tq[1];
     let turning = cross.atan2(dot).abs();
@@ -82,15 +88,18 @@ pub fn circular_fillet(
         return None;
     }
     let side = cross.signum();
-    let [start, d1p, _] = jet(p, u0);
+    let [start, d1p, _] = jet(p, u0, KnotSide::Left);
     let n_p = left(unit(d1p));
-    let setback = p.arc_length_default(u0, u_cross).ok()?;
+    let setback = p
+        .arc_length(u0, u_cross, p.default_length_accuracy())
+        .ok()?;
+    let q_last = q.domain().1;
     let mut radius = setback / (turning / 2.0).tan();
     let mut v = v_guess;
     let size = p.coordinate_scale().max(q.coordinate_scale());
     let mut residual = f64::INFINITY;
     for _ in 0..MAX_ITERATIONS {
-        let [qv, d1, d2] = jet(q, v);
+        let [qv, d1, d2] = jet(q, v, KnotSide::Right);
         let speed = d1[0].hypot(d1[1]);
         let t = [d1[0] / speed, d1[1] / speed];
         let n_q = left(t);
@@ -121,7 +130,7 @@ pub fn circular_fillet(
         }
         let delta_v = (f[0] * jr[1] - f[1] * jr[0]) / det;
         let delta_r = (jv[0] * f[1] - jv[1] * f[0]) / det;
-        v = (v - delta_v).clamp(v_cross, 1.0);
+        v = (v - delta_v).clamp(v_cross, q_last);
         radius -= delta_r;
         if !(radius > 0.0 && radius.is_finite()) {
             return None;
@@ -162,6 +171,7 @@ pub fn circular_fillet(
 mod circular_fillet_tests {
     use super::*;
     use crate::svg::signed_curvature;
+    use bezjoin_core::BezierCurve;
 
     #[test]
     fn fillet_of_a_right_angle_between_lines_is_the_textbook_one() {

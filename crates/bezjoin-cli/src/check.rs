@@ -1,18 +1,22 @@
 //! Independent continuity checks of the tool's results.
 //!
 //! The library reports its own residuals; the tool re-measures continuity
-//! from the returned control points, by evaluating the derivatives on both
-//! sides of every join in the chain's global parameter
-//! ([`bezjoin_core::join_jumps`]), and prints both.
+//! from the returned curves, by evaluating the derivatives on both sides of
+//! every join (the left piece's from the left of its last parameter, the
+//! right piece's from the right of its first, so a knot of a NURBS piece is
+//! read from the side that meets the join) in the chain's global parameter,
+//! and prints both.
 
-use bezjoin_core::BezierCurve;
 pub use bezjoin_core::distance;
-use bezjoin_core::{join_jumps, relative_jump};
+use bezjoin_core::{CurveRef, KnotSide};
 use serde_json::{Value, json};
 
 /// Relative derivative jump up to which a join counts as continuous of that
 /// order when the tool states a *measured* continuity order.
 pub const CONTINUITY_TOLERANCE: f64 = 1e-9;
+
+/// Samples per piece for [`reference_sizes`].
+const REFERENCE_SAMPLES: usize = 16;
 
 /// The measured continuity at one join of a chain.
 #[derive(Debug, Clone)]
@@ -21,51 +25,95 @@ pub struct JoinCheck {
     pub name: String,
     /// The order the operation promises (derivatives `0..=promised_order`).
     pub promised_order: usize,
-    /// Relative jumps of derivatives `0..=min(degrees)` across the join.
+    /// Relative jumps of derivatives `0..` across the join: `|L^(k) -
+    /// R^(k)|` over the largest of `|L^(k)|`, `|R^(k)|` and the reference
+    /// size of order `k` ([`reference_sizes`]), in the global parameter.
     pub relative_jumps: Vec<f64>,
 }
 
+/// One side of a join: derivative rows `0..` (flat row-major, `dim` values
+/// per row, in the piece's own parameter) and `rate`, the piece's knot
+/// interval per unit of its own parameter (row `k` is divided by
+/// `rate^k` to read it in the chain's global parameter).
+#[derive(Debug, Clone, Copy)]
+pub struct Side<'a> {
+    /// Derivative rows at the join.
+    pub derivatives: &'a [f64],
+    /// Knot interval per unit of the piece's parameter.
+    pub rate: f64,
+}
+
 impl JoinCheck {
-    /// Measure the join of `left` (global parameter interval `left_interval`)
-    /// and `right` (interval `right_interval`).
-    pub fn measure(
+    /// Measure the join of `left` (its last parameter, derivatives from the
+    /// left) and `right` (its first, from the right), Bezier or NURBS
+    /// pieces, read in a global parameter where `left` spans an interval of
+    /// length `left_interval` and `right` one of `right_interval`: the
+    /// `k`-th derivative of a piece with domain length `L` spanning `h` is
+    /// divided by `(h / L)^k`. Orders `0..=max(promised, min(degrees))` are
+    /// measured, relative to the sizes of both pieces' derivatives.
+    pub fn measure<'a, 'b>(
         name: impl Into<String>,
-        left: &BezierCurve,
+        left: impl Into<CurveRef<'a>>,
         left_interval: f64,
-        right: &BezierCurve,
+        right: impl Into<CurveRef<'b>>,
         right_interval: f64,
         promised_order: usize,
     ) -> Self {
-        let max_order = left.degree().min(right.degree());
-        JoinCheck {
-            name: name.into(),
+        let (left, right) = (left.into(), right.into());
+        let orders = promised_order.max(left.degree().min(right.degree()));
+        let (l0, l1) = left.domain();
+        let (r0, r1) = right.domain();
+        let (left_rate, right_rate) = (left_interval / (l1 - l0), right_interval / (r1 - r0));
+        JoinCheck::from_derivatives(
+            name,
+            left.dim(),
+            Side {
+                derivatives: &derivatives(left, l1, orders, KnotSide::Left),
+                rate: left_rate,
+            },
+            Side {
+                derivatives: &derivatives(right, r0, orders, KnotSide::Right),
+                rate: right_rate,
+            },
+            &reference_sizes(&[(left, left_rate), (right, right_rate)], orders),
             promised_order,
-            relative_jumps: join_jumps(left, left_interval, right, right_interval, max_order),
-        }
+        )
     }
 
-    /// Measure a join from the derivative rows of both sides (flat
-    /// row-major, `dim` values per row as [`BezierCurve::eval_derivatives`]
-    /// returns them; row `k` = `k`-th derivative in each side's own
-    /// parameter), each side read in a global parameter where it spans
-    /// `*_interval`.
+    /// Measure a join from the derivative rows of both sides; `reference[k]`
+    /// (in the global parameter; missing entries count as 0) is the size
+    /// below which a `k`-th derivative counts as small: a derivative that
+    /// vanishes on both sides (a line's second) then measures its rounding
+    /// error relative to the pieces, not a relative jump of 1.
     pub fn from_derivatives(
         name: impl Into<String>,
         dim: usize,
-        left: &[f64],
-        left_interval: f64,
-        right: &[f64],
-        right_interval: f64,
+        left: Side,
+        right: Side,
+        reference: &[f64],
         promised_order: usize,
     ) -> Self {
-        let orders = (left.len() / dim).min(right.len() / dim);
+        let orders = (left.derivatives.len() / dim).min(right.derivatives.len() / dim);
         let relative_jumps = (0..orders)
             .map(|k| {
-                let sl = left_interval.powi(k as i32);
-                let sr = right_interval.powi(k as i32);
-                let a: Vec<f64> = row(left, dim, k).iter().map(|v| v / sl).collect();
-                let b: Vec<f64> = row(right, dim, k).iter().map(|v| v / sr).collect();
-                relative_jump(&a, &b)
+                let sl = left.rate.powi(k as i32);
+                let sr = right.rate.powi(k as i32);
+                let a: Vec<f64> = row(left.derivatives, dim, k)
+                    .iter()
+                    .map(|v| v / sl)
+                    .collect();
+                let b: Vec<f64> = row(right.derivatives, dim, k)
+                    .iter()
+                    .map(|v| v / sr)
+                    .collect();
+                let size = norm(&a)
+                    .max(norm(&b))
+                    .max(reference.get(k).copied().unwrap_or(0.0));
+                if size == 0.0 {
+                    0.0
+                } else {
+                    distance(&a, &b) / size
+                }
             })
             .collect();
         JoinCheck {
@@ -134,18 +182,78 @@ pub fn row(values: &[f64], dim: usize, k: usize) -> &[f64] {
     &values[k * dim..(k + 1) * dim]
 }
 
-/// A curve as JSON: `{"degree", "dim", "points": [[...], ...]}`.
-pub fn curve_json(curve: &BezierCurve) -> Value {
-    json!({
-        "degree": curve.degree(),
-        "dim": curve.dim(),
-        "points": (0..curve.point_count()).map(|i| curve.point(i).to_vec()).collect::<Vec<_>>(),
-    })
+/// Reference sizes of the derivatives `0..=orders` at a join of `pieces`
+/// (each with its knot interval per unit of its own parameter, as
+/// [`Side::rate`]): entry `k` is the largest norm of a `k`-th derivative,
+/// in the global parameter, sampled at `REFERENCE_SAMPLES + 1` parameters
+/// of each piece.
+pub fn reference_sizes(pieces: &[(CurveRef, f64)], orders: usize) -> Vec<f64> {
+    let mut sizes = vec![0.0f64; orders + 1];
+    for &(curve, rate) in pieces {
+        let (a, b) = curve.domain();
+        let dim = curve.dim();
+        for i in 0..=REFERENCE_SAMPLES {
+            let u = a + (b - a) * i as f64 / REFERENCE_SAMPLES as f64;
+            let side = if i == REFERENCE_SAMPLES {
+                KnotSide::Left
+            } else {
+                KnotSide::Right
+            };
+            let d = derivatives(curve, u, orders, side);
+            for (k, size) in sizes.iter_mut().enumerate() {
+                let n = norm(row(&d, dim, k)) / rate.powi(k as i32);
+                if n.is_finite() {
+                    *size = size.max(n);
+                }
+            }
+        }
+    }
+    sizes
+}
+
+/// Euclidean norm.
+fn norm(v: &[f64]) -> f64 {
+    v.iter().map(|x| x * x).sum::<f64>().sqrt()
+}
+
+/// Value and derivatives `0..=order` of `curve` at `u` (row-major, `dim`
+/// values per row), from `side` at a knot of a NURBS curve.
+pub fn derivatives(curve: CurveRef, u: f64, order: usize, side: KnotSide) -> Vec<f64> {
+    match curve {
+        CurveRef::Bezier(c) => c.eval_derivatives(u, order),
+        CurveRef::Nurbs(c) => c.eval_derivatives_side(u, order, side),
+    }
+}
+
+/// A curve as JSON, in the form jobs accept back: a Bezier curve as
+/// `{"degree", "dim", "points": [[...], ...]}`, a NURBS curve as
+/// `{"degree", "dim", "poles": [[...], ...], "knots": [flat], "weights":
+/// [one per pole, 1 when polynomial], "domain": [first, last]}`.
+pub fn curve_json<'a>(curve: impl Into<CurveRef<'a>>) -> Value {
+    match curve.into() {
+        CurveRef::Bezier(c) => json!({
+            "degree": c.degree(),
+            "dim": c.dim(),
+            "points": (0..c.point_count()).map(|i| c.point(i).to_vec()).collect::<Vec<_>>(),
+        }),
+        CurveRef::Nurbs(c) => {
+            let (first, last) = c.domain();
+            json!({
+                "degree": c.degree(),
+                "dim": c.dim(),
+                "poles": (0..c.point_count()).map(|i| c.point(i).to_vec()).collect::<Vec<_>>(),
+                "knots": c.knots(),
+                "weights": (0..c.point_count()).map(|i| c.weight(i)).collect::<Vec<_>>(),
+                "domain": [first, last],
+            })
+        }
+    }
 }
 
 #[cfg(test)]
 mod join_check_tests {
     use super::*;
+    use bezjoin_core::{BezierCurve, NurbsCurve, ellipse_arc};
 
     #[test]
     fn split_halves_measure_full_continuity_and_a_kink_does_not() {
@@ -158,5 +266,36 @@ mod join_check_tests {
         let check = JoinCheck::measure("a|b", &a, 0.5, &b, 0.5, 3);
         assert_eq!(check.measured_order(), Some(0));
         assert!(check.worst_promised() > 0.1);
+    }
+
+    #[test]
+    fn nurbs_pieces_are_measured_from_the_side_of_the_join() {
+        // A circle split at a knot: both halves keep the original
+        // parameters, so with intervals equal to their domain lengths the
+        // join is C-infinity; a line after it is only G1 and C1 at best.
+        let circle =
+            ellipse_arc(2, &[0.0, 0.0], &[1.0, 0.0], &[0.0, 1.0], 2.0, 2.0, 0.0, 3.0).unwrap();
+        let (a, b) = circle.split_at(1.2).unwrap();
+        let check = JoinCheck::measure("a|b", &a, 1.2, &b, 1.8, 4);
+        assert_eq!(check.measured_order(), Some(4), "{check:?}");
+        let end = circle.eval_derivatives(3.0, 1);
+        let line = NurbsCurve::from_bezier(
+            &BezierCurve::new(2, 1, vec![end[0], end[1], end[0] + end[2], end[1] + end[3]])
+                .unwrap(),
+        );
+        let check = JoinCheck::measure("b|line", &b, 1.8, &line, 1.0, 2);
+        assert_eq!(check.measured_order(), Some(1), "{check:?}");
+    }
+
+    #[test]
+    fn nurbs_json_gives_poles_knots_weights_and_domain() {
+        let arc =
+            ellipse_arc(2, &[0.0, 0.0], &[1.0, 0.0], &[0.0, 1.0], 1.0, 1.0, 0.0, 1.0).unwrap();
+        let v = curve_json(&arc);
+        assert_eq!(v["degree"], 2);
+        assert_eq!(v["poles"].as_array().unwrap().len(), 3);
+        assert_eq!(v["knots"].as_array().unwrap().len(), 6);
+        assert_eq!(v["weights"].as_array().unwrap().len(), 3);
+        assert_eq!(v["domain"], json!([0.0, 1.0]));
     }
 }

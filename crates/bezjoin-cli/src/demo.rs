@@ -119,9 +119,11 @@ pub fn summary_table(ran: &[Ran]) -> String {
     }
     let _ = writeln!(
         s,
-        "\nworst continuity residual: largest relative jump |left^(j) - right^(j)| / max(|left^(j)|, |right^(j)|),\n\
-         j = 0..k for the promised C^k, measured by the tool from the returned control points at every join,\n\
-         in the chain's global parameter (for merges: between P^ and Q^ at R(mu), k = degree)."
+        "\nworst continuity residual: largest relative jump |left^(j) - right^(j)| / max(|left^(j)|, |right^(j)|, s_j),\n\
+         j = 0..k for the promised C^k, measured by the tool from the returned curves at every join (the piece\n\
+         before it from the left, the piece after it from the right, also at NURBS knots), in the chain's global\n\
+         parameter; s_j = largest |j-th derivative| sampled on the two pieces, so a derivative that vanishes on\n\
+         both sides (a line's second) is not a jump (for merges: between P^ and Q^ at R(mu), k = degree)."
     );
     s
 }

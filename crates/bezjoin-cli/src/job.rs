@@ -5,13 +5,15 @@
 //! readers here walk that value and report every problem with the JSON path
 //! of the offending field (`p[2][1]`, `constraints[0].t`) and the reason.
 //! Unknown fields are errors too, so a typo (`p_ordr`) is never silently
-//! ignored.
+//! ignored. Curves (Bezier, NURBS, arcs) are read by [`Located::curve`]
+//! (module `curves`).
 
 use std::collections::BTreeSet;
 use std::fmt;
 
-use bezjoin_core::BezierCurve;
 use serde_json::{Map, Value};
+
+mod curves;
 
 /// A problem with the job: where (JSON path, or the source for syntax errors)
 /// and why.
@@ -242,36 +244,9 @@ impl<'a> Located<'a> {
         Ok(out)
     }
 
-    /// A Bezier curve: an array of control points (degree = count - 1), or
-    /// an object `{"points": [...]}` as the tool writes it (its `degree` and
-    /// `dim`, if present, are checked).
-    pub fn curve(&self) -> JobResult<BezierCurve> {
-        let points_field;
-        let (points_at, degree, dim) = match self.value {
-            Value::Object(_) => {
-                let obj = self.object()?;
-                let degree = obj.optional("degree").map(|d| d.count()).transpose()?;
-                let dim = obj.optional("dim").map(|d| d.count()).transpose()?;
-                points_field = obj.required("points")?;
-                obj.finish()?;
-                (&points_field, degree, dim)
-            }
-            _ => (self, None, None),
-        };
-        let rows = points_at.points(dim)?;
-        if rows.is_empty() {
-            return Err(points_at.error("a curve needs at least one control point"));
-        }
-        if let Some(d) = degree {
-            if d + 1 != rows.len() {
-                return Err(points_at.error(format!(
-                    "has {} control points, but degree {d} needs {}",
-                    rows.len(),
-                    d + 1
-                )));
-            }
-        }
-        BezierCurve::from_rows(&rows).map_err(|e| points_at.error(e.to_string()))
+    /// An array of finite numbers (a knot vector, a domain).
+    pub fn numbers(&self) -> JobResult<Vec<f64>> {
+        self.array()?.iter().map(Located::number).collect()
     }
 
     /// An object whose fields are read one by one; call

@@ -4,9 +4,10 @@
 //! Every subcommand reads one JSON job, calls `bezjoin_core` directly, and
 //! returns an [`Outcome`]: the JSON result, a [`svg::Figure`] and a one-line
 //! [`Summary`] (what the demo's table prints). The job formats are
-//! documented per subcommand in `crates/bezjoin-cli/README-connect.md`,
-//! `README-fillet.md` (fillet and intersect), `README-merge.md` and
-//! `README-spline.md`, with an example job each in `examples/`.
+//! documented per subcommand in `crates/bezjoin-cli/README-connect.md`
+//! (which also describes the curve forms: Bezier, NURBS, arc),
+//! `README-fillet.md` (fillet, fillet-chain and intersect), `README-merge.md`
+//! and `README-spline.md`, with example jobs in `examples/`.
 //!
 //! Exit codes of the `bezjoin` binary: 0 success; 1 a file or standard
 //! input/output could not be read or written; 2 the job is invalid (not

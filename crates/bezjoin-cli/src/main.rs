@@ -1,4 +1,4 @@
-//! `bezjoin`: smooth joins of Bezier curves from the command line.
+//! `bezjoin`: smooth joins of Bezier and NURBS curves from the command line.
 
 use std::io::Read as _;
 use std::path::{Path, PathBuf};
@@ -7,7 +7,7 @@ use std::process::ExitCode;
 use bezjoin_cli::{CliError, demo, job, ops};
 use clap::{Parser, Subcommand};
 
-/// Smooth joins of Bezier curves: JSON jobs in, JSON results and SVG pictures
+/// Smooth joins of Bezier and NURBS curves: JSON jobs in, JSON results and SVG pictures
 /// (with curvature combs) out.
 #[derive(Parser)]
 #[command(

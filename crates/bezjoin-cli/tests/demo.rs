@@ -27,14 +27,16 @@ fn listed_scenarios(index: &str) -> Vec<String> {
 }
 
 /// The demo's scenarios: connections without and with interior constraints,
-/// symmetric and asymmetric corner rounding, merges with each metric and
+/// symmetric and asymmetric corner rounding, a wire of an arc, a line and a
+/// rational B-spline with every vertex rounded, merges with each metric and
 /// each constraint kind, Lagrange splines, and an intersection.
-const SCENARIOS: [&str; 14] = [
+const SCENARIOS: [&str; 15] = [
     "connect-plain",
     "connect-constrained",
     "connect-auto-scale",
     "fillet-symmetric-c2",
     "fillet-asymmetric-c3",
+    "fillet-chain-arc-line-nurbs",
     "merge-discrete",
     "merge-integral-optimal",
     "merge-keep-p",
@@ -159,6 +161,58 @@ fn assert_circular_arc_reference(name: &str, svg: &str) {
     );
 }
 
+/// The wire scenario (issue 16): its job has an arc, a line and a rational
+/// B-spline; its result has five pieces (three trimmed curves, the arc and
+/// the B-spline still NURBS with their weights, and two blends), every one
+/// of the four joins measured C3 at least; its summary row reports that
+/// continuity; its picture draws the NURBS curves and a curvature comb on
+/// every kept piece and blend, and names the measured orders.
+fn assert_nurbs_wire_scenario(table: &str, out: &Path) {
+    let name = "fillet-chain-arc-line-nurbs";
+    let job = read_json(&out.join(format!("{name}.job.json")));
+    let curves = job["curves"].as_array().expect("a wire of curves");
+    assert!(curves[0].get("arc").is_some(), "first curve is an arc");
+    assert!(curves[1].is_array(), "second curve is a line");
+    let weights = curves[2]["weights"]
+        .as_array()
+        .expect("a rational B-spline");
+    assert!(weights.iter().any(|w| w.as_f64() != Some(1.0)));
+    let result = read_json(&out.join(format!("{name}.result.json")));
+    let pieces = result["pieces"].as_array().unwrap();
+    assert_eq!(pieces.len(), 5);
+    for i in [0, 4] {
+        assert!(pieces[i]["knots"].is_array() && pieces[i]["weights"].is_array());
+    }
+    let joins = result["report"]["measured_continuity"].as_array().unwrap();
+    assert_eq!(joins.len(), 4, "two joins per corner");
+    let mut worst: f64 = 0.0;
+    for j in joins {
+        assert!(j["measured_order"].as_u64().unwrap() >= 3, "{j}");
+        worst = worst.max(j["worst_promised_jump"].as_f64().unwrap());
+    }
+    assert!(worst < 1e-9, "{worst}");
+    let row = table
+        .lines()
+        .find(|l| l.starts_with(name))
+        .expect("a summary row");
+    let printed: f64 = row.split_whitespace().nth(2).unwrap().parse().unwrap();
+    assert!(printed < 1e-9 && (printed - worst).abs() <= 0.01 * worst.max(1e-300));
+    let svg = std::fs::read_to_string(out.join(format!("{name}.svg"))).unwrap();
+    for label in [
+        "curve 0, NURBS of degree 2, rational",
+        "curve 2, NURBS of degree 3, rational, 2 spans",
+        "blend 0, degree 7 (C3 | C3)",
+        "blend 1, degree 7 (C3 | C3)",
+        "blend 1|curve 2: C3 promised, C3 measured",
+    ] {
+        assert!(svg.contains(label), "{name}.svg lacks {label:?}");
+    }
+    let combs = &svg[svg.find("<g id=\"combs\"").unwrap()..];
+    let combs = &combs[..combs.find("</g>").unwrap()];
+    // Five kept pieces and blends carry combs; the "as given" curves do not.
+    assert_eq!(combs.matches("<polyline ").count(), 5);
+}
+
 fn out_dir() -> PathBuf {
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("demo-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
@@ -223,10 +277,14 @@ fn demo_writes_every_listed_scenario() {
     assert_eq!(names, SCENARIOS, "the scenarios index.html lists");
     let table = String::from_utf8_lossy(&run.stdout);
     assert_summary_table(&table, &out);
-    for name in names.iter().filter(|n| n.starts_with("fillet")) {
-        let svg = std::fs::read_to_string(out.join(format!("{name}.svg"))).unwrap();
-        assert_circular_arc_reference(name, &svg);
+    for name in names.iter().filter(|n| n.starts_with("fillet-")) {
+        let result = read_json(&out.join(format!("{name}.result.json")));
+        if result["operation"] == "fillet" {
+            let svg = std::fs::read_to_string(out.join(format!("{name}.svg"))).unwrap();
+            assert_circular_arc_reference(name, &svg);
+        }
     }
+    assert_nurbs_wire_scenario(&table, &out);
     for name in &names {
         assert!(
             table.contains(name.as_str()),

@@ -350,9 +350,11 @@ fn bad_jobs_exit_2_naming_the_field() {
         &format!("{{{lines}, \"p_setback\": 5}}"),
         "p_setback",
     );
+    // Orders may exceed the degree (a line's higher derivatives are 0),
+    // but must be non-negative integers.
     assert_exit_2_naming(
         "fillet",
-        &format!("{{{lines}, \"p_setback\": 0.2, \"p_order\": 4}}"),
+        &format!("{{{lines}, \"p_setback\": 0.2, \"p_order\": 1.5}}"),
         "p_order",
     );
     assert_exit_2_naming(

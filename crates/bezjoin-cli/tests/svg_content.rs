@@ -598,3 +598,87 @@ fn the_picture_readers_reject_what_they_must_not_find() {
         std::panic::catch_unwind(|| assert_join_markers(&svg, &map, &[r[0], elsewhere])).is_err()
     );
 }
+
+/// NURBS curves are drawn from their own points and derivatives: in the
+/// fillet of `examples/fillet-vertex-nurbs.json`, an exact circular arc
+/// (the job's `"arc"` form: centre (3, 0), radius 3, a rational quadratic
+/// NURBS) and a rational cubic B-spline, the kept part of the arc
+/// is drawn on the circle (centre and radius mapped by the picture's map),
+/// its comb spikes all have one length (constant curvature) and lie on
+/// lines through the centre, the B-spline's poles are its polygon's
+/// squares, and every kept piece and the blend carry a comb.
+#[test]
+fn nurbs_curves_are_drawn_with_polygons_and_combs() {
+    let job = read_json(&example("fillet-vertex-nurbs.json"));
+    let (result, svg) = run("fillet", &job);
+    assert!(result["p_trimmed"]["knots"].is_array() && result["q_trimmed"]["weights"].is_array());
+    let r = control_points(&result["blend"]);
+    let map = assert_result_polygons(
+        &svg,
+        std::slice::from_ref(&r),
+        &result_stroke(&svg, "blend R"),
+    );
+    let curves = drawn_curves(&svg);
+    let labelled = |start: &str| {
+        curves
+            .iter()
+            .find(|c| c.label.starts_with(start))
+            .unwrap_or_else(|| panic!("no curve labelled {start:?}"))
+    };
+    labelled("P, NURBS of degree 2, rational, 2 spans, as given");
+    labelled("Q, NURBS of degree 3, rational, 2 spans, as given");
+    let arc = labelled("P on [");
+    let centre = map.apply([3.0, 0.0]);
+    let radius = 3.0 * map.s;
+    for &p in &arc.points {
+        assert!(
+            (dist(p, centre) - radius).abs() < PX,
+            "a drawn point of the arc is off its circle"
+        );
+    }
+    // The arc's comb: the spike path whose bases lie on the arc.
+    let combs = group(&svg, "combs");
+    let comb = tags(combs, "path")
+        .into_iter()
+        .map(spikes)
+        .find(|s| {
+            s.iter()
+                .all(|&(b, _)| distance_to_polyline(b, &arc.points) < PX)
+        })
+        .expect("the arc has a comb");
+    let length = dist(comb[0].0, comb[0].1);
+    assert!(length > 3.0, "a visible comb");
+    for &(base, tip) in &comb {
+        assert!(
+            (dist(base, tip) - length).abs() < 2.0 * PX,
+            "constant curvature"
+        );
+        // On the line through the centre: base, tip and centre collinear.
+        let cross =
+            (tip[0] - base[0]) * (centre[1] - base[1]) - (tip[1] - base[1]) * (centre[0] - base[0]);
+        assert!(cross.abs() / (length * radius) < 0.01, "spike not radial");
+        // Away from the centre of curvature.
+        assert!(dist(tip, centre) > dist(base, centre));
+    }
+    // The B-spline's poles are drawn as its polygon's squares.
+    let squares: Vec<Pt> = tags(group(&svg, "polygons"), "rect")
+        .into_iter()
+        .map(|t| {
+            [
+                number(attr(t, "x").unwrap()) + 2.5,
+                number(attr(t, "y").unwrap()) + 2.5,
+            ]
+        })
+        .collect();
+    for pole in job["q"]["poles"].as_array().unwrap() {
+        let at = map.apply([pole[0].as_f64().unwrap(), pole[1].as_f64().unwrap()]);
+        assert!(
+            squares.iter().any(|&s| dist(s, at) < PX),
+            "pole {pole} has no square"
+        );
+    }
+    // Kept arc, kept B-spline, blend: each has a comb; the blend and both
+    // kept parts bend.
+    assert!(assert_combs(&svg, &["P on [", "Q on [", "blend R"]) >= 3);
+    assert_join_markers(&svg, &map, &[r[0], *r.last().unwrap()]);
+}

@@ -1,7 +1,7 @@
 //! Connect two curves with C^k continuity and interior constraints
 //! (mathematics.md, section 1; `bezjoin_core::connect`).
 
-use bezjoin_core::BezjoinError;
+use bezjoin_core::{BezjoinError, Curve};
 use bezjoin_core::{ConnectOptions, PointConstraint, check_connect_degree, connect};
 
 use crate::guard::guard;
@@ -25,9 +25,10 @@ pub struct BzjPointConstraint {
 #[repr(C)]
 #[derive(Debug, Clone, Copy)]
 pub struct BzjConnectOptions {
-    /// kp <= degree of P.
+    /// kp: derivatives 0..kp of P are matched (any order; above P's degree
+    /// they are those of P's polynomial or rational form).
     pub p_order: usize,
-    /// kq <= degree of Q.
+    /// kq: derivatives 0..kq of Q are matched (any order).
     pub q_order: usize,
     /// alpha > 0; 1.0 = the paper.
     pub p_scale: f64,
@@ -85,11 +86,19 @@ unsafe fn read_options(options: &BzjConnectOptions, dim: usize) -> FfiResult<Con
 /// to a relative residual of 1e-8 (definition in the Rust documentation of
 /// `bezjoin_core::connect`), or the call fails with BZJ_ERR_ILL_CONDITIONED.
 ///
+/// `p` and `q` may each be a Bezier or a NURBS handle: `u0` lies in P's
+/// domain and `v0` in Q's (`[0, 1]` for a Bezier, `bzj_curve_domain`); the
+/// orders `kp`, `kq` may exceed the degrees (a polynomial's higher
+/// derivatives are 0, a rational curve's are not). At a knot of a NURBS
+/// curve P's derivatives are taken from the left of `u0` (the side P
+/// arrives from) and Q's from the right of `v0` (the side Q leaves to). The
+/// result is always a Bezier handle.
+///
 /// @return BZJ_ERR_NULL_POINTER if `p`, `q`, `options`, `out`, a
 ///         non-empty `options->constraints` or a constraint's `values` is NULL;
-///         BZJ_ERR_INVALID_ARGUMENT if `u0` or `v0` is outside [0,1], an order
-///         is above its curve's degree, a scale is not > 0, a constraint's `t`
-///         is outside (0,1) or repeated;
+///         BZJ_ERR_INVALID_ARGUMENT if `u0` is outside P's domain or `v0`
+///         outside Q's, a scale is not > 0, a constraint's `t` is outside
+///         (0,1) or repeated;
 ///         BZJ_ERR_NON_FINITE if `u0`, `v0`, a scale, a `t` or a value is NaN or infinite;
 ///         BZJ_ERR_DIMENSION_MISMATCH if `p` and `q` have different dimensions;
 ///         BZJ_ERR_SINGULAR if the interior system is numerically singular;
@@ -168,11 +177,7 @@ unsafe fn read_inputs<'a>(
     p: *const BzjCurve,
     q: *const BzjCurve,
     options: *const BzjConnectOptions,
-) -> FfiResult<(
-    &'a bezjoin_core::BezierCurve,
-    &'a bezjoin_core::BezierCurve,
-    ConnectOptions,
-)> {
+) -> FfiResult<(&'a Curve, &'a Curve, ConnectOptions)> {
     // SAFETY: caller contract.
     let p = unsafe { curve_ref(p, "p") }?;
     // SAFETY: caller contract.

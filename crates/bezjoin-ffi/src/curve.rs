@@ -1,7 +1,10 @@
 //! Curve handles: create, inspect, evaluate, and the exact operations.
+//!
+//! Every function here takes Bezier and NURBS handles (`nurbs.rs` makes the
+//! latter). A Bezier handle keeps its exact behaviour; a NURBS handle works
+//! in its own parameters, on its domain `[first, last]`.
 
-use bezjoin_core::BezierCurve;
-use bezjoin_core::BezjoinError;
+use bezjoin_core::{BezierCurve, BezjoinError, Curve, MAX_DEGREE, NurbsCurve};
 
 use crate::guard::{guard, guard_release};
 use crate::handles::{BzjCurve, HandleOut, require_all};
@@ -60,7 +63,7 @@ pub unsafe extern "C" fn bzj_curve_free(curve: *mut BzjCurve) {
     });
 }
 
-/// The degree of `c`.
+/// The degree of `c` (Bezier or NURBS).
 ///
 /// @return BZJ_ERR_NULL_POINTER if `c` or `out` is NULL.
 ///
@@ -78,7 +81,7 @@ pub unsafe extern "C" fn bzj_curve_degree(c: *const BzjCurve, out: *mut usize) -
     })
 }
 
-/// The dimension of `c`.
+/// The dimension of `c` (Bezier or NURBS).
 ///
 /// @return BZJ_ERR_NULL_POINTER if `c` or `out` is NULL.
 ///
@@ -96,11 +99,14 @@ pub unsafe extern "C" fn bzj_curve_dim(c: *const BzjCurve, out: *mut usize) -> B
     })
 }
 
-/// Copy the `(degree + 1) * dim` row-major control points of `c` into `out`.
+/// Copy the `(degree + 1) * dim` row-major control points of `c` into `out`;
+/// for a NURBS handle its `pole_count * dim` poles (Cartesian, not
+/// multiplied by the weights; `bzj_curve_pole_count`, `bzj_curve_weights`).
 ///
 /// @return BZJ_ERR_NULL_POINTER if `c` or `out` is NULL;
 ///         BZJ_ERR_INVALID_ARGUMENT if `out_len` is larger than any array can be;
-///         BZJ_ERR_BUFFER_TOO_SMALL if `out_len < (degree + 1) * dim` (nothing written).
+///         BZJ_ERR_BUFFER_TOO_SMALL if `out_len` is below the number of
+///         coordinates (nothing written).
 ///
 /// # Safety
 /// `c` is NULL or a live handle; `out` points to `out_len` writable doubles.
@@ -120,14 +126,20 @@ pub unsafe extern "C" fn bzj_curve_points(
     })
 }
 
-/// Value and derivatives `0..=max_order` of `c` at `t` (any finite `t`;
-/// outside `[0, 1]` the polynomial is continued), written row-major: row `k`
-/// (`dim` doubles) is the k-th derivative; `(max_order + 1) * dim` doubles.
+/// Value and derivatives `0..=max_order` of `c` at `t`, written row-major:
+/// row `k` (`dim` doubles) is the k-th derivative; `(max_order + 1) * dim`
+/// doubles. Any `max_order` (above the degree a polynomial's derivatives
+/// are 0). A Bezier handle takes any finite `t` (outside `[0, 1]` the
+/// polynomial is continued). A NURBS handle takes `t` in its domain
+/// `[first, last]` only; at an interior knot the derivatives are those of
+/// the span on the right of `t`, at `last` those of the last span.
 ///
 /// @return BZJ_ERR_NULL_POINTER if `c` or `out` is NULL;
-///         BZJ_ERR_NON_FINITE if `t` is NaN or infinite;
-///         BZJ_ERR_INVALID_ARGUMENT if `(max_order + 1) * dim` overflows
-///         `size_t` or `out_len` is larger than any array can be;
+///         BZJ_ERR_NON_FINITE if `t` is NaN or infinite, or (NURBS) a derivative
+///         overflows `double` (extreme knot spacing; the message names its order);
+///         BZJ_ERR_INVALID_ARGUMENT if `t` is outside a NURBS handle's
+///         domain, `(max_order + 1) * dim` overflows `size_t` or `out_len`
+///         is larger than any array can be;
 ///         BZJ_ERR_BUFFER_TOO_SMALL if `out_len` is short (nothing written).
 ///
 /// # Safety
@@ -151,22 +163,38 @@ pub unsafe extern "C" fn bzj_curve_eval(
             .into());
         }
         let needed = derivative_rows_len(max_order, curve.dim())?;
+        if let Curve::Nurbs(n) = curve {
+            n.check_parameter("t", t)?;
+        }
         // SAFETY: caller contract.
         let buf = unsafe { output_slice(out, out_len, needed, "out") }?;
-        if max_order == 0 {
-            curve.eval_into(t, buf);
-        } else {
-            curve.eval_derivatives_into(t, max_order, buf);
+        // Computed in full (its size bounded by the caller's buffer) and
+        // checked before anything is written.
+        let nurbs_values = match curve {
+            Curve::Nurbs(n) => Some(n.eval_derivatives_checked("t", t, max_order)?),
+            Curve::Bezier(_) => None,
+        };
+        match (curve, nurbs_values) {
+            (Curve::Bezier(c), _) if max_order == 0 => c.eval_into(t, buf),
+            (Curve::Bezier(c), _) => c.eval_derivatives_into(t, max_order, buf),
+            (Curve::Nurbs(_), values) => buf.copy_from_slice(&values.unwrap_or_default()),
         }
         Ok(())
     })
 }
 
-/// The same curve written with degree `new_degree >= degree` (exact).
+/// The same curve written with degree `new_degree >= degree` (exact). A
+/// NURBS handle gives a NURBS handle on the same domain: every span is
+/// raised, the multiplicity of each interior knot grows by
+/// `new_degree - degree` (so the continuity there is kept), the ends are
+/// clamped; rational curves stay rational.
 ///
 /// @return BZJ_ERR_NULL_POINTER if `c` or `out` is NULL;
 ///         BZJ_ERR_INVALID_ARGUMENT if `new_degree` is below the degree or
-///         above the maximum degree 4096.
+///         above the maximum degree 4096;
+///         BZJ_ERR_ILL_CONDITIONED (NURBS) if removing a knot the raised
+///         spans do not need, exact in exact arithmetic, leaves an error
+///         above 1e-10 of the largest homogeneous coordinate.
 ///
 /// # Safety
 /// `c` is NULL or a live handle; `out` is NULL or writable.
@@ -182,16 +210,34 @@ pub unsafe extern "C" fn bzj_curve_elevate(
         // SAFETY: caller contract.
         let curve = unsafe { curve_ref(c, "c") }?;
         let out = out.require()?;
-        out.write(curve.elevate_degree(new_degree)?);
+        match curve {
+            Curve::Bezier(b) => out.write(b.elevate_degree(new_degree)?),
+            Curve::Nurbs(n) => {
+                // Before the core builds a knot vector of that size.
+                if new_degree > MAX_DEGREE {
+                    return Err(BezjoinError::invalid(
+                        "new_degree",
+                        format!("{new_degree} is above the supported maximum degree {MAX_DEGREE}"),
+                    )
+                    .into());
+                }
+                out.write(n.elevate_degree(new_degree)?);
+            }
+        }
         Ok(())
     })
 }
 
 /// Split `c` at `t in [0, 1]` into the pieces on `[0, t]` and `[t, 1]`,
-/// each reparametrised to `[0, 1]` (de Casteljau, exact).
+/// each reparametrised to `[0, 1]` (de Casteljau, exact). A NURBS handle is
+/// split at `t` strictly inside its domain `(first, last)` into two NURBS
+/// handles on `[first, t]` and `[t, last]` that keep the original
+/// parameters (knot insertion, exact; each piece clamped at `t`).
 ///
 /// @return BZJ_ERR_NULL_POINTER if a pointer is NULL;
-///         BZJ_ERR_NON_FINITE / BZJ_ERR_INVALID_ARGUMENT for a bad `t`.
+///         BZJ_ERR_NON_FINITE if `t` is NaN or infinite;
+///         BZJ_ERR_INVALID_ARGUMENT if `t` is outside `[0, 1]` (Bezier) or
+///         outside the open domain `(first, last)` (NURBS).
 ///
 /// # Safety
 /// `c` is NULL or a live handle; `left`, `right` are NULL or writable.
@@ -213,20 +259,34 @@ pub unsafe extern "C" fn bzj_curve_split(
         // SAFETY: caller contract.
         let curve = unsafe { curve_ref(c, "c") }?;
         let [left, right] = require_all(outs)?;
-        let (a, b) = curve.split_at(t)?;
-        left.write(a);
-        right.write(b);
+        match curve {
+            Curve::Bezier(c) => {
+                let (a, b) = c.split_at(t)?;
+                left.write(a);
+                right.write(b);
+            }
+            Curve::Nurbs(n) => {
+                check_nurbs_split(n, t)?;
+                let (a, b) = n.split_at(t)?;
+                left.write(a);
+                right.write(b);
+            }
+        }
         Ok(())
     })
 }
 
 /// The curve `s -> c(a + (b - a) s)` for any finite `a`, `b` (extrapolation
-/// and `a > b` allowed; `a == b` gives a constant curve).
+/// and `a > b` allowed; `a == b` gives a constant curve). For a NURBS
+/// handle: the piece on `[a, b]`, `first <= a < b <= last`, as a NURBS
+/// handle with the original parameters (its domain is `[a, b]`; exact, by
+/// knot insertion; clamped at both ends).
 ///
 /// @return BZJ_ERR_NULL_POINTER if `c` or `out` is NULL;
 ///         BZJ_ERR_NON_FINITE if `a` or `b` is NaN or infinite;
 ///         BZJ_ERR_INVALID_ARGUMENT if `a` or `b` lies so far outside
-///         `[0, 1]` that the segment's control points overflow.
+///         `[0, 1]` that the segment's control points overflow (Bezier), or
+///         `a` or `b` is outside the domain or `a >= b` (NURBS).
 ///
 /// # Safety
 /// `c` is NULL or a live handle; `out` is NULL or writable.
@@ -243,12 +303,16 @@ pub unsafe extern "C" fn bzj_curve_segment(
         // SAFETY: caller contract.
         let curve = unsafe { curve_ref(c, "c") }?;
         let out = out.require()?;
-        out.write(curve.segment(a, b)?);
+        match curve {
+            Curve::Bezier(c) => out.write(c.segment(a, b)?),
+            Curve::Nurbs(n) => out.write(n.segment(a, b)?),
+        }
         Ok(())
     })
 }
 
-/// The curve traversed backwards, `s -> c(1 - s)`.
+/// The curve traversed backwards, `s -> c(1 - s)`; for a NURBS handle
+/// `u -> c(first + last - u)` on the same domain (a NURBS handle).
 ///
 /// @return BZJ_ERR_NULL_POINTER if `c` or `out` is NULL.
 ///
@@ -265,26 +329,35 @@ pub unsafe extern "C" fn bzj_curve_reverse(
         // SAFETY: caller contract.
         let curve = unsafe { curve_ref(c, "c") }?;
         let out = out.require()?;
-        out.write(curve.reverse());
+        match curve {
+            Curve::Bezier(c) => out.write(c.reverse()),
+            Curve::Nurbs(n) => out.write(n.reverse()),
+        }
         Ok(())
     })
 }
 
-/// Signed arc length of `c` from parameter `a` to `b` (any finite values),
-/// by adaptive Gauss-Legendre quadrature to an absolute accuracy of
+/// Signed arc length of `c` from parameter `a` to `b` (negative when
+/// `b < a`). A Bezier handle takes any finite `a`, `b` and is integrated by
+/// adaptive Gauss-Legendre quadrature to an absolute accuracy of
 /// `1e-13 * max(1, control polygon length)`, or `16 * DBL_EPSILON` times
 /// the length where that is larger (the rounding level, e.g. long
-/// extrapolated ranges). The range is cut at cusps first, so the accuracy
-/// holds across them.
+/// extrapolated ranges); the range is cut at cusps first, so the accuracy
+/// holds across them. A NURBS handle takes `a`, `b` in its domain and is
+/// integrated span by span to `1e-13 * max(1, length of the polygon of
+/// poles)`: polynomial spans as Bezier curves (above), rational spans by
+/// adaptive Gauss-Kronrod on the speed.
 ///
 /// @return BZJ_ERR_NULL_POINTER if `c` or `out` is NULL;
 ///         BZJ_ERR_NON_FINITE if `a` or `b` is NaN or infinite;
 ///         BZJ_ERR_INVALID_ARGUMENT if the length overflows the double range
-///         (e.g. `a = -1e200, b = 1e200`; the message names `a, b`);
+///         (e.g. `a = -1e200, b = 1e200`; the message names `a, b`), or `a`
+///         or `b` is outside a NURBS handle's domain (named);
 ///         BZJ_ERR_ILL_CONDITIONED if the adaptive rule spends its work
-///         budget (about 10^6 speed evaluations, 40 bisections) without
-///         reaching the accuracy above; the message carries the estimated
-///         relative error. On any error `*out` is left unchanged.
+///         budget (Bezier: about 10^6 speed evaluations, 40 bisections; a
+///         rational span: 2^18 speed evaluations) without reaching the
+///         accuracy above; the message carries the estimated relative error.
+///         On any error `*out` is left unchanged.
 ///
 /// # Safety
 /// `c` is NULL or a live handle; `out` is NULL or writable.
@@ -311,13 +384,16 @@ pub unsafe extern "C" fn bzj_curve_length(
 /// parameter-major: `out[(i * (max_order + 1) + k) * dim + c]` is
 /// coordinate `c` of the k-th derivative at `ts[i]`;
 /// `n * (max_order + 1) * dim` doubles. Block `i` is exactly what
-/// `bzj_curve_eval(c, ts[i], max_order, ...)` writes. Every parameter is
-/// checked before anything is written. `n == 0` writes nothing (`ts` and
-/// `out` may then be NULL).
+/// `bzj_curve_eval(c, ts[i], max_order, ...)` writes (for a NURBS handle
+/// every `ts[i]` must lie in its domain). Every parameter is checked before
+/// anything is written. `n == 0` writes nothing (`ts` and `out` may then be
+/// NULL).
 ///
 /// @return BZJ_ERR_NULL_POINTER if `c`, or `ts` or `out` with `n > 0`, is NULL;
-///         BZJ_ERR_NON_FINITE if some `ts[i]` is NaN or infinite (named);
-///         BZJ_ERR_INVALID_ARGUMENT if `n * (max_order + 1) * dim` overflows
+///         BZJ_ERR_NON_FINITE if some `ts[i]` is NaN or infinite (named), or
+///         (NURBS) a derivative overflows `double`;
+///         BZJ_ERR_INVALID_ARGUMENT if some `ts[i]` is outside a NURBS
+///         handle's domain (named), `n * (max_order + 1) * dim` overflows
 ///         `size_t`, or `n` or `out_len` is larger than any array can be;
 ///         BZJ_ERR_BUFFER_TOO_SMALL if `out_len` is short (nothing written).
 ///
@@ -359,17 +435,60 @@ pub unsafe extern "C" fn bzj_curve_eval_many(
         if n == 0 {
             return Ok(());
         }
+        if let Curve::Nurbs(nurbs) = curve {
+            let (first, last) = nurbs.domain();
+            if let Some(i) = ts.iter().position(|&t| t < first || t > last) {
+                nurbs.check_parameter(&format!("ts[{i}]"), ts[i])?;
+            }
+        }
         // SAFETY: caller contract.
         let buf = unsafe { output_slice(out, out_len, needed, "out") }?;
-        for (&t, row) in ts.iter().zip(buf.chunks_exact_mut(block)) {
-            if max_order == 0 {
-                curve.eval_into(t, row);
-            } else {
-                curve.eval_derivatives_into(t, max_order, row);
+        // A NURBS curve: every block computed and checked (values finite)
+        // before anything is written; the size is the caller's buffer's.
+        let nurbs_values = match curve {
+            Curve::Nurbs(n) => {
+                let mut all = Vec::with_capacity(needed);
+                for (i, &t) in ts.iter().enumerate() {
+                    all.extend(n.eval_derivatives_checked(&format!("ts[{i}]"), t, max_order)?);
+                }
+                Some(all)
             }
+            Curve::Bezier(_) => None,
+        };
+        match (curve, nurbs_values) {
+            (Curve::Bezier(c), _) => {
+                for (&t, row) in ts.iter().zip(buf.chunks_exact_mut(block)) {
+                    if max_order == 0 {
+                        c.eval_into(t, row);
+                    } else {
+                        c.eval_derivatives_into(t, max_order, row);
+                    }
+                }
+            }
+            (Curve::Nurbs(_), values) => buf.copy_from_slice(&values.unwrap_or_default()),
         }
         Ok(())
     })
+}
+
+/// A NURBS curve is split at `t` strictly inside its domain; the errors
+/// name `t`, the argument of `bzj_curve_split`.
+fn check_nurbs_split(curve: &NurbsCurve, t: f64) -> Result<(), BezjoinError> {
+    if !t.is_finite() {
+        return Err(BezjoinError::NonFiniteScalar {
+            name: "t".into(),
+            value: t,
+        });
+    }
+    let (first, last) = curve.domain();
+    if t <= first || t >= last {
+        return Err(BezjoinError::out_of_range(
+            "t",
+            t,
+            format!("({first}, {last})"),
+        ));
+    }
+    Ok(())
 }
 
 /// `(max_order + 1) * dim`, the doubles of one value-and-derivatives block

@@ -1,19 +1,20 @@
 //! Curve intersection and corner rounding (mathematics.md, section 2):
 //! `bzj_intersect`, `bzj_fillet` of the contract, and the additions
 //! `bzj_intersect_detailed`, `bzj_intersect_options_default`,
-//! `bzj_fillet_auto_scale`, `bzj_fillet_deviation` and `bzj_fillet_chain`.
+//! `bzj_fillet_auto_scale`, `bzj_fillet_deviation`, `bzj_fillet_chain` and
+//! `bzj_fillet_vertex`. Every function but `bzj_fillet_deviation` takes
+//! Bezier and NURBS handles (mathematics.md, section 6).
 
-use bezjoin_core::BezierCurve;
 use bezjoin_core::BezjoinError;
 use bezjoin_core::{
-    ChainFilletOptions, DeviationFilletOptions, FilletOptions, ShapeScale, fillet, fillet_chain,
-    fillet_within_deviation,
+    ChainFilletOptions, Curve, DeviationFilletOptions, Fillet, FilletOptions, ShapeScale, fillet,
+    fillet_chain, fillet_vertex, fillet_within_deviation,
 };
 use bezjoin_core::{IntersectOptions, Intersection, IntersectionKind, intersect};
 
 use crate::guard::guard;
-use crate::handles::{BzjCurve, HandleArray, HandleOut, ShortArray, require_all};
-use crate::pointers::{curve_ref, input_ref, input_slice, require_out, write_optional};
+use crate::handles::{BzjCurve, CheckedOut, HandleArray, HandleOut, ShortArray, require_all};
+use crate::pointers::{bezier_ref, curve_ref, input_ref, input_slice, require_out, write_optional};
 use crate::status::{BzjStatus, FfiError, FfiResult};
 
 /// Options of `bzj_fillet` (contract layout; every field is read).
@@ -24,9 +25,9 @@ pub struct BzjFilletOptions {
     pub p_setback: f64,
     /// Arc length along Q on from the crossing, > 0.
     pub q_setback: f64,
-    /// kp <= degree of P.
+    /// kp: the blend's continuity order at P (any order, as for connect).
     pub p_order: usize,
-    /// kq <= degree of Q.
+    /// kq: the blend's continuity order at Q (any order).
     pub q_order: usize,
     /// alpha > 0; 1.0 = the paper.
     pub p_scale: f64,
@@ -155,9 +156,9 @@ pub struct BzjDeviationFilletOptions {
     pub max_deviation: f64,
     /// dq / dp > 0; 1.0 = symmetric rounding.
     pub setback_ratio: f64,
-    /// kp <= degree of P.
+    /// kp: the blend's continuity order at P (any order, as for connect).
     pub p_order: usize,
-    /// kq <= degree of Q.
+    /// kq: the blend's continuity order at Q (any order).
     pub q_order: usize,
     /// alpha > 0; 1.0 = the paper.
     pub p_scale: f64,
@@ -183,7 +184,7 @@ pub struct BzjDeviationFilletReport {
 }
 
 /// Same-dimension check with the C argument names.
-fn same_dimension(p: &BezierCurve, q: &BezierCurve) -> FfiResult {
+fn same_dimension(p: &Curve, q: &Curve) -> FfiResult {
     if p.dim() != q.dim() {
         return Err(BezjoinError::DimensionMismatch {
             name: "q".into(),
@@ -201,7 +202,8 @@ fn same_dimension(p: &BezierCurve, q: &BezierCurve) -> FfiResult {
 /// and the total found into `count`. `capacity == 0` with `out == NULL` is a
 /// valid "count only" query. Default tolerances (relative distance 1e-9);
 /// use `bzj_intersect_detailed` for the kind of each hit and other
-/// tolerances.
+/// tolerances. Bezier and NURBS handles: `u` and `v` are in each curve's
+/// domain (`[0, 1]` for a Bezier curve).
 ///
 /// @return BZJ_ERR_NULL_POINTER if `p`, `q` or `count` is NULL, or `out` is
 ///         NULL while `capacity > 0`;
@@ -268,11 +270,12 @@ pub unsafe extern "C" fn bzj_intersect_options_default(out: *mut BzjIntersectOpt
 /// overlap with its range) and explicit tolerances: `options` may be NULL for
 /// the defaults. Writes the first `min(capacity, total)` hits into `out` and
 /// the total into `count`; `capacity == 0` with `out == NULL` counts only.
+/// Bezier and NURBS handles; parameters in each curve's domain.
 ///
 /// @return BZJ_ERR_NULL_POINTER if `p`, `q` or `count` is NULL, or `out` is
 ///         NULL while `capacity > 0`;
 ///         BZJ_ERR_DIMENSION_MISMATCH if the curves' dimensions differ;
-///         BZJ_ERR_INVALID_ARGUMENT for curves of dimension 1 or an option out
+///         BZJ_ERR_INVALID_ARGUMENT for curves of dimension 1, an option out
 ///         of its range (named in the message);
 ///         BZJ_ERR_NON_FINITE if a tolerance is NaN or infinite;
 ///         BZJ_ERR_ILL_CONDITIONED if a work bound is reached.
@@ -316,20 +319,27 @@ pub unsafe extern "C" fn bzj_intersect_detailed(
 }
 
 /// Round the corner between `p` and `q` at their first crossing (smallest u
-/// on P; touching points and overlaps are skipped): keeps P on `[0, u0]` and
-/// Q on `[v0, 1]`, where the arc length of P from u0 to the crossing is
+/// on P; touching points and overlaps are skipped): keeps P on `[a, u0]` and
+/// Q on `[v0, b]` (`a` the start of P's domain, `b` the end of Q's: 0 and 1
+/// for Bezier curves), where the arc length of P from u0 to the crossing is
 /// `p_setback` and that of Q from the crossing to v0 is `q_setback`, and joins
-/// them with the C^k curve of `bzj_connect` (degree `p_order + q_order + 1`).
-/// The three curves form a C^k B-spline with knot intervals
-/// `(u0, p_scale, (1 - v0) p_scale / q_scale)`. Other corners of the
-/// crossing: pass `bzj_curve_reverse` of P and/or Q.
+/// them with the C^k curve of `bzj_connect` (degree `p_order + q_order + 1`;
+/// orders may exceed the degrees). The three curves form a C^k B-spline with
+/// knot intervals `(u0 - a, p_scale, (b - v0) p_scale / q_scale)`. Other
+/// corners of the crossing: pass `bzj_curve_reverse` of P and/or Q.
+///
+/// NURBS handles: `p_trimmed` and `q_trimmed` are NURBS handles with the
+/// input's parameters (domains `[a, u0]` and `[v0, b]`, cut by knot
+/// insertion, exact); Bezier inputs give Bezier pieces on `[0, 1]`. The
+/// blend is always a Bezier handle. A corner at a shared vertex (P ends
+/// where Q starts, as in a wire) is `bzj_fillet_vertex`.
 ///
 /// @return BZJ_ERR_NULL_POINTER if a pointer is NULL;
 ///         BZJ_ERR_DIMENSION_MISMATCH if the curves' dimensions differ;
 ///         BZJ_ERR_NON_FINITE if an option is NaN or infinite;
-///         BZJ_ERR_INVALID_ARGUMENT if a setback or scale is not positive, an
-///         order is above its curve's degree, or a setback is not shorter
-///         than the part of the curve before / after the crossing;
+///         BZJ_ERR_INVALID_ARGUMENT if a setback or scale is not positive, or
+///         a setback is not shorter than the part of the curve before / after
+///         the crossing;
 ///         BZJ_ERR_NO_INTERSECTION if the curves do not cross or only touch;
 ///         BZJ_ERR_ILL_CONDITIONED if the connection cannot be trusted.
 ///
@@ -369,7 +379,7 @@ pub unsafe extern "C" fn bzj_fillet(
 /// scale 1 a blend whose ends move fast against the setback puts its inner
 /// control points past the corner and can loop; this variant avoids that.
 /// Same guarantee as [`bzj_fillet`], with knot intervals
-/// `(u0, s, 1 - v0)`.
+/// `(u0 - a, s, b - v0)`.
 ///
 /// @return the statuses of [`bzj_fillet`] (except for the scales).
 ///
@@ -438,9 +448,59 @@ unsafe fn fillet_with_scale(
         let result = fillet(p, q, &core_options)?;
         // SAFETY: NULL or writable by the caller contract.
         unsafe { write_optional(scale_out, result.p_scale) };
-        p_out.write(result.p_trimmed);
-        blend_out.write(result.blend);
-        q_out.write(result.q_trimmed);
+        write_fillet([p_out, blend_out, q_out], result);
+        Ok(())
+    })
+}
+
+/// The three pieces of a fillet into the caller's (checked) slots.
+fn write_fillet([p_out, blend_out, q_out]: [CheckedOut; 3], result: Fillet) {
+    p_out.write(result.p_trimmed);
+    blend_out.write(result.blend);
+    q_out.write(result.q_trimmed);
+}
+
+/// Round the corner at the vertex where `p` ends and `q` starts (a wire's
+/// or a sketch's vertex), whatever other crossings P and Q have (for those,
+/// `bzj_fillet` keeps its first-crossing rule): P's last point and Q's first
+/// point must lie within `gap >= 0` (absolute) of each other (sketch
+/// solvers leave 1e-7 and more). Setbacks are arc lengths measured back
+/// from P's end and on from Q's start. Outputs and guarantee as
+/// `bzj_fillet` (with the vertex as the crossing: `u*` = the end of P's
+/// domain, `v*` = the start of Q's), for Bezier and NURBS handles.
+///
+/// @return BZJ_ERR_NULL_POINTER if a pointer is NULL;
+///         BZJ_ERR_DIMENSION_MISMATCH if the curves' dimensions differ;
+///         BZJ_ERR_NON_FINITE if an option or `gap` is NaN or infinite;
+///         BZJ_ERR_INVALID_ARGUMENT if a setback or scale is not positive,
+///         `gap` is negative, or a setback is not shorter than the curve;
+///         BZJ_ERR_NO_INTERSECTION if P's end and Q's start are more than
+///         `gap` apart (the message gives the distance);
+///         BZJ_ERR_ILL_CONDITIONED if the connection cannot be trusted.
+///
+/// # Safety
+/// `p`, `q` are NULL or live handles; `options` is NULL or readable; the
+/// three out-pointers are NULL or writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn bzj_fillet_vertex(
+    p: *const BzjCurve,
+    q: *const BzjCurve,
+    options: *const BzjFilletOptions,
+    gap: f64,
+    p_trimmed: *mut *mut BzjCurve,
+    blend: *mut *mut BzjCurve,
+    q_trimmed: *mut *mut BzjCurve,
+) -> BzjStatus {
+    // SAFETY: caller contract.
+    let outs = unsafe { fillet_outputs(p_trimmed, blend, q_trimmed) };
+    guard(|| {
+        // SAFETY: caller contract.
+        let (p, q) = unsafe { (curve_ref(p, "p")?, curve_ref(q, "q")?) };
+        // SAFETY: caller contract.
+        let options = unsafe { input_ref(options, "options") }?;
+        let outs = require_all(outs)?;
+        let result = fillet_vertex(p, q, &options.to_core(), gap)?;
+        write_fillet(outs, result);
         Ok(())
     })
 }
@@ -459,9 +519,10 @@ unsafe fn fillet_with_scale(
 ///         BZJ_ERR_DIMENSION_MISMATCH if the curves' dimensions differ;
 ///         BZJ_ERR_NON_FINITE if an option is NaN or infinite;
 ///         BZJ_ERR_INVALID_ARGUMENT if `max_deviation`, `setback_ratio` or a
-///         scale is not positive, an order is above its curve's degree, or the
-///         deviation cannot be reached even with the longest setbacks the
-///         curves allow (the message gives the largest possible);
+///         scale is not positive, the deviation cannot be reached even with the longest setbacks the
+///         curves allow (the message gives the largest possible), or `p` or
+///         `q` is a NURBS handle (Bezier curves only until the NURBS fillet
+///         lands, issue 16);
 ///         BZJ_ERR_NO_INTERSECTION if the curves do not cross or only touch;
 ///         BZJ_ERR_ILL_CONDITIONED if the connection cannot be trusted or no
 ///         setback the search tries gives a deviation in that window.
@@ -483,7 +544,12 @@ pub unsafe extern "C" fn bzj_fillet_deviation(
     let outs = unsafe { fillet_outputs(p_trimmed, blend, q_trimmed) };
     guard(|| {
         // SAFETY: caller contract.
-        let (p, q) = unsafe { (curve_ref(p, "p")?, curve_ref(q, "q")?) };
+        let (p, q) = unsafe {
+            (
+                bezier_ref(p, "p", "bzj_fillet_deviation")?,
+                bezier_ref(q, "q", "bzj_fillet_deviation")?,
+            )
+        };
         // SAFETY: caller contract.
         let o = unsafe { input_ref(options, "options") }?;
         let [p_out, blend_out, q_out] = require_all(outs)?;
@@ -501,9 +567,7 @@ pub unsafe extern "C" fn bzj_fillet_deviation(
         };
         // SAFETY: NULL or writable (caller contract).
         unsafe { write_optional(report, summary) };
-        p_out.write(r.fillet.p_trimmed);
-        blend_out.write(r.fillet.blend);
-        q_out.write(r.fillet.q_trimmed);
+        write_fillet([p_out, blend_out, q_out], r.fillet);
         Ok(())
     })
 }
@@ -511,7 +575,10 @@ pub unsafe extern "C" fn bzj_fillet_deviation(
 /// Round every corner of a chain of curves in one call. Corner i lies
 /// between `curves[i]` and `curves[i + 1]` (and, when `closed == 1`, between
 /// the last curve and the first); its crossing is the one nearest the shared
-/// end (smallest `(1 - u) + v`), rounded as `bzj_fillet` with `options`.
+/// end (smallest `(last - u) / |P's domain| + (v - first) / |Q's domain|`,
+/// i.e. `(1 - u) + v` for Bezier curves), rounded as `bzj_fillet` with
+/// `options`. Bezier and NURBS handles: trimmed pieces keep their kind and
+/// parameters; blends are Bezier handles.
 /// Long chains (more than 64 corners) are computed in parallel; the result is
 /// identical either way.
 ///
@@ -529,7 +596,8 @@ pub unsafe extern "C" fn bzj_fillet_deviation(
 ///         (no handles are written);
 ///         BZJ_ERR_INVALID_ARGUMENT if `closed` is not 0 or 1, fewer than 2
 ///         curves are given, an option is out of range, a setback is too long
-///         at a corner ("corner i ...") or two cuts pass each other on a curve;
+///         at a corner ("corner i ..."), or two cuts pass each other on a
+///         curve;
 ///         BZJ_ERR_DIMENSION_MISMATCH if the curves' dimensions differ;
 ///         BZJ_ERR_NON_FINITE if an option is NaN or infinite;
 ///         BZJ_ERR_NO_INTERSECTION if consecutive curves do not cross or meet
@@ -591,6 +659,11 @@ pub unsafe extern "C" fn bzj_fillet_chain(
             )
             .into());
         }
+        let mut chain_curves = Vec::with_capacity(curve_count);
+        for (i, &h) in handles.iter().enumerate() {
+            // SAFETY: each is a live handle (non-null, checked; caller contract).
+            chain_curves.push(unsafe { curve_ref(h, &format!("curves[{i}]")) }?);
+        }
         let needed = if closed {
             curve_count.saturating_mul(2)
         } else {
@@ -602,11 +675,7 @@ pub unsafe extern "C" fn bzj_fillet_chain(
             return Ok(());
         }
         let pieces = pieces.require()?;
-        let mut owned = Vec::with_capacity(curve_count);
-        for (i, &h) in handles.iter().enumerate() {
-            // SAFETY: each is NULL or a live handle (caller contract).
-            owned.push(unsafe { curve_ref(h, &format!("curves[{i}]")) }?.clone());
-        }
+        let owned: Vec<Curve> = chain_curves.into_iter().cloned().collect();
         pieces.check_room(needed)?;
         let mut chain = ChainFilletOptions::open(options.to_core());
         chain.closed = closed;

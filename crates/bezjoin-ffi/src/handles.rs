@@ -19,21 +19,25 @@
 
 use std::ptr::null_mut;
 
-use bezjoin_core::BezierCurve;
+use bezjoin_core::Curve;
 
 use crate::status::{FfiError, FfiResult};
 
-/// Opaque, immutable Bezier curve handle (degree `n >= 0`, dimension `dim >= 1`).
+/// Opaque, immutable curve handle: a Bezier curve (degree `n >= 0`,
+/// dimension `dim >= 1`, parameter in `[0, 1]`) or a NURBS curve (degree
+/// `p >= 1`, parameter in its domain; `bzj_curve_is_nurbs`).
 pub struct BzjCurve {
-    pub(crate) curve: BezierCurve,
+    pub(crate) curve: Curve,
 }
 
 /// A caller's slot for one handle.
 type Slot = *mut *mut BzjCurve;
 
-/// Move a curve into a new handle (released by `bzj_curve_free`).
-fn new_handle(curve: BezierCurve) -> *mut BzjCurve {
-    Box::into_raw(Box::new(BzjCurve { curve }))
+/// Move a curve (of either kind) into a new handle (released by `bzj_curve_free`).
+fn new_handle(curve: impl Into<Curve>) -> *mut BzjCurve {
+    Box::into_raw(Box::new(BzjCurve {
+        curve: curve.into(),
+    }))
 }
 
 /// One handle out-pointer as the caller passed it (possibly NULL), its
@@ -87,9 +91,9 @@ pub(crate) fn require_all<const N: usize>(outs: [HandleOut; N]) -> FfiResult<[Ch
 pub(crate) struct CheckedOut(Slot);
 
 impl CheckedOut {
-    /// Store a new handle owning `curve` in the slot. Call it after the
-    /// last step that can fail.
-    pub(crate) fn write(self, curve: BezierCurve) {
+    /// Store a new handle owning `curve` (a Bezier or a NURBS curve) in
+    /// the slot. Call it after the last step that can fail.
+    pub(crate) fn write(self, curve: impl Into<Curve>) {
         // SAFETY: non-null (checked) and writable ([`HandleOut::cleared`]).
         unsafe { self.0.write(new_handle(curve)) };
     }
@@ -219,13 +223,13 @@ impl HandleSlots {
         }
     }
 
-    /// Store a new handle for each curve in the first slots, in order. Call
-    /// it after the last step that can fail.
+    /// Store a new handle for each curve (Bezier or NURBS) in the first
+    /// slots, in order. Call it after the last step that can fail.
     ///
     /// # Panics
     /// If there are more curves than slots (a bug: check the room first);
     /// then nothing is written and nothing leaks.
-    pub(crate) fn write(self, curves: Vec<BezierCurve>) {
+    pub(crate) fn write<C: Into<Curve>>(self, curves: Vec<C>) {
         assert!(
             self.has_room(curves.len()),
             "{}: {} handles for {} slots",
@@ -243,6 +247,7 @@ impl HandleSlots {
 #[cfg(test)]
 mod handle_output_tests {
     use super::*;
+    use bezjoin_core::BezierCurve;
 
     fn point(x: f64) -> BezierCurve {
         BezierCurve::new(1, 0, vec![x]).unwrap()

@@ -28,6 +28,7 @@ mod curve;
 mod fillet;
 mod lagrange;
 mod merge;
+mod nurbs;
 mod version;
 
 pub use connect::*;
@@ -37,5 +38,6 @@ pub use guard::{bzj_last_error, bzj_version};
 pub use handles::BzjCurve;
 pub use lagrange::*;
 pub use merge::*;
+pub use nurbs::*;
 pub use status::{BzjStatus, bzj_status_name};
 pub use version::*;

@@ -17,7 +17,7 @@ use bezjoin_core::{
 
 use crate::guard::guard;
 use crate::handles::{BzjCurve, CheckedOut, HandleArray, HandleOut, ShortArray};
-use crate::pointers::{curve_ref, input_ref, input_slice, output_slice, write_optional};
+use crate::pointers::{bezier_ref, input_ref, input_slice, output_slice, write_optional};
 use crate::status::{BzjStatus, FfiError, FfiResult};
 
 /// What stage 1 minimises.
@@ -264,8 +264,10 @@ unsafe fn write_merge(
 ///         or a point array is NULL with a non-zero count;
 ///         BZJ_ERR_INVALID_ARGUMENT if `mu` (with BZJ_SPLIT_GIVEN) is outside
 ///         (0, 1), a keep-point parameter is outside [0, 1], an order is above
-///         the degree, an enum or bool field holds an invalid value, or a
-///         control polygon has zero length with BZJ_SPLIT_POLYGON;
+///         the degree, an enum or bool field holds an invalid value, a
+///         control polygon has zero length with BZJ_SPLIT_POLYGON, or `p` or
+///         `q` is a NURBS handle (Bezier curves only until the B-spline merge
+///         lands, issue 17);
 ///         BZJ_ERR_NON_FINITE if `mu` or a keep-point parameter is NaN/infinite;
 ///         BZJ_ERR_DIMENSION_MISMATCH if `p` and `q` differ in dimension;
 ///         BZJ_ERR_INCONSISTENT if the constraints contradict each other or are
@@ -290,7 +292,12 @@ pub unsafe extern "C" fn bzj_merge(
     let [merged, p_hat, q_hat] = unsafe { merge_outputs(merged, p_hat, q_hat) };
     guard(|| {
         // SAFETY: caller contract.
-        let (p, q) = unsafe { (curve_ref(p, "p")?, curve_ref(q, "q")?) };
+        let (p, q) = unsafe {
+            (
+                bezier_ref(p, "p", "bzj_merge")?,
+                bezier_ref(q, "q", "bzj_merge")?,
+            )
+        };
         let merged = merged.require()?;
         // SAFETY: caller contract.
         let options = unsafe { read_options(options) }?;
@@ -326,7 +333,12 @@ pub unsafe extern "C" fn bzj_merge_to_degree(
     let [merged, p_hat, q_hat] = unsafe { merge_outputs(merged, p_hat, q_hat) };
     guard(|| {
         // SAFETY: caller contract.
-        let (p, q) = unsafe { (curve_ref(p, "p")?, curve_ref(q, "q")?) };
+        let (p, q) = unsafe {
+            (
+                bezier_ref(p, "p", "bzj_merge_to_degree")?,
+                bezier_ref(q, "q", "bzj_merge_to_degree")?,
+            )
+        };
         let merged = merged.require()?;
         // SAFETY: caller contract.
         let mut options = unsafe { read_options(options) }?;
@@ -446,7 +458,9 @@ pub struct BzjChainMergeReport {
 ///         strictly increasing in (0, 1) or not `curve_count - 1` of them,
 ///         a keep point names a curve that does not exist, its parameter is
 ///         outside [0, 1] or its order above the degree, `degree` is below
-///         a curve's degree, or an enum/bool field is invalid;
+///         a curve's degree, an enum/bool field is invalid, or a curve is a
+///         NURBS handle (Bezier curves only until the B-spline merge lands,
+///         issue 17);
 ///         BZJ_ERR_NON_FINITE, BZJ_ERR_DIMENSION_MISMATCH, BZJ_ERR_INCONSISTENT,
 ///         BZJ_ERR_SINGULAR, BZJ_ERR_ILL_CONDITIONED as for [`bzj_merge`].
 ///
@@ -491,7 +505,9 @@ pub unsafe extern "C" fn bzj_merge_chain(
         let mut owned: Vec<BezierCurve> = Vec::with_capacity(handles.len());
         for (j, &h) in handles.iter().enumerate() {
             // SAFETY: each is null or a live handle.
-            owned.push(unsafe { curve_ref(h, &format!("curves[{j}]")) }?.clone());
+            owned.push(
+                unsafe { bezier_ref(h, &format!("curves[{j}]"), "bzj_merge_chain") }?.clone(),
+            );
         }
         // SAFETY: same layout (asserted); null or readable.
         let o = unsafe { input_ref(options.cast::<ChainOptionsMirror>(), "options") }?;

@@ -43,15 +43,19 @@ pub(crate) fn find_span(knots: &[f64], degree: usize, t: f64, side: KnotSide) ->
     // Candidate spans are p..=last; with non-decreasing knots the search below
     // always lands on a span of non-zero length unless t lies outside.
     let spans = &knots[p..=last + 1];
+    // The domain [knots[p], knots[last + 1]]; with an unclamped knot vector
+    // its end values may repeat inside `spans`, and a span of zero length
+    // must never be chosen.
+    let (start, end) = (knots[p], knots[last + 1]);
     match side {
         KnotSide::Right => {
-            // largest i with knots[i] <= t
-            let count = spans[..=last - p].partition_point(|&k| k <= t);
+            // largest i with knots[i] <= t, among spans that start before the end
+            let count = spans[..=last - p].partition_point(|&k| k <= t && k < end);
             if count == 0 { p } else { p + count - 1 }
         }
         KnotSide::Left => {
-            // smallest i with knots[i + 1] >= t
-            let count = spans[1..].partition_point(|&k| k < t);
+            // smallest i with knots[i + 1] >= t, among spans that end after the start
+            let count = spans[1..].partition_point(|&k| k < t || k <= start);
             (p + count).min(last)
         }
     }

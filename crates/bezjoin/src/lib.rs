@@ -36,9 +36,9 @@
 mod arclength;
 mod basis;
 mod bezier;
-mod bspline;
 mod compensated;
 mod connect;
+mod curve;
 mod error;
 mod fillet;
 mod intersect;
@@ -46,22 +46,23 @@ mod lagrange;
 mod linalg;
 mod merge;
 mod minimize;
+mod nurbs;
 
 pub use arclength::DEFAULT_ARC_LENGTH_ACCURACY;
 pub use basis::KnotSide;
 pub use bezier::{BezierCurve, MAX_DEGREE, distance};
-pub use bspline::{BSplineCurve, join_jumps, relative_jump};
 pub use connect::{
     AUTO_SCALE_SEARCH_DECADES, CONNECT_RESIDUAL_LIMIT, ConnectOptions, Connection,
     MAX_CONNECT_DEGREE, PointConstraint, ShapeScale, check_connect_degree, connect,
     connect_dense_reference, connect_unchecked, fairness_energy,
 };
+pub use curve::{AsCurveRef, Curve, CurveJet, CurveRef};
 pub use error::{BezjoinError, Result};
 pub use fillet::{
     ChainCorner, ChainFillet, ChainFilletOptions, DEFAULT_PARALLEL_THRESHOLD,
     DEFAULT_RELATIVE_DEVIATION_ACCURACY, DEFAULT_RELATIVE_LENGTH_ACCURACY, DeviationFillet,
     DeviationFilletOptions, Fillet, FilletOptions, distance_to_curve, fillet, fillet_at,
-    fillet_chain, fillet_within_deviation,
+    fillet_chain, fillet_vertex, fillet_within_deviation,
 };
 pub use intersect::{
     DEFAULT_MAX_BOX_PAIRS, DEFAULT_MAX_DEPTH, DEFAULT_MAX_HITS,
@@ -77,4 +78,8 @@ pub use merge::{
     ChainMergeOptions, ChainMergeReport, DEFAULT_MERGE_ACCURACY, DEVIATION_SAMPLES, KeepPoint,
     MU_SEARCH_MAX_STEPS, MU_SEARCH_MIN, MU_SEARCH_SAMPLES, MU_SEARCH_TOLERANCE, Merge, MergeMetric,
     MergeOptions, MergeReport, RANK_TOLERANCE, merge, merge_chain, merge_metric_at,
+};
+pub use nurbs::{
+    AXIS_TOLERANCE, BSplineCurve, MAX_RATIONAL_EVALUATIONS, NurbsCurve, ellipse_arc, join_jumps,
+    relative_jump,
 };

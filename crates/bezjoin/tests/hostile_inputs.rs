@@ -28,13 +28,13 @@ use std::time::{Duration, Instant};
 
 use bezjoin_core::{
     BSplineCurve, BezierCurve, BezjoinError, Breakpoints, ChainFillet, ChainFilletOptions,
-    ChainMerge, ChainMergeOptions, ConnectOptions, Connection, DeviationFillet,
+    ChainMerge, ChainMergeOptions, ConnectOptions, Connection, Curve, DeviationFillet,
     DeviationFilletOptions, Fillet, FilletOptions, IntersectOptions, Intersection,
     IntersectionKind, KeepPoint, LagrangeOptions, LagrangeSpline, Merge, MergeMetric, MergeOptions,
-    PointConstraint, bezier_from_lagrange_points, chord_length_params, connect,
-    connect_dense_reference, connect_unchecked, distance_to_curve, fairness_energy, fillet,
-    fillet_at, fillet_chain, fillet_within_deviation, intersect, lagrange_points_of_bezier,
-    lagrange_spline, merge, merge_chain, merge_metric_at,
+    NurbsCurve, PointConstraint, bezier_from_lagrange_points, chord_length_params, connect,
+    connect_dense_reference, connect_unchecked, distance_to_curve, ellipse_arc, fairness_energy,
+    fillet, fillet_at, fillet_chain, fillet_vertex, fillet_within_deviation, intersect,
+    lagrange_points_of_bezier, lagrange_spline, merge, merge_chain, merge_metric_at,
 };
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngAlgorithm, TestCaseError, TestRng, TestRunner};
@@ -134,6 +134,12 @@ impl Numbers for Intersection {
         if let IntersectionKind::Overlap { u_range, v_range } = self.kind {
             out.extend([u_range.0, u_range.1, v_range.0, v_range.1]);
         }
+    }
+}
+
+impl Numbers for Curve {
+    fn numbers(&self, out: &mut Vec<f64>) {
+        out.extend_from_slice(self.points());
     }
 }
 
@@ -946,10 +952,272 @@ fn lagrange_and_bspline_survive_hostile_inputs() {
                     b.continuity_at(interval, 1e-9)
                 })?;
                 checked("BSplineCurve::new", &input, || {
-                    BSplineCurve::new(dim, b.degree(), b.knots().to_vec(), b.points().to_vec())
+                    BSplineCurve::new(
+                        dim,
+                        b.degree(),
+                        b.points().to_vec(),
+                        None,
+                        b.knots().to_vec(),
+                    )
                 })?;
             }
             Ok(())
         },
     );
+}
+
+// ---------------------------------------------------------------------------
+// NURBS curves (issue 16): the families above as poles, with hostile knot
+// vectors and weights.
+
+/// How the knots of a hostile NURBS curve are laid out.
+#[derive(Debug, Clone, Copy)]
+enum KnotFamily {
+    /// Clamped, interior knots repeated up to the degree.
+    ClampedRepeated,
+    /// Unclamped and uniform.
+    Uniform,
+    /// Knot intervals near the smallest with a finite reciprocal.
+    Tiny,
+    /// Knot values near 1e300.
+    Huge,
+}
+
+/// A NURBS curve of a hostile family (built inside the test).
+#[derive(Debug, Clone)]
+struct HostileNurbs {
+    poles: Hostile,
+    degree: usize,
+    knots: KnotFamily,
+    weights: Option<Vec<f64>>,
+    /// Random numbers for the knot layout.
+    draws: Vec<f64>,
+}
+
+impl HostileNurbs {
+    fn knot_vector(&self, count: usize) -> Vec<f64> {
+        let p = self.degree;
+        let len = count + p + 1;
+        let (start, step) = match self.knots {
+            KnotFamily::Tiny => (0.0, 1e-300),
+            KnotFamily::Huge => (1e300, 1e285),
+            _ => (-1.0, 0.5),
+        };
+        let mut knots = Vec::with_capacity(len);
+        match self.knots {
+            KnotFamily::Uniform => {
+                for i in 0..len {
+                    knots.push(start + step * i as f64);
+                }
+            }
+            _ => {
+                knots.extend(std::iter::repeat_n(start, p + 1));
+                // Fewer than p + 1 poles (a point raised to degree 1): the
+                // constructor refuses the curve, whatever the knots.
+                let interior = len.saturating_sub(2 * (p + 1));
+                let mut x = start;
+                let mut i = 0;
+                while i < interior {
+                    x += step * (0.5 + self.draws[i % self.draws.len()]);
+                    let m = (1 + (self.draws[(i + 1) % self.draws.len()] * p as f64) as usize)
+                        .min(p)
+                        .min(interior - i);
+                    knots.extend(std::iter::repeat_n(x, m));
+                    i += m;
+                }
+                x += step;
+                knots.extend(std::iter::repeat_n(x, p + 1));
+            }
+        }
+        knots
+    }
+
+    fn curve(&self) -> std::result::Result<Option<NurbsCurve>, TestCaseError> {
+        let count = self.poles.points.len() / self.poles.dim;
+        let weights = self
+            .weights
+            .as_ref()
+            .map(|w| w.iter().cycle().take(count).copied().collect());
+        checked("NurbsCurve::new", self, || {
+            NurbsCurve::new(
+                self.poles.dim,
+                self.degree,
+                self.poles.points.clone(),
+                weights,
+                self.knot_vector(count),
+            )
+        })
+    }
+}
+
+fn hostile_nurbs(dim: usize) -> BoxedStrategy<HostileNurbs> {
+    let weights = prop_oneof![
+        Just(None),
+        prop::collection::vec(0.3f64..3.0, 1..6).prop_map(Some),
+        prop::collection::vec((-150i32..=150).prop_map(|e| 10f64.powi(e)), 1..6).prop_map(Some),
+    ];
+    let knots = prop_oneof![
+        Just(KnotFamily::ClampedRepeated),
+        Just(KnotFamily::Uniform),
+        Just(KnotFamily::Tiny),
+        Just(KnotFamily::Huge),
+    ];
+    (
+        hostile(dim),
+        1usize..=8,
+        knots,
+        weights,
+        prop::collection::vec(0.0f64..1.0, 4),
+    )
+        .prop_map(|(poles, degree, knots, weights, draws)| {
+            let count = poles.points.len() / poles.dim;
+            HostileNurbs {
+                degree: degree.min(count.saturating_sub(1)).max(1),
+                poles,
+                knots,
+                weights,
+                draws,
+            }
+        })
+        .boxed()
+}
+
+/// A parameter of the domain `[a, b]` from a unit parameter (denormal
+/// offsets included).
+fn in_domain(c: &NurbsCurve, t: f64) -> f64 {
+    let (a, b) = c.domain();
+    (a + t * (b - a)).clamp(a, b)
+}
+
+#[test]
+fn nurbs_operations_survive_hostile_inputs() {
+    let strategy = (
+        (1usize..=3).prop_flat_map(hostile_nurbs),
+        unit_param(),
+        unit_param(),
+        0usize..=6,
+        0usize..=4,
+    );
+    run("NURBS operations", strategy, |(h, t, s, order, raise)| {
+        let Some(c) = h.curve()? else { return Ok(()) };
+        let input = (&h, t, s, order, raise);
+        let (u, w) = (in_domain(&c, t), in_domain(&c, s));
+        // The value is a convex combination of the poles (positive weights).
+        let value = guarded("NurbsCurve::eval", &input, || c.eval(u))?;
+        require_finite("NurbsCurve::eval", &input, &value)?;
+        checked("NurbsCurve::eval_derivatives_checked", &input, || {
+            c.eval_derivatives_checked("u", u, order)
+        })?;
+        checked("NurbsCurve::insert_knot", &input, || c.insert_knot(u, 1))?;
+        checked("NurbsCurve::split_at", &input, || c.split_at(u))?;
+        checked("NurbsCurve::segment", &input, || {
+            c.segment(u.min(w), u.max(w))
+        })?;
+        let r = guarded("NurbsCurve::reverse", &input, || c.reverse())?;
+        require_finite("NurbsCurve::reverse", &input, &r)?;
+        let k = guarded("NurbsCurve::clamped", &input, || c.clamped())?;
+        require_finite("NurbsCurve::clamped", &input, &k)?;
+        let spans = guarded("NurbsCurve::bezier_spans", &input, || c.bezier_spans())?;
+        require_finite("NurbsCurve::bezier_spans", &input, &spans)?;
+        checked("NurbsCurve::elevate_degree", &input, || {
+            c.elevate_degree(c.degree() + raise)
+        })?;
+        checked("NurbsCurve::arc_length_default", &input, || {
+            c.arc_length_default(u.min(w), u.max(w))
+        })?;
+        if let Some(total) = checked("NurbsCurve::arc_length_default (whole)", &input, || {
+            let (a, b) = c.domain();
+            c.arc_length_default(a, b)
+        })? {
+            checked("NurbsCurve::param_at_length", &input, || {
+                let (a, _) = c.domain();
+                c.param_at_length(a, 0.5 * total, c.default_length_accuracy())
+            })?;
+        }
+        Ok(())
+    });
+}
+
+#[test]
+fn nurbs_joins_survive_hostile_inputs() {
+    let strategy = (hostile_nurbs(2), unit_param(), 0usize..=3, positive());
+    run("NURBS joins", strategy, |(h, t, order, setback)| {
+        let Some(p) = h.curve()? else { return Ok(()) };
+        let input = (&h, t, order, setback);
+        // Q: P reversed and rotated by 90 degrees about P's middle point,
+        // as a NURBS curve; it crosses P there unless P is degenerate.
+        let (a, b) = p.domain();
+        let c = p.eval(0.5 * (a + b));
+        let mut poles = p.points().to_vec();
+        for row in poles.chunks_exact_mut(2) {
+            let (x, y) = (row[0] - c[0], row[1] - c[1]);
+            row[0] = c[0] - y;
+            row[1] = c[1] + x;
+        }
+        let Ok(q) = NurbsCurve::new(
+            2,
+            p.degree(),
+            poles,
+            p.weights().map(<[f64]>::to_vec),
+            p.knots().to_vec(),
+        ) else {
+            return Ok(());
+        };
+        let (pc, qc) = (Curve::from(p.clone()), Curve::from(q.clone()));
+        let u = in_domain(&p, t);
+        checked("connect (NURBS)", &input, || {
+            connect(
+                &pc,
+                u,
+                &qc,
+                in_domain(&q, 1.0 - t),
+                &ConnectOptions::new(order, order),
+            )
+        })?;
+        checked("intersect (NURBS)", &input, || {
+            intersect(&p, &q, &IntersectOptions::default())
+        })?;
+        let options = FilletOptions::symmetric(setback, order);
+        checked("fillet (NURBS)", &input, || fillet(&p, &q, &options))?;
+        checked("fillet_vertex (NURBS)", &input, || {
+            fillet_vertex(&p, &p.reverse(), &options, 1e-9)
+        })?;
+        checked("fillet_chain (NURBS)", &input, || {
+            fillet_chain(
+                &[pc.clone(), qc.clone()],
+                &ChainFilletOptions::closed(options.clone()),
+            )
+        })?;
+        Ok(())
+    });
+}
+
+#[test]
+fn ellipse_arcs_survive_hostile_inputs() {
+    let strategy = (
+        prop::collection::vec(any_coordinate(), 3),
+        positive(),
+        positive(),
+        any_coordinate(),
+        positive(),
+    );
+    run("ellipse_arc", strategy, |(centre, rx, ry, a0, sweep)| {
+        let input = (&centre, rx, ry, a0, sweep);
+        for dim in [2usize, 3] {
+            let (x, y) = if dim == 2 {
+                (vec![1.0, 0.0], vec![0.0, 1.0])
+            } else {
+                (vec![0.0, 1.0, 0.0], vec![0.0, 0.0, 1.0])
+            };
+            if let Some(e) = checked("ellipse_arc", &input, || {
+                ellipse_arc(dim, &centre[..dim], &x, &y, rx, ry, a0, a0 + sweep)
+            })? {
+                checked("ellipse_arc length", &input, || {
+                    let (a, b) = e.domain();
+                    e.arc_length_default(a, b)
+                })?;
+            }
+        }
+        Ok(())
+    });
 }

@@ -137,8 +137,10 @@ class BlendCommand(Command):
     tooltip = ("Connect two Bezier edges with a Bezier curve of prescribed continuity "
                "(bezjoin connect)")
     fields = [
-        ("u0", "Parameter on the first edge (1 = its end)", "float", 1.0, (0.0, 1.0)),
-        ("v0", "Parameter on the second edge (0 = its start)", "float", 0.0, (0.0, 1.0)),
+        ("u0", "Position on the first edge (fraction of its range; 1 = its end)", "float", 1.0,
+         (0.0, 1.0)),
+        ("v0", "Position on the second edge (fraction of its range; 0 = its start)", "float",
+         0.0, (0.0, 1.0)),
     ] + ORDER_FIELDS + [
         ("auto_scale", "Choose the scales automatically (least bending)", "bool", False, None),
     ]

@@ -3,10 +3,12 @@
 No GUI here: the commands (``commands.py``) only collect the selection and
 the parameters and call these, and the headless tests call them directly.
 
-Edges must be Bezier curves: ``Part.BezierCurve``, a single-span
-non-rational B-spline, or a line segment (see
-:meth:`bezjoin.Curve.from_freecad`); anything else raises
-:class:`bezjoin.UnsupportedGeometryError` naming the edge.
+Edges may be any curve with an exact NURBS form (lines, circles and arcs,
+ellipses, parabola and hyperbola arcs, Bezier curves, B-splines: see
+:meth:`bezjoin.Curve.from_freecad`); anything else (offset curves, ...)
+raises :class:`bezjoin.UnsupportedGeometryError` naming the edge. A NURBS
+curve keeps the edge's own parameter range (its domain), so positions along
+an edge are given here as fractions of that range (0 = start, 1 = end).
 """
 
 import math
@@ -34,28 +36,33 @@ def _distance(a, b):
     return math.sqrt(sum((x - y) ** 2 for x, y in zip(a, b)))
 
 
+def _ends(curve):
+    """The curve's first and last points (at the ends of its domain)."""
+    first, last = curve.domain
+    return curve.evaluate(first), curve.evaluate(last)
+
+
+def _at_fraction(curve, fraction):
+    """The parameter at ``fraction`` (0 = start, 1 = end) of the curve's domain."""
+    first, last = curve.domain
+    if fraction == 1.0:
+        return last
+    return first + fraction * (last - first)
+
+
 def orient_end_to_start(p, q):
     """``(p, q)`` possibly reversed so that ``p`` ends where ``q`` starts, or as
     close as the four end pairings allow. Returns new curves (the caller closes
     ``p`` and ``q`` as before; the returned ones are owned by the caller too)."""
-    p_ends = (p.points[0], p.points[-1])
-    q_ends = (q.points[0], q.points[-1])
+    p_ends = _ends(p)
+    q_ends = _ends(q)
     # On a tie, keep the curves as they are (end of p to start of q).
     _gap, _reversals, p_end, q_end = min(
         (_distance(p_ends[i], q_ends[j]), (i == 0) + (j == 1), i, j)
         for i in (0, 1) for j in (0, 1))
-    p_oriented = p.reverse() if p_end == 0 else p.segment(0.0, 1.0)
-    q_oriented = q.reverse() if q_end == 1 else q.segment(0.0, 1.0)
+    p_oriented = p.reverse() if p_end == 0 else p.copy()
+    q_oriented = q.reverse() if q_end == 1 else q.copy()
     return p_oriented, q_oriented
-
-
-def _raised_for_order(curve, order):
-    """``curve`` written with degree at least ``order`` (exact elevation), so that a
-    continuity order above the degree of, say, a line segment can be asked for:
-    its higher derivatives are zero and the blend matches them."""
-    if order is not None and order > curve.degree:
-        return curve.elevate(order)
-    return curve.segment(0.0, 1.0)
 
 
 def _wire(curves):
@@ -68,27 +75,29 @@ def blend_edges(first_edge, second_edge, *, u0=1.0, v0=0.0, p_order=None, q_orde
     """The blend curve from ``first_edge`` at ``u0`` to ``second_edge`` at ``v0``
     (:func:`bezjoin.connect`), as a ``Part.Edge``.
 
-    With ``orient`` (the default) the edges are first reversed as needed so that
-    the end of the first faces the start of the second (the closest pair of
-    ends), and ``u0``/``v0`` refer to these oriented curves: the defaults
-    ``u0 = 1``, ``v0 = 0`` bridge the gap between the facing ends.
-    ``p_order``/``q_order`` default to each curve's degree (the paper); an order
-    above a curve's degree is allowed (the curve is elevated first, exactly).
-    With ``auto_scale`` the scales are ignored and chosen by the library
-    (:func:`bezjoin.connect_auto_scale`: least bending energy).
+    ``u0`` and ``v0`` are fractions of each edge's parameter range (0 = start,
+    1 = end). With ``orient`` (the default) the edges are first reversed as
+    needed so that the end of the first faces the start of the second (the
+    closest pair of ends), and ``u0``/``v0`` refer to these oriented curves:
+    the defaults ``u0 = 1``, ``v0 = 0`` bridge the gap between the facing ends.
+    ``p_order``/``q_order`` default to each curve's degree (the paper); any
+    order is allowed (a line's derivatives above the first are zero, a
+    circle has every order). With ``auto_scale`` the scales are ignored and
+    chosen by the library (:func:`bezjoin.connect_auto_scale`: least bending
+    energy).
     """
     with edge_curve(first_edge, "first edge") as p, edge_curve(second_edge, "second edge") as q:
         if orient:
             p, q = orient_end_to_start(p, q)
         else:
-            p, q = p.segment(0.0, 1.0), q.segment(0.0, 1.0)
-        with p, q, _raised_for_order(p, p_order) as p_raised, \
-                _raised_for_order(q, q_order) as q_raised:
+            p, q = p.copy(), q.copy()
+        with p, q:
+            u, v = _at_fraction(p, u0), _at_fraction(q, v0)
             if auto_scale:
-                with bezjoin.connect_auto_scale(p_raised, u0, q_raised, v0, p_order=p_order,
+                with bezjoin.connect_auto_scale(p, u, q, v, p_order=p_order,
                                                 q_order=q_order) as result:
                     return result.curve.to_edge()
-            with bezjoin.connect(p_raised, u0, q_raised, v0, p_order=p_order, q_order=q_order,
+            with bezjoin.connect(p, u, q, v, p_order=p_order, q_order=q_order,
                                  p_scale=p_scale, q_scale=q_scale) as blend:
                 return blend.to_edge()
 
@@ -120,18 +129,24 @@ def round_corner(first_edge, second_edge, *, setback, second_setback=None, p_ord
     with edge_curve(first_edge, "first edge") as p, edge_curve(second_edge, "second edge") as q:
         p_oriented, q_oriented = orient_end_to_start(p, q)
         with p_oriented, q_oriented:
-            touching = _distance(p_oriented.points[-1], q_oriented.points[0]) <= (
-                TOUCH_TOLERANCE * max(1.0, p.length(), q.length()))
+            gap = TOUCH_TOLERANCE * max(1.0, p.length(), q.length())
+            touching = _distance(_ends(p_oriented)[1], _ends(q_oriented)[0]) <= gap
+            options = dict(p_setback=setback, q_setback=second_setback, p_order=p_order,
+                           q_order=q_order, p_scale=p_scale, q_scale=q_scale)
+            if touching and not auto_scale:
+                # The vertex itself, whatever other crossings the edges have.
+                with bezjoin.fillet_vertex(p_oriented, q_oriented, gap=gap,
+                                           **options) as result:
+                    return _wire(result.curves())
             if touching:
-                p_work, q_work = p_oriented.segment(0.0, 1.0), q_oriented.segment(0.0, 1.0)
-            else:
-                p_work = p.reverse() if reverse_first else p.segment(0.0, 1.0)
-                q_work = q.reverse() if reverse_second else q.segment(0.0, 1.0)
-        with p_work, q_work, _raised_for_order(p_work, p_order) as p_raised, \
-                _raised_for_order(q_work, q_order) as q_raised, \
-                bezjoin.fillet(p_raised, q_raised, p_setback=setback, q_setback=second_setback,
-                               p_order=p_order, q_order=q_order, p_scale=p_scale,
-                               q_scale=q_scale, auto_scale=auto_scale) as result:
+                # bzj_fillet_vertex has no automatic scale: the crossing at
+                # the shared end, found by the intersection search.
+                with bezjoin.fillet(p_oriented, q_oriented, auto_scale=True,
+                                    **options) as result:
+                    return _wire(result.curves())
+        with (p.reverse() if reverse_first else p.copy()) as p_work, \
+                (q.reverse() if reverse_second else q.copy()) as q_work, \
+                bezjoin.fillet(p_work, q_work, auto_scale=auto_scale, **options) as result:
             return _wire(result.curves())
 
 

@@ -1,11 +1,19 @@
 //! `bezjoin connect`: the connecting curve of mathematics.md section 1.
+//!
+//! P and Q may be Bezier or NURBS curves (mathematics.md section 6): `u0`
+//! and `v0` lie in each curve's domain, P's derivatives at `u0` are taken
+//! from the left of a knot and Q's at `v0` from the right; the connecting
+//! curve R is a Bezier curve.
 
 use bezjoin_core::{
-    BezierCurve, BezjoinError, ConnectOptions, Connection, PointConstraint, connect, relative_jump,
+    BezierCurve, BezjoinError, ConnectOptions, Connection, Curve, KnotSide, PointConstraint,
+    connect, relative_jump,
 };
 use serde_json::json;
 
-use crate::check::{JoinCheck, curve_json, distance, row, worst};
+use crate::check::{
+    JoinCheck, Side, curve_json, derivatives, distance, reference_sizes, row, worst,
+};
 use crate::job::{JobError, Located};
 use crate::ops::{OperationKind, Scenario, draw_part};
 use crate::svg::{CurveItem, Figure, Marker, MarkerKind, Role};
@@ -13,13 +21,13 @@ use crate::{CliError, Outcome, Summary};
 
 /// A parsed connect job.
 pub struct ConnectJob {
-    /// Curve P, left of the connection.
-    pub p: BezierCurve,
-    /// Parameter on P where R starts.
+    /// Curve P, left of the connection (Bezier or NURBS).
+    pub p: Curve,
+    /// Parameter on P where R starts (in P's domain).
     pub u0: f64,
-    /// Curve Q, right of the connection.
-    pub q: BezierCurve,
-    /// Parameter on Q where R ends.
+    /// Curve Q, right of the connection (Bezier or NURBS).
+    pub q: Curve,
+    /// Parameter on Q where R ends (in Q's domain).
     pub v0: f64,
     /// Orders, scales and interior constraints.
     pub options: ConnectOptions,
@@ -40,12 +48,12 @@ pub fn parse(job: &Located) -> Result<ConnectJob, JobError> {
         .optional("u0")
         .map(|f| f.number())
         .transpose()?
-        .unwrap_or(1.0);
+        .unwrap_or(p.domain().1);
     let v0 = obj
         .optional("v0")
         .map(|f| f.number())
         .transpose()?
-        .unwrap_or(0.0);
+        .unwrap_or(q.domain().0);
     let p_order = obj
         .optional("p_order")
         .map(|f| f.count())
@@ -136,32 +144,54 @@ fn empty_constraint_error(job: &ConnectJob, e: BezjoinError) -> BezjoinError {
 }
 
 /// The joins of P, R and Q measured by the tool: `R^(k)(0) / alpha^k`
-/// against `P^(k)(u0)`, and `R^(k)(1) / alpha^k` against `(beta/alpha)^k
-/// Q^(k)(v0)` (the chain's knot intervals `(u0, alpha, (1-v0) alpha/beta)`
-/// in the original parameters).
+/// against `P^(k)(u0)` (from the left of a knot), and `R^(k)(1) / alpha^k`
+/// against `(beta/alpha)^k Q^(k)(v0)` (from the right), the chain's knot
+/// intervals `(u0 - first, alpha, (last - v0) alpha/beta)` in the original
+/// parameters; orders `0..=max(promised, min(degrees))`.
 pub fn measure_joins(
-    p: &BezierCurve,
+    p: &Curve,
     u0: f64,
     r: &BezierCurve,
-    q: &BezierCurve,
+    q: &Curve,
     v0: f64,
     (p_scale, q_scale): (f64, f64),
     (p_order, q_order): (usize, usize),
 ) -> [JoinCheck; 2] {
     let dim = r.dim();
-    let left = p.eval_derivatives(u0, p.degree().min(r.degree()));
-    let start = r.eval_derivatives(0.0, p.degree().min(r.degree()));
-    let end = r.eval_derivatives(1.0, q.degree().min(r.degree()));
-    let right = q.eval_derivatives(v0, q.degree().min(r.degree()));
+    let left_orders = p_order.max(p.degree().min(r.degree()));
+    let right_orders = q_order.max(q.degree().min(r.degree()));
+    let left = derivatives(p.into(), u0, left_orders, KnotSide::Left);
+    let start = r.eval_derivatives(0.0, left_orders);
+    let end = r.eval_derivatives(1.0, right_orders);
+    let right = derivatives(q.into(), v0, right_orders, KnotSide::Right);
+    let ratio = p_scale / q_scale;
     [
-        JoinCheck::from_derivatives("P|R", dim, &left, 1.0, &start, p_scale, p_order),
+        JoinCheck::from_derivatives(
+            "P|R",
+            dim,
+            Side {
+                derivatives: &left,
+                rate: 1.0,
+            },
+            Side {
+                derivatives: &start,
+                rate: p_scale,
+            },
+            &reference_sizes(&[(p.into(), 1.0), (r.into(), p_scale)], left_orders),
+            p_order,
+        ),
         JoinCheck::from_derivatives(
             "R|Q",
             dim,
-            &end,
-            p_scale,
-            &right,
-            p_scale / q_scale,
+            Side {
+                derivatives: &end,
+                rate: p_scale,
+            },
+            Side {
+                derivatives: &right,
+                rate: ratio,
+            },
+            &reference_sizes(&[(r.into(), p_scale), (q.into(), ratio)], right_orders),
             q_order,
         ),
     ]
@@ -204,15 +234,33 @@ fn outcome(job: &ConnectJob, c: &Connection) -> Outcome {
             "p_scale": c.p_scale,
             "q_scale": c.q_scale,
             "max_residual": c.max_residual,
-            "chain_knot_intervals": [job.u0, c.p_scale, (1.0 - job.v0) * c.p_scale / c.q_scale],
+            "chain_knot_intervals": [
+                job.u0 - job.p.domain().0,
+                c.p_scale,
+                (job.q.domain().1 - job.v0) * c.p_scale / c.q_scale
+            ],
             "measured_continuity": checks.iter().map(JoinCheck::to_json).collect::<Vec<_>>(),
             "constraints": constraint_reports,
         }
     });
 
     let mut figure = Figure::new("Connecting curve");
-    draw_part(&mut figure, &job.p, 0.0, job.u0, Role::Input, "P");
-    draw_part(&mut figure, &job.q, job.v0, 1.0, Role::Input, "Q");
+    draw_part(
+        &mut figure,
+        &job.p,
+        job.p.domain().0,
+        job.u0,
+        Role::Input,
+        "P",
+    );
+    draw_part(
+        &mut figure,
+        &job.q,
+        job.v0,
+        job.q.domain().1,
+        Role::Input,
+        "Q",
+    );
     let sum_k: usize = job
         .options
         .constraints

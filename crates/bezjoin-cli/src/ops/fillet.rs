@@ -2,32 +2,46 @@
 //! (mathematics.md section 2; Krivosheev, Mavrin, Starkova, Omsk Scientific
 //! Bulletin, 2025, Fig. 2).
 //!
-//! The job gives `P`, `Q` and either the setbacks `p_setback`, `q_setback`
-//! (arc lengths from the crossing) or `max_deviation` (the distance from the
-//! corner point to the blend, with an optional `setback_ratio = dq / dp`).
-//! The report is re-measured by the tool: continuity at both joins in the
-//! B-spline sense (knot intervals `u0`, `alpha`, `(1 - v0) alpha / beta`;
-//! the `k`-th derivative of each piece is divided by its interval^k) and the
-//! setbacks as arc lengths of the original curves from the crossing.
+//! The job gives `P`, `Q` (Bezier or NURBS curves, mathematics.md section 6)
+//! and either the setbacks `p_setback`, `q_setback` (arc lengths from the
+//! crossing; with `"vertex": true` from the vertex where P ends and Q
+//! starts, [`bezjoin_core::fillet_vertex`]) or `max_deviation` (the distance
+//! from the corner point to the blend, with an optional `setback_ratio = dq
+//! / dp`; Bezier curves only). The report is re-measured by the tool:
+//! continuity at both joins in the B-spline sense (knot intervals `u0 -
+//! first`, `alpha`, `(last - v0) alpha / beta`; the `k`-th derivative of
+//! each piece is divided by (its interval / its domain length)^k, P's taken
+//! from the left of `u0`, Q's from the right of `v0`) and the setbacks as
+//! arc lengths of the original curves from the corner.
 
 use bezjoin_core::{
-    BezierCurve, DeviationFilletOptions, Fillet, FilletOptions, fillet, fillet_within_deviation,
+    BezierCurve, Curve, DeviationFilletOptions, Fillet, FilletOptions, KnotSide, fillet,
+    fillet_vertex, fillet_within_deviation,
 };
 use serde_json::{Value, json};
 
 use crate::arc::circular_fillet;
-use crate::check::{JoinCheck, curve_json, distance, worst};
-use crate::job::{JobError, Located};
+use crate::check::{JoinCheck, Side, curve_json, derivatives, distance, reference_sizes, worst};
+use crate::job::{JobError, Located, ObjectReader};
 use crate::ops::{OperationKind, Scenario, draw_part};
 use crate::svg::{CurveItem, Figure, Marker, MarkerKind, Role};
 use crate::{CliError, Outcome, Summary};
 
-/// How the setbacks are chosen.
+/// Default of the job's `gap` (`"vertex": true`): how far apart P's end and
+/// Q's start may be, absolute; OpenCASCADE's `Precision::Confusion()`.
+pub const DEFAULT_VERTEX_GAP: f64 = 1e-7;
+
+/// Where the corner is and how the setbacks are chosen.
 pub enum FilletMode {
-    /// Given setbacks `dp`, `dq`.
+    /// Given setbacks `dp`, `dq` from the first crossing of P and Q.
     Setbacks,
+    /// Given setbacks from the vertex where P ends and Q starts (within `gap`).
+    Vertex {
+        /// Largest distance between P's last point and Q's first point.
+        gap: f64,
+    },
     /// Setbacks found so that the blend passes at `max_deviation` from the
-    /// corner point (`setback_ratio = dq / dp`).
+    /// corner point (`setback_ratio = dq / dp`); Bezier curves only.
     Deviation {
         /// `eps`.
         max_deviation: f64,
@@ -36,23 +50,63 @@ pub enum FilletMode {
     },
 }
 
+impl FilletMode {
+    /// Name in the report.
+    fn name(&self) -> &'static str {
+        match self {
+            FilletMode::Setbacks => "setbacks",
+            FilletMode::Vertex { .. } => "vertex",
+            FilletMode::Deviation { .. } => "deviation",
+        }
+    }
+}
+
 /// A parsed fillet job.
 pub struct FilletJob {
-    /// Curve P (its part before the crossing is kept).
-    pub p: BezierCurve,
-    /// Curve Q (its part after the crossing is kept).
-    pub q: BezierCurve,
+    /// Curve P (its part before the corner is kept); Bezier or NURBS.
+    pub p: Curve,
+    /// Curve Q (its part after the corner is kept); Bezier or NURBS.
+    pub q: Curve,
     /// Setbacks (ignored in deviation mode), orders and scales.
     pub options: FilletOptions,
-    /// Setback or deviation mode.
+    /// Setback, vertex or deviation mode.
     pub mode: FilletMode,
+}
+
+/// Read `p_scale`, `q_scale` or `auto_scale` into `options` (shared with
+/// `bezjoin fillet-chain`).
+pub(crate) fn read_scales(
+    obj: &ObjectReader,
+    options: FilletOptions,
+) -> Result<FilletOptions, JobError> {
+    let p_scale = obj.optional("p_scale");
+    let q_scale = obj.optional("q_scale");
+    let auto_scale = obj
+        .optional("auto_scale")
+        .map(|f| f.boolean())
+        .transpose()?
+        .unwrap_or(false);
+    if auto_scale {
+        if let Some(f) = p_scale.as_ref().or(q_scale.as_ref()) {
+            return Err(JobError::new(
+                f.path.clone(),
+                "cannot be given together with \"auto_scale\": true",
+            ));
+        }
+        return Ok(options.with_auto_scale());
+    }
+    let p_scale = p_scale.map(|f| f.positive()).transpose()?;
+    let q_scale = q_scale.map(|f| f.positive()).transpose()?;
+    Ok(options.with_scales(p_scale.unwrap_or(1.0), q_scale.unwrap_or(1.0)))
 }
 
 /// Read a fillet job.
 pub fn parse(job: &Located) -> Result<FilletJob, JobError> {
     let obj = job.object()?;
-    let p = obj.required("p")?.curve()?;
-    let q = obj.required("q")?.curve()?;
+    let p_field = obj.required("p")?;
+    let q_field = obj.required("q")?;
+    let p = p_field.curve()?;
+    let q = q_field.curve()?;
     let p_order = obj
         .optional("p_order")
         .map(|f| f.count())
@@ -67,6 +121,19 @@ pub fn parse(job: &Located) -> Result<FilletJob, JobError> {
     let q_setback = obj.optional("q_setback");
     let max_deviation = obj.optional("max_deviation");
     let setback_ratio = obj.optional("setback_ratio");
+    let vertex_field = obj.optional("vertex");
+    let vertex = vertex_field
+        .as_ref()
+        .map(|f| f.boolean())
+        .transpose()?
+        .unwrap_or(false);
+    let gap = obj.optional("gap");
+    if let (Some(f), false) = (&gap, vertex) {
+        return Err(JobError::new(
+            f.path.clone(),
+            "is only used together with \"vertex\": true",
+        ));
+    }
     let mode = match max_deviation {
         Some(eps) => {
             if let Some(f) = p_setback.as_ref().or(q_setback.as_ref()) {
@@ -74,6 +141,20 @@ pub fn parse(job: &Located) -> Result<FilletJob, JobError> {
                     f.path.clone(),
                     "cannot be given together with \"max_deviation\"",
                 ));
+            }
+            if let (Some(f), true) = (&vertex_field, vertex) {
+                return Err(JobError::new(
+                    f.path.clone(),
+                    "cannot be true together with \"max_deviation\" (the deviation mode rounds \
+                     the first crossing of two Bezier curves)",
+                ));
+            }
+            let why = "the deviation mode (\"max_deviation\") works on Bezier curves only; \
+                       give setbacks for NURBS curves";
+            for (field, curve) in [(&p_field, &p), (&q_field, &q)] {
+                if curve.as_bezier().is_none() {
+                    return Err(field.not_bezier(why));
+                }
             }
             FilletMode::Deviation {
                 max_deviation: eps.positive()?,
@@ -90,11 +171,25 @@ pub fn parse(job: &Located) -> Result<FilletJob, JobError> {
                     "is only used together with \"max_deviation\"",
                 ));
             }
-            FilletMode::Setbacks
+            if vertex {
+                let gap = match gap {
+                    Some(f) => {
+                        let g = f.number()?;
+                        if g < 0.0 {
+                            return Err(JobError::new(f.path.clone(), format!("{g} must be >= 0")));
+                        }
+                        g
+                    }
+                    None => DEFAULT_VERTEX_GAP,
+                };
+                FilletMode::Vertex { gap }
+            } else {
+                FilletMode::Setbacks
+            }
         }
     };
     let (dp, dq) = match mode {
-        FilletMode::Setbacks => {
+        FilletMode::Setbacks | FilletMode::Vertex { .. } => {
             let dp = obj.required("p_setback")?.positive()?;
             let dq = match q_setback {
                 Some(f) => f.positive()?,
@@ -104,27 +199,7 @@ pub fn parse(job: &Located) -> Result<FilletJob, JobError> {
         }
         FilletMode::Deviation { .. } => (1.0, 1.0),
     };
-    let mut options = FilletOptions::new(dp, dq, p_order, q_order);
-    let p_scale = obj.optional("p_scale");
-    let q_scale = obj.optional("q_scale");
-    let auto_scale = obj
-        .optional("auto_scale")
-        .map(|f| f.boolean())
-        .transpose()?
-        .unwrap_or(false);
-    if auto_scale {
-        if let Some(f) = p_scale.as_ref().or(q_scale.as_ref()) {
-            return Err(JobError::new(
-                f.path.clone(),
-                "cannot be given together with \"auto_scale\": true",
-            ));
-        }
-        options = options.with_auto_scale();
-    } else {
-        let p_scale = p_scale.map(|f| f.positive()).transpose()?;
-        let q_scale = q_scale.map(|f| f.positive()).transpose()?;
-        options = options.with_scales(p_scale.unwrap_or(1.0), q_scale.unwrap_or(1.0));
-    }
+    let options = read_scales(&obj, FilletOptions::new(dp, dq, p_order, q_order))?;
     obj.finish()?;
     Ok(FilletJob {
         p,
@@ -142,73 +217,113 @@ pub fn run(job: &Located) -> Result<Outcome, CliError> {
             let f = fillet(&job.p, &job.q, &job.options)?;
             Ok(outcome(&job, &f, None))
         }
+        FilletMode::Vertex { gap } => {
+            let f = fillet_vertex(&job.p, &job.q, &job.options, gap)?;
+            Ok(outcome(&job, &f, None))
+        }
         FilletMode::Deviation {
             max_deviation,
             setback_ratio,
         } => {
+            let (Some(p), Some(q)) = (job.p.as_bezier(), job.q.as_bezier()) else {
+                return Err(CliError::Operation(
+                    "p, q: the deviation mode works on Bezier curves only".into(),
+                ));
+            };
             let mut options = DeviationFilletOptions::new(max_deviation, job.options.p_order)
                 .with_setback_ratio(setback_ratio);
             options.shape = job.options.clone();
-            let d = fillet_within_deviation(&job.p, &job.q, &options)?;
+            let d = fillet_within_deviation(p, q, &options)?;
             Ok(outcome(&job, &d.fillet, Some(max_deviation)))
         }
     }
+}
+
+/// The joins of the fillet measured by the tool: from the returned pieces
+/// (`P|R`, `R|Q`), and from the ORIGINAL curves at `u0` and `v0` (so a
+/// wrongly trimmed piece would show).
+pub fn measure_joins(
+    p: &Curve,
+    q: &Curve,
+    f: &Fillet,
+    (kp, kq): (usize, usize),
+) -> ([JoinCheck; 2], [JoinCheck; 2]) {
+    let [a, b, c] = f.knot_intervals();
+    let checks = [
+        JoinCheck::measure("P|R", &f.p_trimmed, a, &f.blend, b, kp),
+        JoinCheck::measure("R|Q", &f.blend, b, &f.q_trimmed, c, kq),
+    ];
+    // P spans its own parameter (rate 1), Q spans alpha/beta per unit.
+    let p_orders = kp.max(p.degree().min(f.blend.degree()));
+    let q_orders = kq.max(q.degree().min(f.blend.degree()));
+    let ratio = f.p_scale / f.q_scale;
+    let original = [
+        JoinCheck::from_derivatives(
+            "P(u0)|R(0)",
+            p.dim(),
+            Side {
+                derivatives: &derivatives(p.into(), f.u0, p_orders, KnotSide::Left),
+                rate: 1.0,
+            },
+            Side {
+                derivatives: &f.blend.eval_derivatives(0.0, p_orders),
+                rate: b,
+            },
+            &reference_sizes(&[(p.into(), 1.0), ((&f.blend).into(), b)], p_orders),
+            kp,
+        ),
+        JoinCheck::from_derivatives(
+            "R(1)|Q(v0)",
+            q.dim(),
+            Side {
+                derivatives: &f.blend.eval_derivatives(1.0, q_orders),
+                rate: b,
+            },
+            Side {
+                derivatives: &derivatives(q.into(), f.v0, q_orders, KnotSide::Right),
+                rate: ratio,
+            },
+            &reference_sizes(&[((&f.blend).into(), b), (q.into(), ratio)], q_orders),
+            kq,
+        ),
+    ];
+    (checks, original)
 }
 
 fn outcome(job: &FilletJob, f: &Fillet, max_deviation: Option<f64>) -> Outcome {
     let (p, q) = (&job.p, &job.q);
     let (kp, kq) = (job.options.p_order, job.options.q_order);
     let [a, b, c] = f.knot_intervals();
-    let checks = [
-        JoinCheck::measure("P|R", &f.p_trimmed, a, &f.blend, b, kp),
-        JoinCheck::measure("R|Q", &f.blend, b, &f.q_trimmed, c, kq),
-    ];
-    // The same joins against the original curves, so a wrongly trimmed
-    // piece would show: P spans 1, Q spans alpha/beta in the chain.
-    let original = [
-        JoinCheck::from_derivatives(
-            "P(u0)|R(0)",
-            p.dim(),
-            &p.eval_derivatives(f.u0, p.degree().min(f.blend.degree())),
-            1.0,
-            &f.blend
-                .eval_derivatives(0.0, p.degree().min(f.blend.degree())),
-            b,
-            kp,
-        ),
-        JoinCheck::from_derivatives(
-            "R(1)|Q(v0)",
-            q.dim(),
-            &f.blend
-                .eval_derivatives(1.0, q.degree().min(f.blend.degree())),
-            b,
-            &q.eval_derivatives(f.v0, q.degree().min(f.blend.degree())),
-            f.p_scale / f.q_scale,
-            kq,
-        ),
-    ];
+    let (checks, original) = measure_joins(p, q, f, (kp, kq));
     let x = &f.crossing;
     let crossing_gap = distance(&p.eval(x.u), &q.eval(x.v));
     let p_setback = p.arc_length_default(f.u0, x.u).unwrap_or(f64::NAN);
     let q_setback = q.arc_length_default(x.v, f.v0).unwrap_or(f64::NAN);
     let (want_p, want_q) = match job.mode {
-        FilletMode::Setbacks => (Some(job.options.p_setback), Some(job.options.q_setback)),
+        FilletMode::Setbacks | FilletMode::Vertex { .. } => {
+            (Some(job.options.p_setback), Some(job.options.q_setback))
+        }
         FilletMode::Deviation { .. } => (None, None),
     };
     // Distance from the corner point to the blend, by dense sampling
     // refined with golden-section search around the best sample.
     let (deviation, deviation_t) = distance_to(&f.blend, &x.point);
     let worst_jump = worst(&checks).max(worst(&original));
+    let p_first = p.domain().0;
+    let q_last = q.domain().1;
+    let bspline = f.to_bspline().ok().map(|s| curve_json(&s));
 
     let json = json!({
         "operation": "fillet",
         "p_trimmed": curve_json(&f.p_trimmed),
         "blend": curve_json(&f.blend),
         "q_trimmed": curve_json(&f.q_trimmed),
+        "bspline": bspline,
         "u0": f.u0,
         "v0": f.v0,
         "crossing": {"u": x.u, "v": x.v, "point": x.point, "distance": crossing_gap},
         "report": {
+            "mode": job.mode.name(),
             "blend_degree": f.blend.degree(),
             "p_order": kp,
             "q_order": kq,
@@ -230,8 +345,8 @@ fn outcome(job: &FilletJob, f: &Fillet, max_deviation: Option<f64>) -> Outcome {
     });
 
     let mut figure = Figure::new("Rounded corner");
-    draw_part(&mut figure, p, 0.0, f.u0, Role::Input, "P");
-    draw_part(&mut figure, q, f.v0, 1.0, Role::Input, "Q");
+    draw_part(&mut figure, p, p_first, f.u0, Role::Input, "P");
+    draw_part(&mut figure, q, f.v0, q_last, Role::Input, "Q");
     figure.curve(CurveItem::bezier(
         &f.blend,
         Role::Result,
@@ -254,11 +369,11 @@ fn outcome(job: &FilletJob, f: &Fillet, max_deviation: Option<f64>) -> Outcome {
             arc.v, arc.radius
         ));
     }
-    figure.marker(Marker::new(
-        MarkerKind::Crossing,
-        &x.point,
-        format!("X = P({:.4}) = Q({:.4})", x.u, x.v),
-    ));
+    let corner_label = match job.mode {
+        FilletMode::Vertex { .. } => format!("vertex P({:.4}) = Q({:.4})", x.u, x.v),
+        _ => format!("X = P({:.4}) = Q({:.4})", x.u, x.v),
+    };
+    figure.marker(Marker::new(MarkerKind::Crossing, &x.point, corner_label));
     figure.marker(Marker::new(
         MarkerKind::Join,
         &f.blend.eval(0.0),
@@ -277,18 +392,27 @@ fn outcome(job: &FilletJob, f: &Fillet, max_deviation: Option<f64>) -> Outcome {
         f.p_scale,
         f.q_scale,
     ));
+    let interval_names = if p.as_bezier().is_some() && q.as_bezier().is_some() {
+        "(u0, alpha, (1 - v0) alpha / beta)"
+    } else {
+        "(u0 - first, alpha, (last - v0) alpha / beta)"
+    };
     figure.line(format!(
-        "Chain knot intervals (u0, alpha, (1 - v0) alpha / beta) = ({a:.4}, {b:.4}, {c:.4})"
+        "Chain knot intervals {interval_names} = ({a:.4}, {b:.4}, {c:.4})"
     ));
+    let from = match job.mode {
+        FilletMode::Vertex { .. } => "the vertex",
+        _ => "X",
+    };
     figure.line(format!(
-        "Setbacks measured as arc lengths from X: along P {p_setback:.6}, along Q {q_setback:.6}{}",
+        "Setbacks measured as arc lengths from {from}: along P {p_setback:.6}, along Q {q_setback:.6}{}",
         match (want_p, want_q) {
             (Some(dp), Some(dq)) => format!(" (asked {dp}, {dq})"),
             _ => String::new(),
         }
     ));
     figure.line(format!(
-        "Distance from X to the blend: {deviation:.6}{}",
+        "Distance from {from} to the blend: {deviation:.6}{}",
         match max_deviation {
             Some(eps) => format!(" (asked {eps})"),
             None => String::new(),

@@ -1,25 +1,26 @@
 //! `bezjoin intersect`: all meeting points of two curves
 //! ([`bezjoin_core::intersect`]).
 //!
-//! The job gives `P`, `Q` and optional tolerances; the result lists every
-//! hit with `u`, `v`, the point and its kind (crossing, touching, overlap).
-//! The report re-measures `|P(u) - Q(v)|` for every hit from the curves.
+//! The job gives `P`, `Q` (Bezier or NURBS) and optional tolerances; the
+//! result lists every hit with `u`, `v` (in each curve's domain), the point
+//! and its kind (crossing, touching, overlap). The report re-measures
+//! `|P(u) - Q(v)|` for every hit from the curves.
 
-use bezjoin_core::{BezierCurve, IntersectOptions, Intersection, IntersectionKind, intersect};
+use bezjoin_core::{Curve, CurveRef, IntersectOptions, Intersection, IntersectionKind, intersect};
 use serde_json::{Value, json};
 
 use crate::check::{curve_json, distance};
 use crate::job::{JobError, Located};
-use crate::ops::{OperationKind, Scenario};
+use crate::ops::{OperationKind, Scenario, describe_curve};
 use crate::svg::{CurveItem, Figure, Marker, MarkerKind, Role};
 use crate::{CliError, Outcome, Summary};
 
 /// A parsed intersect job.
 pub struct IntersectJob {
-    /// Curve P.
-    pub p: BezierCurve,
-    /// Curve Q.
-    pub q: BezierCurve,
+    /// Curve P (Bezier or NURBS).
+    pub p: Curve,
+    /// Curve Q (Bezier or NURBS).
+    pub q: Curve,
     /// Tolerances and work bounds.
     pub options: IntersectOptions,
 }
@@ -64,7 +65,7 @@ fn kind_name(kind: &IntersectionKind) -> &'static str {
     }
 }
 
-fn hit_json(p: &BezierCurve, q: &BezierCurve, hit: &Intersection) -> (Value, f64) {
+fn hit_json(p: &Curve, q: &Curve, hit: &Intersection) -> (Value, f64) {
     let gap = distance(&p.eval(hit.u), &q.eval(hit.v));
     let mut value = json!({
         "u": hit.u,
@@ -94,8 +95,8 @@ fn outcome(job: &IntersectJob, hits: &[Intersection]) -> Outcome {
             v
         })
         .collect();
-    let tolerance =
-        job.options.relative_distance_tolerance * p.coordinate_scale().max(q.coordinate_scale());
+    let scale = |c: &Curve| CurveRef::from(c).coordinate_scale();
+    let tolerance = job.options.relative_distance_tolerance * scale(p).max(scale(q));
     let json = json!({
         "operation": "intersect",
         "p": curve_json(p),
@@ -111,15 +112,15 @@ fn outcome(job: &IntersectJob, hits: &[Intersection]) -> Outcome {
         }
     });
     let mut figure = Figure::new("Intersections");
-    figure.curve(CurveItem::bezier(
+    figure.curve(CurveItem::new(
         p,
         Role::Input,
-        format!("P, degree {}", p.degree()),
+        format!("P, {}", describe_curve(p)),
     ));
-    figure.curve(CurveItem::bezier(
+    figure.curve(CurveItem::new(
         q,
         Role::Result,
-        format!("Q, degree {}", q.degree()),
+        format!("Q, {}", describe_curve(q)),
     ));
     for (i, h) in hits.iter().enumerate() {
         figure.marker(Marker::new(

@@ -50,8 +50,9 @@ fn keep_points(field: &Located) -> Result<Vec<KeepPoint>, JobError> {
 /// Read a merge job.
 pub fn parse(job: &Located) -> Result<MergeJob, JobError> {
     let obj = job.object()?;
-    let p = obj.required("p")?.curve()?;
-    let q = obj.required("q")?.curve()?;
+    let why = "merge works on two Bezier curves (section 3)";
+    let p = obj.required("p")?.bezier_curve(why)?;
+    let q = obj.required("q")?.bezier_curve(why)?;
     let mut options = MergeOptions::default();
     if let Some(f) = obj.optional("metric") {
         options.metric = match f.choice(&["discrete", "l2", "integral"])? {

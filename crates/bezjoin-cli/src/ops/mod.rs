@@ -5,7 +5,7 @@ use std::path::PathBuf;
 
 use clap::{Args, Subcommand};
 
-use bezjoin_core::BezierCurve;
+use bezjoin_core::CurveRef;
 use serde_json::Value;
 
 use crate::job::Located;
@@ -14,6 +14,7 @@ use crate::{CliError, Outcome};
 
 pub mod connect;
 pub mod fillet;
+pub mod fillet_chain;
 pub mod intersect;
 pub mod merge;
 pub mod spline;
@@ -33,8 +34,10 @@ pub struct JobArgs {
 pub enum Operation {
     /// Connect P(u0) to Q(v0) with a C^k Bezier curve (mathematics.md section 1).
     Connect(JobArgs),
-    /// Round the corner between two crossing curves (section 2).
+    /// Round the corner between two crossing curves, or at a vertex (section 2).
     Fillet(JobArgs),
+    /// Round every corner of a chain (a wire) of curves.
+    FilletChain(JobArgs),
     /// Merge two curves into one by the smallest change (section 3).
     Merge(JobArgs),
     /// Spline with control points on the curve (section 4).
@@ -49,6 +52,7 @@ impl Operation {
         match self {
             Operation::Connect(a)
             | Operation::Fillet(a)
+            | Operation::FilletChain(a)
             | Operation::Merge(a)
             | Operation::Spline(a)
             | Operation::Intersect(a) => a,
@@ -60,6 +64,7 @@ impl Operation {
         match self {
             Operation::Connect(_) => OperationKind::Connect,
             Operation::Fillet(_) => OperationKind::Fillet,
+            Operation::FilletChain(_) => OperationKind::FilletChain,
             Operation::Merge(_) => OperationKind::Merge,
             Operation::Spline(_) => OperationKind::Spline,
             Operation::Intersect(_) => OperationKind::Intersect,
@@ -80,6 +85,8 @@ pub enum OperationKind {
     Connect,
     /// `bezjoin fillet`.
     Fillet,
+    /// `bezjoin fillet-chain`.
+    FilletChain,
     /// `bezjoin merge`.
     Merge,
     /// `bezjoin spline`.
@@ -94,6 +101,7 @@ impl OperationKind {
         match self {
             OperationKind::Connect => "connect",
             OperationKind::Fillet => "fillet",
+            OperationKind::FilletChain => "fillet-chain",
             OperationKind::Merge => "merge",
             OperationKind::Spline => "spline",
             OperationKind::Intersect => "intersect",
@@ -105,6 +113,7 @@ impl OperationKind {
         match self {
             OperationKind::Connect => connect::run(job),
             OperationKind::Fillet => fillet::run(job),
+            OperationKind::FilletChain => fillet_chain::run(job),
             OperationKind::Merge => merge::run(job),
             OperationKind::Spline => spline::run(job),
             OperationKind::Intersect => intersect::run(job),
@@ -139,36 +148,61 @@ impl Scenario {
 pub fn scenarios() -> Vec<Scenario> {
     let mut all = connect::demo_scenarios();
     all.extend(fillet::demo_scenarios());
+    all.extend(fillet_chain::demo_scenarios());
     all.extend(merge::demo_scenarios());
     all.extend(spline::demo_scenarios());
     all.extend(intersect::demo_scenarios());
     all
 }
 
-/// Draw the part `[a, b]` of `curve` in `role` with its comb, over the
-/// whole given curve drawn as discarded (grey, dashed, with its control
-/// polygon). When `[a, b]` is all of `[0, 1]` the curve is drawn once.
-pub fn draw_part(figure: &mut Figure, curve: &BezierCurve, a: f64, b: f64, role: Role, name: &str) {
-    let degree = curve.degree();
-    if a <= 0.0 && b >= 1.0 {
-        figure.curve(CurveItem::bezier(
-            curve,
-            role,
-            format!("{name}, degree {degree}"),
-        ));
+/// How a curve is named in legends: `degree 3` for a Bezier curve,
+/// `NURBS of degree 2, rational, 3 spans` for a NURBS curve.
+pub fn describe_curve<'a>(curve: impl Into<CurveRef<'a>>) -> String {
+    match curve.into() {
+        CurveRef::Bezier(c) => format!("degree {}", c.degree()),
+        CurveRef::Nurbs(c) => {
+            let spans = c.span_count();
+            format!(
+                "NURBS of degree {}, {}, {spans} span{}",
+                c.degree(),
+                if c.is_rational() {
+                    "rational"
+                } else {
+                    "polynomial"
+                },
+                if spans == 1 { "" } else { "s" }
+            )
+        }
+    }
+}
+
+/// Draw the part `[a, b]` of `curve` (in its own parameters: `[0, 1]` for
+/// a Bezier curve, the domain for a NURBS curve) in `role` with its comb,
+/// over the whole given curve drawn as discarded (grey, dashed, with its
+/// control polygon). When `[a, b]` is the whole domain the curve is drawn
+/// once.
+pub fn draw_part<'a>(
+    figure: &mut Figure,
+    curve: impl Into<CurveRef<'a>>,
+    a: f64,
+    b: f64,
+    role: Role,
+    name: &str,
+) {
+    let curve = curve.into();
+    let (first, last) = curve.domain();
+    let kind = describe_curve(curve);
+    if a <= first && b >= last {
+        figure.curve(CurveItem::new(curve, role, format!("{name}, {kind}")));
         return;
     }
-    let mut given = CurveItem::bezier(
-        curve,
-        Role::Discarded,
-        format!("{name}, degree {degree}, as given"),
-    );
+    let mut given = CurveItem::new(curve, Role::Discarded, format!("{name}, {kind}, as given"));
     given.polygon = true;
     figure.curve(given);
     if b > a {
-        if let Ok(kept) = curve.segment(a, b) {
+        if let Ok(kept) = curve.segment(a.max(first), b.min(last)) {
             figure.curve(
-                CurveItem::bezier(
+                CurveItem::new(
                     &kept,
                     role,
                     format!("{name} on [{a:.4}, {b:.4}] (kept part)"),

@@ -37,15 +37,17 @@ impl Bounds {
     }
 }
 
-/// Every curve of `figure` sampled at `CURVE_SAMPLES + 1` equally spaced
-/// parameters, projected to the picture's plane.
+/// Every curve of `figure` sampled at about `CURVE_SAMPLES + 1` parameters
+/// ([`super::Shape::sample_jets`]), projected to the picture's plane.
 pub(super) fn sample_curves(figure: &Figure) -> Vec<Vec<[f64; 2]>> {
     figure
         .curves
         .iter()
         .map(|item| {
-            (0..=CURVE_SAMPLES)
-                .map(|i| item.shape.jet(i as f64 / CURVE_SAMPLES as f64)[0])
+            item.shape
+                .sample_jets(CURVE_SAMPLES)
+                .into_iter()
+                .map(|[p, _, _]| p)
                 .collect()
         })
         .collect()

@@ -78,10 +78,10 @@ impl Combs {
 /// Comb samples of one curve: (point, unit normal pointing away from the
 /// centre of curvature when k > 0 is left, signed curvature).
 fn comb_samples(shape: &Shape, count: usize) -> CombSamples {
-    (0..=count)
-        .map(|i| {
-            let t = i as f64 / count as f64;
-            let [p, d1, d2] = shape.jet(t);
+    shape
+        .sample_jets(count)
+        .into_iter()
+        .map(|[p, d1, d2]| {
             let speed = d1[0].hypot(d1[1]);
             let left = if speed > 0.0 {
                 [-d1[1] / speed, d1[0] / speed]

@@ -10,12 +10,19 @@
 //! curvature jump, and a kink in the tip line shows a jump of the curvature's
 //! derivative.
 //!
+//! Curves are drawn through samples of their points and first two
+//! derivatives, so every kind is drawn the same way: Bezier curves, NURBS
+//! curves (polynomial or rational, sampled span by span with both sides of
+//! every interior knot, so a curvature step at a knot shows where it is)
+//! and circular arcs. The curvature comes from the first and second
+//! derivatives alone.
+//!
 //! Coordinates: the model's `y` axis points up (the SVG's is flipped).
 //! Curves of dimension 3 or more are drawn in top view (the `x`-`y`
 //! projection) and their combs show the curvature of that projection; a
 //! curve of dimension 1 is drawn as the graph `(t, x(t))`.
 
-use bezjoin_core::BezierCurve;
+use bezjoin_core::{BezierCurve, CurveRef, KnotSide, NurbsCurve};
 
 mod bounds;
 mod comb;
@@ -27,6 +34,8 @@ mod output;
 pub enum Shape {
     /// A Bezier curve of any degree and dimension.
     Bezier(BezierCurve),
+    /// A NURBS curve of any degree and dimension, on its domain.
+    Nurbs(NurbsCurve),
     /// A circular arc in the x-y plane: `center + radius (cos a, sin a)`,
     /// `a = start_angle + sweep * t`, `t in [0, 1]`.
     Arc {
@@ -42,21 +51,27 @@ pub enum Shape {
 }
 
 impl Shape {
-    /// Projected point, first and second derivative at `t`.
+    /// A curve of either kind.
+    pub fn curve<'a>(curve: impl Into<CurveRef<'a>>) -> Self {
+        match curve.into() {
+            CurveRef::Bezier(c) => Shape::Bezier(c.clone()),
+            CurveRef::Nurbs(c) => Shape::Nurbs(c.clone()),
+        }
+    }
+
+    /// Projected point, first and second derivative at `t` in `[0, 1]`
+    /// (a NURBS curve's domain mapped onto `[0, 1]`; at an interior knot its
+    /// derivatives are those from the right).
     pub fn jet(&self, t: f64) -> [[f64; 2]; 3] {
         match self {
-            Shape::Bezier(c) => {
-                let d = c.eval_derivatives(t, 2);
-                let dim = c.dim();
-                if dim == 1 {
-                    [[t, d[0]], [1.0, d[1]], [0.0, d[2]]]
-                } else {
-                    [
-                        [d[0], d[1]],
-                        [d[dim], d[dim + 1]],
-                        [d[2 * dim], d[2 * dim + 1]],
-                    ]
-                }
+            Shape::Bezier(c) => projected(&c.eval_derivatives(t, 2), c.dim(), t),
+            Shape::Nurbs(c) => {
+                let (a, b) = c.domain();
+                let u = a + t * (b - a);
+                let d = c.eval_derivatives_side(u, 2, KnotSide::Right);
+                let [p, d1, d2] = projected(&d, c.dim(), u);
+                let s = b - a;
+                [p, [d1[0] * s, d1[1] * s], [d2[0] * s * s, d2[1] * s * s]]
             }
             Shape::Arc {
                 center,
@@ -75,9 +90,62 @@ impl Shape {
         }
     }
 
+    /// Samples for drawing: `count + 1` jets ([`Shape::jet`]) at equally
+    /// spaced `t` for a Bezier curve or an arc; for a NURBS curve about as
+    /// many, spread over the knot spans by their parameter lengths (at
+    /// least 2 per span), each span from its first parameter (derivatives
+    /// from the right) to its last (from the left), so both sides of every
+    /// interior knot are drawn.
+    pub fn sample_jets(&self, count: usize) -> Vec<[[f64; 2]; 3]> {
+        let Shape::Nurbs(c) = self else {
+            return (0..=count)
+                .map(|i| self.jet(i as f64 / count as f64))
+                .collect();
+        };
+        let (a, b) = c.domain();
+        let (inner, _) = c.interior_knots();
+        let mut breaks = vec![a];
+        breaks.extend(inner);
+        breaks.push(b);
+        let mut out = Vec::with_capacity(count + 2 * breaks.len());
+        for w in breaks.windows(2) {
+            let (lo, hi) = (w[0], w[1]);
+            let n = ((count as f64 * (hi - lo) / (b - a)).round() as usize).max(1);
+            for i in 0..=n {
+                let u = lo + (hi - lo) * i as f64 / n as f64;
+                let side = if i == n {
+                    KnotSide::Left
+                } else {
+                    KnotSide::Right
+                };
+                let d = c.eval_derivatives_side(u, 2, side);
+                let [p, d1, d2] = projected(&d, c.dim(), u);
+                let s = b - a;
+                out.push([p, [d1[0] * s, d1[1] * s], [d2[0] * s * s, d2[1] * s * s]]);
+            }
+        }
+        out
+    }
+
     /// Projected control polygon (empty for an arc).
     fn polygon(&self) -> Vec<[f64; 2]> {
         match self {
+            Shape::Nurbs(c) => (0..c.point_count())
+                .map(|i| {
+                    let p = c.point(i);
+                    if c.dim() == 1 {
+                        // Greville abscissa: where the pole acts most.
+                        let k = c.knots();
+                        let p_deg = c.degree();
+                        [
+                            k[i + 1..=i + p_deg].iter().sum::<f64>() / p_deg as f64,
+                            p[0],
+                        ]
+                    } else {
+                        [p[0], p[1]]
+                    }
+                })
+                .collect(),
             Shape::Bezier(c) => (0..c.point_count())
                 .map(|i| {
                     let p = c.point(i);
@@ -95,8 +163,24 @@ impl Shape {
     fn dim(&self) -> usize {
         match self {
             Shape::Bezier(c) => c.dim(),
+            Shape::Nurbs(c) => c.dim(),
             Shape::Arc { .. } => 2,
         }
+    }
+}
+
+/// Point, first and second derivative (rows of `d`, `dim` values each)
+/// projected to the picture's plane: the `x`-`y` plane, or the graph
+/// `(t, x(t))` of a curve of dimension 1 (`t` its parameter).
+fn projected(d: &[f64], dim: usize, t: f64) -> [[f64; 2]; 3] {
+    if dim == 1 {
+        [[t, d[0]], [1.0, d[1]], [0.0, d[2]]]
+    } else {
+        [
+            [d[0], d[1]],
+            [d[dim], d[dim + 1]],
+            [d[2 * dim], d[2 * dim + 1]],
+        ]
     }
 }
 
@@ -172,8 +256,14 @@ pub struct CurveItem {
 impl CurveItem {
     /// A Bezier curve with polygon and comb.
     pub fn bezier(curve: &BezierCurve, role: Role, label: impl Into<String>) -> Self {
+        Self::new(curve, role, label)
+    }
+
+    /// A curve of either kind (Bezier or NURBS) with polygon and comb
+    /// (neither for a discarded curve).
+    pub fn new<'a>(curve: impl Into<CurveRef<'a>>, role: Role, label: impl Into<String>) -> Self {
         CurveItem {
-            shape: Shape::Bezier(curve.clone()),
+            shape: Shape::curve(curve),
             role,
             label: label.into(),
             polygon: role != Role::Discarded,

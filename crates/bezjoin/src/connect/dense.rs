@@ -4,7 +4,7 @@
 use nalgebra::DMatrix;
 
 use super::{ConnectOptions, Connection, condition_rows, finish, prepare};
-use crate::bezier::BezierCurve;
+use crate::curve::CurveJet;
 use crate::error::{BezjoinError, Result};
 use crate::linalg::solve_checked;
 
@@ -13,10 +13,10 @@ use crate::linalg::solve_checked;
 /// residual check; `constraint_condition` reports the condition estimate of
 /// the whole scaled system. Used as the reference in tests and benchmarks;
 /// `O(nr^3 + nr^2 d)`.
-pub fn connect_dense_reference(
-    p: &BezierCurve,
+pub fn connect_dense_reference<P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
+    p: &P,
     u0: f64,
-    q: &BezierCurve,
+    q: &Q,
     v0: f64,
     options: &ConnectOptions,
 ) -> Result<Connection> {

@@ -83,11 +83,10 @@ mod energy;
 
 use nalgebra::DMatrix;
 
-use crate::basis::bezier_basis_derivatives;
+use crate::basis::{KnotSide, bezier_basis_derivatives};
 use crate::bezier::BezierCurve;
-use crate::error::{
-    BezjoinError, Result, check_closed_range, check_finite, check_open_range, check_positive,
-};
+use crate::curve::CurveJet;
+use crate::error::{BezjoinError, Result, check_finite, check_open_range, check_positive};
 use crate::linalg::solve_checked;
 
 pub use dense::connect_dense_reference;
@@ -165,9 +164,10 @@ impl PointConstraint {
 /// What to connect and how (docs/mathematics.md#connect).
 #[derive(Debug, Clone, PartialEq)]
 pub struct ConnectOptions {
-    /// `kp <= degree of P`: derivatives `0..=kp` of `P` at `u0` are matched.
+    /// `kp`: derivatives `0..=kp` of `P` at `u0` are matched (any order: above
+    /// a polynomial's degree they are 0).
     pub p_order: usize,
-    /// `kq <= degree of Q`: derivatives `0..=kq` of `Q` at `v0` are matched.
+    /// `kq`: derivatives `0..=kq` of `Q` at `v0` are matched (any order).
     pub q_order: usize,
     /// How the shape scales `alpha`, `beta` are chosen; default
     /// `ShapeScale::Given { p: 1.0, q: 1.0 }`, the paper.
@@ -363,7 +363,11 @@ fn basis_rows(degree: usize, t: f64, order: usize) -> DMatrix<f64> {
 
 /// `P^(k)(t)` for `k = 0..=order` with a first-order rounding bound per row
 /// (`gamma * |D| |P|`, `gamma = 2 (n + k + 2) u`).
-fn derivatives_with_error(curve: &BezierCurve, t: f64, order: usize) -> (DMatrix<f64>, Vec<f64>) {
+pub(crate) fn derivatives_with_error(
+    curve: &BezierCurve,
+    t: f64,
+    order: usize,
+) -> (DMatrix<f64>, Vec<f64>) {
     let basis = basis_rows(curve.degree(), t, order);
     let dim = curve.dim();
     let points = curve.points();
@@ -398,10 +402,10 @@ fn derivatives_with_error(curve: &BezierCurve, t: f64, order: usize) -> (DMatrix
 }
 
 /// Validate the inputs (everything except the scales) and evaluate the end data.
-pub(crate) fn prepare(
-    p: &BezierCurve,
+pub(crate) fn prepare<P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
+    p: &P,
     u0: f64,
-    q: &BezierCurve,
+    q: &Q,
     v0: f64,
     options: &ConnectOptions,
 ) -> Result<Problem> {
@@ -413,24 +417,8 @@ pub(crate) fn prepare(
             actual: q.dim(),
         });
     }
-    check_closed_range("u0", u0, 0.0, 1.0)?;
-    check_closed_range("v0", v0, 0.0, 1.0)?;
-    if options.p_order > p.degree() {
-        return Err(BezjoinError::OrderAboveDegree {
-            name: "p_order".into(),
-            order: options.p_order,
-            degree: p.degree(),
-            curve: "p".into(),
-        });
-    }
-    if options.q_order > q.degree() {
-        return Err(BezjoinError::OrderAboveDegree {
-            name: "q_order".into(),
-            order: options.q_order,
-            degree: q.degree(),
-            curve: "q".into(),
-        });
-    }
+    p.check_parameter("u0", u0)?;
+    q.check_parameter("v0", v0)?;
     let mut constraints: Vec<(f64, DMatrix<f64>)> = Vec::with_capacity(options.constraints.len());
     let data_scale = p.coordinate_scale().max(q.coordinate_scale());
     for (j, c) in options.constraints.iter().enumerate() {
@@ -468,8 +456,10 @@ pub(crate) fn prepare(
         options.constraints.iter().map(|c| c.max_order),
     )?;
     constraints.sort_by(|a, b| a.0.total_cmp(&b.0));
-    let (p_derivatives, p_derivative_error) = derivatives_with_error(p, u0, options.p_order);
-    let (q_derivatives, q_derivative_error) = derivatives_with_error(q, v0, options.q_order);
+    // P arrives at u0 (its derivatives from the left of a knot), Q leaves
+    // v0 (from the right): docs/mathematics.md#nurbs-curves.
+    let (p_derivatives, p_derivative_error) = p.jet(u0, options.p_order, KnotSide::Left);
+    let (q_derivatives, q_derivative_error) = q.jet(v0, options.q_order, KnotSide::Right);
     Ok(Problem {
         dim,
         degree,
@@ -737,6 +727,13 @@ fn structured_points(
 ///
 /// The degree of the result is `kp + kq + 1 + sum (K_j + 1)`.
 ///
+/// `P` and `Q` are any curves ([`BezierCurve`], [`NurbsCurve`](crate::NurbsCurve),
+/// [`Curve`](crate::Curve)): only their derivative jets are used, P's from
+/// the left of `u0` and Q's from the right of `v0` (at a knot of a NURBS
+/// curve; docs/mathematics.md#nurbs-curves). The orders `kp`, `kq` may exceed the
+/// degrees: derivatives above a polynomial's degree are 0, a rational
+/// curve (a circle) has derivatives of every order.
+///
 /// # Guarantee
 /// The returned curve satisfies (1') and (2) with a worst relative residual
 /// (module documentation) of at most [`CONNECT_RESIDUAL_LIMIT`], as bounded
@@ -745,9 +742,9 @@ fn structured_points(
 ///
 /// # Errors
 /// * `DimensionMismatch` (`q`) when `P` and `Q` have different dimensions;
-/// * `ParameterOutOfRange` / `NonFinite` for `u0`, `v0` outside `[0, 1]`,
-///   given `p_scale`, `q_scale` not `> 0`, `constraints[j].t` outside `(0, 1)`;
-/// * `OrderAboveDegree` for `p_order > deg P`, `q_order > deg Q`;
+/// * `ParameterOutOfRange` / `NonFinite` for `u0`, `v0` outside the
+///   curve's domain (`[0, 1]` for a Bezier curve), given `p_scale`,
+///   `q_scale` not `> 0`, `constraints[j].t` outside `(0, 1)`;
 /// * `InvalidArgument` for a repeated `constraints[j].t` or an empty
 ///   `constraints[j].max_order` so large that `(K + 1) * dim` overflows;
 /// * `LengthMismatch` / `NonFinite` for `constraints[j].values`;
@@ -765,10 +762,10 @@ fn structured_points(
 /// assert_eq!(joined.curve.degree(), 7);
 /// assert!(joined.max_residual < 1e-12);
 /// ```
-pub fn connect(
-    p: &BezierCurve,
+pub fn connect<P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
+    p: &P,
     u0: f64,
-    q: &BezierCurve,
+    q: &Q,
     v0: f64,
     options: &ConnectOptions,
 ) -> Result<Connection> {
@@ -787,10 +784,10 @@ pub fn connect(
 /// For measurements (the accuracy table in docs/accuracy.md) and for callers
 /// that apply their own acceptance test to `error_estimate`; prefer
 /// [`connect`], whose answers carry the guarantee.
-pub fn connect_unchecked(
-    p: &BezierCurve,
+pub fn connect_unchecked<P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
+    p: &P,
     u0: f64,
-    q: &BezierCurve,
+    q: &Q,
     v0: f64,
     options: &ConnectOptions,
 ) -> Result<Connection> {
@@ -849,8 +846,11 @@ mod tests {
             "u0 = 1.5 is outside [0, 1]"
         );
         assert!(err(1.0, -0.5, ConnectOptions::new(1, 1)).starts_with("v0 = -0.5"));
-        assert!(err(1.0, 0.0, ConnectOptions::new(4, 1)).starts_with("p_order = 4"));
-        assert!(err(1.0, 0.0, ConnectOptions::new(1, 4)).starts_with("q_order = 4"));
+        // Orders above the degree are allowed (docs/mathematics.md#nurbs-curves):
+        // a cubic's 4th derivative is 0, and the result matches it.
+        let above = connect(&p, 1.0, &q, 0.0, &ConnectOptions::new(4, 1)).unwrap();
+        let fourth = above.curve.eval_derivatives(0.0, 4);
+        assert!(fourth[8..10].iter().all(|x| x.abs() < 1e-9), "{fourth:?}");
         assert!(
             err(1.0, 0.0, ConnectOptions::new(1, 1).with_scales(0.0, 1.0))
                 .starts_with("p_scale = 0")

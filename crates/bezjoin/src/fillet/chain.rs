@@ -4,8 +4,9 @@
 //! Corner `i` lies between `curves[i]` and `curves[i + 1]` (and, for a closed
 //! chain, between the last curve and the first). Its crossing is the hit of
 //! the two curves nearest their shared end: the one with the smallest
-//! `(1 - u) + v` (for a chain whose curves meet end to end that is
-//! `u = 1, v = 0`). Every corner is rounded as [`super::fillet`] rounds one,
+//! `(last - u) / |P's domain| + (v - first) / |Q's domain|` (for a chain
+//! whose curves meet end to end that is P's end and Q's start). Curves may
+//! be Bezier or NURBS; trimmed pieces keep their kind and parameters. Every corner is rounded as [`super::fillet`] rounds one,
 //! with the same options; curve `i` is then kept between the cut of corner
 //! `i - 1` and the cut of corner `i`.
 //!
@@ -18,7 +19,7 @@
 
 use rayon::prelude::*;
 
-use crate::bezier::BezierCurve;
+use crate::curve::{AsCurveRef, Curve, CurveRef};
 use crate::error::{BezjoinError, Result};
 use crate::intersect::{Intersection, IntersectionKind, intersect};
 
@@ -80,7 +81,9 @@ pub struct ChainFillet {
     /// An open chain of `n` curves gives `2n - 1` pieces (ending with the
     /// trimmed last curve), a closed one `2n` (ending with the blend from
     /// the last curve to the first, whose trimmed start begins the list).
-    pub pieces: Vec<BezierCurve>,
+    /// Trimmed curves keep their kind (a NURBS curve its parameters);
+    /// blends are Bezier curves.
+    pub pieces: Vec<Curve>,
     /// Corner `i`, between `curves[i]` and `curves[(i + 1) % n]`.
     pub corners: Vec<ChainCorner>,
 }
@@ -107,7 +110,11 @@ pub struct ChainFillet {
 /// let rounded = fillet_chain(&[a, b, c], &options).unwrap();
 /// assert_eq!(rounded.pieces.len(), 6);
 /// ```
-pub fn fillet_chain(curves: &[BezierCurve], options: &ChainFilletOptions) -> Result<ChainFillet> {
+pub fn fillet_chain<C: AsCurveRef + Sync>(
+    curves: &[C],
+    options: &ChainFilletOptions,
+) -> Result<ChainFillet> {
+    let curves: Vec<CurveRef> = curves.iter().map(AsCurveRef::as_curve_ref).collect();
     let n = curves.len();
     if n < 2 {
         return Err(BezjoinError::invalid(
@@ -124,10 +131,10 @@ pub fn fillet_chain(curves: &[BezierCurve], options: &ChainFilletOptions) -> Res
         });
     }
     for i in 0..n {
-        validate(&curves[i], &curves[(i + 1) % n], &options.fillet)?;
+        validate(curves[i], curves[(i + 1) % n], &options.fillet)?;
     }
     let corner_count = if options.closed { n } else { n - 1 };
-    let one = |i: usize| round_corner(i, &curves[i], &curves[(i + 1) % n], &options.fillet);
+    let one = |i: usize| round_corner(i, curves[i], curves[(i + 1) % n], &options.fillet);
     let results: Vec<Result<Fillet>> = if corner_count > options.parallel_threshold {
         (0..corner_count).into_par_iter().map(one).collect()
     } else {
@@ -139,14 +146,19 @@ pub fn fillet_chain(curves: &[BezierCurve], options: &ChainFilletOptions) -> Res
     }
     let mut pieces = Vec::with_capacity(2 * n);
     for i in 0..n {
+        let (first, last) = curves[i].domain();
         let start = if i > 0 {
             fillets[i - 1].v0
         } else if options.closed {
             fillets[corner_count - 1].v0
         } else {
-            0.0
+            first
         };
-        let end = if i < corner_count { fillets[i].u0 } else { 1.0 };
+        let end = if i < corner_count {
+            fillets[i].u0
+        } else {
+            last
+        };
         if start >= end || start.is_nan() || end.is_nan() {
             return Err(BezjoinError::invalid(
                 format!("curves[{i}]"),
@@ -158,7 +170,7 @@ pub fn fillet_chain(curves: &[BezierCurve], options: &ChainFilletOptions) -> Res
         }
         pieces.push(curves[i].segment(start, end)?);
         if i < corner_count {
-            pieces.push(fillets[i].blend.clone());
+            pieces.push(Curve::Bezier(fillets[i].blend.clone()));
         }
     }
     let corners = fillets
@@ -174,16 +186,17 @@ pub fn fillet_chain(curves: &[BezierCurve], options: &ChainFilletOptions) -> Res
     Ok(ChainFillet { pieces, corners })
 }
 
-fn round_corner(
-    index: usize,
-    p: &BezierCurve,
-    q: &BezierCurve,
-    options: &FilletOptions,
-) -> Result<Fillet> {
+fn round_corner(index: usize, p: CurveRef, q: CurveRef, options: &FilletOptions) -> Result<Fillet> {
     let hits = intersect(p, q, &options.intersect).map_err(|e| in_corner(e, index))?;
+    // Distance from the shared end, in units of each domain's length.
+    let (p_first, p_last) = p.domain();
+    let (q_first, q_last) = q.domain();
+    let from_end = |h: &Intersection| {
+        (p_last - h.u) / (p_last - p_first) + (h.v - q_first) / (q_last - q_first)
+    };
     let nearest = hits
         .into_iter()
-        .min_by(|a, b| ((1.0 - a.u) + a.v).total_cmp(&((1.0 - b.u) + b.v)));
+        .min_by(|a, b| from_end(a).total_cmp(&from_end(b)));
     let crossing = match nearest {
         Some(h) if h.kind == IntersectionKind::Crossing => h,
         Some(h) if h.kind == IntersectionKind::Touching => {

@@ -193,18 +193,18 @@ pub fn fillet_within_deviation(
         "relative_deviation_accuracy",
         options.relative_deviation_accuracy,
     )?;
-    validate_shape(p, q, &options.shape)?;
+    validate_shape(&options.shape)?;
     let hits = intersect(p, q, &options.shape.intersect)?;
     let crossing = first_crossing(&hits)?;
     let corner = crossing.point.clone();
-    let (before, after) = available_lengths(p, q, &crossing)?;
+    let (before, after) = available_lengths(p.into(), q.into(), &crossing)?;
     let longest = (1.0 - 1e-9) * before.min(after / ratio);
 
     let attempt = |dp: f64| -> Result<DeviationFillet> {
         let mut shape = options.shape.clone();
         shape.p_setback = dp;
         shape.q_setback = ratio * dp;
-        let fillet = fillet_at_validated(p, q, crossing.clone(), &shape)?;
+        let fillet = fillet_at_validated(p.into(), q.into(), crossing.clone(), &shape)?;
         let (t, deviation) = distance_to_curve(&fillet.blend, &corner);
         Ok(DeviationFillet {
             fillet,

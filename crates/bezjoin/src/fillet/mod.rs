@@ -4,16 +4,25 @@
 //! Fig. 2).
 //!
 //! `P` and `Q` cross at `X = P(u*) = Q(v*)`. The corner of the path "along
-//! `P` up to `X`, then along `Q`" is rounded by keeping `P` on `[0, u0]`,
-//! `Q` on `[v0, 1]` and joining `P(u0)` to `Q(v0)` with the connecting curve
+//! `P` up to `X`, then along `Q`" is rounded by keeping `P` on `[a, u0]`,
+//! `Q` on `[v0, b]` (`[a, ..]` is P's domain, `[.., b]` Q's: `[0, 1]` for a
+//! Bezier curve) and joining `P(u0)` to `Q(v0)` with the connecting curve
 //! of section 1 ([`crate::connect::connect`]). The setbacks are arc lengths
 //! measured from `X`: `len(P; u0..u*) = dp`, `len(Q; v*..v0) = dq`
 //! (symmetric when `dp = dq`); `u0`, `v0` come from
-//! [`BezierCurve::param_at_length`].
+//! [`BezierCurve::param_at_length`] / [`NurbsCurve::param_at_length`].
+//!
+//! P and Q may be Bezier or NURBS curves (docs/mathematics.md#nurbs-curves): the
+//! trimmed pieces keep the input's kind, a NURBS piece its parameters
+//! (knot insertion, exact); the blend is a Bezier curve. P's derivatives
+//! at `u0` are taken from the left of a knot, Q's at `v0` from the right.
+//! The orders `kp`, `kq` may exceed the degrees, as for connect. A corner
+//! at a shared vertex (P ends where Q starts: a wire, a sketch) is
+//! [`fillet_vertex`].
 //!
 //! # Guarantee
-//! The three pieces `P|[0,u0]`, `R`, `Q|[v0,1]` form a C^k B-spline with knot
-//! intervals `(u0, alpha, (1 - v0) alpha / beta)` ([`Fillet::to_bspline`]):
+//! The three pieces `P|[a,u0]`, `R`, `Q|[v0,b]` form a C^k B-spline with
+//! knot intervals `(u0 - a, alpha, (b - v0) alpha / beta)` ([`Fillet::to_bspline`]):
 //! derivatives `0..=kp` agree at the first join and `0..=kq` at the second,
 //! to the connect solver's checked residual (`CONNECT_RESIDUAL_LIMIT`,
 //! relative). The setback lengths hold to the arc-length accuracy
@@ -57,10 +66,11 @@ pub use deviation::{
 };
 
 use crate::bezier::BezierCurve;
-use crate::bspline::BSplineCurve;
 use crate::connect::{ConnectOptions, ShapeScale, connect};
+use crate::curve::{Curve, CurveRef};
 use crate::error::{BezjoinError, Result, check_finite_scalar, check_positive};
 use crate::intersect::{IntersectOptions, Intersection, IntersectionKind, intersect};
+use crate::nurbs::NurbsCurve;
 
 /// Default of [`FilletOptions::relative_length_accuracy`].
 pub const DEFAULT_RELATIVE_LENGTH_ACCURACY: f64 = 1e-12;
@@ -73,9 +83,10 @@ pub struct FilletOptions {
     pub p_setback: f64,
     /// `dq > 0`: arc length along `Q` on from the crossing.
     pub q_setback: f64,
-    /// `kp <= degree of P`: continuity order at `P(u0)`.
+    /// `kp`: continuity order at `P(u0)` (any order: above a polynomial's
+    /// degree its derivatives are 0).
     pub p_order: usize,
-    /// `kq <= degree of Q`: continuity order at `Q(v0)`.
+    /// `kq`: continuity order at `Q(v0)` (any order).
     pub q_order: usize,
     /// The blend's shape scales `alpha`, `beta` ([`ShapeScale`]); default
     /// `Given { p: 1.0, q: 1.0 }`, the paper. With scale 1 a blend whose ends
@@ -126,15 +137,16 @@ impl FilletOptions {
     }
 }
 
-/// A rounded corner: `P|[0,u0]`, the blend `R`, `Q|[v0,1]`.
+/// A rounded corner: `P|[a,u0]`, the blend `R`, `Q|[v0,b]`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Fillet {
-    /// `P` on `[0, u0]`, reparametrised to `[0, 1]`.
-    pub p_trimmed: BezierCurve,
+    /// `P` on `[a, u0]`: a Bezier `P` reparametrised to `[0, 1]`, a NURBS
+    /// `P` with its own parameters (domain `[a, u0]`).
+    pub p_trimmed: Curve,
     /// The connecting curve `R` of degree `kp + kq + 1`.
     pub blend: BezierCurve,
-    /// `Q` on `[v0, 1]`, reparametrised to `[0, 1]`.
-    pub q_trimmed: BezierCurve,
+    /// `Q` on `[v0, b]`, of Q's kind as `p_trimmed` is of P's.
+    pub q_trimmed: Curve,
     /// The crossing that was rounded.
     pub crossing: Intersection,
     /// Where `P` is cut.
@@ -150,22 +162,33 @@ pub struct Fillet {
 }
 
 impl Fillet {
-    /// Knot intervals `(u0, alpha, (1 - v0) alpha / beta)` of the C^k chain.
+    /// Knot intervals `(u0 - a, alpha, (b - v0) alpha / beta)` of the C^k
+    /// chain (`[a, u0]` and `[v0, b]` the trimmed pieces' domains; for
+    /// Bezier curves `(u0, alpha, (1 - v0) alpha / beta)`).
     pub fn knot_intervals(&self) -> [f64; 3] {
+        let (a, _) = match &self.p_trimmed {
+            Curve::Bezier(_) => (0.0, 1.0),
+            Curve::Nurbs(_) => self.p_trimmed.domain(),
+        };
+        let b = match &self.q_trimmed {
+            Curve::Bezier(_) => 1.0,
+            Curve::Nurbs(_) => self.q_trimmed.domain().1,
+        };
         [
-            self.u0,
+            self.u0 - a,
             self.p_scale,
-            (1.0 - self.v0) * self.p_scale / self.q_scale,
+            (b - self.v0) * self.p_scale / self.q_scale,
         ]
     }
 
-    /// The three pieces as one B-spline with [`Self::knot_intervals`].
-    pub fn to_bspline(&self) -> Result<BSplineCurve> {
-        BSplineCurve::from_bezier_chain(
+    /// The three pieces as one B-spline (NURBS when a piece is rational)
+    /// with [`Self::knot_intervals`].
+    pub fn to_bspline(&self) -> Result<NurbsCurve> {
+        NurbsCurve::from_curve_chain(
             &[
-                self.p_trimmed.clone(),
-                self.blend.clone(),
-                self.q_trimmed.clone(),
+                (&self.p_trimmed).into(),
+                (&self.blend).into(),
+                (&self.q_trimmed).into(),
             ],
             &self.knot_intervals(),
         )
@@ -173,16 +196,21 @@ impl Fillet {
 }
 
 /// Round the corner at the first crossing of `p` and `q` (smallest `u` on
-/// `P`; touching points and overlaps are skipped).
+/// `P`; touching points and overlaps are skipped). `p`, `q`: Bezier or
+/// NURBS curves (`&BezierCurve`, `&NurbsCurve`, `&Curve`).
 ///
 /// Errors (each names the argument): curves of different dimensions;
-/// non-finite or non-positive setback, scale or accuracy; `p_order` or
-/// `q_order` above the curve's degree (OrderAboveDegree); no crossing, or
+/// non-finite or non-positive setback, scale or accuracy; no crossing, or
 /// only touching points (NoIntersection, saying which); a setback not
 /// shorter than the part of the curve before / after the crossing
 /// (InvalidArgument naming `p_setback` / `q_setback` with both lengths);
 /// an ill-conditioned connection (IllConditioned, from the connect solver).
-pub fn fillet(p: &BezierCurve, q: &BezierCurve, options: &FilletOptions) -> Result<Fillet> {
+pub fn fillet<'a>(
+    p: impl Into<CurveRef<'a>>,
+    q: impl Into<CurveRef<'a>>,
+    options: &FilletOptions,
+) -> Result<Fillet> {
+    let (p, q) = (p.into(), q.into());
     validate(p, q, options)?;
     let hits = intersect(p, q, &options.intersect)?;
     let crossing = first_crossing(&hits)?;
@@ -193,12 +221,13 @@ pub fn fillet(p: &BezierCurve, q: &BezierCurve, options: &FilletOptions) -> Resu
 /// [`crate::intersect::intersect`]; its `u`, `v` are used). Same errors as
 /// [`fillet`] except the search; a hit that is not a crossing is
 /// NoIntersection.
-pub fn fillet_at(
-    p: &BezierCurve,
-    q: &BezierCurve,
+pub fn fillet_at<'a>(
+    p: impl Into<CurveRef<'a>>,
+    q: impl Into<CurveRef<'a>>,
     crossing: &Intersection,
     options: &FilletOptions,
 ) -> Result<Fillet> {
+    let (p, q) = (p.into(), q.into());
     validate(p, q, options)?;
     if crossing.kind != IntersectionKind::Crossing {
         return Err(BezjoinError::NoIntersection {
@@ -209,6 +238,48 @@ pub fn fillet_at(
         });
     }
     fillet_at_validated(p, q, crossing.clone(), options)
+}
+
+/// Round the corner at the vertex where `p` ends and `q` starts (a wire's
+/// or a sketch's vertex), whatever other crossings `p` and `q` have: the
+/// corner point is `P(last)`, and the setbacks are measured back from P's
+/// end and on from Q's start. `gap >= 0` (absolute) is how far apart P's
+/// last point and Q's first point may be (sketch solvers leave 1e-7 and
+/// more); a larger gap is NoIntersection naming it. The pieces keep the
+/// inputs' kinds; everything else is as in [`fillet`].
+pub fn fillet_vertex<'a>(
+    p: impl Into<CurveRef<'a>>,
+    q: impl Into<CurveRef<'a>>,
+    options: &FilletOptions,
+    gap: f64,
+) -> Result<Fillet> {
+    let (p, q) = (p.into(), q.into());
+    validate(p, q, options)?;
+    check_finite_scalar("gap", gap)?;
+    if gap < 0.0 {
+        return Err(BezjoinError::out_of_range("gap", gap, ">= 0"));
+    }
+    let (_, u) = p.domain();
+    let (v, _) = q.domain();
+    let end = p.eval(u);
+    let start = q.eval(v);
+    let distance = crate::bezier::distance(&end, &start);
+    if distance.is_nan() || distance > gap {
+        return Err(BezjoinError::NoIntersection {
+            reason: format!(
+                "P's end and Q's start are {distance:e} apart, more than gap = {gap:e}; \
+                 they do not meet at a vertex"
+            ),
+        });
+    }
+    let crossing = Intersection {
+        u,
+        v,
+        point: end,
+        distance,
+        kind: IntersectionKind::Crossing,
+    };
+    fillet_at_validated(p, q, crossing, options)
 }
 
 /// The first crossing, or the error that says what was found instead.
@@ -246,7 +317,7 @@ pub(crate) fn first_crossing(hits: &[Intersection]) -> Result<Intersection> {
     Err(BezjoinError::NoIntersection { reason })
 }
 
-pub(crate) fn validate(p: &BezierCurve, q: &BezierCurve, options: &FilletOptions) -> Result<()> {
+pub(crate) fn validate(p: CurveRef, q: CurveRef, options: &FilletOptions) -> Result<()> {
     if q.dim() != p.dim() {
         return Err(BezjoinError::DimensionMismatch {
             name: "q".into(),
@@ -256,31 +327,11 @@ pub(crate) fn validate(p: &BezierCurve, q: &BezierCurve, options: &FilletOptions
     }
     check_positive("p_setback", options.p_setback)?;
     check_positive("q_setback", options.q_setback)?;
-    validate_shape(p, q, options)
+    validate_shape(options)
 }
 
-/// Everything but the setbacks (shared with the deviation mode).
-pub(crate) fn validate_shape(
-    p: &BezierCurve,
-    q: &BezierCurve,
-    options: &FilletOptions,
-) -> Result<()> {
-    if options.p_order > p.degree() {
-        return Err(BezjoinError::OrderAboveDegree {
-            name: "p_order".into(),
-            order: options.p_order,
-            degree: p.degree(),
-            curve: "P".into(),
-        });
-    }
-    if options.q_order > q.degree() {
-        return Err(BezjoinError::OrderAboveDegree {
-            name: "q_order".into(),
-            order: options.q_order,
-            degree: q.degree(),
-            curve: "Q".into(),
-        });
-    }
+/// Everything but the curves and the setbacks (shared with the deviation mode).
+pub(crate) fn validate_shape(options: &FilletOptions) -> Result<()> {
     options.scale.checked()?;
     check_finite_scalar("relative_length_accuracy", options.relative_length_accuracy)?;
     if !(options.relative_length_accuracy > 0.0 && options.relative_length_accuracy < 1.0) {
@@ -295,18 +346,18 @@ pub(crate) fn validate_shape(
 
 /// Arc lengths of `P` before the crossing and of `Q` after it.
 pub(crate) fn available_lengths(
-    p: &BezierCurve,
-    q: &BezierCurve,
+    p: CurveRef,
+    q: CurveRef,
     crossing: &Intersection,
 ) -> Result<(f64, f64)> {
-    let before = p.arc_length(0.0, crossing.u, p.default_length_accuracy())?;
-    let after = q.arc_length(crossing.v, 1.0, q.default_length_accuracy())?;
+    let before = p.arc_length(p.domain().0, crossing.u, p.default_length_accuracy())?;
+    let after = q.arc_length(crossing.v, q.domain().1, q.default_length_accuracy())?;
     Ok((before, after))
 }
 
 pub(crate) fn fillet_at_validated(
-    p: &BezierCurve,
-    q: &BezierCurve,
+    p: CurveRef,
+    q: CurveRef,
     crossing: Intersection,
     options: &FilletOptions,
 ) -> Result<Fillet> {
@@ -334,23 +385,25 @@ pub(crate) fn fillet_at_validated(
             ),
         ))
     };
+    let (p_first, _) = p.domain();
+    let (_, q_last) = q.domain();
     let u0 = match p.param_at_length(crossing.u, -dp, accuracy * dp) {
-        Ok(u0) if u0 > 0.0 && u0 < crossing.u => u0,
+        Ok(u0) if u0 > p_first && u0 < crossing.u => u0,
         Ok(_) | Err(BezjoinError::InvalidArgument { .. }) => return Err(too_long_p()?),
         Err(e) => return Err(e),
     };
     let v0 = match q.param_at_length(crossing.v, dq, accuracy * dq) {
-        Ok(v0) if v0 < 1.0 && v0 > crossing.v => v0,
+        Ok(v0) if v0 < q_last && v0 > crossing.v => v0,
         Ok(_) | Err(BezjoinError::InvalidArgument { .. }) => return Err(too_long_q()?),
         Err(e) => return Err(e),
     };
     let mut connect_options = ConnectOptions::new(options.p_order, options.q_order);
     connect_options.scale = options.scale;
-    let connection = connect(p, u0, q, v0, &connect_options)?;
+    let connection = connect(&p, u0, &q, v0, &connect_options)?;
     Ok(Fillet {
-        p_trimmed: p.segment(0.0, u0)?,
+        p_trimmed: p.segment(p_first, u0)?,
         blend: connection.curve,
-        q_trimmed: q.segment(v0, 1.0)?,
+        q_trimmed: q.segment(v0, q_last)?,
         crossing,
         u0,
         v0,

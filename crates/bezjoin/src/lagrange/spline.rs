@@ -1,8 +1,8 @@
 //! The spline: building it node by node, checking it, and its B-spline form.
 
 use crate::bezier::{BezierCurve, blossom, distance, norm};
-use crate::bspline::BSplineCurve;
 use crate::error::{BezjoinError, Result, check_finite};
+use crate::nurbs::BSplineCurve;
 
 use super::basis::LagrangeBasis;
 use super::recurrence::Recurrence;
@@ -192,7 +192,7 @@ impl LagrangeSpline {
                 points.extend_from_slice(blossom(piece.points(), d, args, &mut work));
             }
         }
-        let spline = BSplineCurve::new(d, n, knots, points)?;
+        let spline = BSplineCurve::new(d, n, points, None, knots)?;
         // self-check: the B-spline interpolates every on-curve point
         let scale = self.coordinate_scale();
         let mut worst = 0.0f64;

@@ -1,15 +1,24 @@
-//! Curve-curve intersection of Bezier curves of any degree (docs/mathematics.md#intersection,
+//! Curve-curve intersection of Bezier and NURBS curves of any degree
+//! (docs/mathematics.md#intersection and #nurbs,
 //! "robust curve-curve intersection of arbitrary degree ...
 //! subdivision with bounding boxes, then Newton polishing, all crossings
 //! reported in order; in 3D curves must meet within a tolerance").
 //!
 //! # Algorithm
 //!
-//! 1. **Overlaps first.** Two polynomial curves that coincide along a stretch
-//!    coincide up to an end of one of them, so every overlap starts and ends at
-//!    an end point of `P` or `Q` lying on the other curve. The end points of
-//!    each curve are projected onto the other; between two such points the
-//!    curves are compared at `2 (np + nq) + 8` interior samples. Where all lie
+//! 0. **Spans.** A NURBS curve is cut into its Bezier spans (knot
+//!    insertion, exact); a rational span is kept in homogeneous form, halved
+//!    exactly by de Casteljau there, and bounded by the box of its Cartesian
+//!    poles (positive weights: the convex-hull property holds). Parameters
+//!    are the curves' own, in their domains (`[0, 1]` for a Bezier curve);
+//!    parameter margins below are relative to the domain's length.
+//! 1. **Overlaps first.** Two polynomial (or rational) pieces that coincide
+//!    along a stretch coincide up to an end of one of them, so every overlap
+//!    starts and ends at a span end (a curve end or a knot) of `P` or `Q`
+//!    lying on the other curve. These points are projected onto the other
+//!    curve; between two such points, the longest stretches first, the
+//!    curves are compared at `(2 (np + nq) + 8) (spans_P + spans_Q - 1)`
+//!    interior samples. Where all lie
 //!    within the distance tolerance the stretch is reported once as
 //!    [`IntersectionKind::Overlap`] and excluded from the search below (so
 //!    collinear or coincident pieces are reported, never looped on).
@@ -26,7 +35,8 @@
 //!    is skipped (such pieces cross at most once).
 //! 3. **Polishing.** Each seed is polished on the original curves by
 //!    Gauss-Newton on `|P(u) - Q(v)|^2` with Levenberg damping, kept inside
-//!    `[0, 1]^2` (a variable at its bound is held and the other solved alone).
+//!    the product of the domains (a variable at its bound is held and the
+//!    other solved alone).
 //!    At a transversal crossing this is Newton's method on `P(u) = Q(v)` and
 //!    converges quadratically to full double precision; at a tangency the
 //!    parameters are good to about the square root of the precision, which
@@ -49,8 +59,12 @@
 //! is an [`BezjoinError::IllConditioned`] error (it happens only when curves
 //! run within the tolerance of each other without coinciding), never a hang.
 
+mod track;
+
 use crate::bezier::{BezierCurve, distance, norm};
+use crate::curve::CurveRef;
 use crate::error::{BezjoinError, Result, check_finite_scalar};
+use track::{Piece, Track, boxes_meet};
 
 /// Default of [`IntersectOptions::relative_distance_tolerance`].
 pub const DEFAULT_RELATIVE_DISTANCE_TOLERANCE: f64 = 1e-9;
@@ -69,7 +83,8 @@ const RELATIVE_FLATNESS: f64 = 1e-7;
 const RELATIVE_CHORD_FLATNESS: f64 = 1e-2;
 /// Above this sine of the tangent angle a 2D hit is a crossing without further tests.
 const SURELY_TRANSVERSAL_SINE: f64 = 1e-3;
-/// Parameter distance below which two hits may be the same one.
+/// Parameter distance (relative to the domain's length) below which two
+/// hits may be the same one.
 const MERGE_PARAMETER_DISTANCE: f64 = 1e-4;
 
 /// Tolerances and work bounds of [`intersect`]. `Default` gives the
@@ -156,19 +171,20 @@ pub struct Intersection {
 /// let (x, y) = (p.eval(hits[0].u), q.eval(hits[0].v));
 /// assert!((x[0] - y[0]).abs() < 1e-15 && (x[1] - y[1]).abs() < 1e-15);
 /// ```
-pub fn intersect(
-    p: &BezierCurve,
-    q: &BezierCurve,
+pub fn intersect<'a>(
+    p: impl Into<CurveRef<'a>>,
+    q: impl Into<CurveRef<'a>>,
     options: &IntersectOptions,
 ) -> Result<Vec<Intersection>> {
+    let (p, q) = (p.into(), q.into());
     validate(p, q, options)?;
-    let mut search = Search::new(p, q, options);
+    let mut search = Search::new(Track::new(p), Track::new(q), options);
     search.find_overlaps();
     search.subdivide()?;
     search.finish()
 }
 
-fn validate(p: &BezierCurve, q: &BezierCurve, options: &IntersectOptions) -> Result<()> {
+fn validate(p: CurveRef, q: CurveRef, options: &IntersectOptions) -> Result<()> {
     if q.dim() != p.dim() {
         return Err(BezjoinError::DimensionMismatch {
             name: "q".into(),
@@ -207,105 +223,10 @@ fn validate(p: &BezierCurve, q: &BezierCurve, options: &IntersectOptions) -> Res
     Ok(())
 }
 
-/// A piece `curve = original|[lo, hi]` with its control-point bounding box.
-#[derive(Clone)]
-struct Piece {
-    curve: BezierCurve,
-    lo: f64,
-    hi: f64,
-    min: Vec<f64>,
-    max: Vec<f64>,
-}
-
-impl Piece {
-    fn new(curve: BezierCurve, lo: f64, hi: f64) -> Self {
-        let d = curve.dim();
-        let mut min = vec![f64::INFINITY; d];
-        let mut max = vec![f64::NEG_INFINITY; d];
-        for row in curve.points().chunks_exact(d) {
-            for c in 0..d {
-                min[c] = min[c].min(row[c]);
-                max[c] = max[c].max(row[c]);
-            }
-        }
-        Self {
-            curve,
-            lo,
-            hi,
-            min,
-            max,
-        }
-    }
-
-    fn split(&self) -> (Piece, Piece) {
-        let (a, b) = self.curve.split_unchecked(0.5);
-        let mid = 0.5 * (self.lo + self.hi);
-        (Piece::new(a, self.lo, mid), Piece::new(b, mid, self.hi))
-    }
-
-    /// Flat enough to seed Newton from the chord: control points within
-    /// `max(absolute, RELATIVE_CHORD_FLATNESS * chord)` of the chord.
-    fn is_flat(&self, absolute: f64) -> bool {
-        let n = self.curve.degree();
-        let chord = distance(self.curve.point(0), self.curve.point(n));
-        self.deviation_from_chord() <= absolute.max(RELATIVE_CHORD_FLATNESS * chord)
-    }
-
-    fn contains(&self, x: &[f64], margin: f64) -> bool {
-        (0..x.len()).all(|c| x[c] >= self.min[c] - margin && x[c] <= self.max[c] + margin)
-    }
-
-    fn diagonal(&self) -> f64 {
-        distance(&self.min, &self.max)
-    }
-
-    /// Largest distance of a control point from the chord (from the first
-    /// point when the chord is degenerate).
-    fn deviation_from_chord(&self) -> f64 {
-        let n = self.curve.degree();
-        let a = self.curve.point(0);
-        let b = self.curve.point(n);
-        let chord: Vec<f64> = b.iter().zip(a).map(|(x, y)| x - y).collect();
-        let len2: f64 = chord.iter().map(|x| x * x).sum();
-        let mut worst = 0.0f64;
-        for i in 1..n {
-            let p = self.curve.point(i);
-            let rel: Vec<f64> = p.iter().zip(a).map(|(x, y)| x - y).collect();
-            let dev = if len2 > 0.0 {
-                let s = rel.iter().zip(&chord).map(|(x, y)| x * y).sum::<f64>() / len2;
-                let perp: f64 = rel
-                    .iter()
-                    .zip(&chord)
-                    .map(|(x, y)| (x - s * y) * (x - s * y))
-                    .sum::<f64>();
-                // Points beyond the chord's ends also count as deviation.
-                let beyond = if s < 0.0 {
-                    -s
-                } else if s > 1.0 {
-                    s - 1.0
-                } else {
-                    0.0
-                };
-                (perp + beyond * beyond * len2).sqrt()
-            } else {
-                norm(&rel)
-            };
-            worst = worst.max(dev);
-        }
-        worst
-    }
-}
-
-fn boxes_meet(a: &Piece, b: &Piece, margin: f64) -> bool {
-    (0..a.min.len()).all(|c| a.min[c] <= b.max[c] + margin && b.min[c] <= a.max[c] + margin)
-}
-
-/// The curves with their hodographs, for evaluation during polishing.
+/// The two curves, for evaluation during polishing.
 struct CurvePair<'a> {
-    p: &'a BezierCurve,
-    q: &'a BezierCurve,
-    dp: BezierCurve,
-    dq: BezierCurve,
+    p: Track<'a>,
+    q: Track<'a>,
 }
 
 impl CurvePair<'_> {
@@ -318,24 +239,33 @@ impl CurvePair<'_> {
         }
     }
 
-    /// Gauss-Newton with Levenberg damping on `|P(u) - Q(v)|^2` in `[0,1]^2`.
+    /// Gauss-Newton with Levenberg damping on `|P(u) - Q(v)|^2` in the
+    /// product of the domains.
     fn polish(&self, mut u: f64, mut v: f64) -> (f64, f64, f64) {
         let d = self.p.dim();
+        let (u_lo, u_hi) = self.p.domain();
+        let (v_lo, v_hi) = self.q.domain();
         let mut r = vec![0.0; d];
         let mut trial = vec![0.0; d];
         let mut work = vec![0.0; d];
         let mut a = vec![0.0; d];
         let mut b = vec![0.0; d];
-        u = u.clamp(0.0, 1.0);
-        v = v.clamp(0.0, 1.0);
+        u = u.clamp(u_lo, u_hi);
+        v = v.clamp(v_lo, v_hi);
         self.gap_into(u, v, &mut r, &mut work);
         let mut f = norm(&r);
+        // Steps below this are at the rounding level of the parameters.
+        let resolution = 4.0
+            * f64::EPSILON
+            * (u_hi - u_lo)
+                .max(v_hi - v_lo)
+                .max(u_hi.abs().max(v_hi.abs()).max(u_lo.abs().max(v_lo.abs())));
         for _ in 0..60 {
             if f == 0.0 {
                 break;
             }
-            self.dp.eval_into(u, &mut a);
-            self.dq.eval_into(v, &mut b);
+            self.p.tangent_into(u, &mut a);
+            self.q.tangent_into(v, &mut b);
             let aa = dot(&a, &a);
             let bb = dot(&b, &b);
             let ab = dot(&a, &b);
@@ -344,10 +274,10 @@ impl CurvePair<'_> {
             // Normal equations of J = [a, -b]: [aa, -ab; -ab, bb] d = [-ar, br].
             let damping = 1e-15 * (aa + bb) + f64::MIN_POSITIVE;
             let (mut du, mut dv) = solve2(aa + damping, -ab, bb + damping, -ar, br);
-            // Hold a variable at its bound if the step leaves the square, and
+            // Hold a variable at its bound if the step leaves the domain, and
             // solve for the other alone.
-            let u_out = (u <= 0.0 && du < 0.0) || (u >= 1.0 && du > 0.0);
-            let v_out = (v <= 0.0 && dv < 0.0) || (v >= 1.0 && dv > 0.0);
+            let u_out = (u <= u_lo && du < 0.0) || (u >= u_hi && du > 0.0);
+            let v_out = (v <= v_lo && dv < 0.0) || (v >= v_hi && dv > 0.0);
             if u_out && v_out {
                 break;
             } else if u_out {
@@ -361,8 +291,8 @@ impl CurvePair<'_> {
             let mut step = 1.0;
             let mut moved = 0.0f64;
             for _ in 0..16 {
-                let nu = (u + step * du).clamp(0.0, 1.0);
-                let nv = (v + step * dv).clamp(0.0, 1.0);
+                let nu = (u + step * du).clamp(u_lo, u_hi);
+                let nv = (v + step * dv).clamp(v_lo, v_hi);
                 self.gap_into(nu, nv, &mut trial, &mut work);
                 let nf = norm(&trial);
                 if nf < f {
@@ -376,7 +306,7 @@ impl CurvePair<'_> {
                 step *= 0.5;
             }
             // Stop when nothing moves, or the step is at the rounding level.
-            if moved <= 4.0 * f64::EPSILON {
+            if moved <= resolution {
                 break;
             }
         }
@@ -397,23 +327,59 @@ fn solve2(a: f64, b: f64, c: f64, r: f64, s: f64) -> (f64, f64) {
     ((r * c - b * s) / det, (a * s - b * r) / det)
 }
 
-/// Closest parameter on `curve` to `x`, starting from samples and refined by
-/// Gauss-Newton; returns `(t, distance)`.
+/// Closest parameter on the Bezier `curve` to `x` (with its `hodograph`),
+/// starting from samples or from `start`, refined by Gauss-Newton;
+/// returns `(t, distance)`.
 pub(crate) fn project(
     curve: &BezierCurve,
     hodograph: &BezierCurve,
     x: &[f64],
     start: Option<f64>,
 ) -> (f64, f64) {
-    let mut buf = vec![0.0; curve.dim()];
+    project_on(&Track::bezier(curve, hodograph), x, start, &[])
+}
+
+/// Closest parameter on `track` to `x` (see [`project`]). Without `start`
+/// the curve is sampled before Newton: `8 (p + 1)` points per span, or,
+/// given the track's `pieces` (a NURBS curve's spans), `2 (p + 1)` points
+/// per span with the spans visited nearest box first, skipping those whose
+/// box is farther than the best sample so far (they cannot hold a closer
+/// point).
+fn project_on(track: &Track, x: &[f64], start: Option<f64>, pieces: &[Piece]) -> (f64, f64) {
+    let (lo, hi) = track.domain();
+    let mut buf = vec![0.0; track.dim()];
     let mut t = match start {
-        Some(t) => t.clamp(0.0, 1.0),
+        Some(t) => t.clamp(lo, hi),
+        None if pieces.len() > 1 => {
+            let per_span = 2 * (track.degree() + 1);
+            let mut order: Vec<(f64, &Piece)> = pieces
+                .iter()
+                .map(|piece| (piece.box_distance(x), piece))
+                .collect();
+            order.sort_by(|a, b| a.0.total_cmp(&b.0));
+            let mut best = (lo, f64::INFINITY);
+            for (box_distance, piece) in order {
+                if box_distance > best.1 {
+                    break;
+                }
+                for i in 0..=per_span {
+                    let s = (piece.lo + (piece.hi - piece.lo) * i as f64 / per_span as f64)
+                        .clamp(piece.lo, piece.hi);
+                    track.eval_into(s, &mut buf);
+                    let d = distance(&buf, x);
+                    if d < best.1 {
+                        best = (s, d);
+                    }
+                }
+            }
+            best.0
+        }
         None => {
-            let samples = 8 * (curve.degree() + 1);
-            let mut best = (0.0, f64::INFINITY);
+            let samples = 8 * (track.degree() + 1) * track.span_count();
+            let mut best = (lo, f64::INFINITY);
             for i in 0..=samples {
-                let s = i as f64 / samples as f64;
-                curve.eval_into(s, &mut buf);
+                let s = (lo + (hi - lo) * i as f64 / samples as f64).min(hi);
+                track.eval_into(s, &mut buf);
                 let d = distance(&buf, x);
                 if d < best.1 {
                     best = (s, d);
@@ -422,12 +388,13 @@ pub(crate) fn project(
             best.0
         }
     };
-    curve.eval_into(t, &mut buf);
+    track.eval_into(t, &mut buf);
     let mut r: Vec<f64> = buf.iter().zip(x).map(|(a, b)| a - b).collect();
     let mut f = norm(&r);
-    let mut tangent = vec![0.0; curve.dim()];
+    let mut tangent = vec![0.0; track.dim()];
+    let resolution = 4.0 * f64::EPSILON * (hi - lo).max(lo.abs()).max(hi.abs());
     for _ in 0..60 {
-        hodograph.eval_into(t, &mut tangent);
+        track.tangent_into(t, &mut tangent);
         let tt = dot(&tangent, &tangent);
         if tt == 0.0 || f == 0.0 {
             break;
@@ -436,8 +403,8 @@ pub(crate) fn project(
         let mut step = 1.0;
         let mut moved = 0.0f64;
         for _ in 0..16 {
-            let nt = (t + step * dt).clamp(0.0, 1.0);
-            curve.eval_into(nt, &mut buf);
+            let nt = (t + step * dt).clamp(lo, hi);
+            track.eval_into(nt, &mut buf);
             for (ri, (a, b)) in r.iter_mut().zip(buf.iter().zip(x)) {
                 *ri = a - b;
             }
@@ -451,7 +418,7 @@ pub(crate) fn project(
             step *= 0.5;
         }
         // On acceptance `r` holds the gap at the new `t`; otherwise stop.
-        if moved <= 4.0 * f64::EPSILON {
+        if moved <= resolution {
             break;
         }
     }
@@ -473,11 +440,10 @@ impl Overlap {
     fn contains_box(&self, a: &Piece, b: &Piece) -> bool {
         a.lo >= self.u.0 && a.hi <= self.u.1 && b.lo >= self.v_min() && b.hi <= self.v_max()
     }
-    fn contains_hit(&self, u: f64, v: f64, margin: f64) -> bool {
-        u >= self.u.0 - margin
-            && u <= self.u.1 + margin
-            && v >= self.v_min() - margin
-            && v <= self.v_max() + margin
+    /// `(u, v)` within the overlap widened by `margin` of each domain's length.
+    fn contains_hit(&self, u: f64, v: f64, margin: f64, units: (f64, f64)) -> bool {
+        let (mu, mv) = (margin * units.0, margin * units.1);
+        u >= self.u.0 - mu && u <= self.u.1 + mu && v >= self.v_min() - mv && v <= self.v_max() + mv
     }
 }
 
@@ -492,21 +458,25 @@ struct Search<'a> {
     options: &'a IntersectOptions,
     tolerance: f64,
     flatness: f64,
+    /// Lengths of the two domains (1 for Bezier curves): parameter margins
+    /// are relative to them.
+    units: (f64, f64),
+    /// The curves' Bezier spans (computed once).
+    p_pieces: Vec<Piece>,
+    q_pieces: Vec<Piece>,
     overlaps: Vec<Overlap>,
     candidates: Vec<Candidate>,
 }
 
 impl<'a> Search<'a> {
-    fn new(p: &'a BezierCurve, q: &'a BezierCurve, options: &'a IntersectOptions) -> Self {
+    fn new(p: Track<'a>, q: Track<'a>, options: &'a IntersectOptions) -> Self {
         let scale = p.coordinate_scale().max(q.coordinate_scale());
         let tolerance = options.relative_distance_tolerance * scale;
         Self {
-            pair: CurvePair {
-                p,
-                q,
-                dp: p.hodograph(),
-                dq: q.hodograph(),
-            },
+            units: (p.domain().1 - p.domain().0, q.domain().1 - q.domain().0),
+            p_pieces: p.pieces(),
+            q_pieces: q.pieces(),
+            pair: CurvePair { p, q },
             options,
             tolerance,
             flatness: (RELATIVE_FLATNESS * scale).max(tolerance),
@@ -519,21 +489,21 @@ impl<'a> Search<'a> {
         let pair = &self.pair;
         let tol = self.tolerance;
         let mut ends: Vec<(f64, f64)> = Vec::new();
-        let p_box = Piece::new(pair.p.clone(), 0.0, 1.0);
-        let q_box = Piece::new(pair.q.clone(), 0.0, 1.0);
-        for &u in &[0.0, 1.0] {
+        let (p_pieces, q_pieces) = (&self.p_pieces, &self.q_pieces);
+        let near = |pieces: &[Piece], x: &[f64]| pieces.iter().any(|b| b.contains(x, tol));
+        for u in pair.p.breaks() {
             let x = pair.p.eval(u);
-            if q_box.contains(&x, tol) {
-                let (v, d) = project(pair.q, &pair.dq, &x, None);
+            if near(q_pieces, &x) {
+                let (v, d) = project_on(&pair.q, &x, None, q_pieces);
                 if d <= tol {
                     ends.push((u, v));
                 }
             }
         }
-        for &v in &[0.0, 1.0] {
+        for v in pair.q.breaks() {
             let x = pair.q.eval(v);
-            if p_box.contains(&x, tol) {
-                let (u, d) = project(pair.p, &pair.dp, &x, None);
+            if near(p_pieces, &x) {
+                let (u, d) = project_on(&pair.p, &x, None, p_pieces);
                 if d <= tol {
                     ends.push((u, v));
                 }
@@ -543,42 +513,83 @@ impl<'a> Search<'a> {
             return;
         }
         ends.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
-        let samples = 2 * (pair.p.degree() + pair.q.degree()) + 8;
+        let per_span = 2 * (pair.p.degree() + pair.q.degree()) + 8;
+        let (p_breaks, q_breaks) = (pair.p.breaks(), pair.q.breaks());
+        let units = self.units;
+        // Candidate stretches between two ends. Few ends (Bezier curves have
+        // at most four): every pair, longest first, so that a stretch across
+        // several spans is found whole and its parts are not reported. Many
+        // ends (a multi-span curve lying along the other): consecutive ends
+        // only, merged below; a longer overlap is a chain of them, since
+        // every break inside it is an end too.
+        let mut stretches: Vec<((f64, f64), (f64, f64))> = Vec::new();
+        let all_pairs = ends.len() <= 8;
         for i in 0..ends.len() {
-            for j in i + 1..ends.len() {
+            let last = if all_pairs {
+                ends.len()
+            } else {
+                (i + 2).min(ends.len())
+            };
+            for j in i + 1..last {
                 let (u0, v0) = ends[i];
                 let (u1, v1) = ends[j];
-                if u1 - u0 <= 1e-9 || (v1 - v0).abs() <= 1e-9 {
-                    continue;
-                }
-                if self
-                    .overlaps
-                    .iter()
-                    .any(|o| o.contains_hit(u0, v0, 1e-9) && o.contains_hit(u1, v1, 1e-9))
-                {
-                    continue;
-                }
-                let coincide = (1..samples).all(|s| {
-                    let w = s as f64 / samples as f64;
-                    let u = u0 + w * (u1 - u0);
-                    let guess = v0 + w * (v1 - v0);
-                    let (v, d) = project(pair.q, &pair.dq, &pair.p.eval(u), Some(guess));
-                    d <= tol && v >= v0.min(v1) - 1e-9 && v <= v0.max(v1) + 1e-9
-                });
-                if coincide {
-                    self.overlaps.push(Overlap {
-                        u: (u0, u1),
-                        v: (v0, v1),
-                    });
+                if u1 - u0 > 1e-9 * units.0 && (v1 - v0).abs() > 1e-9 * units.1 {
+                    stretches.push(((u0, v0), (u1, v1)));
                 }
             }
         }
+        stretches.sort_by(|a, b| (b.1.0 - b.0.0).total_cmp(&(a.1.0 - a.0.0)));
+        for ((u0, v0), (u1, v1)) in stretches {
+            if self
+                .overlaps
+                .iter()
+                .any(|o| o.contains_hit(u0, v0, 1e-9, units) && o.contains_hit(u1, v1, 1e-9, units))
+            {
+                continue;
+            }
+            // Samples in proportion to the spans the stretch crosses.
+            let (v_lo, v_hi) = (v0.min(v1), v0.max(v1));
+            let crossed = p_breaks.iter().filter(|&&b| b > u0 && b < u1).count()
+                + q_breaks.iter().filter(|&&b| b > v_lo && b < v_hi).count();
+            let samples = per_span * (crossed + 1);
+            let coincide = (1..samples).all(|s| {
+                let w = s as f64 / samples as f64;
+                let u = u0 + w * (u1 - u0);
+                let guess = v0 + w * (v1 - v0);
+                let (v, d) = project_on(&pair.q, &pair.p.eval(u), Some(guess), &[]);
+                d <= tol && v >= v_lo - 1e-9 * units.1 && v <= v_hi + 1e-9 * units.1
+            });
+            if coincide {
+                self.overlaps.push(Overlap {
+                    u: (u0, u1),
+                    v: (v0, v1),
+                });
+            }
+        }
+        // Overlaps that continue each other (one's end is the next one's
+        // start, in both parameters) are one overlap.
+        self.overlaps.sort_by(|a, b| a.u.0.total_cmp(&b.u.0));
+        let mut merged: Vec<Overlap> = Vec::with_capacity(self.overlaps.len());
+        for o in self.overlaps.drain(..) {
+            match merged.last_mut() {
+                Some(m) if m.u.1 == o.u.0 && m.v.1 == o.v.0 => {
+                    m.u.1 = o.u.1;
+                    m.v.1 = o.v.1;
+                }
+                _ => merged.push(o),
+            }
+        }
+        self.overlaps = merged;
     }
 
     fn subdivide(&mut self) -> Result<()> {
-        let p = Piece::new(self.pair.p.clone(), 0.0, 1.0);
-        let q = Piece::new(self.pair.q.clone(), 0.0, 1.0);
-        let mut stack = vec![(p, q, 0usize)];
+        // Every pair of spans, pushed in reverse so that small u comes first.
+        let mut stack = Vec::with_capacity(self.p_pieces.len() * self.q_pieces.len());
+        for a in self.p_pieces.iter().rev() {
+            for b in self.q_pieces.iter().rev() {
+                stack.push((a.clone(), b.clone(), 0usize));
+            }
+        }
         let mut examined = 0usize;
         let margin = self.tolerance;
         while let Some((a, b, depth)) = stack.pop() {
@@ -600,8 +611,8 @@ impl<'a> Search<'a> {
             if self.overlaps.iter().any(|o| o.contains_box(&a, &b)) {
                 continue;
             }
-            let flat_a = a.is_flat(self.flatness);
-            let flat_b = b.is_flat(self.flatness);
+            let flat_a = a.is_flat(self.flatness, RELATIVE_CHORD_FLATNESS);
+            let flat_b = b.is_flat(self.flatness, RELATIVE_CHORD_FLATNESS);
             if (flat_a && flat_b) || depth >= self.options.max_depth {
                 self.leaf(&a, &b);
                 // Saturating: any max_hits is valid, up to usize::MAX.
@@ -641,12 +652,12 @@ impl<'a> Search<'a> {
 
     /// Seeds from the chords of a leaf pair, polished on the whole curves.
     fn leaf(&mut self, a: &Piece, b: &Piece) {
-        let na = a.curve.degree();
-        let nb = b.curve.degree();
-        let a0 = a.curve.point(0);
-        let a1 = a.curve.point(na);
-        let b0 = b.curve.point(0);
-        let b1 = b.curve.point(nb);
+        let na = a.degree();
+        let nb = b.degree();
+        let a0 = a.point(0);
+        let a1 = a.point(na);
+        let b0 = b.point(0);
+        let b1 = b.point(nb);
         let da: Vec<f64> = a1.iter().zip(a0).map(|(x, y)| x - y).collect();
         let db: Vec<f64> = b1.iter().zip(b0).map(|(x, y)| x - y).collect();
         let w: Vec<f64> = a0.iter().zip(b0).map(|(x, y)| x - y).collect();
@@ -694,12 +705,13 @@ impl<'a> Search<'a> {
             let u = a.lo + s * (a.hi - a.lo);
             let v = b.lo + t * (b.hi - b.lo);
             let (mut u, mut v, d) = self.pair.polish(u, v);
-            // A constant curve (degree 0) has no preferred parameter: report 0.
+            // A constant curve (degree 0) has no preferred parameter: report
+            // the start of its domain.
             if self.pair.p.degree() == 0 {
-                u = 0.0;
+                u = self.pair.p.domain().0;
             }
             if self.pair.q.degree() == 0 {
-                v = 0.0;
+                v = self.pair.q.domain().0;
             }
             if d <= self.tolerance {
                 self.candidates.push(Candidate { u, v, distance: d });
@@ -713,7 +725,11 @@ impl<'a> Search<'a> {
         cands.sort_by(|a, b| a.u.total_cmp(&b.u).then(a.v.total_cmp(&b.v)));
         let mut merged: Vec<Candidate> = Vec::with_capacity(cands.len());
         for c in cands {
-            if self.overlaps.iter().any(|o| o.contains_hit(c.u, c.v, 1e-9)) {
+            if self
+                .overlaps
+                .iter()
+                .any(|o| o.contains_hit(c.u, c.v, 1e-9, self.units))
+            {
                 continue;
             }
             let same = merged.iter().rposition(|m| self.same_hit(m, &c));
@@ -731,8 +747,8 @@ impl<'a> Search<'a> {
     }
 
     fn same_hit(&self, a: &Candidate, b: &Candidate) -> bool {
-        if (a.u - b.u).abs() > MERGE_PARAMETER_DISTANCE
-            || (a.v - b.v).abs() > MERGE_PARAMETER_DISTANCE
+        if (a.u - b.u).abs() > MERGE_PARAMETER_DISTANCE * self.units.0
+            || (a.v - b.v).abs() > MERGE_PARAMETER_DISTANCE * self.units.1
         {
             return false;
         }
@@ -742,7 +758,7 @@ impl<'a> Search<'a> {
         let mid_u = 0.5 * (a.u + b.u);
         let mid_v = 0.5 * (a.v + b.v);
         let x = self.pair.p.eval(mid_u);
-        let (_, d) = project(self.pair.q, &self.pair.dq, &x, Some(mid_v));
+        let (_, d) = project_on(&self.pair.q, &x, Some(mid_v), &[]);
         d <= self.tolerance
     }
 
@@ -761,8 +777,13 @@ impl<'a> Search<'a> {
         }
         let mut hits: Vec<Intersection> = Vec::with_capacity(hit_count);
         for (i, c) in self.candidates.iter().enumerate() {
-            let lower = if i > 0 { self.candidates[i - 1].u } else { 0.0 };
-            let upper = self.candidates.get(i + 1).map_or(1.0, |n| n.u);
+            let (first, last) = self.pair.p.domain();
+            let lower = if i > 0 {
+                self.candidates[i - 1].u
+            } else {
+                first
+            };
+            let upper = self.candidates.get(i + 1).map_or(last, |n| n.u);
             let kind = self.classify(c, lower, upper);
             hits.push(Intersection {
                 u: c.u,
@@ -793,8 +814,8 @@ impl<'a> Search<'a> {
     /// Crossing or touching (module documentation, step 5). `lower`,
     /// `upper`: parameters on `P` of the neighbouring hits (or the ends).
     fn classify(&self, c: &Candidate, lower: f64, upper: f64) -> IntersectionKind {
-        let a = self.pair.dp.eval(c.u);
-        let b = self.pair.dq.eval(c.v);
+        let a = self.pair.p.tangent(c.u);
+        let b = self.pair.q.tangent(c.v);
         let na = norm(&a);
         let nb = norm(&b);
         let sine = if na > 0.0 && nb > 0.0 {
@@ -809,7 +830,9 @@ impl<'a> Search<'a> {
             IntersectionKind::Touching
         };
         let dim = self.pair.p.dim();
-        let interior = c.u > 0.0 && c.u < 1.0 && c.v > 0.0 && c.v < 1.0;
+        let (u_lo, u_hi) = self.pair.p.domain();
+        let (v_lo, v_hi) = self.pair.q.domain();
+        let interior = c.u > u_lo && c.u < u_hi && c.v > v_lo && c.v < v_hi;
         if dim != 2 || !interior {
             return by_angle;
         }
@@ -818,7 +841,7 @@ impl<'a> Search<'a> {
         }
         // Side test: signed distance of P(u -+ h) from Q.
         let room = (0.5 * (c.u - lower)).min(0.5 * (upper - c.u));
-        let mut h = 1e-7f64.min(room);
+        let mut h = (1e-7 * self.units.0).min(room);
         while h > 0.0 && h <= room {
             let before = self.signed_side(c.u - h, c.v);
             let after = self.signed_side(c.u + h, c.v);
@@ -843,11 +866,12 @@ impl<'a> Search<'a> {
     /// `Q`'s direction); `None` if the foot point is at an end of `Q`.
     fn signed_side(&self, u: f64, v: f64) -> Option<f64> {
         let x = self.pair.p.eval(u);
-        let (w, d) = project(self.pair.q, &self.pair.dq, &x, Some(v));
-        if w <= 0.0 || w >= 1.0 {
+        let (w, d) = project_on(&self.pair.q, &x, Some(v), &[]);
+        let (lo, hi) = self.pair.q.domain();
+        if w <= lo || w >= hi {
             return None;
         }
-        let tangent = self.pair.dq.eval(w);
+        let tangent = self.pair.q.tangent(w);
         let foot = self.pair.q.eval(w);
         let cross = tangent[0] * (x[1] - foot[1]) - tangent[1] * (x[0] - foot[0]);
         Some(if cross >= 0.0 { d } else { -d })

@@ -1,0 +1,419 @@
+//! One type for every curve the library takes ([`Curve`]: a Bezier curve
+//! or a NURBS curve) and the one thing connect needs of any curve
+//! ([`CurveJet`]: its derivatives at a parameter, from a chosen side).
+
+use nalgebra::DMatrix;
+
+use crate::basis::KnotSide;
+use crate::bezier::BezierCurve;
+use crate::error::{Result, check_closed_range};
+use crate::nurbs::NurbsCurve;
+
+/// A curve of either kind. Bezier curves live on `[0, 1]`; NURBS curves on
+/// their domain (`NurbsCurve::domain`).
+#[derive(Debug, Clone, PartialEq)]
+pub enum Curve {
+    /// A polynomial Bezier curve on `[0, 1]`.
+    Bezier(BezierCurve),
+    /// A NURBS curve (polynomial or rational, one or many spans).
+    Nurbs(NurbsCurve),
+}
+
+impl From<BezierCurve> for Curve {
+    fn from(c: BezierCurve) -> Self {
+        Curve::Bezier(c)
+    }
+}
+
+impl From<NurbsCurve> for Curve {
+    fn from(c: NurbsCurve) -> Self {
+        Curve::Nurbs(c)
+    }
+}
+
+impl Curve {
+    /// Dimension.
+    pub fn dim(&self) -> usize {
+        match self {
+            Curve::Bezier(c) => c.dim(),
+            Curve::Nurbs(c) => c.dim(),
+        }
+    }
+
+    /// Degree.
+    pub fn degree(&self) -> usize {
+        match self {
+            Curve::Bezier(c) => c.degree(),
+            Curve::Nurbs(c) => c.degree(),
+        }
+    }
+
+    /// The parameter domain: `[0, 1]` for a Bezier curve.
+    pub fn domain(&self) -> (f64, f64) {
+        match self {
+            Curve::Bezier(_) => (0.0, 1.0),
+            Curve::Nurbs(c) => c.domain(),
+        }
+    }
+
+    /// Control points (Bezier) or poles (NURBS), Cartesian, row-major.
+    pub fn points(&self) -> &[f64] {
+        match self {
+            Curve::Bezier(c) => c.points(),
+            Curve::Nurbs(c) => c.points(),
+        }
+    }
+
+    /// Number of control points or poles.
+    pub fn point_count(&self) -> usize {
+        match self {
+            Curve::Bezier(c) => c.point_count(),
+            Curve::Nurbs(c) => c.point_count(),
+        }
+    }
+
+    /// True for a NURBS curve whose weights are not all equal.
+    pub fn is_rational(&self) -> bool {
+        matches!(self, Curve::Nurbs(c) if c.is_rational())
+    }
+
+    /// The curve as a NURBS curve (a Bezier: one span on `[0, 1]`).
+    pub fn to_nurbs(&self) -> NurbsCurve {
+        match self {
+            Curve::Bezier(c) => NurbsCurve::from_bezier(c),
+            Curve::Nurbs(c) => c.clone(),
+        }
+    }
+
+    /// Arc length from `a` to `b` (signed) to the default accuracy
+    /// (`BezierCurve::arc_length_default`, `NurbsCurve::arc_length_default`).
+    pub fn arc_length_default(&self, a: f64, b: f64) -> Result<f64> {
+        match self {
+            Curve::Bezier(c) => c.arc_length_default(a, b),
+            Curve::Nurbs(c) => c.arc_length_default(a, b),
+        }
+    }
+
+    /// The absolute accuracy of [`arc_length_default`](Self::arc_length_default).
+    pub fn default_length_accuracy(&self) -> f64 {
+        match self {
+            Curve::Bezier(c) => c.default_length_accuracy(),
+            Curve::Nurbs(c) => c.default_length_accuracy(),
+        }
+    }
+
+    /// The parameter at signed arc length `length` from `start`, in the
+    /// domain (`BezierCurve::param_at_length`, `NurbsCurve::param_at_length`).
+    pub fn param_at_length(&self, start: f64, length: f64, accuracy: f64) -> Result<f64> {
+        match self {
+            Curve::Bezier(c) => c.param_at_length(start, length, accuracy),
+            Curve::Nurbs(c) => c.param_at_length(start, length, accuracy),
+        }
+    }
+
+    /// The piece on `[a, b]`: a Bezier curve reparametrised to `[0, 1]`
+    /// (`BezierCurve::segment`), a NURBS curve with its own parameters
+    /// (`NurbsCurve::segment`, `first <= a < b <= last`).
+    pub fn segment(&self, a: f64, b: f64) -> Result<Curve> {
+        CurveRef::from(self).segment(a, b)
+    }
+
+    /// The curve traversed backwards on the same domain.
+    pub fn reverse(&self) -> Curve {
+        match self {
+            Curve::Bezier(c) => Curve::Bezier(c.reverse()),
+            Curve::Nurbs(c) => Curve::Nurbs(c.reverse()),
+        }
+    }
+
+    /// The point at `u`.
+    pub fn eval(&self, u: f64) -> Vec<f64> {
+        CurveRef::from(self).eval(u)
+    }
+
+    /// The Bezier curve, when this is one.
+    pub fn as_bezier(&self) -> Option<&BezierCurve> {
+        match self {
+            Curve::Bezier(c) => Some(c),
+            Curve::Nurbs(_) => None,
+        }
+    }
+
+    /// The NURBS curve, when this is one.
+    pub fn as_nurbs(&self) -> Option<&NurbsCurve> {
+        match self {
+            Curve::Bezier(_) => None,
+            Curve::Nurbs(c) => Some(c),
+        }
+    }
+
+    /// Borrow as a [`CurveRef`].
+    pub fn as_curve_ref(&self) -> CurveRef<'_> {
+        CurveRef::from(self)
+    }
+
+    /// Value and derivatives `0..=max_order` at `u` (any order), from
+    /// `side` at a knot of a NURBS curve; row-major.
+    pub fn eval_derivatives_side(&self, u: f64, max_order: usize, side: KnotSide) -> Vec<f64> {
+        match self {
+            Curve::Bezier(c) => c.eval_derivatives(u, max_order),
+            Curve::Nurbs(c) => c.eval_derivatives_side(u, max_order, side),
+        }
+    }
+}
+
+/// What [`connect`](crate::connect) needs of a curve: its dimension, its
+/// domain and its derivative jet at a parameter, from one side, with a
+/// bound on the rounding error of each derivative.
+pub trait CurveJet {
+    /// Dimension.
+    fn dim(&self) -> usize;
+    /// `Ok` when `u` is finite and in the domain; the error names `name`.
+    fn check_parameter(&self, name: &str, u: f64) -> Result<()>;
+    /// Largest absolute coordinate of the control points or poles.
+    fn coordinate_scale(&self) -> f64;
+    /// Derivatives `0..=order` at `u` (rows of a `(order + 1) x dim`
+    /// matrix; any order: above a polynomial's degree they vanish) and a
+    /// bound on the absolute rounding error of each row.
+    fn jet(&self, u: f64, order: usize, side: KnotSide) -> (DMatrix<f64>, Vec<f64>);
+}
+
+impl CurveJet for BezierCurve {
+    fn dim(&self) -> usize {
+        BezierCurve::dim(self)
+    }
+
+    fn check_parameter(&self, name: &str, u: f64) -> Result<()> {
+        check_closed_range(name, u, 0.0, 1.0)
+    }
+
+    fn coordinate_scale(&self) -> f64 {
+        BezierCurve::coordinate_scale(self)
+    }
+
+    /// Basis rows (closed form at the ends, A2.3 elsewhere) times the
+    /// control points; the bound is `gamma * |D(t)| |P|` row by row,
+    /// `gamma = 2 (n + k + 2) eps`.
+    fn jet(&self, t: f64, order: usize, _side: KnotSide) -> (DMatrix<f64>, Vec<f64>) {
+        crate::connect::derivatives_with_error(self, t, order)
+    }
+}
+
+impl CurveJet for NurbsCurve {
+    fn dim(&self) -> usize {
+        NurbsCurve::dim(self)
+    }
+
+    fn check_parameter(&self, name: &str, u: f64) -> Result<()> {
+        NurbsCurve::check_parameter(self, name, u)
+    }
+
+    fn coordinate_scale(&self) -> f64 {
+        NurbsCurve::coordinate_scale(self)
+    }
+
+    fn jet(&self, u: f64, order: usize, side: KnotSide) -> (DMatrix<f64>, Vec<f64>) {
+        let (values, bound) = self.eval_derivatives_with_bound(u, order, side);
+        (
+            DMatrix::from_row_slice(order + 1, NurbsCurve::dim(self), &values),
+            bound,
+        )
+    }
+}
+
+impl CurveJet for Curve {
+    fn dim(&self) -> usize {
+        Curve::dim(self)
+    }
+
+    fn check_parameter(&self, name: &str, u: f64) -> Result<()> {
+        match self {
+            Curve::Bezier(c) => CurveJet::check_parameter(c, name, u),
+            Curve::Nurbs(c) => NurbsCurve::check_parameter(c, name, u),
+        }
+    }
+
+    fn coordinate_scale(&self) -> f64 {
+        match self {
+            Curve::Bezier(c) => c.coordinate_scale(),
+            Curve::Nurbs(c) => c.coordinate_scale(),
+        }
+    }
+
+    fn jet(&self, u: f64, order: usize, side: KnotSide) -> (DMatrix<f64>, Vec<f64>) {
+        match self {
+            Curve::Bezier(c) => c.jet(u, order, side),
+            Curve::Nurbs(c) => c.jet(u, order, side),
+        }
+    }
+}
+
+/// A borrowed curve of either kind: what the operations that take "any
+/// curve" accept (`&BezierCurve`, `&NurbsCurve` and `&Curve` convert into
+/// it with `into()`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum CurveRef<'a> {
+    /// A Bezier curve on `[0, 1]`.
+    Bezier(&'a BezierCurve),
+    /// A NURBS curve on its domain.
+    Nurbs(&'a NurbsCurve),
+}
+
+impl<'a> From<&'a BezierCurve> for CurveRef<'a> {
+    fn from(c: &'a BezierCurve) -> Self {
+        CurveRef::Bezier(c)
+    }
+}
+
+impl<'a> From<&'a NurbsCurve> for CurveRef<'a> {
+    fn from(c: &'a NurbsCurve) -> Self {
+        CurveRef::Nurbs(c)
+    }
+}
+
+impl<'a> From<&'a Curve> for CurveRef<'a> {
+    fn from(c: &'a Curve) -> Self {
+        match c {
+            Curve::Bezier(b) => CurveRef::Bezier(b),
+            Curve::Nurbs(n) => CurveRef::Nurbs(n),
+        }
+    }
+}
+
+impl CurveRef<'_> {
+    /// Dimension.
+    pub fn dim(&self) -> usize {
+        match self {
+            CurveRef::Bezier(c) => c.dim(),
+            CurveRef::Nurbs(c) => c.dim(),
+        }
+    }
+
+    /// Degree.
+    pub fn degree(&self) -> usize {
+        match self {
+            CurveRef::Bezier(c) => c.degree(),
+            CurveRef::Nurbs(c) => c.degree(),
+        }
+    }
+
+    /// The parameter domain (`[0, 1]` for a Bezier curve).
+    pub fn domain(&self) -> (f64, f64) {
+        match self {
+            CurveRef::Bezier(_) => (0.0, 1.0),
+            CurveRef::Nurbs(c) => c.domain(),
+        }
+    }
+
+    /// Largest absolute coordinate of the control points or poles.
+    pub fn coordinate_scale(&self) -> f64 {
+        match self {
+            CurveRef::Bezier(c) => c.coordinate_scale(),
+            CurveRef::Nurbs(c) => c.coordinate_scale(),
+        }
+    }
+
+    /// The point at `u` into `out` (`dim` values).
+    pub fn eval_into(&self, u: f64, out: &mut [f64]) {
+        match self {
+            CurveRef::Bezier(c) => c.eval_into(u, out),
+            CurveRef::Nurbs(c) => c.point_and_tangent(u, out, None),
+        }
+    }
+
+    /// The point at `u`.
+    pub fn eval(&self, u: f64) -> Vec<f64> {
+        let mut out = vec![0.0; self.dim()];
+        self.eval_into(u, &mut out);
+        out
+    }
+
+    /// Arc length from `a` to `b` (signed) to the absolute `accuracy`.
+    pub fn arc_length(&self, a: f64, b: f64, accuracy: f64) -> Result<f64> {
+        match self {
+            CurveRef::Bezier(c) => c.arc_length(a, b, accuracy),
+            CurveRef::Nurbs(c) => c.arc_length(a, b, accuracy),
+        }
+    }
+
+    /// The default absolute accuracy of arc lengths of this curve.
+    pub fn default_length_accuracy(&self) -> f64 {
+        match self {
+            CurveRef::Bezier(c) => c.default_length_accuracy(),
+            CurveRef::Nurbs(c) => c.default_length_accuracy(),
+        }
+    }
+
+    /// The parameter at signed arc length `length` from `start`.
+    pub fn param_at_length(&self, start: f64, length: f64, accuracy: f64) -> Result<f64> {
+        match self {
+            CurveRef::Bezier(c) => c.param_at_length(start, length, accuracy),
+            CurveRef::Nurbs(c) => c.param_at_length(start, length, accuracy),
+        }
+    }
+
+    /// The piece on `[a, b]` (see [`Curve::segment`]).
+    pub fn segment(&self, a: f64, b: f64) -> Result<Curve> {
+        Ok(match self {
+            CurveRef::Bezier(c) => Curve::Bezier(c.segment(a, b)?),
+            CurveRef::Nurbs(c) => Curve::Nurbs(c.segment(a, b)?),
+        })
+    }
+
+    /// An owned copy.
+    pub fn to_curve(&self) -> Curve {
+        match self {
+            CurveRef::Bezier(c) => Curve::Bezier((*c).clone()),
+            CurveRef::Nurbs(c) => Curve::Nurbs((*c).clone()),
+        }
+    }
+}
+
+impl CurveJet for CurveRef<'_> {
+    fn dim(&self) -> usize {
+        CurveRef::dim(self)
+    }
+
+    fn check_parameter(&self, name: &str, u: f64) -> Result<()> {
+        match self {
+            CurveRef::Bezier(c) => CurveJet::check_parameter(*c, name, u),
+            CurveRef::Nurbs(c) => NurbsCurve::check_parameter(c, name, u),
+        }
+    }
+
+    fn coordinate_scale(&self) -> f64 {
+        CurveRef::coordinate_scale(self)
+    }
+
+    fn jet(&self, u: f64, order: usize, side: KnotSide) -> (DMatrix<f64>, Vec<f64>) {
+        match self {
+            CurveRef::Bezier(c) => c.jet(u, order, side),
+            CurveRef::Nurbs(c) => c.jet(u, order, side),
+        }
+    }
+}
+
+/// Curves that can be borrowed as a [`CurveRef`]: what the operations on
+/// slices of curves ([`fillet_chain`](crate::fillet_chain)) take.
+pub trait AsCurveRef {
+    /// Borrow as a [`CurveRef`].
+    fn as_curve_ref(&self) -> CurveRef<'_>;
+}
+
+impl AsCurveRef for BezierCurve {
+    fn as_curve_ref(&self) -> CurveRef<'_> {
+        CurveRef::Bezier(self)
+    }
+}
+
+impl AsCurveRef for NurbsCurve {
+    fn as_curve_ref(&self) -> CurveRef<'_> {
+        CurveRef::Nurbs(self)
+    }
+}
+
+impl AsCurveRef for Curve {
+    fn as_curve_ref(&self) -> CurveRef<'_> {
+        CurveRef::from(self)
+    }
+}

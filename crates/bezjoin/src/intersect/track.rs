@@ -1,0 +1,292 @@
+//! The two curves of an intersection search as the search sees them: a
+//! [`Track`] evaluates a Bezier or NURBS curve (and its tangent) on its
+//! domain and cuts it into [`Piece`]s, Bezier spans whose control points
+//! bound them. A rational span is kept in homogeneous form `(w P, w)`:
+//! de Casteljau halves it exactly there, and with positive weights the
+//! span lies in the convex hull of its Cartesian poles `P`, so the boxes
+//! of the projected poles bound it as for a polynomial piece.
+
+use std::borrow::Cow;
+
+use crate::bezier::{BezierCurve, distance, norm};
+use crate::curve::CurveRef;
+use crate::nurbs::NurbsCurve;
+
+/// One curve of the pair.
+pub(super) enum Track<'a> {
+    /// A Bezier curve with its hodograph.
+    Bezier {
+        curve: &'a BezierCurve,
+        hodograph: Cow<'a, BezierCurve>,
+    },
+    /// A NURBS curve (evaluated by A2.3/A4.2).
+    Nurbs(&'a NurbsCurve),
+}
+
+impl<'a> Track<'a> {
+    pub(super) fn new(curve: CurveRef<'a>) -> Self {
+        match curve {
+            CurveRef::Bezier(curve) => Track::Bezier {
+                curve,
+                hodograph: Cow::Owned(curve.hodograph()),
+            },
+            CurveRef::Nurbs(n) => Track::Nurbs(n),
+        }
+    }
+
+    /// A Bezier curve with its hodograph already at hand.
+    pub(crate) fn bezier(curve: &'a BezierCurve, hodograph: &'a BezierCurve) -> Self {
+        Track::Bezier {
+            curve,
+            hodograph: Cow::Borrowed(hodograph),
+        }
+    }
+
+    pub(super) fn dim(&self) -> usize {
+        match self {
+            Track::Bezier { curve, .. } => curve.dim(),
+            Track::Nurbs(n) => n.dim(),
+        }
+    }
+
+    pub(super) fn degree(&self) -> usize {
+        match self {
+            Track::Bezier { curve, .. } => curve.degree(),
+            Track::Nurbs(n) => n.degree(),
+        }
+    }
+
+    pub(super) fn domain(&self) -> (f64, f64) {
+        match self {
+            Track::Bezier { .. } => (0.0, 1.0),
+            Track::Nurbs(n) => n.domain(),
+        }
+    }
+
+    pub(super) fn coordinate_scale(&self) -> f64 {
+        match self {
+            Track::Bezier { curve, .. } => curve.coordinate_scale(),
+            Track::Nurbs(n) => n.coordinate_scale(),
+        }
+    }
+
+    pub(super) fn eval_into(&self, u: f64, out: &mut [f64]) {
+        match self {
+            Track::Bezier { curve, .. } => curve.eval_into(u, out),
+            Track::Nurbs(n) => n.point_and_tangent(u, out, None),
+        }
+    }
+
+    pub(super) fn eval(&self, u: f64) -> Vec<f64> {
+        let mut out = vec![0.0; self.dim()];
+        self.eval_into(u, &mut out);
+        out
+    }
+
+    /// The first derivative at `u` into `out`.
+    pub(super) fn tangent_into(&self, u: f64, out: &mut [f64]) {
+        match self {
+            Track::Bezier { hodograph, .. } => hodograph.eval_into(u, out),
+            Track::Nurbs(n) => {
+                let mut point = [0.0f64; 16];
+                let mut heap = Vec::new();
+                let point: &mut [f64] = if n.dim() <= point.len() {
+                    &mut point[..n.dim()]
+                } else {
+                    heap.resize(n.dim(), 0.0);
+                    &mut heap
+                };
+                n.point_and_tangent(u, point, Some(out));
+            }
+        }
+    }
+
+    pub(super) fn tangent(&self, u: f64) -> Vec<f64> {
+        let mut out = vec![0.0; self.dim()];
+        self.tangent_into(u, &mut out);
+        out
+    }
+
+    /// The parameters where pieces meet: the domain's ends and, for a
+    /// NURBS curve, its interior knots (where two polynomial pieces can
+    /// start or stop coinciding).
+    pub(super) fn breaks(&self) -> Vec<f64> {
+        let (a, b) = self.domain();
+        let mut out = vec![a];
+        if let Track::Nurbs(n) = self {
+            out.extend(n.interior_knots().0);
+        }
+        out.push(b);
+        out
+    }
+
+    /// Number of Bezier spans.
+    pub(super) fn span_count(&self) -> usize {
+        match self {
+            Track::Bezier { .. } => 1,
+            Track::Nurbs(n) => n.span_count(),
+        }
+    }
+
+    /// The curve as Bezier pieces over its domain.
+    pub(super) fn pieces(&self) -> Vec<Piece> {
+        match self {
+            Track::Bezier { curve, .. } => vec![Piece::new((*curve).clone(), false, 0.0, 1.0)],
+            Track::Nurbs(n) => n
+                .bezier_spans()
+                .into_iter()
+                .map(|span| {
+                    let (lo, hi) = span.domain();
+                    if span.weights().is_some() {
+                        let h = span.homogeneous_points();
+                        let curve = BezierCurve::new(span.dim() + 1, span.degree(), h)
+                            .expect("a span's homogeneous poles are a valid Bezier curve");
+                        Piece::new(curve, true, lo, hi)
+                    } else {
+                        let curve =
+                            BezierCurve::new(span.dim(), span.degree(), span.points().to_vec())
+                                .expect("a span's poles are a valid Bezier curve");
+                        Piece::new(curve, false, lo, hi)
+                    }
+                })
+                .collect(),
+        }
+    }
+}
+
+/// A piece `curve = original|[lo, hi]` (homogeneous when `rational`) with
+/// its Cartesian control points and their bounding box.
+#[derive(Clone)]
+pub(super) struct Piece {
+    curve: BezierCurve,
+    rational: bool,
+    /// Cartesian control points, row-major.
+    points: Vec<f64>,
+    dim: usize,
+    pub(super) lo: f64,
+    pub(super) hi: f64,
+    pub(super) min: Vec<f64>,
+    pub(super) max: Vec<f64>,
+}
+
+impl Piece {
+    fn new(curve: BezierCurve, rational: bool, lo: f64, hi: f64) -> Self {
+        let dim = if rational {
+            curve.dim() - 1
+        } else {
+            curve.dim()
+        };
+        let points: Vec<f64> = if rational {
+            curve
+                .points()
+                .chunks_exact(dim + 1)
+                .flat_map(|row| row[..dim].iter().map(move |x| x / row[dim]))
+                .collect()
+        } else {
+            curve.points().to_vec()
+        };
+        let mut min = vec![f64::INFINITY; dim];
+        let mut max = vec![f64::NEG_INFINITY; dim];
+        for row in points.chunks_exact(dim) {
+            for c in 0..dim {
+                min[c] = min[c].min(row[c]);
+                max[c] = max[c].max(row[c]);
+            }
+        }
+        Self {
+            curve,
+            rational,
+            points,
+            dim,
+            lo,
+            hi,
+            min,
+            max,
+        }
+    }
+
+    pub(super) fn degree(&self) -> usize {
+        self.curve.degree()
+    }
+
+    /// Cartesian control point `i`.
+    pub(super) fn point(&self, i: usize) -> &[f64] {
+        &self.points[i * self.dim..(i + 1) * self.dim]
+    }
+
+    pub(super) fn split(&self) -> (Piece, Piece) {
+        let (a, b) = self.curve.split_unchecked(0.5);
+        let mid = 0.5 * (self.lo + self.hi);
+        (
+            Piece::new(a, self.rational, self.lo, mid),
+            Piece::new(b, self.rational, mid, self.hi),
+        )
+    }
+
+    /// Flat enough to seed Newton from the chord: control points within
+    /// `max(absolute, relative_chord * chord)` of the chord.
+    pub(super) fn is_flat(&self, absolute: f64, relative_chord: f64) -> bool {
+        let n = self.degree();
+        let chord = distance(self.point(0), self.point(n));
+        self.deviation_from_chord() <= absolute.max(relative_chord * chord)
+    }
+
+    pub(super) fn contains(&self, x: &[f64], margin: f64) -> bool {
+        (0..x.len()).all(|c| x[c] >= self.min[c] - margin && x[c] <= self.max[c] + margin)
+    }
+
+    /// Distance from `x` to the box (0 inside): no point of the piece is
+    /// closer to `x`.
+    pub(super) fn box_distance(&self, x: &[f64]) -> f64 {
+        let gaps: Vec<f64> = x
+            .iter()
+            .zip(self.min.iter().zip(&self.max))
+            .map(|(x, (lo, hi))| (lo - x).max(x - hi).max(0.0))
+            .collect();
+        norm(&gaps)
+    }
+
+    pub(super) fn diagonal(&self) -> f64 {
+        distance(&self.min, &self.max)
+    }
+
+    /// Largest distance of a control point from the chord (from the first
+    /// point when the chord is degenerate).
+    fn deviation_from_chord(&self) -> f64 {
+        let n = self.degree();
+        let a = self.point(0);
+        let b = self.point(n);
+        let chord: Vec<f64> = b.iter().zip(a).map(|(x, y)| x - y).collect();
+        let len2: f64 = chord.iter().map(|x| x * x).sum();
+        let mut worst = 0.0f64;
+        for i in 1..n {
+            let p = self.point(i);
+            let rel: Vec<f64> = p.iter().zip(a).map(|(x, y)| x - y).collect();
+            let dev = if len2 > 0.0 {
+                let s = rel.iter().zip(&chord).map(|(x, y)| x * y).sum::<f64>() / len2;
+                let perp: f64 = rel
+                    .iter()
+                    .zip(&chord)
+                    .map(|(x, y)| (x - s * y) * (x - s * y))
+                    .sum::<f64>();
+                // Points beyond the chord's ends also count as deviation.
+                let beyond = if s < 0.0 {
+                    -s
+                } else if s > 1.0 {
+                    s - 1.0
+                } else {
+                    0.0
+                };
+                (perp + beyond * beyond * len2).sqrt()
+            } else {
+                norm(&rel)
+            };
+            worst = worst.max(dev);
+        }
+        worst
+    }
+}
+
+pub(super) fn boxes_meet(a: &Piece, b: &Piece, margin: f64) -> bool {
+    (0..a.min.len()).all(|c| a.min[c] <= b.max[c] + margin && b.min[c] <= a.max[c] + margin)
+}

@@ -1,0 +1,363 @@
+//! Knot insertion (The NURBS Book A5.1, one knot at a time as Boehm's
+//! rule), knot removal (the inverse of one insertion, checked), and what
+//! is built on them: split, trim, clamping and reversal. All work on the
+//! homogeneous poles `(w P, w)`, so rational curves are exact too.
+
+use super::{NurbsCurve, unit_weights_dropped};
+use crate::basis::{KnotSide, find_span};
+use crate::error::{BezjoinError, Result, check_finite_scalar};
+
+impl NurbsCurve {
+    /// Multiplicity of the value `u` in the knot vector.
+    pub fn multiplicity(&self, u: f64) -> usize {
+        self.knots.iter().filter(|&&k| k == u).count()
+    }
+
+    /// The same curve with the knot `u` inserted `times` more times
+    /// (A5.1): same shape, same parameters, `times` more poles. The
+    /// multiplicity after insertion may not exceed the degree (the end
+    /// values of the knot vector: degree + 1), and `u` must lie in the
+    /// domain.
+    pub fn insert_knot(&self, u: f64, times: usize) -> Result<NurbsCurve> {
+        self.check_parameter("u", u)?;
+        let (first, last) = self.domain();
+        let limit = if u == first || u == last {
+            self.degree + 1
+        } else {
+            self.degree
+        };
+        let now = self.multiplicity(u);
+        if now.saturating_add(times) > limit {
+            return Err(BezjoinError::invalid(
+                "times",
+                format!(
+                    "inserting {u} {times} times makes its multiplicity {} > {limit}",
+                    now.saturating_add(times)
+                ),
+            ));
+        }
+        let mut h = self.homogeneous_points();
+        let mut knots = self.knots.clone();
+        for _ in 0..times {
+            insert_once(self.dim + 1, self.degree, &mut knots, &mut h, u);
+        }
+        Ok(NurbsCurve::from_homogeneous(
+            self.dim,
+            self.degree,
+            &h,
+            knots,
+            self.weights.is_some(),
+        ))
+    }
+
+    /// Cut at `u` in the closed domain: the homogeneous poles and knots
+    /// with `u` inserted up to multiplicity `degree` at least, and the
+    /// index of the first occurrence of `u` and its multiplicity.
+    fn cut(&self, u: f64) -> (Vec<f64>, Vec<f64>, usize, usize) {
+        let p = self.degree;
+        let mut h = self.homogeneous_points();
+        let mut knots = self.knots.clone();
+        let now = self.multiplicity(u);
+        for _ in now..p {
+            insert_once(self.dim + 1, p, &mut knots, &mut h, u);
+        }
+        let j = knots.partition_point(|&k| k < u);
+        let m = knots[j..].iter().take_while(|&&k| k == u).count();
+        (h, knots, j, m)
+    }
+
+    /// The part on `[first, u]` from a cut (see [`cut`](Self::cut)).
+    fn left_of_cut(&self, h: &[f64], knots: &[f64], j: usize, u: f64) -> NurbsCurve {
+        let hd = self.dim + 1;
+        let p = self.degree;
+        let mut k = knots[..j].to_vec();
+        k.extend(std::iter::repeat_n(u, p + 1));
+        NurbsCurve::from_homogeneous(self.dim, p, &h[..j * hd], k, self.weights.is_some())
+    }
+
+    /// The part on `[u, last]` from a cut.
+    fn right_of_cut(&self, h: &[f64], knots: &[f64], j: usize, m: usize, u: f64) -> NurbsCurve {
+        let hd = self.dim + 1;
+        let p = self.degree;
+        let start = j + m - p - 1;
+        let mut k = vec![u; p + 1];
+        k.extend_from_slice(&knots[j + m..]);
+        NurbsCurve::from_homogeneous(self.dim, p, &h[start * hd..], k, self.weights.is_some())
+    }
+
+    /// The two pieces `[first, u]` and `[u, last]` (`first < u < last`),
+    /// each clamped at `u`, with the original parameters; exact (knot
+    /// insertion, no approximation).
+    pub fn split_at(&self, u: f64) -> Result<(NurbsCurve, NurbsCurve)> {
+        check_finite_scalar("u", u)?;
+        let (first, last) = self.domain();
+        if u <= first || u >= last {
+            return Err(BezjoinError::out_of_range(
+                "u",
+                u,
+                format!("({first}, {last})"),
+            ));
+        }
+        let (h, knots, j, m) = self.cut(u);
+        Ok((
+            self.left_of_cut(&h, &knots, j, u),
+            self.right_of_cut(&h, &knots, j, m, u),
+        ))
+    }
+
+    /// The same curve with both ends clamped (end knots of multiplicity
+    /// degree + 1, the first and last poles on the curve): same shape,
+    /// same domain. A clamped curve comes back unchanged.
+    pub fn clamped(&self) -> NurbsCurve {
+        let (first, last) = self.domain();
+        let p = self.degree;
+        let mut curve = self.clone();
+        if curve.knots[..=p].iter().any(|&k| k != first) {
+            let (h, knots, j, m) = curve.cut(first);
+            curve = curve.right_of_cut(&h, &knots, j, m, first);
+        }
+        let n = curve.point_count();
+        if curve.knots[n..].iter().any(|&k| k != last) {
+            let (h, knots, j, _) = curve.cut(last);
+            curve = curve.left_of_cut(&h, &knots, j, last);
+        }
+        curve
+    }
+
+    /// The piece on `[a, b]` (`first <= a < b <= last`) with the original
+    /// parameters, clamped at both ends; exact.
+    pub fn segment(&self, a: f64, b: f64) -> Result<NurbsCurve> {
+        self.check_parameter("a", a)?;
+        self.check_parameter("b", b)?;
+        if a >= b {
+            return Err(BezjoinError::invalid(
+                "b",
+                format!("{b} must be greater than a = {a}"),
+            ));
+        }
+        let (first, last) = self.domain();
+        let mut curve = self.clamped();
+        if a > first {
+            curve = curve.split_at(a)?.1;
+        }
+        if b < last {
+            curve = curve.split_at(b)?.0;
+        }
+        Ok(curve)
+    }
+
+    /// The same point set traversed backwards on the same domain:
+    /// `R(u) = C(first + last - u)`.
+    pub fn reverse(&self) -> NurbsCurve {
+        let (first, last) = self.domain();
+        let d = self.dim;
+        let knots: Vec<f64> = self
+            .knots
+            .iter()
+            .rev()
+            .map(|&k| (first + last) - k)
+            .collect();
+        let mut points = Vec::with_capacity(self.points.len());
+        for row in self.points.chunks_exact(d).rev() {
+            points.extend_from_slice(row);
+        }
+        let weights = self
+            .weights
+            .as_ref()
+            .map(|w| w.iter().rev().copied().collect());
+        let mut r = NurbsCurve {
+            degree: self.degree,
+            dim: d,
+            knots,
+            points,
+            weights,
+        };
+        // `first + last - k` need not give `first`/`last` back bit for bit.
+        let p = self.degree;
+        let n = r.point_count();
+        r.knots[p] = first;
+        r.knots[n] = last;
+        for i in 0..p {
+            r.knots[i] = r.knots[i].min(first);
+        }
+        for i in n + 1..r.knots.len() {
+            r.knots[i] = r.knots[i].max(last);
+        }
+        r
+    }
+
+    /// The curve with the interior knot `u` removed `times` times, when the
+    /// curve is smooth enough there for that to be exact: each removal's
+    /// error (the largest homogeneous pole distance between the curve and
+    /// the result with `u` inserted back) must stay within `tolerance`
+    /// (absolute); otherwise `InvalidArgument` on `u` with the error.
+    pub fn remove_knot(&self, u: f64, times: usize, tolerance: f64) -> Result<NurbsCurve> {
+        self.check_parameter("u", u)?;
+        let (first, last) = self.domain();
+        let now = self.multiplicity(u);
+        if u == first || u == last || now < times {
+            return Err(BezjoinError::invalid(
+                "u",
+                format!("{u} is not an interior knot of multiplicity >= {times} (it has {now})"),
+            ));
+        }
+        let mut curve = self.clone();
+        for i in 0..times {
+            let (reduced, error) = curve.remove_knot_once(u);
+            if error.is_nan() || error > tolerance {
+                return Err(BezjoinError::invalid(
+                    "u",
+                    format!(
+                        "removal {} of {times} of the knot {u} would move the curve by {error:e} \
+                         (tolerance {tolerance:e})",
+                        i + 1
+                    ),
+                ));
+            }
+            curve = reduced;
+        }
+        Ok(curve)
+    }
+
+    /// `self` followed by `next`, as one curve: `self` must end where
+    /// `next` starts, in parameter (`last == next.first`) and in space
+    /// (within `1e-12` of the coordinate scale), both clamped there, with
+    /// one degree and dimension. The join knot gets multiplicity `degree`
+    /// (the curve is C^0 there); [`remove_knot`](Self::remove_knot) makes
+    /// it smoother where the pieces allow. `next`'s weights are scaled so
+    /// that the two weights at the join agree (which does not change
+    /// `next`). The inverse of [`split_at`](Self::split_at).
+    pub fn join(&self, next: &NurbsCurve) -> Result<NurbsCurve> {
+        if next.dim != self.dim {
+            return Err(BezjoinError::DimensionMismatch {
+                name: "next".into(),
+                expected: self.dim,
+                actual: next.dim,
+            });
+        }
+        if next.degree != self.degree {
+            return Err(BezjoinError::invalid(
+                "next",
+                format!(
+                    "has degree {}, the curve {}; elevate the lower one first",
+                    next.degree, self.degree
+                ),
+            ));
+        }
+        let p = self.degree;
+        let (_, u) = self.domain();
+        let (start, _) = next.domain();
+        if start != u {
+            return Err(BezjoinError::invalid(
+                "next",
+                format!("starts at parameter {start}, the curve ends at {u}"),
+            ));
+        }
+        let a = self.clamped();
+        let b = next.clamped();
+        let n = a.point_count();
+        let scale = a.coordinate_scale().max(b.coordinate_scale());
+        let gap = crate::bezier::distance(a.point(n - 1), b.point(0));
+        if gap.is_nan() || gap > 1e-12 * scale {
+            return Err(BezjoinError::invalid(
+                "next",
+                format!("starts {gap:e} away from the end of the curve"),
+            ));
+        }
+        let hd = self.dim + 1;
+        let mut h = a.homogeneous_points();
+        let ratio = a.weight(n - 1) / b.weight(0);
+        let hb = b.homogeneous_points();
+        h.extend(hb[hd..].iter().map(|x| x * ratio));
+        let mut knots = a.knots[..n].to_vec();
+        knots.extend(std::iter::repeat_n(u, p));
+        knots.extend_from_slice(&b.knots[p + 1..]);
+        let rational = a.weights.is_some() || b.weights.is_some();
+        let mut joined = NurbsCurve::from_homogeneous(self.dim, p, &h, knots, rational);
+        joined.weights = unit_weights_dropped(joined.weights.take());
+        Ok(joined)
+    }
+
+    /// Remove one occurrence of the interior knot `u` (the inverse of one
+    /// insertion). Returns the curve and the removal error: the largest
+    /// distance, in homogeneous coordinates, between the poles of the
+    /// given curve and those of the result with `u` inserted back. Exact
+    /// removal (the curve is `C^(p-m+1)` at `u` for multiplicity `m`) has
+    /// an error at the rounding level of the poles.
+    pub(crate) fn remove_knot_once(&self, u: f64) -> (NurbsCurve, f64) {
+        let hd = self.dim + 1;
+        let p = self.degree;
+        let h = self.homogeneous_points();
+        // The curve without u: knots U' and unknown poles Q (one fewer).
+        let r = self
+            .knots
+            .iter()
+            .rposition(|&k| k == u)
+            .expect("u is a knot");
+        let mut reduced = self.knots.clone();
+        reduced.remove(r);
+        let s_reduced = self.multiplicity(u) - 1;
+        // Span of u in U' (from the right): U'_k <= u < U'_(k+1).
+        let k = find_span(&reduced, p, u, KnotSide::Right);
+        let count = self.point_count() - 1;
+        let mut q = vec![0.0; count * hd];
+        // Unchanged: Q_i = P_i for i <= k - p; Q_(i-1) = P_i for i >= k - s' + 1.
+        for i in 0..=k - p {
+            q[i * hd..(i + 1) * hd].copy_from_slice(&h[i * hd..(i + 1) * hd]);
+        }
+        for i in (k - s_reduced + 1)..=count {
+            q[(i - 1) * hd..i * hd].copy_from_slice(&h[i * hd..(i + 1) * hd]);
+        }
+        // Unknowns Q_lo..=Q_hi; equations P_i = a_i Q_i + (1 - a_i) Q_(i-1)
+        // for i = lo..=hi + 1, one more than unknowns: forward from the
+        // left up to the middle, backward from the right, the last
+        // equation is the check.
+        let lo = k - p + 1;
+        let hi = k - s_reduced - 1; // may be lo - 1: no unknowns
+        let alpha = |i: usize| (u - reduced[i]) / (reduced[i + p] - reduced[i]);
+        let mid = (lo + hi).div_ceil(2); // forward fills lo..mid (exclusive)
+        for i in lo..mid {
+            let a = alpha(i);
+            for c in 0..hd {
+                q[i * hd + c] = (h[i * hd + c] - (1.0 - a) * q[(i - 1) * hd + c]) / a;
+            }
+        }
+        let mut i = hi + 1;
+        while i > mid {
+            let a = alpha(i);
+            for c in 0..hd {
+                q[(i - 1) * hd + c] = (h[i * hd + c] - a * q[i * hd + c]) / (1.0 - a);
+            }
+            i -= 1;
+        }
+        // The equation left over: i = mid.
+        let a = alpha(mid);
+        let mut error = 0.0f64;
+        for c in 0..hd {
+            let back = a * q[mid * hd + c] + (1.0 - a) * q[(mid - 1) * hd + c];
+            error = error.max((back - h[mid * hd + c]).abs());
+        }
+        (
+            NurbsCurve::from_homogeneous(self.dim, p, &q, reduced, self.weights.is_some()),
+            error,
+        )
+    }
+}
+
+/// One insertion of `u` (Boehm; A5.1 with r = 1) into homogeneous poles
+/// `h` (`hd` values each) on `knots`, in place.
+pub(crate) fn insert_once(hd: usize, p: usize, knots: &mut Vec<f64>, h: &mut Vec<f64>, u: f64) {
+    let k = find_span(knots, p, u, KnotSide::Right);
+    let n = h.len() / hd;
+    let mut out = Vec::with_capacity((n + 1) * hd);
+    out.extend_from_slice(&h[..(k + 1 - p) * hd]);
+    for i in (k + 1 - p)..=k {
+        let a = (u - knots[i]) / (knots[i + p] - knots[i]);
+        for c in 0..hd {
+            out.push(a * h[i * hd + c] + (1.0 - a) * h[(i - 1) * hd + c]);
+        }
+    }
+    out.extend_from_slice(&h[k * hd..]);
+    *h = out;
+    knots.insert(k + 1, u);
+}

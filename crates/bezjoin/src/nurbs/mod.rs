@@ -1,0 +1,950 @@
+//! NURBS curves: poles, optional weights and a flat knot vector; the one
+//! B-spline type of the library (docs/mathematics.md#nurbs-curves).
+//!
+//! `C(u) = sum_i N_(i,p)(u) w_i P_i / sum_i N_(i,p)(u) w_i` on the domain
+//! `[u_p, u_(n+1)]`, after The NURBS Book (Piegl & Tiller, 2nd ed.); the
+//! algorithm numbers below are the book's. OpenCASCADE's `Geom_BSplineCurve`
+//! holds the same data as poles, weights, knots and multiplicities
+//! ([`NurbsCurve::knots_with_multiplicities`]).
+//!
+//! Every operation here is exact (up to rounding): derivatives of any order
+//! (A2.3 on the homogeneous curve, then A4.2), knot insertion (A5.1),
+//! split, trim and reversal with the original parameters, decomposition
+//! into Bezier spans (A5.6; rational spans stay rational), degree elevation
+//! (elevation of the spans, then removal of the knots the elevation does
+//! not need, each removal checked), exact conic arcs (A7.1).
+//!
+//! The papers state their continuity promises for the chain
+//! `P|[0,u0], R, Q|[v0,1]` read as ONE B-spline whose knot intervals are the
+//! lengths of the pieces' parameter ranges (docs/mathematics.md#b-spline-chains).
+//! [`NurbsCurve::from_bezier_chain`] builds exactly that curve (every
+//! interior knot of full multiplicity, so it is the chain itself), and
+//! [`NurbsCurve::eval_derivatives_side`] evaluates it from either side of a
+//! knot with the same A2.3 basis routine as everything else: continuity is
+//! judged by the derivatives of one curve, not by a formula of ours.
+
+mod conic;
+mod knots;
+mod length;
+mod spans;
+
+pub use conic::{AXIS_TOLERANCE, ellipse_arc};
+pub use length::MAX_RATIONAL_EVALUATIONS;
+
+use crate::basis::{KnotSide, basis_derivatives, binomial, find_span};
+use crate::bezier::{BezierCurve, MAX_DEGREE};
+use crate::curve::CurveRef;
+use crate::error::{BezjoinError, Result, check_finite, check_finite_scalar};
+
+/// A NURBS curve of degree `p >= 1`: poles, weights (`None`: all 1, a
+/// polynomial B-spline) and the flat knot vector.
+///
+/// Invariants (checked by [`NurbsCurve::new`]): `pole_count >= p + 1`;
+/// `knots.len() == pole_count + p + 1`, finite and non-decreasing; every
+/// knot value has multiplicity `<= p`, except the first and last values,
+/// which may have `p + 1`; the domain `[u_p, u_(n+1)]` is not empty; weights
+/// finite and `> 0`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct NurbsCurve {
+    degree: usize,
+    dim: usize,
+    knots: Vec<f64>,
+    points: Vec<f64>,
+    weights: Option<Vec<f64>>,
+}
+
+/// The name the chain code and older callers know the type by: a
+/// polynomial B-spline is a [`NurbsCurve`] without weights.
+pub type BSplineCurve = NurbsCurve;
+
+impl NurbsCurve {
+    /// The number of poles of a curve with these array lengths, or the
+    /// size error [`new`](Self::new) gives for them (the same argument
+    /// named, the same message), from the numbers alone: a caller can
+    /// check lengths before reading any array (the C ABI does).
+    /// `weights_len == 0`: no weights.
+    pub fn check_shape(
+        dim: usize,
+        degree: usize,
+        poles_len: usize,
+        weights_len: usize,
+        knots_len: usize,
+    ) -> Result<usize> {
+        if dim == 0 {
+            return Err(BezjoinError::invalid("dim", "must be at least 1"));
+        }
+        if degree == 0 {
+            return Err(BezjoinError::invalid(
+                "degree",
+                "must be at least 1 (a NURBS curve of degree 0 is not continuous)",
+            ));
+        }
+        if degree > MAX_DEGREE {
+            return Err(BezjoinError::invalid(
+                "degree",
+                format!("{degree} is above the supported maximum {MAX_DEGREE}"),
+            ));
+        }
+        let order = degree + 1;
+        if poles_len % dim != 0 || poles_len / dim < order {
+            return Err(BezjoinError::invalid(
+                "poles",
+                format!("{poles_len} values do not make at least {order} poles of dimension {dim}"),
+            ));
+        }
+        let count = poles_len / dim;
+        if weights_len != 0 && weights_len != count {
+            return Err(BezjoinError::LengthMismatch {
+                name: "weights".into(),
+                expected: count,
+                actual: weights_len,
+            });
+        }
+        let expected = count.checked_add(order).ok_or_else(|| {
+            BezjoinError::invalid(
+                "poles",
+                format!("{count} poles and degree {degree} need more knots than usize counts"),
+            )
+        })?;
+        if knots_len != expected {
+            return Err(BezjoinError::LengthMismatch {
+                name: "knots".into(),
+                expected,
+                actual: knots_len,
+            });
+        }
+        Ok(count)
+    }
+
+    /// A NURBS curve from row-major poles (`pole_count * dim` values),
+    /// optional weights (`pole_count` values `> 0`; `None` for a polynomial
+    /// B-spline) and the flat knot vector (`pole_count + degree + 1`
+    /// values). The argument order is the C ABI's (`bzj_nurbs_new`).
+    ///
+    /// Errors name the argument: `dim`, `degree`, `poles`, `weights`,
+    /// `knots` (count, order, multiplicities, an empty domain, an interval
+    /// too short to invert).
+    pub fn new(
+        dim: usize,
+        degree: usize,
+        poles: Vec<f64>,
+        weights: Option<Vec<f64>>,
+        knots: Vec<f64>,
+    ) -> Result<Self> {
+        let count = Self::check_shape(
+            dim,
+            degree,
+            poles.len(),
+            weights.as_ref().map_or(0, Vec::len),
+            knots.len(),
+        )?;
+        if weights.as_ref().is_some_and(Vec::is_empty) {
+            return Err(BezjoinError::LengthMismatch {
+                name: "weights".into(),
+                expected: count,
+                actual: 0,
+            });
+        }
+        let order = degree + 1;
+        check_finite("poles", &poles)?;
+        if let Some(w) = &weights {
+            check_finite("weights", w)?;
+            if let Some(i) = w.iter().position(|&x| x <= 0.0) {
+                return Err(BezjoinError::out_of_range(
+                    format!("weights[{i}]"),
+                    w[i],
+                    "> 0",
+                ));
+            }
+            // The homogeneous poles `w P` must be normal finite numbers
+            // (a subnormal weight loses the pole's digits, an overflowing
+            // product makes every evaluation NaN).
+            if let Some(i) = w.iter().position(|&x| x < f64::MIN_POSITIVE) {
+                return Err(BezjoinError::out_of_range(
+                    format!("weights[{i}]"),
+                    w[i],
+                    format!(">= {:e} (a normal number)", f64::MIN_POSITIVE),
+                ));
+            }
+            let largest = poles.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+            if let Some(i) = w.iter().position(|&x| !(x * largest).is_finite()) {
+                return Err(BezjoinError::invalid(
+                    format!("weights[{i}]"),
+                    format!(
+                        "{} times the largest pole coordinate {largest:e} overflows f64",
+                        w[i]
+                    ),
+                ));
+            }
+        }
+        check_finite("knots", &knots)?;
+        if let Some(i) = knots.windows(2).position(|w| w[1] < w[0]) {
+            return Err(BezjoinError::invalid(
+                "knots",
+                format!(
+                    "decrease at index {}: {} after {}",
+                    i + 1,
+                    knots[i + 1],
+                    knots[i]
+                ),
+            ));
+        }
+        // The basis (A2.2/A2.3) divides by knot differences: a non-zero one
+        // whose reciprocal overflows (a subnormal interval, e.g. a chain
+        // piece of length 5e-324) makes `0 * inf = NaN` of the values.
+        if let Some(i) = knots
+            .windows(2)
+            .position(|w| w[1] > w[0] && !(1.0 / (w[1] - w[0])).is_finite())
+        {
+            return Err(BezjoinError::invalid(
+                "knots",
+                format!(
+                    "the interval [{}, {}] at index {} is too short: its length {:e} has no \
+                     finite reciprocal",
+                    knots[i],
+                    knots[i + 1],
+                    i + 1,
+                    knots[i + 1] - knots[i]
+                ),
+            ));
+        }
+        let (distinct, mults) = distinct_with_multiplicities(&knots);
+        let last = distinct.len() - 1;
+        for (i, (&value, &m)) in distinct.iter().zip(&mults).enumerate() {
+            let limit = if i == 0 || i == last { order } else { degree };
+            if m > limit {
+                let which = if i == 0 || i == last {
+                    "end"
+                } else {
+                    "interior"
+                };
+                return Err(BezjoinError::invalid(
+                    "knots",
+                    format!(
+                        "{which} knot {value} has multiplicity {m} > {limit} (degree {degree})"
+                    ),
+                ));
+            }
+        }
+        if knots[degree] >= knots[count] {
+            return Err(BezjoinError::invalid(
+                "knots",
+                format!(
+                    "the domain [knots[{degree}], knots[{count}]] = [{}, {}] is empty",
+                    knots[degree], knots[count]
+                ),
+            ));
+        }
+        let weights = unit_weights_dropped(weights);
+        Ok(Self {
+            degree,
+            dim,
+            knots,
+            points: poles,
+            weights,
+        })
+    }
+
+    /// A Bezier curve as a one-span NURBS on `[0, 1]` (knots `0^(n+1)
+    /// 1^(n+1)`); a degree-0 curve (a point) is raised to degree 1.
+    pub fn from_bezier(bezier: &BezierCurve) -> Self {
+        let raised;
+        let b = if bezier.degree() == 0 {
+            raised = bezier
+                .elevate_degree(1)
+                .expect("degree 1 is within every limit");
+            &raised
+        } else {
+            bezier
+        };
+        Self::from_span_parts(b.dim(), b.degree(), b.points().to_vec(), None, 0.0, 1.0)
+    }
+
+    /// One Bezier span on `[a, b]` (`a < b`) from its (validated) parts.
+    pub(crate) fn from_span_parts(
+        dim: usize,
+        degree: usize,
+        points: Vec<f64>,
+        weights: Option<Vec<f64>>,
+        a: f64,
+        b: f64,
+    ) -> Self {
+        let mut knots = vec![a; degree + 1];
+        knots.extend(std::iter::repeat_n(b, degree + 1));
+        Self {
+            degree,
+            dim,
+            knots,
+            points,
+            weights: unit_weights_dropped(weights),
+        }
+    }
+
+    /// The chain of Bezier `pieces` as one B-spline; piece `i` occupies a
+    /// parameter interval of length `intervals[i] > 0`, starting at 0.
+    ///
+    /// Pieces of lower degree are elevated to the highest degree (exact);
+    /// every interior knot gets multiplicity equal to the degree, so the
+    /// result equals the chain with no approximation. Consecutive pieces
+    /// must share their end points to within `1e-12` of the coordinate
+    /// scale (otherwise InvalidArgument, naming the join).
+    pub fn from_bezier_chain(pieces: &[BezierCurve], intervals: &[f64]) -> Result<Self> {
+        if pieces.is_empty() {
+            return Err(BezjoinError::invalid(
+                "pieces",
+                "at least one piece is needed",
+            ));
+        }
+        let dim = check_chain(
+            &pieces.iter().map(|p| p.dim()).collect::<Vec<_>>(),
+            intervals,
+        )?;
+        let degree = pieces.iter().map(BezierCurve::degree).max().unwrap().max(1);
+        let elevated: Vec<BezierCurve> = pieces
+            .iter()
+            .map(|p| p.elevate_degree(degree))
+            .collect::<Result<_>>()?;
+        let scale = elevated
+            .iter()
+            .map(BezierCurve::coordinate_scale)
+            .fold(1.0, f64::max);
+        let mut points: Vec<f64> = Vec::new();
+        let mut knots = vec![0.0; degree + 1];
+        let mut x = 0.0;
+        for (i, piece) in elevated.iter().enumerate() {
+            if i == 0 {
+                points.extend_from_slice(piece.points());
+            } else {
+                let prev_end = &points[points.len() - dim..];
+                let gap = crate::bezier::distance(prev_end, piece.point(0));
+                if gap > 1e-12 * scale {
+                    return Err(BezjoinError::invalid(
+                        format!("pieces[{i}]"),
+                        format!("starts {gap:e} away from the end of piece {}", i - 1),
+                    ));
+                }
+                points.extend_from_slice(&piece.points()[dim..]);
+            }
+            x += intervals[i];
+            let mult = if i + 1 == elevated.len() {
+                degree + 1
+            } else {
+                degree
+            };
+            knots.extend(std::iter::repeat_n(x, mult));
+        }
+        Self::new(dim, degree, points, None, knots)
+    }
+
+    /// The same curve on the domain `[a, b]` (`a < b`, finite): the knots
+    /// mapped by the affine map that takes the domain onto `[a, b]`.
+    pub fn reparametrized(&self, a: f64, b: f64) -> Result<NurbsCurve> {
+        check_finite_scalar("a", a)?;
+        check_finite_scalar("b", b)?;
+        if a >= b {
+            return Err(BezjoinError::invalid(
+                "b",
+                format!("{b} must be greater than a = {a}"),
+            ));
+        }
+        let (first, last) = self.domain();
+        let scale = (b - a) / (last - first);
+        let knots: Vec<f64> = self
+            .knots
+            .iter()
+            .map(|&k| {
+                if k == first {
+                    a
+                } else if k == last {
+                    b
+                } else {
+                    a + (k - first) * scale
+                }
+            })
+            .collect();
+        NurbsCurve::new(
+            self.dim,
+            self.degree,
+            self.points.clone(),
+            self.weights.clone(),
+            knots,
+        )
+    }
+
+    /// The chain of `pieces` (any curves, each on its own domain) as one
+    /// NURBS curve: piece `i` reparametrised onto an interval of length
+    /// `intervals[i] > 0` (consecutive, from 0), all elevated to the highest
+    /// degree (exact), joined end to end ([`join`](Self::join): each join a
+    /// knot of multiplicity `degree`), so the result is the chain itself.
+    /// Consecutive pieces must share their end points to within `1e-12` of
+    /// the coordinate scale. For Bezier pieces this is
+    /// [`from_bezier_chain`](Self::from_bezier_chain).
+    pub fn from_curve_chain(pieces: &[CurveRef], intervals: &[f64]) -> Result<Self> {
+        if pieces.iter().all(|p| matches!(p, CurveRef::Bezier(_))) {
+            let beziers: Vec<BezierCurve> = pieces
+                .iter()
+                .filter_map(|p| match p {
+                    CurveRef::Bezier(b) => Some((*b).clone()),
+                    CurveRef::Nurbs(_) => None,
+                })
+                .collect();
+            return Self::from_bezier_chain(&beziers, intervals);
+        }
+        check_chain(
+            &pieces.iter().map(|p| p.dim()).collect::<Vec<_>>(),
+            intervals,
+        )?;
+        let degree = pieces.iter().map(|p| p.degree()).max().unwrap_or(1).max(1);
+        let mut x = 0.0;
+        let mut chain: Option<NurbsCurve> = None;
+        for (i, piece) in pieces.iter().enumerate() {
+            let next_x = x + intervals[i];
+            let nurbs = match piece {
+                CurveRef::Bezier(b) => NurbsCurve::from_bezier(b),
+                CurveRef::Nurbs(n) => (*n).clone(),
+            };
+            let piece = nurbs.reparametrized(x, next_x)?.elevate_degree(degree)?;
+            chain = Some(match chain {
+                None => piece,
+                Some(c) => c.join(&piece).map_err(|e| match e {
+                    BezjoinError::InvalidArgument { reason, .. } => {
+                        BezjoinError::invalid(format!("pieces[{i}]"), reason)
+                    }
+                    other => other,
+                })?,
+            });
+            x = next_x;
+        }
+        chain.ok_or_else(|| BezjoinError::invalid("pieces", "at least one piece is needed"))
+    }
+
+    /// Degree.
+    pub fn degree(&self) -> usize {
+        self.degree
+    }
+
+    /// Dimension.
+    pub fn dim(&self) -> usize {
+        self.dim
+    }
+
+    /// The full (flat) knot vector.
+    pub fn knots(&self) -> &[f64] {
+        &self.knots
+    }
+
+    /// Row-major poles (Cartesian, not multiplied by the weights).
+    pub fn points(&self) -> &[f64] {
+        &self.points
+    }
+
+    /// Pole `i` (Cartesian).
+    pub fn point(&self, i: usize) -> &[f64] {
+        &self.points[i * self.dim..(i + 1) * self.dim]
+    }
+
+    /// Number of poles.
+    pub fn point_count(&self) -> usize {
+        self.points.len() / self.dim
+    }
+
+    /// The weights, `None` for a polynomial B-spline (all weights equal to
+    /// 1, the form [`NurbsCurve::new`] keeps for any weights all equal to 1).
+    pub fn weights(&self) -> Option<&[f64]> {
+        self.weights.as_deref()
+    }
+
+    /// Weight of pole `i` (1 for a polynomial curve).
+    pub fn weight(&self, i: usize) -> f64 {
+        self.weights.as_ref().map_or(1.0, |w| w[i])
+    }
+
+    /// True when the weights are not all equal (OpenCASCADE's
+    /// `IsRational`): equal weights cancel and give a polynomial curve.
+    pub fn is_rational(&self) -> bool {
+        self.weights
+            .as_ref()
+            .is_some_and(|w| w.iter().any(|&x| x != w[0]))
+    }
+
+    /// The parameter domain `[u_p, u_(n+1)]`.
+    pub fn domain(&self) -> (f64, f64) {
+        (self.knots[self.degree], self.knots[self.point_count()])
+    }
+
+    /// Largest absolute pole coordinate (at least `f64::MIN_POSITIVE`).
+    pub fn coordinate_scale(&self) -> f64 {
+        self.points
+            .iter()
+            .fold(0.0f64, |m, v| m.max(v.abs()))
+            .max(f64::MIN_POSITIVE)
+    }
+
+    /// Distinct knots and their multiplicities (the form OpenCASCADE's
+    /// `Geom_BSplineCurve` takes).
+    pub fn knots_with_multiplicities(&self) -> (Vec<f64>, Vec<usize>) {
+        distinct_with_multiplicities(&self.knots)
+    }
+
+    /// `Ok` when `u` is finite and inside the domain; otherwise the error
+    /// names `name` and the domain.
+    pub fn check_parameter(&self, name: &str, u: f64) -> Result<()> {
+        check_finite_scalar(name, u)?;
+        let (a, b) = self.domain();
+        if u < a || u > b {
+            return Err(BezjoinError::out_of_range(name, u, format!("[{a}, {b}]")));
+        }
+        Ok(())
+    }
+
+    /// Homogeneous pole `i`: `(w P, w)`, `dim + 1` values.
+    pub(crate) fn homogeneous_point(&self, i: usize, out: &mut [f64]) {
+        let w = self.weight(i);
+        for (o, x) in out.iter_mut().zip(self.point(i)) {
+            *o = w * x;
+        }
+        out[self.dim] = w;
+    }
+
+    /// All homogeneous poles, row-major, `dim + 1` values each.
+    pub(crate) fn homogeneous_points(&self) -> Vec<f64> {
+        let h = self.dim + 1;
+        let mut out = vec![0.0; self.point_count() * h];
+        for i in 0..self.point_count() {
+            self.homogeneous_point(i, &mut out[i * h..(i + 1) * h]);
+        }
+        out
+    }
+
+    /// The curve from homogeneous poles (`dim + 1` values each, weights
+    /// positive) and knots that are known to be valid.
+    pub(crate) fn from_homogeneous(
+        dim: usize,
+        degree: usize,
+        homogeneous: &[f64],
+        knots: Vec<f64>,
+        rational: bool,
+    ) -> Self {
+        let h = dim + 1;
+        let count = homogeneous.len() / h;
+        let mut points = Vec::with_capacity(count * dim);
+        let mut weights = Vec::with_capacity(count);
+        for row in homogeneous.chunks_exact(h) {
+            let w = row[dim];
+            points.extend(row[..dim].iter().map(|x| x / w));
+            weights.push(w);
+        }
+        Self {
+            degree,
+            dim,
+            knots,
+            points,
+            weights: rational.then_some(weights),
+        }
+    }
+
+    /// The point at `u` into `point` (`dim` values) and, when asked, the
+    /// first derivative into `tangent`, by de Boor's algorithm on the
+    /// homogeneous poles (from the right at an interior knot, as
+    /// [`eval_derivatives`](Self::eval_derivatives)): no heap allocation up
+    /// to `(degree + 1) (dim + 1) <= 128`. The derivative comes from the
+    /// last level but one, `A' = p (d_p - d_(p-1)) / (u_(k+1) - u_k)`, and
+    /// `C' = (A' - w' C) / w`.
+    pub(crate) fn point_and_tangent(&self, u: f64, point: &mut [f64], tangent: Option<&mut [f64]>) {
+        let p = self.degree;
+        let d = self.dim;
+        let hd = d + 1;
+        let size = (p + 1) * hd;
+        let mut stack = [0.0f64; 128];
+        let mut heap = Vec::new();
+        let work: &mut [f64] = if size <= stack.len() {
+            &mut stack[..size]
+        } else {
+            heap.resize(size, 0.0);
+            &mut heap
+        };
+        let k = find_span(&self.knots, p, u, KnotSide::Right);
+        for j in 0..=p {
+            let i = k - p + j;
+            let w = self.weight(i);
+            let row = &mut work[j * hd..(j + 1) * hd];
+            for (o, x) in row.iter_mut().zip(self.point(i)) {
+                *o = w * x;
+            }
+            row[d] = w;
+        }
+        let knots = &self.knots;
+        let level = |r: usize, work: &mut [f64]| {
+            for j in (r..=p).rev() {
+                let lo = knots[j + k - p];
+                let alpha = (u - lo) / (knots[j + 1 + k - r] - lo);
+                for c in 0..hd {
+                    work[j * hd + c] =
+                        (1.0 - alpha) * work[(j - 1) * hd + c] + alpha * work[j * hd + c];
+                }
+            }
+        };
+        for r in 1..p {
+            level(r, work);
+        }
+        // Level p - 1 done: the two points left give the derivative.
+        let mut derivative = [0.0f64; 16];
+        let mut derivative_heap = Vec::new();
+        let want_tangent = tangent.is_some();
+        let dh: &mut [f64] = if hd <= derivative.len() {
+            &mut derivative[..hd]
+        } else {
+            derivative_heap.resize(hd, 0.0);
+            &mut derivative_heap
+        };
+        if want_tangent {
+            let scale = p as f64 / (knots[k + 1] - knots[k]);
+            for c in 0..hd {
+                dh[c] = scale * (work[p * hd + c] - work[(p - 1) * hd + c]);
+            }
+        }
+        level(p, work);
+        let w = work[p * hd + d];
+        for c in 0..d {
+            point[c] = work[p * hd + c] / w;
+        }
+        if let Some(tangent) = tangent {
+            for c in 0..d {
+                tangent[c] = (dh[c] - dh[d] * point[c]) / w;
+            }
+        }
+    }
+
+    /// Value and derivatives `0..=max_order` at `u`, taken from the span on
+    /// `side` of `u` when `u` is a knot; row-major, `(max_order + 1) * dim`
+    /// values (row `k` is the `k`-th derivative). Any order is allowed:
+    /// above the degree the derivatives of a polynomial curve vanish, those
+    /// of a rational curve do not (A4.2). Outside the domain the end spans
+    /// are continued; callers that must refuse such `u` use
+    /// [`check_parameter`](Self::check_parameter).
+    pub fn eval_derivatives_side(&self, u: f64, max_order: usize, side: KnotSide) -> Vec<f64> {
+        self.eval_derivatives_with_bound(u, max_order, side).0
+    }
+
+    /// [`eval_derivatives_side`](Self::eval_derivatives_side) with a bound
+    /// on the rounding error of each row (`max_order + 1` values, absolute):
+    /// `gamma * (sum |N^(k)_j| |w_j P_j| + sum_i C(k,i) |w^(i)| |C^(k-i)|) / w`
+    /// with `gamma = 2 (p + k + 2) eps`.
+    pub(crate) fn eval_derivatives_with_bound(
+        &self,
+        u: f64,
+        max_order: usize,
+        side: KnotSide,
+    ) -> (Vec<f64>, Vec<f64>) {
+        let p = self.degree;
+        let d = self.dim;
+        let span = find_span(&self.knots, p, u, side);
+        let basis = basis_derivatives(&self.knots, p, span, u, max_order.min(p));
+        let rows = max_order + 1;
+        // Homogeneous derivatives A^(k) (d values) and w^(k); abs sums.
+        let mut a = vec![0.0; rows * d];
+        let mut a_abs = vec![0.0; rows];
+        let mut w = vec![0.0; rows];
+        let mut w_abs = vec![0.0; rows];
+        for k in 0..=max_order.min(p) {
+            for j in 0..=p {
+                let b = basis[(k, j)];
+                if b == 0.0 {
+                    continue;
+                }
+                let i = span - p + j;
+                let wi = self.weight(i);
+                let mut size = 0.0f64;
+                for c in 0..d {
+                    let x = wi * self.points[i * d + c];
+                    a[k * d + c] += b * x;
+                    size = size.max(x.abs());
+                }
+                a_abs[k] += b.abs() * size;
+                w[k] += b * wi;
+                w_abs[k] += b.abs() * wi;
+            }
+        }
+        let eps = f64::EPSILON * 0.5;
+        let mut out = vec![0.0; rows * d];
+        let mut bound = vec![0.0; rows];
+        let rational = self.weights.is_some();
+        for k in 0..rows {
+            let mut row_abs = a_abs[k];
+            for c in 0..d {
+                out[k * d + c] = a[k * d + c];
+            }
+            if rational {
+                for i in 1..=k {
+                    if w[i] == 0.0 && w_abs[i] == 0.0 {
+                        continue;
+                    }
+                    let coef = binomial(k, i) * w[i];
+                    let mut size = 0.0f64;
+                    for c in 0..d {
+                        let prev = out[(k - i) * d + c];
+                        out[k * d + c] -= coef * prev;
+                        size = size.max(prev.abs());
+                    }
+                    row_abs += binomial(k, i) * w_abs[i] * size;
+                }
+                for c in 0..d {
+                    out[k * d + c] /= w[0];
+                }
+                row_abs /= w[0];
+            }
+            let gamma = 2.0 * (p + k + 2) as f64 * eps;
+            bound[k] = gamma * row_abs * (d as f64).sqrt();
+        }
+        (out, bound)
+    }
+
+    /// [`eval_derivatives`](Self::eval_derivatives) for callers that need
+    /// an answer they can trust: `u` in the domain (the error names
+    /// `name`), and every value finite; a derivative that overflows `f64`
+    /// (extreme knot spacing or weights) is `NonFiniteScalar` naming its
+    /// order, not an infinite number.
+    pub fn eval_derivatives_checked(
+        &self,
+        name: &str,
+        u: f64,
+        max_order: usize,
+    ) -> Result<Vec<f64>> {
+        self.check_parameter(name, u)?;
+        let out = self.eval_derivatives(u, max_order);
+        if let Some(i) = out.iter().position(|x| !x.is_finite()) {
+            return Err(BezjoinError::NonFiniteScalar {
+                name: format!(
+                    "derivative of order {} at {name} = {u} (it overflows f64)",
+                    i / self.dim
+                ),
+                value: out[i],
+            });
+        }
+        Ok(out)
+    }
+
+    /// Value and derivatives at `u` (from the right at a knot, from the
+    /// left at the domain's end).
+    pub fn eval_derivatives(&self, u: f64, max_order: usize) -> Vec<f64> {
+        self.eval_derivatives_side(u, max_order, KnotSide::Right)
+    }
+
+    /// The point at `u` (`dim` values; de Boor's algorithm).
+    pub fn eval(&self, u: f64) -> Vec<f64> {
+        let mut out = vec![0.0; self.dim];
+        self.point_and_tangent(u, &mut out, None);
+        out
+    }
+
+    /// Largest `k` such that derivatives `0..=k` from both sides of the knot
+    /// at `u` agree to `relative_tolerance` (relative to the larger of the
+    /// two derivative norms and 1e-300), up to the degree; `None` if even the
+    /// values differ.
+    pub fn continuity_at(&self, u: f64, relative_tolerance: f64) -> Option<usize> {
+        let left = self.eval_derivatives_side(u, self.degree, KnotSide::Left);
+        let right = self.eval_derivatives_side(u, self.degree, KnotSide::Right);
+        let mut order = None;
+        for k in 0..=self.degree {
+            if relative_jump(
+                &left[k * self.dim..(k + 1) * self.dim],
+                &right[k * self.dim..(k + 1) * self.dim],
+            ) > relative_tolerance
+            {
+                break;
+            }
+            order = Some(k);
+        }
+        order
+    }
+}
+
+/// The checks shared by the chain builders: one interval `> 0` per piece,
+/// pieces of one dimension (returned). `dims` is not empty.
+fn check_chain(dims: &[usize], intervals: &[f64]) -> Result<usize> {
+    if intervals.len() != dims.len() {
+        return Err(BezjoinError::LengthMismatch {
+            name: "intervals".into(),
+            expected: dims.len(),
+            actual: intervals.len(),
+        });
+    }
+    check_finite("intervals", intervals)?;
+    if let Some(i) = intervals.iter().position(|&h| h <= 0.0) {
+        return Err(BezjoinError::out_of_range(
+            format!("intervals[{i}]"),
+            intervals[i],
+            "> 0",
+        ));
+    }
+    let dim = dims[0];
+    if let Some(i) = dims.iter().position(|&d| d != dim) {
+        return Err(BezjoinError::DimensionMismatch {
+            name: format!("pieces[{i}]"),
+            expected: dim,
+            actual: dims[i],
+        });
+    }
+    Ok(dim)
+}
+
+/// `None` for weights that are all exactly 1 (the polynomial form).
+pub(crate) fn unit_weights_dropped(weights: Option<Vec<f64>>) -> Option<Vec<f64>> {
+    weights.filter(|w| w.iter().any(|&x| x != 1.0))
+}
+
+/// `|a - b| / max(|a|, |b|)`, 0 when both vanish.
+pub fn relative_jump(a: &[f64], b: &[f64]) -> f64 {
+    let diff = crate::bezier::distance(a, b);
+    let size = crate::bezier::norm(a).max(crate::bezier::norm(b));
+    if size == 0.0 { 0.0 } else { diff / size }
+}
+
+/// Distinct values of a sorted knot vector and how often each occurs.
+pub(crate) fn distinct_with_multiplicities(knots: &[f64]) -> (Vec<f64>, Vec<usize>) {
+    let mut distinct = Vec::new();
+    let mut mults: Vec<usize> = Vec::new();
+    for &k in knots {
+        if distinct.last() == Some(&k) {
+            *mults.last_mut().unwrap() += 1;
+        } else {
+            distinct.push(k);
+            mults.push(1);
+        }
+    }
+    (distinct, mults)
+}
+
+/// Relative jumps of the derivatives `0..=max_order` across the join of two
+/// Bezier pieces, each read in a global parameter where `left` spans an
+/// interval of length `left_interval` and `right` one of `right_interval`:
+/// entry `k` is `|L^(k)(1)/hl^k - R^(k)(0)/hr^k|` relative to the larger norm.
+pub fn join_jumps(
+    left: &BezierCurve,
+    left_interval: f64,
+    right: &BezierCurve,
+    right_interval: f64,
+    max_order: usize,
+) -> Vec<f64> {
+    let d = left.dim();
+    let l = left.eval_derivatives(1.0, max_order);
+    let r = right.eval_derivatives(0.0, max_order);
+    (0..=max_order)
+        .map(|k| {
+            let sl = left_interval.powi(k as i32);
+            let sr = right_interval.powi(k as i32);
+            let a: Vec<f64> = l[k * d..(k + 1) * d].iter().map(|v| v / sl).collect();
+            let b: Vec<f64> = r[k * d..(k + 1) * d].iter().map(|v| v / sr).collect();
+            relative_jump(&a, &b)
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn split_curve_is_c_infinity_as_a_chain() {
+        let c =
+            BezierCurve::from_rows(&[[0.0, 0.0], [1.0, 2.0], [3.0, 3.0], [4.0, 0.0], [5.0, 1.0]])
+                .unwrap();
+        let (a, b) = c.split_at(0.3).unwrap();
+        let s = NurbsCurve::from_bezier_chain(&[a, b], &[0.3, 0.7]).unwrap();
+        assert_eq!(s.continuity_at(0.3, 1e-12), Some(4));
+        for i in 0..=10 {
+            let t = i as f64 / 10.0;
+            let v = s.eval_derivatives(t, 0);
+            let w = c.eval(t);
+            assert!((v[0] - w[0]).abs() < 1e-13 && (v[1] - w[1]).abs() < 1e-13);
+        }
+    }
+
+    #[test]
+    fn a_kink_is_c0_only() {
+        let a = BezierCurve::from_rows(&[[0.0, 0.0], [1.0, 0.0]]).unwrap();
+        let b = BezierCurve::from_rows(&[[1.0, 0.0], [1.0, 1.0]]).unwrap();
+        let s = NurbsCurve::from_bezier_chain(&[a, b], &[1.0, 1.0]).unwrap();
+        assert_eq!(s.continuity_at(1.0, 1e-12), Some(0));
+        let (k, m) = s.knots_with_multiplicities();
+        assert_eq!(k, vec![0.0, 1.0, 2.0]);
+        assert_eq!(m, vec![2, 1, 2]);
+    }
+}
+
+#[cfg(test)]
+mod de_boor_tests {
+    use super::*;
+
+    /// de Boor's point and tangent equal A2.3/A4.2's value and first
+    /// derivative (two independent routes) on rational multi-span curves,
+    /// at knots too (both from the right), and in a dimension above the
+    /// stack buffers.
+    #[test]
+    fn point_and_tangent_agree_with_the_basis_derivatives() {
+        let cases = [
+            (
+                2,
+                2,
+                vec![0.0, 0.0, 0.0, 1.0, 2.5, 4.0, 4.0, 4.0],
+                Some(vec![1.0, 2.0, 0.5, 1.5, 1.0]),
+            ),
+            (3, 3, (0..10).map(f64::from).collect(), None),
+            (
+                20,
+                1,
+                vec![0.0, 0.0, 0.3, 1.0, 1.0],
+                Some(vec![1.0, 3.0, 0.2]),
+            ),
+        ];
+        for (dim, degree, knots, weights) in cases {
+            let count = knots.len() - degree - 1;
+            let poles: Vec<f64> = (0..count * dim)
+                .map(|i| ((i * 7919) % 13) as f64 - 6.0)
+                .collect();
+            let c = NurbsCurve::new(dim, degree, poles, weights, knots.clone()).unwrap();
+            let (a, b) = c.domain();
+            let mut us: Vec<f64> = (0..=40).map(|i| a + (b - a) * i as f64 / 40.0).collect();
+            us.extend(knots.iter().copied().filter(|&k| k >= a && k <= b));
+            for u in us {
+                let mut point = vec![0.0; dim];
+                let mut tangent = vec![0.0; dim];
+                c.point_and_tangent(u, &mut point, Some(&mut tangent));
+                let jet = c.eval_derivatives(u, 1);
+                let size = jet.iter().fold(1.0f64, |m, x| m.max(x.abs()));
+                for i in 0..dim {
+                    assert!((point[i] - jet[i]).abs() <= 1e-13 * size, "u {u}");
+                    assert!((tangent[i] - jet[dim + i]).abs() <= 1e-12 * size, "u {u}");
+                }
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod degenerate_input_tests {
+    use super::*;
+
+    #[test]
+    fn new_rejects_an_impossible_degree_without_panicking() {
+        for degree in [usize::MAX, usize::MAX - 1] {
+            let r = NurbsCurve::new(1, degree, vec![0.0, 1.0], None, vec![0.0, 1.0]);
+            assert!(
+                matches!(&r, Err(BezjoinError::InvalidArgument { name, .. }) if name == "degree" || name == "points"),
+                "{r:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn continuity_at_a_smooth_join_of_curves_with_vanishing_derivatives() {
+        // A straight line split at 0.5: all derivatives above the first
+        // vanish on both sides, so the chain is C^degree at the join.
+        let c = BezierCurve::from_rows(&[[0.0, 0.0], [1.0, 1.0], [2.0, 2.0], [3.0, 3.0]]).unwrap();
+        let (a, b) = c.split_at(0.5).unwrap();
+        let s = NurbsCurve::from_bezier_chain(&[a, b], &[0.5, 0.5]).unwrap();
+        assert_eq!(s.continuity_at(0.5, 1e-12), Some(3));
+        // A point that is not a knot is inside one polynomial piece.
+        assert_eq!(s.continuity_at(0.25, 1e-12), Some(3));
+    }
+}
