@@ -1001,17 +1001,17 @@ BzjStatus bzj_fillet_vertex(const struct BzjCurve *p, const struct BzjCurve *q, 
  * `max_deviation` is never returned; the margin covers the rounding of the
  * computed distance), with setbacks `dp` and `dq = setback_ratio * dp`
  * found by a bracketing search (1.0 = symmetric). Outputs as
- * `bzj_fillet`; `report` (may be NULL) receives the setbacks, the deviation
+ * `bzj_fillet` (Bezier and NURBS handles; NURBS pieces keep their
+ * parameters); `report` (may be NULL) receives the setbacks, the deviation
  * achieved and the cut parameters.
  *
  * @return BZJ_ERR_NULL_POINTER if a required pointer is NULL;
  *         BZJ_ERR_DIMENSION_MISMATCH if the curves' dimensions differ;
  *         BZJ_ERR_NON_FINITE if an option is NaN or infinite;
  *         BZJ_ERR_INVALID_ARGUMENT if `max_deviation`, `setback_ratio` or a
- *         scale is not positive, the deviation cannot be reached even with the longest setbacks the
- *         curves allow (the message gives the largest possible), or `p` or
- *         `q` is a NURBS handle (Bezier curves only until the NURBS fillet
- *         lands, issue 16);
+ *         scale is not positive, or the deviation cannot be reached even
+ *         with the longest setbacks the curves allow (the message gives the
+ *         largest possible);
  *         BZJ_ERR_NO_INTERSECTION if the curves do not cross or only touch;
  *         BZJ_ERR_ILL_CONDITIONED if the connection cannot be trusted or no
  *         setback the search tries gives a deviation in that window.

@@ -2,8 +2,8 @@
 //! `bzj_intersect`, `bzj_fillet` of the contract, and the additions
 //! `bzj_intersect_detailed`, `bzj_intersect_options_default`,
 //! `bzj_fillet_auto_scale`, `bzj_fillet_deviation`, `bzj_fillet_chain` and
-//! `bzj_fillet_vertex`. Every function but `bzj_fillet_deviation` takes
-//! Bezier and NURBS handles (mathematics.md, section 6).
+//! `bzj_fillet_vertex`. Every function takes Bezier and NURBS handles
+//! (mathematics.md, section 6).
 
 use bezjoin_core::BezjoinError;
 use bezjoin_core::{
@@ -14,7 +14,7 @@ use bezjoin_core::{IntersectOptions, Intersection, IntersectionKind, intersect};
 
 use crate::guard::guard;
 use crate::handles::{BzjCurve, CheckedOut, HandleArray, HandleOut, ShortArray, require_all};
-use crate::pointers::{bezier_ref, curve_ref, input_ref, input_slice, require_out, write_optional};
+use crate::pointers::{curve_ref, input_ref, input_slice, require_out, write_optional};
 use crate::status::{BzjStatus, FfiError, FfiResult};
 
 /// Options of `bzj_fillet` (contract layout; every field is read).
@@ -512,17 +512,17 @@ pub unsafe extern "C" fn bzj_fillet_vertex(
 /// `max_deviation` is never returned; the margin covers the rounding of the
 /// computed distance), with setbacks `dp` and `dq = setback_ratio * dp`
 /// found by a bracketing search (1.0 = symmetric). Outputs as
-/// `bzj_fillet`; `report` (may be NULL) receives the setbacks, the deviation
+/// `bzj_fillet` (Bezier and NURBS handles; NURBS pieces keep their
+/// parameters); `report` (may be NULL) receives the setbacks, the deviation
 /// achieved and the cut parameters.
 ///
 /// @return BZJ_ERR_NULL_POINTER if a required pointer is NULL;
 ///         BZJ_ERR_DIMENSION_MISMATCH if the curves' dimensions differ;
 ///         BZJ_ERR_NON_FINITE if an option is NaN or infinite;
 ///         BZJ_ERR_INVALID_ARGUMENT if `max_deviation`, `setback_ratio` or a
-///         scale is not positive, the deviation cannot be reached even with the longest setbacks the
-///         curves allow (the message gives the largest possible), or `p` or
-///         `q` is a NURBS handle (Bezier curves only until the NURBS fillet
-///         lands, issue 16);
+///         scale is not positive, or the deviation cannot be reached even
+///         with the longest setbacks the curves allow (the message gives the
+///         largest possible);
 ///         BZJ_ERR_NO_INTERSECTION if the curves do not cross or only touch;
 ///         BZJ_ERR_ILL_CONDITIONED if the connection cannot be trusted or no
 ///         setback the search tries gives a deviation in that window.
@@ -544,12 +544,7 @@ pub unsafe extern "C" fn bzj_fillet_deviation(
     let outs = unsafe { fillet_outputs(p_trimmed, blend, q_trimmed) };
     guard(|| {
         // SAFETY: caller contract.
-        let (p, q) = unsafe {
-            (
-                bezier_ref(p, "p", "bzj_fillet_deviation")?,
-                bezier_ref(q, "q", "bzj_fillet_deviation")?,
-            )
-        };
+        let (p, q) = unsafe { (curve_ref(p, "p")?, curve_ref(q, "q")?) };
         // SAFETY: caller contract.
         let o = unsafe { input_ref(options, "options") }?;
         let [p_out, blend_out, q_out] = require_all(outs)?;

@@ -46,9 +46,7 @@ pub(crate) unsafe fn bezier_ref<'a>(
 
 /// What NURBS support an entry point refusing NURBS handles is waiting for.
 fn pending_feature(function: &str) -> &'static str {
-    if function.starts_with("bzj_fillet_deviation") {
-        "the NURBS deviation fillet lands (issue 16)"
-    } else if function.starts_with("bzj_merge") {
+    if function.starts_with("bzj_merge") {
         "the B-spline merge lands (issue 17)"
     } else {
         "its NURBS support lands"

@@ -8,8 +8,10 @@
 //! (constant speed polynomials of degree <= 31 in the integrand's square)
 //! are exact at the first level. Where the requested absolute accuracy is
 //! below the rounding level of the length itself (`16 eps` times the
-//! length, e.g. long extrapolated ranges or `accuracy = 1e-300`) the result
-//! is accurate to that rounding level instead, and the work stays bounded.
+//! length; for ranges of subnormal width, a few steps of `5e-324` in `t`
+//! at the speed; e.g. long extrapolated ranges or `accuracy = 1e-300`) the
+//! result is accurate to that rounding level instead, and the work stays
+//! bounded.
 //!
 //! The inverse, [`BezierCurve::param_at_length`], solves
 //! `len(start, t) = length` by Newton's method on `t` (derivative `|P'(t)|`)
@@ -18,8 +20,18 @@
 //! accepted panels as a cumulative table; the table locates the panel that
 //! holds the answer, and Newton runs inside that panel on the fixed 16-point
 //! rule (whose result is checked against its halves at the end). Only when
-//! that check fails does it fall back to Newton on adaptive lengths from
-//! `start`.
+//! that check fails does it fall back to Newton on adaptive lengths, from
+//! the start of that panel (from `start` only when the range's length
+//! overflows and there is no table).
+//!
+//! Repeated inversions from one start (the fillet's deviation search, one
+//! per trial setback) go through a kept [`ArcLengthInverse`]: it keeps the
+//! adaptive rule's bisection tree with its values ([`QuadratureTree`]) and
+//! the panel inversion's rule values ([`Partials`]), so each later call
+//! costs a walk of the tree and a few new evaluations, and returns what a
+//! fresh call returns, bit for bit.
+
+use std::collections::HashMap;
 
 use crate::basis::binomial;
 use crate::bezier::{BezierCurve, bernstein_horner, norm};
@@ -31,6 +43,30 @@ pub const DEFAULT_ARC_LENGTH_ACCURACY: f64 = 1e-13;
 
 /// Relative rounding level below which the adaptive rule stops refining.
 const ROUNDING_FLOOR: f64 = 16.0 * f64::EPSILON;
+
+/// Units of the smallest subnormal parameter step (`5e-324`) that the
+/// rule's value on an interval of subnormal width can be off by, in length:
+/// its half-width `(b - a) / 2` is rounded to a whole unit there (exact for
+/// normal numbers), which moves the value by up to half a unit of `t` times
+/// the speed, in the whole and in each half.
+const SUBNORMAL_STEPS: f64 = 4.0;
+
+/// The level below which two of the rule's estimates of `value`, the length
+/// over an interval of `width`, differ by rounding: `16 eps |value|`, and
+/// for a subnormal width (`t` near 0 with a setback or accuracy near
+/// `5e-324`) [`SUBNORMAL_STEPS`] steps of `5e-324` at the mean speed, at
+/// least that many units of `5e-324` in length (without it such intervals
+/// bisected until the evaluation budget ran out). The second term is the
+/// larger only for a width or a value below about `5.5e-309`.
+fn rounding_level(value: f64, width: f64) -> f64 {
+    let step = f64::from_bits(1);
+    let mean_speed = if width > 0.0 {
+        value.abs() / width
+    } else {
+        0.0
+    };
+    (ROUNDING_FLOOR * value.abs()).max(SUBNORMAL_STEPS * step * mean_speed.max(1.0))
+}
 
 /// Maximum bisection depth of the adaptive quadrature.
 const MAX_DEPTH: u32 = 40;
@@ -68,20 +104,22 @@ const GL_WEIGHTS: [f64; 8] = [
 struct Speed<'a> {
     hodograph: &'a BezierCurve,
     buf: Vec<f64>,
-    evaluations: usize,
     /// Bound on the rounding noise of the speed integrated over a unit of
     /// `t`: no refinement can resolve differences below `noise_per_unit *
     /// width` (see [`speed_noise_per_unit`]).
     noise_per_unit: f64,
-    /// Sum of `|refined - whole|` over panels accepted only because the
-    /// depth or evaluation budget ran out: the part of the error the rule
-    /// could not bring under the requested accuracy.
-    unresolved: f64,
 }
 
-impl Speed<'_> {
+impl<'a> Speed<'a> {
+    fn new(hodograph: &'a BezierCurve, noise_per_unit: f64) -> Self {
+        Speed {
+            hodograph,
+            buf: vec![0.0; hodograph.dim()],
+            noise_per_unit,
+        }
+    }
+
     fn at(&mut self, t: f64) -> f64 {
-        self.evaluations += 1;
         self.hodograph.eval_into(t, &mut self.buf);
         norm(&self.buf)
     }
@@ -96,12 +134,214 @@ impl Speed<'_> {
         }
         sum * half
     }
+}
 
-    /// Adaptive rule on `[a, b]` (`whole` = the 16-point rule on it); when
-    /// `panels` is given, every accepted interval is appended to it in
+/// Entries a [`Partials`] keeps before it starts over.
+const MAX_KEPT_PARTIALS: usize = 1 << 16;
+
+/// The 16-point rules and speeds the panel inversion has computed, kept by
+/// an [`ArcLengthInverse`] across calls. Inversions in the same panel
+/// retrace the same iterates while their targets are below the parameter
+/// resolution (the deviation search's doubling steps from a tiny
+/// `max_deviation`: about 50 bisection steps per call, the same each time),
+/// and then cost lookups; the values, hence the results, are the ones
+/// computed afresh.
+#[derive(Default)]
+struct Partials {
+    rules: HashMap<(u64, u64), f64>,
+    speeds: HashMap<u64, f64>,
+}
+
+impl Partials {
+    /// `speed.gauss(a, b)`.
+    fn gauss(&mut self, speed: &mut Speed<'_>, a: f64, b: f64) -> f64 {
+        if self.rules.len() >= MAX_KEPT_PARTIALS {
+            self.rules.clear();
+        }
+        *self
+            .rules
+            .entry((a.to_bits(), b.to_bits()))
+            .or_insert_with(|| speed.gauss(a, b))
+    }
+
+    /// `speed.at(t)`.
+    fn at(&mut self, speed: &mut Speed<'_>, t: f64) -> f64 {
+        if self.speeds.len() >= MAX_KEPT_PARTIALS {
+            self.speeds.clear();
+        }
+        *self
+            .speeds
+            .entry(t.to_bits())
+            .or_insert_with(|| speed.at(t))
+    }
+
+    /// `int_a^x |H|` on a sub-interval `[a, x]` (or `[x, a]`) of an accepted
+    /// panel, with its own error check: the 16-point rule on the interval
+    /// against the sum over its halves, accepted within `tolerance` or the
+    /// rounding level of the value. `None` when the check fails.
+    /// `whole`: the 16-point rule on the interval when already known.
+    fn checked(
+        &mut self,
+        speed: &mut Speed<'_>,
+        a: f64,
+        x: f64,
+        whole: Option<f64>,
+        tolerance: f64,
+    ) -> Option<f64> {
+        if a == x {
+            return Some(0.0);
+        }
+        let whole = whole.unwrap_or_else(|| self.gauss(speed, a, x));
+        let m = 0.5 * (a + x);
+        let refined = self.gauss(speed, a, m) + self.gauss(speed, m, x);
+        let floor = rounding_level(refined, (x - a).abs());
+        ((refined - whole).abs() <= tolerance.max(floor)).then_some(refined)
+    }
+}
+
+/// Nodes a [`QuadratureTree`] keeps between passes before it starts over
+/// (four times what one pass within the evaluation budget can create).
+const MAX_KEPT_NODES: usize = 4 * (MAX_EVALUATIONS / 32);
+
+/// Marks a [`Node`] the rule has not refined yet.
+const NO_CHILDREN: usize = usize::MAX;
+
+/// The adaptive rule's bisection tree on one range, kept between passes.
+///
+/// Which intervals the rule refines depends on the accuracy, but the
+/// intervals it can visit (the cuts at the speed minima, then halving) and
+/// the 16-point values on them do not. The tree keeps every value computed
+/// so far, so a later pass on the same range (another accuracy, as in the
+/// fillet's deviation search, which inverts the same two ranges once per
+/// trial setback) walks the known part for the cost of the walk. A pass
+/// gives what a fresh one gives, bit for bit: the same intervals, values,
+/// order of the sums, and evaluation budget (counted as if every value were
+/// computed anew).
+struct QuadratureTree {
+    lo: f64,
+    hi: f64,
+    /// `lo`, the speed minima inside (when searched), `hi`.
+    cuts: Vec<f64>,
+    noise_per_unit: f64,
+    /// Per piece `cuts[k]..cuts[k + 1]`: the 16-point rule on it and its
+    /// root node, once a pass has visited it.
+    roots: Vec<Option<(f64, usize)>>,
+    nodes: Vec<Node>,
+}
+
+/// An interval `[a, b]` of a [`QuadratureTree`] (the bounds are passed down
+/// the walk, computed as the first pass computed them).
+#[derive(Clone, Copy)]
+struct Node {
+    /// The 16-point rule on `[a, m]` and on `[m, b]`, `m = (a + b) / 2`.
+    left: f64,
+    right: f64,
+    /// Index of the child on `[a, m]` (the one on `[m, b]` follows it), or
+    /// [`NO_CHILDREN`].
+    children: usize,
+}
+
+/// The counters of one pass.
+struct Walk {
+    /// Speed evaluations a fresh pass would have spent so far (the budget).
+    evaluations: usize,
+    /// Sum of `|refined - whole|` over panels accepted only because the
+    /// depth or evaluation budget ran out: the part of the error the rule
+    /// could not bring under the requested accuracy.
+    unresolved: f64,
+}
+
+impl QuadratureTree {
+    /// The tree on `[lo, hi]`, `lo <= hi`, cut at the local minima of the
+    /// speed inside (see [`arc_length_panels`]); no values yet.
+    fn new(hodograph: &BezierCurve, lo: f64, hi: f64) -> Self {
+        let mut cuts = vec![lo];
+        if !speed_bounded_away_from_zero(hodograph, lo, hi) {
+            cuts.extend(speed_minima(hodograph, lo, hi));
+        }
+        cuts.push(hi);
+        Self::with_cuts(cuts, speed_noise_per_unit(hodograph, lo, hi))
+    }
+
+    fn with_cuts(cuts: Vec<f64>, noise_per_unit: f64) -> Self {
+        QuadratureTree {
+            lo: cuts[0],
+            hi: cuts[cuts.len() - 1],
+            roots: vec![None; cuts.len() - 1],
+            cuts,
+            noise_per_unit,
+            nodes: Vec::new(),
+        }
+    }
+
+    /// One pass of the adaptive rule over the range to `accuracy`: the
+    /// (unsigned) length, the evaluations a fresh pass spends and the error
+    /// left unresolved. Each piece gets the share of `accuracy` of its
+    /// width. With `panels`, the accepted intervals are appended to it in
     /// increasing order of `t`.
+    fn pass(
+        &mut self,
+        speed: &mut Speed<'_>,
+        accuracy: f64,
+        mut panels: Option<&mut Vec<Panel>>,
+    ) -> LengthResult {
+        if self.nodes.len() > MAX_KEPT_NODES {
+            self.nodes.clear();
+            self.roots.fill(None);
+        }
+        let mut walk = Walk {
+            evaluations: 0,
+            unresolved: 0.0,
+        };
+        let width = self.hi - self.lo;
+        let mut length = 0.0;
+        for k in 0..self.roots.len() {
+            let (a, b) = (self.cuts[k], self.cuts[k + 1]);
+            if b <= a {
+                continue;
+            }
+            let share = accuracy * ((b - a) / width).max(f64::EPSILON);
+            walk.evaluations += 16;
+            let (whole, root) = match self.roots[k] {
+                Some(known) => known,
+                None => {
+                    let whole = speed.gauss(a, b);
+                    let root = self.new_node(speed, a, b);
+                    self.roots[k] = Some((whole, root));
+                    (whole, root)
+                }
+            };
+            length += self.adaptive(speed, &mut walk, root, a, b, whole, share, 0, &mut panels);
+        }
+        LengthResult {
+            length,
+            evaluations: walk.evaluations,
+            unresolved: walk.unresolved,
+        }
+    }
+
+    /// A node on `[a, b]` with its halves' values.
+    fn new_node(&mut self, speed: &mut Speed<'_>, a: f64, b: f64) -> usize {
+        let m = 0.5 * (a + b);
+        let left = speed.gauss(a, m);
+        let right = speed.gauss(m, b);
+        self.nodes.push(Node {
+            left,
+            right,
+            children: NO_CHILDREN,
+        });
+        self.nodes.len() - 1
+    }
+
+    /// Adaptive rule on the node `[a, b]` (`whole` = the 16-point rule on
+    /// it); when `panels` is given, every accepted interval is appended to
+    /// it in increasing order of `t`.
+    #[allow(clippy::too_many_arguments)]
     fn adaptive(
         &mut self,
+        speed: &mut Speed<'_>,
+        walk: &mut Walk,
+        node: usize,
         a: f64,
         b: f64,
         whole: f64,
@@ -110,8 +350,8 @@ impl Speed<'_> {
         panels: &mut Option<&mut Vec<Panel>>,
     ) -> f64 {
         let m = 0.5 * (a + b);
-        let left = self.gauss(a, m);
-        let right = self.gauss(m, b);
+        let Node { left, right, .. } = self.nodes[node];
+        walk.evaluations += 32;
         let refined = left + right;
         // Below the rounding level of the sum no refinement can help: accept
         // there too (otherwise an absolute accuracy below `eps * length`
@@ -121,13 +361,13 @@ impl Speed<'_> {
             // the test below, bisecting 2^MAX_DEPTH times).
             return refined;
         }
-        let floor = (ROUNDING_FLOOR * refined.abs()).max(self.noise_per_unit * (b - a).abs());
+        let floor = rounding_level(refined, b - a).max(self.noise_per_unit * (b - a).abs());
         let difference = (refined - whole).abs();
         let resolved = difference <= accuracy.max(floor);
-        let budget_spent = depth >= MAX_DEPTH || self.evaluations >= MAX_EVALUATIONS;
+        let budget_spent = depth >= MAX_DEPTH || walk.evaluations >= MAX_EVALUATIONS;
         if resolved || budget_spent {
             if !resolved {
-                self.unresolved += difference;
+                walk.unresolved += difference;
             }
             if let Some(panels) = panels {
                 panels.push(Panel {
@@ -139,30 +379,33 @@ impl Speed<'_> {
             }
             return refined;
         }
-        self.adaptive(a, m, left, 0.5 * accuracy, depth + 1, panels)
-            + self.adaptive(m, b, right, 0.5 * accuracy, depth + 1, panels)
-    }
-
-    /// `int_a^x |H|` on a sub-interval `[a, x]` (or `[x, a]`) of an accepted
-    /// panel, with its own error check: the 16-point rule on the interval
-    /// against the sum over its halves, accepted within `tolerance` or the
-    /// rounding level of the value. `None` when the check fails.
-    /// `whole`: the 16-point rule on the interval when already known.
-    fn checked_partial(
-        &mut self,
-        a: f64,
-        x: f64,
-        whole: Option<f64>,
-        tolerance: f64,
-    ) -> Option<f64> {
-        if a == x {
-            return Some(0.0);
+        if self.nodes[node].children == NO_CHILDREN {
+            let first = self.new_node(speed, a, m);
+            self.new_node(speed, m, b);
+            self.nodes[node].children = first;
         }
-        let whole = whole.unwrap_or_else(|| self.gauss(a, x));
-        let m = 0.5 * (a + x);
-        let refined = self.gauss(a, m) + self.gauss(m, x);
-        let floor = ROUNDING_FLOOR * refined.abs();
-        ((refined - whole).abs() <= tolerance.max(floor)).then_some(refined)
+        let children = self.nodes[node].children;
+        self.adaptive(
+            speed,
+            walk,
+            children,
+            a,
+            m,
+            left,
+            0.5 * accuracy,
+            depth + 1,
+            panels,
+        ) + self.adaptive(
+            speed,
+            walk,
+            children + 1,
+            m,
+            b,
+            right,
+            0.5 * accuracy,
+            depth + 1,
+            panels,
+        )
     }
 }
 
@@ -179,7 +422,8 @@ struct Panel {
 impl BezierCurve {
     /// Arc length between parameters `a` and `b` (signed: negative when
     /// `b < a`), to an absolute `accuracy > 0`, or to `16 eps` relative where
-    /// that is larger (the rounding level). Any finite `a`, `b`.
+    /// that is larger (the rounding level; for a range of subnormal width,
+    /// four steps of `5e-324` in `t` at the speed). Any finite `a`, `b`.
     ///
     /// Errors: non-finite arguments, `accuracy <= 0`, a length that
     /// overflows the `f64` range (InvalidArgument).
@@ -224,6 +468,48 @@ impl BezierCurve {
     /// curve between `start` and the end it runs towards (InvalidArgument,
     /// naming both lengths).
     pub fn param_at_length(&self, start: f64, length: f64, accuracy: f64) -> Result<f64> {
+        ArcLengthInverse::new(self, start).param_at_length(length, accuracy)
+    }
+}
+
+/// [`BezierCurve::param_at_length`] from one `start` for many lengths and
+/// accuracies: each direction's [`QuadratureTree`] is built on first use
+/// (the cut search at the speed minima) and kept, so later calls replay the
+/// adaptive rule on the values already computed. Every call returns what
+/// `curve.param_at_length(start, length, accuracy)` returns, bit for bit
+/// (that function is a fresh `ArcLengthInverse`); the fillet's deviation
+/// search keeps one per curve across its trial setbacks.
+pub(crate) struct ArcLengthInverse {
+    hodograph: BezierCurve,
+    start: f64,
+    /// The trees on `[0, start]` (index 0, backwards) and `[start, 1]`
+    /// (index 1, forwards).
+    trees: [Option<QuadratureTree>; 2],
+    partials: Partials,
+}
+
+impl ArcLengthInverse {
+    /// Inversion from `start` along `curve` (`start` is checked by each call).
+    pub(crate) fn new(curve: &BezierCurve, start: f64) -> Self {
+        ArcLengthInverse {
+            hodograph: curve.hodograph(),
+            start,
+            trees: [None, None],
+            partials: Partials::default(),
+        }
+    }
+
+    /// [`BezierCurve::param_at_length`] from this inverse's `start`.
+    ///
+    /// One adaptive pass over the whole available range records its
+    /// accepted panels (the same value as `arc_length_with(start, end)` up to
+    /// sign); the panel holding the answer is inverted by Newton on the
+    /// fixed 16-point rule ([`invert_on_panels`]). When that answer fails
+    /// its check, Newton runs on adaptive lengths inside that panel
+    /// ([`invert_in_panel_adaptively`]); only without a finite table (a
+    /// length that overflows) on adaptive lengths from `start`.
+    pub(crate) fn param_at_length(&mut self, length: f64, accuracy: f64) -> Result<f64> {
+        let start = self.start;
         crate::error::check_closed_range("start", start, 0.0, 1.0)?;
         check_finite_scalar("length", length)?;
         if accuracy.is_nan() || accuracy <= 0.0 || !accuracy.is_finite() {
@@ -232,21 +518,15 @@ impl BezierCurve {
         if length == 0.0 {
             return Ok(start);
         }
-        let hodograph = self.hodograph();
+        let hodograph = &self.hodograph;
         let end = if length > 0.0 { 1.0 } else { 0.0 };
         let forward = length > 0.0;
-        // One adaptive pass over the whole available range, recording its
-        // accepted panels (the same value as `arc_length_with(start, end)`
-        // up to sign).
         let (range_lo, range_hi) = if forward { (start, 1.0) } else { (0.0, start) };
+        let tree = self.trees[usize::from(forward)]
+            .get_or_insert_with(|| QuadratureTree::new(hodograph, range_lo, range_hi));
+        let mut speed = Speed::new(hodograph, tree.noise_per_unit);
         let mut panels = Vec::new();
-        let pass = arc_length_panels(
-            &hodograph,
-            range_lo,
-            range_hi,
-            accuracy * 0.1,
-            Some(&mut panels),
-        );
+        let pass = tree.pass(&mut speed, accuracy * 0.1, Some(&mut panels));
         check_resolved(&pass, range_lo, range_hi, accuracy * 0.1)?;
         let available = pass.length;
         if available.is_nan() {
@@ -274,23 +554,27 @@ impl BezierCurve {
         if length.abs() >= available.abs() {
             return Ok(end);
         }
-        let mut speed = Speed {
-            hodograph: &hodograph,
-            buf: vec![0.0; self.dim()],
-            evaluations: 0,
-            noise_per_unit: speed_noise_per_unit(&hodograph, range_lo, range_hi),
-            unresolved: 0.0,
-        };
-        // A non-finite range length leaves panels unrecorded: no table then.
+        // A non-finite range length leaves no usable table.
         if available.is_finite() {
-            if let Some(t) =
-                invert_on_panels(&mut speed, &panels, forward, length.abs(), 0.5 * accuracy)
-            {
-                return Ok(t);
+            if let Some((panel, remaining)) = locate(&panels, forward, length.abs()) {
+                if let Some(t) = invert_on_panels(
+                    &mut speed,
+                    &mut self.partials,
+                    &panel,
+                    forward,
+                    remaining,
+                    0.5 * accuracy,
+                ) {
+                    return Ok(t);
+                }
+                // The partial integral failed its check: Newton on adaptive
+                // lengths, inside this panel only.
+                return Ok(invert_in_panel_adaptively(
+                    &mut speed, &panel, forward, remaining, accuracy,
+                ));
             }
         }
-        // Fallback (a panel whose partial integral fails its error check):
-        // Newton on adaptive lengths from `start`.
+        // Fallback without a table: Newton on adaptive lengths from `start`.
         // Bracket [lo, hi] in the direction of travel; f(t) = len(start, t) - length.
         let (mut lo, mut hi) = if length > 0.0 {
             (start, 1.0)
@@ -300,7 +584,7 @@ impl BezierCurve {
         // Initial guess: proportional.
         let mut t = start + (end - start) * (length.abs() / available);
         for _ in 0..100 {
-            let len = arc_length_with(&hodograph, start, t, accuracy * 0.1);
+            let len = arc_length_with(hodograph, start, t, accuracy * 0.1);
             let f = len - length;
             if f.abs() <= accuracy {
                 return Ok(t);
@@ -329,30 +613,20 @@ impl BezierCurve {
 /// Maximum Newton steps of [`invert_on_panels`].
 const PANEL_NEWTON_STEPS: usize = 60;
 
-/// The parameter at arc length `target >= 0` from the start of the range
+/// Maximum Newton steps of [`invert_in_panel_adaptively`].
+const ADAPTIVE_NEWTON_STEPS: usize = 100;
+
+/// The panel holding arc length `target >= 0` from the start of the range
 /// covered by `panels` (from its low end when `forward`, else from its high
-/// end), or `None` when it cannot be certified (then the caller falls back).
+/// end), and the length remaining inside it (in `[0, panel.length]`).
+/// `None` without panels or at a non-finite panel length on the way.
 ///
-/// The panels are the accepted intervals of one adaptive pass over the range,
-/// so their cumulative lengths locate the panel holding the answer; inside
-/// it, safeguarded Newton (derivative: the speed) solves
-/// `cumulative + int_near^t |H| = target` with the fixed 16-point rule on
-/// `[near, t]`, which costs 17 speed evaluations per step instead of an
-/// adaptive length from the start. The final partial integral is checked
-/// like an adaptive interval (rule against its halves, within the panel's
-/// accuracy share), and the residual recomputed from the refined value must
-/// be within `residual_tolerance`. Error budget of the returned `t`: the
-/// panel table's accuracy plus the panel's share plus `residual_tolerance`.
-fn invert_on_panels(
-    speed: &mut Speed<'_>,
-    panels: &[Panel],
-    forward: bool,
-    target: f64,
-    residual_tolerance: f64,
-) -> Option<f64> {
+/// The panels are the accepted intervals of one adaptive pass over the
+/// range, so their cumulative lengths locate the answer; the lengths before
+/// the panel are accurate to the pass's accuracy.
+fn locate(panels: &[Panel], forward: bool, target: f64) -> Option<(Panel, f64)> {
     let n = panels.len();
     let mut cumulative = 0.0;
-    let mut found = None;
     for k in 0..n {
         let panel = if forward {
             panels[k]
@@ -363,12 +637,34 @@ fn invert_on_panels(
             return None;
         }
         if cumulative + panel.length >= target || k + 1 == n {
-            found = Some(panel);
-            break;
+            return Some((panel, (target - cumulative).clamp(0.0, panel.length)));
         }
         cumulative += panel.length;
     }
-    let panel = found?;
+    None
+}
+
+/// The parameter at arc length `remaining` inside `panel`, measured from its
+/// low end when `forward`, else from its high end (`remaining` from
+/// [`locate`]), or `None` when it cannot be certified (then the caller falls
+/// back).
+///
+/// Safeguarded Newton (derivative: the speed) solves
+/// `int_near^t |H| = remaining` with the fixed 16-point rule on
+/// `[near, t]`, which costs 17 speed evaluations per step instead of an
+/// adaptive length from the start. The final partial integral is checked
+/// like an adaptive interval (rule against its halves, within the panel's
+/// accuracy share), and the residual recomputed from the refined value must
+/// be within `residual_tolerance`. Error budget of the returned `t`: the
+/// panel table's accuracy plus the panel's share plus `residual_tolerance`.
+fn invert_on_panels(
+    speed: &mut Speed<'_>,
+    partials: &mut Partials,
+    panel: &Panel,
+    forward: bool,
+    remaining: f64,
+    residual_tolerance: f64,
+) -> Option<f64> {
     let (near, far) = if forward {
         (panel.a, panel.b)
     } else {
@@ -376,7 +672,6 @@ fn invert_on_panels(
     };
     // Sign of gauss(near, t) for t between near and far.
     let sign = if forward { 1.0 } else { -1.0 };
-    let remaining = (target - cumulative).clamp(0.0, panel.length);
     if remaining == 0.0 {
         return Some(near);
     }
@@ -388,7 +683,7 @@ fn invert_on_panels(
     // The rule on [near, t] at the converged t (reused by the check).
     let mut converged = None;
     for _ in 0..PANEL_NEWTON_STEPS {
-        let partial = speed.gauss(near, t);
+        let partial = partials.gauss(speed, near, t);
         let phi = sign * partial - remaining;
         if !phi.is_finite() {
             return None;
@@ -402,7 +697,7 @@ fn invert_on_panels(
         } else {
             inside = t;
         }
-        let v = speed.at(t);
+        let v = partials.at(speed, t);
         let newton = t - phi / (sign * v);
         let (lo, hi) = if inside < beyond {
             (inside, beyond)
@@ -426,12 +721,80 @@ fn invert_on_panels(
     if !(converged.is_some() || at_rounding_limit) {
         return None;
     }
-    let partial = speed.checked_partial(near, t, converged, panel.tolerance)?;
+    let partial = partials.checked(speed, near, t, converged, panel.tolerance)?;
     if at_rounding_limit || (sign * partial - remaining).abs() <= residual_tolerance {
         Some(t)
     } else {
         None
     }
+}
+
+/// The parameter at arc length `remaining` inside `panel` (from its low end
+/// when `forward`, else from its high end) by safeguarded Newton on adaptive
+/// lengths `int_near^t |H|` to `0.1 accuracy`, until the residual is within
+/// `0.8 accuracy` (with the table's `0.1 accuracy` before the panel, the
+/// length at the returned `t` errs by at most `accuracy`) or the bracket is
+/// down to the rounding level of parameters in `[0, 1]` (`4 eps` wide, as
+/// in the fallback from `start`); at most [`ADAPTIVE_NEWTON_STEPS`] steps.
+///
+/// The fallback of [`invert_on_panels`]. Each length covers part of one panel
+/// only, and it is not cut again: the panel lies between two consecutive
+/// cuts of the pass that produced it (or in a range where the speed is
+/// bounded away from zero), so it holds no speed minimum the cut search
+/// found.
+fn invert_in_panel_adaptively(
+    speed: &mut Speed<'_>,
+    panel: &Panel,
+    forward: bool,
+    remaining: f64,
+    accuracy: f64,
+) -> f64 {
+    let (near, far) = if forward {
+        (panel.a, panel.b)
+    } else {
+        (panel.b, panel.a)
+    };
+    if remaining == 0.0 {
+        return near;
+    }
+    let sign = if forward { 1.0 } else { -1.0 };
+    // f(t) = int_near^t |H| (unsigned) - remaining: negative at `inside`,
+    // positive at `beyond`.
+    let (mut inside, mut beyond) = (near, far);
+    let mut t = near + (far - near) * (remaining / panel.length);
+    for _ in 0..ADAPTIVE_NEWTON_STEPS {
+        let (lo, hi) = if near < t { (near, t) } else { (t, near) };
+        let mut tree = QuadratureTree::with_cuts(vec![lo, hi], speed.noise_per_unit);
+        let f = tree.pass(speed, 0.1 * accuracy, None).length - remaining;
+        if f.abs() <= 0.8 * accuracy {
+            return t;
+        }
+        if f > 0.0 {
+            beyond = t;
+        } else {
+            inside = t;
+        }
+        let v = speed.at(t);
+        let newton = t - f / (sign * v);
+        let (lo, hi) = if inside < beyond {
+            (inside, beyond)
+        } else {
+            (beyond, inside)
+        };
+        let next = if v > 0.0 && newton > lo && newton < hi {
+            newton
+        } else {
+            0.5 * (lo + hi)
+        };
+        // The parameters' rounding level on [0, 1], as the fallback from
+        // `start` has it (a relative width would bisect on towards the
+        // denormals near t = 0, each step a full adaptive length).
+        if next == t || hi - lo <= 4.0 * f64::EPSILON {
+            return next;
+        }
+        t = next;
+    }
+    t
 }
 
 pub(crate) fn arc_length_with(hodograph: &BezierCurve, a: f64, b: f64, accuracy: f64) -> f64 {
@@ -458,13 +821,14 @@ fn arc_length_counted(hodograph: &BezierCurve, a: f64, b: f64, accuracy: f64) ->
 ///
 /// With `panels`, the accepted intervals are appended to it in increasing
 /// order of `t` (each with its value and its share of the accuracy): the
-/// cumulative table that [`BezierCurve::param_at_length`] inverts.
+/// cumulative table that [`BezierCurve::param_at_length`] inverts. (A
+/// fresh [`QuadratureTree`]'s pass.)
 fn arc_length_panels(
     hodograph: &BezierCurve,
     a: f64,
     b: f64,
     accuracy: f64,
-    mut panels: Option<&mut Vec<Panel>>,
+    panels: Option<&mut Vec<Panel>>,
 ) -> LengthResult {
     if a == b {
         return LengthResult {
@@ -474,32 +838,12 @@ fn arc_length_panels(
         };
     }
     let (lo, hi) = if a < b { (a, b) } else { (b, a) };
-    let mut speed = Speed {
-        hodograph,
-        buf: vec![0.0; hodograph.dim()],
-        evaluations: 0,
-        noise_per_unit: speed_noise_per_unit(hodograph, lo, hi),
-        unresolved: 0.0,
-    };
-    let mut cuts = vec![lo];
-    if !speed_bounded_away_from_zero(hodograph, lo, hi) {
-        cuts.extend(speed_minima(hodograph, lo, hi));
-    }
-    cuts.push(hi);
-    let width = hi - lo;
-    let mut length = 0.0;
-    for w in cuts.windows(2) {
-        if w[1] <= w[0] {
-            continue;
-        }
-        let share = accuracy * ((w[1] - w[0]) / width).max(f64::EPSILON);
-        let whole = speed.gauss(w[0], w[1]);
-        length += speed.adaptive(w[0], w[1], whole, share, 0, &mut panels);
-    }
+    let mut tree = QuadratureTree::new(hodograph, lo, hi);
+    let mut speed = Speed::new(hodograph, tree.noise_per_unit);
+    let result = tree.pass(&mut speed, accuracy, panels);
     LengthResult {
-        length: if a < b { length } else { -length },
-        evaluations: speed.evaluations,
-        unresolved: speed.unresolved,
+        length: if a < b { result.length } else { -result.length },
+        ..result
     }
 }
 
@@ -604,10 +948,13 @@ fn speed_minima(hodograph: &BezierCurve, lo: f64, hi: f64) -> Vec<f64> {
     let q = p - 1;
     // f(s) = H(s) . H'(s), degree p + q, Bernstein coefficients.
     let deg = p + q;
+    // The binomials once each (O(n^2) instead of O(n^3) for the double loop).
+    let binomials = |n: usize| (0..=n).map(|k| binomial(n, k)).collect::<Vec<f64>>();
+    let (cp, cq, cdeg) = (binomials(p), binomials(q), binomials(deg));
     let mut coefficients = vec![0.0; deg + 1];
     for i in 0..=p {
         for j in 0..=q {
-            let w = binomial(p, i) * binomial(q, j) / binomial(deg, i + j);
+            let w = cp[i] * cq[j] / cdeg[i + j];
             let dot: f64 = (0..d).map(|c| h.point(i)[c] * g.point(j)[c]).sum();
             coefficients[i + j] += w * dot;
         }
@@ -812,18 +1159,14 @@ mod panel_inversion_tests {
                         assert!(panels.windows(2).all(|w| w[0].b <= w[1].a));
                         for &fraction in &[1e-9, 0.1, 0.37, 0.5, 0.9, 0.999_999] {
                             let target = fraction * available;
-                            let mut speed = Speed {
-                                hodograph: &h,
-                                buf: vec![0.0; 2],
-                                evaluations: 0,
-                                noise_per_unit: speed_noise_per_unit(&h, lo, hi),
-                                unresolved: 0.0,
-                            };
+                            let mut speed = Speed::new(&h, speed_noise_per_unit(&h, lo, hi));
+                            let (panel, remaining) = locate(&panels, forward, target).unwrap();
                             let t = invert_on_panels(
                                 &mut speed,
-                                &panels,
+                                &mut Partials::default(),
+                                &panel,
                                 forward,
-                                target,
+                                remaining,
                                 0.5 * accuracy,
                             )
                             .unwrap_or_else(|| {
@@ -876,5 +1219,161 @@ mod panel_inversion_tests {
             })
             .sum();
         assert!((whole - pieces).abs() <= 1e-13, "{whole} vs {pieces}");
+    }
+}
+
+#[cfg(test)]
+mod kept_inverse_tests {
+    use super::*;
+
+    fn cubic() -> BezierCurve {
+        BezierCurve::from_rows(&[[0.0, 0.0], [1.0, 2.0], [3.0, 3.0], [4.0, 0.0]]).unwrap()
+    }
+
+    /// Cusp at t = 1/2 (hodograph through the origin).
+    fn cusp() -> BezierCurve {
+        BezierCurve::from_rows(&[[0.0, 0.0], [2.0, 1.0], [0.0, 1.0], [2.0, 0.0]]).unwrap()
+    }
+
+    /// Degree 45 with pseudo-random coordinates in [-10, 10]: wiggly, with
+    /// many speed minima (the family of the hostile-input test whose
+    /// deviation search took seconds).
+    fn wiggly() -> BezierCurve {
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        let points: Vec<f64> = (0..46 * 2)
+            .map(|_| {
+                state ^= state << 13;
+                state ^= state >> 7;
+                state ^= state << 17;
+                (state >> 11) as f64 / (1u64 << 53) as f64 * 20.0 - 10.0
+            })
+            .collect();
+        BezierCurve::new(2, 45, points).unwrap()
+    }
+
+    fn same(a: &Result<f64>, b: &Result<f64>) -> bool {
+        match (a, b) {
+            (Ok(x), Ok(y)) => x.to_bits() == y.to_bits(),
+            (Err(x), Err(y)) => x.to_string() == y.to_string(),
+            _ => false,
+        }
+    }
+
+    /// One kept inverse answering many lengths and accuracies in a mixed
+    /// order (tighter and looser than before, both directions, lengths
+    /// below the parameter resolution, beyond the end, accuracies below
+    /// the rounding level) gives exactly what a fresh `param_at_length`
+    /// gives for each.
+    #[test]
+    fn a_kept_inverse_answers_as_fresh_calls_bit_for_bit() {
+        for c in [cubic(), cusp(), wiggly()] {
+            let total = c.arc_length(0.0, 1.0, 1e-13).unwrap();
+            for &start in &[0.0, 0.3, 0.5, 0.77, 1.0] {
+                let mut kept = ArcLengthInverse::new(&c, start);
+                let mut calls = 0;
+                for &fraction in &[
+                    0.2, -0.2, 1e-3, -0.45, 1e-20, -1e-20, 0.6, 1.5, 5e-324, 0.05, -0.01,
+                ] {
+                    for &relative in &[1e-6, 1e-12, 1e-9, 1e-300, 1e-3] {
+                        let length = fraction * total;
+                        let accuracy = relative * length.abs().max(1e-300);
+                        let fresh = c.param_at_length(start, length, accuracy);
+                        let reused = kept.param_at_length(length, accuracy);
+                        assert!(
+                            same(&fresh, &reused),
+                            "start {start}, length {length:e}, accuracy {accuracy:e}: \
+                             {fresh:?} vs {reused:?}"
+                        );
+                        calls += 1;
+                    }
+                }
+                assert_eq!(calls, 55);
+            }
+        }
+    }
+
+    /// A tree walked again at other accuracies gives the fresh pass's
+    /// length, evaluation count, unresolved error and panels.
+    #[test]
+    fn a_kept_tree_replays_the_fresh_pass() {
+        for c in [cubic(), cusp(), wiggly()] {
+            let h = c.hodograph();
+            let mut tree = QuadratureTree::new(&h, 0.1, 0.9);
+            for &accuracy in &[1e-6, 1e-12, 1e-3, 1e-300, 1e-9, 1e-14] {
+                let mut speed = Speed::new(&h, tree.noise_per_unit);
+                let mut kept_panels = Vec::new();
+                let kept = tree.pass(&mut speed, accuracy, Some(&mut kept_panels));
+                let mut fresh_panels = Vec::new();
+                let fresh = arc_length_panels(&h, 0.1, 0.9, accuracy, Some(&mut fresh_panels));
+                assert_eq!(kept.length.to_bits(), fresh.length.to_bits());
+                assert_eq!(kept.evaluations, fresh.evaluations);
+                assert_eq!(kept.unresolved.to_bits(), fresh.unresolved.to_bits());
+                assert_eq!(kept_panels.len(), fresh_panels.len());
+                for (k, f) in kept_panels.iter().zip(&fresh_panels) {
+                    assert_eq!(
+                        (k.a, k.b, k.length, k.tolerance),
+                        (f.a, f.b, f.length, f.tolerance)
+                    );
+                }
+            }
+        }
+    }
+
+    /// The fallback inside a panel meets the accuracy on its own (without
+    /// the fixed rule's answer), in both directions and across a cusp.
+    #[test]
+    fn the_fallback_inside_a_panel_meets_the_accuracy() {
+        for c in [cubic(), cusp(), wiggly()] {
+            let h = c.hodograph();
+            for &accuracy in &[1e-6, 1e-10] {
+                for &start in &[0.0, 0.4, 1.0] {
+                    for forward in [true, false] {
+                        let (lo, hi) = if forward { (start, 1.0) } else { (0.0, start) };
+                        if lo == hi {
+                            continue;
+                        }
+                        let mut panels = Vec::new();
+                        let available =
+                            arc_length_panels(&h, lo, hi, 0.1 * accuracy, Some(&mut panels)).length;
+                        for &fraction in &[1e-9, 0.1, 0.5, 0.93] {
+                            let target = fraction * available;
+                            let (panel, remaining) = locate(&panels, forward, target).unwrap();
+                            let mut speed = Speed::new(&h, speed_noise_per_unit(&h, lo, hi));
+                            let t = invert_in_panel_adaptively(
+                                &mut speed, &panel, forward, remaining, accuracy,
+                            );
+                            let measured = arc_length_with(&h, start, t, 1e-16).abs();
+                            assert!(
+                                (measured - target).abs() <= accuracy,
+                                "start {start}, forward {forward}, fraction {fraction}: \
+                                 {measured} vs {target}"
+                            );
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    /// Lengths of subnormal size to a subnormal accuracy stop at their
+    /// rounding level (four units of 5e-324) instead of bisecting until the
+    /// evaluation budget runs out, and agree with the same length to a
+    /// reachable accuracy.
+    #[test]
+    fn subnormal_lengths_stop_at_their_rounding_level() {
+        for c in [cubic(), wiggly()] {
+            let h = c.hodograph();
+            for &b in &[1.94e-313, 3e-320, 1e-310] {
+                let (tight, evaluations) = arc_length_counted(&h, 0.0, b, 5e-324);
+                assert!(evaluations < 20_000, "{b:e}: {evaluations} evaluations");
+                let reachable = arc_length_with(&h, 0.0, b, 1e-300);
+                let speed = norm(&h.eval(0.0));
+                assert!(
+                    (tight - reachable).abs() <= 1e-9 * speed * b + 8.0 * f64::from_bits(1),
+                    "{b:e}: {tight:e} vs {reachable:e}"
+                );
+                assert!(c.arc_length(0.0, b, 5e-324).is_ok());
+            }
+        }
     }
 }

@@ -592,16 +592,62 @@ pub(crate) fn bernstein_horner(
     // Coordinates near the top of the f64 range overflow the binomial-
     // weighted Horner sums (degree 40, coordinates 1e291: `C(40, 20) P_i`
     // is infinite, then `inf - inf` is NaN) although the value itself, a
-    // convex combination for `t` in `[0, 1]`, is finite. De Casteljau never
-    // leaves the hull of the points there; where the result is really out
-    // of range (far extrapolation, huge derivatives) it overflows too.
-    if out.iter().any(|v| !v.is_finite()) {
-        de_casteljau_into(points, n, d, t, scale, out);
+    // convex combination for `t` in `[0, 1]`, is finite. The same sums on
+    // the points scaled by `2^-(n+1)` cannot overflow; where the result is
+    // really out of range (far extrapolation, huge derivatives) they
+    // overflow when scaled back, and de Casteljau, which never leaves the
+    // hull of the points, decides (it overflows too there). A NaN parameter
+    // gives NaN whatever the scheme (callers' Newton steps on overflowing
+    // dot products produce one; `O(n^2)` for nothing).
+    if out.iter().any(|v| !v.is_finite()) && !t.is_nan() {
+        horner_rescaled(points, n, d, t, scale, out);
+        if out.iter().any(|v| !v.is_finite()) {
+            de_casteljau_into(points, n, d, t, scale, out);
+        }
+    }
+}
+
+/// [`bernstein_horner`] again on the coordinates of `out` that are not
+/// finite, with the points scaled by `2^-(n+1)` (exactly, a power of two)
+/// and the sum scaled back at the end: with `|ratio| <= 1` the partial sums
+/// are at most `(1 + |ratio|)^n 2^-(n+1) max|P_i| <= max|P_i| / 2`, so they
+/// cannot overflow. `O(n)` per coordinate where de Casteljau is `O(n^2)`
+/// (a degree-60 curve with coordinates near `1e300` overflows the plain sums
+/// at every parameter: its arc length, projections and intersections
+/// evaluate it thousands of times). Finite coordinates are left as they
+/// are; only a coordinate that overflows the plain sums is scaled, and its
+/// points are that large, so the scaling loses nothing of its accuracy
+/// (`n eps max|P_i|`, as unscaled).
+fn horner_rescaled(points: &[f64], n: usize, d: usize, t: f64, scale: f64, out: &mut [f64]) {
+    let s = 1.0 - t;
+    let (ratio, factor, first, step): (f64, f64, usize, isize) = if t > 0.5 {
+        (s / t, t.powi(n as i32), 0, 1)
+    } else {
+        (t / s, s.powi(n as i32), n, -1)
+    };
+    // n <= HORNER_MAX_DEGREE = 512: both powers are normal numbers.
+    let down = 2f64.powi(-(n as i32 + 1));
+    let up = 2f64.powi(n as i32 + 1);
+    let factor = factor * scale;
+    for c in 0..d {
+        if out[c].is_finite() {
+            continue;
+        }
+        let mut sum = points[first * d + c] * down;
+        let mut coef = 1.0;
+        let mut idx = first as isize;
+        for i in 1..=n {
+            coef = coef * (n - i + 1) as f64 / i as f64;
+            idx += step;
+            sum = sum * ratio + coef * (points[idx as usize * d + c] * down);
+        }
+        out[c] = sum * factor * up;
     }
 }
 
 /// `scale * P(t)` by de Casteljau's algorithm (allocating), for
-/// [`bernstein_horner`] above [`HORNER_MAX_DEGREE`] or when its sums overflow.
+/// [`bernstein_horner`] above [`HORNER_MAX_DEGREE`] or when even its
+/// rescaled sums overflow.
 fn de_casteljau_into(points: &[f64], n: usize, d: usize, t: f64, scale: f64, out: &mut [f64]) {
     let mut work = Vec::with_capacity((n + 1) * d);
     let value = blossom(
@@ -838,6 +884,41 @@ mod high_degree_elevation_tests {
 #[cfg(test)]
 mod high_degree_evaluation_tests {
     use super::*;
+
+    /// Degree 60 with x coordinates up to 9e300 (the binomial-weighted
+    /// Horner sums overflow) and y coordinates near 1e-300: the rescaled
+    /// sums agree with de Casteljau to the rounding level of each
+    /// coordinate's own scale, and a value that is really out of range
+    /// (far extrapolation) still overflows as de Casteljau's does.
+    #[test]
+    fn overflowing_sums_are_rescaled_per_coordinate() {
+        let n = 60;
+        let points: Vec<f64> = (0..=n)
+            .flat_map(|i| {
+                let s = (i as f64 * 0.731).sin();
+                [9e300 * s, 1e-300 * (i as f64 * 0.37).cos()]
+            })
+            .collect();
+        let c = BezierCurve::new(2, n, points).unwrap();
+        for &t in &[0.0, 1e-9, 0.3, 0.5, 0.77, 1.0 - 1e-12, 1.0] {
+            let fast = c.eval(t);
+            let reference = c.eval_de_casteljau(t);
+            for (k, scale) in [9e300, 1e-300].into_iter().enumerate() {
+                let bound = 8.0 * n as f64 * f64::EPSILON * scale;
+                assert!(
+                    (fast[k] - reference[k]).abs() <= bound,
+                    "t = {t}, coordinate {k}: {} vs {}",
+                    fast[k],
+                    reference[k]
+                );
+            }
+            let d = c.eval_derivatives(t, 2);
+            assert!(d.iter().all(|v| v.is_finite()), "t = {t}: {d:?}");
+        }
+        let far = c.eval(50.0);
+        let reference = c.eval_de_casteljau(50.0);
+        assert!(!far[0].is_finite() && !reference[0].is_finite());
+    }
 
     #[test]
     fn fast_evaluation_matches_de_casteljau_at_high_degree() {

@@ -7,7 +7,7 @@ use bezjoin_core::{BSplineCurve, join_jumps, relative_jump};
 use bezjoin_core::{BezierCurve, BezjoinError, KnotSide};
 use bezjoin_core::{
     ChainFilletOptions, DeviationFilletOptions, FilletOptions, distance_to_curve, fillet,
-    fillet_chain, fillet_within_deviation,
+    fillet_at, fillet_chain, fillet_within_deviation,
 };
 use bezjoin_core::{IntersectOptions, IntersectionKind, intersect};
 use common::{distance, norm};
@@ -336,6 +336,59 @@ fn deviation_never_exceeds_the_bound() {
     }
     assert!(done >= 20, "only {done} of 24 cases reachable");
     eprintln!("{done} cases; largest relative gap below eps: {worst_below:e}");
+}
+
+/// The deviation search keeps its two arc-length inversions across its
+/// trial setbacks; the corner it returns is the one `fillet_at` builds from
+/// scratch with the setbacks it found, bit for bit. Cubic corners and a
+/// degree-45 curve against its rotation (many speed minima), for ordinary
+/// and tiny bounds.
+#[test]
+fn deviation_search_returns_the_fillet_of_its_setbacks() {
+    let mut rng = Lcg(4242);
+    let mut corners = Vec::new();
+    for _ in 0..3 {
+        let x = [rng.range(-1.0, 1.0), rng.range(-1.0, 1.0)];
+        let a = rng.range(0.0, std::f64::consts::TAU);
+        let p = cubic_through(&mut rng, x, 0.6, a);
+        let b = a + rng.range(0.6, 2.5);
+        let q = cubic_through(&mut rng, x, 0.4, b);
+        corners.push((p, q));
+    }
+    let rows: Vec<Vec<f64>> = (0..=45)
+        .map(|_| vec![rng.range(-10.0, 10.0), rng.range(-10.0, 10.0)])
+        .collect();
+    let wiggly = BezierCurve::from_rows(&rows).unwrap();
+    let centre = wiggly.eval(0.5);
+    let rotated: Vec<Vec<f64>> = rows
+        .iter()
+        .map(|r| {
+            vec![
+                centre[0] - (r[1] - centre[1]),
+                centre[1] + (r[0] - centre[0]),
+            ]
+        })
+        .collect();
+    corners.push((wiggly, BezierCurve::from_rows(&rotated).unwrap()));
+    let mut found = 0;
+    for (case, (p, q)) in corners.iter().enumerate() {
+        for eps in [0.05, 1e-3, 1e-7] {
+            for order in [0, 2] {
+                let options = DeviationFilletOptions::new(eps, order).with_setback_ratio(0.8);
+                let Ok(r) = fillet_within_deviation(p, q, &options) else {
+                    continue;
+                };
+                found += 1;
+                let mut shape = options.shape.clone();
+                shape.p_setback = r.p_setback;
+                shape.q_setback = r.q_setback;
+                let fresh = fillet_at(p, q, &r.fillet.crossing, &shape).unwrap();
+                assert_eq!(fresh, r.fillet, "case {case}, eps {eps}, order {order}");
+            }
+        }
+    }
+    eprintln!("{found} of 24 corners rounded");
+    assert!(found >= 18, "only {found} corners rounded");
 }
 
 #[test]

@@ -7,7 +7,7 @@
 //! crossing; with `"vertex": true` from the vertex where P ends and Q
 //! starts, [`bezjoin_core::fillet_vertex`]) or `max_deviation` (the distance
 //! from the corner point to the blend, with an optional `setback_ratio = dq
-//! / dp`; Bezier curves only). The report is re-measured by the tool:
+//! / dp`; any curves). The report is re-measured by the tool:
 //! continuity at both joins in the B-spline sense (knot intervals `u0 -
 //! first`, `alpha`, `(last - v0) alpha / beta`; the `k`-th derivative of
 //! each piece is divided by (its interval / its domain length)^k, P's taken
@@ -41,7 +41,7 @@ pub enum FilletMode {
         gap: f64,
     },
     /// Setbacks found so that the blend passes at `max_deviation` from the
-    /// corner point (`setback_ratio = dq / dp`); Bezier curves only.
+    /// corner point (`setback_ratio = dq / dp`).
     Deviation {
         /// `eps`.
         max_deviation: f64,
@@ -146,15 +146,8 @@ pub fn parse(job: &Located) -> Result<FilletJob, JobError> {
                 return Err(JobError::new(
                     f.path.clone(),
                     "cannot be true together with \"max_deviation\" (the deviation mode rounds \
-                     the first crossing of two Bezier curves)",
+                     the first crossing of the two curves)",
                 ));
-            }
-            let why = "the deviation mode (\"max_deviation\") works on Bezier curves only; \
-                       give setbacks for NURBS curves";
-            for (field, curve) in [(&p_field, &p), (&q_field, &q)] {
-                if curve.as_bezier().is_none() {
-                    return Err(field.not_bezier(why));
-                }
             }
             FilletMode::Deviation {
                 max_deviation: eps.positive()?,
@@ -225,11 +218,7 @@ pub fn run(job: &Located) -> Result<Outcome, CliError> {
             max_deviation,
             setback_ratio,
         } => {
-            let (Some(p), Some(q)) = (job.p.as_bezier(), job.q.as_bezier()) else {
-                return Err(CliError::Operation(
-                    "p, q: the deviation mode works on Bezier curves only".into(),
-                ));
-            };
+            let (p, q) = (&job.p, &job.q);
             let mut options = DeviationFilletOptions::new(max_deviation, job.options.p_order)
                 .with_setback_ratio(setback_ratio);
             options.shape = job.options.clone();

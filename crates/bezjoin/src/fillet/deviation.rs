@@ -45,7 +45,11 @@
 //! found by the Illinois variant of false position (bisection when a step
 //! would leave the bracket), at most 100 steps; the end of the bracket on
 //! the short side always has a deviation below the window, and every trial
-//! is returned only if its deviation lies in the window.
+//! is returned only if its deviation lies in the window. The trials share
+//! the two arc-length inversions from the crossing (the quadrature of each
+//! curve is kept between trials; each trial's cut parameters are bit for
+//! bit those of a fresh [`BezierCurve::param_at_length`]), and only the
+//! returned trial has its trimmed pieces built.
 //!
 //! Monotonicity: for two lines the deviation is exactly proportional to the
 //! setback; for curved corners it grows monotonically while the setbacks are
@@ -58,11 +62,13 @@
 //! doubling grid that reach `eps`, whether or not the deviation turns later.
 
 use crate::bezier::BezierCurve;
+use crate::curve::CurveRef;
 use crate::error::{BezjoinError, Result, check_positive};
 use crate::intersect::{intersect, project};
 
 use super::{
-    Fillet, FilletOptions, available_lengths, fillet_at_validated, first_crossing, validate_shape,
+    Blend, Fillet, FilletOptions, SetbackInverses, assemble, available_lengths, blend_at,
+    first_crossing, validate_shape,
 };
 
 /// Default of [`DeviationFilletOptions::relative_deviation_accuracy`].
@@ -121,6 +127,16 @@ pub struct DeviationFillet {
     pub deviation_parameter: f64,
 }
 
+/// One setback tried by the deviation search: a [`DeviationFillet`] before
+/// its trimmed pieces are built (only the accepted trial needs them).
+struct Trial {
+    blend: Blend,
+    p_setback: f64,
+    q_setback: f64,
+    deviation: f64,
+    deviation_parameter: f64,
+}
+
 /// The closest point of `curve` to `point`: `(t, distance)`, the global
 /// minimum over `[0, 1]` (every local minimum of a dense sampling,
 /// `16 (n + 1)` intervals, is polished by Gauss-Newton and the best kept).
@@ -158,6 +174,9 @@ pub fn distance_to_curve(curve: &BezierCurve, point: &[f64]) -> (f64, f64) {
 /// `max_deviation (1 - relative_deviation_accuracy)` (module documentation
 /// for the definition, the guarantee and the search).
 ///
+/// `p`, `q`: Bezier or NURBS curves, as for [`super::fillet`] (NURBS pieces
+/// keep their kind and parameters).
+///
 /// Errors: as [`super::fillet`] for the curves, orders and scales;
 /// `max_deviation` or `setback_ratio` non-finite or not positive; a bound that
 /// even the longest possible setbacks do not reach (InvalidArgument naming
@@ -173,11 +192,12 @@ pub fn distance_to_curve(curve: &BezierCurve, point: &[f64]) -> (f64, f64) {
 /// let r = fillet_within_deviation(&p, &q, &DeviationFilletOptions::new(0.1, 2)).unwrap();
 /// assert!(r.deviation <= 0.1 && r.deviation >= 0.1 * (1.0 - 1e-9));
 /// ```
-pub fn fillet_within_deviation(
-    p: &BezierCurve,
-    q: &BezierCurve,
+pub fn fillet_within_deviation<'a>(
+    p: impl Into<CurveRef<'a>>,
+    q: impl Into<CurveRef<'a>>,
     options: &DeviationFilletOptions,
 ) -> Result<DeviationFillet> {
+    let (p, q): (CurveRef, CurveRef) = (p.into(), q.into());
     if q.dim() != p.dim() {
         return Err(BezjoinError::DimensionMismatch {
             name: "q".into(),
@@ -197,21 +217,37 @@ pub fn fillet_within_deviation(
     let hits = intersect(p, q, &options.shape.intersect)?;
     let crossing = first_crossing(&hits)?;
     let corner = crossing.point.clone();
-    let (before, after) = available_lengths(p.into(), q.into(), &crossing)?;
+    let (before, after) = available_lengths(p, q, &crossing)?;
     let longest = (1.0 - 1e-9) * before.min(after / ratio);
 
-    let attempt = |dp: f64| -> Result<DeviationFillet> {
+    // The two arc-length inversions are kept across the trials: each trial
+    // inverts the same ranges from the crossing (to another accuracy), and
+    // re-integrating them per trial made this search take seconds on
+    // degree-50 curves with thousands of doubling steps.
+    let mut inverses = SetbackInverses::new(p, q, &crossing);
+    let mut attempt = |dp: f64| -> Result<Trial> {
         let mut shape = options.shape.clone();
         shape.p_setback = dp;
         shape.q_setback = ratio * dp;
-        let fillet = fillet_at_validated(p.into(), q.into(), crossing.clone(), &shape)?;
-        let (t, deviation) = distance_to_curve(&fillet.blend, &corner);
-        Ok(DeviationFillet {
-            fillet,
+        let blend = blend_at(p, q, &crossing, &shape, &mut inverses)?;
+        let (t, deviation) = distance_to_curve(&blend.connection.curve, &corner);
+        Ok(Trial {
+            blend,
             p_setback: dp,
             q_setback: ratio * dp,
             deviation,
             deviation_parameter: t,
+        })
+    };
+    // The accepted trial's trimmed pieces (a segment inside the domain cannot
+    // fail: its control points are convex combinations of the curve's).
+    let accept = |trial: Trial| -> Result<DeviationFillet> {
+        Ok(DeviationFillet {
+            fillet: assemble(p, q, crossing.clone(), trial.blend)?,
+            p_setback: trial.p_setback,
+            q_setback: trial.q_setback,
+            deviation: trial.deviation,
+            deviation_parameter: trial.deviation_parameter,
         })
     };
     // The bound is strict: only a deviation in the window [low, high]
@@ -232,7 +268,7 @@ pub fn fillet_within_deviation(
     let mut dp = (0.5 * eps).min(longest);
     let mut trial = attempt(dp)?;
     if accepted(trial.deviation) {
-        return Ok(trial);
+        return accept(trial);
     }
     let mut h = trial.deviation - target;
     if h < 0.0 {
@@ -253,7 +289,7 @@ pub fn fillet_within_deviation(
             dp = (2.0 * dp).min(longest);
             trial = attempt(dp)?;
             if accepted(trial.deviation) {
-                return Ok(trial);
+                return accept(trial);
             }
             h = trial.deviation - target;
             if h > 0.0 {
@@ -265,7 +301,7 @@ pub fn fillet_within_deviation(
             let shorter = 0.5 * dp;
             let t = attempt(shorter)?;
             if accepted(t.deviation) {
-                return Ok(t);
+                return accept(t);
             }
             let hs = t.deviation - target;
             if hs < 0.0 {
@@ -288,7 +324,7 @@ pub fn fillet_within_deviation(
         }
         let trial = attempt(dp)?;
         if accepted(trial.deviation) {
-            return Ok(trial);
+            return accept(trial);
         }
         let h = trial.deviation - target;
         if h < 0.0 {

@@ -65,8 +65,9 @@ pub use deviation::{
     distance_to_curve, fillet_within_deviation,
 };
 
+use crate::arclength::ArcLengthInverse;
 use crate::bezier::BezierCurve;
-use crate::connect::{ConnectOptions, ShapeScale, connect};
+use crate::connect::{ConnectOptions, Connection, ShapeScale, connect};
 use crate::curve::{Curve, CurveRef};
 use crate::error::{BezjoinError, Result, check_finite_scalar, check_positive};
 use crate::intersect::{IntersectOptions, Intersection, IntersectionKind, intersect};
@@ -361,12 +362,78 @@ pub(crate) fn fillet_at_validated(
     crossing: Intersection,
     options: &FilletOptions,
 ) -> Result<Fillet> {
+    let mut inverses = SetbackInverses::new(p, q, &crossing);
+    let blend = blend_at(p, q, &crossing, options, &mut inverses)?;
+    assemble(p, q, crossing, blend)
+}
+
+/// The arc-length inversions of a corner: along `P` backwards and along `Q`
+/// forwards from the crossing. They keep their quadrature between calls,
+/// so [`blend_at`] with the same inverses and other setbacks (the deviation
+/// search's trials) does not integrate the curves anew; each call's
+/// parameters are the ones a fresh inversion gives, bit for bit.
+pub(crate) struct SetbackInverses<'a> {
+    p: SetbackInverse<'a>,
+    q: SetbackInverse<'a>,
+}
+
+/// One side's inversion: a Bezier curve keeps its quadrature
+/// ([`ArcLengthInverse`]); a NURBS curve inverts span by span
+/// ([`NurbsCurve::param_at_length`]) each time.
+enum SetbackInverse<'a> {
+    Bezier(Box<ArcLengthInverse>),
+    Nurbs { curve: &'a NurbsCurve, start: f64 },
+}
+
+impl SetbackInverse<'_> {
+    fn param_at_length(&mut self, length: f64, accuracy: f64) -> Result<f64> {
+        match self {
+            SetbackInverse::Bezier(inverse) => inverse.param_at_length(length, accuracy),
+            SetbackInverse::Nurbs { curve, start } => {
+                curve.param_at_length(*start, length, accuracy)
+            }
+        }
+    }
+}
+
+impl<'a> SetbackInverses<'a> {
+    pub(crate) fn new(p: CurveRef<'a>, q: CurveRef<'a>, crossing: &Intersection) -> Self {
+        let side = |c: CurveRef<'a>, start: f64| match c {
+            CurveRef::Bezier(b) => {
+                SetbackInverse::Bezier(Box::new(ArcLengthInverse::new(b, start)))
+            }
+            CurveRef::Nurbs(curve) => SetbackInverse::Nurbs { curve, start },
+        };
+        SetbackInverses {
+            p: side(p, crossing.u),
+            q: side(q, crossing.v),
+        }
+    }
+}
+
+/// Where the setbacks cut the curves, and the connection between the cuts:
+/// a [`Fillet`] before its trimmed pieces are built ([`assemble`]).
+pub(crate) struct Blend {
+    pub(crate) u0: f64,
+    pub(crate) v0: f64,
+    pub(crate) connection: Connection,
+}
+
+/// The cut parameters `u0`, `v0` of the setbacks in `options` (inverted with
+/// `inverses`, made for `p`, `q` and `crossing`) and the blend between them.
+pub(crate) fn blend_at(
+    p: CurveRef,
+    q: CurveRef,
+    crossing: &Intersection,
+    options: &FilletOptions,
+    inverses: &mut SetbackInverses,
+) -> Result<Blend> {
     let (dp, dq) = (options.p_setback, options.q_setback);
     let accuracy = options.relative_length_accuracy;
     // The inversion itself refuses a length beyond the curve's end; the
     // lengths for the message are computed only on that path.
     let too_long_p = || -> Result<BezjoinError> {
-        let (before, _) = available_lengths(p, q, &crossing)?;
+        let (before, _) = available_lengths(p, q, crossing)?;
         Ok(BezjoinError::invalid(
             "p_setback",
             format!(
@@ -376,7 +443,7 @@ pub(crate) fn fillet_at_validated(
         ))
     };
     let too_long_q = || -> Result<BezjoinError> {
-        let (_, after) = available_lengths(p, q, &crossing)?;
+        let (_, after) = available_lengths(p, q, crossing)?;
         Ok(BezjoinError::invalid(
             "q_setback",
             format!(
@@ -387,12 +454,12 @@ pub(crate) fn fillet_at_validated(
     };
     let (p_first, _) = p.domain();
     let (_, q_last) = q.domain();
-    let u0 = match p.param_at_length(crossing.u, -dp, accuracy * dp) {
+    let u0 = match inverses.p.param_at_length(-dp, accuracy * dp) {
         Ok(u0) if u0 > p_first && u0 < crossing.u => u0,
         Ok(_) | Err(BezjoinError::InvalidArgument { .. }) => return Err(too_long_p()?),
         Err(e) => return Err(e),
     };
-    let v0 = match q.param_at_length(crossing.v, dq, accuracy * dq) {
+    let v0 = match inverses.q.param_at_length(dq, accuracy * dq) {
         Ok(v0) if v0 < q_last && v0 > crossing.v => v0,
         Ok(_) | Err(BezjoinError::InvalidArgument { .. }) => return Err(too_long_q()?),
         Err(e) => return Err(e),
@@ -400,6 +467,20 @@ pub(crate) fn fillet_at_validated(
     let mut connect_options = ConnectOptions::new(options.p_order, options.q_order);
     connect_options.scale = options.scale;
     let connection = connect(&p, u0, &q, v0, &connect_options)?;
+    Ok(Blend { u0, v0, connection })
+}
+
+/// The [`Fillet`] of a [`Blend`]: `P` trimmed to `[first, u0]`, `Q` to
+/// `[v0, last]` (each of its own kind).
+pub(crate) fn assemble(
+    p: CurveRef,
+    q: CurveRef,
+    crossing: Intersection,
+    blend: Blend,
+) -> Result<Fillet> {
+    let Blend { u0, v0, connection } = blend;
+    let (p_first, _) = p.domain();
+    let (_, q_last) = q.domain();
     Ok(Fillet {
         p_trimmed: p.segment(p_first, u0)?,
         blend: connection.curve,

@@ -400,6 +400,11 @@ fn project_on(track: &Track, x: &[f64], start: Option<f64>, pieces: &[Piece]) ->
             break;
         }
         let dt = -dot(&tangent, &r) / tt;
+        if dt.is_nan() {
+            // Overflowing dot products (coordinates near 1e300): every trial
+            // step below would evaluate at NaN and be refused.
+            break;
+        }
         let mut step = 1.0;
         let mut moved = 0.0f64;
         for _ in 0..16 {
