@@ -30,7 +30,7 @@ declare -A RUNS=(
     [curve_ops]=40000 [curve_length]=6000 [lagrange_spline]=50000
     [merge]=10000 [merge_chain]=30000 [connect]=20000 [intersect]=8000
     [intersect_detailed]=30000 [fillet]=4000 [fillet_deviation]=16000
-    [fillet_chain]=40000 [nurbs]=20000
+    [fillet_chain]=40000 [nurbs]=5000
 )
 DEFAULT_RUNS=5000
 

@@ -18,8 +18,9 @@ use crate::arclength::DEFAULT_ARC_LENGTH_ACCURACY;
 use crate::bezier::{BezierCurve, distance, norm};
 use crate::error::{BezjoinError, Result, check_finite_scalar};
 
-/// Speed evaluations one rational-span length may spend.
-pub const MAX_RATIONAL_EVALUATIONS: usize = 1 << 18;
+/// Speed evaluations one rational-span length may spend (about 1,000
+/// Gauss-Kronrod panels: a smooth span needs a few dozen).
+pub const MAX_RATIONAL_EVALUATIONS: usize = 1 << 14;
 
 /// Bisection depth limit of the Gauss-Kronrod rule.
 const MAX_DEPTH: u32 = 50;
