@@ -618,6 +618,8 @@ pub(crate) fn bernstein_horner(
 /// are; only a coordinate that overflows the plain sums is scaled, and its
 /// points are that large, so the scaling loses nothing of its accuracy
 /// (`n eps max|P_i|`, as unscaled).
+#[cold]
+#[inline(never)]
 fn horner_rescaled(points: &[f64], n: usize, d: usize, t: f64, scale: f64, out: &mut [f64]) {
     let s = 1.0 - t;
     let (ratio, factor, first, step): (f64, f64, usize, isize) = if t > 0.5 {
@@ -648,6 +650,8 @@ fn horner_rescaled(points: &[f64], n: usize, d: usize, t: f64, scale: f64, out: 
 /// `scale * P(t)` by de Casteljau's algorithm (allocating), for
 /// [`bernstein_horner`] above [`HORNER_MAX_DEGREE`] or when even its
 /// rescaled sums overflow.
+#[cold]
+#[inline(never)]
 fn de_casteljau_into(points: &[f64], n: usize, d: usize, t: f64, scale: f64, out: &mut [f64]) {
     let mut work = Vec::with_capacity((n + 1) * d);
     let value = blossom(

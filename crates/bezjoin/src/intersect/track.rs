@@ -159,9 +159,9 @@ impl<'a> Track<'a> {
 #[derive(Clone)]
 pub(super) struct Piece {
     curve: BezierCurve,
-    rational: bool,
-    /// Cartesian control points, row-major.
-    points: Vec<f64>,
+    /// Cartesian control points of a rational piece, row-major (a
+    /// polynomial piece's are the curve's own: no copy).
+    projected: Option<Vec<f64>>,
     dim: usize,
     pub(super) lo: f64,
     pub(super) hi: f64,
@@ -176,18 +176,20 @@ impl Piece {
         } else {
             curve.dim()
         };
-        let points: Vec<f64> = if rational {
+        let projected: Option<Vec<f64>> = rational.then(|| {
             curve
                 .points()
                 .chunks_exact(dim + 1)
                 .flat_map(|row| row[..dim].iter().map(move |x| x / row[dim]))
                 .collect()
-        } else {
-            curve.points().to_vec()
-        };
+        });
         let mut min = vec![f64::INFINITY; dim];
         let mut max = vec![f64::NEG_INFINITY; dim];
-        for row in points.chunks_exact(dim) {
+        for row in projected
+            .as_deref()
+            .unwrap_or(curve.points())
+            .chunks_exact(dim)
+        {
             for c in 0..dim {
                 min[c] = min[c].min(row[c]);
                 max[c] = max[c].max(row[c]);
@@ -195,8 +197,7 @@ impl Piece {
         }
         Self {
             curve,
-            rational,
-            points,
+            projected,
             dim,
             lo,
             hi,
@@ -211,15 +212,16 @@ impl Piece {
 
     /// Cartesian control point `i`.
     pub(super) fn point(&self, i: usize) -> &[f64] {
-        &self.points[i * self.dim..(i + 1) * self.dim]
+        let points = self.projected.as_deref().unwrap_or(self.curve.points());
+        &points[i * self.dim..(i + 1) * self.dim]
     }
 
     pub(super) fn split(&self) -> (Piece, Piece) {
         let (a, b) = self.curve.split_unchecked(0.5);
         let mid = 0.5 * (self.lo + self.hi);
         (
-            Piece::new(a, self.rational, self.lo, mid),
-            Piece::new(b, self.rational, mid, self.hi),
+            Piece::new(a, self.projected.is_some(), self.lo, mid),
+            Piece::new(b, self.projected.is_some(), mid, self.hi),
         )
     }
 
