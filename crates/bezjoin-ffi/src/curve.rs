@@ -504,15 +504,7 @@ fn derivative_rows_len(max_order: usize, dim: usize) -> Result<usize, BezjoinErr
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::guard::bzj_last_error;
-
-    fn last_error() -> String {
-        // SAFETY: never NULL, NUL-terminated.
-        unsafe { std::ffi::CStr::from_ptr(bzj_last_error()) }
-            .to_str()
-            .unwrap()
-            .to_owned()
-    }
+    use crate::guard::last_error;
 
     fn line() -> *mut BzjCurve {
         let pts = [0.0, 0.0, 1.0, 2.0];

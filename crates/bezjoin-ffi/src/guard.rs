@@ -103,6 +103,17 @@ pub extern "C" fn bzj_last_error() -> *const c_char {
     })
 }
 
+/// The calling thread's last error message as a `String` (for the unit
+/// tests of every module of this crate).
+#[cfg(test)]
+pub(crate) fn last_error() -> String {
+    // SAFETY: never NULL, NUL-terminated.
+    unsafe { std::ffi::CStr::from_ptr(bzj_last_error()) }
+        .to_str()
+        .unwrap()
+        .to_owned()
+}
+
 #[cfg(test)]
 mod guard_tests {
     use super::*;

@@ -438,15 +438,7 @@ unsafe fn vector_input<'a>(ptr: *const f64, dim: usize, name: &str) -> FfiResult
 mod tests {
     use super::*;
     use crate::curve::{bzj_curve_eval, bzj_curve_free};
-    use crate::guard::bzj_last_error;
-
-    fn last_error() -> String {
-        // SAFETY: never NULL, NUL-terminated.
-        unsafe { std::ffi::CStr::from_ptr(bzj_last_error()) }
-            .to_str()
-            .unwrap()
-            .to_owned()
-    }
+    use crate::guard::last_error;
 
     #[test]
     fn impossible_lengths_are_refused_before_reading() {
