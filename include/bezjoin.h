@@ -1152,6 +1152,15 @@ BzjStatus bzj_lagrange_spline_degree(size_t dim, size_t degree, size_t continuit
  * degree is elevated first; the merged degree is the higher one.
  * `p_hat`, `q_hat` and `report` may be NULL when not wanted.
  *
+ * NURBS handles (mathematics.md section 6, "Merge of B-splines"): two
+ * polynomial B-splines (a Bezier handle counts as a one-span B-spline
+ * when the other is a NURBS handle) are merged into a NURBS `merged` on
+ * [0, 1] whose interior knots are p's mapped into (0, mu) and q's into
+ * (mu, 1), with no knot at mu (one polynomial piece spans the join);
+ * `p_hat` and `q_hat` are NURBS handles on p's and q's own knots and
+ * parameters. Keep-point parameters are in each curve's domain. Two
+ * Bezier handles give the Bezier result as before.
+ *
  * Guarantee: the KKT solve's error estimate and the check "merged split at
  * mu gives p_hat, q_hat" are both within 1e-8 relative, or the call fails
  * with BZJ_ERR_ILL_CONDITIONED.
@@ -1159,11 +1168,11 @@ BzjStatus bzj_lagrange_spline_degree(size_t dim, size_t degree, size_t continuit
  * @return BZJ_ERR_NULL_POINTER if `p`, `q`, `options` or `merged` is NULL,
  *         or a point array is NULL with a non-zero count;
  *         BZJ_ERR_INVALID_ARGUMENT if `mu` (with BZJ_SPLIT_GIVEN) is outside
- *         (0, 1), a keep-point parameter is outside [0, 1], an order is above
- *         the degree, an enum or bool field holds an invalid value, a
- *         control polygon has zero length with BZJ_SPLIT_POLYGON, or `p` or
- *         `q` is a NURBS handle (Bezier curves only until the B-spline merge
- *         lands, issue 17);
+ *         (0, 1), a keep-point parameter is outside the curve's domain
+ *         ([0, 1] for a Bezier), an order is above the degree, an enum or
+ *         bool field holds an invalid value, a control polygon has zero
+ *         length or is too short next to the other for BZJ_SPLIT_POLYGON,
+ *         or `p` or `q` is a rational NURBS handle (the message names it);
  *         BZJ_ERR_NON_FINITE if `mu` or a keep-point parameter is NaN/infinite;
  *         BZJ_ERR_DIMENSION_MISMATCH if `p` and `q` differ in dimension;
  *         BZJ_ERR_INCONSISTENT if the constraints contradict each other or are
@@ -1197,7 +1206,10 @@ BzjStatus bzj_merge_to_degree(const struct BzjCurve *p, const struct BzjCurve *q
  * is changed as little as possible (sum of the metrics) into the piece of
  * `merged` on `[t_j, t_{j+1}]`; the pieces are one curve exactly when
  * `h_{j+1}^r C_j^(r)(1) = h_j^r C_{j+1}^(r)(0)` at every join (`h_j` the
- * interval lengths). With two curves this is [`bzj_merge`].
+ * interval lengths). With two curves this is [`bzj_merge`]. If any curve
+ * is a NURBS handle, all are merged as polynomial B-splines into a NURBS
+ * `merged` (each curve's interior knots mapped into its interval, none at
+ * a breakpoint) and the pieces are NURBS handles on the curves' own knots.
  *
  * Outputs: `merged` (required); `pieces` (NULL, or an array of
  * `piece_capacity >= curve_count` handles receiving the changed curves);
@@ -1211,10 +1223,9 @@ BzjStatus bzj_merge_to_degree(const struct BzjCurve *p, const struct BzjCurve *q
  *         BZJ_ERR_INVALID_ARGUMENT if `curve_count < 2`, breakpoints are not
  *         strictly increasing in (0, 1) or not `curve_count - 1` of them,
  *         a keep point names a curve that does not exist, its parameter is
- *         outside [0, 1] or its order above the degree, `degree` is below
- *         a curve's degree, an enum/bool field is invalid, or a curve is a
- *         NURBS handle (Bezier curves only until the B-spline merge lands,
- *         issue 17);
+ *         outside that curve's domain or its order above the degree,
+ *         `degree` is below a curve's degree, an enum/bool field is
+ *         invalid, or a curve is a rational NURBS handle;
  *         BZJ_ERR_NON_FINITE, BZJ_ERR_DIMENSION_MISMATCH, BZJ_ERR_INCONSISTENT,
  *         BZJ_ERR_SINGULAR, BZJ_ERR_ILL_CONDITIONED as for [`bzj_merge`].
  *

@@ -3,9 +3,9 @@
  * NURBS rules of the curve functions (degree, dim, points, eval, eval_many,
  * elevate, split, segment, reverse, length), of bzj_connect and
  * bzj_connect_auto_scale, of intersection and the fillets (bzj_fillet,
- * bzj_fillet_vertex, bzj_fillet_chain), and the refusal of NURBS handles
- * by the operations that take Bezier curves only for now (merge). Values are judged by an independent rational de Boor evaluator
- * written here. Compiled as C11 and as C++17 by tests/tests/c_programs.rs
+ * bzj_fillet_vertex, bzj_fillet_chain) and of the B-spline merge
+ * (bzj_merge, bzj_merge_to_degree, bzj_merge_chain). Values are judged by
+ * an independent rational de Boor evaluator written here. Compiled as C11 and as C++17 by tests/tests/c_programs.rs
  * (linked with libbezjoin.a) and run under valgrind memcheck by
  * scripts/ci-embedding.sh: every handle is released. Exits 0 when every
  * check passes. */
@@ -1307,41 +1307,159 @@ static void test_intersect_and_fillet(void) {
     bzj_curve_free(full);
 }
 
-/* ---- operations that take Bezier curves only for now ---- */
+/* ---- bzj_merge and bzj_merge_chain on B-splines (mathematics.md section 6) ---- */
 
-static void test_refusals(void) {
-    const Spline s = rq();
-    BzjCurve* n = nurbs(&s);
-    const double bez_points[] = {0, 0, 1, 2, 3, 3, 4, 0};
+/* The derivatives 0..3 of R at the join from each side's piece, scaled to
+   R's parameter: (1-mu)^r (bP-aP)^r P^(r)(bP) against mu^r (bQ-aQ)^r
+   Q^(r)(aQ); the largest mismatch relative to the largest value. */
+static double join_mismatch(const BzjCurve* ph, const BzjCurve* qh, double mu) {
+    double ap, bp, aq, bq;
+    domain(ph, &ap, &bp);
+    domain(qh, &aq, &bq);
+    double left[8], right[8];
+    eval(ph, bp, 3, 2, left);
+    eval(qh, aq, 3, 2, right);
+    double worst = 0.0, size = 0.0;
+    for (int r = 0; r <= 3; r++) {
+        double sl = pow((1.0 - mu) * (bp - ap), r), sr = pow(mu * (bq - aq), r);
+        for (int c = 0; c < 2; c++) {
+            double x = sl * left[2 * r + c], y = sr * right[2 * r + c];
+            worst = fmax(worst, fabs(x - y));
+            size = fmax(size, fmax(fabs(x), fabs(y)));
+        }
+    }
+    return worst / size;
+}
+
+static void test_merge(void) {
+    /* a split B-spline merged back at the split's own mu is the original */
+    const Spline w = bs();
+    BzjCurve* whole = nurbs(&w);
+    BzjCurve *left = NULL, *right = NULL;
+    const double t = 0.37; /* not a knot */
+    EXPECT_STATUS(bzj_curve_split(whole, t, &left, &right), BZJ_OK);
+    BzjMergeOptions mo;
+    memset(&mo, 0, sizeof mo);
+    mo.metric = BZJ_METRIC_L2;
+    mo.split = BZJ_SPLIT_GIVEN;
+    mo.mu = t; /* the domain is [0, 1] */
+    BzjCurve *merged = NULL, *ph = NULL, *qh = NULL;
+    BzjMergeReport report;
+    EXPECT_STATUS(bzj_merge(left, right, &mo, &merged, &ph, &qh, &report), BZJ_OK);
+    CHECK(is_nurbs(merged) && is_nurbs(ph) && is_nurbs(qh), "B-spline merge gives NURBS handles");
+    CHECK(report.mu == t && report.max_deviation <= 1e-12, "merged back: deviation %g",
+          report.max_deviation);
+    size_t count = 0;
+    double knots[16];
+    EXPECT_STATUS(bzj_curve_knots(merged, knots, 16, &count), BZJ_OK);
+    CHECK(count == 10, "merged back: %zu knots", count);
+    for (size_t i = 0; i < count && i < 10; i++) {
+        CHECK(fabs(knots[i] - BS_KNOTS[i]) <= 1e-15, "merged back: knot %zu is %g", i, knots[i]);
+    }
+    for (int i = 0; i <= 20; i++) {
+        double u = i / 20.0, x[2], y[2];
+        eval(merged, u, 0, 2, x);
+        de_boor(&w, u, y);
+        CHECK(distance(x, y, 2) <= 1e-12, "merged back at %g: %g", u, distance(x, y, 2));
+    }
+    bzj_curve_free(merged);
+    bzj_curve_free(ph);
+    bzj_curve_free(qh);
+
+    /* two B-splines that were never one curve, of degrees 3 and 2 (the
+       polynomial quadratic on RQ's knots), with the optimal mu */
+    const Spline quad = {2, 2, 5, RQ_POLES, NULL, RQ_KNOTS};
+    BzjCurve* q = nurbs(&quad);
+    mo.split = BZJ_SPLIT_OPTIMAL;
+    mo.fix_ends = true;
+    EXPECT_STATUS(bzj_merge(whole, q, &mo, &merged, &ph, &qh, &report), BZJ_OK);
+    size_t poles = 0;
+    EXPECT_STATUS(bzj_curve_pole_count(merged, &poles), BZJ_OK);
+    /* 6 + 8 - 3 - 1: elevation keeps the quadratic C1 at its knots, so
+       its knots 1 and 2.5 become double (8 poles as a cubic) */
+    CHECK(poles == 10, "merged pole count %zu", poles);
+    CHECK(report.mu > 0.0 && report.mu < 1.0, "optimal mu %g", report.mu);
+    EXPECT_STATUS(bzj_curve_knots(merged, knots, 16, &count), BZJ_OK);
+    for (size_t i = 4; i + 4 < count; i++) {
+        CHECK(fabs(knots[i] - report.mu) > 1e-9, "no knot at the join (knot %zu = %g)", i,
+              knots[i]);
+    }
+    double mismatch = join_mismatch(ph, qh, report.mu);
+    CHECK(mismatch <= 1e-9, "C3 across the join: %g", mismatch);
+    double x[2], y[2];
+    eval(merged, 0.0, 0, 2, x);
+    de_boor(&w, 0.0, y);
+    CHECK(distance(x, y, 2) <= 1e-12, "fix ends: first point moved by %g", distance(x, y, 2));
+    eval(merged, 1.0, 0, 2, x);
+    de_boor(&quad, 4.0, y);
+    CHECK(distance(x, y, 2) <= 1e-12, "fix ends: last point moved by %g", distance(x, y, 2));
+    bzj_curve_free(merged);
+    bzj_curve_free(ph);
+    bzj_curve_free(qh);
+
+    /* a Bezier handle with a NURBS handle: merged as B-splines */
+    const double bez_points[] = {13, 1, 14, 2, 15, 0, 16, 1};
     BzjCurve* b = NULL;
     EXPECT_STATUS(bzj_curve_new(2, 3, bez_points, 8, &b), BZJ_OK);
-    {
-        BzjMergeOptions mo;
-        memset(&mo, 0, sizeof mo);
-        mo.metric = BZJ_METRIC_DISCRETE;
-        mo.split = BZJ_SPLIT_HALF;
-        mo.mu = 0.5;
-        BzjCurve *merged = garbage(), *ph = garbage(), *qh = garbage();
-        EXPECT_STATUS(bzj_merge(n, b, &mo, &merged, &ph, &qh, NULL), BZJ_ERR_INVALID_ARGUMENT);
-        CHECK(merged == NULL && ph == NULL && qh == NULL, "merge outs cleared");
-        expect_message("p: a NURBS curve; bzj_merge takes");
-        EXPECT_STATUS(bzj_merge_to_degree(b, n, &mo, 5, &merged, NULL, NULL, NULL),
-                      BZJ_ERR_INVALID_ARGUMENT);
-        expect_message("bzj_merge_to_degree");
-        BzjChainMergeOptions cmo;
-        memset(&cmo, 0, sizeof cmo);
-        cmo.metric = BZJ_METRIC_DISCRETE;
-        cmo.split = BZJ_CHAIN_SPLIT_UNIFORM;
-        const BzjCurve* chain[2] = {b, n};
-        BzjCurve* pieces[2] = {garbage(), garbage()};
-        double breakpoints[3];
-        EXPECT_STATUS(bzj_merge_chain(chain, 2, &cmo, &merged, pieces, 2, breakpoints, 3, NULL),
-                      BZJ_ERR_INVALID_ARGUMENT);
-        CHECK(merged == NULL && pieces[0] == NULL && pieces[1] == NULL, "merge_chain outs");
-        expect_message("curves[1]: a NURBS curve; bzj_merge_chain");
+    mo.fix_ends = false;
+    EXPECT_STATUS(bzj_merge_to_degree(whole, b, &mo, 4, &merged, NULL, NULL, &report), BZJ_OK);
+    CHECK(is_nurbs(merged), "Bezier with NURBS gives a NURBS");
+    size_t degree = 0;
+    EXPECT_STATUS(bzj_curve_degree(merged, &degree), BZJ_OK);
+    CHECK(degree == 4, "merge_to_degree: degree %zu", degree);
+    bzj_curve_free(merged);
+
+    /* a rational curve is refused by name, outputs cleared */
+    const Spline s = rq();
+    BzjCurve* n = nurbs(&s);
+    merged = garbage();
+    ph = garbage();
+    qh = garbage();
+    EXPECT_STATUS(bzj_merge(n, b, &mo, &merged, &ph, &qh, NULL), BZJ_ERR_INVALID_ARGUMENT);
+    CHECK(merged == NULL && ph == NULL && qh == NULL, "merge outs cleared");
+    expect_message("p: the curve is rational");
+
+    /* a chain: the whole curve cut in three and merged back */
+    BzjCurve *first = NULL, *rest = NULL, *second = NULL, *third = NULL;
+    EXPECT_STATUS(bzj_curve_split(whole, 0.3, &first, &rest), BZJ_OK);
+    EXPECT_STATUS(bzj_curve_split(rest, 0.71, &second, &third), BZJ_OK);
+    BzjChainMergeOptions cmo;
+    memset(&cmo, 0, sizeof cmo);
+    cmo.metric = BZJ_METRIC_DISCRETE;
+    cmo.split = BZJ_CHAIN_SPLIT_GIVEN;
+    const double inner[2] = {0.3, 0.71};
+    cmo.breakpoints = inner;
+    cmo.breakpoint_count = 2;
+    const BzjCurve* chain[3] = {first, second, third};
+    BzjCurve* pieces[3] = {NULL, NULL, NULL};
+    double breakpoints[4];
+    BzjChainMergeReport chain_report;
+    EXPECT_STATUS(bzj_merge_chain(chain, 3, &cmo, &merged, pieces, 3, breakpoints, 4,
+                                  &chain_report),
+                  BZJ_OK);
+    CHECK(chain_report.max_deviation <= 1e-12, "chain merged back: deviation %g",
+          chain_report.max_deviation);
+    for (int i = 0; i <= 20; i++) {
+        double u = i / 20.0;
+        eval(merged, u, 0, 2, x);
+        de_boor(&w, u, y);
+        CHECK(distance(x, y, 2) <= 1e-12, "chain merged back at %g: %g", u, distance(x, y, 2));
     }
-    bzj_curve_free(b);
+    for (int j = 0; j < 3; j++) {
+        CHECK(is_nurbs(pieces[j]), "chain piece %d is NURBS", j);
+        bzj_curve_free(pieces[j]);
+    }
+    bzj_curve_free(merged);
+    bzj_curve_free(first);
+    bzj_curve_free(rest);
+    bzj_curve_free(second);
+    bzj_curve_free(third);
     bzj_curve_free(n);
+    bzj_curve_free(b);
+    bzj_curve_free(q);
+    bzj_curve_free(left);
+    bzj_curve_free(right);
+    bzj_curve_free(whole);
 }
 
 int main(void) {
@@ -1353,7 +1471,7 @@ int main(void) {
     test_operations();
     test_connect();
     test_intersect_and_fillet();
-    test_refusals();
+    test_merge();
     if (failures) {
         fprintf(stderr, "nurbs.c: %d check(s) failed\n", failures);
         return 1;

@@ -162,6 +162,12 @@ def merge(p, q, *, metric="discrete", mu="half", keep_p=False, keep_q=False, fix
     ``metric`` under the chosen constraints (a lower degree is elevated first;
     with ``degree``, both are elevated to it: ``bzj_merge_to_degree``).
 
+    NURBS curves (polynomial B-splines; a rational one is refused by name):
+    ``R`` is a NURBS curve on ``[0, 1]`` with ``P``'s interior knots mapped into
+    ``(0, mu)``, ``Q``'s into ``(mu, 1)`` and no knot at ``mu``; ``P^`` and ``Q^``
+    keep ``P``'s and ``Q``'s knots and parameters, and keep-point parameters are
+    in each curve's domain (mathematics.md section 6).
+
     Args:
         metric: ``"discrete"`` or ``"l2"``.
         mu: ``"half"``, ``"polygon"`` (proportional to control-polygon

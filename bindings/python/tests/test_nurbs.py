@@ -416,7 +416,36 @@ def test_fillet_vertex_rounds_the_wire_corner():
                      lambda: bezjoin.fillet_vertex(arc, down, setback=0.2, gap=1e-9), "gap")
 
 
-def test_operations_not_yet_taking_nurbs_name_the_curve(rational):
-    with Curve([(0, 0), (1, 2), (3, 3), (4, 0)]) as bezier:
-        expect_error("BZJ_ERR_INVALID_ARGUMENT", lambda: bezjoin.merge(rational, bezier),
-                     "p: a NURBS curve", "bzj_merge")
+def test_merge_of_bsplines(rational):
+    """A B-spline cut at a parameter that is not a knot and merged back at the
+    cut's own mu is the original (knots mapped to [0, 1], none at the join);
+    two unrelated B-splines merge into one NURBS whose pieces keep their knots;
+    a rational curve is refused by name."""
+    poles = [(0.0, 0.0), (1.0, 2.0), (2.5, 2.5), (4.0, 0.5), (5.0, 1.5), (6.5, 0.0)]
+    knots = [2.0] * 4 + [3.0, 4.5] + [6.0] * 4
+    with Curve.nurbs(poles, knots, 3) as whole:
+        t = 3.7
+        left, right = whole.split(t)
+        with left, right:
+            mu = (t - 2.0) / 4.0
+            with bezjoin.merge(left, right, mu=mu, metric="l2") as m:
+                assert m.merged.is_nurbs and m.p_hat.is_nurbs and m.q_hat.is_nurbs
+                assert m.max_deviation <= 1e-12
+                assert_close(m.merged.knots, [(k - 2.0) / 4.0 for k in knots], 1e-15)
+                for u in samples(0.0, 1.0):
+                    assert_close(m.merged.derivatives(u, 0)[0],
+                                 de_boor(poles, knots, 3, 2.0 + 4.0 * u), 1e-12)
+                assert m.p_hat.knots == left.knots and m.q_hat.knots == right.knots
+        with Curve.nurbs(RQ_POLES, RQ_KNOTS, 2) as quadratic, \
+                bezjoin.merge(whole, quadratic, mu="optimal", fix_ends=True) as m:
+            assert m.merged.degree == 3
+            inner = m.merged.knots[4:-4]
+            assert all(abs(k - m.mu) > 1e-9 for k in inner)
+            assert_close(m.merged.derivatives(0.0, 0)[0], poles[0], 1e-12)
+            assert_close(m.merged.derivatives(1.0, 0)[0], RQ_POLES[-1], 1e-12)
+        with Curve([(6.5, 0.0), (7, 1), (8, 1), (9, 0)]) as bezier:
+            expect_error("BZJ_ERR_INVALID_ARGUMENT", lambda: bezjoin.merge(rational, bezier),
+                         "p: the curve is rational")
+            with bezjoin.merge_chain([whole, bezier, whole]) as chain:
+                assert chain.merged.is_nurbs and all(c.is_nurbs for c in chain.pieces)
+                assert chain.pieces[0].knots == whole.knots

@@ -8,16 +8,15 @@
 
 use std::mem::{align_of, offset_of, size_of};
 
-use bezjoin_core::BezierCurve;
 use bezjoin_core::BezjoinError;
 use bezjoin_core::{
-    Breakpoints, ChainKeepPoint, ChainMergeOptions, KeepPoint, Merge, MergeMetric, MergeOptions,
-    merge, merge_chain,
+    Breakpoints, ChainKeepPoint, ChainMergeOptions, Curve, CurveMerge, KeepPoint, MergeMetric,
+    MergeOptions, merge_curve_chain, merge_curves,
 };
 
 use crate::guard::guard;
 use crate::handles::{BzjCurve, CheckedOut, HandleArray, HandleOut, ShortArray};
-use crate::pointers::{bezier_ref, input_ref, input_slice, output_slice, write_optional};
+use crate::pointers::{curve_ref, input_ref, input_slice, output_slice, write_optional};
 use crate::status::{BzjStatus, FfiError, FfiResult};
 
 /// What stage 1 minimises.
@@ -225,7 +224,7 @@ unsafe fn merge_outputs(
 /// # Safety
 /// `report` is null or writable.
 unsafe fn write_merge(
-    result: Merge,
+    result: CurveMerge,
     merged: CheckedOut,
     p_hat: HandleOut,
     q_hat: HandleOut,
@@ -256,6 +255,15 @@ unsafe fn write_merge(
 /// degree is elevated first; the merged degree is the higher one.
 /// `p_hat`, `q_hat` and `report` may be NULL when not wanted.
 ///
+/// NURBS handles (mathematics.md section 6, "Merge of B-splines"): two
+/// polynomial B-splines (a Bezier handle counts as a one-span B-spline
+/// when the other is a NURBS handle) are merged into a NURBS `merged` on
+/// [0, 1] whose interior knots are p's mapped into (0, mu) and q's into
+/// (mu, 1), with no knot at mu (one polynomial piece spans the join);
+/// `p_hat` and `q_hat` are NURBS handles on p's and q's own knots and
+/// parameters. Keep-point parameters are in each curve's domain. Two
+/// Bezier handles give the Bezier result as before.
+///
 /// Guarantee: the KKT solve's error estimate and the check "merged split at
 /// mu gives p_hat, q_hat" are both within 1e-8 relative, or the call fails
 /// with BZJ_ERR_ILL_CONDITIONED.
@@ -263,11 +271,11 @@ unsafe fn write_merge(
 /// @return BZJ_ERR_NULL_POINTER if `p`, `q`, `options` or `merged` is NULL,
 ///         or a point array is NULL with a non-zero count;
 ///         BZJ_ERR_INVALID_ARGUMENT if `mu` (with BZJ_SPLIT_GIVEN) is outside
-///         (0, 1), a keep-point parameter is outside [0, 1], an order is above
-///         the degree, an enum or bool field holds an invalid value, a
-///         control polygon has zero length with BZJ_SPLIT_POLYGON, or `p` or
-///         `q` is a NURBS handle (Bezier curves only until the B-spline merge
-///         lands, issue 17);
+///         (0, 1), a keep-point parameter is outside the curve's domain
+///         ([0, 1] for a Bezier), an order is above the degree, an enum or
+///         bool field holds an invalid value, a control polygon has zero
+///         length or is too short next to the other for BZJ_SPLIT_POLYGON,
+///         or `p` or `q` is a rational NURBS handle (the message names it);
 ///         BZJ_ERR_NON_FINITE if `mu` or a keep-point parameter is NaN/infinite;
 ///         BZJ_ERR_DIMENSION_MISMATCH if `p` and `q` differ in dimension;
 ///         BZJ_ERR_INCONSISTENT if the constraints contradict each other or are
@@ -292,16 +300,11 @@ pub unsafe extern "C" fn bzj_merge(
     let [merged, p_hat, q_hat] = unsafe { merge_outputs(merged, p_hat, q_hat) };
     guard(|| {
         // SAFETY: caller contract.
-        let (p, q) = unsafe {
-            (
-                bezier_ref(p, "p", "bzj_merge")?,
-                bezier_ref(q, "q", "bzj_merge")?,
-            )
-        };
+        let (p, q) = unsafe { (curve_ref(p, "p")?, curve_ref(q, "q")?) };
         let merged = merged.require()?;
         // SAFETY: caller contract.
         let options = unsafe { read_options(options) }?;
-        let result = merge(p, q, &options)?;
+        let result = merge_curves(p, q, &options)?;
         // SAFETY: `report` null or writable (caller contract).
         unsafe { write_merge(result, merged, p_hat, q_hat, report) };
         Ok(())
@@ -333,17 +336,12 @@ pub unsafe extern "C" fn bzj_merge_to_degree(
     let [merged, p_hat, q_hat] = unsafe { merge_outputs(merged, p_hat, q_hat) };
     guard(|| {
         // SAFETY: caller contract.
-        let (p, q) = unsafe {
-            (
-                bezier_ref(p, "p", "bzj_merge_to_degree")?,
-                bezier_ref(q, "q", "bzj_merge_to_degree")?,
-            )
-        };
+        let (p, q) = unsafe { (curve_ref(p, "p")?, curve_ref(q, "q")?) };
         let merged = merged.require()?;
         // SAFETY: caller contract.
         let mut options = unsafe { read_options(options) }?;
         options.degree = Some(degree);
-        let result = merge(p, q, &options)?;
+        let result = merge_curves(p, q, &options)?;
         // SAFETY: `report` null or writable (caller contract).
         unsafe { write_merge(result, merged, p_hat, q_hat, report) };
         Ok(())
@@ -443,7 +441,10 @@ pub struct BzjChainMergeReport {
 /// is changed as little as possible (sum of the metrics) into the piece of
 /// `merged` on `[t_j, t_{j+1}]`; the pieces are one curve exactly when
 /// `h_{j+1}^r C_j^(r)(1) = h_j^r C_{j+1}^(r)(0)` at every join (`h_j` the
-/// interval lengths). With two curves this is [`bzj_merge`].
+/// interval lengths). With two curves this is [`bzj_merge`]. If any curve
+/// is a NURBS handle, all are merged as polynomial B-splines into a NURBS
+/// `merged` (each curve's interior knots mapped into its interval, none at
+/// a breakpoint) and the pieces are NURBS handles on the curves' own knots.
 ///
 /// Outputs: `merged` (required); `pieces` (NULL, or an array of
 /// `piece_capacity >= curve_count` handles receiving the changed curves);
@@ -457,10 +458,9 @@ pub struct BzjChainMergeReport {
 ///         BZJ_ERR_INVALID_ARGUMENT if `curve_count < 2`, breakpoints are not
 ///         strictly increasing in (0, 1) or not `curve_count - 1` of them,
 ///         a keep point names a curve that does not exist, its parameter is
-///         outside [0, 1] or its order above the degree, `degree` is below
-///         a curve's degree, an enum/bool field is invalid, or a curve is a
-///         NURBS handle (Bezier curves only until the B-spline merge lands,
-///         issue 17);
+///         outside that curve's domain or its order above the degree,
+///         `degree` is below a curve's degree, an enum/bool field is
+///         invalid, or a curve is a rational NURBS handle;
 ///         BZJ_ERR_NON_FINITE, BZJ_ERR_DIMENSION_MISMATCH, BZJ_ERR_INCONSISTENT,
 ///         BZJ_ERR_SINGULAR, BZJ_ERR_ILL_CONDITIONED as for [`bzj_merge`].
 ///
@@ -502,12 +502,10 @@ pub unsafe extern "C" fn bzj_merge_chain(
         }
         // SAFETY: caller promises `curve_count` handle pointers.
         let handles = unsafe { input_slice(curves, curve_count, "curves") }?;
-        let mut owned: Vec<BezierCurve> = Vec::with_capacity(handles.len());
+        let mut owned: Vec<Curve> = Vec::with_capacity(handles.len());
         for (j, &h) in handles.iter().enumerate() {
             // SAFETY: each is null or a live handle.
-            owned.push(
-                unsafe { bezier_ref(h, &format!("curves[{j}]"), "bzj_merge_chain") }?.clone(),
-            );
+            owned.push(unsafe { curve_ref(h, &format!("curves[{j}]")) }?.clone());
         }
         // SAFETY: same layout (asserted); null or readable.
         let o = unsafe { input_ref(options.cast::<ChainOptionsMirror>(), "options") }?;
@@ -580,7 +578,7 @@ pub unsafe extern "C" fn bzj_merge_chain(
                 )
             }?)
         };
-        let result = merge_chain(&owned, &options)?;
+        let result = merge_curve_chain(&owned, &options)?;
         if let Some(buffer) = breakpoint_buffer {
             buffer.copy_from_slice(&result.report.breakpoints);
         }

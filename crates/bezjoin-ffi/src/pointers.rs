@@ -2,7 +2,7 @@
 //! points: a curve handle to read, input arrays and values, output buffers
 //! of doubles, out-pointers for one value. Handle outputs are in `handles.rs`.
 
-use bezjoin_core::{BezierCurve, BezjoinError, Curve};
+use bezjoin_core::{BezjoinError, Curve};
 
 use crate::handles::BzjCurve;
 use crate::status::{FfiError, FfiResult};
@@ -17,40 +17,6 @@ pub(crate) unsafe fn curve_ref<'a>(ptr: *const BzjCurve, name: &str) -> FfiResul
     unsafe { ptr.as_ref() }
         .map(|h| &h.curve)
         .ok_or_else(|| FfiError::NullPointer(name.into()))
-}
-
-/// The caller's Bezier curve behind `ptr`, for the entry points that do not
-/// take NURBS curves yet: NULL_POINTER naming `name` when NULL,
-/// INVALID_ARGUMENT naming `name` and `function` for a NURBS handle.
-///
-/// # Safety
-/// `ptr` is null or a live handle from this library.
-pub(crate) unsafe fn bezier_ref<'a>(
-    ptr: *const BzjCurve,
-    name: &str,
-    function: &str,
-) -> FfiResult<&'a BezierCurve> {
-    // SAFETY: forwarded.
-    match unsafe { curve_ref(ptr, name) }? {
-        Curve::Bezier(c) => Ok(c),
-        Curve::Nurbs(_) => Err(BezjoinError::invalid(
-            name,
-            format!(
-                "a NURBS curve; {function} takes Bezier curves only until {}",
-                pending_feature(function)
-            ),
-        )
-        .into()),
-    }
-}
-
-/// What NURBS support an entry point refusing NURBS handles is waiting for.
-fn pending_feature(function: &str) -> &'static str {
-    if function.starts_with("bzj_merge") {
-        "the B-spline merge lands (issue 17)"
-    } else {
-        "its NURBS support lands"
-    }
 }
 
 /// The caller's array of `len` doubles; a null pointer is accepted only when `len == 0`.

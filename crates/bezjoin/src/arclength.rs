@@ -32,6 +32,7 @@
 //! fresh call returns, bit for bit.
 
 use std::collections::HashMap;
+use std::hash::{BuildHasherDefault, DefaultHasher};
 
 use crate::basis::binomial;
 use crate::bezier::{BezierCurve, bernstein_horner, norm};
@@ -148,9 +149,15 @@ const MAX_KEPT_PARTIALS: usize = 1 << 16;
 /// computed afresh.
 #[derive(Default)]
 struct Partials {
-    rules: HashMap<(u64, u64), f64>,
-    speeds: HashMap<u64, f64>,
+    rules: FixedKeyMap<(u64, u64), f64>,
+    speeds: FixedKeyMap<u64, f64>,
 }
+
+/// A map hashed with fixed keys rather than the per-process random ones of
+/// `RandomState`: the same input takes the same path through the library in
+/// every run (reproducible fuzzing, scripts/fuzz-short.sh). The keys are
+/// the library's own parameter bits, not an attacker's.
+type FixedKeyMap<K, V> = HashMap<K, V, BuildHasherDefault<DefaultHasher>>;
 
 impl Partials {
     /// `speed.gauss(a, b)`.

@@ -74,6 +74,10 @@ pub use lagrange::{
     bezier_from_lagrange_points, chord_length_params, lagrange_points_of_bezier, lagrange_spline,
 };
 pub use merge::{
+    BSplineChainMerge, BSplineMerge, CurveChainMerge, CurveMerge, merge_bspline_chain,
+    merge_bsplines, merge_bsplines_metric_at, merge_curve_chain, merge_curves,
+};
+pub use merge::{
     Breakpoints, CONSISTENCY_TOLERANCE, CONTRADICTION_MARGIN, ChainKeepPoint, ChainMerge,
     ChainMergeOptions, ChainMergeReport, DEFAULT_MERGE_ACCURACY, DEVIATION_SAMPLES, KeepPoint,
     MU_SEARCH_MAX_STEPS, MU_SEARCH_MIN, MU_SEARCH_SAMPLES, MU_SEARCH_TOLERANCE, Merge, MergeMetric,

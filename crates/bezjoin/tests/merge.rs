@@ -854,6 +854,31 @@ fn errors_name_the_problem() {
             .contains("control polygon of Q has zero length"),
         "{e}"
     );
+    // A polygon shorter than the rounding unit of the total gets an empty
+    // interval (mu = L_P / (L_P + L_Q) rounds to 1): refused by name, for
+    // the pair merge and for a chain whose middle curve is the tiny one
+    // (fuzz finding F9: report.mu = 1 came back with BZJ_OK).
+    let tiny = |at: f64| BezierCurve::new(2, 1, vec![at, 0.0, at + 1e-300, 0.0]).unwrap();
+    let proportional = MergeOptions::default().with_split(Breakpoints::PolygonLength);
+    let tiny_q = tiny(0.0);
+    assert!(
+        tiny_q.polygon_length() > 0.0 && tiny_q.polygon_length() / p.polygon_length() + 1.0 == 1.0
+    );
+    match merge(&p, &tiny_q, &proportional) {
+        Err(BezjoinError::InvalidArgument { name, reason }) => {
+            assert_eq!(name, "split");
+            assert!(reason.contains("control polygon of Q"), "{reason}");
+        }
+        other => panic!("expected InvalidArgument for split, got {other:?}"),
+    }
+    let chain = [p.clone(), tiny(0.0), q.clone()];
+    match merge_chain(&chain, &ChainMergeOptions::default()) {
+        Err(BezjoinError::InvalidArgument { name, reason }) => {
+            assert_eq!(name, "split");
+            assert!(reason.contains("too short"), "{reason}");
+        }
+        other => panic!("expected InvalidArgument for split, got {other:?}"),
+    }
     // An accuracy no solve can meet is refused with the estimate.
     let o = MergeOptions {
         accuracy: 1e-30,

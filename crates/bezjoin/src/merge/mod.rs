@@ -86,6 +86,7 @@
 //!   elevated to `m` (exact) and the degree-`m` problem is solved;
 //! * [`merge_chain`]: `N >= 2` consecutive curves into one, see there.
 
+mod bspline;
 mod kept;
 mod kkt;
 mod rows;
@@ -97,6 +98,11 @@ use crate::error::{
     BezjoinError, Result, check_closed_range, check_finite_scalar, check_open_range, check_positive,
 };
 use crate::minimize::minimize_on_grid_then_brent;
+
+pub use bspline::{
+    BSplineChainMerge, BSplineMerge, CurveChainMerge, CurveMerge, merge_bspline_chain,
+    merge_bsplines, merge_bsplines_metric_at, merge_curve_chain, merge_curves,
+};
 
 pub use stage_one::{
     CONSISTENCY_TOLERANCE, CONTRADICTION_MARGIN, DEVIATION_SAMPLES, RANK_TOLERANCE,
@@ -247,7 +253,8 @@ pub struct Merge {
 /// Errors: dimensions differ (DimensionMismatch); `mu` outside `(0, 1)`,
 /// a keep-point parameter outside `[0, 1]` (ParameterOutOfRange); an order
 /// above the working degree (OrderAboveDegree); a degree below the curves'
-/// or a zero-length control polygon for [`Breakpoints::PolygonLength`]
+/// or, for [`Breakpoints::PolygonLength`], a control polygon of zero
+/// length or too short next to the total for a non-empty interval
 /// (InvalidArgument); NaN/infinity (NonFinite); too many or contradictory
 /// constraints (Inconsistent, naming the constraint); an untrustworthy
 /// solve (IllConditioned, with the estimate).
@@ -267,7 +274,8 @@ pub fn merge(p: &BezierCurve, q: &BezierCurve, options: &MergeOptions) -> Result
         }
         Breakpoints::Uniform => (0.5, problem.solve(0.5, StageOneCheck::Full)?),
         Breakpoints::PolygonLength => {
-            let mu = polygon_breakpoints(&[p, q], &["P", "Q"])?[1];
+            let mu =
+                polygon_breakpoints(&[p.polygon_length(), q.polygon_length()], &["P", "Q"])?[1];
             (mu, problem.solve(mu, StageOneCheck::Full)?)
         }
         Breakpoints::Optimal => {
@@ -530,16 +538,7 @@ pub fn merge_chain(curves: &[BezierCurve], options: &ChainMergeOptions) -> Resul
     let refs: Vec<&BezierCurve> = curves.iter().collect();
     let degree = working_degree(&refs, options.degree)?;
     let names: Vec<String> = (0..count).map(|j| format!("curves[{j}]")).collect();
-    let mut per_curve: Vec<Vec<(usize, &KeepPoint)>> = vec![Vec::new(); count];
-    for (k, kp) in options.keep_points.iter().enumerate() {
-        if kp.curve >= count {
-            return Err(BezjoinError::invalid(
-                format!("keep_points[{k}].curve"),
-                format!("{} is not below the curve count {count}", kp.curve),
-            ));
-        }
-        per_curve[kp.curve].push((k, &kp.point));
-    }
+    let per_curve = chain_keep_points(options, count)?;
     let mut pieces = Vec::with_capacity(count);
     for (j, c) in curves.iter().enumerate() {
         let keep = options.keep.get(j).copied().unwrap_or(false);
@@ -552,7 +551,47 @@ pub fn merge_chain(curves: &[BezierCurve], options: &ChainMergeOptions) -> Resul
             degree,
         )?);
     }
-    let breakpoints = match &options.breakpoints {
+    let lengths: Vec<f64> = curves.iter().map(BezierCurve::polygon_length).collect();
+    let name_refs: Vec<&str> = names.iter().map(String::as_str).collect();
+    let breakpoints = chain_breakpoints(&options.breakpoints, &lengths, &name_refs)?;
+    let stage_one = solve_stage_one(
+        &pieces,
+        &breakpoints,
+        options.metric,
+        options.fix_ends,
+        options.accuracy,
+        StageOneCheck::Full,
+    )?;
+    let (merged, split_check_error) = stage_two(&stage_one.pieces, &breakpoints, options.accuracy)?;
+    let max_deviation = max_deviation(&merged, &refs, &breakpoints);
+    let pieces = stage_one
+        .pieces
+        .iter()
+        .map(BezierCurve::from_matrix)
+        .collect::<Result<Vec<_>>>()?;
+    Ok(ChainMerge {
+        merged,
+        pieces,
+        report: ChainMergeReport {
+            breakpoints,
+            metric_value: stage_one.metric_value,
+            max_deviation,
+            solve_error_estimate: stage_one.error_estimate,
+            split_check_error,
+        },
+    })
+}
+
+/// The breakpoints `0 = t_0 < ... < t_N = 1` of a chain merge of curves
+/// with these control-polygon lengths: the caller's (validated), uniform
+/// or proportional to the lengths; [`Breakpoints::Optimal`] is refused.
+fn chain_breakpoints(
+    breakpoints: &Breakpoints,
+    lengths: &[f64],
+    names: &[&str],
+) -> Result<Vec<f64>> {
+    let count = lengths.len();
+    Ok(match breakpoints {
         Breakpoints::Given(inner) => {
             if inner.len() != count - 1 {
                 return Err(BezjoinError::LengthMismatch {
@@ -584,37 +623,27 @@ pub fn merge_chain(curves: &[BezierCurve], options: &ChainMergeOptions) -> Resul
                  Uniform or PolygonLength",
             ));
         }
-        Breakpoints::PolygonLength => {
-            let names: Vec<&str> = names.iter().map(String::as_str).collect();
-            polygon_breakpoints(&refs, &names)?
-        }
-    };
-    let stage_one = solve_stage_one(
-        &pieces,
-        &breakpoints,
-        options.metric,
-        options.fix_ends,
-        options.accuracy,
-        StageOneCheck::Full,
-    )?;
-    let (merged, split_check_error) = stage_two(&stage_one.pieces, &breakpoints, options.accuracy)?;
-    let max_deviation = max_deviation(&merged, &refs, &breakpoints);
-    let pieces = stage_one
-        .pieces
-        .iter()
-        .map(BezierCurve::from_matrix)
-        .collect::<Result<Vec<_>>>()?;
-    Ok(ChainMerge {
-        merged,
-        pieces,
-        report: ChainMergeReport {
-            breakpoints,
-            metric_value: stage_one.metric_value,
-            max_deviation,
-            solve_error_estimate: stage_one.error_estimate,
-            split_check_error,
-        },
+        Breakpoints::PolygonLength => polygon_breakpoints(lengths, names)?,
     })
+}
+
+/// The keep points of a chain merge grouped by curve, each with its index
+/// in `options.keep_points`; a curve index out of range is refused.
+fn chain_keep_points(
+    options: &ChainMergeOptions,
+    count: usize,
+) -> Result<Vec<Vec<(usize, &KeepPoint)>>> {
+    let mut per_curve: Vec<Vec<(usize, &KeepPoint)>> = vec![Vec::new(); count];
+    for (k, kp) in options.keep_points.iter().enumerate() {
+        if kp.curve >= count {
+            return Err(BezjoinError::invalid(
+                format!("keep_points[{k}].curve"),
+                format!("{} is not below the curve count {count}", kp.curve),
+            ));
+        }
+        per_curve[kp.curve].push((k, &kp.point));
+    }
+    Ok(per_curve)
 }
 
 fn working_degree(curves: &[&BezierCurve], requested: Option<usize>) -> Result<usize> {
@@ -657,8 +686,8 @@ fn piece_input<'a>(
     })
 }
 
-fn polygon_breakpoints(curves: &[&BezierCurve], names: &[&str]) -> Result<Vec<f64>> {
-    let lengths: Vec<f64> = curves.iter().map(|c| c.polygon_length()).collect();
+/// Breakpoints proportional to the control-polygon lengths.
+fn polygon_breakpoints(lengths: &[f64], names: &[&str]) -> Result<Vec<f64>> {
     for (j, &l) in lengths.iter().enumerate() {
         check_finite_scalar("control polygon length", l)?;
         if l <= 0.0 {
@@ -673,6 +702,7 @@ fn polygon_breakpoints(curves: &[&BezierCurve], names: &[&str]) -> Result<Vec<f6
         }
     }
     let total: f64 = lengths.iter().sum();
+    check_finite_scalar("sum of the control polygon lengths", total)?;
     let mut breakpoints = vec![0.0];
     let mut running = 0.0;
     for l in &lengths[..lengths.len() - 1] {
@@ -680,6 +710,21 @@ fn polygon_breakpoints(curves: &[&BezierCurve], names: &[&str]) -> Result<Vec<f6
         breakpoints.push(running / total);
     }
     breakpoints.push(1.0);
+    // A polygon far shorter than the total (below its rounding unit) gets
+    // an interval that rounds to nothing: refuse rather than solve on an
+    // empty piece.
+    if let Some(j) = (0..lengths.len()).find(|&j| breakpoints[j + 1] <= breakpoints[j]) {
+        return Err(BezjoinError::invalid(
+            "split",
+            format!(
+                "the control polygon of {} (length {:e}) is too short next to the total \
+                 length {:e} for a split proportional to polygon lengths: its interval \
+                 rounds to nothing in double precision; give the split explicitly or use \
+                 a uniform one",
+                names[j], lengths[j], total
+            ),
+        ));
+    }
     Ok(breakpoints)
 }
 

@@ -1,0 +1,818 @@
+//! Merge of polynomial B-splines (docs/mathematics.md section 6, "Merge of
+//! B-splines"): the seed's method carried over to B-splines, as the merge
+//! paper's conclusion says it can be ("without significant changes").
+//!
+//! # The method
+//!
+//! Curves `C_0..C_{N-1}` (for [`merge_bsplines`] `P` and `Q`), polynomial
+//! B-splines of one degree `p` (a lower degree is elevated first, exactly;
+//! unclamped knot vectors are clamped first, same shape), and breakpoints
+//! `0 = t_0 < t_1 < ... < t_N = 1` (for two curves `t_1 = mu`). The merged
+//! curve `R` is the B-spline of degree `p` on `[0, 1]` whose interior knots
+//! are those of `C_j` mapped affinely into `(t_j, t_{j+1})` (multiplicities
+//! kept), with **no knot at any `t_j`**: one polynomial piece spans each
+//! join, the paper's `C^n` there (indeed `C^infinity`). `R` has
+//! `sum_j n_j - (N - 1)(p + 1)` poles (`nP + nQ - p - 1` for two curves).
+//!
+//! The unknowns are `R`'s poles `r`. The piece `C^_j = R|[t_j, t_{j+1}]`,
+//! written on `C_j`'s own knots and parameters, has poles `A_j r`: the
+//! restriction matrix `A_j` is knot insertion of `t_j` and `t_{j+1}` (to
+//! multiplicity `p`), exact and linear in `r`. Stage 1 minimises
+//!
+//! ```text
+//! sum_j (A_j r - c_j)^T W_j (A_j r - c_j)
+//! ```
+//!
+//! (`c_j` the poles of `C_j`, summed over the coordinates) with `W_j = I`
+//! for [`MergeMetric::Discrete`] (the sum of squared pole changes) or the
+//! Gram matrix of `C_j`'s B-spline basis divided by its domain's length
+//! for [`MergeMetric::Integral`] (`int |C^_j - C_j|^2 du / (b_j - a_j)`,
+//! each curve in its own parameter, equal weights: for Bezier curves
+//! exactly section 3's metric). The Gram matrix is exact: each span's
+//! basis is written in Bernstein form (Bezier decomposition of the basis
+//! itself) and the Bernstein Gram matrix is used, no quadrature. The
+//! constraints are linear in `r`: fix ends (`R`'s first and last pole),
+//! keep `C_j` (`A_j r = c_j`), keep points with derivatives
+//! (`C^_j^(s)(u_k) = C_j^(s)(u_k)`, `u_k` in `C_j`'s domain). Stage 1 is
+//! one KKT system for all coordinates, its rows orthonormalised first.
+//!
+//! Since the stacked `A_j` have full column rank (a spline is fixed by its
+//! restrictions), the metric is positive definite in `r` and the problem
+//! has one solution whenever the constraints are consistent. For Bezier
+//! curves (one span each) it is section 3's problem with `R`'s control
+//! points as the unknowns: the second, independent formulation that the
+//! Bezier [`merge`](super::merge) is tested against, so both must agree.
+//!
+//! # Guarantees and checks
+//!
+//! * The KKT solve's error estimate (condition times backward error) must
+//!   stay below `accuracy`, else `IllConditioned` with the estimate.
+//! * Constraints that depend linearly on those before them are checked at
+//!   the solution: consistent (accepted), contradictory
+//!   (`Inconsistent`, naming the constraint) or, in between,
+//!   `IllConditioned`, with the Bezier merge's tolerances.
+//! * `R` restricted to every `[t_j, t_{j+1}]` by knot insertion (a second
+//!   computation of the pieces) must give back `A_j r` to `accuracy`
+//!   relative to the coordinate scale, else `IllConditioned`.
+//! * A kept curve is returned bit for bit as its piece (after clamping and
+//!   elevation, which are exact).
+//! * The report's `max_deviation` is measured: [`DEVIATION_SAMPLES`]` + 1`
+//!   evenly spaced parameters of each input curve, `R` at the mapped
+//!   parameter against the input.
+
+use nalgebra::{DMatrix, DVector};
+
+use crate::basis::{KnotSide, basis_derivatives, find_span};
+use crate::bezier::BezierCurve;
+use crate::curve::Curve;
+use crate::error::{BezjoinError, Result, check_open_range, check_positive};
+use crate::linalg::solve_checked;
+use crate::nurbs::NurbsCurve;
+
+use super::rows::{Dependent, Row, WorstUndecided, classify, normalised, summarise};
+use super::stage_one::{
+    CONSISTENCY_TOLERANCE, DEVIATION_SAMPLES, RANK_TOLERANCE, bernstein_gram_matrix,
+};
+use super::{
+    Breakpoints, ChainMergeOptions, ChainMergeReport, KeepPoint, MergeMetric, MergeOptions,
+    MergeReport, chain_breakpoints, chain_keep_points, optimal_mu, polygon_breakpoints,
+};
+
+/// The result of [`merge_bsplines`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct BSplineMerge {
+    /// The single B-spline `R` on `[0, 1]`: `P`'s interior knots mapped
+    /// into `(0, mu)`, `Q`'s into `(mu, 1)`, none at `mu`.
+    pub merged: NurbsCurve,
+    /// `P^ = R|[0, mu]` on `P`'s own knots and parameters.
+    pub p_hat: NurbsCurve,
+    /// `Q^ = R|[mu, 1]` on `Q`'s own knots and parameters.
+    pub q_hat: NurbsCurve,
+    /// Split parameter, metric value, measured deviation and checks.
+    pub report: MergeReport,
+}
+
+/// The result of [`merge_bspline_chain`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct BSplineChainMerge {
+    /// The single B-spline `R` on `[0, 1]`.
+    pub merged: NurbsCurve,
+    /// `C^_j = R|[t_j, t_{j+1}]`, each on `C_j`'s own knots and parameters.
+    pub pieces: Vec<NurbsCurve>,
+    /// Breakpoints, metric value, measured deviation and checks.
+    pub report: ChainMergeReport,
+}
+
+/// Merge two polynomial B-splines `P` and `Q` into one B-spline `R`, C^p
+/// across the join with no knot there (docs/mathematics.md section 6,
+/// "Merge of B-splines"; the module documentation states the method).
+///
+/// Every option of [`merge`](super::merge) applies: both metrics, every
+/// split ([`Breakpoints::Optimal`] searches `mu` as there), keep `P` / `Q`,
+/// fix ends, keep points (`param` in the curve's own domain, orders up to
+/// the working degree) and `degree` (elevates both curves).
+///
+/// Guarantee: `P^`, `Q^` are `R`'s pieces at `mu`, satisfy the constraints
+/// and minimise the metric among all such pairs (checked as the module
+/// says). Two Bezier curves (as one-span B-splines) give section 3's answer.
+///
+/// Errors: a rational curve (InvalidArgument naming `p` or `q`); the
+/// errors of [`merge`](super::merge) otherwise, and InvalidArgument for
+/// `mu` when an interior knot of `P` or `Q`, mapped, would round onto the
+/// join or an end.
+pub fn merge_bsplines(
+    p: &NurbsCurve,
+    q: &NurbsCurve,
+    options: &MergeOptions,
+) -> Result<BSplineMerge> {
+    let problem = SplineProblem::new(
+        &[p, q],
+        &["p".into(), "q".into()],
+        &[options.keep_p, options.keep_q],
+        vec![
+            ("p_points", options.p_points.iter().enumerate().collect()),
+            ("q_points", options.q_points.iter().enumerate().collect()),
+        ],
+        Settings {
+            metric: options.metric,
+            fix_ends: options.fix_ends,
+            degree: options.degree,
+            accuracy: options.accuracy,
+        },
+    )?;
+    let mu = match &options.split {
+        Breakpoints::Given(inner) => {
+            let &[mu] = inner.as_slice() else {
+                return Err(BezjoinError::LengthMismatch {
+                    name: "mu".into(),
+                    expected: 1,
+                    actual: inner.len(),
+                });
+            };
+            check_open_range("mu", mu, 0.0, 1.0)?;
+            mu
+        }
+        Breakpoints::Uniform => 0.5,
+        Breakpoints::PolygonLength => {
+            polygon_breakpoints(&[p.polygon_length(), q.polygon_length()], &["P", "Q"])?[1]
+        }
+        Breakpoints::Optimal => {
+            optimal_mu(|mu| problem.stage_one(&[0.0, mu, 1.0]).map(|s| s.metric_value))?
+        }
+    };
+    let breakpoints = [0.0, mu, 1.0];
+    let solved = problem.solve(&breakpoints)?;
+    let mut pieces = solved.pieces.into_iter();
+    let p_hat = pieces.next().expect("two pieces");
+    let q_hat = pieces.next().expect("two pieces");
+    Ok(BSplineMerge {
+        merged: solved.merged,
+        p_hat,
+        q_hat,
+        report: MergeReport {
+            mu,
+            metric_value: solved.metric_value,
+            max_deviation: solved.max_deviation,
+            solve_error_estimate: solved.error_estimate,
+            split_check_error: solved.split_check_error,
+        },
+    })
+}
+
+/// The metric value of the stage-1 optimum of [`merge_bsplines`] at a given
+/// `mu` (the function [`Breakpoints::Optimal`] minimises); `options.split`
+/// is ignored.
+pub fn merge_bsplines_metric_at(
+    p: &NurbsCurve,
+    q: &NurbsCurve,
+    options: &MergeOptions,
+    mu: f64,
+) -> Result<f64> {
+    check_open_range("mu", mu, 0.0, 1.0)?;
+    let problem = SplineProblem::new(
+        &[p, q],
+        &["p".into(), "q".into()],
+        &[options.keep_p, options.keep_q],
+        vec![
+            ("p_points", options.p_points.iter().enumerate().collect()),
+            ("q_points", options.q_points.iter().enumerate().collect()),
+        ],
+        Settings {
+            metric: options.metric,
+            fix_ends: options.fix_ends,
+            degree: options.degree,
+            accuracy: options.accuracy,
+        },
+    )?;
+    Ok(problem.stage_one(&[0.0, mu, 1.0])?.metric_value)
+}
+
+/// Merge `N >= 2` consecutive polynomial B-splines into one B-spline `R`,
+/// `C_j` becoming `R` on `[t_j, t_{j+1}]` with its interior knots mapped
+/// there and no knot at any `t_j` (the module documentation states the
+/// method). The options are [`merge_chain`](super::merge_chain)'s: keep
+/// points name their curve and take `param` in that curve's domain;
+/// [`Breakpoints::Optimal`] is refused.
+///
+/// Errors: a rational curve (InvalidArgument naming `curves[j]`); the
+/// errors of [`merge_chain`](super::merge_chain) otherwise.
+pub fn merge_bspline_chain(
+    curves: &[NurbsCurve],
+    options: &ChainMergeOptions,
+) -> Result<BSplineChainMerge> {
+    let count = curves.len();
+    if count < 2 {
+        return Err(BezjoinError::invalid(
+            "curves",
+            format!("{count} curves given, at least 2 are needed"),
+        ));
+    }
+    if !options.keep.is_empty() && options.keep.len() != count {
+        return Err(BezjoinError::LengthMismatch {
+            name: "keep".into(),
+            expected: count,
+            actual: options.keep.len(),
+        });
+    }
+    let refs: Vec<&NurbsCurve> = curves.iter().collect();
+    let names: Vec<String> = (0..count).map(|j| format!("curves[{j}]")).collect();
+    let keep: Vec<bool> = (0..count)
+        .map(|j| options.keep.get(j).copied().unwrap_or(false))
+        .collect();
+    let points = chain_keep_points(options, count)?
+        .into_iter()
+        .map(|p| ("keep_points", p))
+        .collect();
+    let problem = SplineProblem::new(
+        &refs,
+        &names,
+        &keep,
+        points,
+        Settings {
+            metric: options.metric,
+            fix_ends: options.fix_ends,
+            degree: options.degree,
+            accuracy: options.accuracy,
+        },
+    )?;
+    let lengths: Vec<f64> = curves.iter().map(NurbsCurve::polygon_length).collect();
+    let name_refs: Vec<&str> = names.iter().map(String::as_str).collect();
+    let breakpoints = chain_breakpoints(&options.breakpoints, &lengths, &name_refs)?;
+    let solved = problem.solve(&breakpoints)?;
+    Ok(BSplineChainMerge {
+        merged: solved.merged,
+        pieces: solved.pieces,
+        report: ChainMergeReport {
+            breakpoints,
+            metric_value: solved.metric_value,
+            max_deviation: solved.max_deviation,
+            solve_error_estimate: solved.error_estimate,
+            split_check_error: solved.split_check_error,
+        },
+    })
+}
+
+/// The options every B-spline merge shares.
+struct Settings {
+    metric: MergeMetric,
+    fix_ends: bool,
+    degree: Option<usize>,
+    accuracy: f64,
+}
+
+/// One input curve at the working degree, clamped, with its constraints.
+struct Piece<'a> {
+    /// The caller's curve (for the measured deviation).
+    original: &'a NurbsCurve,
+    /// Clamped and elevated: same shape and parameters as `original`.
+    curve: NurbsCurve,
+    /// `P`, `Q` or `curves[j]`.
+    label: String,
+    keep: bool,
+    /// Keep points with their index in the caller's array and its name.
+    points_name: &'static str,
+    points: Vec<(usize, &'a KeepPoint)>,
+    /// Poles, `n_j x dim`.
+    poles: DMatrix<f64>,
+    /// `W_j` of the metric.
+    weight: DMatrix<f64>,
+}
+
+/// Validated curves and settings: what a solve at any breakpoints needs.
+struct SplineProblem<'a> {
+    pieces: Vec<Piece<'a>>,
+    degree: usize,
+    dim: usize,
+    fix_ends: bool,
+    accuracy: f64,
+    /// Largest absolute pole coordinate of the inputs.
+    scale: f64,
+}
+
+/// Stage 1 at given breakpoints.
+struct StageOne {
+    knots: Vec<f64>,
+    /// `R`'s poles, `n_R x dim`.
+    poles: DMatrix<f64>,
+    /// `A_j r` for every piece.
+    pieces: Vec<DMatrix<f64>>,
+    metric_value: f64,
+    error_estimate: f64,
+}
+
+/// A finished merge.
+struct Solved {
+    merged: NurbsCurve,
+    pieces: Vec<NurbsCurve>,
+    metric_value: f64,
+    max_deviation: f64,
+    error_estimate: f64,
+    split_check_error: f64,
+}
+
+/// The curve whose poles are the unit vectors of dimension `n` on `knots`:
+/// any knot operation on it gives the matrix of that operation on the poles
+/// of every curve with these knots.
+fn identity_curve(degree: usize, knots: &[f64]) -> Result<NurbsCurve> {
+    let n = knots.len() - degree - 1;
+    NurbsCurve::new(
+        n,
+        degree,
+        DMatrix::<f64>::identity(n, n).as_slice().to_vec(),
+        None,
+        knots.to_vec(),
+    )
+}
+
+/// The poles of a curve as an `n x dim` matrix.
+fn pole_matrix(c: &NurbsCurve) -> DMatrix<f64> {
+    DMatrix::from_row_slice(c.point_count(), c.dim(), c.points())
+}
+
+/// `W_j` of [`MergeMetric::Integral`]: `int N_i N_k du / (b - a)` over the
+/// clamped curve's domain, exact (Bernstein form of every span).
+fn normalised_gram(curve: &NurbsCurve) -> Result<DMatrix<f64>> {
+    let p = curve.degree();
+    let n = curve.point_count();
+    let (a, b) = curve.domain();
+    let bernstein = bernstein_gram_matrix(p);
+    let mut gram = DMatrix::zeros(n, n);
+    for span in identity_curve(p, curve.knots())?.bezier_spans() {
+        let (s0, s1) = span.domain();
+        // Row i of the span's poles is Bernstein coefficient i of every
+        // basis function: S (p+1 x n).
+        let s = pole_matrix(&span);
+        gram += (s.transpose() * &bernstein * &s) * ((s1 - s0) / (b - a));
+    }
+    Ok(gram)
+}
+
+impl<'a> SplineProblem<'a> {
+    /// Validates the curves (polynomial, one dimension), the keep points
+    /// and the settings; clamps and elevates.
+    fn new(
+        curves: &[&'a NurbsCurve],
+        names: &[String],
+        keep: &[bool],
+        points: Vec<(&'static str, Vec<(usize, &'a KeepPoint)>)>,
+        settings: Settings,
+    ) -> Result<Self> {
+        check_positive("accuracy", settings.accuracy)?;
+        let dim = curves[0].dim();
+        for (j, c) in curves.iter().enumerate() {
+            if c.dim() != dim {
+                return Err(BezjoinError::DimensionMismatch {
+                    name: names[j].clone(),
+                    expected: dim,
+                    actual: c.dim(),
+                });
+            }
+            if c.is_rational() {
+                return Err(BezjoinError::invalid(
+                    names[j].clone(),
+                    "the curve is rational (its weights differ): a merge of B-splines takes \
+                     polynomial B-splines, since R restricted to a piece is polynomial",
+                ));
+            }
+        }
+        let highest = curves.iter().map(|c| c.degree()).max().unwrap_or(0);
+        let degree = match settings.degree {
+            None => highest,
+            Some(m) if m >= highest => m,
+            Some(m) => {
+                return Err(BezjoinError::invalid(
+                    "degree",
+                    format!("{m} is below the highest degree {highest} of the curves to merge"),
+                ));
+            }
+        };
+        let mut pieces = Vec::with_capacity(curves.len());
+        for (j, ((c, (points_name, points)), &keep)) in
+            curves.iter().zip(points).zip(keep).enumerate()
+        {
+            for &(k, kp) in &points {
+                c.check_parameter(&format!("{points_name}[{k}].param"), kp.param)?;
+                if kp.max_order > degree {
+                    return Err(BezjoinError::OrderAboveDegree {
+                        name: format!("{points_name}[{k}].max_order"),
+                        order: kp.max_order,
+                        degree,
+                        curve: names[j].clone(),
+                    });
+                }
+            }
+            let curve = c.clamped().elevate_degree(degree)?;
+            let weight = match settings.metric {
+                MergeMetric::Discrete => {
+                    DMatrix::identity(curve.point_count(), curve.point_count())
+                }
+                MergeMetric::Integral => normalised_gram(&curve)?,
+            };
+            pieces.push(Piece {
+                original: c,
+                poles: pole_matrix(&curve),
+                curve,
+                label: match names[j].as_str() {
+                    "p" => "P".into(),
+                    "q" => "Q".into(),
+                    other => other.into(),
+                },
+                keep,
+                points_name,
+                points,
+                weight,
+            });
+        }
+        let scale = pieces
+            .iter()
+            .map(|p| p.poles.amax())
+            .fold(f64::MIN_POSITIVE, f64::max);
+        Ok(Self {
+            pieces,
+            degree,
+            dim,
+            fix_ends: settings.fix_ends,
+            accuracy: settings.accuracy,
+            scale,
+        })
+    }
+
+    /// `R`'s knot vector for the breakpoints: every piece's interior knots
+    /// mapped into its interval, none at a breakpoint.
+    fn merged_knots(&self, breakpoints: &[f64]) -> Result<Vec<f64>> {
+        let p = self.degree;
+        let mut knots = vec![0.0; p + 1];
+        for (j, piece) in self.pieces.iter().enumerate() {
+            let (t0, t1) = (breakpoints[j], breakpoints[j + 1]);
+            let (a, b) = piece.curve.domain();
+            let n = piece.curve.point_count();
+            for &k in &piece.curve.knots()[p + 1..n] {
+                let mapped = t0 + (t1 - t0) * ((k - a) / (b - a));
+                if !(mapped > t0 && mapped < t1) {
+                    return Err(BezjoinError::invalid(
+                        if self.pieces.len() == 2 {
+                            "mu"
+                        } else {
+                            "breakpoints"
+                        },
+                        format!(
+                            "the interior knot {k} of {} maps to {mapped}, which rounds onto \
+                             the end of its interval [{t0}, {t1}] of R",
+                            piece.label
+                        ),
+                    ));
+                }
+                knots.push(mapped);
+            }
+        }
+        knots.extend(std::iter::repeat_n(1.0, p + 1));
+        Ok(knots)
+    }
+
+    /// The constraint rows on `R`'s poles (unit length, unnormalised
+    /// right-hand sides scaled alike), in the order fix ends, kept curves,
+    /// keep points.
+    fn rows(&self, restrictions: &[DMatrix<f64>], unknowns: usize) -> Result<Vec<Row>> {
+        let d = self.dim;
+        let mut rows = Vec::new();
+        let last_piece = self.pieces.len() - 1;
+        if self.fix_ends {
+            let first = &self.pieces[0];
+            let last = &self.pieces[last_piece];
+            let mut row = DVector::zeros(unknowns);
+            row[0] = 1.0;
+            rows.push(Row {
+                coefficients: row,
+                rhs: first.poles.row(0).transpose(),
+                label: format!("fix ends (first point of {})", first.label),
+            });
+            let mut row = DVector::zeros(unknowns);
+            row[unknowns - 1] = 1.0;
+            rows.push(Row {
+                coefficients: row,
+                rhs: last.poles.row(last.poles.nrows() - 1).transpose(),
+                label: format!("fix ends (last point of {})", last.label),
+            });
+        }
+        for (piece, a) in self.pieces.iter().zip(restrictions) {
+            if piece.keep {
+                for i in 0..a.nrows() {
+                    rows.push(normalised(Row {
+                        coefficients: a.row(i).transpose(),
+                        rhs: piece.poles.row(i).transpose(),
+                        label: format!("keep {} (pole {i})", piece.label),
+                    }));
+                }
+            }
+        }
+        let p = self.degree;
+        for (piece, a) in self.pieces.iter().zip(restrictions) {
+            let knots = piece.curve.knots();
+            for &(k, kp) in &piece.points {
+                let span = find_span(knots, p, kp.param, KnotSide::Right);
+                let basis = basis_derivatives(knots, p, span, kp.param, kp.max_order);
+                let values = piece.curve.eval_derivatives(kp.param, kp.max_order);
+                for s in 0..=kp.max_order {
+                    let mut coefficients = DVector::zeros(unknowns);
+                    for jb in 0..=p {
+                        let weight = basis[(s, jb)];
+                        if weight != 0.0 {
+                            coefficients.axpy(weight, &a.row(span - p + jb).transpose(), 1.0);
+                        }
+                    }
+                    rows.push(normalised(Row {
+                        coefficients,
+                        rhs: DVector::from_column_slice(&values[s * d..(s + 1) * d]),
+                        label: format!(
+                            "{}[{k}] (derivative {s} of {} at {})",
+                            piece.points_name, piece.label, kp.param
+                        ),
+                    }));
+                }
+            }
+        }
+        Ok(rows)
+    }
+
+    /// Stage 1: `R`'s poles minimising the metric under the constraints,
+    /// checked.
+    fn stage_one(&self, breakpoints: &[f64]) -> Result<StageOne> {
+        let p = self.degree;
+        let d = self.dim;
+        let knots = self.merged_knots(breakpoints)?;
+        let unknowns = knots.len() - p - 1;
+        let identity = identity_curve(p, &knots)?;
+        let mut restrictions = Vec::with_capacity(self.pieces.len());
+        for (j, piece) in self.pieces.iter().enumerate() {
+            let segment = identity.segment(breakpoints[j], breakpoints[j + 1])?;
+            let a = pole_matrix(&segment);
+            debug_assert_eq!(a.nrows(), piece.poles.nrows());
+            restrictions.push(a);
+        }
+        let mut hessian = DMatrix::zeros(unknowns, unknowns);
+        let mut gradient = DMatrix::zeros(unknowns, d);
+        for (piece, a) in self.pieces.iter().zip(&restrictions) {
+            let wa = &piece.weight * a;
+            hessian += a.transpose() * &wa;
+            gradient += wa.transpose() * &piece.poles;
+        }
+        // Entries of order one for the solve (the solution is unchanged).
+        let norm = hessian.amax();
+        hessian /= norm;
+        gradient /= norm;
+
+        // Orthonormal basis of the constraint rows (two Gram-Schmidt
+        // passes); a row with a remainder at the rounding level depends on
+        // those before it and is checked at the solution instead.
+        let rank_tolerance = RANK_TOLERANCE * (unknowns as f64).sqrt();
+        let mut basis: Vec<(DVector<f64>, DVector<f64>)> = Vec::new();
+        let mut independent: Vec<&str> = Vec::new();
+        let mut dependent = Vec::new();
+        let rows = self.rows(&restrictions, unknowns)?;
+        for row in &rows {
+            let mut v = row.coefficients.clone();
+            let mut rhs = row.rhs.clone();
+            for _ in 0..2 {
+                for (b, b_rhs) in &basis {
+                    let dot = b.dot(&v);
+                    v.axpy(-dot, b, 1.0);
+                    rhs.axpy(-dot, b_rhs, 1.0);
+                }
+            }
+            let remainder = v.norm();
+            if remainder > rank_tolerance && basis.len() < unknowns {
+                basis.push((v / remainder, rhs / remainder));
+                independent.push(&row.label);
+            } else {
+                dependent.push(row);
+            }
+        }
+        let size = unknowns + basis.len();
+        let mut kkt = DMatrix::zeros(size, size);
+        let mut rhs = DMatrix::zeros(size, d);
+        kkt.view_mut((0, 0), (unknowns, unknowns))
+            .copy_from(&hessian);
+        rhs.rows_mut(0, unknowns).copy_from(&gradient);
+        for (k, (coefficients, row_rhs)) in basis.iter().enumerate() {
+            for i in 0..unknowns {
+                kkt[(unknowns + k, i)] = coefficients[i];
+                kkt[(i, unknowns + k)] = coefficients[i];
+            }
+            rhs.row_mut(unknowns + k).copy_from(&row_rhs.transpose());
+        }
+        let solution = solve_checked(&kkt, &rhs, "the B-spline merge KKT system")?;
+        let estimate = solution.error_estimate();
+        let poles = solution.x.rows(0, unknowns).into_owned();
+
+        let result_scale = poles.amax().max(self.scale);
+        let tolerance = CONSISTENCY_TOLERANCE.max(self.accuracy) * result_scale;
+        let root = (unknowns as f64).sqrt();
+        let explained = root * (estimate + unknowns as f64 * f64::EPSILON) * result_scale;
+        let mut undecided = WorstUndecided::default();
+        for row in &dependent {
+            let residual = (poles.transpose() * &row.coefficients - &row.rhs).amax();
+            match classify(residual, tolerance, explained) {
+                Dependent::Contradictory => {
+                    return Err(BezjoinError::Inconsistent {
+                        reason: format!(
+                            "{} contradicts the constraints before it{} (it depends linearly \
+                             on them but would need a change of {residual:e}, coordinate \
+                             scale {result_scale:e}); R has {unknowns} poles per coordinate \
+                             (knots of degree {p}), {} independent conditions were given",
+                            row.label,
+                            if independent.is_empty() {
+                                String::new()
+                            } else {
+                                format!(" ({})", summarise(&independent))
+                            },
+                            basis.len()
+                        ),
+                    });
+                }
+                Dependent::Undecided => undecided.note(residual, &row.label),
+                Dependent::Consistent => {}
+            }
+        }
+        if estimate > self.accuracy {
+            return Err(BezjoinError::IllConditioned {
+                what: format!(
+                    "B-spline merge stage 1 (KKT system of size {size}, condition estimate {:e})",
+                    solution.condition
+                ),
+                estimate,
+                limit: self.accuracy,
+            });
+        }
+        undecided.into_result(result_scale, self.accuracy)?;
+
+        let mut metric_value = 0.0;
+        let mut pieces = Vec::with_capacity(self.pieces.len());
+        for (piece, a) in self.pieces.iter().zip(&restrictions) {
+            let hat = a * &poles;
+            let change = &hat - &piece.poles;
+            metric_value += (change.transpose() * &piece.weight * &change).trace();
+            pieces.push(hat);
+        }
+        Ok(StageOne {
+            knots,
+            poles,
+            pieces,
+            metric_value,
+            error_estimate: estimate,
+        })
+    }
+
+    /// Stage 1, then `R` and its pieces as curves, the split check and the
+    /// measured deviation.
+    fn solve(&self, breakpoints: &[f64]) -> Result<Solved> {
+        let one = self.stage_one(breakpoints)?;
+        let (p, d) = (self.degree, self.dim);
+        let merged = NurbsCurve::new(d, p, row_major(&one.poles), None, one.knots.clone())?;
+        let result_scale = one.poles.amax().max(self.scale);
+        let mut split_check_error = 0.0f64;
+        let mut pieces = Vec::with_capacity(self.pieces.len());
+        for (j, (piece, hat)) in self.pieces.iter().zip(&one.pieces).enumerate() {
+            let restricted = merged.segment(breakpoints[j], breakpoints[j + 1])?;
+            let difference = (pole_matrix(&restricted) - hat).amax() / result_scale;
+            split_check_error = split_check_error.max(difference);
+            pieces.push(if piece.keep {
+                piece.curve.clone()
+            } else {
+                NurbsCurve::new(d, p, row_major(hat), None, piece.curve.knots().to_vec())?
+            });
+        }
+        if split_check_error > self.accuracy || split_check_error.is_nan() {
+            return Err(BezjoinError::IllConditioned {
+                what: "B-spline merge (R restricted to the pieces' intervals against the \
+                       stage-1 pieces)"
+                    .into(),
+                estimate: split_check_error,
+                limit: self.accuracy,
+            });
+        }
+        let mut max_deviation = 0.0f64;
+        for (j, piece) in self.pieces.iter().enumerate() {
+            let (t0, t1) = (breakpoints[j], breakpoints[j + 1]);
+            let (a, b) = piece.original.domain();
+            for s in 0..=DEVIATION_SAMPLES {
+                let f = s as f64 / DEVIATION_SAMPLES as f64;
+                let u = if s == DEVIATION_SAMPLES {
+                    b
+                } else {
+                    a + (b - a) * f
+                };
+                let on_r = merged.eval(t0 + (t1 - t0) * f);
+                let on_c = piece.original.eval(u);
+                max_deviation = max_deviation.max(crate::bezier::distance(&on_r, &on_c));
+            }
+        }
+        Ok(Solved {
+            merged,
+            pieces,
+            metric_value: one.metric_value,
+            max_deviation,
+            error_estimate: one.error_estimate,
+            split_check_error,
+        })
+    }
+}
+
+/// The rows of `m` one after the other.
+fn row_major(m: &DMatrix<f64>) -> Vec<f64> {
+    m.transpose().as_slice().to_vec()
+}
+
+/// The result of [`merge_curves`]: Bezier curves when both inputs were
+/// Bezier curves, B-splines otherwise.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CurveMerge {
+    /// The single curve `R`.
+    pub merged: Curve,
+    /// `P^`, the piece of `R` on `[0, mu]` in `P`'s parameters.
+    pub p_hat: Curve,
+    /// `Q^`, the piece of `R` on `[mu, 1]` in `Q`'s parameters.
+    pub q_hat: Curve,
+    /// Split parameter, metric value, measured deviation and checks.
+    pub report: MergeReport,
+}
+
+/// The result of [`merge_curve_chain`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct CurveChainMerge {
+    /// The single curve `R`.
+    pub merged: Curve,
+    /// `C^_j`, the piece of `R` on `[t_j, t_{j+1}]` in `C_j`'s parameters.
+    pub pieces: Vec<Curve>,
+    /// Breakpoints, metric value, measured deviation and checks.
+    pub report: ChainMergeReport,
+}
+
+/// Merge any two curves: two Bezier curves by [`merge`](super::merge)
+/// (section 3, a Bezier `R`), anything else by [`merge_bsplines`] (Bezier
+/// inputs taken as one-span B-splines; a rational input is refused).
+pub fn merge_curves(p: &Curve, q: &Curve, options: &MergeOptions) -> Result<CurveMerge> {
+    if let (Curve::Bezier(p), Curve::Bezier(q)) = (p, q) {
+        let m = super::merge(p, q, options)?;
+        return Ok(CurveMerge {
+            merged: m.merged.into(),
+            p_hat: m.p_hat.into(),
+            q_hat: m.q_hat.into(),
+            report: m.report,
+        });
+    }
+    let m = merge_bsplines(&p.to_nurbs(), &q.to_nurbs(), options)?;
+    Ok(CurveMerge {
+        merged: m.merged.into(),
+        p_hat: m.p_hat.into(),
+        q_hat: m.q_hat.into(),
+        report: m.report,
+    })
+}
+
+/// Merge a chain of any curves: all Bezier by
+/// [`merge_chain`](super::merge_chain), otherwise by
+/// [`merge_bspline_chain`].
+pub fn merge_curve_chain(curves: &[Curve], options: &ChainMergeOptions) -> Result<CurveChainMerge> {
+    let beziers: Option<Vec<BezierCurve>> = curves
+        .iter()
+        .map(|c| match c {
+            Curve::Bezier(b) => Some(b.clone()),
+            Curve::Nurbs(_) => None,
+        })
+        .collect();
+    if let Some(beziers) = beziers {
+        let m = super::merge_chain(&beziers, options)?;
+        return Ok(CurveChainMerge {
+            merged: m.merged.into(),
+            pieces: m.pieces.into_iter().map(Curve::from).collect(),
+            report: m.report,
+        });
+    }
+    let nurbs: Vec<NurbsCurve> = curves.iter().map(Curve::to_nurbs).collect();
+    let m = merge_bspline_chain(&nurbs, options)?;
+    Ok(CurveChainMerge {
+        merged: m.merged.into(),
+        pieces: m.pieces.into_iter().map(Curve::from).collect(),
+        report: m.report,
+    })
+}
