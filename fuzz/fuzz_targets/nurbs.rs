@@ -4,7 +4,8 @@
 //! count, with short buffers and size queries), evaluation (single and
 //! many, any order), split, segment, reverse, elevate, length, Bezier
 //! spans, conversion, connect, intersection and the fillets (`bzj_fillet`,
-//! `bzj_fillet_vertex` against the reversed curve, `bzj_fillet_chain`), and
+//! `bzj_fillet_vertex` against the reversed curve, `bzj_fillet_chain`), the
+//! B-spline merge (`bzj_merge` of two NURBS handles), and
 //! `bzj_nurbs_ellipse_arc` with fuzzed arguments.
 #![no_main]
 
@@ -16,6 +17,64 @@ use std::ptr::{null, null_mut};
 /// `[-0.5, 1.5]`, so ends and outside values are reached too).
 fn in_domain(input: &mut Input, a: f64, b: f64) -> f64 {
     a + input.parameter() * (b - a)
+}
+
+/// `bzj_merge` of two NURBS handles (the B-spline merge; a rational one
+/// is refused) with fuzzed metric, split, `mu`, flags and keep points in
+/// and around the domains: on success `0 < mu < 1` and a live handle.
+///
+/// # Safety
+/// `p` and `q` are live handles.
+unsafe fn merge_pair(input: &mut Input, p: *mut BzjCurve, q: *mut BzjCurve) {
+    let mut points = [BzjKeepPoint {
+        param: 0.0,
+        max_order: 0,
+    }; 2];
+    let (mut a, mut b) = (0.0, 0.0);
+    // SAFETY: live handle, writable outs.
+    unsafe { bzj_curve_domain(q, &mut a, &mut b) };
+    for kp in &mut points {
+        kp.param = in_domain(input, a, b);
+        kp.max_order = input.below(5);
+    }
+    let options = BzjMergeOptions {
+        metric: if input.byte().is_multiple_of(2) {
+            BzjMetric::BZJ_METRIC_DISCRETE
+        } else {
+            BzjMetric::BZJ_METRIC_L2
+        },
+        split: match input.byte() % 4 {
+            0 => BzjSplit::BZJ_SPLIT_GIVEN,
+            1 => BzjSplit::BZJ_SPLIT_HALF,
+            2 => BzjSplit::BZJ_SPLIT_POLYGON,
+            _ => BzjSplit::BZJ_SPLIT_OPTIMAL,
+        },
+        mu: input.parameter(),
+        keep_p: input.byte().is_multiple_of(4),
+        keep_q: input.byte().is_multiple_of(4),
+        fix_ends: input.byte().is_multiple_of(2),
+        p_points: null(),
+        p_point_count: 0,
+        q_points: points.as_ptr(),
+        q_point_count: input.below(3),
+    };
+    let (mut merged, mut p_hat, mut q_hat) = (null_mut(), null_mut(), null_mut());
+    let mut report = BzjMergeReport {
+        mu: f64::NAN,
+        metric_value: f64::NAN,
+        max_deviation: f64::NAN,
+    };
+    // SAFETY: live handles, readable options, writable outs.
+    let status = unsafe {
+        bzj_merge(p, q, &options, &mut merged, &mut p_hat, &mut q_hat, &mut report)
+    };
+    check_and_free(status, merged, "bzj_merge");
+    check_and_free(status, p_hat, "bzj_merge");
+    check_and_free(status, q_hat, "bzj_merge");
+    if status == BzjStatus::BZJ_OK {
+        assert!(report.mu > 0.0 && report.mu < 1.0, "bzj_merge: mu = {}", report.mu);
+        assert!(report.max_deviation >= 0.0, "bzj_merge: {}", report.max_deviation);
+    }
 }
 
 fuzz_target!(|data: &[u8]| {
@@ -173,6 +232,7 @@ fuzz_target!(|data: &[u8]| {
                             check_and_free(BzjStatus::BZJ_OK, p, "bzj_fillet_chain");
                         }
                     }
+                    merge_pair(&mut input, c, q);
                     if let Some(o) = other {
                         bzj_curve_free(o);
                     }

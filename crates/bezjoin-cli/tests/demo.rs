@@ -29,8 +29,9 @@ fn listed_scenarios(index: &str) -> Vec<String> {
 /// The demo's scenarios: connections without and with interior constraints,
 /// symmetric and asymmetric corner rounding, a wire of an arc, a line and a
 /// rational B-spline with every vertex rounded, merges with each metric and
-/// each constraint kind, Lagrange splines, and an intersection.
-const SCENARIOS: [&str; 15] = [
+/// each constraint kind and of two B-splines, Lagrange splines, and an
+/// intersection.
+const SCENARIOS: [&str; 16] = [
     "connect-plain",
     "connect-constrained",
     "connect-auto-scale",
@@ -43,6 +44,7 @@ const SCENARIOS: [&str; 15] = [
     "merge-keep-q",
     "merge-fix-ends",
     "merge-keep-point",
+    "merge-bsplines",
     "spline-cubic-c1",
     "spline-quintic-c2",
     "intersect-wavy-cubics",

@@ -1,6 +1,6 @@
 //! NURBS curves in jobs (issue 16, item 7), run as processes: the NURBS and
-//! arc forms are read (bad values exit 2 naming their JSON path), Bezier-only
-//! operations refuse NURBS curves naming the field, and the pieces a fillet
+//! arc forms are read (bad values exit 2 naming their JSON path), a merge
+//! refuses rational curves naming the field, and the pieces a fillet
 //! or a fillet chain returns are re-read from the printed JSON and checked
 //! by evaluating derivatives on both sides of every join — not by reading
 //! the tool's own report.
@@ -244,12 +244,13 @@ fn the_deviation_mode_takes_an_arc_crossing_a_line() {
 }
 
 #[test]
-fn bezier_only_operations_refuse_nurbs_naming_the_field() {
+fn rational_merges_and_misplaced_vertex_fields_are_refused_naming_the_field() {
     let (arc, line) = arc_and_line();
+    // Merge takes NURBS curves, but only polynomial ones: an arc is rational.
     let (code, _, stderr) = run("merge", &json!({"p": line, "q": arc}));
     assert_eq!(code, 2, "{stderr}");
     assert!(
-        stderr.contains("invalid job: q: must be a Bezier curve"),
+        stderr.contains("invalid job: q: the curve is rational"),
         "{stderr}"
     );
     // The vertex mode's own fields.

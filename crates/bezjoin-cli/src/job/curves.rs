@@ -69,23 +69,6 @@ impl<'a> Located<'a> {
         }
     }
 
-    /// A curve that must be a Bezier curve; a NURBS or arc form is an error
-    /// at this field saying so, with `why` (who needs a Bezier curve).
-    pub fn bezier_curve(&self, why: &str) -> JobResult<BezierCurve> {
-        match self.curve_form()? {
-            Form::Bezier => self.bezier_form(),
-            Form::Nurbs | Form::Arc => Err(self.not_bezier(why)),
-        }
-    }
-
-    /// The error for a NURBS curve where only a Bezier curve is accepted.
-    pub fn not_bezier(&self, why: &str) -> JobError {
-        self.error(format!(
-            "must be a Bezier curve (an array of control points or {{\"points\": [...]}}), \
-             not a NURBS curve or an arc: {why}"
-        ))
-    }
-
     /// A Bezier curve: an array of control points (degree = count - 1), or
     /// an object `{"points": [...]}` as the tool writes it (its `degree` and
     /// `dim`, if present, are checked).
@@ -468,22 +451,5 @@ mod curve_reading_tests {
             let e = read(text).unwrap_err();
             assert_eq!(e.path, path, "{text}: {e}");
         }
-    }
-
-    #[test]
-    fn bezier_only_fields_refuse_nurbs_naming_the_field() {
-        let v = parse_text(
-            "t",
-            r#"{"p": {"degree": 1, "poles": [[0, 0], [1, 1]], "knots": [0, 0, 1, 1]}}"#,
-        )
-        .unwrap();
-        let job = Located::root(&v).object().unwrap();
-        let e = job
-            .required("p")
-            .unwrap()
-            .bezier_curve("merge works on Bezier curves")
-            .unwrap_err();
-        assert_eq!(e.path, "p");
-        assert!(e.reason.contains("must be a Bezier curve"), "{e}");
     }
 }

@@ -38,7 +38,8 @@ pub enum Operation {
     Fillet(JobArgs),
     /// Round every corner of a chain (a wire) of curves.
     FilletChain(JobArgs),
-    /// Merge two curves into one by the smallest change (section 3).
+    /// Merge two curves (Bezier, or polynomial B-splines) into one by the smallest change
+    /// (sections 3 and 6).
     Merge(JobArgs),
     /// Spline with control points on the curve (section 4).
     Spline(JobArgs),

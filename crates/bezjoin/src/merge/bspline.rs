@@ -58,7 +58,8 @@
 //!   elevation, which are exact).
 //! * The report's `max_deviation` is measured: [`DEVIATION_SAMPLES`]` + 1`
 //!   evenly spaced parameters of each input curve, `R` at the mapped
-//!   parameter against the input.
+//!   parameter against the input (clamped and elevated: the same curve),
+//!   both evaluated through their Bezier spans.
 
 use nalgebra::{DMatrix, DVector};
 
@@ -282,8 +283,6 @@ struct Settings {
 
 /// One input curve at the working degree, clamped, with its constraints.
 struct Piece<'a> {
-    /// The caller's curve (for the measured deviation).
-    original: &'a NurbsCurve,
     /// Clamped and elevated: same shape and parameters as `original`.
     curve: NurbsCurve,
     /// `P`, `Q` or `curves[j]`.
@@ -429,7 +428,6 @@ impl<'a> SplineProblem<'a> {
                 MergeMetric::Integral => normalised_gram(&curve)?,
             };
             pieces.push(Piece {
-                original: c,
                 poles: pole_matrix(&curve),
                 curve,
                 label: match names[j].as_str() {
@@ -710,10 +708,16 @@ impl<'a> SplineProblem<'a> {
                 limit: self.accuracy,
             });
         }
+        // Sampled span by span (each span once converted to Bezier form):
+        // the samples increase, so each curve's span cursor only moves on.
         let mut max_deviation = 0.0f64;
+        let mut on_r = vec![0.0; d];
+        let mut on_c = vec![0.0; d];
+        let mut r_spans = SpanWalker::new(&merged)?;
         for (j, piece) in self.pieces.iter().enumerate() {
             let (t0, t1) = (breakpoints[j], breakpoints[j + 1]);
-            let (a, b) = piece.original.domain();
+            let (a, b) = piece.curve.domain();
+            let mut c_spans = SpanWalker::new(&piece.curve)?;
             for s in 0..=DEVIATION_SAMPLES {
                 let f = s as f64 / DEVIATION_SAMPLES as f64;
                 let u = if s == DEVIATION_SAMPLES {
@@ -721,8 +725,13 @@ impl<'a> SplineProblem<'a> {
                 } else {
                     a + (b - a) * f
                 };
-                let on_r = merged.eval(t0 + (t1 - t0) * f);
-                let on_c = piece.original.eval(u);
+                let t = if s == DEVIATION_SAMPLES {
+                    t1
+                } else {
+                    t0 + (t1 - t0) * f
+                };
+                r_spans.eval_into(t, &mut on_r);
+                c_spans.eval_into(u, &mut on_c);
                 max_deviation = max_deviation.max(crate::bezier::distance(&on_r, &on_c));
             }
         }
@@ -734,6 +743,49 @@ impl<'a> SplineProblem<'a> {
             error_estimate: one.error_estimate,
             split_check_error,
         })
+    }
+}
+
+/// Evaluation of a polynomial B-spline at increasing parameters through
+/// its Bezier spans (converted once), the span found by walking forward.
+struct SpanWalker {
+    /// Span `k` covers `[breaks[k], breaks[k + 1]]`.
+    breaks: Vec<f64>,
+    spans: Vec<BezierCurve>,
+    cursor: usize,
+}
+
+impl SpanWalker {
+    fn new(curve: &NurbsCurve) -> Result<Self> {
+        let pieces = curve.bezier_spans();
+        let mut breaks = Vec::with_capacity(pieces.len() + 1);
+        let mut spans = Vec::with_capacity(pieces.len());
+        for piece in &pieces {
+            let (s0, s1) = piece.domain();
+            if breaks.is_empty() {
+                breaks.push(s0);
+            }
+            breaks.push(s1);
+            spans.push(BezierCurve::new(
+                piece.dim(),
+                piece.degree(),
+                piece.points().to_vec(),
+            )?);
+        }
+        Ok(Self {
+            breaks,
+            spans,
+            cursor: 0,
+        })
+    }
+
+    /// The point at `u` (not below the previous call's `u`).
+    fn eval_into(&mut self, u: f64, out: &mut [f64]) {
+        while self.cursor + 1 < self.spans.len() && u > self.breaks[self.cursor + 1] {
+            self.cursor += 1;
+        }
+        let (s0, s1) = (self.breaks[self.cursor], self.breaks[self.cursor + 1]);
+        self.spans[self.cursor].eval_into(((u - s0) / (s1 - s0)).clamp(0.0, 1.0), out);
     }
 }
 
