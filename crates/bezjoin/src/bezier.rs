@@ -691,7 +691,7 @@ pub(crate) fn norm(a: &[f64]) -> f64 {
 /// about `1e154`) or underflows (components below about `1e-154`) although
 /// the norm itself is in range. Zero when every value is zero; infinite when
 /// one is; NaN when one is NaN (as the plain sum).
-fn scaled_norm(values: impl Iterator<Item = f64> + Clone) -> f64 {
+pub(crate) fn scaled_norm(values: impl Iterator<Item = f64> + Clone) -> f64 {
     if values.clone().any(f64::is_nan) {
         return f64::NAN;
     }

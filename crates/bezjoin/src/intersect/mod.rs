@@ -61,6 +61,7 @@
 
 mod track;
 
+use std::rc::Rc;
 use crate::bezier::{BezierCurve, distance, norm};
 use crate::curve::CurveRef;
 use crate::error::{BezjoinError, Result, check_finite_scalar};
@@ -588,15 +589,23 @@ impl<'a> Search<'a> {
     }
 
     fn subdivide(&mut self) -> Result<()> {
+        // Pieces are shared by the pairs on the stack (a split piece meets
+        // both halves of the other): reference-counted, never copied.
         // Every pair of spans, pushed in reverse so that small u comes first.
-        let mut stack = Vec::with_capacity(self.p_pieces.len() * self.q_pieces.len());
-        for a in self.p_pieces.iter().rev() {
-            for b in self.q_pieces.iter().rev() {
-                stack.push((a.clone(), b.clone(), 0usize));
+        let p_pieces: Vec<Rc<Piece>> = self.p_pieces.iter().cloned().map(Rc::new).collect();
+        let q_pieces: Vec<Rc<Piece>> = self.q_pieces.iter().cloned().map(Rc::new).collect();
+        let mut stack = Vec::with_capacity(p_pieces.len() * q_pieces.len() + 16);
+        for a in p_pieces.iter().rev() {
+            for b in q_pieces.iter().rev() {
+                stack.push((Rc::clone(a), Rc::clone(b), 0usize));
             }
         }
         let mut examined = 0usize;
         let margin = self.tolerance;
+        let halves = |piece: &Piece| {
+            let (h0, h1) = piece.split();
+            (Rc::new(h0), Rc::new(h1))
+        };
         while let Some((a, b, depth)) = stack.pop() {
             examined += 1;
             if examined > self.options.max_box_pairs {
@@ -632,22 +641,22 @@ impl<'a> Search<'a> {
             let split_b = !flat_b && (flat_a || b.diagonal() >= 0.25 * a.diagonal());
             match (split_a, split_b) {
                 (true, true) => {
-                    let (a0, a1) = a.split();
-                    let (b0, b1) = b.split();
+                    let (a0, a1) = halves(&a);
+                    let (b0, b1) = halves(&b);
                     // Pushed in reverse so that small u is examined first.
-                    stack.push((a1.clone(), b1.clone(), depth + 1));
-                    stack.push((a1, b0.clone(), depth + 1));
-                    stack.push((a0.clone(), b1, depth + 1));
+                    stack.push((Rc::clone(&a1), Rc::clone(&b1), depth + 1));
+                    stack.push((a1, Rc::clone(&b0), depth + 1));
+                    stack.push((Rc::clone(&a0), b1, depth + 1));
                     stack.push((a0, b0, depth + 1));
                 }
                 (true, false) => {
-                    let (a0, a1) = a.split();
-                    stack.push((a1, b.clone(), depth + 1));
+                    let (a0, a1) = halves(&a);
+                    stack.push((a1, Rc::clone(&b), depth + 1));
                     stack.push((a0, b, depth + 1));
                 }
                 _ => {
-                    let (b0, b1) = b.split();
-                    stack.push((a.clone(), b1, depth + 1));
+                    let (b0, b1) = halves(&b);
+                    stack.push((Rc::clone(&a), b1, depth + 1));
                     stack.push((a, b0, depth + 1));
                 }
             }

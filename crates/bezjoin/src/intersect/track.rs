@@ -8,7 +8,7 @@
 
 use std::borrow::Cow;
 
-use crate::bezier::{BezierCurve, distance, norm};
+use crate::bezier::{BezierCurve, distance, scaled_norm};
 use crate::curve::CurveRef;
 use crate::nurbs::NurbsCurve;
 
@@ -165,8 +165,9 @@ pub(super) struct Piece {
     dim: usize,
     pub(super) lo: f64,
     pub(super) hi: f64,
-    pub(super) min: Vec<f64>,
-    pub(super) max: Vec<f64>,
+    /// The bounding box of the Cartesian control points: `dim` minima,
+    /// then `dim` maxima (one allocation).
+    bounds: Vec<f64>,
 }
 
 impl Piece {
@@ -183,16 +184,16 @@ impl Piece {
                 .flat_map(|row| row[..dim].iter().map(move |x| x / row[dim]))
                 .collect()
         });
-        let mut min = vec![f64::INFINITY; dim];
-        let mut max = vec![f64::NEG_INFINITY; dim];
+        let mut bounds = vec![f64::INFINITY; 2 * dim];
+        bounds[dim..].fill(f64::NEG_INFINITY);
         for row in projected
             .as_deref()
             .unwrap_or(curve.points())
             .chunks_exact(dim)
         {
             for c in 0..dim {
-                min[c] = min[c].min(row[c]);
-                max[c] = max[c].max(row[c]);
+                bounds[c] = bounds[c].min(row[c]);
+                bounds[dim + c] = bounds[dim + c].max(row[c]);
             }
         }
         Self {
@@ -201,9 +202,18 @@ impl Piece {
             dim,
             lo,
             hi,
-            min,
-            max,
+            bounds,
         }
+    }
+
+    /// Lower corner of the bounding box.
+    pub(super) fn min(&self) -> &[f64] {
+        &self.bounds[..self.dim]
+    }
+
+    /// Upper corner of the bounding box.
+    pub(super) fn max(&self) -> &[f64] {
+        &self.bounds[self.dim..]
     }
 
     pub(super) fn degree(&self) -> usize {
@@ -234,22 +244,29 @@ impl Piece {
     }
 
     pub(super) fn contains(&self, x: &[f64], margin: f64) -> bool {
-        (0..x.len()).all(|c| x[c] >= self.min[c] - margin && x[c] <= self.max[c] + margin)
+        let (min, max) = (self.min(), self.max());
+        (0..x.len()).all(|c| x[c] >= min[c] - margin && x[c] <= max[c] + margin)
     }
 
     /// Distance from `x` to the box (0 inside): no point of the piece is
     /// closer to `x`.
     pub(super) fn box_distance(&self, x: &[f64]) -> f64 {
-        let gaps: Vec<f64> = x
-            .iter()
-            .zip(self.min.iter().zip(&self.max))
-            .map(|(x, (lo, hi))| (lo - x).max(x - hi).max(0.0))
-            .collect();
-        norm(&gaps)
+        let gaps = || {
+            x.iter()
+                .zip(self.min().iter().zip(self.max()))
+                .map(|(x, (lo, hi))| (lo - x).max(x - hi).max(0.0))
+        };
+        // `norm` of the gaps, without a temporary vector
+        let square = gaps().map(|g| g * g).sum::<f64>();
+        if square.is_normal() {
+            square.sqrt()
+        } else {
+            scaled_norm(gaps())
+        }
     }
 
     pub(super) fn diagonal(&self) -> f64 {
-        distance(&self.min, &self.max)
+        distance(self.min(), self.max())
     }
 
     /// Largest distance of a control point from the chord (from the first
@@ -258,18 +275,25 @@ impl Piece {
         let n = self.degree();
         let a = self.point(0);
         let b = self.point(n);
-        let chord: Vec<f64> = b.iter().zip(a).map(|(x, y)| x - y).collect();
-        let len2: f64 = chord.iter().map(|x| x * x).sum();
+        let len2: f64 = b.iter().zip(a).map(|(x, y)| (x - y) * (x - y)).sum();
         let mut worst = 0.0f64;
         for i in 1..n {
             let p = self.point(i);
-            let rel: Vec<f64> = p.iter().zip(a).map(|(x, y)| x - y).collect();
+            // |p - a|^2 and (p - a).(b - a), without temporaries
+            let (rel2, along) = p.iter().zip(a).zip(b).fold((0.0, 0.0), |(r, s), ((x, y), z)| {
+                let rel = x - y;
+                (r + rel * rel, s + rel * (z - y))
+            });
             let dev = if len2 > 0.0 {
-                let s = rel.iter().zip(&chord).map(|(x, y)| x * y).sum::<f64>() / len2;
-                let perp: f64 = rel
+                let s = along / len2;
+                let perp: f64 = p
                     .iter()
-                    .zip(&chord)
-                    .map(|(x, y)| (x - s * y) * (x - s * y))
+                    .zip(a)
+                    .zip(b)
+                    .map(|((x, y), z)| {
+                        let d = (x - y) - s * (z - y);
+                        d * d
+                    })
                     .sum::<f64>();
                 // Points beyond the chord's ends also count as deviation.
                 let beyond = if s < 0.0 {
@@ -281,7 +305,7 @@ impl Piece {
                 };
                 (perp + beyond * beyond * len2).sqrt()
             } else {
-                norm(&rel)
+                rel2.sqrt()
             };
             worst = worst.max(dev);
         }
@@ -290,5 +314,6 @@ impl Piece {
 }
 
 pub(super) fn boxes_meet(a: &Piece, b: &Piece, margin: f64) -> bool {
-    (0..a.min.len()).all(|c| a.min[c] <= b.max[c] + margin && b.min[c] <= a.max[c] + margin)
+    let (a_min, a_max, b_min, b_max) = (a.min(), a.max(), b.min(), b.max());
+    (0..a_min.len()).all(|c| a_min[c] <= b_max[c] + margin && b_min[c] <= a_max[c] + margin)
 }
