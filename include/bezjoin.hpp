@@ -647,7 +647,9 @@ struct MergeOptions {
 };
 
 /// One curve R and its two pieces P^ = R on [0, mu], Q^ = R on [mu, 1], with
-/// the report (mu used, metric value, largest distance to P-then-Q).
+/// the report (mu used, metric value, largest distance to P-then-Q). For
+/// B-spline (NURBS) inputs R is a NURBS curve on [0, 1] and P^, Q^ are NURBS
+/// curves on P's and Q's own knots and parameters.
 struct Merge {
     Curve merged;
     Curve p_hat;
@@ -741,7 +743,8 @@ struct ChainMerge {
     BzjChainMergeReport report;
 };
 
-/// Merge N >= 2 consecutive curves into one Bezier curve (bzj_merge_chain).
+/// Merge N >= 2 consecutive curves into one curve (bzj_merge_chain): a Bezier
+/// curve for Bezier inputs, a NURBS curve when any input is a B-spline.
 inline ChainMerge merge_chain(const std::vector<const Curve*>& curves,
                               const ChainMergeOptions& options) {
     const std::vector<const BzjCurve*> handles = detail::handles(curves);

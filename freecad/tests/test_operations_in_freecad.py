@@ -363,6 +363,55 @@ class MergeJudgedByFreeCAD(unittest.TestCase, CommandDriver):
         self.assertGreater(merged.max_deviation, 0.0)
         self.assertIn("mu = 0.5", merged.describe())
 
+    def test_merge_edges_of_bsplines_is_one_smooth_bspline(self):
+        """Two adjacent cubic B-spline edges (FreeCAD's own curves, 3 spans each)
+        become one B-spline edge whose interior knots are theirs mapped and none
+        at the join; FreeCAD's knot removal proves it C3 there, where FreeCAD's
+        own join keeps a knot of multiplicity 3 (C0)."""
+        def spline(points, knots):
+            curve = Part.BSplineCurve()
+            curve.buildFromPolesMultsKnots([V(*x) for x in points],
+                                           [4] + [1] * (len(knots) - 2) + [4], knots,
+                                           False, 3)
+            return curve
+        first = spline([(0, 0, 0), (1, 1, 0), (2, 1.5, 0), (3, 0.5, 0), (4, 1, 0), (5, 0, 0)],
+                       [0.0, 0.3, 0.7, 1.0])
+        second = spline([(5, 0, 0), (6, -0.8, 0), (7, -1, 0), (8, 0, 0), (9, 0.5, 0),
+                         (10, 0, 0)], [2.0, 2.5, 3.2, 4.0])
+        merged = operations.merge_edges(Part.Edge(first), Part.Edge(second), mu="optimal",
+                                        metric="l2", fix_ends=True)
+        curve = merged.shape.Curve
+        self.assertIsInstance(curve, Part.BSplineCurve)
+        mu = merged.mu
+        expected = [mu * k for k in (0.3, 0.7)] + [mu + (1 - mu) * (k - 2.0) / 2.0
+                                                   for k in (2.5, 3.2)]
+        knots = curve.getKnots()
+        self.assertEqual(len(knots), 6)
+        for ours, theirs in zip(knots[1:-1], expected):
+            self.assertLessEqual(abs(ours - theirs), 1e-14)
+        self.assertEqual(curve.NbPoles, 6 + 6 - 4)
+        # FreeCAD as the judge of the join: a knot inserted at mu (3 times) is
+        # removable again, so the curve is C3 there
+        judged = curve.copy()
+        judged.insertKnot(mu, 3)
+        index = [round(k, 15) for k in judged.getKnots()].index(round(mu, 15)) + 1
+        self.assertEqual(smoothness_by_knot_removal(judged, index, 1e-9), 3)
+        # FreeCAD's own join of the two edges keeps a C0 knot there
+        joined = first.copy()
+        shifted = second.copy()
+        shifted.setKnots([1.0 + (k - 2.0) / 2.0 for k in shifted.getKnots()])
+        self.assertTrue(joined.join(shifted))
+        at_join = [round(k, 15) for k in joined.getKnots()].index(1.0) + 1
+        self.assertEqual(smoothness_by_knot_removal(joined, at_join, 1e-9), 0)
+        # the merged curve stays within the reported deviation of the edges
+        self.assertGreater(merged.max_deviation, 0.0)
+        for i in range(101):
+            f = i / 100.0
+            self.assertLessEqual(gap(curve.value(mu * f), first.value(f)),
+                                 merged.max_deviation * (1 + 1e-9) + 1e-12)
+        self.assertLessEqual(gap(curve.StartPoint, (0, 0, 0)), 1e-12)
+        self.assertLessEqual(gap(curve.EndPoint, (10, 0, 0)), 1e-12)
+
     def test_merge_command_records_the_report(self):
         first = Part.Edge(bezier([(0, 0, 0), (1, 1, 0), (2, 1, 0), (3, 0, 0)]))
         second = Part.Edge(bezier([(3, 0, 0), (4, -1, 0), (5, -1, 0), (6, 0, 0)]))

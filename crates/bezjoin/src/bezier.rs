@@ -548,6 +548,32 @@ pub(crate) fn blossom<'w>(
 /// `2^-n` stay well inside the `f64` range.
 const HORNER_MAX_DEGREE: usize = 512;
 
+/// Degrees whose binomials [`bernstein_horner`] reads from [`BINOMIALS`].
+const BINOMIAL_TABLE_DEGREE: usize = 32;
+
+/// Rows `0..=BINOMIAL_TABLE_DEGREE` of Pascal's triangle, row `n` starting
+/// at `n (n + 1) / 2`: exact (the largest entry, `C(32, 16)`, is far below
+/// `2^53`).
+static BINOMIALS: [f64; 561] = binomial_rows();
+
+const fn binomial_rows() -> [f64; 561] {
+    let mut table = [0.0; 561];
+    let mut n = 0;
+    while n <= BINOMIAL_TABLE_DEGREE {
+        let row = n * (n + 1) / 2;
+        table[row] = 1.0;
+        table[row + n] = 1.0;
+        let mut k = 1;
+        while k < n {
+            // row n - 1 starts at row - n
+            table[row + k] = table[row - n + k - 1] + table[row - n + k];
+            k += 1;
+        }
+        n += 1;
+    }
+    table
+}
+
 /// `scale * sum_i B_i^n(t) P_i` for `n + 1` row-major points of dimension
 /// `dim`, written into `out`, by the Bernstein-Horner scheme:
 /// `P(t) = s^n sum_i C(n,i) (t/s)^i P_i = t^n sum_i C(n,i) (s/t)^(n-i) P_i`,
@@ -555,6 +581,7 @@ const HORNER_MAX_DEGREE: usize = 512;
 ///
 /// Above [`HORNER_MAX_DEGREE`] the binomials and powers would leave the
 /// `f64` range, so de Casteljau's algorithm (allocating) is used instead.
+#[inline]
 pub(crate) fn bernstein_horner(
     points: &[f64],
     n: usize,
@@ -575,14 +602,27 @@ pub(crate) fn bernstein_horner(
         (t / s, s.powi(n as i32), n, -1)
     };
     out.copy_from_slice(&points[first * d..(first + 1) * d]);
-    let mut coef = 1.0;
     let mut idx = first as isize;
-    for i in 1..=n {
-        coef = coef * (n - i + 1) as f64 / i as f64;
-        idx += step;
-        let p = &points[idx as usize * d..(idx as usize + 1) * d];
-        for c in 0..d {
-            out[c] = out[c] * ratio + coef * p[c];
+    if n <= BINOMIAL_TABLE_DEGREE {
+        // The binomials from the table: the same values (the recurrence
+        // below is exact at these degrees) without a division per term.
+        let row = &BINOMIALS[n * (n + 1) / 2..][..=n];
+        for &coef in &row[1..] {
+            idx += step;
+            let p = &points[idx as usize * d..(idx as usize + 1) * d];
+            for c in 0..d {
+                out[c] = out[c] * ratio + coef * p[c];
+            }
+        }
+    } else {
+        let mut coef = 1.0;
+        for i in 1..=n {
+            coef = coef * (n - i + 1) as f64 / i as f64;
+            idx += step;
+            let p = &points[idx as usize * d..(idx as usize + 1) * d];
+            for c in 0..d {
+                out[c] = out[c] * ratio + coef * p[c];
+            }
         }
     }
     let factor = factor * scale;
@@ -709,6 +749,23 @@ pub(crate) fn scaled_norm(values: impl Iterator<Item = f64> + Clone) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The table holds exactly what the division recurrence of the higher
+    /// degrees computes (so both paths of `bernstein_horner` agree bit for
+    /// bit), and every entry is the integer `C(n, k)`.
+    #[test]
+    fn binomial_table_is_the_recurrence() {
+        for n in 0..=BINOMIAL_TABLE_DEGREE {
+            let row = &BINOMIALS[n * (n + 1) / 2..][..=n];
+            let mut coef = 1.0;
+            assert_eq!(row[0], 1.0);
+            for (i, &entry) in row.iter().enumerate().skip(1) {
+                coef = coef * (n - i + 1) as f64 / i as f64;
+                assert_eq!(entry, coef, "C({n}, {i})");
+                assert_eq!(entry, crate::basis::binomial(n, i));
+            }
+        }
+    }
 
     fn cubic() -> BezierCurve {
         BezierCurve::from_rows(&[[0.0, 0.0], [1.0, 2.0], [3.0, 3.0], [4.0, 0.0]]).unwrap()

@@ -167,7 +167,11 @@ class MergedEdge:
 
 def merge_edges(first_edge, second_edge, *, metric="discrete", mu="half", fix_ends=False,
                 keep_first=False, keep_second=False, orient=True):
-    """One Bezier edge replacing two consecutive edges (:func:`bezjoin.merge`).
+    """One edge replacing two consecutive edges (:func:`bezjoin.merge`): a Bezier
+    edge for two Bezier edges; for B-spline edges (lines and other polynomial
+    curves too) one B-spline edge with both edges' knots mapped and none at the
+    join (mathematics.md, "Merge: B-splines"). Rational edges (arcs, conics) are
+    refused with the edge named.
 
     With ``orient`` the edges are first ordered end-to-start (see
     :func:`orient_end_to_start`). Returns a :class:`MergedEdge`.
@@ -176,7 +180,7 @@ def merge_edges(first_edge, second_edge, *, metric="discrete", mu="half", fix_en
         if orient:
             p, q = orient_end_to_start(p, q)
         else:
-            p, q = p.segment(0.0, 1.0), q.segment(0.0, 1.0)
+            p, q = p.copy(), q.copy()
         with p, q, bezjoin.merge(p, q, metric=metric, mu=mu, fix_ends=fix_ends,
                                  keep_p=keep_first, keep_q=keep_second) as result:
             return MergedEdge(result.merged.to_edge(), result.mu, result.metric_value,

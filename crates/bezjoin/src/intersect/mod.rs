@@ -61,10 +61,10 @@
 
 mod track;
 
-use std::rc::Rc;
 use crate::bezier::{BezierCurve, distance, norm};
 use crate::curve::CurveRef;
 use crate::error::{BezjoinError, Result, check_finite_scalar};
+use std::rc::Rc;
 use track::{Piece, Track, boxes_meet};
 
 /// Default of [`IntersectOptions::relative_distance_tolerance`].

@@ -280,10 +280,14 @@ impl Piece {
         for i in 1..n {
             let p = self.point(i);
             // |p - a|^2 and (p - a).(b - a), without temporaries
-            let (rel2, along) = p.iter().zip(a).zip(b).fold((0.0, 0.0), |(r, s), ((x, y), z)| {
-                let rel = x - y;
-                (r + rel * rel, s + rel * (z - y))
-            });
+            let (rel2, along) = p
+                .iter()
+                .zip(a)
+                .zip(b)
+                .fold((0.0, 0.0), |(r, s), ((x, y), z)| {
+                    let rel = x - y;
+                    (r + rel * rel, s + rel * (z - y))
+                });
             let dev = if len2 > 0.0 {
                 let s = along / len2;
                 let perp: f64 = p
