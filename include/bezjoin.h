@@ -431,6 +431,51 @@ typedef struct BzjDeviationFilletReport {
 } BzjDeviationFilletReport;
 
 /**
+ * Options of [`bzj_connect_geometric`] (layout fixed by the contract).
+ */
+typedef struct BzjGeometricOptions {
+  /**
+   * G^kp at P(u0).
+   */
+  size_t p_order;
+  /**
+   * G^kq at Q(v0).
+   */
+  size_t q_order;
+  /**
+   * `kp` values beta_1..beta_kp, beta_1 > 0; NULL: chosen for fairness.
+   */
+  const double *p_shape;
+  /**
+   * `kq` values, the same at Q; NULL: chosen for fairness.
+   */
+  const double *q_shape;
+} BzjGeometricOptions;
+
+/**
+ * What a G^k blend's curvature looks like (layout fixed by the contract).
+ */
+typedef struct BzjFairnessReport {
+  /**
+   * The minimised fairness energy of the blend, `L^3 integral (d kappa /
+   * ds)^2 ds` (L its length: scale-free).
+   */
+  double energy;
+  /**
+   * Smallest curvature over the blend (signed in 2D; 513 samples).
+   */
+  double curvature_min;
+  /**
+   * Largest curvature over the blend.
+   */
+  double curvature_max;
+  /**
+   * Interior local extrema of the curvature along the blend.
+   */
+  size_t curvature_extrema;
+} BzjFairnessReport;
+
+/**
  * A point kept with its derivatives `0..=max_order`.
  */
 typedef struct BzjKeepPoint {
@@ -1061,6 +1106,40 @@ BzjStatus bzj_fillet_deviation(const struct BzjCurve *p, const struct BzjCurve *
  * points to `capacity` writable handle pointers; `count` is NULL or writable.
  */
 BzjStatus bzj_fillet_chain(const struct BzjCurve *const *curves, size_t curve_count, const struct BzjFilletOptions *options, int32_t closed, struct BzjCurve **out_pieces, size_t capacity, size_t *count);
+
+/**
+ * The Bezier curve `R` connecting `p` at `u0` to `q` at `v0` with
+ * geometric continuity G^kp and G^kq: after a regular reparametrisation
+ * with shape parameters beta_1 > 0, beta_2, ... per end, C^k (the
+ * beta-constraints `R^(j)(0) = sum_i P^(i)(u0) B_(j,i)(beta)`, `B_(j,i)`
+ * the partial Bell polynomials; the same at `t = 1` with Q). The degree of
+ * `out` is `kp + kq + 1`. With `options->p_shape` / `q_shape` NULL the
+ * shape values of that end are chosen by minimising the blend's fairness
+ * energy `L^3 integral (d kappa / ds)^2 ds` (deterministic search); they
+ * are written to `p_shape_out` (kp doubles) and `q_shape_out` (kq
+ * doubles) when those are not NULL, and the blend's energy, curvature
+ * range and number of curvature extrema to `report` when it is not NULL.
+ * `p`, `q`: Bezier or NURBS handles (P's derivatives from the left of a
+ * knot, Q's from the right). Guarantee: the beta-constraints of the
+ * returned shape values hold to a relative residual of 1e-8, as for
+ * [`crate::bzj_connect`], or the call fails with BZJ_ERR_ILL_CONDITIONED.
+ *
+ * @return BZJ_ERR_NULL_POINTER if `p`, `q`, `options` or `out` is NULL;
+ *         BZJ_ERR_INVALID_ARGUMENT if an order is above 6, `u0`/`v0` is
+ *         outside its curve's domain, or a given beta_1 is not > 0
+ *         (`options.p_shape[0]` named);
+ *         BZJ_ERR_NON_FINITE if a parameter or shape value is NaN/infinite;
+ *         BZJ_ERR_DIMENSION_MISMATCH if `p` and `q` differ in dimension;
+ *         BZJ_ERR_ILL_CONDITIONED if the result cannot be trusted to 1e-8
+ *         or no shape values give a blend with defined curvature.
+ *
+ * # Safety
+ * `p`, `q` are NULL or live handles; `options` NULL or readable, its
+ * non-NULL shape arrays holding `p_order` / `q_order` doubles; `out` NULL or
+ * writable; `p_shape_out`, `q_shape_out` NULL or writable for `p_order` /
+ * `q_order` doubles; `report` NULL or writable.
+ */
+BzjStatus bzj_connect_geometric(const struct BzjCurve *p, double u0, const struct BzjCurve *q, double v0, const struct BzjGeometricOptions *options, struct BzjCurve **out, double *p_shape_out, double *q_shape_out, struct BzjFairnessReport *report);
 
 /**
  * A spline of cubic segments, each given by four points ON it at local

@@ -27,6 +27,7 @@
 #include <stdexcept>
 #include <string>
 #include <utility>
+#include <tuple>
 #include <vector>
 
 namespace bezjoin {
@@ -419,6 +420,54 @@ inline AutoScaledConnection connect_auto_scale(const Curve& p, double u0, const 
     check(bzj_connect_auto_scale(p.get(), u0, q.get(), v0, raw.raw(), &out, &scale),
           "bzj_connect_auto_scale");
     return AutoScaledConnection{Curve(out), scale};
+}
+
+/// Options of connect_geometric(): G^k orders and, per end, the shape values
+/// beta_1 > 0, beta_2, ... (empty: chosen by the library for fairness).
+struct GeometricOptions {
+    std::size_t p_order = 2;
+    std::size_t q_order = 2;
+    std::vector<double> p_shape;  // p_order values, or empty
+    std::vector<double> q_shape;  // q_order values, or empty
+};
+
+/// A G^k connecting curve, the shape values used and its fairness report.
+struct GeometricConnection {
+    Curve curve;
+    std::vector<double> p_shape;
+    std::vector<double> q_shape;
+    BzjFairnessReport report;
+};
+
+/// The Bezier curve meeting P at u0 with G^p_order and Q at v0 with
+/// G^q_order (bzj_connect_geometric; mathematics.md section 7). Empty shape
+/// vectors leave the choice to the library (minimal fairness energy).
+inline GeometricConnection connect_geometric(const Curve& p, double u0, const Curve& q, double v0,
+                                             const GeometricOptions& options) {
+    for (const auto& [shape, order, name] :
+         {std::tuple<const std::vector<double>&, std::size_t, const char*>{
+              options.p_shape, options.p_order, "p_shape"},
+          std::tuple<const std::vector<double>&, std::size_t, const char*>{
+              options.q_shape, options.q_order, "q_shape"}}) {
+        if (!shape.empty() && shape.size() != order) {
+            throw std::invalid_argument(std::string("connect_geometric: ") + name + " has " +
+                                        std::to_string(shape.size()) + " values for order " +
+                                        std::to_string(order));
+        }
+    }
+    const BzjGeometricOptions raw{options.p_order, options.q_order,
+                                  options.p_shape.empty() ? nullptr : options.p_shape.data(),
+                                  options.q_shape.empty() ? nullptr : options.q_shape.data()};
+    GeometricConnection result{Curve(nullptr), std::vector<double>(options.p_order),
+                               std::vector<double>(options.q_order), BzjFairnessReport{}};
+    BzjCurve* out = nullptr;
+    check(bzj_connect_geometric(p.get(), u0, q.get(), v0, &raw, &out,
+                                result.p_shape.empty() ? nullptr : result.p_shape.data(),
+                                result.q_shape.empty() ? nullptr : result.q_shape.data(),
+                                &result.report),
+          "bzj_connect_geometric");
+    result.curve = Curve(out);
+    return result;
 }
 
 /// Options of fillet(): arc-length setbacks from the crossing, orders, scales.

@@ -18,7 +18,13 @@ from ._library import (
     library_version,
     status_name,
 )
-from ._connect import AutoScaledConnection, connect, connect_auto_scale
+from ._connect import (
+    AutoScaledConnection,
+    GeometricConnection,
+    connect,
+    connect_auto_scale,
+    connect_geometric,
+)
 from ._fillet import (
     DeviationFilletResult,
     FilletChainResult,
@@ -46,6 +52,7 @@ __all__ = [
     "DeviationFilletResult",
     "FilletChainResult",
     "FilletResult",
+    "GeometricConnection",
     "Intersection",
     "LibraryNotFoundError",
     "MergeResult",
@@ -53,6 +60,7 @@ __all__ = [
     "candidate_paths",
     "connect",
     "connect_auto_scale",
+    "connect_geometric",
     "fillet",
     "fillet_chain",
     "fillet_deviation",

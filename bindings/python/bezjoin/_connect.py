@@ -148,3 +148,105 @@ def _options(p, q, p_order, q_order, p_scale, q_scale, constraints):
         constraint_array if structs else None, len(structs),
     )
     return options, (keep_alive, constraint_array)
+
+
+class GeometricOptionsStruct(ctypes.Structure):
+    """``BzjGeometricOptions`` (layout fixed by the C contract)."""
+
+    _fields_ = [
+        ("p_order", ctypes.c_size_t),
+        ("q_order", ctypes.c_size_t),
+        ("p_shape", ctypes.POINTER(ctypes.c_double)),
+        ("q_shape", ctypes.POINTER(ctypes.c_double)),
+    ]
+
+
+class FairnessReportStruct(ctypes.Structure):
+    """``BzjFairnessReport`` (layout fixed by the C contract)."""
+
+    _fields_ = [
+        ("energy", ctypes.c_double),
+        ("curvature_min", ctypes.c_double),
+        ("curvature_max", ctypes.c_double),
+        ("curvature_extrema", ctypes.c_size_t),
+    ]
+
+
+register_prototype(
+    "bzj_connect_geometric",
+    ctypes.c_int32,
+    [CurvePointer, ctypes.c_double, CurvePointer, ctypes.c_double,
+     ctypes.POINTER(GeometricOptionsStruct), ctypes.POINTER(CurvePointer),
+     ctypes.POINTER(ctypes.c_double), ctypes.POINTER(ctypes.c_double),
+     ctypes.POINTER(FairnessReportStruct)],
+)
+
+
+class GeometricConnection(CurveGroup):
+    """The G^k connecting ``curve``, the shape values used at each end
+    (``p_shape``, ``q_shape``: ``beta_1..beta_k``) and the fairness report:
+    ``energy`` (``L^3 integral (d kappa/ds)^2 ds``), ``curvature_min``,
+    ``curvature_max`` and ``curvature_extrema`` (interior local extrema)."""
+
+    _curve_fields = ("curve",)
+
+    def __init__(self, curve, p_shape, q_shape, report):
+        self.curve = curve
+        self.p_shape = p_shape
+        self.q_shape = q_shape
+        self.energy = report.energy
+        self.curvature_min = report.curvature_min
+        self.curvature_max = report.curvature_max
+        self.curvature_extrema = report.curvature_extrema
+
+    def _fields(self):
+        return self._curve_fields + ("p_shape", "q_shape", "energy", "curvature_min",
+                                     "curvature_max", "curvature_extrema")
+
+
+def connect_geometric(p, u0, q, v0, *, p_order=2, q_order=2, p_shape=None, q_shape=None):
+    """The Bezier curve from ``P(u0)`` to ``Q(v0)`` meeting ``P`` with G^p_order and
+    ``Q`` with G^q_order (``bzj_connect_geometric``; mathematics.md section 7):
+    C^k after a reparametrisation with shape values ``beta_1 > 0, beta_2, ...``
+    per end (the beta-constraints, Faa di Bruno's formula).
+
+    Args:
+        p, q: :class:`Curve` objects (Bezier or NURBS) of the same dimension.
+        u0, v0: parameters in the domains of ``p`` and ``q``.
+        p_order, q_order: geometric continuity orders (up to 6; default G2).
+        p_shape, q_shape: ``p_order`` / ``q_order`` shape values per end;
+            ``None`` (the default): chosen by the library to minimise the
+            blend's fairness energy, so the default never loops on a corner
+            between long edges.
+
+    Returns:
+        :class:`GeometricConnection`.
+    """
+    p_handle, q_handle = handle_of(p, "p"), handle_of(q, "q")
+    p_order = index_argument(p_order, "p_order")
+    q_order = index_argument(q_order, "q_order")
+    keep_alive = []
+
+    def shape_array(values, order, name):
+        if values is None:
+            return None
+        values = [real_argument(v, f"{name}[{i}]") for i, v in enumerate(values)]
+        if len(values) != order:
+            raise BezjoinError.invalid_argument(
+                f"{name} has {len(values)} values but the order is {order}")
+        array, _length = double_array(values)
+        keep_alive.append(array)
+        return array
+
+    options = GeometricOptionsStruct(p_order, q_order,
+                                     shape_array(p_shape, p_order, "p_shape"),
+                                     shape_array(q_shape, q_order, "q_shape"))
+    p_out = (ctypes.c_double * max(p_order, 1))()
+    q_out = (ctypes.c_double * max(q_order, 1))()
+    report = FairnessReportStruct()
+    out = CurvePointer()
+    library().call("bzj_connect_geometric", p_handle, real_argument(u0, "u0"), q_handle,
+                   real_argument(v0, "v0"), ctypes.byref(options), ctypes.byref(out),
+                   p_out, q_out, ctypes.byref(report))
+    return GeometricConnection(Curve._adopt(out), list(p_out)[:p_order],
+                               list(q_out)[:q_order], report)

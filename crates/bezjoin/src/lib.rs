@@ -41,6 +41,7 @@ mod connect;
 mod curve;
 mod error;
 mod fillet;
+mod geometric;
 mod intersect;
 mod lagrange;
 mod linalg;
@@ -63,6 +64,10 @@ pub use fillet::{
     DEFAULT_RELATIVE_DEVIATION_ACCURACY, DEFAULT_RELATIVE_LENGTH_ACCURACY, DeviationFillet,
     DeviationFilletOptions, Fillet, FilletOptions, distance_to_curve, fillet, fillet_at,
     fillet_chain, fillet_vertex, fillet_within_deviation,
+};
+pub use geometric::{
+    CURVATURE_SAMPLES, ENERGY_PANELS, FairnessReport, GeometricConnection, GeometricOptions,
+    MAX_GEOMETRIC_ORDER, connect_geometric, curvature_variation, fairness_report, partial_bell,
 };
 pub use intersect::{
     DEFAULT_MAX_BOX_PAIRS, DEFAULT_MAX_DEPTH, DEFAULT_MAX_HITS,

@@ -54,7 +54,7 @@ pub fn fairness_energy(curve: &BezierCurve) -> f64 {
 }
 
 /// `s0 = |Q(v0) - P(u0)| / mean(|P'(u0)|, |Q'(v0)|)`, 1 when undefined.
-fn natural_scale(problem: &Problem) -> f64 {
+pub(crate) fn natural_scale(problem: &Problem) -> f64 {
     let p = &problem.p_derivatives;
     let q = &problem.q_derivatives;
     let gap = (q.row(0) - p.row(0)).norm();

@@ -90,6 +90,7 @@ use crate::error::{BezjoinError, Result, check_finite, check_open_range, check_p
 use crate::linalg::solve_checked;
 
 pub use dense::connect_dense_reference;
+pub(crate) use energy::natural_scale;
 pub use energy::{AUTO_SCALE_SEARCH_DECADES, fairness_energy};
 
 /// The promised worst relative residual of (1') and (2) (see the module

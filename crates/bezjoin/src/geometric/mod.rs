@@ -1,0 +1,256 @@
+//! Connect two curves with geometric continuity G^k and fair shape
+//! parameters (docs/mathematics.md#geometric-continuity; the specification's
+//! section 7).
+//!
+//! Two curves meet with G^k when, after a regular reparametrisation `phi`
+//! (`phi' > 0`), they meet with C^k. With `R(t) = P(phi_p(t))` to order
+//! `kp` at `t = 0` (`phi_p(0) = u0`) and `R(t) = Q(phi_q(t))` to order `kq`
+//! at `t = 1` (`phi_q(1) = v0`), Faa di Bruno's formula gives the
+//! beta-constraints (Barsky and DeRose 1989):
+//!
+//! ```text
+//! R^(j)(0) = sum_(i=1..j) P^(i)(u0) B_(j,i)(beta_p1, ..., beta_p(j-i+1)),   j = 1..kp
+//! R^(j)(1) = sum_(i=1..j) Q^(i)(v0) B_(j,i)(beta_q1, ..., beta_q(j-i+1)),   j = 1..kq
+//! ```
+//!
+//! with `B_(j,i)` the partial Bell polynomials and the shape parameters
+//! `beta_p = phi_p^(j)(0)`, `beta_q = phi_q^(j)(1)` (`beta_1 > 0`). For
+//! `beta_j = 0` (`j >= 2`) this is connect's `C^k` with scales `alpha =
+//! beta_p1`, `beta = beta_q1`. Only the targets change: the structured solve
+//! of [`connect`](crate::connect) is used unchanged, with its residual
+//! guarantee on the new targets, interior constraints included.
+//!
+//! # Fair shape parameters
+//!
+//! When the caller gives no shape values, they are chosen by minimising the
+//! curvature variation of the blend made scale-free by its length `L`,
+//! `E = L^3 int (d kappa / ds)^2 ds` ([`fair::curvature_variation`]: the
+//! plain integral tends to zero on ever larger loops, whose curvature
+//! vanishes, so its minimisation runs away), over
+//! `ln beta_1` and `gamma_j = beta_j / beta_1` (`j >= 2`) of both ends: a
+//! grid over a common `beta_1` (four decades around connect's natural
+//! scale, the `gamma_j` zero) and then Nelder-Mead in all of them
+//! ([`fair::nelder_mead`], deterministic). Shapes whose solve fails, and
+//! blends with a cusp (`E` infinite), count as infinitely bad. The report
+//! gives the energy, the curvature range and the number of interior local
+//! extrema of the curvature (sampled).
+
+mod fair;
+
+use nalgebra::DMatrix;
+
+use crate::bezier::BezierCurve;
+use crate::connect::{
+    ConnectOptions, Connection, PointConstraint, Problem, natural_scale, prepare, solve_structured,
+};
+use crate::curve::CurveJet;
+use crate::error::{BezjoinError, Result, check_finite};
+
+pub use fair::{
+    CURVATURE_SAMPLES, ENERGY_PANELS, FairnessReport, curvature_variation, fairness_report,
+};
+
+/// Largest order of geometric continuity per end (the spec asks for 4).
+pub const MAX_GEOMETRIC_ORDER: usize = 6;
+
+/// Options of [`connect_geometric`].
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct GeometricOptions {
+    /// `kp`: G^kp at `P(u0)`.
+    pub p_order: usize,
+    /// `kq`: G^kq at `Q(v0)`.
+    pub q_order: usize,
+    /// `beta_1..beta_kp` at `P` (`beta_1 > 0`); `None`: chosen for fairness.
+    pub p_shape: Option<Vec<f64>>,
+    /// `beta_1..beta_kq` at `Q`; `None`: chosen for fairness.
+    pub q_shape: Option<Vec<f64>>,
+    /// Interior constraints, as in [`ConnectOptions`].
+    pub constraints: Vec<PointConstraint>,
+}
+
+impl GeometricOptions {
+    /// G^kp and G^kq with fair shape parameters.
+    pub fn new(p_order: usize, q_order: usize) -> Self {
+        Self {
+            p_order,
+            q_order,
+            ..Self::default()
+        }
+    }
+
+    /// These options with the caller's shape values at both ends.
+    pub fn with_shapes(mut self, p_shape: Vec<f64>, q_shape: Vec<f64>) -> Self {
+        self.p_shape = Some(p_shape);
+        self.q_shape = Some(q_shape);
+        self
+    }
+}
+
+/// A G^k connecting curve with the shape values used and its fairness.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GeometricConnection {
+    /// The Bezier curve `R` (degree `kp + kq + 1 + sum (K_j + 1)`).
+    pub curve: BezierCurve,
+    /// `beta_1..beta_kp` used at `P`.
+    pub p_shape: Vec<f64>,
+    /// `beta_1..beta_kq` used at `Q`.
+    pub q_shape: Vec<f64>,
+    /// Energy, curvature range and extrema of `R`.
+    pub report: FairnessReport,
+    /// The residual check of the structured solve (scales are 1: the shape
+    /// values are in the targets).
+    pub max_residual: f64,
+    /// Bound on the worst relative residual of the beta-constraints and the
+    /// interior constraints (at most [`crate::CONNECT_RESIDUAL_LIMIT`]).
+    pub error_estimate: f64,
+}
+
+/// The partial Bell polynomials `B_(j,i)(x_1, ..., x_(j-i+1))` for
+/// `0 <= i <= j <= order` (`x[0]` is `x_1`), by the recurrence
+/// `B_(j,i) = sum_(m=1..j-i+1) C(j-1, m-1) x_m B_(j-m,i-1)`,
+/// `B_(0,0) = 1`. Row `j`, column `i`.
+pub fn partial_bell(x: &[f64], order: usize) -> DMatrix<f64> {
+    let mut b = DMatrix::zeros(order + 1, order + 1);
+    b[(0, 0)] = 1.0;
+    for j in 1..=order {
+        for i in 1..=j {
+            let mut sum = 0.0;
+            let mut binomial = 1.0; // C(j-1, m-1)
+            for m in 1..=(j - i + 1) {
+                if m > 1 {
+                    binomial = binomial * (j - m + 1) as f64 / (m - 1) as f64;
+                }
+                sum += binomial * x[m - 1] * b[(j - m, i - 1)];
+            }
+            b[(j, i)] = sum;
+        }
+    }
+    b
+}
+
+/// `jet` (rows `P^(0..=k)`) turned into the targets `R^(j)` of the
+/// beta-constraints, with the rounding bound of each row carried along.
+fn geometric_targets(
+    jet: &DMatrix<f64>,
+    errors: &[f64],
+    shape: &[f64],
+) -> (DMatrix<f64>, Vec<f64>) {
+    let k = jet.nrows() - 1;
+    let bell = partial_bell(shape, k);
+    let mut out = DMatrix::zeros(k + 1, jet.ncols());
+    out.row_mut(0).copy_from(&jet.row(0));
+    let mut out_errors = vec![errors[0]; k + 1];
+    for j in 1..=k {
+        let mut bound = 0.0;
+        for i in 1..=j {
+            let coefficient = bell[(j, i)];
+            for c in 0..jet.ncols() {
+                out[(j, c)] += coefficient * jet[(i, c)];
+            }
+            bound += coefficient.abs() * (errors[i] + 4.0 * f64::EPSILON * jet.row(i).norm());
+        }
+        out_errors[j] = bound;
+    }
+    (out, out_errors)
+}
+
+/// Shape values given by the caller for one end: `order` values, `beta_1`
+/// finite and positive, the rest finite.
+fn check_shape(name: &str, shape: &[f64], order: usize) -> Result<()> {
+    if shape.len() != order {
+        return Err(BezjoinError::LengthMismatch {
+            name: name.into(),
+            expected: order,
+            actual: shape.len(),
+        });
+    }
+    check_finite(name, shape)?;
+    if order > 0 && shape[0] <= 0.0 {
+        return Err(BezjoinError::invalid(
+            format!("{name}[0]"),
+            format!(
+                "beta_1 = {} must be positive (the reparametrisation must keep the direction)",
+                shape[0]
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// The structured solve with the beta-constraints of the given shapes.
+fn solve_with_shapes(problem: &Problem, p_shape: &[f64], q_shape: &[f64]) -> Result<Connection> {
+    let mut shaped = problem.clone();
+    let (p, p_errors) =
+        geometric_targets(&problem.p_derivatives, &problem.p_derivative_error, p_shape);
+    let (q, q_errors) =
+        geometric_targets(&problem.q_derivatives, &problem.q_derivative_error, q_shape);
+    shaped.p_derivatives = p;
+    shaped.p_derivative_error = p_errors;
+    shaped.q_derivatives = q;
+    shaped.q_derivative_error = q_errors;
+    solve_structured(&shaped, 1.0, 1.0)
+}
+
+/// Connect `P` at `u0` to `Q` at `v0` with G^kp and G^kq (the module
+/// documentation states the beta-constraints), and the interior
+/// constraints of `options`, for any curves (NURBS too: P's jet from the
+/// left of `u0`, Q's from the right of `v0`).
+///
+/// Guarantee: the returned curve satisfies the beta-constraints of the
+/// returned shape values and the interior constraints with the residual
+/// guarantee of [`connect`](crate::connect) (`error_estimate <=
+/// CONNECT_RESIDUAL_LIMIT`); so it meets P and Q with G^kp and G^kq
+/// whenever `P'(u0)`, `Q'(v0)` are not zero. Without shape values the
+/// returned ones minimise the curvature variation as the module says (a
+/// local minimum from a deterministic start; no global guarantee).
+///
+/// Errors: those of [`connect`](crate::connect) (parameters, dimensions,
+/// degree above [`crate::MAX_CONNECT_DEGREE`], IllConditioned); an order
+/// above [`MAX_GEOMETRIC_ORDER`] or shape values of the wrong count, not
+/// finite, or `beta_1 <= 0` (InvalidArgument / LengthMismatch naming
+/// `p_shape` or `q_shape`); no shape values with which the solve succeeds
+/// and the curvature is defined (IllConditioned).
+pub fn connect_geometric<P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
+    p: &P,
+    u0: f64,
+    q: &Q,
+    v0: f64,
+    options: &GeometricOptions,
+) -> Result<GeometricConnection> {
+    for (name, order) in [("p_order", options.p_order), ("q_order", options.q_order)] {
+        if order > MAX_GEOMETRIC_ORDER {
+            return Err(BezjoinError::invalid(
+                name,
+                format!("{order} is above the largest geometric order {MAX_GEOMETRIC_ORDER}"),
+            ));
+        }
+    }
+    if let Some(shape) = &options.p_shape {
+        check_shape("p_shape", shape, options.p_order)?;
+    }
+    if let Some(shape) = &options.q_shape {
+        check_shape("q_shape", shape, options.q_order)?;
+    }
+    let mut connect_options = ConnectOptions::new(options.p_order, options.q_order);
+    connect_options.constraints = options.constraints.clone();
+    let problem = prepare(p, u0, q, v0, &connect_options)?;
+    let (p_shape, q_shape) = match (&options.p_shape, &options.q_shape) {
+        (Some(ps), Some(qs)) => (ps.clone(), qs.clone()),
+        _ => fair::fair_shapes(
+            &problem,
+            options.p_shape.as_deref(),
+            options.q_shape.as_deref(),
+            natural_scale(&problem),
+        )?,
+    };
+    let connection = solve_with_shapes(&problem, &p_shape, &q_shape)?;
+    let report = fairness_report(&connection.curve);
+    Ok(GeometricConnection {
+        curve: connection.curve,
+        p_shape,
+        q_shape,
+        report,
+        max_residual: connection.max_residual,
+        error_estimate: connection.error_estimate,
+    })
+}
