@@ -1142,6 +1142,37 @@ BzjStatus bzj_fillet_chain(const struct BzjCurve *const *curves, size_t curve_co
 BzjStatus bzj_connect_geometric(const struct BzjCurve *p, double u0, const struct BzjCurve *q, double v0, const struct BzjGeometricOptions *options, struct BzjCurve **out, double *p_shape_out, double *q_shape_out, struct BzjFairnessReport *report);
 
 /**
+ * A G^`order` fillet sized like the G1 arc of radius `radius` in the same
+ * corner: at the shared vertex when P's last point is Q's first point
+ * (within 1e-9 of the curves' coordinate size), else at the first
+ * crossing. The arc's touching points (where the offset curves at
+ * distance `radius` on the inner side meet: for lines the tangent length
+ * `radius tan(theta/2)`) are where P and Q are cut; `p_trimmed` and
+ * `q_trimmed` keep their kinds and parameters; `blend` is the G^order
+ * Bezier curve between the cuts with fair shape values (as
+ * [`bzj_connect_geometric`] with NULL shapes). `report` (may be NULL)
+ * receives the blend's energy, curvature range and number of curvature
+ * extrema (one maximum for a corner between lines).
+ *
+ * @return BZJ_ERR_NULL_POINTER if `p`, `q` or an output handle pointer is
+ *         NULL;
+ *         BZJ_ERR_INVALID_ARGUMENT if `radius` is not > 0, `order` is 0 or
+ *         above 6, or the arc of that radius does not fit on the curves
+ *         (`radius` named);
+ *         BZJ_ERR_NON_FINITE if `radius` is NaN or infinite;
+ *         BZJ_ERR_DIMENSION_MISMATCH if the dimensions differ;
+ *         BZJ_ERR_NO_INTERSECTION if there is no corner (no shared vertex and
+ *         no crossing, or parallel tangents there);
+ *         BZJ_ERR_ILL_CONDITIONED if the touching points or the blend cannot
+ *         be trusted.
+ *
+ * # Safety
+ * `p`, `q` are NULL or live handles; the three handle pointers are NULL or
+ * writable; `report` is NULL or writable.
+ */
+BzjStatus bzj_fillet_radius(const struct BzjCurve *p, const struct BzjCurve *q, double radius, size_t order, struct BzjCurve **p_trimmed, struct BzjCurve **blend, struct BzjCurve **q_trimmed, struct BzjFairnessReport *report);
+
+/**
  * A spline of cubic segments, each given by four points ON it at local
  * parameters `u = 0, 1/3, 2/3, 1`, joined C^1 in a global parameter
  * (Kovtun's construction, mathematics.md section 4), written as

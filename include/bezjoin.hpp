@@ -527,6 +527,29 @@ inline Fillet fillet_vertex(const Curve& p, const Curve& q, const FilletOptions&
     return Fillet{Curve(p_trimmed), Curve(blend), Curve(q_trimmed)};
 }
 
+/// A corner rounded like the arc of radius `radius`, with a G^order blend.
+struct RadiusFillet {
+    Curve p_trimmed;
+    Curve blend;
+    Curve q_trimmed;
+    BzjFairnessReport report;
+};
+
+/// Round the corner (the shared vertex, else the first crossing) like the
+/// circular fillet of `radius`, cut where that arc touches the curves, with
+/// a G^order blend of fair shape (bzj_fillet_radius; default G2).
+inline RadiusFillet fillet_radius(const Curve& p, const Curve& q, double radius,
+                                  std::size_t order = 2) {
+    BzjCurve* p_trimmed = nullptr;
+    BzjCurve* blend = nullptr;
+    BzjCurve* q_trimmed = nullptr;
+    BzjFairnessReport report{};
+    check(bzj_fillet_radius(p.get(), q.get(), radius, order, &p_trimmed, &blend, &q_trimmed,
+                            &report),
+          "bzj_fillet_radius");
+    return RadiusFillet{Curve(p_trimmed), Curve(blend), Curve(q_trimmed), report};
+}
+
 /// fillet() with p_scale = q_scale = scale chosen by the library.
 struct AutoScaledFillet {
     Curve p_trimmed;

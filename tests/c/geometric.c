@@ -1,8 +1,9 @@
-/* bzj_connect_geometric through the C ABI (contract section "Geometric
- * continuity"): given shape values satisfy the beta-constraints
+/* bzj_connect_geometric and bzj_fillet_radius through the C ABI (contract
+ * section "Geometric continuity"): given shape values satisfy the beta-constraints
  * R'(0) = b1 P', R''(0) = b1^2 P'' + b2 P' (and at Q); fair shapes on a
  * long-edge corner give a G2 blend whose unit tangent and curvature vector
- * match both edges, with one curvature maximum; shapes and report are
+ * match both edges, with one curvature maximum; the radius fillet cuts where
+ * the arc of that radius touches the edges; shapes and report are
  * written; every error names its argument and clears `out`. Compiled as C11
  * and C++17 by tests/tests/c_programs.rs, run under valgrind memcheck by
  * scripts/ci-embedding.sh. Exits 0 when every check passes. */
@@ -139,6 +140,39 @@ int main(void) {
                   BZJ_ERR_INVALID_ARGUMENT);
     expect_message("u0");
     CHECK(r == NULL, "out cleared");
+
+    /* bzj_fillet_radius at the vertex of the two edges: cut where the arc of
+       radius 2 touches them (2 from the corner), G2 blend between */
+    BzjCurve *pt = NULL, *blend = NULL, *qt = NULL;
+    EXPECT_STATUS(bzj_fillet_radius(a, b, 2.0, 2, &pt, &blend, &qt, &report), BZJ_OK);
+    double first = 0, last = 0, x[6], y[6];
+    EXPECT_STATUS(bzj_curve_eval(pt, 1.0, 2, x, 6), BZJ_OK);
+    CHECK(fabs(x[0] + 2.0) <= 1e-10 && fabs(x[1]) <= 1e-12, "P cut at (%g, %g)", x[0], x[1]);
+    EXPECT_STATUS(bzj_curve_eval(qt, 0.0, 2, y, 6), BZJ_OK);
+    CHECK(fabs(y[0]) <= 1e-12 && fabs(y[1] - 2.0) <= 1e-10, "Q cut at (%g, %g)", y[0], y[1]);
+    EXPECT_STATUS(bzj_curve_eval(blend, 0.0, 2, r0, 6), BZJ_OK);
+    EXPECT_STATUS(bzj_curve_eval(blend, 1.0, 2, r1, 6), BZJ_OK);
+    frame(x, t1, k1);
+    frame(r0, t2, k2);
+    CHECK(dist(t1, t2) <= 1e-12 && dist(k1, k2) <= 1e-9, "radius fillet: G2 at P");
+    frame(y, t1, k1);
+    frame(r1, t2, k2);
+    CHECK(dist(t1, t2) <= 1e-12 && dist(k1, k2) <= 1e-9, "radius fillet: G2 at Q");
+    CHECK(report.curvature_extrema == 1 && report.curvature_max > 0.5, "radius fillet report");
+    EXPECT_STATUS(bzj_curve_domain(pt, &first, &last), BZJ_OK);
+    bzj_curve_free(pt);
+    bzj_curve_free(blend);
+    bzj_curve_free(qt);
+    pt = blend = qt = (BzjCurve*)&failures;
+    EXPECT_STATUS(bzj_fillet_radius(a, b, 30.0, 2, &pt, &blend, &qt, NULL),
+                  BZJ_ERR_INVALID_ARGUMENT);
+    expect_message("radius");
+    CHECK(pt == NULL && blend == NULL && qt == NULL, "outs cleared");
+    EXPECT_STATUS(bzj_fillet_radius(a, b, 1.0, 0, &pt, &blend, &qt, NULL),
+                  BZJ_ERR_INVALID_ARGUMENT);
+    expect_message("order");
+    EXPECT_STATUS(bzj_fillet_radius(a, b, NAN, 2, &pt, &blend, &qt, NULL), BZJ_ERR_NON_FINITE);
+    EXPECT_STATUS(bzj_fillet_radius(a, b, 1.0, 2, &pt, NULL, &qt, NULL), BZJ_ERR_NULL_POINTER);
 
     bzj_curve_free(a);
     bzj_curve_free(b);

@@ -457,3 +457,54 @@ def fillet_chain(curves, *, setback=None, p_setback=None, q_setback=None, p_orde
     library().call("bzj_fillet_chain", array, len(handles), ctypes.byref(options), int(closed),
                    pieces, count.value, ctypes.byref(count))
     return FilletChainResult([Curve._adopt(pieces[i]) for i in range(count.value)], closed)
+
+
+from ._connect import FairnessReportStruct  # noqa: E402  (defined with connect_geometric)
+
+register_prototype(
+    "bzj_fillet_radius",
+    ctypes.c_int32,
+    [CurvePointer, CurvePointer, ctypes.c_double, ctypes.c_size_t,
+     ctypes.POINTER(CurvePointer), ctypes.POINTER(CurvePointer), ctypes.POINTER(CurvePointer),
+     ctypes.POINTER(FairnessReportStruct)],
+)
+
+
+class RadiusFilletResult(CurveGroup):
+    """:func:`fillet_radius`'s corner: ``p_trimmed``, the G^k ``blend`` and
+    ``q_trimmed`` (NURBS pieces keep their parameters), with the blend's fairness
+    report: ``energy``, ``curvature_min``, ``curvature_max`` and
+    ``curvature_extrema``."""
+
+    _curve_fields = ("p_trimmed", "blend", "q_trimmed")
+
+    def __init__(self, p_trimmed, blend, q_trimmed, report):
+        self.p_trimmed = p_trimmed
+        self.blend = blend
+        self.q_trimmed = q_trimmed
+        self.energy = report.energy
+        self.curvature_min = report.curvature_min
+        self.curvature_max = report.curvature_max
+        self.curvature_extrema = report.curvature_extrema
+
+    def _fields(self):
+        return self._curve_fields + ("energy", "curvature_min", "curvature_max",
+                                     "curvature_extrema")
+
+
+def fillet_radius(p, q, radius, *, order=2):
+    """Round the corner of ``p`` and ``q`` like the circular fillet of ``radius``
+    (cut where that arc touches them), with a G^order blend of fair shape
+    (``bzj_fillet_radius``): at the shared vertex when ``p`` ends where ``q``
+    starts, else at the first crossing. Default G2.
+
+    Returns:
+        :class:`RadiusFilletResult`.
+    """
+    p_handle, q_handle = handle_of(p, "p"), handle_of(q, "q")
+    outs = (CurvePointer(), CurvePointer(), CurvePointer())
+    report = FairnessReportStruct()
+    library().call("bzj_fillet_radius", p_handle, q_handle, real_argument(radius, "radius"),
+                   index_argument(order, "order"), *(ctypes.byref(o) for o in outs),
+                   ctypes.byref(report))
+    return RadiusFilletResult(*(Curve._adopt(o) for o in outs), report)

@@ -60,3 +60,22 @@ def test_errors_name_the_argument():
                 assert error.status_name == "BZJ_ERR_INVALID_ARGUMENT" and word in str(error)
             else:
                 raise AssertionError(f"no error for {word}")
+
+
+def test_fillet_radius_cuts_where_the_arc_touches():
+    with Curve([(-40, 0), (0, 0)]) as a, Curve([(0, 0), (0, 20)]) as b, \
+            bezjoin.fillet_radius(a, b, 2.0) as f:
+        assert_close(f.p_trimmed.derivatives(1.0, 0)[0], (-2.0, 0.0), 1e-10)
+        assert_close(f.q_trimmed.derivatives(0.0, 0)[0], (0.0, 2.0), 1e-10)
+        assert f.curvature_extrema == 1 and f.curvature_max > 0.5
+        for edge, u, t in ((f.p_trimmed, 1.0, 0.0), (f.q_trimmed, 0.0, 1.0)):
+            t1, k1 = frame(edge.derivatives(u, 2))
+            t2, k2 = frame(f.blend.derivatives(t, 2))
+            assert_close(t1, t2, 1e-12)
+            assert all(abs(x - y) <= 1e-9 for x, y in zip(k1, k2))
+        try:
+            bezjoin.fillet_radius(a, b, 50.0).close()
+        except bezjoin.BezjoinError as error:
+            assert error.status_name == "BZJ_ERR_INVALID_ARGUMENT" and "radius" in str(error)
+        else:
+            raise AssertionError("a radius that does not fit was accepted")

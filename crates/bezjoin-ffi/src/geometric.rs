@@ -3,10 +3,11 @@
 
 use bezjoin_core::{
     BezjoinError, FairnessReport, GeometricOptions, MAX_GEOMETRIC_ORDER, connect_geometric,
+    fillet_radius,
 };
 
 use crate::guard::guard;
-use crate::handles::{BzjCurve, HandleOut};
+use crate::handles::{BzjCurve, HandleOut, require_all};
 use crate::pointers::{curve_ref, input_ref, input_slice, output_slice, write_optional};
 use crate::status::BzjStatus;
 
@@ -159,6 +160,67 @@ pub unsafe extern "C" fn bzj_connect_geometric(
         // SAFETY: NULL or writable (caller contract).
         unsafe { write_optional(report, g.report.into()) };
         out.write(g.curve);
+        Ok(())
+    })
+}
+
+/// A G^`order` fillet sized like the G1 arc of radius `radius` in the same
+/// corner: at the shared vertex when P's last point is Q's first point
+/// (within 1e-9 of the curves' coordinate size), else at the first
+/// crossing. The arc's touching points (where the offset curves at
+/// distance `radius` on the inner side meet: for lines the tangent length
+/// `radius tan(theta/2)`) are where P and Q are cut; `p_trimmed` and
+/// `q_trimmed` keep their kinds and parameters; `blend` is the G^order
+/// Bezier curve between the cuts with fair shape values (as
+/// [`bzj_connect_geometric`] with NULL shapes). `report` (may be NULL)
+/// receives the blend's energy, curvature range and number of curvature
+/// extrema (one maximum for a corner between lines).
+///
+/// @return BZJ_ERR_NULL_POINTER if `p`, `q` or an output handle pointer is
+///         NULL;
+///         BZJ_ERR_INVALID_ARGUMENT if `radius` is not > 0, `order` is 0 or
+///         above 6, or the arc of that radius does not fit on the curves
+///         (`radius` named);
+///         BZJ_ERR_NON_FINITE if `radius` is NaN or infinite;
+///         BZJ_ERR_DIMENSION_MISMATCH if the dimensions differ;
+///         BZJ_ERR_NO_INTERSECTION if there is no corner (no shared vertex and
+///         no crossing, or parallel tangents there);
+///         BZJ_ERR_ILL_CONDITIONED if the touching points or the blend cannot
+///         be trusted.
+///
+/// # Safety
+/// `p`, `q` are NULL or live handles; the three handle pointers are NULL or
+/// writable; `report` is NULL or writable.
+#[unsafe(no_mangle)]
+#[allow(clippy::too_many_arguments)]
+pub unsafe extern "C" fn bzj_fillet_radius(
+    p: *const BzjCurve,
+    q: *const BzjCurve,
+    radius: f64,
+    order: usize,
+    p_trimmed: *mut *mut BzjCurve,
+    blend: *mut *mut BzjCurve,
+    q_trimmed: *mut *mut BzjCurve,
+    report: *mut BzjFairnessReport,
+) -> BzjStatus {
+    // SAFETY: each is null or writable (caller contract).
+    let outs = unsafe {
+        [
+            HandleOut::cleared(p_trimmed, "p_trimmed"),
+            HandleOut::cleared(blend, "blend"),
+            HandleOut::cleared(q_trimmed, "q_trimmed"),
+        ]
+    };
+    guard(|| {
+        // SAFETY: caller contract.
+        let (p, q) = unsafe { (curve_ref(p, "p")?, curve_ref(q, "q")?) };
+        let [p_out, blend_out, q_out] = require_all(outs)?;
+        let f = fillet_radius(p, q, radius, order)?;
+        // SAFETY: NULL or writable (caller contract).
+        unsafe { write_optional(report, f.report.into()) };
+        p_out.write(f.p_trimmed);
+        blend_out.write(f.blend);
+        q_out.write(f.q_trimmed);
         Ok(())
     })
 }

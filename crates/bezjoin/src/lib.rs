@@ -59,6 +59,7 @@ pub use connect::{
 };
 pub use curve::{AsCurveRef, Curve, CurveJet, CurveRef};
 pub use error::{BezjoinError, Result};
+pub use fillet::{ARC_DEVIATION_SAMPLES, RadiusFillet, VERTEX_TOLERANCE, fillet_radius};
 pub use fillet::{
     ChainCorner, ChainFillet, ChainFilletOptions, DEFAULT_PARALLEL_THRESHOLD,
     DEFAULT_RELATIVE_DEVIATION_ACCURACY, DEFAULT_RELATIVE_LENGTH_ACCURACY, DeviationFillet,

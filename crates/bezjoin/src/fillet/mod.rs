@@ -56,6 +56,7 @@
 
 mod chain;
 mod deviation;
+mod radius;
 
 pub use chain::{
     ChainCorner, ChainFillet, ChainFilletOptions, DEFAULT_PARALLEL_THRESHOLD, fillet_chain,
@@ -64,6 +65,7 @@ pub use deviation::{
     DEFAULT_RELATIVE_DEVIATION_ACCURACY, DeviationFillet, DeviationFilletOptions,
     distance_to_curve, fillet_within_deviation,
 };
+pub use radius::{ARC_DEVIATION_SAMPLES, RadiusFillet, VERTEX_TOLERANCE, fillet_radius};
 
 use crate::arclength::ArcLengthInverse;
 use crate::bezier::BezierCurve;

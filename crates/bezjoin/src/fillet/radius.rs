@@ -1,0 +1,307 @@
+//! Fillets by radius with G^k blends (docs/mathematics.md#fillet-by-radius;
+//! the specification's section 7): the corner is sized like the circular
+//! G1 fillet of radius `r` in the same corner, and rounded by a G^k blend
+//! with fair shape parameters.
+//!
+//! The arc's touching points `u_t` on `P` and `v_t` on `Q` are where the
+//! offset curves at distance `r` on the inner side of the corner meet:
+//! `P(u) + r N_P(u) = Q(v) + r N_Q(v)`, `N` the unit normal in the corner's
+//! plane (spanned by the two tangents at the corner) on the side the path
+//! turns to. Newton's method in `(u, v)` solves it from the touching points
+//! of two straight edges with the corner's tangents (tangent length
+//! `r tan(theta / 2)`, `theta` the turning angle). For lines this is the
+//! arc itself; for curved edges it is the arc `ChFi2d` would build. Then
+//! `P` is cut at `u_t`, `Q` at `v_t` (kinds and parameters kept) and
+//! [`connect_geometric`] joins the cuts with G^k and fair shape values.
+
+use crate::basis::KnotSide;
+use crate::bezier::BezierCurve;
+use crate::curve::{Curve, CurveJet, CurveRef};
+use crate::error::{BezjoinError, Result, check_finite_scalar};
+use crate::geometric::{FairnessReport, GeometricOptions, MAX_GEOMETRIC_ORDER, connect_geometric};
+use crate::intersect::{IntersectOptions, Intersection, IntersectionKind, intersect};
+
+use super::first_crossing;
+
+/// Newton steps of the touching-point search.
+const TOUCH_NEWTON_STEPS: usize = 60;
+
+/// A corner at a shared vertex when P's last and Q's first point are this
+/// close, relative to the curves' coordinate scale (the contract's 1e-9).
+pub const VERTEX_TOLERANCE: f64 = 1e-9;
+
+/// Samples of the blend behind [`RadiusFillet::arc_deviation`].
+pub const ARC_DEVIATION_SAMPLES: usize = 256;
+
+/// A corner rounded like the arc of radius `r`, with a G^k blend.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RadiusFillet {
+    /// `P` on `[first, u_t]`, of P's kind and parameters.
+    pub p_trimmed: Curve,
+    /// The G^k blend.
+    pub blend: BezierCurve,
+    /// `Q` on `[v_t, last]`.
+    pub q_trimmed: Curve,
+    /// The corner rounded (the vertex, or the first crossing).
+    pub corner: Intersection,
+    /// The arc's touching point on `P`.
+    pub u0: f64,
+    /// The arc's touching point on `Q`.
+    pub v0: f64,
+    /// The arc's centre.
+    pub arc_centre: Vec<f64>,
+    /// Largest distance of the blend from the circle of the arc (sampled at
+    /// [`ARC_DEVIATION_SAMPLES`]` + 1` parameters).
+    pub arc_deviation: f64,
+    /// Shape values used at `P` and `Q`.
+    pub p_shape: Vec<f64>,
+    /// Shape values used at `Q`.
+    pub q_shape: Vec<f64>,
+    /// Energy, curvature range and extrema of the blend.
+    pub report: FairnessReport,
+}
+
+/// Orthonormal basis of the corner's plane and coordinates in it.
+struct Plane {
+    origin: Vec<f64>,
+    e1: Vec<f64>,
+    e2: Vec<f64>,
+}
+
+impl Plane {
+    fn point(&self, x: &[f64]) -> [f64; 2] {
+        let (mut a, mut b) = (0.0, 0.0);
+        for c in 0..x.len() {
+            let d = x[c] - self.origin[c];
+            a += d * self.e1[c];
+            b += d * self.e2[c];
+        }
+        [a, b]
+    }
+
+    fn vector(&self, x: &[f64]) -> [f64; 2] {
+        let (mut a, mut b) = (0.0, 0.0);
+        for c in 0..x.len() {
+            a += x[c] * self.e1[c];
+            b += x[c] * self.e2[c];
+        }
+        [a, b]
+    }
+
+    fn lift(&self, p: [f64; 2]) -> Vec<f64> {
+        (0..self.origin.len())
+            .map(|c| self.origin[c] + p[0] * self.e1[c] + p[1] * self.e2[c])
+            .collect()
+    }
+}
+
+/// The offset point `C(u) + r N(u)` (plane coordinates) and its derivative
+/// in `u`, `N` the left normal (the corner turns left in the plane's
+/// orientation).
+fn offset(curve: CurveRef, plane: &Plane, u: f64, r: f64, side: KnotSide) -> ([f64; 2], [f64; 2]) {
+    let (jet, _) = curve.jet(u, 2, side);
+    let row = |k: usize| -> Vec<f64> { jet.row(k).iter().copied().collect() };
+    let x = plane.point(&row(0));
+    let d1 = plane.vector(&row(1));
+    let d2 = plane.vector(&row(2));
+    let speed = (d1[0] * d1[0] + d1[1] * d1[1]).sqrt();
+    let t = [d1[0] / speed, d1[1] / speed];
+    let along = d2[0] * t[0] + d2[1] * t[1];
+    let dt = [
+        (d2[0] - along * t[0]) / speed,
+        (d2[1] - along * t[1]) / speed,
+    ];
+    // N = (-t_y, t_x), dN/du = (-dt_y, dt_x)
+    (
+        [x[0] - r * t[1], x[1] + r * t[0]],
+        [d1[0] - r * dt[1], d1[1] + r * dt[0]],
+    )
+}
+
+/// Round the corner of `p` and `q` like the circular fillet of radius
+/// `radius`, with a G^`order` blend of fair shape values (module
+/// documentation). The corner is the shared vertex when P's last point is
+/// Q's first point (within [`VERTEX_TOLERANCE`] of the coordinate scale),
+/// else the first crossing. Planar curves (2D, or 3D curves whose corner
+/// plane holds both arcs' touching points).
+///
+/// Errors: curves of different dimensions or dimension 1; `radius` not
+/// finite and positive, `order` 0 or above [`MAX_GEOMETRIC_ORDER`]
+/// (InvalidArgument naming them); no corner (NoIntersection, as
+/// [`super::fillet`]), tangents parallel at the corner (NoIntersection:
+/// nothing to round); an arc of that radius that does not fit on the
+/// curves (InvalidArgument naming `radius`, with the touching point found
+/// outside the curve); the touching points not found (IllConditioned); the
+/// errors of [`connect_geometric`].
+pub fn fillet_radius<'a>(
+    p: impl Into<CurveRef<'a>>,
+    q: impl Into<CurveRef<'a>>,
+    radius: f64,
+    order: usize,
+) -> Result<RadiusFillet> {
+    let (p, q) = (p.into(), q.into());
+    if q.dim() != p.dim() {
+        return Err(BezjoinError::DimensionMismatch {
+            name: "q".into(),
+            expected: p.dim(),
+            actual: q.dim(),
+        });
+    }
+    if p.dim() < 2 {
+        return Err(BezjoinError::invalid(
+            "p",
+            "a fillet needs dimension 2 or more",
+        ));
+    }
+    check_finite_scalar("radius", radius)?;
+    if radius <= 0.0 {
+        return Err(BezjoinError::invalid(
+            "radius",
+            format!("{radius} must be positive"),
+        ));
+    }
+    if order == 0 || order > MAX_GEOMETRIC_ORDER {
+        return Err(BezjoinError::invalid(
+            "order",
+            format!("{order} is not a geometric order 1..={MAX_GEOMETRIC_ORDER}"),
+        ));
+    }
+    let scale = p
+        .coordinate_scale()
+        .max(q.coordinate_scale())
+        .max(f64::MIN_POSITIVE);
+    let (p_first, p_last) = p.domain();
+    let (q_first, q_last) = q.domain();
+    let end = p.eval(p_last);
+    let start = q.eval(q_first);
+    let gap = crate::bezier::distance(&end, &start);
+    let corner = if gap <= VERTEX_TOLERANCE * scale {
+        Intersection {
+            u: p_last,
+            v: q_first,
+            point: end,
+            distance: gap,
+            kind: IntersectionKind::Crossing,
+        }
+    } else {
+        first_crossing(&intersect(p, q, &IntersectOptions::default())?)?
+    };
+    // The corner's plane: P's arriving tangent and Q's leaving one.
+    let (pj, _) = p.jet(corner.u, 1, KnotSide::Left);
+    let (qj, _) = q.jet(corner.v, 1, KnotSide::Right);
+    let unit = |v: Vec<f64>| -> Option<Vec<f64>> {
+        let n = v.iter().map(|x| x * x).sum::<f64>().sqrt();
+        (n > 0.0 && n.is_finite()).then(|| v.iter().map(|x| x / n).collect())
+    };
+    let no_corner = |why: &str| BezjoinError::NoIntersection {
+        reason: format!(
+            "no corner to round at u = {}, v = {}: {why}",
+            corner.u, corner.v
+        ),
+    };
+    let tp = unit(pj.row(1).iter().copied().collect())
+        .ok_or_else(|| no_corner("P's tangent is zero"))?;
+    let tq = unit(qj.row(1).iter().copied().collect())
+        .ok_or_else(|| no_corner("Q's tangent is zero"))?;
+    let cos = tp.iter().zip(&tq).map(|(a, b)| a * b).sum::<f64>();
+    let e2 = unit(tq.iter().zip(&tp).map(|(b, a)| b - cos * a).collect())
+        .filter(|_| (1.0 - cos.abs()) > 1e-12)
+        .ok_or_else(|| no_corner("the tangents are parallel"))?;
+    let plane = Plane {
+        origin: corner.point.clone(),
+        e1: tp.clone(),
+        e2,
+    };
+    let theta = (tq.iter().zip(&plane.e2).map(|(a, b)| a * b).sum::<f64>()).atan2(cos);
+    let tangent_length = radius * (0.5 * theta).tan();
+    let p_speed = pj.row(1).norm();
+    let q_speed = qj.row(1).norm();
+    let mut u = (corner.u - tangent_length / p_speed).max(p_first);
+    let mut v = (corner.v + tangent_length / q_speed).min(q_last);
+    // Newton on F(u, v) = P(u) + r N_P(u) - Q(v) - r N_Q(v) (plane coordinates).
+    let tolerance = 1e-12 * scale.max(radius);
+    let mut converged = false;
+    for _ in 0..TOUCH_NEWTON_STEPS {
+        let (fp, dp) = offset(p, &plane, u, radius, KnotSide::Left);
+        let (fq, dq) = offset(q, &plane, v, radius, KnotSide::Right);
+        let f = [fp[0] - fq[0], fp[1] - fq[1]];
+        if (f[0] * f[0] + f[1] * f[1]).sqrt() <= tolerance {
+            converged = true;
+            break;
+        }
+        // [dp, -dq] [du, dv]^T = -f
+        let det = dp[0] * (-dq[1]) - (-dq[0]) * dp[1];
+        if det == 0.0 || !det.is_finite() {
+            break;
+        }
+        let du = (-f[0] * (-dq[1]) + dq[0] * (-f[1])) / det;
+        let dv = (dp[0] * (-f[1]) - dp[1] * (-f[0])) / det;
+        u = (u + du).clamp(p_first, corner.u);
+        v = (v + dv).clamp(corner.v, q_last);
+        if !(u.is_finite() && v.is_finite()) {
+            break;
+        }
+    }
+    if !converged && (u <= p_first || v >= q_last) {
+        return Err(BezjoinError::invalid(
+            "radius",
+            format!(
+                "the arc of radius {radius} does not fit: its touching point would lie beyond \
+                 {} (the search stopped at u = {u}, v = {v})",
+                if u <= p_first { "P's start" } else { "Q's end" }
+            ),
+        ));
+    }
+    if !converged {
+        return Err(BezjoinError::IllConditioned {
+            what: format!(
+                "fillet by radius: the touching points of the arc of radius {radius} were not \
+                 found (Newton on the offset curves did not converge; the arc may not fit)"
+            ),
+            estimate: f64::INFINITY,
+            limit: tolerance,
+        });
+    }
+    if u <= p_first || u >= corner.u {
+        return Err(BezjoinError::invalid(
+            "radius",
+            format!(
+                "the arc of radius {radius} would touch P at u = {u}, outside (first = \
+                 {p_first}, corner = {}): it does not fit",
+                corner.u
+            ),
+        ));
+    }
+    if v >= q_last || v <= corner.v {
+        return Err(BezjoinError::invalid(
+            "radius",
+            format!(
+                "the arc of radius {radius} would touch Q at v = {v}, outside (corner = {}, \
+                 last = {q_last}): it does not fit",
+                corner.v
+            ),
+        ));
+    }
+    let (centre_plane, _) = offset(p, &plane, u, radius, KnotSide::Left);
+    let arc_centre = plane.lift(centre_plane);
+    let g = connect_geometric(&p, u, &q, v, &GeometricOptions::new(order, order))?;
+    let arc_deviation = (0..=ARC_DEVIATION_SAMPLES)
+        .map(|i| {
+            let x = g.curve.eval(i as f64 / ARC_DEVIATION_SAMPLES as f64);
+            (crate::bezier::distance(&x, &arc_centre) - radius).abs()
+        })
+        .fold(0.0f64, f64::max);
+    Ok(RadiusFillet {
+        p_trimmed: p.segment(p_first, u)?,
+        blend: g.curve,
+        q_trimmed: q.segment(v, q_last)?,
+        corner,
+        u0: u,
+        v0: v,
+        arc_centre,
+        arc_deviation,
+        p_shape: g.p_shape,
+        q_shape: g.q_shape,
+        report: g.report,
+    })
+}

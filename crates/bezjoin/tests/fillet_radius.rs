@@ -1,0 +1,184 @@
+//! Fillets by radius with G^k blends (docs/mathematics.md#fillet-by-radius):
+//! the touching points are those of the circular G1 fillet (checked
+//! independently: at distance `r` from the centre, the radius
+//! perpendicular to the curve there), the blend meets both curves with G^k
+//! judged by T, K and dK/ds, its curvature rises to one maximum and falls,
+//! and what does not fit is refused by name.
+
+mod common;
+
+use bezjoin_core::{
+    BezierCurve, BezjoinError, Curve, KnotSide, NurbsCurve, ellipse_arc, fillet_radius,
+};
+
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum()
+}
+
+fn norm(a: &[f64]) -> f64 {
+    dot(a, a).sqrt()
+}
+
+/// `T`, `K` and `dK/ds` from rows 1..3 of a jet.
+fn invariants(jet: &[f64], d: usize) -> [Vec<f64>; 3] {
+    let (a, b, c) = (&jet[d..2 * d], &jet[2 * d..3 * d], &jet[3 * d..4 * d]);
+    let (s2, m) = (dot(a, a), dot(a, b));
+    let dm = dot(b, b) + dot(a, c);
+    let speed = s2.sqrt();
+    let t = a.iter().map(|x| x / speed).collect();
+    let k = (0..d).map(|i| (b[i] * s2 - m * a[i]) / (s2 * s2)).collect();
+    let dk = (0..d)
+        .map(|i| {
+            let num = b[i] * s2 - m * a[i];
+            let dnum = c[i] * s2 + b[i] * 2.0 * m - dm * a[i] - m * b[i];
+            (dnum / (s2 * s2) - num * 4.0 * m / (s2 * s2 * s2)) / speed
+        })
+        .collect();
+    [t, k, dk]
+}
+
+fn jet_of(c: &Curve, u: f64, side: KnotSide) -> Vec<f64> {
+    match c {
+        Curve::Bezier(b) => b.eval_derivatives(u, 3),
+        Curve::Nurbs(n) => n.eval_derivatives_side(u, 3, side),
+    }
+}
+
+/// G^order between the trimmed pieces and the blend at both joins.
+fn assert_gk(f: &bezjoin_core::RadiusFillet, order: usize, d: usize) {
+    let (_, pu) = f.p_trimmed.domain();
+    let (qv, _) = f.q_trimmed.domain();
+    let pairs = [
+        (
+            jet_of(&f.p_trimmed, pu, KnotSide::Left),
+            f.blend.eval_derivatives(0.0, 3),
+        ),
+        (
+            jet_of(&f.q_trimmed, qv, KnotSide::Right),
+            f.blend.eval_derivatives(1.0, 3),
+        ),
+    ];
+    for (side, (a, b)) in pairs.iter().enumerate() {
+        let (x, y) = (invariants(a, d), invariants(b, d));
+        for k in 0..order.min(3) {
+            let gap = norm(
+                &x[k]
+                    .iter()
+                    .zip(&y[k])
+                    .map(|(p, q)| p - q)
+                    .collect::<Vec<_>>(),
+            );
+            let size = norm(&x[k]).max(norm(&y[k])).max(1e-2);
+            assert!(
+                gap <= 1e-8 * size.max(1.0),
+                "join {side}, invariant {k}: {gap:e}"
+            );
+        }
+    }
+}
+
+/// The touching point `x` (with tangent `t`) is on the circle of radius `r`
+/// about `centre` and the radius there is perpendicular to the curve.
+fn assert_touches(x: &[f64], t: &[f64], centre: &[f64], r: f64) {
+    let to: Vec<f64> = x.iter().zip(centre).map(|(a, b)| a - b).collect();
+    assert!(
+        (norm(&to) - r).abs() <= 1e-9 * r,
+        "distance {} vs {r}",
+        norm(&to)
+    );
+    assert!(dot(&to, t).abs() <= 1e-9 * r * norm(t), "not perpendicular");
+}
+
+#[test]
+fn a_corner_of_two_lines_is_sized_like_the_arc() {
+    for (angle_degrees, r) in [(90.0f64, 2.0), (30.0, 1.0), (120.0, 0.5), (150.0, 3.0)] {
+        let theta = angle_degrees.to_radians(); // turning angle
+        let long = BezierCurve::new(2, 1, vec![-40.0, 0.0, 0.0, 0.0]).unwrap();
+        let short =
+            BezierCurve::new(2, 1, vec![0.0, 0.0, 20.0 * theta.cos(), 20.0 * theta.sin()]).unwrap();
+        for order in [2, 3] {
+            let f = fillet_radius(&long, &short, r, order).unwrap();
+            let tangent = r * (0.5 * theta).tan();
+            assert!(
+                (40.0 * (1.0 - f.u0) - tangent).abs() <= 1e-10,
+                "{angle_degrees}: u0"
+            );
+            assert!(
+                (20.0 * f.v0 - tangent).abs() <= 1e-10,
+                "{angle_degrees}: v0"
+            );
+            assert_touches(&long.eval(f.u0), &[1.0, 0.0], &f.arc_centre, r);
+            assert_touches(
+                &short.eval(f.v0),
+                &[theta.cos(), theta.sin()],
+                &f.arc_centre,
+                r,
+            );
+            assert_gk(&f, order, 2);
+            // the curvature rises from 0 to one maximum above the arc's 1/r and falls
+            assert_eq!(
+                f.report.curvature_extrema, 1,
+                "{angle_degrees} G{order}: {:?}",
+                f.report
+            );
+            assert!(f.report.curvature_max > 1.0 / r, "{:?}", f.report);
+            assert!(f.report.curvature_min >= -1e-9);
+            assert!(f.arc_deviation < 0.5 * r, "deviation {}", f.arc_deviation);
+        }
+    }
+}
+
+#[test]
+fn a_circle_arc_and_a_line_crossing_get_g3() {
+    // the unit circle's upper half from angle 0.3 to 2.8, crossed by a line
+    let arc = ellipse_arc(2, &[0.0, 0.0], &[1.0, 0.0], &[0.0, 1.0], 1.0, 1.0, 0.3, 2.8).unwrap();
+    let line = NurbsCurve::new(
+        2,
+        1,
+        vec![-0.2, 0.5, 2.0, 2.0],
+        None,
+        vec![0.0, 0.0, 1.0, 1.0],
+    )
+    .unwrap();
+    let f = fillet_radius(&arc, &line, 0.15, 3).unwrap();
+    assert!(matches!(f.p_trimmed, Curve::Nurbs(_)));
+    let (_, u) = f.p_trimmed.domain();
+    let tangent: Vec<f64> = {
+        let j = arc.eval_derivatives_side(u, 1, KnotSide::Left);
+        j[2..4].to_vec()
+    };
+    assert_touches(&arc.eval(u), &tangent, &f.arc_centre, 0.15);
+    let (v, _) = f.q_trimmed.domain();
+    assert_touches(&line.eval(v), &[2.2, 1.5], &f.arc_centre, 0.15);
+    assert_gk(&f, 3, 2);
+    assert_eq!(f.report.curvature_extrema, 1, "{:?}", f.report);
+}
+
+#[test]
+fn what_does_not_fit_is_refused_by_name() {
+    let a = BezierCurve::new(2, 1, vec![-4.0, 0.0, 0.0, 0.0]).unwrap();
+    let b = BezierCurve::new(2, 1, vec![0.0, 0.0, 0.0, 2.0]).unwrap();
+    match fillet_radius(&a, &b, 3.0, 2) {
+        Err(BezjoinError::InvalidArgument { name, .. }) => assert_eq!(name, "radius"),
+        other => panic!("{other:?}"),
+    }
+    for bad in [0.0, -1.0] {
+        assert!(matches!(
+            fillet_radius(&a, &b, bad, 2),
+            Err(BezjoinError::InvalidArgument { .. })
+        ));
+    }
+    assert!(matches!(
+        fillet_radius(&a, &b, f64::NAN, 2),
+        Err(BezjoinError::NonFiniteScalar { .. })
+    ));
+    match fillet_radius(&a, &b, 0.5, 0) {
+        Err(BezjoinError::InvalidArgument { name, .. }) => assert_eq!(name, "order"),
+        other => panic!("{other:?}"),
+    }
+    let straight = BezierCurve::new(2, 1, vec![0.0, 0.0, 3.0, 0.0]).unwrap();
+    assert!(matches!(
+        fillet_radius(&a, &straight, 0.5, 2),
+        Err(BezjoinError::NoIntersection { .. })
+    ));
+}
