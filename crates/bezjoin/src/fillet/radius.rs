@@ -70,22 +70,13 @@ struct Plane {
 
 impl Plane {
     fn point(&self, x: &[f64]) -> [f64; 2] {
-        let (mut a, mut b) = (0.0, 0.0);
-        for c in 0..x.len() {
-            let d = x[c] - self.origin[c];
-            a += d * self.e1[c];
-            b += d * self.e2[c];
-        }
-        [a, b]
+        let relative: Vec<f64> = x.iter().zip(&self.origin).map(|(a, o)| a - o).collect();
+        self.vector(&relative)
     }
 
     fn vector(&self, x: &[f64]) -> [f64; 2] {
-        let (mut a, mut b) = (0.0, 0.0);
-        for c in 0..x.len() {
-            a += x[c] * self.e1[c];
-            b += x[c] * self.e2[c];
-        }
-        [a, b]
+        let along = |e: &[f64]| x.iter().zip(e).map(|(a, b)| a * b).sum::<f64>();
+        [along(&self.e1), along(&self.e2)]
     }
 
     fn lift(&self, p: [f64; 2]) -> Vec<f64> {
