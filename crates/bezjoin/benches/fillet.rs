@@ -1,11 +1,12 @@
 //! Intersection and corner rounding: one cubic-cubic intersection, one
-//! cubic-cubic C3 fillet (blend degree 7), one deviation-bound fillet, and a
+//! cubic-cubic C3 fillet (blend degree 7), the fair G2 fillet by radius of
+//! the same corner, one deviation-bound fillet, and a
 //! chain of 100 000 corners on 1 and 2 threads (local rayon pools).
 use std::hint::black_box;
 
 use bezjoin_core::BezierCurve;
 use bezjoin_core::{
-    ChainFilletOptions, DeviationFilletOptions, FilletOptions, fillet, fillet_chain,
+    ChainFilletOptions, DeviationFilletOptions, FilletOptions, fillet, fillet_chain, fillet_radius,
     fillet_within_deviation,
 };
 use bezjoin_core::{IntersectOptions, intersect};
@@ -43,6 +44,11 @@ fn bench_fillet(c: &mut Criterion) {
         b.iter(|| fillet(black_box(&p), black_box(&q), &options).unwrap())
     });
     let deviation = DeviationFilletOptions::new(0.05, 3);
+    // Issue 18's goal: a fair G2 fillet of two cubics at most 10x the C^k
+    // fillet with given scales above.
+    c.bench_function("fillet_radius/cubic_cubic_g2", |b| {
+        b.iter(|| fillet_radius(black_box(&p), black_box(&q), 0.3, 2).unwrap())
+    });
     c.bench_function("fillet/cubic_cubic_c3_within_deviation", |b| {
         b.iter(|| fillet_within_deviation(black_box(&p), black_box(&q), &deviation).unwrap())
     });
