@@ -2517,6 +2517,432 @@ void check_fillet(Report& report, StepScene& scene, std::vector<Timing>& timings
     });
 }
 
+// r. Fillet by radius (bzj_fillet_radius) judged by OCCT. Corners: two lines
+// (40 then 20 long) turning 45 (left), 90 (left; G2 and G3) and 135 degrees
+// (right), and an arc of OCCT's circle of radius 10 (GC_MakeArcOfCircle
+// through GeomConvert, into bzj_nurbs_new) followed by a line turning 70
+// degrees left; radius 2 everywhere. Per corner three rows:
+//   r.Gk-GeomLProp[...]    our three pieces as Geom_BezierCurve /
+//                          Geom_BSplineCurve; GeomLProp_CLProps at both
+//                          joins: unit tangents (1e-9), curvature (1e-7
+//                          relative, 1e-9 absolute where the input piece is
+//                          straight), normal and centre of curvature where
+//                          the input piece is curved (1e-9 / 1e-7 relative to
+//                          its radius of curvature); G3 also dkappa/ds on both
+//                          sides by a finite difference of GeomLProp's
+//                          curvature along OCCT's arc length (tolerance below).
+//   r.cuts-vs-ChFi2d[...]  OCCT's own fillet of the same two edges
+//                          (ChFi2d_FilletAPI, same radius, TopoDS_Edges in
+//                          gp_Pln XOY): its arc's end points are our cuts
+//                          (1e-9 relative to the corner's size).
+//   r.curvature[...]       the blend's curvature rises to one peak and falls:
+//                          report.curvature_extrema == 1, and OCCT's
+//                          curvature at the report's 513 parameters
+//                          (t = i/512) has one interior extremum and the same
+//                          peak (1e-9 relative); peak beside 1/r, and the
+//                          largest distance of our blend from OCCT's arc.
+// Then one timing row: bzj_fillet_radius G2 beside ChFi2d_FilletAPI.
+
+// Our curve as OCCT's (a Bezier curve as Geom_BezierCurve, a NURBS curve as
+// Geom_BSplineCurve), 2D lifted to z = 0.
+Handle(Geom_Curve) occ_curve(const Curve& c) {
+    if (c.is_nurbs()) {
+        return occ_bspline(c);
+    }
+    return occ_bezier(c);
+}
+
+// GeomLProp_CLProps at u: unit tangent, curvature and (only when asked: the
+// normal is undefined on a straight piece) unit normal and centre.
+struct LocalProps {
+    gp_Vec tangent;
+    double kappa = 0.0;
+    gp_Vec normal;
+    gp_Pnt centre;
+};
+
+LocalProps local_props(const Handle(Geom_Curve)& c, double u, bool with_normal) {
+    GeomLProp_CLProps props(c, u, 2, 1e-12);
+    if (!props.IsTangentDefined()) {
+        throw std::runtime_error(format("GeomLProp_CLProps: no tangent at u = %g", u));
+    }
+    LocalProps out;
+    gp_Dir t;
+    props.Tangent(t);
+    out.tangent = gp_Vec(t);
+    out.kappa = props.Curvature();
+    if (with_normal) {
+        gp_Dir n;
+        props.Normal(n);
+        out.normal = gp_Vec(n);
+        props.CentreOfCurvature(out.centre);
+    }
+    return out;
+}
+
+// d(kappa)/ds at the start (at_start) or the end of c, along the direction
+// of travel: the quadratic through GeomLProp's curvature at the end and at
+// parameter steps `fraction` and 2 `fraction` of the domain inward, placed at
+// OCCT's arc lengths (GCPnts_AbscissaPoint::Length) from the end.
+double dkappa_ds_at_end(const Handle(Geom_Curve)& c, bool at_start, double fraction) {
+    const double a = c->FirstParameter();
+    const double b = c->LastParameter();
+    const double step = fraction * (b - a);
+    const double u0 = at_start ? a : b;
+    const double u1 = at_start ? a + step : b - step;
+    const double u2 = at_start ? a + 2.0 * step : b - 2.0 * step;
+    const GeomAdaptor_Curve adaptor(c);
+    const double s1 = GCPnts_AbscissaPoint::Length(adaptor, std::min(u0, u1), std::max(u0, u1), 1e-13);
+    const double s2 = GCPnts_AbscissaPoint::Length(adaptor, std::min(u0, u2), std::max(u0, u2), 1e-13);
+    const double k0 = curvature(c, u0);
+    const double k1 = curvature(c, u1);
+    const double k2 = curvature(c, u2);
+    // Derivative at s = 0 of the quadratic through (0, k0), (s1, k1), (s2, k2).
+    const double inward = -k0 * (s1 + s2) / (s1 * s2) + k1 * s2 / (s1 * (s2 - s1)) - k2 * s1 / (s2 * (s2 - s1));
+    return at_start ? inward : -inward;
+}
+
+struct RadiusCorner {
+    std::string name;
+    Curve p;
+    Curve q;
+    TopoDS_Edge e1;  // OCCT's edges of the same corner, sharing the vertex
+    TopoDS_Edge e2;
+    gp_Pnt vertex;
+    double size = 1.0;  // max |coordinate| of the corner's end points, at least 1
+    double turn = 0.0;  // two lines: |turning angle| (tangent length r tan(turn / 2)); else 0
+    std::size_t order = 2;
+};
+
+void check_fillet_radius(Report& report, std::vector<Timing>& timings, const Options& options) {
+    const double pi = 3.14159265358979323846;
+    const double radius = 2.0;
+    const gp_Pln plane(gp::XOY());
+    std::vector<RadiusCorner> corners;
+
+    // Two lines: P from A to the vertex V (40 long), Q from V to B (20 long),
+    // turning `turn` radians (positive: to the left).
+    auto lines = [&](const std::string& name, double turn, std::size_t order) {
+        const gp_Pnt v(5.0, 3.0, 0.0);
+        const double heading = 0.3;
+        const gp_Dir d_in(std::cos(heading), std::sin(heading), 0.0);
+        const gp_Dir d_out(std::cos(heading + turn), std::sin(heading + turn), 0.0);
+        const gp_Pnt a = v.Translated(gp_Vec(d_in) * -40.0);
+        const gp_Pnt b = v.Translated(gp_Vec(d_out) * 20.0);
+        RadiusCorner c;
+        c.name = name;
+        c.p = Curve(2, 1, {a.X(), a.Y(), v.X(), v.Y()});
+        c.q = Curve(2, 1, {v.X(), v.Y(), b.X(), b.Y()});
+        const TopoDS_Vertex va = BRepBuilderAPI_MakeVertex(a);
+        const TopoDS_Vertex vv = BRepBuilderAPI_MakeVertex(v);
+        const TopoDS_Vertex vb = BRepBuilderAPI_MakeVertex(b);
+        c.e1 = BRepBuilderAPI_MakeEdge(va, vv).Edge();
+        c.e2 = BRepBuilderAPI_MakeEdge(vv, vb).Edge();
+        c.vertex = v;
+        c.size = std::max({1.0, std::abs(a.X()), std::abs(a.Y()), std::abs(v.X()), std::abs(v.Y()),
+                           std::abs(b.X()), std::abs(b.Y())});
+        c.turn = std::abs(turn);
+        c.order = order;
+        corners.push_back(std::move(c));
+    };
+    guarded(report, "r.corners", [&] {
+        lines("lines 45/G2", pi / 4.0, 2);
+        lines("lines 90/G2", pi / 2.0, 2);
+        lines("lines 90/G3", pi / 2.0, 3);
+        lines("lines 135 right/G2", -3.0 * pi / 4.0, 2);
+        // The arc: circle of radius 10 about the origin from -0.6 to 1.0 rad
+        // (counter-clockwise, 16 long), then a line 20 long turning 70
+        // degrees left of the arc's end tangent; the fillet lies inside the
+        // circle.
+        const double a0 = -0.6;
+        const double a1 = 1.0;
+        const Handle(Geom_TrimmedCurve) arc_occ =
+            GC_MakeArcOfCircle(gp_Circ(gp::XOY(), 10.0), a0, a1, true).Value();
+        const Handle(Geom_BSplineCurve) arc_bspline = GeomConvert::CurveToBSplineCurve(arc_occ);
+        const gp_Pnt v = arc_occ->EndPoint();
+        const gp_Dir end_tangent(-std::sin(a1), std::cos(a1), 0.0);
+        const gp_Dir line_dir = end_tangent.Rotated(gp::OZ(), 70.0 * pi / 180.0);
+        const gp_Pnt b = v.Translated(gp_Vec(line_dir) * 20.0);
+        RadiusCorner c;
+        c.name = "arc+line/G2";
+        c.p = ours_from_occ(arc_bspline, 2);
+        c.q = Curve(2, 1, {v.X(), v.Y(), b.X(), b.Y()});
+        const TopoDS_Vertex va = BRepBuilderAPI_MakeVertex(arc_occ->StartPoint());
+        const TopoDS_Vertex vv = BRepBuilderAPI_MakeVertex(v);
+        const TopoDS_Vertex vb = BRepBuilderAPI_MakeVertex(b);
+        c.e1 = BRepBuilderAPI_MakeEdge(arc_occ->BasisCurve(), va, vv, a0, a1).Edge();
+        c.e2 = BRepBuilderAPI_MakeEdge(vv, vb).Edge();
+        c.vertex = v;
+        c.size = std::max({1.0, 10.0, std::abs(b.X()), std::abs(b.Y())});
+        c.order = 2;
+        corners.push_back(std::move(c));
+        report.info("r.corners",
+                    format("radius %g; lines 40 + 20 long turning 45 / 90 (left) and 135 (right) degrees; "
+                           "arc: GeomConvert of GC_MakeArcOfCircle (r 10, degree %d, rational %s, %d poles) + "
+                           "line turning 70 degrees left",
+                           radius, arc_bspline->Degree(), arc_bspline->IsRational() ? "yes" : "no",
+                           arc_bspline->NbPoles()));
+    });
+
+    // OCCT's fillet of a corner: the arc's edge, its circle, its end points.
+    struct OcctFillet {
+        TopoDS_Edge arc;
+        Handle(Geom_Circle) circle;
+        gp_Pnt a;
+        gp_Pnt b;
+    };
+    auto occt_fillet = [&](const RadiusCorner& c) {
+        ChFi2d_FilletAPI api(c.e1, c.e2, plane);
+        if (!api.Perform(radius) || api.NbResults(c.vertex) < 1) {
+            throw std::runtime_error("ChFi2d_FilletAPI found no fillet");
+        }
+        TopoDS_Edge m1;
+        TopoDS_Edge m2;
+        OcctFillet f;
+        f.arc = api.Result(c.vertex, m1, m2, -1);
+        double first = 0.0;
+        double last = 0.0;
+        const Handle(Geom_Curve) curve = BRep_Tool::Curve(f.arc, first, last);
+        const Handle(Geom_TrimmedCurve) trimmed = Handle(Geom_TrimmedCurve)::DownCast(curve);
+        f.circle = Handle(Geom_Circle)::DownCast(trimmed.IsNull() ? curve : trimmed->BasisCurve());
+        if (f.circle.IsNull()) {
+            throw std::runtime_error("ChFi2d_FilletAPI's fillet is not a circle");
+        }
+        f.a = curve->Value(first);
+        f.b = curve->Value(last);
+        return f;
+    };
+
+    for (const RadiusCorner& c : corners) {
+        std::unique_ptr<bezjoin::RadiusFillet> ours;
+        const std::string gk_name = format("r.Gk-GeomLProp[%s]", c.name.c_str());
+        guarded(report, gk_name, [&] {
+            ours = std::make_unique<bezjoin::RadiusFillet>(bezjoin::fillet_radius(c.p, c.q, radius, c.order));
+            const Handle(Geom_Curve) pieces[3] = {occ_curve(ours->p_trimmed), occ_curve(ours->blend),
+                                                  occ_curve(ours->q_trimmed)};
+            double tangent_gap = 0.0;
+            double kappa_rel = 0.0;  // where the input piece is curved
+            double kappa_abs = 0.0;  // where it is straight
+            double normal_gap = 0.0;
+            double centre_gap = 0.0;
+            std::string kappas;
+            // Join 0: P_trim's end | blend's start; join 1: blend's end | Q_trim's start.
+            for (int join = 0; join < 2; ++join) {
+                const Handle(Geom_Curve)& input = join == 0 ? pieces[0] : pieces[2];
+                const double u_input = join == 0 ? input->LastParameter() : input->FirstParameter();
+                const double u_blend = join == 0 ? pieces[1]->FirstParameter() : pieces[1]->LastParameter();
+                const bool curved = curvature(input, u_input) > 1e-12;
+                const LocalProps x = local_props(input, u_input, curved);
+                const LocalProps y = local_props(pieces[1], u_blend, curved);
+                tangent_gap = std::max(tangent_gap, (x.tangent - y.tangent).Magnitude());
+                if (curved) {
+                    kappa_rel = std::max(kappa_rel, std::abs(x.kappa - y.kappa) / x.kappa);
+                    normal_gap = std::max(normal_gap, (x.normal - y.normal).Magnitude());
+                    centre_gap = std::max(centre_gap, x.centre.Distance(y.centre) * x.kappa);
+                } else {
+                    kappa_abs = std::max(kappa_abs, std::abs(x.kappa - y.kappa));
+                }
+                kappas += format("%s%s k %.6g | %.6g", join == 0 ? "" : ", ", join == 0 ? "P|R" : "R|Q", x.kappa,
+                                 y.kappa);
+            }
+            // dkappa/ds on both sides of each join (finite differences on
+            // 1e-5 of each piece's domain: the quadratic's error falls as the
+            // step squared, 4e-3 at 1e-3 and 4e-7 at 1e-5 on the G3 corner),
+            // scale-free: times L / kappa_peak, L the blend's length. A G2
+            // blend's jump there is about 4, a G3 blend's must be 0.
+            const double length = GCPnts_AbscissaPoint::Length(GeomAdaptor_Curve(pieces[1]), 1e-13);
+            const double peak = std::max(std::abs(ours->report.curvature_min), std::abs(ours->report.curvature_max));
+            const double dk_scale = peak / length;
+            const double fraction = 1e-5;
+            const double dk_p = dkappa_ds_at_end(pieces[0], false, fraction);
+            const double dk_r0 = dkappa_ds_at_end(pieces[1], true, fraction);
+            const double dk_r1 = dkappa_ds_at_end(pieces[1], false, fraction);
+            const double dk_q = dkappa_ds_at_end(pieces[2], true, fraction);
+            const double dk_jump = std::max(std::abs(dk_p - dk_r0), std::abs(dk_r1 - dk_q)) / dk_scale;
+            const double dk_tolerance = 1e-4;
+            bool pass = tangent_gap <= 1e-9 && kappa_rel <= 1e-7 && kappa_abs <= 1e-9 && normal_gap <= 1e-9 &&
+                        centre_gap <= 1e-7;
+            if (c.order >= 3) {
+                pass = pass && dk_jump <= dk_tolerance;
+            }
+            report.row(pass, gk_name, tangent_gap, 1e-9,
+                       format("G%zu, blend degree %zu; unit tangents above; curvature %s: |dk| rel %.1e (tol 1e-7), "
+                              "abs %.1e (tol 1e-9); normal %.1e (tol 1e-9), centre %.1e (tol 1e-7 rel); "
+                              "dkappa/ds jump (FD, x L/kappa_peak) %.1e%s",
+                              c.order, ours->blend.degree(), kappas.c_str(), kappa_rel, kappa_abs, normal_gap,
+                              centre_gap, dk_jump,
+                              c.order >= 3 ? format(" (tol %.0e)", dk_tolerance).c_str() : " (G2: not required)"));
+        });
+        if (!ours) {
+            continue;
+        }
+        const std::string cut_name = format("r.cuts-vs-ChFi2d[%s]", c.name.c_str());
+        std::unique_ptr<OcctFillet> theirs;
+        guarded(report, cut_name, [&] {
+            theirs = std::make_unique<OcctFillet>(occt_fillet(c));
+            const std::vector<double> p_end = ours->p_trimmed.eval(ours->p_trimmed.domain().second);
+            const std::vector<double> q_start = ours->q_trimmed.eval(ours->q_trimmed.domain().first);
+            const gp_Pnt pe(p_end[0], p_end[1], 0.0);
+            const gp_Pnt qs(q_start[0], q_start[1], 0.0);
+            // OCCT's arc may run either way: the pairing of the nearer ends.
+            const double straight = std::max(pe.Distance(theirs->a), qs.Distance(theirs->b));
+            const double swapped = std::max(pe.Distance(theirs->b), qs.Distance(theirs->a));
+            const double gap = std::min(straight, swapped) / c.size;
+            const double radius_gap = std::abs(theirs->circle->Radius() - radius) / radius;
+            const double worst = std::max(gap, radius_gap);
+            const gp_Pnt centre = theirs->circle->Location();
+            report.row(worst <= 1e-9, cut_name, worst, 1e-9,
+                       format("OCCT arc r %.12g, centre (%.9f, %.9f); cuts P(%.9f, %.9f) Q(%.9f, %.9f), "
+                              "%.9f / %.9f from the vertex%s; gap relative to size %g",
+                              theirs->circle->Radius(), centre.X(), centre.Y(), pe.X(), pe.Y(), qs.X(), qs.Y(),
+                              pe.Distance(c.vertex), qs.Distance(c.vertex),
+                              c.turn > 0.0 ? format(" (r tan(theta/2) = %.9f)", radius * std::tan(0.5 * c.turn)).c_str()
+                                           : " (chords)",
+                              c.size));
+        });
+        const std::string shape_name = format("r.curvature[%s]", c.name.c_str());
+        guarded(report, shape_name, [&] {
+            const BzjFairnessReport& r = ours->report;
+            const Handle(Geom_Curve) blend = occ_curve(ours->blend);
+            // OCCT's curvature (unsigned) at the report's parameters i / 512.
+            std::vector<double> kappas;
+            for (int i = 0; i <= 512; ++i) {
+                kappas.push_back(curvature(blend, i / 512.0));
+            }
+            const double occt_max = *std::max_element(kappas.begin(), kappas.end());
+            const double occt_min = *std::min_element(kappas.begin(), kappas.end());
+            const double noise = 1e-9 * std::max(occt_max - occt_min, occt_max);
+            int occt_extrema = 0;
+            int direction = 0;
+            for (std::size_t i = 1; i < kappas.size(); ++i) {
+                const double step = kappas[i] - kappas[i - 1];
+                const int now = step > noise ? 1 : step < -noise ? -1 : 0;
+                if (now != 0) {
+                    occt_extrema += direction != 0 && now != direction ? 1 : 0;
+                    direction = now;
+                }
+            }
+            // The report's peak (signed in 2D: a right turn has negative
+            // curvature, its peak is curvature_min).
+            const double peak = std::max(std::abs(r.curvature_min), std::abs(r.curvature_max));
+            const double peak_gap = std::abs(peak - occt_max) / occt_max;
+            // Our blend against OCCT's arc: | |X - centre| - r |, 2049 samples.
+            double deviation = 0.0;
+            double centre_x = 0.0;
+            double centre_y = 0.0;
+            double arc_r = radius;
+            if (theirs) {
+                centre_x = theirs->circle->Location().X();
+                centre_y = theirs->circle->Location().Y();
+                arc_r = theirs->circle->Radius();
+                std::vector<double> ts;
+                for (int i = 0; i <= 2048; ++i) {
+                    ts.push_back(i / 2048.0);
+                }
+                const std::vector<double> xs = ours->blend.eval_many(ts);
+                for (std::size_t i = 0; i < ts.size(); ++i) {
+                    deviation = std::max(deviation,
+                                         std::abs(std::hypot(xs[2 * i] - centre_x, xs[2 * i + 1] - centre_y) - arc_r));
+                }
+            }
+            const bool pass = r.curvature_extrema == 1 && occt_extrema == 1 && peak_gap <= 1e-9 && theirs;
+            report.row(pass, shape_name, peak_gap, 1e-9,
+                       format("extrema: report %zu, OCCT %d (need 1); peak |kappa| report %.6f vs OCCT %.6f, "
+                              "1/r = %.6f (x%.3f); report range [%.6g, %.6g], energy %.4g; largest distance "
+                              "blend - OCCT arc %.4e (%.2e r)%s",
+                              r.curvature_extrema, occt_extrema, peak, occt_max, 1.0 / radius, peak * radius,
+                              r.curvature_min, r.curvature_max, r.energy, deviation, deviation / radius,
+                              theirs ? "" : " [no OCCT arc]"));
+        });
+    }
+
+    // bzj_connect_geometric with NULL shapes is the blend's own solve: on the
+    // 90-degree corner, P and Q at the arc's touching points (u_t = 1 - r /
+    // 40, v_t = r / 20) give the fillet's blend; the shape values it returns,
+    // passed back explicitly, give the same curve and come back unchanged.
+    // (Informational: from the trimmed pieces, parametrised afresh, the fair
+    // search stops at another point of its flat minimum.)
+    guarded(report, "r.connect_geometric[lines 90/G2]", [&] {
+        const RadiusCorner* c = nullptr;
+        for (const RadiusCorner& x : corners) {
+            if (x.name == "lines 90/G2") {
+                c = &x;
+            }
+        }
+        if (c == nullptr) {
+            throw std::runtime_error("no 90-degree corner");
+        }
+        auto difference = [](const Curve& a, const Curve& b) {
+            const std::vector<double> x = a.points();
+            const std::vector<double> y = b.points();
+            double worst = x.size() == y.size() ? 0.0 : INFINITY;
+            for (std::size_t i = 0; i < x.size() && i < y.size(); ++i) {
+                worst = std::max(worst, std::abs(x[i] - y[i]));
+            }
+            return worst;
+        };
+        const double tangent_length = radius * std::tan(0.5 * c->turn);
+        const std::vector<double> pp = c->p.points();
+        const std::vector<double> qp = c->q.points();
+        const double u_t = 1.0 - tangent_length / std::hypot(pp[2] - pp[0], pp[3] - pp[1]);
+        const double v_t = tangent_length / std::hypot(qp[2] - qp[0], qp[3] - qp[1]);
+        const bezjoin::RadiusFillet f = bezjoin::fillet_radius(c->p, c->q, radius, 2);
+        bezjoin::GeometricOptions fair;
+        fair.p_order = 2;
+        fair.q_order = 2;
+        const bezjoin::GeometricConnection g = bezjoin::connect_geometric(c->p, u_t, c->q, v_t, fair);
+        bezjoin::GeometricOptions given = fair;
+        given.p_shape = g.p_shape;
+        given.q_shape = g.q_shape;
+        const bezjoin::GeometricConnection h = bezjoin::connect_geometric(c->p, u_t, c->q, v_t, given);
+        double shapes_back = 0.0;
+        for (std::size_t i = 0; i < 2; ++i) {
+            shapes_back = std::max({shapes_back, std::abs(h.p_shape[i] - g.p_shape[i]),
+                                    std::abs(h.q_shape[i] - g.q_shape[i])});
+        }
+        const bezjoin::GeometricConnection t =
+            bezjoin::connect_geometric(f.p_trimmed, 1.0, f.q_trimmed, 0.0, fair);
+        const double worst = std::max({difference(g.curve, f.blend), difference(h.curve, g.curve), shapes_back}) /
+                             c->size;
+        report.row(worst <= 1e-9, "r.connect_geometric[lines 90/G2]", worst, 1e-9,
+                   format("fair shapes P (%.6g, %.6g) Q (%.6g, %.6g), energy %.10g (fillet's %.10g); explicit "
+                          "shapes: same curve, shapes back %.1e; from the trimmed pieces: blend %.1e away, "
+                          "energy %.10g",
+                          g.p_shape[0], g.p_shape[1], g.q_shape[0], g.q_shape[1], g.report.energy,
+                          f.report.energy, shapes_back, difference(t.curve, f.blend), t.report.energy));
+    });
+
+    // Timing: bzj_fillet_radius (G2) beside ChFi2d_FilletAPI, same radius,
+    // on the 90-degree corner of two lines and on the arc+line corner (OCCT
+    // on edges built once; Perform + Result per call).
+    for (const char* which : {"lines 90/G2", "arc+line/G2"}) {
+        const RadiusCorner* c = nullptr;
+        for (const RadiusCorner& x : corners) {
+            if (x.name == which) {
+                c = &x;
+            }
+        }
+        if (c == nullptr) {
+            continue;
+        }
+        guarded(report, format("timing.fillet_radius[%s]", which), [&] {
+            const Pair pair = time_pair(
+                options.quick ? 1 : 7, options.quick ? 1 : 20,
+                [&](int) {
+                    const bezjoin::RadiusFillet f = bezjoin::fillet_radius(c->p, c->q, radius, 2);
+                    g_sink = g_sink + f.report.curvature_max;
+                },
+                options.quick ? 1 : 200,
+                [&](int) {
+                    const OcctFillet f = occt_fillet(*c);
+                    g_sink = g_sink + f.circle->Radius();
+                });
+            timings.push_back({format("fillet r = 2, %s (ours G2, OCCT G1 arc)", which), "bzj_fillet_radius G2",
+                               "ChFi2d_FilletAPI", pair});
+        });
+    }
+}
+
 // e. merge: Segment of R at mu gives back P^ and Q^; our deviation vs OCCT's
 // best one-span fit of the same two curves.
 void check_merge(Report& report, StepScene& scene, std::vector<Timing>& timings,
@@ -3793,6 +4219,7 @@ int main(int argc, char** argv) {
     check_ellipse(report, options);
     check_nurbs_fillets(report, timings, options);
     check_fillet(report, scene, timings, options);
+    check_fillet_radius(report, timings, options);
     check_merge(report, scene, timings, options);
     check_lagrange(report, scene);
     check_auto_scale(report);
