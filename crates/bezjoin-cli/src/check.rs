@@ -11,6 +11,8 @@ pub use bezjoin_core::distance;
 use bezjoin_core::{CurveRef, KnotSide};
 use serde_json::{Value, json};
 
+use crate::series::arc_length_derivatives;
+
 /// Relative derivative jump up to which a join counts as continuous of that
 /// order when the tool states a *measured* continuity order.
 pub const CONTINUITY_TOLERANCE: f64 = 1e-9;
@@ -27,8 +29,12 @@ pub struct JoinCheck {
     pub promised_order: usize,
     /// Relative jumps of derivatives `0..` across the join: `|L^(k) -
     /// R^(k)|` over the largest of `|L^(k)|`, `|R^(k)|` and the reference
-    /// size of order `k` ([`reference_sizes`]), in the global parameter.
+    /// size of order `k` ([`reference_sizes`]), in the global parameter
+    /// (for a geometric check: derivatives with respect to arc length).
     pub relative_jumps: Vec<f64>,
+    /// Geometric continuity (G^k: derivatives with respect to arc length,
+    /// [`JoinCheck::geometric`]) instead of parametric (C^k).
+    pub geometric: bool,
 }
 
 /// One side of a join: derivative rows `0..` (flat row-major, `dim` values
@@ -120,7 +126,57 @@ impl JoinCheck {
             name: name.into(),
             promised_order,
             relative_jumps,
+            geometric: false,
         }
+    }
+
+    /// Measure geometric continuity G^k at a join: the derivatives with
+    /// respect to arc length ([`arc_length_derivatives`]: point, unit
+    /// tangent, curvature vector, its arc-length derivative, ...) of `left`
+    /// at its parameter (from the left of a knot) against those of `right`
+    /// at its parameter (from the right), orders `0..=promised_order + 1`
+    /// (the order above the promise shows whether it happens to hold too),
+    /// each relative to the larger side and to the largest norm of that
+    /// order sampled on `reference` (so a curvature that vanishes on both
+    /// sides, as on lines, is measured against the blend's curvature).
+    pub fn geometric(
+        name: impl Into<String>,
+        (left, at_left): (CurveRef, f64),
+        (right, at_right): (CurveRef, f64),
+        reference: &[CurveRef],
+        promised_order: usize,
+    ) -> Self {
+        let orders = promised_order + 1;
+        let dim = left.dim();
+        let jet = |curve: CurveRef, u: f64, side: KnotSide| {
+            arc_length_derivatives(&derivatives(curve, u, orders, side), dim, orders)
+                .unwrap_or_else(|| vec![f64::NAN; (orders + 1) * dim])
+        };
+        let a = jet(left, at_left, KnotSide::Left);
+        let b = jet(right, at_right, KnotSide::Right);
+        let sizes = geometric_reference_sizes(reference, orders);
+        let mut check = JoinCheck::from_derivatives(
+            name,
+            dim,
+            Side {
+                derivatives: &a,
+                rate: 1.0,
+            },
+            Side {
+                derivatives: &b,
+                rate: 1.0,
+            },
+            &sizes,
+            promised_order,
+        );
+        // A side without a tangent (zero speed) is no G1 join.
+        for j in check.relative_jumps.iter_mut() {
+            if !j.is_finite() {
+                *j = f64::INFINITY;
+            }
+        }
+        check.geometric = true;
+        check
     }
 
     /// Largest relative jump among the promised orders.
@@ -142,14 +198,21 @@ impl JoinCheck {
             .checked_sub(1)
     }
 
-    /// Short text: `P|R: C3 promised, C3 measured (worst jump 2.1e-16)`.
+    /// `C` for parametric, `G` for geometric continuity.
+    fn letter(&self) -> char {
+        if self.geometric { 'G' } else { 'C' }
+    }
+
+    /// Short text: `P|R: C3 promised, C3 measured (worst jump 2.1e-16)`
+    /// (`G2 promised, G2 measured ...` for a geometric check).
     pub fn describe(&self) -> String {
+        let letter = self.letter();
         let measured = match self.measured_order() {
-            Some(k) => format!("C{k}"),
-            None => "not even C0".into(),
+            Some(k) => format!("{letter}{k}"),
+            None => format!("not even {letter}0"),
         };
         format!(
-            "{}: C{} promised, {} measured (worst relative jump {:.1e})",
+            "{}: {letter}{} promised, {} measured (worst relative jump {:.1e})",
             self.name,
             self.promised_order,
             measured,
@@ -161,6 +224,7 @@ impl JoinCheck {
     pub fn to_json(&self) -> Value {
         json!({
             "join": self.name,
+            "continuity": if self.geometric { "geometric" } else { "parametric" },
             "promised_order": self.promised_order,
             "measured_order": self.measured_order(),
             "relative_jumps": self.relative_jumps,
@@ -202,6 +266,37 @@ pub fn reference_sizes(pieces: &[(CurveRef, f64)], orders: usize) -> Vec<f64> {
             let d = derivatives(curve, u, orders, side);
             for (k, size) in sizes.iter_mut().enumerate() {
                 let n = norm(row(&d, dim, k)) / rate.powi(k as i32);
+                if n.is_finite() {
+                    *size = size.max(n);
+                }
+            }
+        }
+    }
+    sizes
+}
+
+/// Reference sizes of the arc-length derivatives `0..=orders` of `curves`:
+/// entry `k` is the largest norm of `d^k r / ds^k` sampled at
+/// `REFERENCE_SAMPLES + 1` parameters of each curve (points of zero speed
+/// are skipped).
+pub fn geometric_reference_sizes(curves: &[CurveRef], orders: usize) -> Vec<f64> {
+    let mut sizes = vec![0.0f64; orders + 1];
+    for &curve in curves {
+        let (a, b) = curve.domain();
+        let dim = curve.dim();
+        for i in 0..=REFERENCE_SAMPLES {
+            let u = a + (b - a) * i as f64 / REFERENCE_SAMPLES as f64;
+            let side = if i == REFERENCE_SAMPLES {
+                KnotSide::Left
+            } else {
+                KnotSide::Right
+            };
+            let d = derivatives(curve, u, orders, side);
+            let Some(s) = arc_length_derivatives(&d, dim, orders) else {
+                continue;
+            };
+            for (k, size) in sizes.iter_mut().enumerate() {
+                let n = norm(row(&s, dim, k));
                 if n.is_finite() {
                     *size = size.max(n);
                 }
@@ -285,6 +380,32 @@ mod join_check_tests {
         );
         let check = JoinCheck::measure("b|line", &b, 1.8, &line, 1.0, 2);
         assert_eq!(check.measured_order(), Some(1), "{check:?}");
+    }
+
+    #[test]
+    fn geometric_check_reads_arc_length_derivatives() {
+        // A circle split anywhere and read with any speeds is G-infinity; a
+        // line leaving it along its tangent is G1 only (the curvature jumps).
+        let circle =
+            ellipse_arc(2, &[0.0, 0.0], &[1.0, 0.0], &[0.0, 1.0], 2.0, 2.0, 0.0, 3.0).unwrap();
+        let (a, b) = circle.split_at(1.2).unwrap();
+        let (a, b) = (CurveRef::from(&a), CurveRef::from(&b));
+        let check = JoinCheck::geometric("a|b", (a, 1.2), (b, 1.2), &[a, b], 3);
+        assert_eq!(check.measured_order(), Some(4), "{check:?}");
+        assert!(check.describe().contains("G3 promised, G4 measured"));
+        let end = circle.eval_derivatives(3.0, 1);
+        let line = BezierCurve::new(
+            2,
+            1,
+            vec![end[0], end[1], end[0] + 5.0 * end[2], end[1] + 5.0 * end[3]],
+        )
+        .unwrap();
+        let c = CurveRef::from(&circle);
+        let l = CurveRef::from(&line);
+        let check = JoinCheck::geometric("circle|line", (c, 3.0), (l, 0.0), &[c, l], 2);
+        assert_eq!(check.measured_order(), Some(1), "{check:?}");
+        assert!((check.relative_jumps[2] - 1.0).abs() < 1e-12);
+        assert_eq!(check.to_json()["continuity"], "geometric");
     }
 
     #[test]

@@ -123,7 +123,9 @@ pub fn summary_table(ran: &[Ran]) -> String {
          j = 0..k for the promised C^k, measured by the tool from the returned curves at every join (the piece\n\
          before it from the left, the piece after it from the right, also at NURBS knots), in the chain's global\n\
          parameter; s_j = largest |j-th derivative| sampled on the two pieces, so a derivative that vanishes on\n\
-         both sides (a line's second) is not a jump (for merges: between P^ and Q^ at R(mu), k = degree)."
+         both sides (a line's second) is not a jump (for merges: between P^ and Q^ at R(mu), k = degree).\n\
+         For the promised G^k of the fillets by radius: the same for the derivatives with respect to arc\n\
+         length (point, unit tangent, curvature vector, ...), s_j sampled on the two pieces."
     );
     s
 }
@@ -144,6 +146,8 @@ fn index_html(ran: &[Ran]) -> String {
          <p>Each picture shows the given curves (blue), the result (red), changed curves (green) and comparison curves (purple), \
          with control polygons dashed and <b>curvature combs</b>: spikes normal to the curve, of length proportional to the signed curvature, tips joined. \
          One comb scale per picture, so a comb that continues smoothly across a join point shows continuous curvature; a step shows a jump. \
+         The fillets by radius show four roundings of one corner side by side (the circular arc in purple, the C<sup>k</sup> fillet in green, the G<sup>2</sup> and G<sup>3</sup> blends in red) \
+         with graphs of the curvature along arc length below (dashed lines at the cuts). \
          Every picture has its job next to it (<code>NAME.job.json</code>, accepted as it is by the subcommand named) and its result (<code>NAME.result.json</code>).</p>\n",
     );
     s.push_str("<h2>Summary</h2>\n<table>\n<tr><th>scenario</th><th>subcommand</th><th>degree</th><th>worst continuity residual (C<sup>k</sup> jump)</th><th>max deviation</th><th>deviation measured from</th></tr>\n");

@@ -18,9 +18,11 @@
 
 pub mod arc;
 pub mod check;
+pub mod curvature;
 pub mod demo;
 pub mod job;
 pub mod ops;
+pub mod series;
 pub mod svg;
 
 use std::fmt;

@@ -106,13 +106,20 @@ fn check_connection(job: &Value, result: &Value) -> BezierCurve {
     assert_eq!(r.dim(), p.dim());
     let dim = r.dim();
 
-    let (alpha, beta) = if job["auto_scale"] == json!(true) {
+    let given = (job["p_scale"].as_f64(), job["q_scale"].as_f64());
+    let (alpha, beta) = if job["auto_scale"] == json!(false) {
+        // The paper's scale 1 where none is given.
+        (number(job, "p_scale", 1.0), number(job, "q_scale", 1.0))
+    } else if let (None, None) = given {
+        // Chosen by the tool (asked for, or the default without scales).
         let alpha = result["report"]["p_scale"].as_f64().unwrap();
         let beta = result["report"]["q_scale"].as_f64().unwrap();
         assert!(alpha > 0.0 && beta > 0.0, "chosen scales {alpha}, {beta}");
+        assert_eq!(result["report"]["auto_scale"], json!(true));
         (alpha, beta)
     } else {
-        (number(job, "p_scale", 1.0), number(job, "q_scale", 1.0))
+        // One given scale stands for both.
+        (given.0.or(given.1).unwrap(), given.1.or(given.0).unwrap())
     };
 
     let constraints = job["constraints"].as_array().cloned().unwrap_or_default();

@@ -27,16 +27,19 @@ fn listed_scenarios(index: &str) -> Vec<String> {
 }
 
 /// The demo's scenarios: connections without and with interior constraints,
-/// symmetric and asymmetric corner rounding, a wire of an arc, a line and a
-/// rational B-spline with every vertex rounded, merges with each metric and
-/// each constraint kind and of two B-splines, Lagrange splines, and an
-/// intersection.
-const SCENARIOS: [&str; 16] = [
+/// symmetric and asymmetric corner rounding, G2/G3 fillets by radius (two
+/// lines at 90 degrees, two cubics) compared with the arc and the C^k
+/// fillet, a wire of an arc, a line and a rational B-spline with every
+/// vertex rounded, merges with each metric and each constraint kind and of
+/// two B-splines, Lagrange splines, and an intersection.
+const SCENARIOS: [&str; 18] = [
     "connect-plain",
     "connect-constrained",
     "connect-auto-scale",
     "fillet-symmetric-c2",
     "fillet-asymmetric-c3",
+    "fillet-radius-lines",
+    "fillet-radius-curved",
     "fillet-chain-arc-line-nurbs",
     "merge-discrete",
     "merge-integral-optimal",
@@ -163,6 +166,78 @@ fn assert_circular_arc_reference(name: &str, svg: &str) {
     );
 }
 
+/// A fillet-by-radius scenario (issue 18): its job asks for the
+/// comparison; the result compares the G1 arc (curvature jumps by about
+/// 1/r at both cuts), the C2 fillet of the same setbacks and the G2 and G3
+/// blends by radius (no jumps), all cut at the same points; the picture
+/// has a panel title and a curvature graph per variant, and the joins of
+/// the result are measured G2.
+fn assert_radius_comparison(name: &str, out: &Path) {
+    let job = read_json(&out.join(format!("{name}.job.json")));
+    assert_eq!(
+        job["compare"], true,
+        "{name}: the job asks for the comparison"
+    );
+    let r = job["radius"].as_f64().unwrap();
+    let result = read_json(&out.join(format!("{name}.result.json")));
+    assert_eq!(result["report"]["mode"], "radius");
+    for join in result["report"]["measured_continuity"].as_array().unwrap() {
+        assert_eq!(join["continuity"], "geometric", "{name}: {join}");
+        assert!(
+            join["measured_order"].as_u64().unwrap() >= 2,
+            "{name}: {join}"
+        );
+    }
+    let variants = result["comparison"].as_array().expect("a comparison");
+    let names: Vec<&str> = variants
+        .iter()
+        .map(|v| v["name"].as_str().unwrap())
+        .collect();
+    assert_eq!(
+        names,
+        [
+            "G1 arc",
+            "C2, same setbacks",
+            "G2 by radius",
+            "G3 by radius"
+        ],
+        "{name}"
+    );
+    let (u0, v0) = (
+        result["u0"].as_f64().unwrap(),
+        result["v0"].as_f64().unwrap(),
+    );
+    for v in variants {
+        assert!((v["u0"].as_f64().unwrap() - u0).abs() < 1e-9, "{name}: {v}");
+        assert!((v["v0"].as_f64().unwrap() - v0).abs() < 1e-9, "{name}: {v}");
+        let jumps: Vec<f64> = serde_json::from_value(v["curvature_jumps"].clone()).unwrap();
+        assert_eq!(jumps.len(), 2);
+        if v["name"] == "G1 arc" {
+            // From the curves' own curvature (small here) to 1/r and back.
+            for j in jumps {
+                assert!((j.abs() - 1.0 / r).abs() < 0.5 / r, "{name}: arc jump {j}");
+            }
+        } else {
+            for j in jumps {
+                assert!(j.abs() < 1e-6 / r, "{name}: {} jumps by {j}", v["name"]);
+            }
+        }
+    }
+    let svg = std::fs::read_to_string(out.join(format!("{name}.svg"))).unwrap();
+    for label in names {
+        assert!(
+            svg.contains(&format!(">{label}</text>")),
+            "{name}.svg: no title {label:?}"
+        );
+    }
+    let plots = &svg[svg.find("<g id=\"plots\"").expect("a row of graphs")..];
+    assert_eq!(
+        plots.matches("<clipPath ").count(),
+        4,
+        "{name}: four graphs"
+    );
+}
+
 /// The wire scenario (issue 16): its job has an arc, a line and a rational
 /// B-spline; its result has five pieces (three trimmed curves, the arc and
 /// the B-spline still NURBS with their weights, and two blends), every one
@@ -281,10 +356,13 @@ fn demo_writes_every_listed_scenario() {
     assert_summary_table(&table, &out);
     for name in names.iter().filter(|n| n.starts_with("fillet-")) {
         let result = read_json(&out.join(format!("{name}.result.json")));
-        if result["operation"] == "fillet" {
+        if result["operation"] == "fillet" && result["report"]["mode"] != "radius" {
             let svg = std::fs::read_to_string(out.join(format!("{name}.svg"))).unwrap();
             assert_circular_arc_reference(name, &svg);
         }
+    }
+    for name in ["fillet-radius-lines", "fillet-radius-curved"] {
+        assert_radius_comparison(name, &out);
     }
     assert_nurbs_wire_scenario(&table, &out);
     for name in &names {

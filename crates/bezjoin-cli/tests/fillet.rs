@@ -113,17 +113,22 @@ fn check_fillet_output(job: &Value, out: &Value, setbacks: Option<(f64, f64)>) {
     let v0 = out["v0"].as_f64().unwrap();
     let kp = job["p_order"].as_u64().unwrap() as usize;
     let kq = job["q_order"].as_u64().unwrap() as usize;
-    let (alpha, beta) = if job["auto_scale"].as_bool() == Some(true) {
-        // Chosen by the library: the reported scales, equal.
+    let (given_p, given_q) = (job["p_scale"].as_f64(), job["q_scale"].as_f64());
+    let (alpha, beta) = if job["auto_scale"].as_bool() == Some(false) {
+        // The paper's scale 1 where none is given.
+        (given_p.unwrap_or(1.0), given_q.unwrap_or(1.0))
+    } else if given_p.is_some() || given_q.is_some() {
+        // One given scale stands for both.
+        (given_p.or(given_q).unwrap(), given_q.or(given_p).unwrap())
+    } else {
+        // Chosen by the library (asked for, or the default without
+        // scales): the reported scales, equal.
         let s = out["report"]["p_scale"].as_f64().unwrap();
         assert_eq!(out["report"]["q_scale"].as_f64(), Some(s));
         (s, s)
-    } else {
-        (
-            job["p_scale"].as_f64().unwrap_or(1.0),
-            job["q_scale"].as_f64().unwrap_or(1.0),
-        )
     };
+    assert_eq!(out["report"]["p_scale"].as_f64(), Some(alpha));
+    assert_eq!(out["report"]["q_scale"].as_f64(), Some(beta));
     assert_eq!(r.degree(), kp + kq + 1);
     // Trimmed pieces are the original curves' parts.
     for i in 0..=20 {
@@ -199,10 +204,11 @@ fn fillet_c3_asymmetric_and_default_scales() {
     check_fillet_output(&job, &out, Some((0.4, 0.9)));
 }
 
-/// Fast lines (speed 8, as cubics) with a short setback: with scale 1 the
-/// blend's control points pass the corner; `"auto_scale": true` keeps them
-/// in the corner's quadrant; on fast curved cubics the C^k chain holds at the
-/// chosen scale.
+/// Fast lines (speed 8, as cubics) with a short setback: with scale 1
+/// (`"auto_scale": false`, the paper's) the blend's control points pass the
+/// corner; without any scale field the scale is chosen automatically (the
+/// default) and they stay in the corner's quadrant, as with `"auto_scale":
+/// true`; on fast curved cubics the C^k chain holds at the chosen scale.
 #[test]
 fn fillet_auto_scale_keeps_the_blend_in_the_corner() {
     let lines = serde_json::json!({
@@ -217,17 +223,31 @@ fn fillet_auto_scale_keeps_the_blend_in_the_corner() {
             .iter()
             .all(|b| b[0].as_f64().unwrap() <= 1e-15 && b[1].as_f64().unwrap() >= -1e-15)
     };
-    let (code, stdout, stderr) = run("fillet", &lines.to_string(), None);
-    assert_eq!(code, 0, "{stderr}");
-    assert!(!inside(&serde_json::from_str(&stdout).unwrap()));
-    let mut job = lines.clone();
-    job["auto_scale"] = Value::Bool(true);
-    let (code, stdout, stderr) = run("fillet", &job.to_string(), None);
+    let mut paper = lines.clone();
+    paper["auto_scale"] = Value::Bool(false);
+    let (code, stdout, stderr) = run("fillet", &paper.to_string(), None);
     assert_eq!(code, 0, "{stderr}");
     let out: Value = serde_json::from_str(&stdout).unwrap();
-    assert!(inside(&out), "{}", out["blend"]);
-    let s = out["report"]["p_scale"].as_f64().unwrap();
-    assert!(s > 0.0 && s < 1.0, "s = {s}");
+    assert_eq!(out["report"]["p_scale"].as_f64(), Some(1.0));
+    assert!(!inside(&out));
+    let mut chosen = None;
+    for auto in [None, Some(true)] {
+        let mut job = lines.clone();
+        if let Some(a) = auto {
+            job["auto_scale"] = Value::Bool(a);
+        }
+        let (code, stdout, stderr) = run("fillet", &job.to_string(), None);
+        assert_eq!(code, 0, "{stderr}");
+        let out: Value = serde_json::from_str(&stdout).unwrap();
+        assert!(inside(&out), "{}", out["blend"]);
+        let s = out["report"]["p_scale"].as_f64().unwrap();
+        assert!(s > 0.0 && s < 1.0, "s = {s}");
+        assert_eq!(
+            *chosen.get_or_insert(s),
+            s,
+            "the default is the automatic scale"
+        );
+    }
     // The chain check needs nonzero higher derivatives: fast curved cubics.
     let curved = serde_json::json!({
         "p": [[-4.0, -0.6], [-1.0, 0.3], [2.0, 0.3], [5.0, -0.6]],

@@ -6,8 +6,8 @@
 //! curve R is a Bezier curve.
 
 use bezjoin_core::{
-    BezierCurve, BezjoinError, ConnectOptions, Connection, Curve, KnotSide, PointConstraint,
-    connect, relative_jump,
+    BezierCurve, BezjoinError, ConnectOptions, Connection, Curve, GeometricOptions, KnotSide,
+    PointConstraint, connect, connect_geometric, relative_jump,
 };
 use serde_json::json;
 
@@ -15,9 +15,24 @@ use crate::check::{
     JoinCheck, Side, curve_json, derivatives, distance, reference_sizes, row, worst,
 };
 use crate::job::{JobError, Located};
-use crate::ops::{OperationKind, Scenario, draw_part};
+use crate::ops::{OperationKind, Scenario, connect_geometric, draw_part};
 use crate::svg::{CurveItem, Figure, Marker, MarkerKind, Role};
 use crate::{CliError, Outcome, Summary};
+
+/// Which continuity the joins have.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Continuity {
+    /// C^k with the scales of `options` (mathematics.md section 1).
+    Parametric,
+    /// G^k by beta-constraints ([`bezjoin_core::connect_geometric`]): the
+    /// shape values `beta_1..beta_k` per end, `None` to choose them fair.
+    Geometric {
+        /// At P (`p_order` values).
+        p_shape: Option<Vec<f64>>,
+        /// At Q (`q_order` values).
+        q_shape: Option<Vec<f64>>,
+    },
+}
 
 /// A parsed connect job.
 pub struct ConnectJob {
@@ -29,14 +44,55 @@ pub struct ConnectJob {
     pub q: Curve,
     /// Parameter on Q where R ends (in Q's domain).
     pub v0: f64,
-    /// Orders, scales and interior constraints.
+    /// Orders, scales and interior constraints (the scales are not used
+    /// with geometric continuity).
     pub options: ConnectOptions,
-    /// Choose the scale automatically (`ShapeScale::Auto` in `options`).
+    /// Choose the scale automatically (`ShapeScale::Auto` in `options`):
+    /// asked for, or the default when the job gives no scale.
     pub auto_scale: bool,
+    /// Parametric or geometric continuity, with the shape values.
+    pub continuity: Continuity,
     /// Indices of the constraints whose `"derivatives"` list is empty: the
     /// library needs at least the position, and the tool names the job's
     /// field when it refuses them ([`run`]).
     pub empty_constraints: Vec<usize>,
+}
+
+/// Default continuity order at each end with `"continuity": "geometric"`.
+pub const DEFAULT_GEOMETRIC_ORDER: usize = 2;
+
+/// How the scales of a job are chosen: `auto_scale` (`true`: automatic;
+/// `false`: the given scales, 1 where missing) or, without it, the given
+/// scales, the missing one equal to the given one, and automatic when
+/// neither is given (scale 1 makes a blend between long or fast curves
+/// loop; shared with `bezjoin fillet` and `bezjoin fillet-chain`). Returns
+/// `None` for automatic, else `(alpha, beta)`.
+pub(crate) fn read_scale_choice(
+    p_scale: Option<Located>,
+    q_scale: Option<Located>,
+    auto_scale: Option<Located>,
+) -> Result<Option<(f64, f64)>, JobError> {
+    let auto = auto_scale.as_ref().map(|f| f.boolean()).transpose()?;
+    if auto == Some(true) {
+        if let Some(f) = p_scale.as_ref().or(q_scale.as_ref()) {
+            return Err(JobError::new(
+                f.path.clone(),
+                "cannot be given together with \"auto_scale\": true",
+            ));
+        }
+        return Ok(None);
+    }
+    let p = p_scale.map(|f| f.positive()).transpose()?;
+    let q = q_scale.map(|f| f.positive()).transpose()?;
+    Ok(match (p, q, auto) {
+        (Some(a), Some(b), _) => Some((a, b)),
+        (None, None, Some(false)) => Some((1.0, 1.0)),
+        (Some(a), None, Some(false)) => Some((a, 1.0)),
+        (None, Some(b), Some(false)) => Some((1.0, b)),
+        (Some(a), None, _) => Some((a, a)),
+        (None, Some(b), _) => Some((b, b)),
+        (None, None, _) => None,
+    })
 }
 
 /// Read a connect job.
@@ -54,36 +110,65 @@ pub fn parse(job: &Located) -> Result<ConnectJob, JobError> {
         .map(|f| f.number())
         .transpose()?
         .unwrap_or(q.domain().0);
+    let geometric = match obj.optional("continuity") {
+        Some(f) => f.choice(&["parametric", "geometric"])? == "geometric",
+        None => false,
+    };
+    let (p_default, q_default) = if geometric {
+        (DEFAULT_GEOMETRIC_ORDER, DEFAULT_GEOMETRIC_ORDER)
+    } else {
+        (p.degree(), q.degree())
+    };
     let p_order = obj
         .optional("p_order")
         .map(|f| f.count())
         .transpose()?
-        .unwrap_or(p.degree());
+        .unwrap_or(p_default);
     let q_order = obj
         .optional("q_order")
         .map(|f| f.count())
         .transpose()?
-        .unwrap_or(q.degree());
+        .unwrap_or(q_default);
     let mut options = ConnectOptions::new(p_order, q_order);
     let p_scale = obj.optional("p_scale");
     let q_scale = obj.optional("q_scale");
-    let auto_scale = match obj.optional("auto_scale") {
-        Some(f) => f.boolean()?,
-        None => false,
-    };
-    if auto_scale {
-        if let Some(f) = p_scale.as_ref().or(q_scale.as_ref()) {
+    let auto_scale_field = obj.optional("auto_scale");
+    let p_shape = obj.optional("p_shape");
+    let q_shape = obj.optional("q_shape");
+    let mut auto_scale = false;
+    let continuity = if geometric {
+        if let Some(f) = p_scale
+            .iter()
+            .chain(&q_scale)
+            .chain(&auto_scale_field)
+            .next()
+        {
             return Err(JobError::new(
                 f.path.clone(),
-                "cannot be given together with \"auto_scale\": true",
+                "is not used with \"continuity\": \"geometric\" (give the shape values \
+                 \"p_shape\", \"q_shape\" instead, or leave them out to choose them fair)",
             ));
         }
-        options = options.with_auto_scale();
+        Continuity::Geometric {
+            p_shape: p_shape.map(|f| f.numbers()).transpose()?,
+            q_shape: q_shape.map(|f| f.numbers()).transpose()?,
+        }
     } else {
-        let p_scale = p_scale.map(|f| f.number()).transpose()?;
-        let q_scale = q_scale.map(|f| f.number()).transpose()?;
-        options = options.with_scales(p_scale.unwrap_or(1.0), q_scale.unwrap_or(1.0));
-    }
+        if let Some(f) = p_shape.iter().chain(&q_shape).next() {
+            return Err(JobError::new(
+                f.path.clone(),
+                "is only used with \"continuity\": \"geometric\"",
+            ));
+        }
+        match read_scale_choice(p_scale, q_scale, auto_scale_field)? {
+            None => {
+                auto_scale = true;
+                options = options.with_auto_scale();
+            }
+            Some((a, b)) => options = options.with_scales(a, b),
+        }
+        Continuity::Parametric
+    };
     let mut empty_constraints = Vec::new();
     if let Some(list) = obj.optional("constraints") {
         for (j, item) in list.array()?.iter().enumerate() {
@@ -111,6 +196,7 @@ pub fn parse(job: &Located) -> Result<ConnectJob, JobError> {
         v0,
         options,
         auto_scale,
+        continuity,
         empty_constraints,
     })
 }
@@ -118,6 +204,15 @@ pub fn parse(job: &Located) -> Result<ConnectJob, JobError> {
 /// Run a connect job.
 pub fn run(job: &Located) -> Result<Outcome, CliError> {
     let job = parse(job)?;
+    if let Continuity::Geometric { p_shape, q_shape } = &job.continuity {
+        let mut options = GeometricOptions::new(job.options.p_order, job.options.q_order);
+        options.p_shape = p_shape.clone();
+        options.q_shape = q_shape.clone();
+        options.constraints = job.options.constraints.clone();
+        let g = connect_geometric(&job.p, job.u0, &job.q, job.v0, &options)
+            .map_err(|e| empty_constraint_error(&job, e))?;
+        return Ok(connect_geometric::outcome(&job, &g));
+    }
     let connection = connect(&job.p, job.u0, &job.q, job.v0, &job.options)
         .map_err(|e| empty_constraint_error(&job, e))?;
     Ok(outcome(&job, &connection))
@@ -199,7 +294,6 @@ pub fn measure_joins(
 
 fn outcome(job: &ConnectJob, c: &Connection) -> Outcome {
     let r = &c.curve;
-    let dim = r.dim();
     let checks = measure_joins(
         &job.p,
         job.u0,
@@ -209,28 +303,14 @@ fn outcome(job: &ConnectJob, c: &Connection) -> Outcome {
         (c.p_scale, c.q_scale),
         (job.options.p_order, job.options.q_order),
     );
-    let mut constraint_reports = Vec::new();
-    let mut max_point_distance: Option<f64> = None;
-    for (j, con) in job.options.constraints.iter().enumerate() {
-        let d = r.eval_derivatives(con.t, con.max_order);
-        let jumps: Vec<f64> = (0..=con.max_order)
-            .map(|k| relative_jump(row(&d, dim, k), row(&con.values, dim, k)))
-            .collect();
-        let at = r.eval(con.t);
-        let distance = distance(&at, row(&con.values, dim, 0));
-        max_point_distance = Some(max_point_distance.unwrap_or(0.0).max(distance));
-        constraint_reports.push(json!({
-            "index": j,
-            "t": con.t,
-            "relative_residuals": jumps,
-            "point_distance": distance,
-        }));
-    }
+    let (constraint_reports, max_point_distance) = measure_constraints(job, r);
     let json = json!({
         "operation": "connect",
         "curve": curve_json(r),
         "report": {
+            "continuity": "parametric",
             "degree": r.degree(),
+            "auto_scale": job.auto_scale,
             "p_scale": c.p_scale,
             "q_scale": c.q_scale,
             "max_residual": c.max_residual,
@@ -245,42 +325,13 @@ fn outcome(job: &ConnectJob, c: &Connection) -> Outcome {
     });
 
     let mut figure = Figure::new("Connecting curve");
-    draw_part(
-        &mut figure,
-        &job.p,
-        job.p.domain().0,
-        job.u0,
-        Role::Input,
-        "P",
-    );
-    draw_part(
-        &mut figure,
-        &job.q,
-        job.v0,
-        job.q.domain().1,
-        Role::Input,
-        "Q",
-    );
+    draw_inputs_and_result(&mut figure, job, r, format!("R, degree {}", r.degree()));
     let sum_k: usize = job
         .options
         .constraints
         .iter()
         .map(|c| c.max_order + 1)
         .sum();
-    figure.curve(CurveItem::bezier(
-        r,
-        Role::Result,
-        format!("R, degree {}", r.degree()),
-    ));
-    figure.marker(Marker::new(MarkerKind::Join, &r.eval(0.0), "R(0)"));
-    figure.marker(Marker::new(MarkerKind::Join, &r.eval(1.0), "R(1)"));
-    for con in &job.options.constraints {
-        figure.marker(Marker::new(
-            MarkerKind::Constraint,
-            row(&con.values, dim, 0),
-            format!("R({}) prescribed, orders 0..{}", con.t, con.max_order),
-        ));
-    }
     figure.line(format!(
         "R: degree {} = kp + kq + 1 + sum(K+1) = {} + {} + 1 + {}; scales alpha = {:.4}, beta = {:.4}{}",
         r.degree(),
@@ -312,6 +363,57 @@ fn outcome(job: &ConnectJob, c: &Connection) -> Outcome {
             max_deviation: max_point_distance,
             deviation_meaning: "prescribed interior points R(t_j)",
         },
+    }
+}
+
+/// The interior constraints re-measured on `r`: per constraint its index,
+/// `t`, the relative residual of every prescribed order and the distance of
+/// `R(t)` from the prescribed point; and the largest such distance.
+pub(crate) fn measure_constraints(
+    job: &ConnectJob,
+    r: &BezierCurve,
+) -> (Vec<serde_json::Value>, Option<f64>) {
+    let dim = r.dim();
+    let mut reports = Vec::new();
+    let mut max_point_distance: Option<f64> = None;
+    for (j, con) in job.options.constraints.iter().enumerate() {
+        let d = r.eval_derivatives(con.t, con.max_order);
+        let jumps: Vec<f64> = (0..=con.max_order)
+            .map(|k| relative_jump(row(&d, dim, k), row(&con.values, dim, k)))
+            .collect();
+        let at = r.eval(con.t);
+        let distance = distance(&at, row(&con.values, dim, 0));
+        max_point_distance = Some(max_point_distance.unwrap_or(0.0).max(distance));
+        reports.push(json!({
+            "index": j,
+            "t": con.t,
+            "relative_residuals": jumps,
+            "point_distance": distance,
+        }));
+    }
+    (reports, max_point_distance)
+}
+
+/// P and Q (the parts used over the whole given curves), R, its end points
+/// and the prescribed points of the constraints.
+pub(crate) fn draw_inputs_and_result(
+    figure: &mut Figure,
+    job: &ConnectJob,
+    r: &BezierCurve,
+    r_label: String,
+) {
+    let dim = r.dim();
+    draw_part(figure, &job.p, job.p.domain().0, job.u0, Role::Input, "P");
+    draw_part(figure, &job.q, job.v0, job.q.domain().1, Role::Input, "Q");
+    figure.curve(CurveItem::bezier(r, Role::Result, r_label));
+    figure.marker(Marker::new(MarkerKind::Join, &r.eval(0.0), "R(0)"));
+    figure.marker(Marker::new(MarkerKind::Join, &r.eval(1.0), "R(1)"));
+    for con in &job.options.constraints {
+        figure.marker(Marker::new(
+            MarkerKind::Constraint,
+            row(&con.values, dim, 0),
+            format!("R({}) prescribed, orders 0..{}", con.t, con.max_order),
+        ));
     }
 }
 

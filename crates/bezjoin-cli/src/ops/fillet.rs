@@ -15,14 +15,16 @@
 //! arc lengths of the original curves from the corner.
 
 use bezjoin_core::{
-    BezierCurve, Curve, DeviationFilletOptions, Fillet, FilletOptions, KnotSide, fillet,
-    fillet_vertex, fillet_within_deviation,
+    BezierCurve, Curve, DeviationFilletOptions, Fillet, FilletOptions, KnotSide, ShapeScale,
+    fillet, fillet_vertex, fillet_within_deviation,
 };
 use serde_json::{Value, json};
 
 use crate::arc::circular_fillet;
 use crate::check::{JoinCheck, Side, curve_json, derivatives, distance, reference_sizes, worst};
 use crate::job::{JobError, Located, ObjectReader};
+use crate::ops::connect::read_scale_choice;
+use crate::ops::fillet_radius::{self, DEFAULT_RADIUS_ORDER};
 use crate::ops::{OperationKind, Scenario, draw_part};
 use crate::svg::{CurveItem, Figure, Marker, MarkerKind, Role};
 use crate::{CliError, Outcome, Summary};
@@ -48,6 +50,17 @@ pub enum FilletMode {
         /// `dq / dp`.
         setback_ratio: f64,
     },
+    /// The corner sized like the circular arc of `radius`, rounded by a
+    /// fair G^`order` blend ([`super::fillet_radius`]).
+    Radius {
+        /// `r > 0`.
+        radius: f64,
+        /// `k`: G^k at both cuts.
+        order: usize,
+        /// Also compute and draw the arc, the C^k fillet of the same
+        /// setbacks and the G2 and G3 blends.
+        compare: bool,
+    },
 }
 
 impl FilletMode {
@@ -57,6 +70,7 @@ impl FilletMode {
             FilletMode::Setbacks => "setbacks",
             FilletMode::Vertex { .. } => "vertex",
             FilletMode::Deviation { .. } => "deviation",
+            FilletMode::Radius { .. } => "radius",
         }
     }
 }
@@ -67,37 +81,31 @@ pub struct FilletJob {
     pub p: Curve,
     /// Curve Q (its part after the corner is kept); Bezier or NURBS.
     pub q: Curve,
-    /// Setbacks (ignored in deviation mode), orders and scales.
+    /// Setbacks (ignored in deviation and radius mode), orders and scales
+    /// (ignored in radius mode).
     pub options: FilletOptions,
     /// Setback, vertex or deviation mode.
     pub mode: FilletMode,
 }
 
 /// Read `p_scale`, `q_scale` or `auto_scale` into `options` (shared with
-/// `bezjoin fillet-chain`).
+/// `bezjoin fillet-chain`): without any of them the scale is chosen
+/// automatically (scale 1 makes the blend loop on long or fast curves);
+/// one scale given stands for both; `"auto_scale": false` keeps the
+/// paper's scale 1 for a missing one ([`read_scale_choice`]).
 pub(crate) fn read_scales(
     obj: &ObjectReader,
     options: FilletOptions,
 ) -> Result<FilletOptions, JobError> {
-    let p_scale = obj.optional("p_scale");
-    let q_scale = obj.optional("q_scale");
-    let auto_scale = obj
-        .optional("auto_scale")
-        .map(|f| f.boolean())
-        .transpose()?
-        .unwrap_or(false);
-    if auto_scale {
-        if let Some(f) = p_scale.as_ref().or(q_scale.as_ref()) {
-            return Err(JobError::new(
-                f.path.clone(),
-                "cannot be given together with \"auto_scale\": true",
-            ));
-        }
-        return Ok(options.with_auto_scale());
-    }
-    let p_scale = p_scale.map(|f| f.positive()).transpose()?;
-    let q_scale = q_scale.map(|f| f.positive()).transpose()?;
-    Ok(options.with_scales(p_scale.unwrap_or(1.0), q_scale.unwrap_or(1.0)))
+    let choice = read_scale_choice(
+        obj.optional("p_scale"),
+        obj.optional("q_scale"),
+        obj.optional("auto_scale"),
+    )?;
+    Ok(match choice {
+        None => options.with_auto_scale(),
+        Some((a, b)) => options.with_scales(a, b),
+    })
 }
 
 /// Read a fillet job.
@@ -107,6 +115,17 @@ pub fn parse(job: &Located) -> Result<FilletJob, JobError> {
     let q_field = obj.required("q")?;
     let p = p_field.curve()?;
     let q = q_field.curve()?;
+    if let Some(radius) = obj.optional("radius") {
+        return parse_radius(&obj, p, q, radius.positive()?);
+    }
+    for key in ["order", "compare"] {
+        if let Some(f) = obj.optional(key) {
+            return Err(JobError::new(
+                f.path.clone(),
+                "is only used together with \"radius\"",
+            ));
+        }
+    }
     let p_order = obj
         .optional("p_order")
         .map(|f| f.count())
@@ -190,7 +209,7 @@ pub fn parse(job: &Located) -> Result<FilletJob, JobError> {
             };
             (dp, dq)
         }
-        FilletMode::Deviation { .. } => (1.0, 1.0),
+        FilletMode::Deviation { .. } | FilletMode::Radius { .. } => (1.0, 1.0),
     };
     let options = read_scales(&obj, FilletOptions::new(dp, dq, p_order, q_order))?;
     obj.finish()?;
@@ -199,6 +218,59 @@ pub fn parse(job: &Located) -> Result<FilletJob, JobError> {
         q,
         options,
         mode,
+    })
+}
+
+/// The fields of a fillet job by radius (`radius` already read):
+/// `order`, `compare`; the fields of the other modes are refused, named.
+fn parse_radius(
+    obj: &ObjectReader,
+    p: Curve,
+    q: Curve,
+    radius: f64,
+) -> Result<FilletJob, JobError> {
+    for key in [
+        "p_setback",
+        "q_setback",
+        "max_deviation",
+        "setback_ratio",
+        "vertex",
+        "gap",
+        "p_order",
+        "q_order",
+        "p_scale",
+        "q_scale",
+        "auto_scale",
+    ] {
+        if let Some(f) = obj.optional(key) {
+            return Err(JobError::new(
+                f.path.clone(),
+                "cannot be given together with \"radius\" (the arc of the radius sets the cuts, \
+                 \"order\" the continuity G^k at both, and the shape values are chosen fair; the \
+                 corner is the vertex when P ends where Q starts, else the first crossing)",
+            ));
+        }
+    }
+    let order = obj
+        .optional("order")
+        .map(|f| f.count())
+        .transpose()?
+        .unwrap_or(DEFAULT_RADIUS_ORDER);
+    let compare = obj
+        .optional("compare")
+        .map(|f| f.boolean())
+        .transpose()?
+        .unwrap_or(false);
+    obj.finish()?;
+    Ok(FilletJob {
+        p,
+        q,
+        options: FilletOptions::new(1.0, 1.0, order, order),
+        mode: FilletMode::Radius {
+            radius,
+            order,
+            compare,
+        },
     })
 }
 
@@ -225,6 +297,11 @@ pub fn run(job: &Located) -> Result<Outcome, CliError> {
             let d = fillet_within_deviation(p, q, &options)?;
             Ok(outcome(&job, &d.fillet, Some(max_deviation)))
         }
+        FilletMode::Radius {
+            radius,
+            order,
+            compare,
+        } => fillet_radius::run(&job.p, &job.q, radius, order, compare),
     }
 }
 
@@ -292,7 +369,7 @@ fn outcome(job: &FilletJob, f: &Fillet, max_deviation: Option<f64>) -> Outcome {
         FilletMode::Setbacks | FilletMode::Vertex { .. } => {
             (Some(job.options.p_setback), Some(job.options.q_setback))
         }
-        FilletMode::Deviation { .. } => (None, None),
+        FilletMode::Deviation { .. } | FilletMode::Radius { .. } => (None, None),
     };
     // Distance from the corner point to the blend, by dense sampling
     // refined with golden-section search around the best sample.
@@ -316,6 +393,7 @@ fn outcome(job: &FilletJob, f: &Fillet, max_deviation: Option<f64>) -> Outcome {
             "blend_degree": f.blend.degree(),
             "p_order": kp,
             "q_order": kq,
+            "auto_scale": job.options.scale == ShapeScale::Auto,
             "p_scale": f.p_scale,
             "q_scale": f.q_scale,
             "chain_knot_intervals": [a, b, c],

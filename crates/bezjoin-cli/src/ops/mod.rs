@@ -13,8 +13,10 @@ use crate::svg::{CurveItem, Figure, Role};
 use crate::{CliError, Outcome};
 
 pub mod connect;
+pub mod connect_geometric;
 pub mod fillet;
 pub mod fillet_chain;
+pub mod fillet_radius;
 pub mod intersect;
 pub mod merge;
 pub mod spline;
@@ -32,9 +34,11 @@ pub struct JobArgs {
 /// The operations, as subcommands.
 #[derive(Subcommand, Debug, Clone)]
 pub enum Operation {
-    /// Connect P(u0) to Q(v0) with a C^k Bezier curve (mathematics.md section 1).
+    /// Connect P(u0) to Q(v0) with a C^k Bezier curve (mathematics.md section 1), or G^k with
+    /// `"continuity": "geometric"`.
     Connect(JobArgs),
-    /// Round the corner between two crossing curves, or at a vertex (section 2).
+    /// Round the corner between two crossing curves, or at a vertex (section 2); with `"radius"`
+    /// sized like the arc of that radius and rounded by a fair G^k blend.
     Fillet(JobArgs),
     /// Round every corner of a chain (a wire) of curves.
     FilletChain(JobArgs),
@@ -149,6 +153,7 @@ impl Scenario {
 pub fn scenarios() -> Vec<Scenario> {
     let mut all = connect::demo_scenarios();
     all.extend(fillet::demo_scenarios());
+    all.extend(fillet_radius::demo_scenarios());
     all.extend(fillet_chain::demo_scenarios());
     all.extend(merge::demo_scenarios());
     all.extend(spline::demo_scenarios());

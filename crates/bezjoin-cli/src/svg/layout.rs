@@ -2,9 +2,10 @@
 //! flipped), the caption lines, and the heights of the drawing, legend and
 //! caption.
 
-use super::Figure;
 use super::bounds::Bounds;
 use super::comb::Combs;
+use super::plot::PLOT_ROW_HEIGHT;
+use super::{Figure, legend_curves, legend_marker_kinds};
 
 /// Width of the whole picture, pixels.
 pub(super) const DRAWING_WIDTH: f64 = 820.0;
@@ -29,8 +30,10 @@ pub(super) struct Layout {
     min_x: f64,
     /// Largest model `y`.
     max_y: f64,
-    /// Height of the drawing with its margins (the legend starts below).
+    /// Height of the drawing with its margins (the plots start below).
     pub(super) drawing_height: f64,
+    /// Height of the row of plots (0 without plots; the legend starts below).
+    pub(super) plots_height: f64,
     /// Height of the whole picture.
     pub(super) total_height: f64,
     /// Caption lines below the title: the figure's, then the notes on
@@ -55,6 +58,11 @@ impl Layout {
 
         let caption = caption_lines(figure, combs);
         let drawing_height = inner_height + 2.0 * MARGIN;
+        let plots_height = if figure.plots.is_empty() {
+            0.0
+        } else {
+            PLOT_ROW_HEIGHT
+        };
         let legend_height = LINE_HEIGHT * legend_rows(figure) as f64 + 8.0;
         let caption_height = LINE_HEIGHT * (caption.len() + 1) as f64 + 12.0;
         Layout {
@@ -64,7 +72,8 @@ impl Layout {
             min_x: bounds.min[0],
             max_y: bounds.max[1],
             drawing_height,
-            total_height: drawing_height + legend_height + caption_height,
+            plots_height,
+            total_height: drawing_height + plots_height + legend_height + caption_height,
             caption,
         }
     }
@@ -102,18 +111,7 @@ fn caption_lines(figure: &Figure, combs: &Combs) -> Vec<String> {
     caption
 }
 
-/// Legend rows: one per curve and one per kind of marker.
+/// Legend rows: one per listed curve and one per kind of marker.
 fn legend_rows(figure: &Figure) -> usize {
-    figure.curves.len()
-        + figure
-            .markers
-            .iter()
-            .map(|m| m.kind)
-            .fold(Vec::new(), |mut v, k| {
-                if !v.contains(&k) {
-                    v.push(k);
-                }
-                v
-            })
-            .len()
+    legend_curves(figure).len() + legend_marker_kinds(figure).len()
 }

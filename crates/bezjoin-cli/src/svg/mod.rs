@@ -28,6 +28,7 @@ mod bounds;
 mod comb;
 mod layout;
 mod output;
+mod plot;
 
 /// The drawable geometry of one curve.
 #[derive(Debug, Clone)]
@@ -287,6 +288,11 @@ pub enum MarkerKind {
     Crossing,
     /// A prescribed point (constraint, kept point, on-curve point).
     Constraint,
+    /// The centre of a circle (the circular-arc fillet's).
+    Centre,
+    /// No symbol: the label alone, in bold at the point (a panel's title);
+    /// not listed in the legend.
+    Label,
 }
 
 /// A marked point.
@@ -322,6 +328,76 @@ pub struct Figure {
     pub curves: Vec<CurveItem>,
     /// Marked points.
     pub markers: Vec<Marker>,
+    /// Graphs drawn in one row below the drawing (curvature along arc
+    /// length), left to right.
+    pub plots: Vec<Plot>,
+}
+
+/// A graph below the drawing, e.g. the curvature `kappa` against arc length
+/// `s`: axes with ticks, a zero line, dashed vertical lines at `x_marks`
+/// (join points, where a jump of the curvature shows as a step) and the
+/// series, each in its role's colour and style.
+#[derive(Debug, Clone, Default)]
+pub struct Plot {
+    /// Title above the graph.
+    pub title: String,
+    /// Name of the horizontal axis.
+    pub x_label: String,
+    /// Name of the vertical axis.
+    pub y_label: String,
+    /// The lines drawn.
+    pub series: Vec<PlotSeries>,
+    /// Vertical dashed lines at these abscissae.
+    pub x_marks: Vec<f64>,
+    /// Range of the vertical axis; `None`: the data's, with 0 included.
+    /// Values outside are clipped (several plots can share one range).
+    pub y_range: Option<[f64; 2]>,
+}
+
+/// One line of a [`Plot`].
+#[derive(Debug, Clone)]
+pub struct PlotSeries {
+    /// Colour and style.
+    pub role: Role,
+    /// What it is (the line's tooltip).
+    pub label: String,
+    /// `(x, y)` points, joined in order.
+    pub points: Vec<[f64; 2]>,
+}
+
+impl Plot {
+    /// The range of the vertical axis: `y_range`, or the data's with 0
+    /// included, widened by 6 % (a flat line gets a unit range).
+    pub fn y_bounds(&self) -> [f64; 2] {
+        if let Some(r) = self.y_range {
+            return r;
+        }
+        let (lo, hi) = self
+            .series
+            .iter()
+            .flat_map(|s| s.points.iter().map(|p| p[1]))
+            .filter(|y| y.is_finite())
+            .fold((0.0f64, 0.0f64), |(lo, hi), y| (lo.min(y), hi.max(y)));
+        let pad = 0.06 * (hi - lo);
+        if pad > 0.0 {
+            [lo - pad, hi + pad]
+        } else {
+            [lo - 1.0, hi + 1.0]
+        }
+    }
+
+    /// The range of the horizontal axis (of the data; `[0, 1]` when empty).
+    pub fn x_bounds(&self) -> [f64; 2] {
+        let (lo, hi) = self
+            .series
+            .iter()
+            .flat_map(|s| s.points.iter().map(|p| p[0]))
+            .filter(|x| x.is_finite())
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| {
+                (lo.min(x), hi.max(x))
+            });
+        if lo < hi { [lo, hi] } else { [0.0, 1.0] }
+    }
 }
 
 impl Figure {
@@ -342,6 +418,12 @@ impl Figure {
     /// Add a marker.
     pub fn marker(&mut self, marker: Marker) -> &mut Self {
         self.markers.push(marker);
+        self
+    }
+
+    /// Add a graph below the drawing.
+    pub fn plot(&mut self, plot: Plot) -> &mut Self {
+        self.plots.push(plot);
         self
     }
 
@@ -383,6 +465,34 @@ fn render(figure: &Figure) -> String {
     combs.tips().for_each(|p| bounds.add(p));
     let layout = layout::Layout::new(figure, &bounds, size, &combs);
     output::svg(figure, &curve_points, &combs, &layout)
+}
+
+/// The curves listed in the legend: each (role, label) once, in the order
+/// drawn; curves without a label are not listed.
+fn legend_curves(figure: &Figure) -> Vec<&CurveItem> {
+    let mut out: Vec<&CurveItem> = Vec::new();
+    for item in &figure.curves {
+        if !item.label.is_empty()
+            && !out
+                .iter()
+                .any(|o| o.role == item.role && o.label == item.label)
+        {
+            out.push(item);
+        }
+    }
+    out
+}
+
+/// The kinds of markers listed in the legend, in the order first used
+/// (labels are not listed).
+fn legend_marker_kinds(figure: &Figure) -> Vec<MarkerKind> {
+    let mut kinds = Vec::new();
+    for m in &figure.markers {
+        if m.kind != MarkerKind::Label && !kinds.contains(&m.kind) {
+            kinds.push(m.kind);
+        }
+    }
+    kinds
 }
 
 /// Where a marker is drawn: its first two coordinates (0 where missing).

@@ -5,7 +5,7 @@ use std::fmt::Write as _;
 
 use super::comb::{COMB_SPIKES, COMB_TIP_SAMPLES, Combs};
 use super::layout::{DRAWING_WIDTH, LINE_HEIGHT, Layout, MARGIN};
-use super::{Figure, MarkerKind, Role, escape, marker_xy};
+use super::{Figure, MarkerKind, Role, escape, legend_curves, legend_marker_kinds, marker_xy};
 
 /// The SVG document of `figure`, laid out by `layout`; `curve_points` are
 /// the sampled curves.
@@ -21,6 +21,7 @@ pub(super) fn svg(
     polygon_group(&mut s, figure, layout);
     curve_group(&mut s, figure, curve_points, layout);
     marker_group(&mut s, figure, layout);
+    super::plot::plot_group(&mut s, &figure.plots, layout.drawing_height);
     let y = legend_group(&mut s, figure, layout);
     caption_group(&mut s, figure, layout, y + 8.0);
     s.push_str("</svg>\n");
@@ -133,6 +134,14 @@ fn marker_group(s: &mut String, figure: &Figure, layout: &Layout) {
     let _ = writeln!(s, "<g id=\"markers\">");
     for m in &figure.markers {
         let (x, y) = layout.map(marker_xy(m));
+        if m.kind == MarkerKind::Label {
+            let _ = writeln!(
+                s,
+                "<text x=\"{x:.2}\" y=\"{y:.2}\" fill=\"#222\" font-size=\"13\" font-weight=\"bold\">{}</text>",
+                escape(&m.label)
+            );
+            continue;
+        }
         s.push_str(&marker_svg(m.kind, x, y));
         if !m.label.is_empty() {
             let _ = writeln!(
@@ -150,9 +159,9 @@ fn marker_group(s: &mut String, figure: &Figure, layout: &Layout) {
 /// The legend below the drawing: one row per curve, then one per kind of
 /// marker. Returns the baseline after its last row.
 fn legend_group(s: &mut String, figure: &Figure, layout: &Layout) -> f64 {
-    let mut y = layout.drawing_height + LINE_HEIGHT;
+    let mut y = layout.drawing_height + layout.plots_height + LINE_HEIGHT;
     let _ = writeln!(s, "<g id=\"legend\">");
-    for item in &figure.curves {
+    for item in legend_curves(figure) {
         let _ = writeln!(
             s,
             "<line x1=\"{:.1}\" y1=\"{:.1}\" x2=\"{:.1}\" y2=\"{:.1}\" stroke=\"{}\" stroke-width=\"2.4\"{}/>",
@@ -172,17 +181,14 @@ fn legend_group(s: &mut String, figure: &Figure, layout: &Layout) -> f64 {
         );
         y += LINE_HEIGHT;
     }
-    let mut kinds_done = Vec::new();
-    for m in &figure.markers {
-        if kinds_done.contains(&m.kind) {
-            continue;
-        }
-        kinds_done.push(m.kind);
-        s.push_str(&marker_svg(m.kind, MARGIN + 15.0, y - 4.0));
-        let text = match m.kind {
+    for kind in legend_marker_kinds(figure) {
+        s.push_str(&marker_svg(kind, MARGIN + 15.0, y - 4.0));
+        let text = match kind {
             MarkerKind::Join => "join point",
             MarkerKind::Crossing => "crossing of the given curves",
             MarkerKind::Constraint => "prescribed point",
+            MarkerKind::Centre => "centre of the circular arc",
+            MarkerKind::Label => "",
         };
         let _ = writeln!(
             s,
@@ -240,6 +246,14 @@ fn marker_svg(kind: MarkerKind, x: f64, y: f64) -> String {
             y + 6.0,
             x - 6.0
         ),
+        MarkerKind::Centre => format!(
+            "<circle cx=\"{x:.2}\" cy=\"{y:.2}\" r=\"3.5\" fill=\"none\" stroke=\"#7d3c98\" stroke-width=\"1.4\"/>\n<path d=\"M{:.2} {y:.2}L{:.2} {y:.2}M{x:.2} {:.2}L{x:.2} {:.2}\" stroke=\"#7d3c98\" stroke-width=\"1.4\"/>\n",
+            x - 7.0,
+            x + 7.0,
+            y - 7.0,
+            y + 7.0
+        ),
+        MarkerKind::Label => String::new(),
     }
 }
 
