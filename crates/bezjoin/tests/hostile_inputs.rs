@@ -29,11 +29,12 @@ use std::time::{Duration, Instant};
 use bezjoin_core::{
     BSplineCurve, BezierCurve, BezjoinError, Breakpoints, ChainFillet, ChainFilletOptions,
     ChainMerge, ChainMergeOptions, ConnectOptions, Connection, Curve, DeviationFillet,
-    DeviationFilletOptions, Fillet, FilletOptions, IntersectOptions, Intersection,
-    IntersectionKind, KeepPoint, LagrangeOptions, LagrangeSpline, Merge, MergeMetric, MergeOptions,
-    NurbsCurve, PointConstraint, bezier_from_lagrange_points, chord_length_params, connect,
-    connect_dense_reference, connect_unchecked, distance_to_curve, ellipse_arc, fairness_energy,
-    fillet, fillet_at, fillet_chain, fillet_vertex, fillet_within_deviation, intersect,
+    DeviationFilletOptions, Fillet, FilletOptions, GeometricConnection, GeometricOptions,
+    IntersectOptions, Intersection, IntersectionKind, KeepPoint, LagrangeOptions, LagrangeSpline,
+    Merge, MergeMetric, MergeOptions, NurbsCurve, PointConstraint, RadiusFillet,
+    bezier_from_lagrange_points, chord_length_params, connect, connect_dense_reference,
+    connect_geometric, connect_unchecked, distance_to_curve, ellipse_arc, fairness_energy, fillet,
+    fillet_at, fillet_chain, fillet_radius, fillet_vertex, fillet_within_deviation, intersect,
     lagrange_points_of_bezier, lagrange_spline, merge, merge_chain, merge_metric_at,
 };
 use proptest::prelude::*;
@@ -156,6 +157,29 @@ impl Numbers for Fillet {
             self.q_scale,
             self.max_residual,
         ]);
+    }
+}
+
+/// The curve and shape values (the report's energy is infinite for a
+/// blend with a cusp, which given shape values may ask for).
+impl Numbers for GeometricConnection {
+    fn numbers(&self, out: &mut Vec<f64>) {
+        self.curve.numbers(out);
+        out.extend_from_slice(&self.p_shape);
+        out.extend_from_slice(&self.q_shape);
+        out.extend([self.max_residual, self.error_estimate]);
+    }
+}
+
+impl Numbers for RadiusFillet {
+    fn numbers(&self, out: &mut Vec<f64>) {
+        self.p_trimmed.numbers(out);
+        self.blend.numbers(out);
+        self.q_trimmed.numbers(out);
+        out.extend_from_slice(&self.arc_centre);
+        out.extend_from_slice(&self.p_shape);
+        out.extend_from_slice(&self.q_shape);
+        out.extend([self.u0, self.v0, self.arc_deviation]);
     }
 }
 
@@ -694,6 +718,50 @@ fn connect_survives_hostile_inputs() {
             checked("connect (ShapeScale::Auto, constraint)", &input, || {
                 connect(&p, u0, &q, v0, &constrained.clone().with_auto_scale())
             })?;
+            Ok(())
+        },
+    );
+}
+
+/// G^k connect (fair and given shapes) and the fillet by radius on the
+/// hostile curves: no panic, no hang, finite curves or a named error.
+#[test]
+fn geometric_connect_and_radius_fillet_survive_hostile_inputs() {
+    let strategy = (
+        (2usize..=3).prop_flat_map(|d| (hostile(d), hostile(d))),
+        unit_param(),
+        unit_param(),
+        0usize..=3,
+        positive(),
+        prop_oneof![Just(5e-324), Just(1e300), 0.001f64..0.5],
+    );
+    run(
+        "geometric",
+        strategy,
+        |((hp, hq), u0, v0, k, beta, radius_fraction)| {
+            let p = hp.curve()?;
+            let q = hq.curve()?;
+            let input = (&hp, &hq, u0, v0, k, beta, radius_fraction);
+            checked("connect_geometric (fair)", &input, || {
+                connect_geometric(&p, u0, &q, v0, &GeometricOptions::new(k, k))
+            })?;
+            let shape: Vec<f64> = (0..k).map(|j| if j == 0 { beta } else { -beta }).collect();
+            checked("connect_geometric (given)", &input, || {
+                connect_geometric(
+                    &p,
+                    u0,
+                    &q,
+                    v0,
+                    &GeometricOptions::new(k, k).with_shapes(shape.clone(), shape.clone()),
+                )
+            })?;
+            if p.dim() == 2 {
+                let q = rotated(&p);
+                let radius = (radius_fraction * p.coordinate_scale()).max(5e-324);
+                checked("fillet_radius", &input, || {
+                    fillet_radius(&p, &q, radius, k.max(1))
+                })?;
+            }
             Ok(())
         },
     );
