@@ -1,6 +1,7 @@
 //! `bzj_fillet` and `bzj_fillet_auto_scale` on fuzzed curve pairs with
 //! fuzzed setbacks (any double), orders (also `SIZE_MAX`) and scales;
-//! sometimes one out-pointer NULL.
+//! sometimes one out-pointer NULL; then `bzj_fillet_radius` on the same
+//! pair with any radius and order.
 #![no_main]
 
 use bezjoin_fuzz::*;
@@ -46,6 +47,22 @@ fuzz_target!(|data: &[u8]| {
     check_and_free(status, a, "bzj_fillet");
     check_and_free(status, b, "bzj_fillet");
     check_and_free(status, c, "bzj_fillet");
+    // The fillet by radius: any radius (the setback's bits), any order.
+    let radius = options.p_setback;
+    let order = input.size(8);
+    let (mut a, mut b, mut c) = (null_mut(), null_mut(), null_mut());
+    let mut report = BzjFairnessReport::default();
+    let report_ptr: *mut BzjFairnessReport = if input.byte() % 2 == 0 {
+        &mut report
+    } else {
+        null_mut()
+    };
+    // SAFETY: live handles, writable out-pointers.
+    let status =
+        unsafe { bzj_fillet_radius(p, q, radius, order, &mut a, &mut b, &mut c, report_ptr) };
+    check_and_free(status, a, "bzj_fillet_radius");
+    check_and_free(status, b, "bzj_fillet_radius");
+    check_and_free(status, c, "bzj_fillet_radius");
     // SAFETY: live handles, released once.
     unsafe {
         bzj_curve_free(p);
