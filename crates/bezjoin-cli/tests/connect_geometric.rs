@@ -12,29 +12,15 @@ use bezjoin_core::BezierCurve;
 use serde_json::{Value, json};
 
 fn run(job: &Value, svg: Option<&std::path::Path>) -> (i32, String, String) {
-    let mut args: Vec<std::ffi::OsString> = vec!["connect".into(), "-".into()];
-    if let Some(path) = svg {
-        args.push("--svg".into());
-        args.push(path.into());
-    }
-    let out = common::run_bezjoin(&args, job.to_string().as_bytes());
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
+    common::run_job("connect", job, svg)
 }
 
 fn success(job: &Value) -> Value {
-    let (code, stdout, stderr) = run(job, None);
-    assert_eq!(code, 0, "{job}: {stderr}");
-    serde_json::from_str(&stdout).expect("JSON result")
+    common::job_result("connect", job)
 }
 
 fn bezier(value: &Value) -> BezierCurve {
-    let rows: Vec<Vec<f64>> =
-        serde_json::from_value(value.get("points").unwrap_or(value).clone()).unwrap();
-    BezierCurve::new(rows[0].len(), rows.len() - 1, rows.concat()).unwrap()
+    common::bezier_of(value)
 }
 
 fn numbers(value: &Value) -> Vec<f64> {

@@ -9,44 +9,27 @@
 mod common;
 use common::assert_well_formed_xml;
 
-use std::ffi::OsString;
 use std::path::PathBuf;
 
 use bezjoin_core::BezierCurve;
 use serde_json::{Value, json};
 
+fn run(job: &Value, svg: Option<&std::path::Path>) -> (i32, String, String) {
+    common::run_job("fillet", job, svg)
+}
+
+fn success(job: &Value) -> Value {
+    common::job_result("fillet", job)
+}
+
+fn bezier(value: &Value) -> BezierCurve {
+    common::bezier_of(value)
+}
+
 fn repo_file(name: &str) -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
         .join("../..")
         .join(name)
-}
-
-/// Run `bezjoin fillet -` with `job` on stdin, optionally `--svg`.
-fn run(job: &Value, svg: Option<&PathBuf>) -> (i32, String, String) {
-    let mut args = vec![OsString::from("fillet"), OsString::from("-")];
-    if let Some(path) = svg {
-        args.push("--svg".into());
-        args.push(path.into());
-    }
-    let out = common::run_bezjoin(&args, job.to_string().as_bytes());
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
-
-fn success(job: &Value) -> Value {
-    let (code, stdout, stderr) = run(job, None);
-    assert_eq!(code, 0, "{job}: {stderr}");
-    serde_json::from_str(&stdout).expect("JSON result")
-}
-
-/// A printed Bezier curve (`{"points": [...]}`) or a job's array of points.
-fn bezier(value: &Value) -> BezierCurve {
-    let rows: Vec<Vec<f64>> =
-        serde_json::from_value(value.get("points").unwrap_or(value).clone()).unwrap();
-    BezierCurve::new(rows[0].len(), rows.len() - 1, rows.concat()).unwrap()
 }
 
 fn dot(a: &[f64], b: &[f64]) -> f64 {

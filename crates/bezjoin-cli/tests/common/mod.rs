@@ -1,8 +1,9 @@
 //! Helpers shared by the CLI's process tests.
 #![allow(dead_code)] // each test binary uses its own subset
 
-use std::ffi::OsStr;
+use std::ffi::{OsStr, OsString};
 use std::io::Write as _;
+use std::path::Path;
 use std::process::{Command, Output, Stdio};
 
 /// Runs the `bezjoin` binary with `args`, writing `stdin` to its standard
@@ -155,4 +156,34 @@ pub fn assert_well_formed_xml(text: &str) {
             s = &value[close + 2..];
         }
     }
+}
+
+/// Runs `bezjoin OP -` with `job` on stdin (and `--svg PATH` when given):
+/// exit code, stdout, stderr.
+pub fn run_job(op: &str, job: &serde_json::Value, svg: Option<&Path>) -> (i32, String, String) {
+    let mut args = vec![OsString::from(op), OsString::from("-")];
+    if let Some(path) = svg {
+        args.push("--svg".into());
+        args.push(path.into());
+    }
+    let out = run_bezjoin(&args, job.to_string().as_bytes());
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+/// [`run_job`] that must succeed: the printed JSON result.
+pub fn job_result(op: &str, job: &serde_json::Value) -> serde_json::Value {
+    let (code, stdout, stderr) = run_job(op, job, None);
+    assert_eq!(code, 0, "{job}: {stderr}");
+    serde_json::from_str(&stdout).expect("JSON result")
+}
+
+/// A printed Bezier curve (`{"points": [...]}`) or a job's array of points.
+pub fn bezier_of(value: &serde_json::Value) -> bezjoin_core::BezierCurve {
+    let rows: Vec<Vec<f64>> =
+        serde_json::from_value(value.get("points").unwrap_or(value).clone()).unwrap();
+    bezjoin_core::BezierCurve::new(rows[0].len(), rows.len() - 1, rows.concat()).unwrap()
 }

@@ -126,21 +126,7 @@ pub fn merge_bsplines(
     q: &NurbsCurve,
     options: &MergeOptions,
 ) -> Result<BSplineMerge> {
-    let problem = SplineProblem::new(
-        &[p, q],
-        &["p".into(), "q".into()],
-        &[options.keep_p, options.keep_q],
-        vec![
-            ("p_points", options.p_points.iter().enumerate().collect()),
-            ("q_points", options.q_points.iter().enumerate().collect()),
-        ],
-        Settings {
-            metric: options.metric,
-            fix_ends: options.fix_ends,
-            degree: options.degree,
-            accuracy: options.accuracy,
-        },
-    )?;
+    let problem = pair_problem(p, q, options)?;
     let mu = match &options.split {
         Breakpoints::Given(inner) => {
             let &[mu] = inner.as_slice() else {
@@ -190,7 +176,18 @@ pub fn merge_bsplines_metric_at(
     mu: f64,
 ) -> Result<f64> {
     check_open_range("mu", mu, 0.0, 1.0)?;
-    let problem = SplineProblem::new(
+    let problem = pair_problem(p, q, options)?;
+    Ok(problem.stage_one(&[0.0, mu, 1.0])?.metric_value)
+}
+
+/// The validated problem of a pair merge (names `p`, `q`, `p_points`,
+/// `q_points` in errors).
+fn pair_problem<'a>(
+    p: &'a NurbsCurve,
+    q: &'a NurbsCurve,
+    options: &'a MergeOptions,
+) -> Result<SplineProblem<'a>> {
+    SplineProblem::new(
         &[p, q],
         &["p".into(), "q".into()],
         &[options.keep_p, options.keep_q],
@@ -204,8 +201,7 @@ pub fn merge_bsplines_metric_at(
             degree: options.degree,
             accuracy: options.accuracy,
         },
-    )?;
-    Ok(problem.stage_one(&[0.0, mu, 1.0])?.metric_value)
+    )
 }
 
 /// Merge `N >= 2` consecutive polynomial B-splines into one B-spline `R`,
