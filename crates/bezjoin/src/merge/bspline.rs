@@ -70,7 +70,9 @@ use crate::error::{BezjoinError, Result, check_open_range, check_positive};
 use crate::linalg::solve_checked;
 use crate::nurbs::NurbsCurve;
 
-use super::rows::{Dependent, Row, WorstUndecided, classify, normalised, summarise};
+use super::rows::{
+    Dependent, Row, WorstUndecided, classify, extend_orthonormal, normalised, summarise,
+};
 use super::stage_one::{
     CONSISTENCY_TOLERANCE, DEVIATION_SAMPLES, RANK_TOLERANCE, bernstein_gram_matrix,
 };
@@ -580,27 +582,9 @@ impl<'a> SplineProblem<'a> {
         // those before it and is checked at the solution instead.
         let rank_tolerance = RANK_TOLERANCE * (unknowns as f64).sqrt();
         let mut basis: Vec<(DVector<f64>, DVector<f64>)> = Vec::new();
-        let mut independent: Vec<&str> = Vec::new();
-        let mut dependent = Vec::new();
         let rows = self.rows(&restrictions, unknowns)?;
-        for row in &rows {
-            let mut v = row.coefficients.clone();
-            let mut rhs = row.rhs.clone();
-            for _ in 0..2 {
-                for (b, b_rhs) in &basis {
-                    let dot = b.dot(&v);
-                    v.axpy(-dot, b, 1.0);
-                    rhs.axpy(-dot, b_rhs, 1.0);
-                }
-            }
-            let remainder = v.norm();
-            if remainder > rank_tolerance && basis.len() < unknowns {
-                basis.push((v / remainder, rhs / remainder));
-                independent.push(&row.label);
-            } else {
-                dependent.push(row);
-            }
-        }
+        let (kept, dependent) = extend_orthonormal(&mut basis, &rows, rank_tolerance, unknowns);
+        let independent: Vec<&str> = kept.iter().map(|r| r.label.as_str()).collect();
         let size = unknowns + basis.len();
         let mut kkt = DMatrix::zeros(size, size);
         let mut rhs = DMatrix::zeros(size, d);

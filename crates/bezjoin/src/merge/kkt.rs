@@ -7,7 +7,7 @@ use crate::error::{BezjoinError, Result};
 use crate::linalg::solve_checked;
 
 use super::MergeMetric;
-use super::rows::{Dependent, Problem, Row, WorstUndecided, classify};
+use super::rows::{Dependent, Problem, Row, WorstUndecided, classify, extend_orthonormal};
 use super::stage_one::{
     CONSISTENCY_TOLERANCE, DATA_ROUNDING_MARGIN, RANK_TOLERANCE, StageOneCheck,
     bernstein_gram_matrix,
@@ -50,26 +50,8 @@ pub(super) fn kkt_solution(
             .collect()
     };
     let rank_tolerance = RANK_TOLERANCE * (unknowns as f64).sqrt();
-    let mut kept = Vec::new();
-    let mut dependent = Vec::new();
-    for row in &problem.constraints {
-        let mut v = row.coefficients.clone();
-        let mut rhs = row.rhs.clone();
-        for _ in 0..2 {
-            for (b, b_rhs) in &basis {
-                let dot = b.dot(&v);
-                v.axpy(-dot, b, 1.0);
-                rhs.axpy(-dot, b_rhs, 1.0);
-            }
-        }
-        let remainder = v.norm();
-        if remainder > rank_tolerance {
-            basis.push((v / remainder, rhs / remainder));
-            kept.push(row);
-        } else {
-            dependent.push(row);
-        }
-    }
+    let (kept, dependent) =
+        extend_orthonormal(&mut basis, &problem.constraints, rank_tolerance, unknowns);
 
     // KKT system [W B^T; B 0] [e; lambda] = [0; c] with the orthonormal rows B.
     let weight = match metric {

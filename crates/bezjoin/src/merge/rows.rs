@@ -236,3 +236,37 @@ pub(super) fn summarise<S: AsRef<str>>(labels: &[S]) -> String {
         format!("{}; and {} more", shown.join("; "), labels.len() - SHOWN)
     }
 }
+
+/// Extend the orthonormal `basis` (rows with their right-hand sides) by
+/// `rows` in order, two Gram-Schmidt passes each: a row whose remainder is
+/// above `rank_tolerance` (and while the basis does not span all
+/// `unknowns`) joins it; the others depend on those before them and are
+/// returned second, to be checked at the solution. Returns (independent,
+/// dependent).
+pub(super) fn extend_orthonormal<'r>(
+    basis: &mut Vec<(DVector<f64>, DVector<f64>)>,
+    rows: impl IntoIterator<Item = &'r Row>,
+    rank_tolerance: f64,
+    unknowns: usize,
+) -> (Vec<&'r Row>, Vec<&'r Row>) {
+    let (mut kept, mut dependent) = (Vec::new(), Vec::new());
+    for row in rows {
+        let mut v = row.coefficients.clone();
+        let mut rhs = row.rhs.clone();
+        for _ in 0..2 {
+            for (b, b_rhs) in basis.iter() {
+                let dot = b.dot(&v);
+                v.axpy(-dot, b, 1.0);
+                rhs.axpy(-dot, b_rhs, 1.0);
+            }
+        }
+        let remainder = v.norm();
+        if remainder > rank_tolerance && basis.len() < unknowns {
+            basis.push((v / remainder, rhs / remainder));
+            kept.push(row);
+        } else {
+            dependent.push(row);
+        }
+    }
+    (kept, dependent)
+}
