@@ -13,13 +13,21 @@
 # corpus folder on a timer. So CI turns those off (-use_cmp=0
 # -use_memmem=0 -reload=0) and the library hashes with fixed keys; with
 # that, runs from other folders, environments and address layouts keep the
-# same inputs byte for byte. The corpus grown during the run is thrown
+# same inputs byte for byte. Two more things differ between machines and
+# are pinned here: nalgebra multiplies larger matrices with matrixmultiply,
+# which picks an FMA/AVX2, AVX or plain kernel from the CPU it runs on
+# (other rounding, other branches, other coverage), so the build sets
+# MMTEST_FEATURE=none (matrixmultiply's compile-time switch that allows no
+# CPU feature: the plain kernel everywhere); and since -use_cmp=0 ignores
+# the comparison traces, the targets are built without them
+# (--no-trace-compares): the hooks cost 80 % of a slow input's time
+# (fuzz finding F10: 10.3 s with them, 1.9 s without). The corpus grown during the run is thrown
 # away. Exploration with random seeds, comparison feedback and long runs is
 # scripts/fuzz-long.sh, outside CI.
 #
 # Fails on the first crash, hang (-timeout) or BZJ_ERR_INTERNAL (the targets
 # assert on it); the failing input is copied to fuzz/artifacts/ for
-# reproduction: cargo +nightly fuzz run <target> fuzz/artifacts/<file>
+# reproduction: MMTEST_FEATURE=none cargo +nightly fuzz run --no-trace-compares <target> fuzz/artifacts/<file>
 #
 #   scripts/fuzz-short.sh [SCALE=1] [TARGET...]
 # SCALE multiplies every target's execution count (0.1 for a quick look).
@@ -31,13 +39,14 @@ SCALE="${1:-1}"
 shift || true
 SEED="${FUZZ_SEED:-1}"
 
-# Executions per target after the seed replay: about 15-20 s each under
-# AddressSanitizer on a busy 2-core machine (rates in docs/reliability.md).
+# Executions per target after the seed replay: about 10-20 s each under
+# AddressSanitizer without comparison tracing on a 2-core machine (merge
+# about 70 s; rates in docs/reliability.md).
 declare -A RUNS=(
-    [curve_new]=100000 [curve_eval]=50000 [curve_segment]=12000
-    [curve_ops]=40000 [curve_length]=6000 [lagrange_spline]=50000
-    [merge]=10000 [merge_chain]=30000 [connect]=20000 [intersect]=8000
-    [intersect_detailed]=30000 [fillet]=4000 [fillet_deviation]=16000
+    [curve_new]=200000 [curve_eval]=100000 [curve_segment]=60000
+    [curve_ops]=120000 [curve_length]=40000 [lagrange_spline]=150000
+    [merge]=10000 [merge_chain]=40000 [connect]=20000 [intersect]=40000
+    [intersect_detailed]=80000 [fillet]=15000 [fillet_deviation]=50000
     [fillet_chain]=40000 [nurbs]=5000
 )
 DEFAULT_RUNS=5000
@@ -48,7 +57,8 @@ targets=("$@")
 if [ "${#targets[@]}" -eq 0 ]; then
     mapfile -t targets < <(cargo +nightly fuzz list)
 fi
-cargo +nightly fuzz build
+export MMTEST_FEATURE=none
+cargo +nightly fuzz build --no-trace-compares
 
 WORK="$(mktemp -d /tmp/bezjoin-fuzz.XXXXXX)"
 trap 'rm -rf "$WORK"' EXIT
@@ -60,7 +70,7 @@ for t in "${targets[@]}"; do
     [ -d "$seeds" ] || { echo "fuzz target $t has no seed folder $seeds" >&2; exit 1; }
     mkdir -p "$WORK/corpus-$t"
     echo "--- fuzz $t: replay $(find "$seeds" -type f | wc -l) seeds, then $runs runs from seed $SEED" >&2
-    if ! cargo +nightly fuzz run "$t" "$WORK/corpus-$t" "$seeds" -- \
+    if ! cargo +nightly fuzz run --no-trace-compares "$t" "$WORK/corpus-$t" "$seeds" -- \
         -seed="$SEED" -runs="$runs" -shuffle=0 -use_cmp=0 -use_memmem=0 -reload=0 -timeout=10 -rss_limit_mb=2048 \
         -print_final_stats=1 -artifact_prefix="$WORK/artifact-$t-" >"$WORK/$t.log" 2>&1; then
         tail -n 60 "$WORK/$t.log" >&2

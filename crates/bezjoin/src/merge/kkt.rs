@@ -91,7 +91,13 @@ pub(super) fn kkt_solution(
             DATA_ROUNDING_MARGIN
                 * f64::EPSILON
                 * row_matrix_condition(&problem.continuity, &kept, unknowns)
-                * reduced_condition(&basis, &weight, count, points_per_piece).sqrt(),
+                * match metric {
+                    // W = I: Z^T W Z = Z^T Z = I for the orthonormal Z.
+                    MergeMetric::Discrete => 1.0,
+                    MergeMetric::Integral => {
+                        reduced_condition(&basis, &weight, count, points_per_piece).sqrt()
+                    }
+                },
         ),
         StageOneCheck::Trial => solution.error_estimate(),
     };

@@ -251,6 +251,11 @@ pub(super) fn extend_orthonormal<'r>(
 ) -> (Vec<&'r Row>, Vec<&'r Row>) {
     let (mut kept, mut dependent) = (Vec::new(), Vec::new());
     for row in rows {
+        if basis.len() >= unknowns {
+            // The basis spans every direction: the row depends on it.
+            dependent.push(row);
+            continue;
+        }
         let mut v = row.coefficients.clone();
         let mut rhs = row.rhs.clone();
         for _ in 0..2 {
@@ -261,7 +266,7 @@ pub(super) fn extend_orthonormal<'r>(
             }
         }
         let remainder = v.norm();
-        if remainder > rank_tolerance && basis.len() < unknowns {
+        if remainder > rank_tolerance {
             basis.push((v / remainder, rhs / remainder));
             kept.push(row);
         } else {
