@@ -3392,6 +3392,125 @@ void check_fillet_deviation(Report& report) {
     });
 }
 
+// w. A closed wire rounded by radius (bzj_fillet_radius_chain), judged by
+// OCCT: a plate outline of four lines and a cubic; at every join of the
+// result GeomLProp_CLProps' unit tangent and curvature agree on both sides
+// (G2); every corner's touching points are at the radius from the reported
+// centre (bzj_fillet_radius_detailed on the corner alone gives the same
+// centre), and OCCT's ChFi2d arc of the same radius at a line-line corner
+// has that centre. Then the automatic-scale variants (vertex, chain,
+// deviation): the blend of two long edges with a short setback stays in the
+// corner's triangle, where the paper's scale 1 leaves it.
+void check_radius_wire(Report& report) {
+    const double radius = 1.5;
+    std::vector<Curve> wire;
+    wire.emplace_back(2, 1, std::vector<double>{0.0, 0.0, 12.0, 0.0});
+    wire.emplace_back(2, 1, std::vector<double>{12.0, 0.0, 12.0, 6.0});
+    wire.emplace_back(2, 3, std::vector<double>{12.0, 6.0, 9.0, 9.0, 4.0, 5.0, 0.0, 8.0});
+    wire.emplace_back(2, 1, std::vector<double>{0.0, 8.0, 0.0, 0.0});
+    guarded(report, "w.wire-G2-GeomLProp", [&] {
+        const bezjoin::RadiusFilletChain rounded = bezjoin::fillet_radius_chain(wire, radius, 2, true);
+        const std::size_t n = rounded.pieces.size();
+        if (n != 2 * wire.size() || rounded.reports.size() != wire.size()) {
+            throw std::runtime_error(format("%zu pieces, %zu reports", n, rounded.reports.size()));
+        }
+        double worst = 0.0;
+        for (std::size_t i = 0; i < n; ++i) {
+            const Handle(Geom_Curve) a = occ_curve(rounded.pieces[i]);
+            const Handle(Geom_Curve) b = occ_curve(rounded.pieces[(i + 1) % n]);
+            const double ua = a->LastParameter();
+            const double ub = b->FirstParameter();
+            const LocalProps x = local_props(a, ua, false);
+            const LocalProps y = local_props(b, ub, false);
+            const double kappa_scale = std::max({1.0 / radius, x.kappa, y.kappa});
+            worst = std::max({worst, a->Value(ua).Distance(b->Value(ub)) / 12.0,
+                              (x.tangent - y.tangent).Magnitude(),
+                              std::abs(x.kappa - y.kappa) / kappa_scale});
+        }
+        report.row(worst <= 1e-9, "w.wire-G2-GeomLProp", worst, 1e-9,
+                   format("closed wire of 3 lines and a cubic, r %g: %zu joins, position / unit tangent / "
+                          "curvature by GeomLProp_CLProps on both sides",
+                          radius, n));
+        // Corner 0 (line-line, 90 degrees at (12, 0)): the detailed single
+        // fillet's centre, the chain's cuts, and ChFi2d's arc centre.
+        const bezjoin::DetailedRadiusFillet one = bezjoin::fillet_radius_detailed(wire[0], wire[1], radius, 2);
+        const BzjRadiusFilletReport& c0 = rounded.reports[0];
+        const gp_Pnt vertex(12.0, 0.0, 0.0);
+        const gp_Pnt a(0.0, 0.0, 0.0);
+        const gp_Pnt b(12.0, 6.0, 0.0);
+        const TopoDS_Vertex va = BRepBuilderAPI_MakeVertex(a);
+        const TopoDS_Vertex vv = BRepBuilderAPI_MakeVertex(vertex);
+        const TopoDS_Vertex vb = BRepBuilderAPI_MakeVertex(b);
+        ChFi2d_FilletAPI api(BRepBuilderAPI_MakeEdge(va, vv).Edge(), BRepBuilderAPI_MakeEdge(vv, vb).Edge(),
+                             gp_Pln(gp::XOY()));
+        if (!api.Perform(radius) || api.NbResults(vertex) < 1) {
+            throw std::runtime_error("ChFi2d_FilletAPI found no fillet");
+        }
+        TopoDS_Edge m1;
+        TopoDS_Edge m2;
+        const TopoDS_Edge arc = api.Result(vertex, m1, m2, -1);
+        double first = 0.0;
+        double last = 0.0;
+        const Handle(Geom_Curve) curve = BRep_Tool::Curve(arc, first, last);
+        const Handle(Geom_TrimmedCurve) trimmed = Handle(Geom_TrimmedCurve)::DownCast(curve);
+        const Handle(Geom_Circle) circle =
+            Handle(Geom_Circle)::DownCast(trimmed.IsNull() ? curve : trimmed->BasisCurve());
+        if (circle.IsNull()) {
+            throw std::runtime_error("ChFi2d_FilletAPI's fillet is not a circle");
+        }
+        const gp_Pnt occt_centre = circle->Location();
+        const double centre_gap = occt_centre.Distance(gp_Pnt(one.arc_centre[0], one.arc_centre[1], 0.0));
+        const double cut_gap = std::max(std::abs(c0.u0 - one.report.u0), std::abs(c0.v0 - one.report.v0));
+        const double touch_gap = std::max(curve->Value(first).Distance(gp_Pnt(12.0 * c0.u0, 0.0, 0.0)),
+                                          curve->Value(last).Distance(gp_Pnt(12.0, 6.0 * c0.v0, 0.0)));
+        const double worst_corner = std::max({centre_gap, cut_gap, touch_gap});
+        report.row(worst_corner <= 1e-12, "w.corner-vs-ChFi2d", worst_corner, 1e-12,
+                   format("corner 0: centre ours (%.6f, %.6f), ChFi2d (%.6f, %.6f); the arc's ends are the "
+                          "chain's cuts; arc deviation of the G2 blend %.4f",
+                          one.arc_centre[0], one.arc_centre[1], occt_centre.X(), occt_centre.Y(),
+                          one.report.arc_deviation));
+    });
+    // The automatic scales: two lines 40 and 20 long meeting at the origin
+    // at a right angle, setback 2 (chain: an open L of the same lines).
+    const Curve p(2, 1, {-40.0, 0.0, 0.0, 0.0});
+    const Curve q(2, 1, {0.0, 0.0, 0.0, 20.0});
+    auto in_corner = [](const Curve& blend, double setback) {
+        double worst = 0.0;  // how far a control point lies outside the triangle
+        const std::vector<double> pts = blend.points();
+        for (std::size_t i = 0; i + 1 < pts.size(); i += 2) {
+            const double x = pts[i];
+            const double y = pts[i + 1];
+            worst = std::max({worst, x, -y, y - x - setback});
+        }
+        return worst;
+    };
+    guarded(report, "w.auto-scale-stays-in-corner", [&] {
+        bezjoin::FilletOptions o;
+        o.p_setback = 2.0;
+        o.q_setback = 2.0;
+        o.p_order = 2;
+        o.q_order = 2;
+        const double paper = in_corner(bezjoin::fillet_vertex(p, q, o, 1e-9).blend, 2.0);
+        const bezjoin::AutoScaledFillet v = bezjoin::fillet_vertex_auto_scale(p, q, o, 1e-9);
+        const bezjoin::AutoScaledFilletChain c = bezjoin::fillet_chain_auto_scale({&p, &q}, o, false);
+        bezjoin::DeviationFilletOptions d;
+        d.max_deviation = 0.1;
+        d.p_order = 2;
+        d.q_order = 2;
+        const Curve pc(2, 1, {-40.0, 0.0, 10.0, 0.0});
+        const Curve qc(2, 1, {0.0, -10.0, 0.0, 20.0});
+        double s = 0.0;
+        const bezjoin::DeviationFillet dev = bezjoin::fillet_deviation_auto_scale(pc, qc, d, s);
+        const double worst = std::max({in_corner(v.blend, 2.0), in_corner(c.pieces[1], 2.0),
+                                       in_corner(dev.blend, dev.report.p_setback)});
+        const bool paper_leaves = paper > 1.0;
+        report.row(worst <= 1e-12 && paper_leaves, "w.auto-scale-stays-in-corner", std::max(worst, 0.0), 1e-12,
+                   format("control points outside the corner's triangle: scale 1 by %.3f; automatic (vertex s %.4g, "
+                          "chain s %.4g, deviation s %.4g, setback %.4f) by at most %.1e",
+                          paper, v.scale, c.scales.at(0), s, dev.report.p_setback, std::max(worst, 0.0)));
+    });
+}
+
 void check_fillet_chain(Report& report, StepScene& scene) {
     guarded(report, "g.fillet_chain", [&] {
         // A closed curved triangle: three bulged cubic sides meeting end to end.
@@ -4220,6 +4339,7 @@ int main(int argc, char** argv) {
     check_nurbs_fillets(report, timings, options);
     check_fillet(report, scene, timings, options);
     check_fillet_radius(report, timings, options);
+    check_radius_wire(report);
     check_merge(report, scene, timings, options);
     check_lagrange(report, scene);
     check_auto_scale(report);

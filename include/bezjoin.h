@@ -476,6 +476,32 @@ typedef struct BzjFairnessReport {
 } BzjFairnessReport;
 
 /**
+ * What a fillet by radius reports besides its pieces (a new struct of
+ * this library, not in the contract's list; the layout is fixed from its
+ * first release).
+ */
+typedef struct BzjRadiusFilletReport {
+  /**
+   * Energy, curvature range and extrema of the blend (as
+   * [`bzj_fillet_radius`] reports them).
+   */
+  struct BzjFairnessReport fairness;
+  /**
+   * Largest distance of the blend from the circle of the G1 arc of the
+   * same radius in the same corner (sampled at 257 parameters).
+   */
+  double arc_deviation;
+  /**
+   * The arc's touching point on P: where P is cut.
+   */
+  double u0;
+  /**
+   * The arc's touching point on Q: where Q is cut.
+   */
+  double v0;
+} BzjRadiusFilletReport;
+
+/**
  * A point kept with its derivatives `0..=max_order`.
  */
 typedef struct BzjKeepPoint {
@@ -1039,6 +1065,22 @@ BzjStatus bzj_fillet_auto_scale(const struct BzjCurve *p, const struct BzjCurve 
 BzjStatus bzj_fillet_vertex(const struct BzjCurve *p, const struct BzjCurve *q, const struct BzjFilletOptions *options, double gap, struct BzjCurve **p_trimmed, struct BzjCurve **blend, struct BzjCurve **q_trimmed);
 
 /**
+ * [`bzj_fillet_vertex`] with `alpha = beta = s` chosen automatically as
+ * [`bzj_fillet_auto_scale`] chooses it (`options->p_scale` and
+ * `options->q_scale` are ignored, not read for validity); the chosen `s`
+ * is written to `scale_out` when it is not NULL. The default for a user
+ * who gives no scales: the paper's scale 1 can loop when the setbacks are
+ * short against the curves' parametric speed (a 40 mm and a 20 mm line
+ * with setback 2 give a self-intersecting blend 13.6 mm long).
+ *
+ * @return the statuses of [`bzj_fillet_vertex`] (except for the scales).
+ *
+ * # Safety
+ * As [`bzj_fillet_vertex`]; `scale_out` is NULL or writable.
+ */
+BzjStatus bzj_fillet_vertex_auto_scale(const struct BzjCurve *p, const struct BzjCurve *q, const struct BzjFilletOptions *options, double gap, struct BzjCurve **p_trimmed, struct BzjCurve **blend, struct BzjCurve **q_trimmed, double *scale_out);
+
+/**
  * Round the corner at the first crossing so that the blend passes within
  * `max_deviation` of the corner point X (the crossing), using nearly all of
  * it: `max_deviation (1 - 1e-9) <= min over t of |R(t) - X| <=
@@ -1066,6 +1108,25 @@ BzjStatus bzj_fillet_vertex(const struct BzjCurve *p, const struct BzjCurve *q, 
  * out-pointers and `report` are NULL or writable.
  */
 BzjStatus bzj_fillet_deviation(const struct BzjCurve *p, const struct BzjCurve *q, const struct BzjDeviationFilletOptions *options, struct BzjCurve **p_trimmed, struct BzjCurve **blend, struct BzjCurve **q_trimmed, struct BzjDeviationFilletReport *report);
+
+/**
+ * [`bzj_fillet_deviation`] with `alpha = beta = s` chosen automatically
+ * at every setback the search tries, as [`bzj_fillet_auto_scale`] chooses
+ * it (`options->p_scale` and `options->q_scale` are ignored, not read for
+ * validity); the `s` of the returned blend is written to `scale_out` when
+ * it is not NULL. The same deviation guarantee. With the paper's scale 1
+ * the blend of two long edges loops and reaches the deviation only with
+ * long setbacks (lines 60 and 40 long crossing at right angles, deviation
+ * 0.1: setbacks 6.2); with the automatic scale the setbacks stay near the
+ * arc's (0.27 there).
+ *
+ * @return the statuses of [`bzj_fillet_deviation`] (except for the
+ *         scales).
+ *
+ * # Safety
+ * As [`bzj_fillet_deviation`]; `scale_out` is NULL or writable.
+ */
+BzjStatus bzj_fillet_deviation_auto_scale(const struct BzjCurve *p, const struct BzjCurve *q, const struct BzjDeviationFilletOptions *options, struct BzjCurve **p_trimmed, struct BzjCurve **blend, struct BzjCurve **q_trimmed, struct BzjDeviationFilletReport *report, double *scale_out);
 
 /**
  * Round every corner of a chain of curves in one call. Corner i lies
@@ -1106,6 +1167,23 @@ BzjStatus bzj_fillet_deviation(const struct BzjCurve *p, const struct BzjCurve *
  * points to `capacity` writable handle pointers; `count` is NULL or writable.
  */
 BzjStatus bzj_fillet_chain(const struct BzjCurve *const *curves, size_t curve_count, const struct BzjFilletOptions *options, int32_t closed, struct BzjCurve **out_pieces, size_t capacity, size_t *count);
+
+/**
+ * [`bzj_fillet_chain`] with `alpha = beta = s` chosen automatically at
+ * every corner as [`bzj_fillet_auto_scale`] chooses it (`options->p_scale`
+ * and `options->q_scale` are ignored, not read for validity). When
+ * `scales_out` is not NULL it receives the corner count of doubles (`s` of
+ * corner i at index i): `curve_count - 1` for an open chain,
+ * `curve_count` for a closed one; it is not written by a "count only"
+ * query or on error.
+ *
+ * @return the statuses of [`bzj_fillet_chain`] (except for the scales).
+ *
+ * # Safety
+ * As [`bzj_fillet_chain`]; `scales_out` is NULL or points to the corner
+ * count of writable doubles.
+ */
+BzjStatus bzj_fillet_chain_auto_scale(const struct BzjCurve *const *curves, size_t curve_count, const struct BzjFilletOptions *options, int32_t closed, struct BzjCurve **out_pieces, size_t capacity, size_t *count, double *scales_out);
 
 /**
  * The Bezier curve `R` connecting `p` at `u0` to `q` at `v0` with
@@ -1171,6 +1249,56 @@ BzjStatus bzj_connect_geometric(const struct BzjCurve *p, double u0, const struc
  * writable; `report` is NULL or writable.
  */
 BzjStatus bzj_fillet_radius(const struct BzjCurve *p, const struct BzjCurve *q, double radius, size_t order, struct BzjCurve **p_trimmed, struct BzjCurve **blend, struct BzjCurve **q_trimmed, struct BzjFairnessReport *report);
+
+/**
+ * [`bzj_fillet_radius`] with more of what it found: `report` (may be
+ * NULL) receives the fairness report, the blend's largest distance from
+ * the arc's circle and the touching points; `arc_centre` (may be NULL)
+ * receives the arc's centre, as many doubles as the curves' dimension.
+ * Outputs, guarantee and statuses as [`bzj_fillet_radius`].
+ *
+ * # Safety
+ * As [`bzj_fillet_radius`]; `report` is NULL or writable; `arc_centre` is
+ * NULL or points to dimension-many writable doubles.
+ */
+BzjStatus bzj_fillet_radius_detailed(const struct BzjCurve *p, const struct BzjCurve *q, double radius, size_t order, struct BzjCurve **p_trimmed, struct BzjCurve **blend, struct BzjCurve **q_trimmed, struct BzjRadiusFilletReport *report, double *arc_centre);
+
+/**
+ * Round every corner of a chain of curves (a wire) by radius, each as
+ * [`bzj_fillet_radius`] rounds one: corner i between `curves[i]` and
+ * `curves[i + 1]` (and, when `closed == 1`, between the last curve and the
+ * first) is their shared vertex when one ends where the next starts
+ * (within 1e-9 of their coordinate size), else their crossing nearest the
+ * shared end (as [`crate::fillet::bzj_fillet_chain`] chooses it); it is
+ * rounded like the G1 arc of radius `radius` with a G^`order` blend of
+ * fair shape values. Pieces, `count`, `capacity` and the "count only"
+ * query as `bzj_fillet_chain` (trimmed curve 0, blend 0, trimmed curve 1,
+ * ...: `2 * curve_count - 1` handles open, `2 * curve_count` closed).
+ * `reports` (may be NULL) receives one [`BzjRadiusFilletReport`] per
+ * corner: `curve_count - 1` open, `curve_count` closed (not written by a
+ * "count only" query or on error).
+ *
+ * @return BZJ_ERR_NULL_POINTER if `curves`, one of its handles or `count`
+ *         is NULL, or `out_pieces` is NULL while `capacity > 0`;
+ *         BZJ_ERR_BUFFER_TOO_SMALL if `0 < capacity <` the number needed;
+ *         BZJ_ERR_INVALID_ARGUMENT if `closed` is not 0 or 1, fewer than 2
+ *         curves are given, `radius` is not > 0, `order` is 0 or above 6,
+ *         the arc does not fit a corner ("corner i radius"), or the arcs
+ *         at the two ends of a curve overlap (naming `curves[i]`);
+ *         BZJ_ERR_NON_FINITE if `radius` is NaN or infinite;
+ *         BZJ_ERR_DIMENSION_MISMATCH if the curves' dimensions differ;
+ *         BZJ_ERR_NO_INTERSECTION if a corner has no vertex or crossing, or
+ *         its tangents are parallel (the message names the corner);
+ *         BZJ_ERR_ILL_CONDITIONED if a corner's touching points or blend
+ *         cannot be trusted.
+ *
+ * # Safety
+ * `curves` is NULL or points to `curve_count` readable handle pointers
+ * (each NULL or live); `out_pieces` is NULL or points to `capacity`
+ * writable handle pointers; `count` is NULL or writable; `reports` is
+ * NULL or points to the corner count of writable reports.
+ */
+BzjStatus bzj_fillet_radius_chain(const struct BzjCurve *const *curves, size_t curve_count, double radius, size_t order, int32_t closed, struct BzjCurve **out_pieces, size_t capacity, size_t *count, struct BzjRadiusFilletReport *reports);
 
 /**
  * A spline of cubic segments, each given by four points ON it at local

@@ -550,6 +550,35 @@ inline RadiusFillet fillet_radius(const Curve& p, const Curve& q, double radius,
     return RadiusFillet{Curve(p_trimmed), Curve(blend), Curve(q_trimmed), report};
 }
 
+/// fillet_radius() with more of what the library found: the report (fairness,
+/// the blend's largest distance from the arc's circle, the touching points u0
+/// on P and v0 on Q) and the arc's centre (dim values).
+struct DetailedRadiusFillet {
+    Curve p_trimmed;
+    Curve blend;
+    Curve q_trimmed;
+    BzjRadiusFilletReport report;
+    std::vector<double> arc_centre;
+};
+
+/// fillet_radius() with the arc's centre, the blend's deviation from the arc
+/// and the cut parameters (bzj_fillet_radius_detailed; default G2).
+inline DetailedRadiusFillet fillet_radius_detailed(const Curve& p, const Curve& q, double radius,
+                                                   std::size_t order = 2) {
+    // An empty p has no dimension: NULL is passed and the library refuses p by name.
+    std::vector<double> centre(p.get() != nullptr ? p.dim() : 0);
+    BzjCurve* p_trimmed = nullptr;
+    BzjCurve* blend = nullptr;
+    BzjCurve* q_trimmed = nullptr;
+    BzjRadiusFilletReport report{};
+    check(bzj_fillet_radius_detailed(p.get(), q.get(), radius, order, &p_trimmed, &blend,
+                                     &q_trimmed, &report,
+                                     centre.empty() ? nullptr : centre.data()),
+          "bzj_fillet_radius_detailed");
+    return DetailedRadiusFillet{Curve(p_trimmed), Curve(blend), Curve(q_trimmed), report,
+                                std::move(centre)};
+}
+
 /// fillet() with p_scale = q_scale = scale chosen by the library.
 struct AutoScaledFillet {
     Curve p_trimmed;
@@ -573,6 +602,23 @@ inline AutoScaledFillet fillet_auto_scale(const Curve& p, const Curve& q,
     return AutoScaledFillet{Curve(p_trimmed), Curve(blend), Curve(q_trimmed), scale};
 }
 
+/// fillet_vertex() with alpha = beta = s chosen as fillet_auto_scale() chooses
+/// it (bzj_fillet_vertex_auto_scale); options.p_scale and options.q_scale are
+/// ignored. The default for a caller who gives no scales: the paper's scale 1
+/// can loop when the setbacks are short against the curves' parametric speed.
+inline AutoScaledFillet fillet_vertex_auto_scale(const Curve& p, const Curve& q,
+                                                 const FilletOptions& options, double gap) {
+    const BzjFilletOptions raw = detail::raw_fillet_options(options);
+    BzjCurve* p_trimmed = nullptr;
+    BzjCurve* blend = nullptr;
+    BzjCurve* q_trimmed = nullptr;
+    double scale = 0.0;
+    check(bzj_fillet_vertex_auto_scale(p.get(), q.get(), &raw, gap, &p_trimmed, &blend,
+                                       &q_trimmed, &scale),
+          "bzj_fillet_vertex_auto_scale");
+    return AutoScaledFillet{Curve(p_trimmed), Curve(blend), Curve(q_trimmed), scale};
+}
+
 /// Options of fillet_deviation(): the largest distance of the blend from the
 /// corner point, the setback ratio dq / dp, orders, scales.
 struct DeviationFilletOptions {
@@ -593,11 +639,8 @@ struct DeviationFillet {
     BzjDeviationFilletReport report;
 };
 
-/// Round the corner at the first crossing X so that min over t of |R(t) - X|
-/// lies in [eps (1 - 1e-9), eps (1 - 2.5e-10)], never above eps
-/// (bzj_fillet_deviation).
-inline DeviationFillet fillet_deviation(const Curve& p, const Curve& q,
-                                        const DeviationFilletOptions& options) {
+namespace detail {
+inline BzjDeviationFilletOptions raw_deviation_options(const DeviationFilletOptions& options) {
     BzjDeviationFilletOptions raw{};
     raw.max_deviation = options.max_deviation;
     raw.setback_ratio = options.setback_ratio;
@@ -605,12 +648,40 @@ inline DeviationFillet fillet_deviation(const Curve& p, const Curve& q,
     raw.q_order = options.q_order;
     raw.p_scale = options.p_scale;
     raw.q_scale = options.q_scale;
+    return raw;
+}
+}  // namespace detail
+
+/// Round the corner at the first crossing X so that min over t of |R(t) - X|
+/// lies in [eps (1 - 1e-9), eps (1 - 2.5e-10)], never above eps
+/// (bzj_fillet_deviation).
+inline DeviationFillet fillet_deviation(const Curve& p, const Curve& q,
+                                        const DeviationFilletOptions& options) {
+    const BzjDeviationFilletOptions raw = detail::raw_deviation_options(options);
     BzjCurve* p_trimmed = nullptr;
     BzjCurve* blend = nullptr;
     BzjCurve* q_trimmed = nullptr;
     BzjDeviationFilletReport report{};
     check(bzj_fillet_deviation(p.get(), q.get(), &raw, &p_trimmed, &blend, &q_trimmed, &report),
           "bzj_fillet_deviation");
+    return DeviationFillet{Curve(p_trimmed), Curve(blend), Curve(q_trimmed), report};
+}
+
+/// fillet_deviation() with alpha = beta = s chosen automatically
+/// (bzj_fillet_deviation_auto_scale: s is the automatic scale of the very
+/// setbacks found with it; options.p_scale and options.q_scale are ignored).
+/// The chosen s is returned in `scale`.
+inline DeviationFillet fillet_deviation_auto_scale(const Curve& p, const Curve& q,
+                                                   const DeviationFilletOptions& options,
+                                                   double& scale) {
+    const BzjDeviationFilletOptions raw = detail::raw_deviation_options(options);
+    BzjCurve* p_trimmed = nullptr;
+    BzjCurve* blend = nullptr;
+    BzjCurve* q_trimmed = nullptr;
+    BzjDeviationFilletReport report{};
+    check(bzj_fillet_deviation_auto_scale(p.get(), q.get(), &raw, &p_trimmed, &blend, &q_trimmed,
+                                          &report, &scale),
+          "bzj_fillet_deviation_auto_scale");
     return DeviationFillet{Curve(p_trimmed), Curve(blend), Curve(q_trimmed), report};
 }
 
@@ -649,6 +720,109 @@ inline std::vector<Curve> fillet_chain(const std::vector<Curve>& curves, const F
 inline std::vector<Curve> fillet_chain(std::initializer_list<const Curve*> curves,
                                        const FilletOptions& options, bool closed = false) {
     return fillet_chain(std::vector<const Curve*>(curves), options, closed);
+}
+
+namespace detail {
+
+/// The number of corners of a chain of `curve_count` curves.
+inline std::size_t corner_count(std::size_t curve_count, bool closed) {
+    return closed ? curve_count : (curve_count == 0 ? 0 : curve_count - 1);
+}
+
+inline std::vector<const Curve*> pointers(const std::vector<Curve>& curves) {
+    std::vector<const Curve*> out;
+    out.reserve(curves.size());
+    for (const Curve& c : curves) {
+        out.push_back(&c);
+    }
+    return out;
+}
+
+}  // namespace detail
+
+/// Every corner of a chain rounded with its own automatic scale.
+struct AutoScaledFilletChain {
+    std::vector<Curve> pieces;  // path order, as fillet_chain()
+    std::vector<double> scales;  // the s of corner i at index i
+};
+
+/// fillet_chain() with alpha = beta = s chosen at every corner as
+/// fillet_auto_scale() chooses it (bzj_fillet_chain_auto_scale);
+/// options.p_scale and options.q_scale are ignored.
+inline AutoScaledFilletChain fillet_chain_auto_scale(const std::vector<const Curve*>& curves,
+                                                     const FilletOptions& options,
+                                                     bool closed = false) {
+    const std::vector<const BzjCurve*> handles = detail::handles(curves);
+    const BzjFilletOptions raw = detail::raw_fillet_options(options);
+    const int32_t closed_flag = closed ? 1 : 0;
+    std::size_t count = 0;
+    check(bzj_fillet_chain_auto_scale(handles.data(), handles.size(), &raw, closed_flag, nullptr,
+                                      0, &count, nullptr),
+          "bzj_fillet_chain_auto_scale");
+    std::vector<BzjCurve*> pieces(count, nullptr);
+    std::vector<double> scales(detail::corner_count(handles.size(), closed));
+    const BzjStatus status = bzj_fillet_chain_auto_scale(
+        handles.data(), handles.size(), &raw, closed_flag, pieces.data(), pieces.size(), &count,
+        scales.empty() ? nullptr : scales.data());
+    return AutoScaledFilletChain{detail::adopt_all(pieces, status, "bzj_fillet_chain_auto_scale"),
+                                 std::move(scales)};
+}
+
+/// fillet_chain_auto_scale() of curves held in a vector.
+inline AutoScaledFilletChain fillet_chain_auto_scale(const std::vector<Curve>& curves,
+                                                     const FilletOptions& options,
+                                                     bool closed = false) {
+    return fillet_chain_auto_scale(detail::pointers(curves), options, closed);
+}
+
+/// fillet_chain_auto_scale({&a, &b, &c}, options): a braced list of curve pointers.
+inline AutoScaledFilletChain fillet_chain_auto_scale(std::initializer_list<const Curve*> curves,
+                                                     const FilletOptions& options,
+                                                     bool closed = false) {
+    return fillet_chain_auto_scale(std::vector<const Curve*>(curves), options, closed);
+}
+
+/// Every corner of a chain rounded by radius, with one report per corner.
+struct RadiusFilletChain {
+    std::vector<Curve> pieces;  // path order, as fillet_chain()
+    std::vector<BzjRadiusFilletReport> reports;  // corner i at index i
+};
+
+/// Round every corner of a chain (a wire) like the G1 arc of `radius` with a
+/// fair G^order blend, each as fillet_radius() rounds one: corner i between
+/// curves[i] and curves[i + 1] (and from the last to the first when `closed`)
+/// is their shared vertex, else their crossing nearest the shared end
+/// (bzj_fillet_radius_chain; default G2). Pieces in path order as
+/// fillet_chain().
+inline RadiusFilletChain fillet_radius_chain(const std::vector<const Curve*>& curves,
+                                             double radius, std::size_t order = 2,
+                                             bool closed = false) {
+    const std::vector<const BzjCurve*> handles = detail::handles(curves);
+    const int32_t closed_flag = closed ? 1 : 0;
+    std::size_t count = 0;
+    check(bzj_fillet_radius_chain(handles.data(), handles.size(), radius, order, closed_flag,
+                                  nullptr, 0, &count, nullptr),
+          "bzj_fillet_radius_chain");
+    std::vector<BzjCurve*> pieces(count, nullptr);
+    std::vector<BzjRadiusFilletReport> reports(detail::corner_count(handles.size(), closed));
+    const BzjStatus status = bzj_fillet_radius_chain(
+        handles.data(), handles.size(), radius, order, closed_flag, pieces.data(), pieces.size(),
+        &count, reports.empty() ? nullptr : reports.data());
+    return RadiusFilletChain{detail::adopt_all(pieces, status, "bzj_fillet_radius_chain"),
+                             std::move(reports)};
+}
+
+/// fillet_radius_chain() of curves held in a vector.
+inline RadiusFilletChain fillet_radius_chain(const std::vector<Curve>& curves, double radius,
+                                             std::size_t order = 2, bool closed = false) {
+    return fillet_radius_chain(detail::pointers(curves), radius, order, closed);
+}
+
+/// fillet_radius_chain({&a, &b, &c}, radius): a braced list of curve pointers.
+inline RadiusFilletChain fillet_radius_chain(std::initializer_list<const Curve*> curves,
+                                             double radius, std::size_t order = 2,
+                                             bool closed = false) {
+    return fillet_radius_chain(std::vector<const Curve*>(curves), radius, order, closed);
 }
 
 /// All crossings of P and Q, ordered by u: pairs (u on P, v on Q).

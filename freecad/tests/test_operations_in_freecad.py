@@ -144,7 +144,7 @@ class ConnectJudgedByFreeCAD(unittest.TestCase, CommandDriver):
         line = bezier([(0, 0, 0), (2, 0, 0)])
         arc_like = bezier([(3, 1, 0), (3, 2, 0), (2, 3, 0)])
         edge = operations.blend_edges(Part.Edge(line), Part.Edge(arc_like), p_order=2,
-                                      q_order=2)
+                                      q_order=2, auto_scale=False)
         blend = edge.Curve
         self.assertEqual(blend.Degree, 5)
         # C2 to the line: the blend's second derivative vanishes where it leaves the line

@@ -87,19 +87,23 @@ class Commands(unittest.TestCase):
                 del FreeCADGui.addCommand
             else:
                 FreeCADGui.addCommand = original
-        # The four commands of issue 9, with the operation each one runs.
-        expected = ["Bezjoin_Blend", "Bezjoin_RoundCorner", "Bezjoin_Merge", "Bezjoin_Spline"]
+        # The four commands of issue 9 and the wire fillet by radius of issue 18, with
+        # the operation each one runs.
+        expected = ["Bezjoin_Blend", "Bezjoin_RoundCorner", "Bezjoin_RoundWireByRadius",
+                    "Bezjoin_Merge", "Bezjoin_Spline"]
         self.assertEqual(names, expected)
         self.assertEqual(sorted(registered), sorted(expected))
         operations_run = {name: operation for name, (_c, operation) in commands.COMMANDS.items()}
         self.assertEqual(operations_run, {"Bezjoin_Blend": "connect",
                                           "Bezjoin_RoundCorner": "fillet",
+                                          "Bezjoin_RoundWireByRadius": "fillet_radius_chain",
                                           "Bezjoin_Merge": "merge",
                                           "Bezjoin_Spline": "lagrange_spline"})
         for operation in operations_run.values():
             self.assertTrue(callable(getattr(bezjoin, operation, None)), operation)
         menu_texts = [registered[name].GetResources()["MenuText"] for name in expected]
-        self.assertEqual(menu_texts, ["Blend two edges", "Round corner", "Merge two edges",
+        self.assertEqual(menu_texts, ["Blend two edges", "Round corner",
+                                      "Round wire corners by radius", "Merge two edges",
                                       "Spline through on-curve points"])
         for command in registered.values():
             resources = command.GetResources()
@@ -107,6 +111,13 @@ class Commands(unittest.TestCase):
             self.assertTrue(resources["ToolTip"])
             names_in_form = [field[0] for field in command.fields]
             self.assertEqual(len(names_in_form), len(set(names_in_form)))
+
+    def test_scaled_commands_default_to_the_automatic_scale(self):
+        # Issue 18: the forms of the commands with shape scales start with the
+        # automatic scale checked (the default that never loops).
+        for command in (commands.BlendCommand, commands.RoundCornerCommand):
+            defaults = {key: default for key, _label, _kind, default, _extra in command.fields}
+            self.assertIs(defaults["auto_scale"], True, command.title)
 
 
 class OrientationTies(unittest.TestCase):

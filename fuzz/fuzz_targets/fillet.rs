@@ -1,7 +1,7 @@
 //! `bzj_fillet` and `bzj_fillet_auto_scale` on fuzzed curve pairs with
 //! fuzzed setbacks (any double), orders (also `SIZE_MAX`) and scales;
-//! sometimes one out-pointer NULL; then `bzj_fillet_radius` on the same
-//! pair with any radius and order.
+//! sometimes one out-pointer NULL; then `bzj_fillet_radius` or
+//! `bzj_fillet_radius_detailed` on the same pair with any radius and order.
 #![no_main]
 
 use bezjoin_fuzz::*;
@@ -57,12 +57,54 @@ fuzz_target!(|data: &[u8]| {
     } else {
         null_mut()
     };
-    // SAFETY: live handles, writable out-pointers.
-    let status =
-        unsafe { bzj_fillet_radius(p, q, radius, order, &mut a, &mut b, &mut c, report_ptr) };
-    check_and_free(status, a, "bzj_fillet_radius");
-    check_and_free(status, b, "bzj_fillet_radius");
-    check_and_free(status, c, "bzj_fillet_radius");
+    // Read last (an exhausted input reads 0: bzj_fillet_radius, as before).
+    let detailed = input.byte() % 2 == 1;
+    let mut detailed_report = BzjRadiusFilletReport::default();
+    let mut centre = [f64::NAN; MAX_DIM + 1];
+    // SAFETY: live handles, writable out-pointers; `centre` holds more
+    // doubles than any fuzzed curve's dimension.
+    let (status, call) = unsafe {
+        if detailed {
+            (
+                bzj_fillet_radius_detailed(
+                    p,
+                    q,
+                    radius,
+                    order,
+                    &mut a,
+                    &mut b,
+                    &mut c,
+                    &mut detailed_report,
+                    centre.as_mut_ptr(),
+                ),
+                "bzj_fillet_radius_detailed",
+            )
+        } else {
+            (
+                bzj_fillet_radius(p, q, radius, order, &mut a, &mut b, &mut c, report_ptr),
+                "bzj_fillet_radius",
+            )
+        }
+    };
+    if detailed && status == BzjStatus::BZJ_OK {
+        let r = detailed_report;
+        assert!(
+            r.arc_deviation >= 0.0 && r.arc_deviation.is_finite(),
+            "{call}: arc deviation {}",
+            r.arc_deviation
+        );
+        let mut dim = 0usize;
+        // SAFETY: live handle, writable out-pointer.
+        check(unsafe { bzj_curve_dim(p, &mut dim) }, "bzj_curve_dim");
+        assert!(
+            centre[..dim].iter().all(|x| x.is_finite()),
+            "{call}: centre {centre:?}"
+        );
+        assert!(centre[dim].is_nan(), "{call} wrote past the dimension");
+    }
+    check_and_free(status, a, call);
+    check_and_free(status, b, call);
+    check_and_free(status, c, call);
     // SAFETY: live handles, released once.
     unsafe {
         bzj_curve_free(p);

@@ -1,4 +1,6 @@
-//! `bzj_fillet_chain` on fuzzed chains of up to 16 curves (one dimension, or
+//! `bzj_fillet_chain`, `bzj_fillet_chain_auto_scale` and
+//! `bzj_fillet_radius_chain` (radius and order from the fuzzed options) on
+//! fuzzed chains of up to 16 curves (one dimension, or
 //! mixed; each curve either fuzzed freely or a segment overshooting a fuzzed
 //! polygon's vertices, so that consecutive curves cross near their shared
 //! end) with fuzzed setbacks (any double), orders (also `SIZE_MAX`), scales
@@ -99,23 +101,89 @@ fuzz_target!(|data: &[u8]| {
     };
     let count_null = input.byte().is_multiple_of(32);
     let mut count = usize::MAX;
+    // Read last, so that inputs written for `bzj_fillet_chain` alone still
+    // decode as before (an exhausted input reads 0: that function).
+    let variant = match input.byte() % 8 {
+        5 => Variant::AutoScale,
+        6 | 7 => Variant::Radius,
+        _ => Variant::Setbacks,
+    };
+    let extras_null = input.byte().is_multiple_of(4);
+    // Corner outputs: one per corner at most (`n` for a closed chain).
+    let mut scales = vec![f64::NAN; n];
+    let mut reports = vec![BzjRadiusFilletReport::default(); n];
+    let scales_ptr = if extras_null {
+        null_mut()
+    } else {
+        scales.as_mut_ptr()
+    };
+    let reports_ptr = if extras_null {
+        null_mut()
+    } else {
+        reports.as_mut_ptr()
+    };
+    let options_null = options_null && variant != Variant::Radius;
 
     // SAFETY: `curves` holds `n` entries (a larger count is impossible and
     // refused before reading); options readable or NULL; `pieces` holds
     // `pieces_len >= capacity` slots (or the pointer is NULL); `count`
     // writable or NULL.
-    let status = unsafe {
-        bzj_fillet_chain(
-            if curves_null { null() } else { curves.as_ptr() },
-            curve_count,
-            if options_null { null() } else { &options },
-            closed,
-            pieces_ptr,
-            capacity,
-            if count_null { null_mut() } else { &mut count },
-        )
+    let curves_ptr = if curves_null { null() } else { curves.as_ptr() };
+    let options_ptr = if options_null {
+        null()
+    } else {
+        &raw const options
     };
-    let call = "bzj_fillet_chain";
+    let count_ptr = if count_null {
+        null_mut()
+    } else {
+        &raw mut count
+    };
+    // SAFETY: as above; `scales` and `reports` hold `n` entries, at least
+    // the corner count of any chain that reaches them.
+    let (status, call) = unsafe {
+        match variant {
+            Variant::Setbacks => (
+                bzj_fillet_chain(
+                    curves_ptr,
+                    curve_count,
+                    options_ptr,
+                    closed,
+                    pieces_ptr,
+                    capacity,
+                    count_ptr,
+                ),
+                "bzj_fillet_chain",
+            ),
+            Variant::AutoScale => (
+                bzj_fillet_chain_auto_scale(
+                    curves_ptr,
+                    curve_count,
+                    options_ptr,
+                    closed,
+                    pieces_ptr,
+                    capacity,
+                    count_ptr,
+                    scales_ptr,
+                ),
+                "bzj_fillet_chain_auto_scale",
+            ),
+            Variant::Radius => (
+                bzj_fillet_radius_chain(
+                    curves_ptr,
+                    curve_count,
+                    options.p_setback,
+                    options.p_order,
+                    closed,
+                    pieces_ptr,
+                    capacity,
+                    count_ptr,
+                    reports_ptr,
+                ),
+                "bzj_fillet_radius_chain",
+            ),
+        }
+    };
     check(status, call);
 
     // The contract's checks, in order.
@@ -188,5 +256,52 @@ fuzz_target!(|data: &[u8]| {
         };
         check_handle_slots(status, &pieces, written, capacity, call);
     }
+    // Corner outputs: written on success only, one per corner, finite.
+    let corners = if closed == 1 {
+        curve_count
+    } else {
+        curve_count.saturating_sub(1)
+    };
+    if !extras_null {
+        for i in 0..n {
+            let written = status == BzjStatus::BZJ_OK && !count_only && i < corners;
+            match variant {
+                Variant::AutoScale if written => {
+                    assert!(
+                        scales[i] > 0.0 && scales[i].is_finite(),
+                        "{call}: scale {i} = {}",
+                        scales[i]
+                    );
+                }
+                Variant::AutoScale => assert!(scales[i].is_nan(), "{call}: scale {i} written"),
+                Variant::Radius if written => {
+                    let r = &reports[i];
+                    assert!(
+                        r.arc_deviation >= 0.0 && r.u0.is_finite() && r.v0.is_finite(),
+                        "{call}: report {i} = {r:?}"
+                    );
+                }
+                Variant::Radius => {
+                    assert!(
+                        reports[i].u0 == 0.0 && reports[i].arc_deviation == 0.0,
+                        "{call}: report {i} written"
+                    );
+                }
+                Variant::Setbacks => {}
+            }
+        }
+    }
     free_all(&handles);
 });
+
+/// Which chain function the input calls.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Variant {
+    /// `bzj_fillet_chain`.
+    Setbacks,
+    /// `bzj_fillet_chain_auto_scale`.
+    AutoScale,
+    /// `bzj_fillet_radius_chain` (radius = the fuzzed `p_setback`, order =
+    /// the fuzzed `p_order`).
+    Radius,
+}

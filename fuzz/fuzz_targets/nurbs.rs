@@ -66,14 +66,30 @@ unsafe fn merge_pair(input: &mut Input, p: *mut BzjCurve, q: *mut BzjCurve) {
     };
     // SAFETY: live handles, readable options, writable outs.
     let status = unsafe {
-        bzj_merge(p, q, &options, &mut merged, &mut p_hat, &mut q_hat, &mut report)
+        bzj_merge(
+            p,
+            q,
+            &options,
+            &mut merged,
+            &mut p_hat,
+            &mut q_hat,
+            &mut report,
+        )
     };
     check_and_free(status, merged, "bzj_merge");
     check_and_free(status, p_hat, "bzj_merge");
     check_and_free(status, q_hat, "bzj_merge");
     if status == BzjStatus::BZJ_OK {
-        assert!(report.mu > 0.0 && report.mu < 1.0, "bzj_merge: mu = {}", report.mu);
-        assert!(report.max_deviation >= 0.0, "bzj_merge: {}", report.max_deviation);
+        assert!(
+            report.mu > 0.0 && report.mu < 1.0,
+            "bzj_merge: mu = {}",
+            report.mu
+        );
+        assert!(
+            report.max_deviation >= 0.0,
+            "bzj_merge: {}",
+            report.max_deviation
+        );
     }
 }
 
@@ -113,10 +129,16 @@ fuzz_target!(|data: &[u8]| {
             match input.byte() % 10 {
                 0 => {
                     let mut count = 0usize;
-                    check(bzj_curve_knots(c, null_mut(), 0, &mut count), "bzj_curve_knots");
+                    check(
+                        bzj_curve_knots(c, null_mut(), 0, &mut count),
+                        "bzj_curve_knots",
+                    );
                     let len = input.below(count + 2);
                     let mut buf = vec![0.0; len];
-                    check(bzj_curve_knots(c, buf.as_mut_ptr(), len, &mut count), "bzj_curve_knots");
+                    check(
+                        bzj_curve_knots(c, buf.as_mut_ptr(), len, &mut count),
+                        "bzj_curve_knots",
+                    );
                     let mut weights = vec![0.0; input.below(count + 2)];
                     check(
                         bzj_curve_weights(c, weights.as_mut_ptr(), weights.len()),
@@ -128,8 +150,13 @@ fuzz_target!(|data: &[u8]| {
                     let len = input.below(((order.min(8) + 1) * dim).max(1) + 2);
                     let mut buf = vec![0.0; len];
                     let t = in_domain(&mut input, a, b);
-                    check(bzj_curve_eval(c, t, order, buf.as_mut_ptr(), len), "bzj_curve_eval");
-                    let ts: Vec<f64> = (0..input.below(5)).map(|_| in_domain(&mut input, a, b)).collect();
+                    check(
+                        bzj_curve_eval(c, t, order, buf.as_mut_ptr(), len),
+                        "bzj_curve_eval",
+                    );
+                    let ts: Vec<f64> = (0..input.below(5))
+                        .map(|_| in_domain(&mut input, a, b))
+                        .collect();
                     let mut many = vec![0.0; ts.len() * (order.min(8) + 1) * dim];
                     check(
                         bzj_curve_eval_many(
@@ -152,12 +179,20 @@ fuzz_target!(|data: &[u8]| {
                 3 => {
                     let mut out = null_mut();
                     let (s, t) = (in_domain(&mut input, a, b), in_domain(&mut input, a, b));
-                    check_and_free(bzj_curve_segment(c, s, t, &mut out), out, "bzj_curve_segment");
+                    check_and_free(
+                        bzj_curve_segment(c, s, t, &mut out),
+                        out,
+                        "bzj_curve_segment",
+                    );
                 }
                 4 => {
                     let mut out = null_mut();
                     let degree = input.below(MAX_DEGREE + 1);
-                    check_and_free(bzj_curve_elevate(c, degree, &mut out), out, "bzj_curve_elevate");
+                    check_and_free(
+                        bzj_curve_elevate(c, degree, &mut out),
+                        out,
+                        "bzj_curve_elevate",
+                    );
                     let mut out = null_mut();
                     check_and_free(bzj_curve_reverse(c, &mut out), out, "bzj_curve_reverse");
                     let mut out = null_mut();
@@ -170,10 +205,14 @@ fuzz_target!(|data: &[u8]| {
                 }
                 6 => {
                     let mut count = 0usize;
-                    check(bzj_curve_bezier_spans(c, null_mut(), 0, &mut count), "bzj_curve_bezier_spans");
+                    check(
+                        bzj_curve_bezier_spans(c, null_mut(), 0, &mut count),
+                        "bzj_curve_bezier_spans",
+                    );
                     let capacity = input.below(count.min(64) + 2);
                     let mut spans = vec![null_mut(); capacity];
-                    let status = bzj_curve_bezier_spans(c, spans.as_mut_ptr(), capacity, &mut count);
+                    let status =
+                        bzj_curve_bezier_spans(c, spans.as_mut_ptr(), capacity, &mut count);
                     check(status, "bzj_curve_bezier_spans");
                     for &s in &spans {
                         if status == BzjStatus::BZJ_OK && !s.is_null() {
@@ -192,7 +231,11 @@ fuzz_target!(|data: &[u8]| {
                     };
                     let mut out = null_mut();
                     let (u, v) = (in_domain(&mut input, a, b), in_domain(&mut input, a, b));
-                    check_and_free(bzj_connect(c, u, c, v, &options, &mut out), out, "bzj_connect");
+                    check_and_free(
+                        bzj_connect(c, u, c, v, &options, &mut out),
+                        out,
+                        "bzj_connect",
+                    );
                 }
                 8 => {
                     let mut r = null_mut();
@@ -202,14 +245,32 @@ fuzz_target!(|data: &[u8]| {
                     }
                     let mut pairs = [0.0; 8];
                     let mut count = 0usize;
-                    check(bzj_intersect(c, r, pairs.as_mut_ptr(), 4, &mut count), "bzj_intersect");
+                    check(
+                        bzj_intersect(c, r, pairs.as_mut_ptr(), 4, &mut count),
+                        "bzj_intersect",
+                    );
                     let options = fillet_options(&mut input);
                     let (mut pt, mut bl, mut qt) = (null_mut(), null_mut(), null_mut());
                     let gap = input.double().abs();
-                    let status = bzj_fillet_vertex(c, r, &options, gap, &mut pt, &mut bl, &mut qt);
-                    check_and_free(status, pt, "bzj_fillet_vertex");
-                    check_and_free(status, bl, "bzj_fillet_vertex");
-                    check_and_free(status, qt, "bzj_fillet_vertex");
+                    // Odd orders: the automatic scale (decided by a value
+                    // already read, so that older inputs decode as before).
+                    let (status, call) = if options.p_order % 2 == 1 {
+                        let mut s = f64::NAN;
+                        let status = bzj_fillet_vertex_auto_scale(
+                            c, r, &options, gap, &mut pt, &mut bl, &mut qt, &mut s,
+                        );
+                        if status == BzjStatus::BZJ_OK {
+                            assert!(s > 0.0 && s.is_finite(), "vertex auto scale {s}");
+                        }
+                        (status, "bzj_fillet_vertex_auto_scale")
+                    } else {
+                        let status =
+                            bzj_fillet_vertex(c, r, &options, gap, &mut pt, &mut bl, &mut qt);
+                        (status, "bzj_fillet_vertex")
+                    };
+                    check_and_free(status, pt, call);
+                    check_and_free(status, bl, call);
+                    check_and_free(status, qt, call);
                     bzj_curve_free(r);
                 }
                 _ => {
@@ -224,8 +285,15 @@ fuzz_target!(|data: &[u8]| {
                     let chain = [c.cast_const(), q.cast_const()];
                     let mut pieces = [null_mut(); 4];
                     let mut count = 0usize;
-                    let status =
-                        bzj_fillet_chain(chain.as_ptr(), 2, &options, 1, pieces.as_mut_ptr(), 4, &mut count);
+                    let status = bzj_fillet_chain(
+                        chain.as_ptr(),
+                        2,
+                        &options,
+                        1,
+                        pieces.as_mut_ptr(),
+                        4,
+                        &mut count,
+                    );
                     check(status, "bzj_fillet_chain");
                     if status == BzjStatus::BZJ_OK {
                         for p in pieces {

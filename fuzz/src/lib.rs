@@ -184,7 +184,10 @@ pub fn check_and_free(status: BzjStatus, handle: *mut BzjCurve, call: &str) {
     // SAFETY: a live handle from the library; out-pointers are valid.
     unsafe {
         check(bzj_curve_dim(handle, &mut dim), "bzj_curve_dim");
-        check(bzj_curve_pole_count(handle, &mut poles), "bzj_curve_pole_count");
+        check(
+            bzj_curve_pole_count(handle, &mut poles),
+            "bzj_curve_pole_count",
+        );
         assert!(dim >= 1);
         let mut points = vec![0.0; poles * dim];
         check(
@@ -341,7 +344,9 @@ pub fn nurbs(input: &mut Input) -> Option<*mut BzjCurve> {
     let weights: Vec<f64> = match input.byte() % 4 {
         0 => Vec::new(),
         1 => (0..count).map(|_| input.double()).collect(),
-        _ => (0..count).map(|_| 0.1 + input.ordinary().abs() / 10.0).collect(),
+        _ => (0..count)
+            .map(|_| 0.1 + input.ordinary().abs() / 10.0)
+            .collect(),
     };
     let len = count + degree + 1;
     let knots: Vec<f64> = if input.byte().is_multiple_of(8) {
@@ -377,7 +382,11 @@ pub fn nurbs(input: &mut Input) -> Option<*mut BzjCurve> {
             degree,
             poles.as_ptr(),
             poles.len(),
-            if weights.is_empty() { std::ptr::null() } else { weights.as_ptr() },
+            if weights.is_empty() {
+                std::ptr::null()
+            } else {
+                weights.as_ptr()
+            },
             weights.len(),
             knots.as_ptr(),
             knots.len(),

@@ -1,6 +1,8 @@
 /* Intersection and corner rounding through the C contract: bzj_intersect,
  * bzj_intersect_detailed, bzj_intersect_options_default, bzj_fillet,
- * bzj_fillet_auto_scale, bzj_fillet_deviation and bzj_fillet_chain (closed
+ * bzj_fillet_auto_scale, bzj_fillet_vertex_auto_scale, bzj_fillet_deviation,
+ * bzj_fillet_deviation_auto_scale,
+ * bzj_fillet_chain and bzj_fillet_chain_auto_scale (closed
  * and open chains, one above the parallel threshold of 64 corners, checked
  * for C^k with cuts computed here), with each error path.
  * Compiled as C11 and as C++17 and linked with libbezjoin.a by
@@ -427,6 +429,189 @@ static void test_fillet_auto_scale(void) {
     bzj_curve_free(q);
 }
 
+/* The default that never loops, at a wire's vertex: a 40 and a 20 long edge
+ * meeting at the origin, setback 2. The paper's scale 1 throws the blend's
+ * control points out of the corner (their speed is 40 and 20 against a
+ * setback of 2: a loop); the automatic scale keeps every control point in
+ * the triangle of the two cuts and the vertex, so the blend (inside its
+ * control polygon's hull) cannot loop and is shorter than the two legs. */
+static void test_fillet_vertex_auto_scale(void) {
+    const double long_edge[] = {-40.0, 0.0, 0.0, 0.0};
+    const double short_edge[] = {0.0, 0.0, 0.0, 20.0};
+    BzjCurve* p = make(1, long_edge);
+    BzjCurve* q = make(1, short_edge);
+    BzjCurve *pt = NULL, *r = NULL, *qt = NULL;
+    BzjFilletOptions o = fillet_options(2.0, 2.0, 2, 2);
+    double points[12];
+    int outside = 0;
+    EXPECT_STATUS(bzj_fillet_vertex(p, q, &o, 1e-9, &pt, &r, &qt), BZJ_OK);
+    EXPECT_STATUS(bzj_curve_points(r, points, 12), BZJ_OK);
+    for (int i = 0; i < 6; i++) {
+        double x = points[2 * i], y = points[2 * i + 1];
+        outside += x > 1e-12 || y < -1e-12 || y > x + 2.0 + 1e-12;
+    }
+    CHECK(outside > 0, "scale 1 kept every control point in the corner");
+    bzj_curve_free(pt);
+    bzj_curve_free(r);
+    bzj_curve_free(qt);
+
+    o.p_scale = NAN; /* ignored, not validated */
+    o.q_scale = -1.0;
+    double s = -1.0;
+    EXPECT_STATUS(bzj_fillet_vertex_auto_scale(p, q, &o, 1e-9, &pt, &r, &qt, &s), BZJ_OK);
+    CHECK(s > 0.0 && s < 1.0, "chosen scale %g", s);
+    EXPECT_STATUS(bzj_curve_points(r, points, 12), BZJ_OK);
+    for (int i = 0; i < 6; i++) {
+        double x = points[2 * i], y = points[2 * i + 1];
+        CHECK(x <= 1e-12 && y >= -1e-12 && y <= x + 2.0 + 1e-12,
+              "control point %d (%g, %g) outside the corner's triangle", i, x, y);
+    }
+    double length = 0.0;
+    EXPECT_STATUS(bzj_curve_length(r, 0.0, 1.0, &length), BZJ_OK);
+    CHECK(length > 2.0 * sqrt(2.0) && length < 4.0, "blend length %g", length);
+    double a[4], b[4];
+    eval1(pt, 1.0, a);
+    eval1(r, 0.0, b);
+    CHECK(dist(a, b) < 1e-14, "blend starts at the cut");
+    CHECK(fabs(b[3]) < 1e-12 && b[2] > 0.0, "tangent at the cut: (%g, %g)", b[2], b[3]);
+    bzj_curve_free(pt);
+    bzj_curve_free(r);
+    bzj_curve_free(qt);
+    EXPECT_STATUS(bzj_fillet_vertex_auto_scale(p, q, &o, 1e-9, &pt, &r, &qt, NULL), BZJ_OK);
+    bzj_curve_free(pt);
+    bzj_curve_free(r);
+    bzj_curve_free(qt);
+    /* Errors as bzj_fillet_vertex's. */
+    EXPECT_STATUS(bzj_fillet_vertex_auto_scale(p, q, &o, -1.0, &pt, &r, &qt, &s),
+                  BZJ_ERR_INVALID_ARGUMENT);
+    expect_message("gap");
+    CHECK(pt == NULL && r == NULL && qt == NULL, "outputs not NULL after an error");
+    EXPECT_STATUS(bzj_fillet_vertex_auto_scale(q, p, &o, 1e-9, &pt, &r, &qt, &s),
+                  BZJ_ERR_NO_INTERSECTION);
+    EXPECT_STATUS(bzj_fillet_vertex_auto_scale(p, q, NULL, 1e-9, &pt, &r, &qt, &s),
+                  BZJ_ERR_NULL_POINTER);
+    expect_message("options");
+    EXPECT_STATUS(bzj_fillet_vertex_auto_scale(p, q, &o, 1e-9, &pt, NULL, &qt, &s),
+                  BZJ_ERR_NULL_POINTER);
+    expect_message("blend");
+    bzj_curve_free(p);
+    bzj_curve_free(q);
+}
+
+/* bzj_fillet_chain_auto_scale on a closed triangle whose edges are fast
+ * (cubics of speed 3x the edge): every corner gets its own positive scale,
+ * written in corner order, the pieces close up with matching tangents,
+ * and the count query and errors are bzj_fillet_chain's. */
+static void test_chain_auto_scale(void) {
+    const double ab[] = {0.0, 0.0, 4.0 / 3.0, 0.0, 8.0 / 3.0, 0.0, 4.0, 0.0};
+    const double bc[] = {4.0, 0.0, 8.0 / 3.0, 1.0, 4.0 / 3.0, 2.0, 0.0, 3.0};
+    const double ca[] = {0.0, 3.0, 0.0, 2.0, 0.0, 1.0, 0.0, 0.0};
+    BzjCurve* owned[3] = {make(3, ab), make(3, bc), make(3, ca)};
+    const BzjCurve* curves[3] = {owned[0], owned[1], owned[2]};
+    BzjFilletOptions o = fillet_options(0.5, 0.5, 2, 2);
+    o.p_scale = NAN; /* ignored */
+    size_t count = 0;
+    double scales[3] = {-1.0, -1.0, -1.0};
+    EXPECT_STATUS(bzj_fillet_chain_auto_scale(curves, 3, &o, 1, NULL, 0, &count, scales), BZJ_OK);
+    CHECK(count == 6, "closed chain needs %zu pieces", count);
+    CHECK(scales[0] == -1.0, "scales written by a count query");
+    BzjCurve* pieces[6];
+    EXPECT_STATUS(bzj_fillet_chain_auto_scale(curves, 3, &o, 1, pieces, 6, &count, scales),
+                  BZJ_OK);
+    for (int i = 0; i < 3; i++) CHECK(scales[i] > 0.0 && scales[i] < 10.0, "scale %d: %g", i, scales[i]);
+    for (int i = 0; i < 6; i++) {
+        double a[4], b[4];
+        eval1(pieces[i], 1.0, a);
+        eval1(pieces[(i + 1) % 6], 0.0, b);
+        CHECK(dist(a, b) < 1e-13, "pieces %d and %d are %g apart", i, (i + 1) % 6, dist(a, b));
+        double cross = a[2] * b[3] - a[3] * b[2];
+        CHECK(fabs(cross) < 1e-12 * (fabs(a[2]) + fabs(a[3])) * (fabs(b[2]) + fabs(b[3])),
+              "pieces %d and %d not tangent", i, (i + 1) % 6);
+    }
+    for (int i = 0; i < 6; i++) bzj_curve_free(pieces[i]);
+    /* The same corners one by one: the chain's scale is the pair's. */
+    BzjCurve *pt = NULL, *r = NULL, *qt = NULL;
+    double s = 0.0;
+    EXPECT_STATUS(bzj_fillet_vertex_auto_scale(owned[0], owned[1], &o, 1e-12, &pt, &r, &qt, &s),
+                  BZJ_OK);
+    CHECK(fabs(s - scales[0]) <= 1e-12 * s, "corner 0: chain %g, pair %g", scales[0], s);
+    bzj_curve_free(pt);
+    bzj_curve_free(r);
+    bzj_curve_free(qt);
+    EXPECT_STATUS(bzj_fillet_chain_auto_scale(curves, 3, &o, 0, pieces, 5, &count, NULL), BZJ_OK);
+    CHECK(count == 5, "open chain: %zu pieces", count);
+    for (int i = 0; i < 5; i++) bzj_curve_free(pieces[i]);
+    EXPECT_STATUS(bzj_fillet_chain_auto_scale(curves, 3, &o, 1, pieces, 5, &count, scales),
+                  BZJ_ERR_BUFFER_TOO_SMALL);
+    EXPECT_STATUS(bzj_fillet_chain_auto_scale(curves, 3, &o, 7, pieces, 6, &count, scales),
+                  BZJ_ERR_INVALID_ARGUMENT);
+    expect_message("closed");
+    EXPECT_STATUS(bzj_fillet_chain_auto_scale(curves, 3, NULL, 1, pieces, 6, &count, scales),
+                  BZJ_ERR_NULL_POINTER);
+    expect_message("options");
+    for (int i = 0; i < 3; i++) bzj_curve_free(owned[i]);
+}
+
+/* bzj_fillet_deviation_auto_scale: two lines 60 and 40 long crossing at
+ * right angles at the origin, deviation 0.1. With the paper's scale 1 the
+ * blend needs setbacks longer than the arc's to reach the deviation and
+ * leaves the corner; with the automatic scale it stays in the triangle of
+ * the cuts and the crossing, within the same deviation window. */
+static void test_fillet_deviation_auto_scale(void) {
+    const double pl[] = {-50.0, 0.0, 10.0, 0.0};
+    const double ql[] = {0.0, -10.0, 0.0, 30.0};
+    BzjCurve* p = make(1, pl);
+    BzjCurve* q = make(1, ql);
+    BzjDeviationFilletOptions dev;
+    memset(&dev, 0, sizeof dev);
+    dev.max_deviation = 0.1;
+    dev.setback_ratio = 1.0;
+    dev.p_order = 2;
+    dev.q_order = 2;
+    dev.p_scale = 1.0;
+    dev.q_scale = 1.0;
+    BzjCurve *pt = NULL, *r = NULL, *qt = NULL;
+    BzjDeviationFilletReport paper, automatic;
+    EXPECT_STATUS(bzj_fillet_deviation(p, q, &dev, &pt, &r, &qt, &paper), BZJ_OK);
+    bzj_curve_free(pt);
+    bzj_curve_free(r);
+    bzj_curve_free(qt);
+    dev.p_scale = NAN; /* ignored */
+    double s = -1.0;
+    EXPECT_STATUS(bzj_fillet_deviation_auto_scale(p, q, &dev, &pt, &r, &qt, &automatic, &s),
+                  BZJ_OK);
+    CHECK(s > 0.0 && s < 1.0, "chosen scale %g", s);
+    CHECK(automatic.deviation <= 0.1 && automatic.deviation >= 0.1 * (1.0 - 1e-9),
+          "deviation %.17g", automatic.deviation);
+    /* a 90-degree corner's arc with that deviation has setback 0.1 / (sqrt 2 - 1) = 0.24 */
+    CHECK(automatic.p_setback < 2.0 * 0.1 / (sqrt(2.0) - 1.0) && paper.p_setback > automatic.p_setback,
+          "setbacks: automatic %g, scale 1 %g", automatic.p_setback, paper.p_setback);
+    double points[12];
+    EXPECT_STATUS(bzj_curve_points(r, points, 12), BZJ_OK);
+    double d = automatic.p_setback;
+    for (int i = 0; i < 6; i++) {
+        double x = points[2 * i], y = points[2 * i + 1];
+        CHECK(x <= 1e-12 && y >= -1e-12 && y <= x + d + 1e-12,
+              "control point %d (%g, %g) outside the corner's triangle", i, x, y);
+    }
+    bzj_curve_free(pt);
+    bzj_curve_free(r);
+    bzj_curve_free(qt);
+    EXPECT_STATUS(bzj_fillet_deviation_auto_scale(p, q, &dev, &pt, &r, &qt, NULL, NULL), BZJ_OK);
+    bzj_curve_free(pt);
+    bzj_curve_free(r);
+    bzj_curve_free(qt);
+    dev.max_deviation = -1.0;
+    EXPECT_STATUS(bzj_fillet_deviation_auto_scale(p, q, &dev, &pt, &r, &qt, NULL, &s),
+                  BZJ_ERR_INVALID_ARGUMENT);
+    expect_message("max_deviation");
+    CHECK(pt == NULL && r == NULL && qt == NULL, "outputs not NULL after an error");
+    EXPECT_STATUS(bzj_fillet_deviation_auto_scale(p, q, NULL, &pt, &r, &qt, NULL, &s),
+                  BZJ_ERR_NULL_POINTER);
+    bzj_curve_free(p);
+    bzj_curve_free(q);
+}
+
 /* ---- Open chains through bzj_fillet_chain, checked independently. ---- */
 
 static unsigned long long rng_state = 0x2545F4914F6CDD1DULL;
@@ -670,7 +855,10 @@ int main(void) {
     test_intersect();
     test_fillet();
     test_fillet_auto_scale();
+    test_fillet_vertex_auto_scale();
+    test_fillet_deviation_auto_scale();
     test_chain();
+    test_chain_auto_scale();
     test_open_chains();
     test_skew_3d();
     if (failures != 0) {

@@ -1,4 +1,5 @@
-/* bzj_connect_geometric and bzj_fillet_radius through the C ABI (contract
+/* bzj_connect_geometric, bzj_fillet_radius, bzj_fillet_radius_detailed and
+ * bzj_fillet_radius_chain through the C ABI (contract
  * section "Geometric continuity"): given shape values satisfy the beta-constraints
  * R'(0) = b1 P', R''(0) = b1^2 P'' + b2 P' (and at Q); fair shapes on a
  * long-edge corner give a G2 blend whose unit tangent and curvature vector
@@ -173,6 +174,112 @@ int main(void) {
     expect_message("order");
     EXPECT_STATUS(bzj_fillet_radius(a, b, NAN, 2, &pt, &blend, &qt, NULL), BZJ_ERR_NON_FINITE);
     EXPECT_STATUS(bzj_fillet_radius(a, b, 1.0, 2, &pt, NULL, &qt, NULL), BZJ_ERR_NULL_POINTER);
+
+    /* bzj_fillet_radius_detailed: the same fillet, with the arc's centre
+       (-2, 2) (at distance 2 from both edges), the touching points, and the
+       blend's distance from the arc's circle (positive: a G2 blend is not
+       the arc, and below the radius). */
+    BzjRadiusFilletReport detailed;
+    memset(&detailed, 0, sizeof detailed);
+    double centre[2] = {0, 0};
+    EXPECT_STATUS(bzj_fillet_radius_detailed(a, b, 2.0, 2, &pt, &blend, &qt, &detailed, centre),
+                  BZJ_OK);
+    CHECK(fabs(centre[0] + 2.0) <= 1e-10 && fabs(centre[1] - 2.0) <= 1e-10, "centre (%g, %g)",
+          centre[0], centre[1]);
+    CHECK(fabs(40.0 * (1.0 - detailed.u0) - 2.0) <= 1e-10 && fabs(20.0 * detailed.v0 - 2.0) <= 1e-10,
+          "touching points u0 = %g, v0 = %g", detailed.u0, detailed.v0);
+    CHECK(detailed.fairness.energy == report.energy &&
+              detailed.fairness.curvature_max == report.curvature_max &&
+              detailed.fairness.curvature_extrema == report.curvature_extrema,
+          "detailed fairness differs from bzj_fillet_radius's");
+    CHECK(detailed.arc_deviation > 0.0 && detailed.arc_deviation < 2.0, "arc deviation %g",
+          detailed.arc_deviation);
+    /* independently: the largest sampled distance from the circle */
+    double worst = 0.0;
+    for (int i = 0; i <= 64; i++) {
+        double z[2];
+        EXPECT_STATUS(bzj_curve_eval(blend, i / 64.0, 0, z, 2), BZJ_OK);
+        double off = fabs(hypot(z[0] - centre[0], z[1] - centre[1]) - 2.0);
+        if (off > worst) worst = off;
+    }
+    CHECK(worst <= detailed.arc_deviation * (1.0 + 1e-12) && worst >= 0.9 * detailed.arc_deviation,
+          "sampled deviation %g vs reported %g", worst, detailed.arc_deviation);
+    bzj_curve_free(pt);
+    bzj_curve_free(blend);
+    bzj_curve_free(qt);
+    EXPECT_STATUS(bzj_fillet_radius_detailed(a, b, 2.0, 3, &pt, &blend, &qt, NULL, NULL), BZJ_OK);
+    bzj_curve_free(pt);
+    bzj_curve_free(blend);
+    bzj_curve_free(qt);
+    pt = blend = qt = (BzjCurve*)&failures;
+    EXPECT_STATUS(bzj_fillet_radius_detailed(a, b, -1.0, 2, &pt, &blend, &qt, &detailed, centre),
+                  BZJ_ERR_INVALID_ARGUMENT);
+    expect_message("radius");
+    CHECK(pt == NULL && blend == NULL && qt == NULL, "outs cleared");
+    EXPECT_STATUS(bzj_fillet_radius_detailed(a, NULL, 2.0, 2, &pt, &blend, &qt, NULL, NULL),
+                  BZJ_ERR_NULL_POINTER);
+
+    /* bzj_fillet_radius_chain on a closed square of side 4, radius 1: every
+       corner is cut 1 from its vertex (u0 = 0.75, v0 = 0.25 on these lines),
+       each blend meets its neighbours with G2 (tangent and curvature vector),
+       and the pieces go round once. */
+    const double sq[4][4] = {{0, 0, 4, 0}, {4, 0, 4, 4}, {4, 4, 0, 4}, {0, 4, 0, 0}};
+    BzjCurve* side[4];
+    for (int i = 0; i < 4; i++) EXPECT_STATUS(bzj_curve_new(2, 1, sq[i], 4, &side[i]), BZJ_OK);
+    const BzjCurve* wire[4] = {side[0], side[1], side[2], side[3]};
+    size_t count = 0;
+    EXPECT_STATUS(bzj_fillet_radius_chain(wire, 4, 1.0, 2, 1, NULL, 0, &count, NULL), BZJ_OK);
+    CHECK(count == 8, "closed square: %zu pieces", count);
+    BzjCurve* pieces[8];
+    BzjRadiusFilletReport corners[4];
+    memset(corners, 0, sizeof corners);
+    EXPECT_STATUS(bzj_fillet_radius_chain(wire, 4, 1.0, 2, 1, pieces, 8, &count, corners), BZJ_OK);
+    for (int i = 0; i < 4; i++) {
+        CHECK(fabs(corners[i].u0 - 0.75) <= 1e-12 && fabs(corners[i].v0 - 0.25) <= 1e-12,
+              "corner %d cut at %g, %g", i, corners[i].u0, corners[i].v0);
+        CHECK(corners[i].fairness.curvature_extrema == 1, "corner %d extrema %zu", i,
+              corners[i].fairness.curvature_extrema);
+    }
+    for (int i = 0; i < 8; i++) {
+        double end[6], start[6], te[2], ke[2], ts[2], ks[2];
+        EXPECT_STATUS(bzj_curve_eval(pieces[i], 1.0, 2, end, 6), BZJ_OK);
+        EXPECT_STATUS(bzj_curve_eval(pieces[(i + 1) % 8], 0.0, 2, start, 6), BZJ_OK);
+        frame(end, te, ke);
+        frame(start, ts, ks);
+        CHECK(dist(end, start) <= 1e-13, "pieces %d, %d apart", i, (i + 1) % 8);
+        CHECK(dist(te, ts) <= 1e-12 && dist(ke, ks) <= 1e-9, "pieces %d, %d not G2", i,
+              (i + 1) % 8);
+    }
+    for (int i = 0; i < 8; i++) bzj_curve_free(pieces[i]);
+    /* open: 7 pieces, 3 reports */
+    EXPECT_STATUS(bzj_fillet_radius_chain(wire, 4, 1.0, 3, 0, pieces, 8, &count, corners), BZJ_OK);
+    CHECK(count == 7, "open square: %zu pieces", count);
+    for (int i = 0; i < 7; i++) bzj_curve_free(pieces[i]);
+    /* errors */
+    EXPECT_STATUS(bzj_fillet_radius_chain(wire, 4, 3.0, 2, 1, pieces, 8, &count, NULL),
+                  BZJ_ERR_INVALID_ARGUMENT);
+    expect_message("curves[0]");
+    EXPECT_STATUS(bzj_fillet_radius_chain(wire, 4, 9.0, 2, 1, pieces, 8, &count, NULL),
+                  BZJ_ERR_INVALID_ARGUMENT);
+    expect_message("corner 0 radius");
+    EXPECT_STATUS(bzj_fillet_radius_chain(wire, 4, 1.0, 2, 1, pieces, 7, &count, NULL),
+                  BZJ_ERR_BUFFER_TOO_SMALL);
+    EXPECT_STATUS(bzj_fillet_radius_chain(wire, 4, 1.0, 2, 2, pieces, 8, &count, NULL),
+                  BZJ_ERR_INVALID_ARGUMENT);
+    expect_message("closed");
+    EXPECT_STATUS(bzj_fillet_radius_chain(wire, 1, 1.0, 2, 0, pieces, 8, &count, NULL),
+                  BZJ_ERR_INVALID_ARGUMENT);
+    expect_message("at least 2");
+    EXPECT_STATUS(bzj_fillet_radius_chain(wire, 4, 1.0, 0, 1, pieces, 8, &count, NULL),
+                  BZJ_ERR_INVALID_ARGUMENT);
+    expect_message("order");
+    EXPECT_STATUS(bzj_fillet_radius_chain(wire, 4, NAN, 2, 1, pieces, 8, &count, NULL),
+                  BZJ_ERR_NON_FINITE);
+    EXPECT_STATUS(bzj_fillet_radius_chain(NULL, 4, 1.0, 2, 1, pieces, 8, &count, NULL),
+                  BZJ_ERR_NULL_POINTER);
+    EXPECT_STATUS(bzj_fillet_radius_chain(wire, 4, 1.0, 2, 1, pieces, 8, NULL, NULL),
+                  BZJ_ERR_NULL_POINTER);
+    for (int i = 0; i < 4; i++) bzj_curve_free(side[i]);
 
     bzj_curve_free(a);
     bzj_curve_free(b);

@@ -7,7 +7,8 @@ section 1).
 
 import ctypes
 
-from ._convert import double_array, flat, index_argument, point_rows, real_argument
+from ._convert import (automatic_scale, double_array, flat, index_argument, point_rows,
+                       real_argument)
 from ._library import CurvePointer, library, register_prototype
 from .curve import Curve, handle_of
 from .errors import BezjoinError
@@ -52,8 +53,8 @@ register_prototype(
 )
 
 
-def connect(p, u0, q, v0, *, p_order=None, q_order=None, p_scale=1.0, q_scale=1.0,
-            constraints=()):
+def connect(p, u0, q, v0, *, p_order=None, q_order=None, p_scale=None, q_scale=None,
+            constraints=(), auto_scale=None):
     """The Bezier curve ``R`` from ``P(u0)`` to ``Q(v0)`` with
 
     ``R^(k)(0) = p_scale^k P^(k)(u0)`` for ``k = 0..p_order`` and
@@ -62,6 +63,13 @@ def connect(p, u0, q, v0, *, p_order=None, q_order=None, p_scale=1.0, q_scale=1.
     of degree ``p_order + q_order + 1 + sum(K_j + 1)`` (Theorems 1 and 2).
     The chain ``P|[0,u0]``, ``R``, ``Q|[v0,1]`` is a C^min(p_order, q_order)
     B-spline with knot intervals ``(u0, p_scale, (1 - v0) p_scale / q_scale)``.
+
+    By default the scale is automatic: ``p_scale = q_scale = s`` chosen by the
+    library to minimise the fairness energy (``bzj_connect_auto_scale``; use
+    :func:`connect_auto_scale` to learn ``s``), so a short gap between fast
+    curves does not loop as the paper's scale 1 can. Give ``p_scale`` and/or
+    ``q_scale`` (or ``auto_scale=False`` for the paper's 1.0) for the raw
+    construction, exactly as before.
 
     ``p`` and ``q`` may be Bezier or NURBS curves; ``R`` is a Bezier curve. At
     a knot of a NURBS curve, P's derivatives are taken from the left of ``u0``
@@ -74,16 +82,26 @@ def connect(p, u0, q, v0, *, p_order=None, q_order=None, p_scale=1.0, q_scale=1.
         p_order, q_order: continuity orders, any (above a polynomial's degree
             its derivatives are 0); default: the curve's degree, as in the
             paper.
-        p_scale, q_scale: shape scales ``alpha, beta > 0`` (1.0 = the paper).
+        p_scale, q_scale: explicit shape scales ``alpha, beta > 0`` (1.0 = the
+            paper; a missing one is 1.0 when the other is given). Giving
+            either turns the automatic scale off.
         constraints: ``(t, derivatives)`` pairs: ``R`` passes at ``t`` in
             ``(0, 1)`` with ``R^(k)(t) = derivatives[k]``, ``k = 0..K``.
+        auto_scale: ``None`` (default): automatic unless a scale is given;
+            ``True``: automatic, given scales are ignored; ``False``: the given
+            scales (1.0 when none are given).
 
     Raises:
         BezjoinError: with the library's status and message.
     """
     p_handle, q_handle = handle_of(p, "p"), handle_of(q, "q")
+    automatic, p_scale, q_scale = automatic_scale(auto_scale, p_scale, q_scale)
     options, _keep_alive = _options(p, q, p_order, q_order, p_scale, q_scale, constraints)
     out = CurvePointer()
+    if automatic:
+        library().call("bzj_connect_auto_scale", p_handle, real_argument(u0, "u0"), q_handle,
+                       real_argument(v0, "v0"), ctypes.byref(options), ctypes.byref(out), None)
+        return Curve._adopt(out)
     library().call("bzj_connect", p_handle, real_argument(u0, "u0"), q_handle,
                    real_argument(v0, "v0"), ctypes.byref(options), ctypes.byref(out))
     return Curve._adopt(out)

@@ -36,6 +36,25 @@ def real_argument(value, name):
         raise TypeError(f"{name} must be a real number, not {type(value).__name__}") from None
 
 
+def automatic_scale(auto_scale, p_scale, q_scale):
+    """Whether an operation uses the automatic scale, and the explicit scales otherwise.
+
+    The rule of every entry with scales (:func:`bezjoin.connect`, :func:`bezjoin.fillet`,
+    :func:`bezjoin.fillet_vertex`, :func:`bezjoin.fillet_chain`): ``auto_scale=None`` (the
+    default) means automatic unless ``p_scale`` or ``q_scale`` is given;
+    ``auto_scale=True`` is automatic (given scales are ignored, as before);
+    ``auto_scale=False`` uses the given scales, a missing one being 1.0 (the
+    paper). Returns ``(automatic, p_scale, q_scale)`` with the scales as floats.
+    """
+    if auto_scale is not None and not isinstance(auto_scale, bool):
+        raise TypeError(f"auto_scale must be None or a bool, not {type(auto_scale).__name__}")
+    if auto_scale is None:
+        auto_scale = p_scale is None and q_scale is None
+    p_scale = 1.0 if p_scale is None else real_argument(p_scale, "p_scale")
+    q_scale = 1.0 if q_scale is None else real_argument(q_scale, "q_scale")
+    return auto_scale, p_scale, q_scale
+
+
 def point_rows(points, name):
     """Rows of floats from a sequence of points (tuples, lists, FreeCAD vectors, numpy rows).
 

@@ -11,9 +11,10 @@ joining and corner rounding", Omsk Scientific Bulletin, 2025, Fig. 2
 import ctypes
 from collections import namedtuple
 
-from ._convert import index_argument, real_argument
+from ._convert import automatic_scale, index_argument, real_argument
 from ._library import CurvePointer, library, register_prototype
 from .curve import Curve, handle_of
+from .errors import BezjoinError
 from .results import CurveGroup
 
 
@@ -48,6 +49,12 @@ register_prototype(
     ctypes.c_int32,
     [CurvePointer, CurvePointer, ctypes.POINTER(FilletOptionsStruct), ctypes.c_double,
      _curve_out, _curve_out, _curve_out],
+)
+register_prototype(
+    "bzj_fillet_vertex_auto_scale",
+    ctypes.c_int32,
+    [CurvePointer, CurvePointer, ctypes.POINTER(FilletOptionsStruct), ctypes.c_double,
+     _curve_out, _curve_out, _curve_out, ctypes.POINTER(ctypes.c_double)],
 )
 register_prototype(
     "bzj_intersect",
@@ -115,7 +122,8 @@ class FilletResult(CurveGroup):
     """The rounded corner: ``p_trimmed = P|[0,u0]``, ``blend``, ``q_trimmed = Q|[v0,1]``,
     each over ``[0, 1]``; together a C^min(p_order, q_order) B-spline with knot
     intervals ``(u0, p_scale, (1 - v0) p_scale / q_scale)``. ``scale`` is the
-    chosen ``s = p_scale = q_scale`` when ``auto_scale=True``, else ``None``.
+    ``s = p_scale = q_scale`` the library chose when the scale was automatic (the
+    default, see :func:`fillet`), else ``None`` (explicit scales).
 
     ``u0`` and ``v0`` are not reported by the C function; they are the
     parameters where the kept parts end/start, recoverable from the setbacks.
@@ -148,7 +156,7 @@ def _fillet_options(function, p, q, setback, p_setback, q_setback, p_order, q_or
 
 
 def fillet(p, q, *, setback=None, p_setback=None, q_setback=None, p_order=None, q_order=None,
-           p_scale=1.0, q_scale=1.0, auto_scale=False):
+           p_scale=None, q_scale=None, auto_scale=None):
     """Round the corner "along ``p`` up to the first crossing ``X``, then along ``q``".
 
     The crossing is the one with the smallest parameter on ``p``. ``p`` is
@@ -157,16 +165,24 @@ def fillet(p, q, *, setback=None, p_setback=None, q_setback=None, p_order=None, 
     the blend is :func:`bezjoin.connect` of those ends. Other corners of the
     crossing: reverse ``p`` and/or ``q`` first.
 
+    By default the scale is automatic (``bzj_fillet_auto_scale``): ``p_scale =
+    q_scale = s`` minimising the blend's fairness energy, returned as
+    ``result.scale``. The paper's scale 1 loops past the corner when the curves
+    are fast against the setback (two lines 40 and 20 long with setback 2 give
+    a self-intersecting blend); the default never does that. Pass
+    ``p_scale``/``q_scale`` (or ``auto_scale=False`` for the paper's 1.0) for
+    the raw construction, exactly as before.
+
     Args:
         setback: both setbacks (symmetric rounding); or give ``p_setback``
             and ``q_setback`` (asymmetric).
         p_order, q_order: continuity orders (default: the curve's degree).
-        p_scale, q_scale: shape scales (1.0 = the paper).
-        auto_scale: when true, ``p_scale = q_scale = s`` is chosen by the
-            library (``bzj_fillet_auto_scale``: the minimum of the blend's
-            fairness energy); the given scales are ignored and ``s`` is
-            returned as ``result.scale``. Use it when the curves are fast
-            against the setback: scale 1 can then loop past the corner.
+        p_scale, q_scale: explicit shape scales ``alpha, beta > 0`` (1.0 = the
+            paper; a missing one is 1.0 when the other is given). Giving
+            either turns the automatic scale off.
+        auto_scale: ``None`` (default): automatic unless a scale is given;
+            ``True``: automatic, given scales are ignored; ``False``: the
+            given scales (1.0 when none are given).
 
     Raises:
         BezjoinError: ``BZJ_ERR_NO_INTERSECTION`` when the curves do not cross
@@ -174,11 +190,12 @@ def fillet(p, q, *, setback=None, p_setback=None, q_setback=None, p_order=None, 
             than the curve part, ...
     """
     p_handle, q_handle = handle_of(p, "p"), handle_of(q, "q")
+    automatic, p_scale, q_scale = automatic_scale(auto_scale, p_scale, q_scale)
     options = _fillet_options("fillet", p, q, setback, p_setback, q_setback, p_order, q_order,
                               p_scale, q_scale)
     p_trimmed, blend, q_trimmed = CurvePointer(), CurvePointer(), CurvePointer()
     outputs = (ctypes.byref(p_trimmed), ctypes.byref(blend), ctypes.byref(q_trimmed))
-    if auto_scale:
+    if automatic:
         scale = ctypes.c_double()
         library().call("bzj_fillet_auto_scale", p_handle, q_handle, ctypes.byref(options),
                        *outputs, ctypes.byref(scale))
@@ -189,15 +206,17 @@ def fillet(p, q, *, setback=None, p_setback=None, q_setback=None, p_order=None, 
 
 
 def fillet_vertex(p, q, *, setback=None, p_setback=None, q_setback=None, p_order=None,
-                  q_order=None, p_scale=1.0, q_scale=1.0, gap=1e-7):
+                  q_order=None, p_scale=None, q_scale=None, auto_scale=None, gap=1e-7):
     """Round the corner at the vertex where ``p`` ends and ``q`` starts
     (``bzj_fillet_vertex``): a wire's or a sketch's vertex, whatever other
     crossings ``p`` and ``q`` have. ``p``'s last point and ``q``'s first
     point must lie within ``gap`` (absolute; sketch solvers leave 1e-7 and
     more). Setbacks are arc lengths back from ``p``'s end and on from
-    ``q``'s start; the other arguments are those of :func:`fillet`. NURBS
-    inputs give NURBS pieces with their own parameters; the blend is a
-    Bezier curve.
+    ``q``'s start; the other arguments are those of :func:`fillet`, with the
+    same default: the automatic scale (``bzj_fillet_vertex_auto_scale``,
+    ``result.scale``), which never loops, unless ``p_scale``/``q_scale`` are
+    given (or ``auto_scale=False``). NURBS inputs give NURBS pieces with their
+    own parameters; the blend is a Bezier curve.
 
     Raises:
         BezjoinError: ``BZJ_ERR_NO_INTERSECTION`` when the ends are more
@@ -205,12 +224,19 @@ def fillet_vertex(p, q, *, setback=None, p_setback=None, q_setback=None, p_order
             ``BZJ_ERR_INVALID_ARGUMENT`` for a setback longer than a curve.
     """
     p_handle, q_handle = handle_of(p, "p"), handle_of(q, "q")
+    automatic, p_scale, q_scale = automatic_scale(auto_scale, p_scale, q_scale)
     options = _fillet_options("fillet_vertex", p, q, setback, p_setback, q_setback, p_order,
                               q_order, p_scale, q_scale)
+    gap = real_argument(gap, "gap")
     p_trimmed, blend, q_trimmed = CurvePointer(), CurvePointer(), CurvePointer()
-    library().call("bzj_fillet_vertex", p_handle, q_handle, ctypes.byref(options),
-                   real_argument(gap, "gap"), ctypes.byref(p_trimmed), ctypes.byref(blend),
-                   ctypes.byref(q_trimmed))
+    outputs = (ctypes.byref(p_trimmed), ctypes.byref(blend), ctypes.byref(q_trimmed))
+    if automatic:
+        scale = ctypes.c_double()
+        library().call("bzj_fillet_vertex_auto_scale", p_handle, q_handle,
+                       ctypes.byref(options), gap, *outputs, ctypes.byref(scale))
+        return FilletResult(Curve._adopt(p_trimmed), Curve._adopt(blend),
+                            Curve._adopt(q_trimmed), scale.value)
+    library().call("bzj_fillet_vertex", p_handle, q_handle, ctypes.byref(options), gap, *outputs)
     return FilletResult(Curve._adopt(p_trimmed), Curve._adopt(blend), Curve._adopt(q_trimmed))
 
 
@@ -313,11 +339,25 @@ register_prototype(
      _curve_out, _curve_out, ctypes.POINTER(DeviationFilletReportStruct)],
 )
 register_prototype(
+    "bzj_fillet_deviation_auto_scale",
+    ctypes.c_int32,
+    [CurvePointer, CurvePointer, ctypes.POINTER(DeviationFilletOptionsStruct), _curve_out,
+     _curve_out, _curve_out, ctypes.POINTER(DeviationFilletReportStruct),
+     ctypes.POINTER(ctypes.c_double)],
+)
+register_prototype(
     "bzj_fillet_chain",
     ctypes.c_int32,
     [ctypes.POINTER(CurvePointer), ctypes.c_size_t, ctypes.POINTER(FilletOptionsStruct),
      ctypes.c_int32, ctypes.POINTER(CurvePointer), ctypes.c_size_t,
      ctypes.POINTER(ctypes.c_size_t)],
+)
+register_prototype(
+    "bzj_fillet_chain_auto_scale",
+    ctypes.c_int32,
+    [ctypes.POINTER(CurvePointer), ctypes.c_size_t, ctypes.POINTER(FilletOptionsStruct),
+     ctypes.c_int32, ctypes.POINTER(CurvePointer), ctypes.c_size_t,
+     ctypes.POINTER(ctypes.c_size_t), ctypes.POINTER(ctypes.c_double)],
 )
 
 
@@ -326,10 +366,11 @@ class DeviationFilletResult(FilletResult):
     ``q_trimmed`` as in :class:`FilletResult`, and the report: the setbacks found
     (``p_setback``, ``q_setback = setback_ratio * p_setback``, arc lengths from the
     crossing), the ``deviation`` achieved (``min_t |R(t) - X|``) and the cut
-    parameters ``u0`` on P and ``v0`` on Q."""
+    parameters ``u0`` on P and ``v0`` on Q. ``scale``: the ``s = p_scale = q_scale``
+    used when the scale was automatic (the default), else ``None``."""
 
-    def __init__(self, p_trimmed, blend, q_trimmed, report):
-        super().__init__(p_trimmed, blend, q_trimmed)
+    def __init__(self, p_trimmed, blend, q_trimmed, report, scale=None):
+        super().__init__(p_trimmed, blend, q_trimmed, scale)
         self.p_setback = report.p_setback
         self.q_setback = report.q_setback
         self.deviation = report.deviation
@@ -337,22 +378,50 @@ class DeviationFilletResult(FilletResult):
         self.v0 = report.v0
 
     def _fields(self):
-        return self._curve_fields + ("p_setback", "q_setback", "deviation", "u0", "v0")
+        return self._curve_fields + ("p_setback", "q_setback", "deviation", "u0", "v0", "scale")
+
+
+def _deviation_call(p_handle, q_handle, options, automatic):
+    """``bzj_fillet_deviation`` (or ``bzj_fillet_deviation_auto_scale`` when
+    ``automatic``) with ``options``: the three handles (adopted), the report and the
+    scale chosen (``None`` unless automatic)."""
+    p_trimmed, blend, q_trimmed = CurvePointer(), CurvePointer(), CurvePointer()
+    report = DeviationFilletReportStruct()
+    outs = (ctypes.byref(p_trimmed), ctypes.byref(blend), ctypes.byref(q_trimmed))
+    if automatic:
+        scale = ctypes.c_double()
+        library().call("bzj_fillet_deviation_auto_scale", p_handle, q_handle,
+                       ctypes.byref(options), *outs, ctypes.byref(report), ctypes.byref(scale))
+        chosen = scale.value
+    else:
+        library().call("bzj_fillet_deviation", p_handle, q_handle, ctypes.byref(options),
+                       *outs, ctypes.byref(report))
+        chosen = None
+    curves = (Curve._adopt(p_trimmed), Curve._adopt(blend), Curve._adopt(q_trimmed))
+    return curves, report, chosen
 
 
 def fillet_deviation(p, q, max_deviation, *, setback_ratio=1.0, p_order=None, q_order=None,
-                     p_scale=1.0, q_scale=1.0):
+                     p_scale=None, q_scale=None, auto_scale=None):
     """Round the corner at the first crossing ``X`` so that the blend passes within
     ``max_deviation`` of ``X``, using nearly all of it (``bzj_fillet_deviation``):
     ``max_deviation (1 - 1e-9) <= min_t |R(t) - X| <= max_deviation (1 - 2.5e-10)``,
     never above. The setbacks ``dp`` and ``dq = setback_ratio * dp`` are found by
     the library; the blend is that of :func:`fillet` with them.
 
+    By default the scale is automatic (``bzj_fillet_deviation_auto_scale``), so the
+    blend does not loop past the corner as the paper's scale 1 does when the curves
+    are fast against the setbacks: at every setback the library tries,
+    ``p_scale = q_scale = s`` is chosen as :func:`fillet` chooses it (least fairness
+    energy); the ``s`` of the result is ``result.scale``. The deviation bound is the
+    same. Give ``p_scale``/``q_scale`` (or ``auto_scale=False`` for the paper's
+    1.0) for those scales (``bzj_fillet_deviation``), as before.
+
     Args:
         max_deviation: the largest distance allowed between ``X`` and the blend, > 0.
         setback_ratio: ``dq / dp`` > 0 (1.0 = symmetric rounding).
         p_order, q_order: continuity orders (default: the curve's degree).
-        p_scale, q_scale: shape scales (1.0 = the paper).
+        p_scale, q_scale, auto_scale: as for :func:`fillet`.
 
     Returns:
         :class:`DeviationFilletResult`.
@@ -363,20 +432,15 @@ def fillet_deviation(p, q, max_deviation, *, setback_ratio=1.0, p_order=None, q_
             possible), ``BZJ_ERR_NO_INTERSECTION`` when the curves do not cross, ...
     """
     p_handle, q_handle = handle_of(p, "p"), handle_of(q, "q")
+    automatic, p_scale, q_scale = automatic_scale(auto_scale, p_scale, q_scale)
     p_order = p.degree if p_order is None else index_argument(p_order, "p_order")
     q_order = q.degree if q_order is None else index_argument(q_order, "q_order")
     options = DeviationFilletOptionsStruct(
         real_argument(max_deviation, "max_deviation"),
-        real_argument(setback_ratio, "setback_ratio"), p_order, q_order,
-        real_argument(p_scale, "p_scale"), real_argument(q_scale, "q_scale"),
+        real_argument(setback_ratio, "setback_ratio"), p_order, q_order, p_scale, q_scale,
     )
-    p_trimmed, blend, q_trimmed = CurvePointer(), CurvePointer(), CurvePointer()
-    report = DeviationFilletReportStruct()
-    library().call("bzj_fillet_deviation", p_handle, q_handle, ctypes.byref(options),
-                   ctypes.byref(p_trimmed), ctypes.byref(blend), ctypes.byref(q_trimmed),
-                   ctypes.byref(report))
-    return DeviationFilletResult(Curve._adopt(p_trimmed), Curve._adopt(blend),
-                                 Curve._adopt(q_trimmed), report)
+    curves, report, scale = _deviation_call(p_handle, q_handle, options, automatic)
+    return DeviationFilletResult(*curves, report, scale)
 
 
 class FilletChainResult(CurveGroup):
@@ -384,13 +448,16 @@ class FilletChainResult(CurveGroup):
     order, trimmed curve 0, blend 0, trimmed curve 1, ... (``2n - 1`` curves for an
     open chain of ``n`` curves, ``2n`` for a closed one, ending with the blend back
     to the start). ``trimmed`` and ``blends`` are the two kinds, each in order.
+    ``scales``: the scale ``s`` chosen at every corner (corner ``i`` at index ``i``)
+    when the scale was automatic (the default), else ``None``.
     ``close()`` releases them all."""
 
     _curve_fields = ("pieces",)
 
-    def __init__(self, pieces, closed):
+    def __init__(self, pieces, closed, scales=None):
         self.pieces = pieces
         self.closed = closed
+        self.scales = scales
 
     @property
     def trimmed(self):
@@ -403,11 +470,25 @@ class FilletChainResult(CurveGroup):
         return self.pieces[1::2]
 
     def _fields(self):
-        return self._curve_fields + ("closed",)
+        return self._curve_fields + ("closed", "scales")
+
+
+def _chain_handles(curves, closed):
+    """The curves as a list, their handles as a C array (errors name ``curves[i]``),
+    and ``closed`` checked to be a bool."""
+    curves = list(curves)
+    handles = [handle_of(c, f"curves[{i}]") for i, c in enumerate(curves)]
+    if not isinstance(closed, bool):
+        raise TypeError(f"closed must be a bool, not {type(closed).__name__}")
+    return curves, (CurvePointer * max(len(handles), 1))(*handles), len(handles)
+
+
+def _corner_count(curve_count, closed):
+    return curve_count if closed else max(curve_count - 1, 0)
 
 
 def fillet_chain(curves, *, setback=None, p_setback=None, q_setback=None, p_order=None,
-                 q_order=None, p_scale=1.0, q_scale=1.0, closed=False):
+                 q_order=None, p_scale=None, q_scale=None, auto_scale=None, closed=False):
     """Round every corner of a chain of curves in one call (``bzj_fillet_chain``).
 
     Corner ``i`` lies between ``curves[i]`` and ``curves[i + 1]`` (and, with
@@ -416,9 +497,15 @@ def fillet_chain(curves, *, setback=None, p_setback=None, q_setback=None, p_orde
     the same options at every corner (``p`` is the curve before the corner, ``q``
     the one after). Each curve is kept between the cuts of its two corners.
 
+    By default every corner gets its automatic scale
+    (``bzj_fillet_chain_auto_scale``; ``result.scales``), which never loops;
+    giving ``p_scale``/``q_scale`` (or ``auto_scale=False``) uses those scales
+    at every corner, exactly as before (see :func:`fillet`).
+
     Args:
         curves: at least two :class:`Curve` objects of one dimension.
-        setback, p_setback, q_setback, p_scale, q_scale: as for :func:`fillet`.
+        setback, p_setback, q_setback, p_scale, q_scale, auto_scale: as for
+            :func:`fillet`.
         p_order, q_order: continuity orders (default: the lowest degree of the
             curves).
         closed: round the corner from the last curve back to the first too.
@@ -431,30 +518,35 @@ def fillet_chain(curves, *, setback=None, p_setback=None, q_setback=None, p_orde
             not cross, ``BZJ_ERR_INVALID_ARGUMENT`` for a setback too long at a
             corner or fewer than two curves, ...
     """
-    curves = list(curves)
-    handles = [handle_of(c, f"curves[{i}]") for i, c in enumerate(curves)]
+    curves, array, curve_count = _chain_handles(curves, closed)
     if setback is not None:
         if p_setback is not None or q_setback is not None:
             raise TypeError("give either setback or p_setback/q_setback, not both")
         p_setback = q_setback = setback
     if p_setback is None or q_setback is None:
         raise TypeError("fillet_chain needs setback, or both p_setback and q_setback")
-    if not isinstance(closed, bool):
-        raise TypeError(f"closed must be a bool, not {type(closed).__name__}")
+    automatic, p_scale, q_scale = automatic_scale(auto_scale, p_scale, q_scale)
     lowest = min((c.degree for c in curves), default=0)
     p_order = lowest if p_order is None else index_argument(p_order, "p_order")
     q_order = lowest if q_order is None else index_argument(q_order, "q_order")
     options = FilletOptionsStruct(
         real_argument(p_setback, "p_setback"), real_argument(q_setback, "q_setback"),
-        p_order, q_order, real_argument(p_scale, "p_scale"), real_argument(q_scale, "q_scale"),
+        p_order, q_order, p_scale, q_scale,
     )
-    array = (CurvePointer * max(len(handles), 1))(*handles)
     count = ctypes.c_size_t()
+    name = "bzj_fillet_chain_auto_scale" if automatic else "bzj_fillet_chain"
+    extra = (None,) if automatic else ()
     # The count-only query checks the curves and `closed` the way the real call does.
-    library().call("bzj_fillet_chain", array, len(handles), ctypes.byref(options), int(closed),
-                   None, 0, ctypes.byref(count))
+    library().call(name, array, curve_count, ctypes.byref(options), int(closed), None, 0,
+                   ctypes.byref(count), *extra)
     pieces = (CurvePointer * max(count.value, 1))()
-    library().call("bzj_fillet_chain", array, len(handles), ctypes.byref(options), int(closed),
+    if automatic:
+        scales = (ctypes.c_double * max(_corner_count(curve_count, closed), 1))()
+        library().call("bzj_fillet_chain_auto_scale", array, curve_count, ctypes.byref(options),
+                       int(closed), pieces, count.value, ctypes.byref(count), scales)
+        return FilletChainResult([Curve._adopt(pieces[i]) for i in range(count.value)], closed,
+                                 list(scales)[:_corner_count(curve_count, closed)])
+    library().call("bzj_fillet_chain", array, curve_count, ctypes.byref(options), int(closed),
                    pieces, count.value, ctypes.byref(count))
     return FilletChainResult([Curve._adopt(pieces[i]) for i in range(count.value)], closed)
 
@@ -467,6 +559,33 @@ register_prototype(
     [CurvePointer, CurvePointer, ctypes.c_double, ctypes.c_size_t,
      ctypes.POINTER(CurvePointer), ctypes.POINTER(CurvePointer), ctypes.POINTER(CurvePointer),
      ctypes.POINTER(FairnessReportStruct)],
+)
+
+
+class RadiusFilletReportStruct(ctypes.Structure):
+    """``BzjRadiusFilletReport`` (layout fixed by the C header)."""
+
+    _fields_ = [
+        ("fairness", FairnessReportStruct),
+        ("arc_deviation", ctypes.c_double),
+        ("u0", ctypes.c_double),
+        ("v0", ctypes.c_double),
+    ]
+
+
+register_prototype(
+    "bzj_fillet_radius_detailed",
+    ctypes.c_int32,
+    [CurvePointer, CurvePointer, ctypes.c_double, ctypes.c_size_t,
+     ctypes.POINTER(CurvePointer), ctypes.POINTER(CurvePointer), ctypes.POINTER(CurvePointer),
+     ctypes.POINTER(RadiusFilletReportStruct), ctypes.POINTER(ctypes.c_double)],
+)
+register_prototype(
+    "bzj_fillet_radius_chain",
+    ctypes.c_int32,
+    [ctypes.POINTER(CurvePointer), ctypes.c_size_t, ctypes.c_double, ctypes.c_size_t,
+     ctypes.c_int32, ctypes.POINTER(CurvePointer), ctypes.c_size_t,
+     ctypes.POINTER(ctypes.c_size_t), ctypes.POINTER(RadiusFilletReportStruct)],
 )
 
 
@@ -496,7 +615,10 @@ def fillet_radius(p, q, radius, *, order=2):
     """Round the corner of ``p`` and ``q`` like the circular fillet of ``radius``
     (cut where that arc touches them), with a G^order blend of fair shape
     (``bzj_fillet_radius``): at the shared vertex when ``p`` ends where ``q``
-    starts, else at the first crossing. Default G2.
+    starts, else at the first crossing. Default G2. There are no scales: the
+    blend is sized by the arc and never loops. :func:`fillet_radius_detailed`
+    also returns the arc's centre, the blend's distance from the arc and the cut
+    parameters; :func:`fillet_radius_chain` rounds every corner of a wire.
 
     Returns:
         :class:`RadiusFilletResult`.
@@ -508,3 +630,126 @@ def fillet_radius(p, q, radius, *, order=2):
                    index_argument(order, "order"), *(ctypes.byref(o) for o in outs),
                    ctypes.byref(report))
     return RadiusFilletResult(*(Curve._adopt(o) for o in outs), report)
+
+
+RadiusCornerReport = namedtuple(
+    "RadiusCornerReport",
+    "energy curvature_min curvature_max curvature_extrema arc_deviation u0 v0")
+RadiusCornerReport.__doc__ = """What a fillet by radius found at one corner
+(``BzjRadiusFilletReport``): the blend's fairness report (``energy``,
+``curvature_min``, ``curvature_max``, ``curvature_extrema``), its largest distance
+``arc_deviation`` from the circle of the G1 arc of the same radius in that corner,
+and the arc's touching points ``u0`` on the curve before the corner and ``v0`` on
+the curve after it (where they are cut)."""
+
+
+def _corner_report(report):
+    fairness = report.fairness
+    return RadiusCornerReport(fairness.energy, fairness.curvature_min, fairness.curvature_max,
+                              fairness.curvature_extrema, report.arc_deviation, report.u0,
+                              report.v0)
+
+
+class DetailedRadiusFilletResult(RadiusFilletResult):
+    """:func:`fillet_radius_detailed`'s corner: everything of
+    :class:`RadiusFilletResult`, plus ``arc_centre`` (the centre of the G1 arc of
+    that radius, a tuple of ``dim`` coordinates), ``arc_deviation`` (the blend's
+    largest distance from that arc's circle), ``u0`` and ``v0`` (the arc's touching
+    points: where ``p`` and ``q`` are cut), and ``report`` (the same as a
+    :class:`RadiusCornerReport`)."""
+
+    def __init__(self, p_trimmed, blend, q_trimmed, report, arc_centre):
+        super().__init__(p_trimmed, blend, q_trimmed, report.fairness)
+        self.report = _corner_report(report)
+        self.arc_deviation = report.arc_deviation
+        self.u0 = report.u0
+        self.v0 = report.v0
+        self.arc_centre = tuple(arc_centre)
+
+    def _fields(self):
+        return super()._fields() + ("arc_centre", "arc_deviation", "u0", "v0")
+
+
+def fillet_radius_detailed(p, q, radius, *, order=2):
+    """:func:`fillet_radius` with more of what the library found
+    (``bzj_fillet_radius_detailed``): the arc's centre, the blend's largest
+    distance from the arc's circle and the cut parameters ``u0``, ``v0``.
+
+    Returns:
+        :class:`DetailedRadiusFilletResult`.
+
+    Raises:
+        BezjoinError: as :func:`fillet_radius` (``BZJ_ERR_INVALID_ARGUMENT`` naming
+            ``radius`` when the arc does not fit or ``radius`` is not > 0, or
+            ``order`` when it is 0 or above 6; ``BZJ_ERR_NO_INTERSECTION`` when
+            there is no corner).
+    """
+    p_handle, q_handle = handle_of(p, "p"), handle_of(q, "q")
+    radius = real_argument(radius, "radius")
+    order = index_argument(order, "order")
+    outs = (CurvePointer(), CurvePointer(), CurvePointer())
+    report = RadiusFilletReportStruct()
+    centre = (ctypes.c_double * max(p.dim, 1))()
+    library().call("bzj_fillet_radius_detailed", p_handle, q_handle, radius, order,
+                   *(ctypes.byref(o) for o in outs), ctypes.byref(report), centre)
+    return DetailedRadiusFilletResult(*(Curve._adopt(o) for o in outs), report,
+                                      list(centre)[:p.dim])
+
+
+class RadiusFilletChainResult(FilletChainResult):
+    """Every corner of a chain rounded by radius (:func:`fillet_radius_chain`):
+    ``pieces``, ``trimmed``, ``blends`` and ``closed`` as in
+    :class:`FilletChainResult`, and ``reports``: one :class:`RadiusCornerReport`
+    per corner (corner ``i``, between ``curves[i]`` and the next curve, at index
+    ``i``). ``close()`` releases every curve."""
+
+    def __init__(self, pieces, closed, reports):
+        super().__init__(pieces, closed)
+        self.reports = reports
+
+    def _fields(self):
+        return self._curve_fields + ("closed", "reports")
+
+
+def fillet_radius_chain(curves, radius, *, order=2, closed=False):
+    """Round every corner of a chain of curves (a wire) like the G1 arc of ``radius``,
+    with a fair G^order blend at each (``bzj_fillet_radius_chain``; default G2).
+
+    Corner ``i`` lies between ``curves[i]`` and ``curves[i + 1]`` (and, with
+    ``closed=True``, between the last curve and the first): their shared vertex
+    when one ends where the next starts (within 1e-9 of their coordinate size),
+    else their crossing nearest the shared end. Each is rounded as
+    :func:`fillet_radius` rounds one corner; there are no scales, and the blends
+    never loop.
+
+    Args:
+        curves: at least two :class:`Curve` objects (Bezier or NURBS) of one
+            dimension.
+        radius: the radius of the arc every corner is sized like, > 0.
+        order: the geometric continuity order of the blends (1..6).
+        closed: round the corner from the last curve back to the first too.
+
+    Returns:
+        :class:`RadiusFilletChainResult`.
+
+    Raises:
+        BezjoinError: ``BZJ_ERR_INVALID_ARGUMENT`` when the arc does not fit a
+            corner (naming the corner and ``radius``), the arcs at a curve's two
+            ends overlap (naming ``curves[i]``), fewer than two curves are
+            given or ``order`` is out of range; ``BZJ_ERR_NO_INTERSECTION``
+            naming a corner without vertex or crossing, ...
+    """
+    curves, array, curve_count = _chain_handles(curves, closed)
+    radius = real_argument(radius, "radius")
+    order = index_argument(order, "order")
+    count = ctypes.c_size_t()
+    # The count-only query checks the curves and `closed` the way the real call does.
+    library().call("bzj_fillet_radius_chain", array, curve_count, radius, order, int(closed),
+                   None, 0, ctypes.byref(count), None)
+    pieces = (CurvePointer * max(count.value, 1))()
+    corners = _corner_count(curve_count, closed)
+    reports = (RadiusFilletReportStruct * max(corners, 1))()
+    library().call("bzj_fillet_radius_chain", array, curve_count, radius, order, int(closed),
+                   pieces, count.value, ctypes.byref(count), reports)
+    return RadiusFilletChainResult([Curve._adopt(pieces[i]) for i in range(count.value)],
+                                   closed, [_corner_report(r) for r in reports[:corners]])

@@ -51,7 +51,7 @@ def test_interior_constraints_hold_and_raise_the_degree():
     first = (0.3, [(1.0, 2.0)])
     second = (0.7, [(4.0, -1.0), (2.0, 0.5), (0.0, 1.0)])
     with Curve(p_points) as p, Curve(q_points) as q, \
-            bezjoin.connect(p, 1.0, q, 0.0, p_order=1, q_order=1,
+            bezjoin.connect(p, 1.0, q, 0.0, p_order=1, q_order=1, auto_scale=False,
                             constraints=[first, second]) as r:
         assert r.degree == 1 + 1 + 1 + (0 + 1) + (2 + 1)
         for t, rows in (first, second):

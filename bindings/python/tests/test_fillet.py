@@ -98,7 +98,7 @@ def test_auto_scale_keeps_a_fast_corner_inside():
     p_points = [(-4, 0), (-4 / 3, 0), (4 / 3, 0), (4, 0)]
     q_points = [(0, -4), (0, -4 / 3), (0, 4 / 3), (0, 4)]
     with Curve(p_points) as p, Curve(q_points) as q:
-        with bezjoin.fillet(p, q, setback=0.5) as paper:
+        with bezjoin.fillet(p, q, setback=0.5, p_scale=1.0, q_scale=1.0) as paper:
             assert paper.scale is None
             assert paper.blend.points[1][0] > 0.0
         with bezjoin.fillet(p, q, setback=0.5, auto_scale=True) as result:

@@ -50,21 +50,49 @@ def test_fillet_deviation_keeps_to_the_bound(max_deviation, ratio, order):
             assert abs(p.length(result.u0, u_star) - result.p_setback) <= 1e-9
             assert abs(q.length(v_star, result.v0) - result.q_setback) <= 1e-9
             # The kept parts end at the reported cuts, and the chain is C^order
-            # with knot intervals (u0, 1, 1 - v0).
+            # with knot intervals (u0, s, 1 - v0), s the automatic scale (the default).
             p_kept, q_kept = result.p_trimmed.points, result.q_trimmed.points
             assert distance(p_kept[-1], p.evaluate(result.u0)) <= 1e-12
             assert distance(q_kept[0], q.evaluate(result.v0)) <= 1e-12
-            widths = (result.u0, 1.0, 1.0 - result.v0)
+            assert result.scale > 0
+            widths = (result.u0, result.scale, 1.0 - result.v0)
             assert_smooth((p_kept, blend, q_kept), widths, order)
 
 
-def test_fillet_deviation_is_fillet_with_the_setbacks_found():
+@pytest.mark.parametrize("scales", [{}, {"p_scale": 1.0, "q_scale": 1.0}, {"p_scale": 0.7},
+                                    {"auto_scale": False}])
+def test_fillet_deviation_is_fillet_with_the_setbacks_found(scales):
     with Curve(P_POINTS) as p, Curve(Q_POINTS) as q, \
-            bezjoin.fillet_deviation(p, q, 0.1, setback_ratio=1.3, p_order=2, q_order=2) as found, \
-            bezjoin.fillet(p, q, p_setback=found.p_setback, q_setback=found.q_setback,
-                           p_order=2, q_order=2) as again:
-        for ours, theirs in zip(found.curves(), again.curves()):
-            assert max(distance(a, b) for a, b in zip(ours.points, theirs.points)) <= 1e-9
+            bezjoin.fillet_deviation(p, q, 0.1, setback_ratio=1.3, p_order=2, q_order=2,
+                                     **scales) as found:
+        if scales:  # explicit scales: used as given (a missing one is 1.0), no scale chosen
+            assert found.scale is None
+            again_scales = {"p_scale": scales.get("p_scale", 1.0),
+                            "q_scale": scales.get("q_scale", 1.0)}
+        else:  # the default: the automatic scale of the setbacks it found
+            with bezjoin.fillet(p, q, p_setback=found.p_setback, q_setback=found.q_setback,
+                                p_order=2, q_order=2) as automatic:
+                assert abs(automatic.scale - found.scale) <= 1e-5 * found.scale
+            again_scales = {"p_scale": found.scale, "q_scale": found.scale}
+        with bezjoin.fillet(p, q, p_setback=found.p_setback, q_setback=found.q_setback,
+                            p_order=2, q_order=2, **again_scales) as again:
+            for ours, theirs in zip(found.curves(), again.curves()):
+                assert max(distance(a, b) for a, b in zip(ours.points, theirs.points)) <= 1e-9
+
+
+def test_default_fillet_deviation_of_fast_lines_stays_in_the_corner():
+    """Lines 50 and 30 long crossing at the origin, deviation 0.1: with the paper's
+    scale 1 the blend's control points go past the corner (the blend loops); the
+    default keeps the whole control polygon in the corner's quadrant."""
+    with Curve([(-40, 0), (10, 0)]) as p, Curve([(0, -10), (0, 20)]) as q:
+        with bezjoin.fillet_deviation(p, q, 0.1, p_scale=1.0, q_scale=1.0) as paper:
+            assert any(x > 0 or y < 0 for x, y in paper.blend.points)
+        with bezjoin.fillet_deviation(p, q, 0.1) as result:
+            assert 0.1 * (1 - 1e-9) <= result.deviation <= 0.1
+            assert all(x <= 1e-12 and y >= -1e-12 for x, y in result.blend.points)
+            # Arc length of the blend: between the chord and the two setbacks.
+            chord = math.hypot(result.p_setback, result.q_setback)
+            assert chord <= result.blend.length() <= result.p_setback + result.q_setback
 
 
 def test_fillet_deviation_errors():
@@ -168,9 +196,10 @@ def test_open_chain_keeps_the_outer_ends():
     sides = [bulged_side(VERTICES[i], VERTICES[(i + 1) % 3]) for i in range(3)]
     curves = [Curve(s) for s in sides]
     try:
-        with bezjoin.fillet_chain(curves, setback=0.5, p_order=2, q_order=2) as open_chain, \
+        with bezjoin.fillet_chain(curves, setback=0.5, p_order=2, q_order=2,
+                                  auto_scale=False) as open_chain, \
                 bezjoin.fillet_chain(curves, setback=0.5, p_order=2, q_order=2,
-                                     closed=True) as closed_chain:
+                                     p_scale=1.0, q_scale=1.0, closed=True) as closed_chain:
             pieces = [c.points for c in open_chain.pieces]
             assert len(pieces) == 5 and not open_chain.closed
             assert distance(pieces[0][0], sides[0][0]) <= 1e-15

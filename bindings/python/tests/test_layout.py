@@ -116,6 +116,8 @@ def expected_ctypes(c_type, structs, enums):
         return scalars[c_type]
     if c_type in enums:  # int32_t-sized enums (the header's typedef outside C++/C23)
         return ctypes.c_int32
+    if c_type.startswith("struct ") and not c_type.endswith("*"):  # a struct field by value
+        return structs[c_type[len("struct "):]]
     if c_type.endswith(" *"):
         pointee = c_type[:-2].strip()
         for prefix in ("const ", "struct "):

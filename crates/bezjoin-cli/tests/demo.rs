@@ -30,9 +30,10 @@ fn listed_scenarios(index: &str) -> Vec<String> {
 /// symmetric and asymmetric corner rounding, G2/G3 fillets by radius (two
 /// lines at 90 degrees, two cubics) compared with the arc and the C^k
 /// fillet, a wire of an arc, a line and a rational B-spline with every
-/// vertex rounded, merges with each metric and each constraint kind and of
-/// two B-splines, Lagrange splines, and an intersection.
-const SCENARIOS: [&str; 18] = [
+/// vertex rounded, a closed plate outline with every corner rounded by
+/// radius, merges with each metric and each constraint kind and of two
+/// B-splines, Lagrange splines, and an intersection.
+const SCENARIOS: [&str; 19] = [
     "connect-plain",
     "connect-constrained",
     "connect-auto-scale",
@@ -41,6 +42,7 @@ const SCENARIOS: [&str; 18] = [
     "fillet-radius-lines",
     "fillet-radius-curved",
     "fillet-chain-arc-line-nurbs",
+    "fillet-chain-radius-plate",
     "merge-discrete",
     "merge-integral-optimal",
     "merge-keep-p",
@@ -290,6 +292,60 @@ fn assert_nurbs_wire_scenario(table: &str, out: &Path) {
     assert_eq!(combs.matches("<polyline ").count(), 5);
 }
 
+/// The closed wire rounded by radius (issue 18): its job is a closed
+/// chain of lines, a cubic and an arc with a radius and G2; every corner
+/// is reported with its arc's centre, and every join of the result (two
+/// per corner, the closing one included) is measured G2 from derivatives
+/// with respect to arc length; the picture has combs on the pieces, the
+/// arcs and one curvature graph around the wire.
+fn assert_radius_plate_scenario(out: &Path) {
+    let name = "fillet-chain-radius-plate";
+    let job = read_json(&out.join(format!("{name}.job.json")));
+    assert_eq!(job["closed"], true);
+    assert_eq!(job["order"], 2);
+    let curves = job["curves"].as_array().unwrap();
+    assert!(curves.iter().any(|c| c.get("arc").is_some()), "an arc edge");
+    assert!(
+        curves
+            .iter()
+            .any(|c| c.as_array().is_some_and(|p| p.len() == 4)),
+        "a cubic edge"
+    );
+    let n = curves.len();
+    let result = read_json(&out.join(format!("{name}.result.json")));
+    assert_eq!(result["pieces"].as_array().unwrap().len(), 2 * n);
+    let corners = result["corners"].as_array().unwrap();
+    assert_eq!(corners.len(), n, "every corner of the closed wire");
+    let r = job["radius"].as_f64().unwrap();
+    for c in corners {
+        let distances: Vec<f64> =
+            serde_json::from_value(c["measured_centre_distances"].clone()).unwrap();
+        for d in distances {
+            assert!((d - r).abs() < 1e-9 * r, "{name}: centre at {d}, not r");
+        }
+    }
+    let joins = result["report"]["measured_continuity"].as_array().unwrap();
+    assert_eq!(joins.len(), 2 * n);
+    assert_eq!(
+        joins[2 * n - 1]["join"],
+        "blend 5|curve 0",
+        "the closing join"
+    );
+    for j in joins {
+        assert_eq!(j["continuity"], "geometric", "{name}: {j}");
+        assert!(j["measured_order"].as_u64().unwrap() >= 2, "{name}: {j}");
+    }
+    let svg = std::fs::read_to_string(out.join(format!("{name}.svg"))).unwrap();
+    assert!(svg.contains("circular arc of radius 1"));
+    let plots = &svg[svg.find("<g id=\"plots\"").expect("a curvature graph")..];
+    assert_eq!(plots.matches("<clipPath ").count(), 1, "{name}: one graph");
+    let combs = &svg[svg.find("<g id=\"combs\"").unwrap()..];
+    let combs = &combs[..combs.find("</g>").unwrap()];
+    // A comb on every kept piece and blend; none on the given curves and
+    // the arcs (the graph shows the arcs' curvature).
+    assert_eq!(combs.matches("<polyline ").count(), 2 * n, "{name}: combs");
+}
+
 fn out_dir() -> PathBuf {
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("demo-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
@@ -365,6 +421,7 @@ fn demo_writes_every_listed_scenario() {
         assert_radius_comparison(name, &out);
     }
     assert_nurbs_wire_scenario(&table, &out);
+    assert_radius_plate_scenario(&out);
     for name in &names {
         assert!(
             table.contains(name.as_str()),

@@ -13,8 +13,12 @@ use bezjoin_core::{
 use bezjoin_core::{IntersectOptions, Intersection, IntersectionKind, intersect};
 
 use crate::guard::guard;
-use crate::handles::{BzjCurve, CheckedOut, HandleArray, HandleOut, ShortArray, require_all};
-use crate::pointers::{curve_ref, input_ref, input_slice, require_out, write_optional};
+use crate::handles::{
+    BzjCurve, CheckedOut, HandleArray, HandleOut, HandleSlots, ShortArray, require_all,
+};
+use crate::pointers::{
+    curve_ref, input_ref, input_slice, output_slice, require_out, write_optional,
+};
 use crate::status::{BzjStatus, FfiError, FfiResult};
 
 /// Options of `bzj_fillet` (contract layout; every field is read).
@@ -403,7 +407,7 @@ pub unsafe extern "C" fn bzj_fillet_auto_scale(
 ///
 /// # Safety
 /// Each is NULL or writable.
-unsafe fn fillet_outputs(
+pub(crate) unsafe fn fillet_outputs(
     p_trimmed: *mut *mut BzjCurve,
     blend: *mut *mut BzjCurve,
     q_trimmed: *mut *mut BzjCurve,
@@ -434,21 +438,52 @@ unsafe fn fillet_with_scale(
     scale_out: *mut f64,
 ) -> BzjStatus {
     // SAFETY: caller contract.
+    unsafe {
+        corner_fillet(
+            p, q, options, None, auto_scale, p_trimmed, blend, q_trimmed, scale_out,
+        )
+    }
+}
+
+/// One corner rounded: at the first crossing (`gap` None, `bzj_fillet`) or
+/// at the shared vertex within `gap` (`bzj_fillet_vertex`), with the given
+/// or the automatic scale (written to `scale_out` when not NULL).
+///
+/// # Safety
+/// As [`bzj_fillet_vertex_auto_scale`].
+#[allow(clippy::too_many_arguments)]
+unsafe fn corner_fillet(
+    p: *const BzjCurve,
+    q: *const BzjCurve,
+    options: *const BzjFilletOptions,
+    gap: Option<f64>,
+    auto_scale: bool,
+    p_trimmed: *mut *mut BzjCurve,
+    blend: *mut *mut BzjCurve,
+    q_trimmed: *mut *mut BzjCurve,
+    scale_out: *mut f64,
+) -> BzjStatus {
+    // SAFETY: caller contract.
     let outs = unsafe { fillet_outputs(p_trimmed, blend, q_trimmed) };
     guard(|| {
         // SAFETY: caller contract.
         let (p, q) = unsafe { (curve_ref(p, "p")?, curve_ref(q, "q")?) };
         // SAFETY: caller contract.
         let options = unsafe { input_ref(options, "options") }?;
-        let [p_out, blend_out, q_out] = require_all(outs)?;
+        let outs = require_all(outs)?;
         let mut core_options = options.to_core();
         if auto_scale {
             core_options.scale = ShapeScale::Auto;
         }
-        let result = fillet(p, q, &core_options)?;
-        // SAFETY: NULL or writable by the caller contract.
-        unsafe { write_optional(scale_out, result.p_scale) };
-        write_fillet([p_out, blend_out, q_out], result);
+        let result = match gap {
+            Some(gap) => fillet_vertex(p, q, &core_options, gap)?,
+            None => fillet(p, q, &core_options)?,
+        };
+        if auto_scale {
+            // SAFETY: NULL or writable by the caller contract.
+            unsafe { write_optional(scale_out, result.p_scale) };
+        }
+        write_fillet(outs, result);
         Ok(())
     })
 }
@@ -491,18 +526,60 @@ pub unsafe extern "C" fn bzj_fillet_vertex(
     blend: *mut *mut BzjCurve,
     q_trimmed: *mut *mut BzjCurve,
 ) -> BzjStatus {
+    // SAFETY: caller contract (`scale_out` NULL is allowed).
+    unsafe {
+        corner_fillet(
+            p,
+            q,
+            options,
+            Some(gap),
+            false,
+            p_trimmed,
+            blend,
+            q_trimmed,
+            std::ptr::null_mut(),
+        )
+    }
+}
+
+/// [`bzj_fillet_vertex`] with `alpha = beta = s` chosen automatically as
+/// [`bzj_fillet_auto_scale`] chooses it (`options->p_scale` and
+/// `options->q_scale` are ignored, not read for validity); the chosen `s`
+/// is written to `scale_out` when it is not NULL. The default for a user
+/// who gives no scales: the paper's scale 1 can loop when the setbacks are
+/// short against the curves' parametric speed (a 40 mm and a 20 mm line
+/// with setback 2 give a self-intersecting blend 13.6 mm long).
+///
+/// @return the statuses of [`bzj_fillet_vertex`] (except for the scales).
+///
+/// # Safety
+/// As [`bzj_fillet_vertex`]; `scale_out` is NULL or writable.
+#[unsafe(no_mangle)]
+#[allow(clippy::too_many_arguments)]
+pub unsafe extern "C" fn bzj_fillet_vertex_auto_scale(
+    p: *const BzjCurve,
+    q: *const BzjCurve,
+    options: *const BzjFilletOptions,
+    gap: f64,
+    p_trimmed: *mut *mut BzjCurve,
+    blend: *mut *mut BzjCurve,
+    q_trimmed: *mut *mut BzjCurve,
+    scale_out: *mut f64,
+) -> BzjStatus {
     // SAFETY: caller contract.
-    let outs = unsafe { fillet_outputs(p_trimmed, blend, q_trimmed) };
-    guard(|| {
-        // SAFETY: caller contract.
-        let (p, q) = unsafe { (curve_ref(p, "p")?, curve_ref(q, "q")?) };
-        // SAFETY: caller contract.
-        let options = unsafe { input_ref(options, "options") }?;
-        let outs = require_all(outs)?;
-        let result = fillet_vertex(p, q, &options.to_core(), gap)?;
-        write_fillet(outs, result);
-        Ok(())
-    })
+    unsafe {
+        corner_fillet(
+            p,
+            q,
+            options,
+            Some(gap),
+            true,
+            p_trimmed,
+            blend,
+            q_trimmed,
+            scale_out,
+        )
+    }
 }
 
 /// Round the corner at the first crossing so that the blend passes within
@@ -540,6 +617,73 @@ pub unsafe extern "C" fn bzj_fillet_deviation(
     q_trimmed: *mut *mut BzjCurve,
     report: *mut BzjDeviationFilletReport,
 ) -> BzjStatus {
+    // SAFETY: caller contract (`scale_out` NULL is allowed).
+    unsafe {
+        fillet_deviation_with_scale(
+            p,
+            q,
+            options,
+            false,
+            p_trimmed,
+            blend,
+            q_trimmed,
+            report,
+            std::ptr::null_mut(),
+        )
+    }
+}
+
+/// [`bzj_fillet_deviation`] with `alpha = beta = s` chosen automatically
+/// at every setback the search tries, as [`bzj_fillet_auto_scale`] chooses
+/// it (`options->p_scale` and `options->q_scale` are ignored, not read for
+/// validity); the `s` of the returned blend is written to `scale_out` when
+/// it is not NULL. The same deviation guarantee. With the paper's scale 1
+/// the blend of two long edges loops and reaches the deviation only with
+/// long setbacks (lines 60 and 40 long crossing at right angles, deviation
+/// 0.1: setbacks 6.2); with the automatic scale the setbacks stay near the
+/// arc's (0.27 there).
+///
+/// @return the statuses of [`bzj_fillet_deviation`] (except for the
+///         scales).
+///
+/// # Safety
+/// As [`bzj_fillet_deviation`]; `scale_out` is NULL or writable.
+#[unsafe(no_mangle)]
+#[allow(clippy::too_many_arguments)]
+pub unsafe extern "C" fn bzj_fillet_deviation_auto_scale(
+    p: *const BzjCurve,
+    q: *const BzjCurve,
+    options: *const BzjDeviationFilletOptions,
+    p_trimmed: *mut *mut BzjCurve,
+    blend: *mut *mut BzjCurve,
+    q_trimmed: *mut *mut BzjCurve,
+    report: *mut BzjDeviationFilletReport,
+    scale_out: *mut f64,
+) -> BzjStatus {
+    // SAFETY: caller contract.
+    unsafe {
+        fillet_deviation_with_scale(
+            p, q, options, true, p_trimmed, blend, q_trimmed, report, scale_out,
+        )
+    }
+}
+
+/// The body of `bzj_fillet_deviation` and `bzj_fillet_deviation_auto_scale`.
+///
+/// # Safety
+/// As [`bzj_fillet_deviation_auto_scale`].
+#[allow(clippy::too_many_arguments)]
+unsafe fn fillet_deviation_with_scale(
+    p: *const BzjCurve,
+    q: *const BzjCurve,
+    options: *const BzjDeviationFilletOptions,
+    auto_scale: bool,
+    p_trimmed: *mut *mut BzjCurve,
+    blend: *mut *mut BzjCurve,
+    q_trimmed: *mut *mut BzjCurve,
+    report: *mut BzjDeviationFilletReport,
+    scale_out: *mut f64,
+) -> BzjStatus {
     // SAFETY: caller contract.
     let outs = unsafe { fillet_outputs(p_trimmed, blend, q_trimmed) };
     guard(|| {
@@ -552,6 +696,9 @@ pub unsafe extern "C" fn bzj_fillet_deviation(
             DeviationFilletOptions::new(o.max_deviation, 0).with_setback_ratio(o.setback_ratio);
         core.shape =
             FilletOptions::new(1.0, 1.0, o.p_order, o.q_order).with_scales(o.p_scale, o.q_scale);
+        if auto_scale {
+            core.shape.scale = ShapeScale::Auto;
+        }
         let r = fillet_within_deviation(p, q, &core)?;
         let summary = BzjDeviationFilletReport {
             p_setback: r.p_setback,
@@ -562,6 +709,8 @@ pub unsafe extern "C" fn bzj_fillet_deviation(
         };
         // SAFETY: NULL or writable (caller contract).
         unsafe { write_optional(report, summary) };
+        // SAFETY: NULL or writable (caller contract).
+        unsafe { write_optional(scale_out, r.fillet.p_scale) };
         write_fillet([p_out, blend_out, q_out], r.fillet);
         Ok(())
     })
@@ -613,68 +762,214 @@ pub unsafe extern "C" fn bzj_fillet_chain(
     capacity: usize,
     count: *mut usize,
 ) -> BzjStatus {
+    // SAFETY: caller contract (`scales_out` NULL is allowed).
+    unsafe {
+        fillet_chain_with_scale(
+            curves,
+            curve_count,
+            options,
+            closed,
+            false,
+            out_pieces,
+            capacity,
+            count,
+            std::ptr::null_mut(),
+        )
+    }
+}
+
+/// [`bzj_fillet_chain`] with `alpha = beta = s` chosen automatically at
+/// every corner as [`bzj_fillet_auto_scale`] chooses it (`options->p_scale`
+/// and `options->q_scale` are ignored, not read for validity). When
+/// `scales_out` is not NULL it receives the corner count of doubles (`s` of
+/// corner i at index i): `curve_count - 1` for an open chain,
+/// `curve_count` for a closed one; it is not written by a "count only"
+/// query or on error.
+///
+/// @return the statuses of [`bzj_fillet_chain`] (except for the scales).
+///
+/// # Safety
+/// As [`bzj_fillet_chain`]; `scales_out` is NULL or points to the corner
+/// count of writable doubles.
+#[unsafe(no_mangle)]
+#[allow(clippy::too_many_arguments)]
+pub unsafe extern "C" fn bzj_fillet_chain_auto_scale(
+    curves: *const *const BzjCurve,
+    curve_count: usize,
+    options: *const BzjFilletOptions,
+    closed: i32,
+    out_pieces: *mut *mut BzjCurve,
+    capacity: usize,
+    count: *mut usize,
+    scales_out: *mut f64,
+) -> BzjStatus {
+    // SAFETY: caller contract.
+    unsafe {
+        fillet_chain_with_scale(
+            curves,
+            curve_count,
+            options,
+            closed,
+            true,
+            out_pieces,
+            capacity,
+            count,
+            scales_out,
+        )
+    }
+}
+
+/// The body of `bzj_fillet_chain` and `bzj_fillet_chain_auto_scale`.
+///
+/// # Safety
+/// As [`bzj_fillet_chain_auto_scale`].
+#[allow(clippy::too_many_arguments)]
+unsafe fn fillet_chain_with_scale(
+    curves: *const *const BzjCurve,
+    curve_count: usize,
+    options: *const BzjFilletOptions,
+    closed: i32,
+    auto_scale: bool,
+    out_pieces: *mut *mut BzjCurve,
+    capacity: usize,
+    count: *mut usize,
+    scales_out: *mut f64,
+) -> BzjStatus {
     // SAFETY: caller promises NULL or `capacity` writable handle pointers.
-    let pieces = unsafe {
+    let pieces = unsafe { chain_pieces_out(out_pieces, capacity) };
+    guard(|| {
+        // SAFETY: caller contract (`curves`, `count`, `options`).
+        let call = unsafe {
+            chain_call(curves, curve_count, closed, count, pieces, || {
+                input_ref(options, "options").copied()
+            })
+        }?;
+        let Some(ChainCall {
+            curves: owned,
+            closed,
+            options,
+            pieces,
+        }) = call
+        else {
+            return Ok(());
+        };
+        let mut core = ChainFilletOptions::open(options.to_core());
+        core.closed = closed;
+        if auto_scale {
+            core.fillet.scale = ShapeScale::Auto;
+        }
+        let rounded = fillet_chain(&owned, &core)?;
+        if !scales_out.is_null() {
+            let scales: Vec<f64> = rounded.corners.iter().map(|c| c.scales.0).collect();
+            // SAFETY: caller promises room for the corner count of doubles.
+            unsafe { output_slice(scales_out, scales.len(), scales.len(), "scales_out") }?
+                .copy_from_slice(&scales);
+        }
+        pieces.write(rounded.pieces);
+        Ok(())
+    })
+}
+
+/// The pieces array of a chain call, cleared.
+///
+/// # Safety
+/// `out_pieces` is NULL or points to `capacity` writable handle pointers.
+pub(crate) unsafe fn chain_pieces_out(
+    out_pieces: *mut *mut BzjCurve,
+    capacity: usize,
+) -> HandleArray {
+    // SAFETY: forwarded.
+    unsafe {
         HandleArray::cleared(
             out_pieces,
             capacity,
             "out_pieces",
             ShortArray::AsDoubles("out_pieces (handles)"),
         )
-    };
-    guard(|| {
-        let count = require_out(count, "count")?;
-        if curves.is_null() {
-            return Err(FfiError::NullPointer("curves".into()));
-        }
-        // SAFETY: caller contract.
-        let options = unsafe { input_ref(options, "options") }?;
-        let closed = match closed {
-            0 => false,
-            1 => true,
-            other => {
-                return Err(BezjoinError::invalid(
-                    "closed",
-                    format!("{other} is neither 0 (open) nor 1 (closed)"),
-                )
-                .into());
-            }
-        };
-        // SAFETY: caller promises `curve_count` readable pointers.
-        let handles = unsafe { input_slice(curves, curve_count, "curves") }?;
-        // Checked before the count, so that a "count only" query already
-        // refuses what the real call would refuse without computing.
-        if let Some(i) = handles.iter().position(|h| h.is_null()) {
-            return Err(FfiError::NullPointer(format!("curves[{i}]")));
-        }
-        if curve_count < 2 {
+    }
+}
+
+/// The checked arguments of a chain call (`bzj_fillet_chain` and its
+/// variants).
+pub(crate) struct ChainCall<T> {
+    /// The curves, copied.
+    pub(crate) curves: Vec<Curve>,
+    /// `closed == 1`.
+    pub(crate) closed: bool,
+    /// What the call reads besides (its options).
+    pub(crate) options: T,
+    /// Room for every piece, checked.
+    pub(crate) pieces: HandleSlots,
+}
+
+/// Check a chain call's arguments in the documented order (`count`,
+/// `curves`, the options read by `read_options`, `closed`, NULL handles,
+/// fewer than 2 curves), write the number of pieces into `count`, and
+/// return `None` for a "count only" query (`capacity == 0` with NULL
+/// `out_pieces`), else the call with room checked for every piece.
+///
+/// # Safety
+/// `curves` is NULL or points to `curve_count` readable handle pointers
+/// (each NULL or live); `count` is NULL or writable.
+pub(crate) unsafe fn chain_call<T>(
+    curves: *const *const BzjCurve,
+    curve_count: usize,
+    closed: i32,
+    count: *mut usize,
+    pieces: HandleArray,
+    read_options: impl FnOnce() -> FfiResult<T>,
+) -> FfiResult<Option<ChainCall<T>>> {
+    let count = require_out(count, "count")?;
+    if curves.is_null() {
+        return Err(FfiError::NullPointer("curves".into()));
+    }
+    let options = read_options()?;
+    let closed = match closed {
+        0 => false,
+        1 => true,
+        other => {
             return Err(BezjoinError::invalid(
-                "curves",
-                format!("a chain needs at least 2 curves, {curve_count} given"),
+                "closed",
+                format!("{other} is neither 0 (open) nor 1 (closed)"),
             )
             .into());
         }
-        let mut chain_curves = Vec::with_capacity(curve_count);
-        for (i, &h) in handles.iter().enumerate() {
-            // SAFETY: each is a live handle (non-null, checked; caller contract).
-            chain_curves.push(unsafe { curve_ref(h, &format!("curves[{i}]")) }?);
-        }
-        let needed = if closed {
-            curve_count.saturating_mul(2)
-        } else {
-            curve_count.saturating_mul(2).saturating_sub(1)
-        };
-        // SAFETY: checked non-null.
-        unsafe { count.write(needed) };
-        if capacity == 0 && pieces.is_null() {
-            return Ok(());
-        }
-        let pieces = pieces.require()?;
-        let owned: Vec<Curve> = chain_curves.into_iter().cloned().collect();
-        pieces.check_room(needed)?;
-        let mut chain = ChainFilletOptions::open(options.to_core());
-        chain.closed = closed;
-        pieces.write(fillet_chain(&owned, &chain)?.pieces);
-        Ok(())
-    })
+    };
+    // SAFETY: caller promises `curve_count` readable pointers.
+    let handles = unsafe { input_slice(curves, curve_count, "curves") }?;
+    // Checked before the count, so that a "count only" query already
+    // refuses what the real call would refuse without computing.
+    if let Some(i) = handles.iter().position(|h| h.is_null()) {
+        return Err(FfiError::NullPointer(format!("curves[{i}]")));
+    }
+    if curve_count < 2 {
+        return Err(BezjoinError::invalid(
+            "curves",
+            format!("a chain needs at least 2 curves, {curve_count} given"),
+        )
+        .into());
+    }
+    let mut chain_curves = Vec::with_capacity(curve_count);
+    for (i, &h) in handles.iter().enumerate() {
+        // SAFETY: each is a live handle (non-null, checked; caller contract).
+        chain_curves.push(unsafe { curve_ref(h, &format!("curves[{i}]")) }?);
+    }
+    let needed = if closed {
+        curve_count.saturating_mul(2)
+    } else {
+        curve_count.saturating_mul(2).saturating_sub(1)
+    };
+    // SAFETY: checked non-null.
+    unsafe { count.write(needed) };
+    if pieces.is_null() && pieces.capacity() == 0 {
+        return Ok(None);
+    }
+    let pieces = pieces.require()?;
+    pieces.check_room(needed)?;
+    Ok(Some(ChainCall {
+        curves: chain_curves.into_iter().cloned().collect(),
+        closed,
+        options,
+        pieces,
+    }))
 }

@@ -2,12 +2,13 @@
 //! section 7; the contract's section "Geometric continuity").
 
 use bezjoin_core::{
-    BezjoinError, FairnessReport, GeometricOptions, MAX_GEOMETRIC_ORDER, connect_geometric,
-    fillet_radius,
+    BezjoinError, FairnessReport, GeometricOptions, MAX_GEOMETRIC_ORDER, RadiusFillet,
+    connect_geometric, fillet_radius, fillet_radius_chain,
 };
 
+use crate::fillet::{ChainCall, chain_call, chain_pieces_out, fillet_outputs};
 use crate::guard::guard;
-use crate::handles::{BzjCurve, HandleOut, require_all};
+use crate::handles::{BzjCurve, CheckedOut, HandleOut, require_all};
 use crate::pointers::{curve_ref, input_ref, input_slice, output_slice, write_optional};
 use crate::status::BzjStatus;
 
@@ -203,24 +204,203 @@ pub unsafe extern "C" fn bzj_fillet_radius(
     q_trimmed: *mut *mut BzjCurve,
     report: *mut BzjFairnessReport,
 ) -> BzjStatus {
-    // SAFETY: each is null or writable (caller contract).
-    let outs = unsafe {
-        [
-            HandleOut::cleared(p_trimmed, "p_trimmed"),
-            HandleOut::cleared(blend, "blend"),
-            HandleOut::cleared(q_trimmed, "q_trimmed"),
-        ]
+    let write_report = |f: &RadiusFillet| {
+        // SAFETY: NULL or writable (caller contract).
+        unsafe { write_optional(report, f.report.into()) };
+        Ok(())
     };
+    // SAFETY: caller contract.
+    unsafe {
+        fillet_radius_with(
+            p,
+            q,
+            radius,
+            order,
+            [p_trimmed, blend, q_trimmed],
+            write_report,
+        )
+    }
+}
+
+/// What a fillet by radius reports besides its pieces (a new struct of
+/// this library, not in the contract's list; the layout is fixed from its
+/// first release).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, Default)]
+pub struct BzjRadiusFilletReport {
+    /// Energy, curvature range and extrema of the blend (as
+    /// [`bzj_fillet_radius`] reports them).
+    pub fairness: BzjFairnessReport,
+    /// Largest distance of the blend from the circle of the G1 arc of the
+    /// same radius in the same corner (sampled at 257 parameters).
+    pub arc_deviation: f64,
+    /// The arc's touching point on P: where P is cut.
+    pub u0: f64,
+    /// The arc's touching point on Q: where Q is cut.
+    pub v0: f64,
+}
+
+/// [`bzj_fillet_radius`] with more of what it found: `report` (may be
+/// NULL) receives the fairness report, the blend's largest distance from
+/// the arc's circle and the touching points; `arc_centre` (may be NULL)
+/// receives the arc's centre, as many doubles as the curves' dimension.
+/// Outputs, guarantee and statuses as [`bzj_fillet_radius`].
+///
+/// # Safety
+/// As [`bzj_fillet_radius`]; `report` is NULL or writable; `arc_centre` is
+/// NULL or points to dimension-many writable doubles.
+#[unsafe(no_mangle)]
+#[allow(clippy::too_many_arguments)]
+pub unsafe extern "C" fn bzj_fillet_radius_detailed(
+    p: *const BzjCurve,
+    q: *const BzjCurve,
+    radius: f64,
+    order: usize,
+    p_trimmed: *mut *mut BzjCurve,
+    blend: *mut *mut BzjCurve,
+    q_trimmed: *mut *mut BzjCurve,
+    report: *mut BzjRadiusFilletReport,
+    arc_centre: *mut f64,
+) -> BzjStatus {
+    let write_report = |f: &RadiusFillet| {
+        if !arc_centre.is_null() {
+            let dim = f.arc_centre.len();
+            // SAFETY: the caller promises dimension-many doubles.
+            unsafe { output_slice(arc_centre, dim, dim, "arc_centre") }?
+                .copy_from_slice(&f.arc_centre);
+        }
+        let summary = BzjRadiusFilletReport {
+            fairness: f.report.into(),
+            arc_deviation: f.arc_deviation,
+            u0: f.u0,
+            v0: f.v0,
+        };
+        // SAFETY: NULL or writable (caller contract).
+        unsafe { write_optional(report, summary) };
+        Ok(())
+    };
+    // SAFETY: caller contract.
+    unsafe {
+        fillet_radius_with(
+            p,
+            q,
+            radius,
+            order,
+            [p_trimmed, blend, q_trimmed],
+            write_report,
+        )
+    }
+}
+
+/// The body of `bzj_fillet_radius` and `bzj_fillet_radius_detailed`: the
+/// fillet into the three handle slots, after `report` wrote what else the
+/// caller asked for.
+///
+/// # Safety
+/// `p`, `q` are NULL or live handles; each slot is NULL or writable.
+unsafe fn fillet_radius_with(
+    p: *const BzjCurve,
+    q: *const BzjCurve,
+    radius: f64,
+    order: usize,
+    [p_trimmed, blend, q_trimmed]: [*mut *mut BzjCurve; 3],
+    report: impl FnOnce(&RadiusFillet) -> crate::status::FfiResult<()>,
+) -> BzjStatus {
+    // SAFETY: each is null or writable (caller contract).
+    let outs = unsafe { fillet_outputs(p_trimmed, blend, q_trimmed) };
     guard(|| {
         // SAFETY: caller contract.
         let (p, q) = unsafe { (curve_ref(p, "p")?, curve_ref(q, "q")?) };
-        let [p_out, blend_out, q_out] = require_all(outs)?;
+        let outs = require_all(outs)?;
         let f = fillet_radius(p, q, radius, order)?;
-        // SAFETY: NULL or writable (caller contract).
-        unsafe { write_optional(report, f.report.into()) };
-        p_out.write(f.p_trimmed);
-        blend_out.write(f.blend);
-        q_out.write(f.q_trimmed);
+        report(&f)?;
+        write_radius_fillet(outs, f);
         Ok(())
     })
+}
+
+/// Round every corner of a chain of curves (a wire) by radius, each as
+/// [`bzj_fillet_radius`] rounds one: corner i between `curves[i]` and
+/// `curves[i + 1]` (and, when `closed == 1`, between the last curve and the
+/// first) is their shared vertex when one ends where the next starts
+/// (within 1e-9 of their coordinate size), else their crossing nearest the
+/// shared end (as [`crate::fillet::bzj_fillet_chain`] chooses it); it is
+/// rounded like the G1 arc of radius `radius` with a G^`order` blend of
+/// fair shape values. Pieces, `count`, `capacity` and the "count only"
+/// query as `bzj_fillet_chain` (trimmed curve 0, blend 0, trimmed curve 1,
+/// ...: `2 * curve_count - 1` handles open, `2 * curve_count` closed).
+/// `reports` (may be NULL) receives one [`BzjRadiusFilletReport`] per
+/// corner: `curve_count - 1` open, `curve_count` closed (not written by a
+/// "count only" query or on error).
+///
+/// @return BZJ_ERR_NULL_POINTER if `curves`, one of its handles or `count`
+///         is NULL, or `out_pieces` is NULL while `capacity > 0`;
+///         BZJ_ERR_BUFFER_TOO_SMALL if `0 < capacity <` the number needed;
+///         BZJ_ERR_INVALID_ARGUMENT if `closed` is not 0 or 1, fewer than 2
+///         curves are given, `radius` is not > 0, `order` is 0 or above 6,
+///         the arc does not fit a corner ("corner i radius"), or the arcs
+///         at the two ends of a curve overlap (naming `curves[i]`);
+///         BZJ_ERR_NON_FINITE if `radius` is NaN or infinite;
+///         BZJ_ERR_DIMENSION_MISMATCH if the curves' dimensions differ;
+///         BZJ_ERR_NO_INTERSECTION if a corner has no vertex or crossing, or
+///         its tangents are parallel (the message names the corner);
+///         BZJ_ERR_ILL_CONDITIONED if a corner's touching points or blend
+///         cannot be trusted.
+///
+/// # Safety
+/// `curves` is NULL or points to `curve_count` readable handle pointers
+/// (each NULL or live); `out_pieces` is NULL or points to `capacity`
+/// writable handle pointers; `count` is NULL or writable; `reports` is
+/// NULL or points to the corner count of writable reports.
+#[unsafe(no_mangle)]
+#[allow(clippy::too_many_arguments)]
+pub unsafe extern "C" fn bzj_fillet_radius_chain(
+    curves: *const *const BzjCurve,
+    curve_count: usize,
+    radius: f64,
+    order: usize,
+    closed: i32,
+    out_pieces: *mut *mut BzjCurve,
+    capacity: usize,
+    count: *mut usize,
+    reports: *mut BzjRadiusFilletReport,
+) -> BzjStatus {
+    // SAFETY: caller promises NULL or `capacity` writable handle pointers.
+    let pieces = unsafe { chain_pieces_out(out_pieces, capacity) };
+    guard(|| {
+        // SAFETY: caller contract (`curves`, `count`).
+        let call = unsafe { chain_call(curves, curve_count, closed, count, pieces, || Ok(())) }?;
+        let Some(ChainCall {
+            curves,
+            closed,
+            pieces,
+            ..
+        }) = call
+        else {
+            return Ok(());
+        };
+        let rounded = fillet_radius_chain(&curves, radius, order, closed)?;
+        if !reports.is_null() {
+            let n = rounded.corners.len();
+            // SAFETY: the caller promises the corner count of reports.
+            let out = unsafe { std::slice::from_raw_parts_mut(reports, n) };
+            for (slot, c) in out.iter_mut().zip(&rounded.corners) {
+                *slot = BzjRadiusFilletReport {
+                    fairness: c.report.into(),
+                    arc_deviation: c.arc_deviation,
+                    u0: c.u0,
+                    v0: c.v0,
+                };
+            }
+        }
+        pieces.write(rounded.pieces);
+        Ok(())
+    })
+}
+
+/// The three pieces of a fillet by radius into the caller's slots.
+fn write_radius_fillet([p_out, blend_out, q_out]: [CheckedOut; 3], f: RadiusFillet) {
+    p_out.write(f.p_trimmed);
+    blend_out.write(f.blend);
+    q_out.write(f.q_trimmed);
 }

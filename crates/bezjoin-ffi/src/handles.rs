@@ -163,6 +163,11 @@ impl HandleArray {
         self.slots.is_null()
     }
 
+    /// The number of slots the caller declared.
+    pub(crate) fn capacity(&self) -> usize {
+        self.capacity
+    }
+
     /// A required array: `BZJ_ERR_NULL_POINTER` naming it when NULL.
     pub(crate) fn require(self) -> FfiResult<HandleSlots> {
         self.given()

@@ -59,12 +59,15 @@ pub use connect::{
 };
 pub use curve::{AsCurveRef, Curve, CurveJet, CurveRef};
 pub use error::{BezjoinError, Result};
-pub use fillet::{ARC_DEVIATION_SAMPLES, RadiusFillet, VERTEX_TOLERANCE, fillet_radius};
+pub use fillet::{
+    ARC_DEVIATION_SAMPLES, RadiusChainFillet, RadiusCorner, RadiusFillet, VERTEX_TOLERANCE,
+    fillet_radius, fillet_radius_chain,
+};
 pub use fillet::{
     ChainCorner, ChainFillet, ChainFilletOptions, DEFAULT_PARALLEL_THRESHOLD,
-    DEFAULT_RELATIVE_DEVIATION_ACCURACY, DEFAULT_RELATIVE_LENGTH_ACCURACY, DeviationFillet,
-    DeviationFilletOptions, Fillet, FilletOptions, distance_to_curve, fillet, fillet_at,
-    fillet_chain, fillet_vertex, fillet_within_deviation,
+    DEFAULT_RELATIVE_DEVIATION_ACCURACY, DEFAULT_RELATIVE_LENGTH_ACCURACY, DEVIATION_SCALE_STEPS,
+    DEVIATION_SCALE_TOLERANCE, DeviationFillet, DeviationFilletOptions, Fillet, FilletOptions,
+    distance_to_curve, fillet, fillet_at, fillet_chain, fillet_vertex, fillet_within_deviation,
 };
 pub use geometric::{
     CURVATURE_SAMPLES, ENERGY_PANELS, FairnessReport, GeometricConnection, GeometricOptions,

@@ -9,6 +9,7 @@ mod common;
 
 use bezjoin_core::{
     BezierCurve, BezjoinError, Curve, KnotSide, NurbsCurve, ellipse_arc, fillet_radius,
+    fillet_radius_chain,
 };
 
 fn dot(a: &[f64], b: &[f64]) -> f64 {
@@ -46,16 +47,22 @@ fn jet_of(c: &Curve, u: f64, side: KnotSide) -> Vec<f64> {
 
 /// G^order between the trimmed pieces and the blend at both joins.
 fn assert_gk(f: &bezjoin_core::RadiusFillet, order: usize, d: usize) {
-    let (_, pu) = f.p_trimmed.domain();
-    let (qv, _) = f.q_trimmed.domain();
+    assert_joins_gk(&f.p_trimmed, &f.blend, &f.q_trimmed, order, d);
+}
+
+/// G^order where `left` ends and `blend` starts, and where `blend` ends and
+/// `right` starts, judged by T, K and dK/ds (never raw derivatives).
+fn assert_joins_gk(left: &Curve, blend: &BezierCurve, right: &Curve, order: usize, d: usize) {
+    let (_, pu) = left.domain();
+    let (qv, _) = right.domain();
     let pairs = [
         (
-            jet_of(&f.p_trimmed, pu, KnotSide::Left),
-            f.blend.eval_derivatives(0.0, 3),
+            jet_of(left, pu, KnotSide::Left),
+            blend.eval_derivatives(0.0, 3),
         ),
         (
-            jet_of(&f.q_trimmed, qv, KnotSide::Right),
-            f.blend.eval_derivatives(1.0, 3),
+            jet_of(right, qv, KnotSide::Right),
+            blend.eval_derivatives(1.0, 3),
         ),
     ];
     for (side, (a, b)) in pairs.iter().enumerate() {
@@ -181,4 +188,133 @@ fn what_does_not_fit_is_refused_by_name() {
         fillet_radius(&a, &straight, 0.5, 2),
         Err(BezjoinError::NoIntersection { .. })
     ));
+}
+
+/// A wire rounded corner by corner: every join of the result (trimmed
+/// curve, blend, trimmed curve) is G^k by T, K and dK/ds; each corner is
+/// what `fillet_radius` gives for its two curves alone (the same touching
+/// points and blend, bit for bit), its touching points lie on the arc's
+/// circle with the radius perpendicular to the curve; the pieces of a
+/// closed wire go round once (the last blend ends where the first piece
+/// starts).
+#[test]
+fn every_corner_of_a_wire_is_rounded_by_radius() {
+    let line = |a: [f64; 2], b: [f64; 2]| Curve::Bezier(BezierCurve::from_rows(&[a, b]).unwrap());
+    let bulge = Curve::Bezier(
+        BezierCurve::from_rows(&[[10.0, 6.0], [7.0, 9.0], [3.0, 8.0], [0.0, 6.0]]).unwrap(),
+    );
+    // A closed wire: three lines and a cubic, corners of 90, 90+ and other angles.
+    let closed = vec![
+        line([0.0, 0.0], [10.0, 0.0]),
+        line([10.0, 0.0], [10.0, 6.0]),
+        bulge,
+        line([0.0, 6.0], [0.0, 0.0]),
+    ];
+    // An open zigzag of lines (turning left and right).
+    let open = vec![
+        line([0.0, 0.0], [8.0, 0.0]),
+        line([8.0, 0.0], [11.0, 5.0]),
+        line([11.0, 5.0], [18.0, 2.0]),
+    ];
+    for (wire, is_closed) in [(&closed, true), (&open, false)] {
+        for order in [2, 3] {
+            let r = 1.0;
+            let rounded = fillet_radius_chain(wire, r, order, is_closed).unwrap();
+            let n = wire.len();
+            let corners = if is_closed { n } else { n - 1 };
+            assert_eq!(rounded.corners.len(), corners);
+            assert_eq!(
+                rounded.pieces.len(),
+                if is_closed { 2 * n } else { 2 * n - 1 }
+            );
+            for i in 0..corners {
+                let blend = match &rounded.pieces[2 * i + 1] {
+                    Curve::Bezier(b) => b,
+                    other => panic!("corner {i}: the blend is {other:?}"),
+                };
+                let right = &rounded.pieces[(2 * i + 2) % rounded.pieces.len()];
+                assert_joins_gk(&rounded.pieces[2 * i], blend, right, order, 2);
+                let single = fillet_radius(&wire[i], &wire[(i + 1) % n], r, order).unwrap();
+                let corner = &rounded.corners[i];
+                assert_eq!((corner.u0, corner.v0), (single.u0, single.v0), "corner {i}");
+                assert_eq!(blend, &single.blend, "corner {i}");
+                assert_eq!(corner.arc_centre, single.arc_centre);
+                assert_eq!(corner.report, single.report);
+                let (p, q) = (&wire[i], &wire[(i + 1) % n]);
+                let tangent = |c: &Curve, u: f64| jet_of(c, u, KnotSide::Left)[2..4].to_vec();
+                assert_touches(
+                    &p.eval(corner.u0),
+                    &tangent(p, corner.u0),
+                    &corner.arc_centre,
+                    r,
+                );
+                assert_touches(
+                    &q.eval(corner.v0),
+                    &tangent(q, corner.v0),
+                    &corner.arc_centre,
+                    r,
+                );
+                assert_eq!(
+                    corner.report.curvature_extrema, 1,
+                    "corner {i}: {:?}",
+                    corner.report
+                );
+            }
+            // Consecutive pieces meet end to start, round the whole wire when closed.
+            let pieces = &rounded.pieces;
+            let links = if is_closed {
+                pieces.len()
+            } else {
+                pieces.len() - 1
+            };
+            for k in 0..links {
+                let (a, b) = (&pieces[k], &pieces[(k + 1) % pieces.len()]);
+                let gap = common::distance(&a.eval(a.domain().1), &b.eval(b.domain().0));
+                assert!(gap <= 1e-12 * 20.0, "pieces {k} and {}: gap {gap:e}", k + 1);
+            }
+        }
+    }
+}
+
+/// A radius whose arcs at the two ends of one curve overlap is refused
+/// naming that curve; a radius that does not fit one corner names it.
+#[test]
+fn a_radius_too_large_for_a_wire_is_refused_by_name() {
+    let line = |a: [f64; 2], b: [f64; 2]| BezierCurve::from_rows(&[a, b]).unwrap();
+    // The middle side is 2 long: radius 1.5 at 90-degree corners needs 3.
+    let wire = [
+        line([0.0, 0.0], [10.0, 0.0]),
+        line([10.0, 0.0], [10.0, 2.0]),
+        line([10.0, 2.0], [0.0, 2.0]),
+    ];
+    match fillet_radius_chain(&wire, 1.5, 2, false) {
+        Err(BezjoinError::InvalidArgument { name, .. }) => assert_eq!(name, "curves[1]"),
+        other => panic!("{other:?}"),
+    }
+    match fillet_radius_chain(&wire, 0.5, 2, false) {
+        Ok(rounded) => assert_eq!(rounded.pieces.len(), 5),
+        other => panic!("{other:?}"),
+    }
+    // Radius 20 does not fit the first corner at all (the arc would touch
+    // beyond the 2-long side).
+    match fillet_radius_chain(&wire, 20.0, 2, false) {
+        Err(BezjoinError::InvalidArgument { name, .. }) => assert_eq!(name, "corner 0 radius"),
+        other => panic!("{other:?}"),
+    }
+    // A straight continuation is no corner: the message names it.
+    let straight = [line([0.0, 0.0], [1.0, 0.0]), line([1.0, 0.0], [2.0, 0.0])];
+    match fillet_radius_chain(&straight, 0.1, 2, false) {
+        Err(BezjoinError::NoIntersection { reason }) => {
+            assert!(reason.starts_with("corner 0: "), "{reason}")
+        }
+        other => panic!("{other:?}"),
+    }
+    match fillet_radius_chain(&wire[..1], 1.0, 2, false) {
+        Err(BezjoinError::InvalidArgument { name, .. }) => assert_eq!(name, "curves"),
+        other => panic!("{other:?}"),
+    }
+    match fillet_radius_chain(&wire, -1.0, 2, false) {
+        Err(BezjoinError::InvalidArgument { name, .. }) => assert_eq!(name, "radius"),
+        other => panic!("{other:?}"),
+    }
 }

@@ -31,11 +31,12 @@ use bezjoin_core::{
     ChainMerge, ChainMergeOptions, ConnectOptions, Connection, Curve, DeviationFillet,
     DeviationFilletOptions, Fillet, FilletOptions, GeometricConnection, GeometricOptions,
     IntersectOptions, Intersection, IntersectionKind, KeepPoint, LagrangeOptions, LagrangeSpline,
-    Merge, MergeMetric, MergeOptions, NurbsCurve, PointConstraint, RadiusFillet,
+    Merge, MergeMetric, MergeOptions, NurbsCurve, PointConstraint, RadiusChainFillet, RadiusFillet,
     bezier_from_lagrange_points, chord_length_params, connect, connect_dense_reference,
     connect_geometric, connect_unchecked, distance_to_curve, ellipse_arc, fairness_energy, fillet,
-    fillet_at, fillet_chain, fillet_radius, fillet_vertex, fillet_within_deviation, intersect,
-    lagrange_points_of_bezier, lagrange_spline, merge, merge_chain, merge_metric_at,
+    fillet_at, fillet_chain, fillet_radius, fillet_radius_chain, fillet_vertex,
+    fillet_within_deviation, intersect, lagrange_points_of_bezier, lagrange_spline, merge,
+    merge_chain, merge_metric_at,
 };
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngAlgorithm, TestCaseError, TestRng, TestRunner};
@@ -180,6 +181,20 @@ impl Numbers for RadiusFillet {
         out.extend_from_slice(&self.p_shape);
         out.extend_from_slice(&self.q_shape);
         out.extend([self.u0, self.v0, self.arc_deviation]);
+    }
+}
+
+impl Numbers for RadiusChainFillet {
+    fn numbers(&self, out: &mut Vec<f64>) {
+        for piece in &self.pieces {
+            piece.numbers(out);
+        }
+        for c in &self.corners {
+            out.extend_from_slice(&c.arc_centre);
+            out.extend_from_slice(&c.p_shape);
+            out.extend_from_slice(&c.q_shape);
+            out.extend([c.u0, c.v0, c.arc_deviation]);
+        }
     }
 }
 
@@ -760,6 +775,12 @@ fn geometric_connect_and_radius_fillet_survive_hostile_inputs() {
                 let radius = (radius_fraction * p.coordinate_scale()).max(5e-324);
                 checked("fillet_radius", &input, || {
                     fillet_radius(&p, &q, radius, k.max(1))
+                })?;
+                // A closed wire of the curve, its rotation and back: three
+                // corners rounded by the same radius.
+                let wire = [p.clone(), q.clone(), rotated(&q)];
+                checked("fillet_radius_chain", &input, || {
+                    fillet_radius_chain(&wire, radius, k.max(1), true)
                 })?;
             }
             Ok(())

@@ -32,6 +32,21 @@ def selected_edges(count):
     return edges
 
 
+def selected_path():
+    """The edges of one selected wire (in its order), or picked edges in the order
+    they were picked (at least two)."""
+    selections = FreeCADGui.Selection.getSelectionEx()
+    edges = [s for sel in selections for s in sel.SubObjects if s.ShapeType == "Edge"]
+    if not edges and len(selections) == 1 and hasattr(selections[0].Object, "Shape"):
+        wires = selections[0].Object.Shape.Wires
+        if len(wires) == 1:
+            edges = list(wires[0].OrderedEdges)
+    if len(edges) < 2:
+        raise SelectionError("select one wire (a sketch, a polyline...) or its edges in path "
+                             f"order (found {len(edges)} edges)")
+    return edges
+
+
 def selected_points():
     """On-curve points: picked vertices in order, or the ordered vertices of one
     selected wire (a polyline through the points)."""
@@ -91,9 +106,17 @@ def ask(title, fields):
 ORDER_FIELDS = [
     ("p_order", "Continuity order at the first edge", "int", -1, -1),
     ("q_order", "Continuity order at the second edge", "int", -1, -1),
-    ("p_scale", "Shape scale at the first edge", "float", 1.0, (1e-6, 1e6)),
-    ("q_scale", "Shape scale at the second edge", "float", 1.0, (1e-6, 1e6)),
+    ("p_scale", "Shape scale at the first edge (when not automatic)", "float", 1.0,
+     (1e-6, 1e6)),
+    ("q_scale", "Shape scale at the second edge (when not automatic)", "float", 1.0,
+     (1e-6, 1e6)),
 ]
+
+#: Checked by default: the automatic scale never loops (the paper's scale 1 can,
+#: when the edges are long against the gap or the setback); unchecked, the two
+#: scales above are used.
+AUTO_SCALE_FIELD = ("auto_scale", "Choose the scales automatically (least bending; never loops)",
+                    "bool", True, None)
 
 
 class Command:
@@ -141,9 +164,7 @@ class BlendCommand(Command):
          (0.0, 1.0)),
         ("v0", "Position on the second edge (fraction of its range; 0 = its start)", "float",
          0.0, (0.0, 1.0)),
-    ] + ORDER_FIELDS + [
-        ("auto_scale", "Choose the scales automatically (least bending)", "bool", False, None),
-    ]
+    ] + ORDER_FIELDS + [AUTO_SCALE_FIELD]
 
     def run(self, document, inputs, parameters):
         shape = operations.blend_edges(inputs[0], inputs[1], **parameters)
@@ -157,7 +178,7 @@ class RoundCornerCommand(Command):
         ("setback", "Setback along the first edge", "float", 1.0, (1e-9, 1e9)),
         ("second_setback", "Setback along the second edge", "float", 1.0, (1e-9, 1e9)),
     ] + ORDER_FIELDS + [
-        ("auto_scale", "Choose the scales automatically (least bending)", "bool", False, None),
+        AUTO_SCALE_FIELD,
         ("reverse_first", "Reverse the first edge (crossing edges)", "bool", False, None),
         ("reverse_second", "Reverse the second edge (crossing edges)", "bool", False, None),
     ]
@@ -165,6 +186,29 @@ class RoundCornerCommand(Command):
     def run(self, document, inputs, parameters):
         shape = operations.round_corner(inputs[0], inputs[1], **parameters)
         operations.add_feature(document, "RoundedCorner", shape)
+
+
+class RoundWireByRadiusCommand(Command):
+    title = "Round wire corners by radius"
+    tooltip = ("Round every corner of a wire (open or closed) like the circular fillet of a "
+               "radius, with a fair G2 (or G^k) blend at each (bezjoin fillet_radius_chain)")
+    fields = [
+        ("radius", "Radius", "float", 1.0, (1e-9, 1e9)),
+        ("order", "Geometric continuity order G^k (1..6)", "int", 2, 1),
+        ("closed", "Closed: also round the corner from the last edge to the first "
+                   "(\"auto\": when the wire closes)", "choice", "auto", ("auto", "yes", "no")),
+    ]
+
+    def inputs(self):
+        return selected_path()
+
+    def run(self, document, inputs, parameters):
+        closed = {"auto": None, "yes": True, "no": False}[parameters.pop("closed")]
+        rounded = operations.round_wire_by_radius(inputs, closed=closed, **parameters)
+        operations.add_feature(document, "RoundedWire", rounded.shape, {
+            "FilletRadius": parameters["radius"],
+            "MaxArcDeviation": rounded.max_arc_deviation})
+        FreeCAD.Console.PrintMessage(f"{self.title}: {rounded.describe()}\n")
 
 
 class MergeCommand(Command):
@@ -208,6 +252,7 @@ class SplineCommand(Command):
 COMMANDS = {
     "Bezjoin_Blend": (BlendCommand, "connect"),
     "Bezjoin_RoundCorner": (RoundCornerCommand, "fillet"),
+    "Bezjoin_RoundWireByRadius": (RoundWireByRadiusCommand, "fillet_radius_chain"),
     "Bezjoin_Merge": (MergeCommand, "merge"),
     "Bezjoin_Spline": (SplineCommand, "lagrange_spline"),
 }

@@ -71,7 +71,7 @@ def _wire(curves):
 
 
 def blend_edges(first_edge, second_edge, *, u0=1.0, v0=0.0, p_order=None, q_order=None,
-                p_scale=1.0, q_scale=1.0, auto_scale=False, orient=True):
+                p_scale=None, q_scale=None, auto_scale=None, orient=True):
     """The blend curve from ``first_edge`` at ``u0`` to ``second_edge`` at ``v0``
     (:func:`bezjoin.connect`), as a ``Part.Edge``.
 
@@ -82,9 +82,13 @@ def blend_edges(first_edge, second_edge, *, u0=1.0, v0=0.0, p_order=None, q_orde
     the defaults ``u0 = 1``, ``v0 = 0`` bridge the gap between the facing ends.
     ``p_order``/``q_order`` default to each curve's degree (the paper); any
     order is allowed (a line's derivatives above the first are zero, a
-    circle has every order). With ``auto_scale`` the scales are ignored and
-    chosen by the library (:func:`bezjoin.connect_auto_scale`: least bending
-    energy).
+    circle has every order).
+
+    The scale is automatic by default (:func:`bezjoin.connect` without scales:
+    least bending energy), so the blend never loops; ``p_scale``/``q_scale``
+    (or ``auto_scale=False`` for the paper's 1.0) give the raw construction,
+    and ``auto_scale=True`` ignores given scales (the rule of
+    :func:`bezjoin.connect`).
     """
     with edge_curve(first_edge, "first edge") as p, edge_curve(second_edge, "second edge") as q:
         if orient:
@@ -93,17 +97,14 @@ def blend_edges(first_edge, second_edge, *, u0=1.0, v0=0.0, p_order=None, q_orde
             p, q = p.copy(), q.copy()
         with p, q:
             u, v = _at_fraction(p, u0), _at_fraction(q, v0)
-            if auto_scale:
-                with bezjoin.connect_auto_scale(p, u, q, v, p_order=p_order,
-                                                q_order=q_order) as result:
-                    return result.curve.to_edge()
             with bezjoin.connect(p, u, q, v, p_order=p_order, q_order=q_order,
-                                 p_scale=p_scale, q_scale=q_scale) as blend:
+                                 p_scale=p_scale, q_scale=q_scale,
+                                 auto_scale=auto_scale) as blend:
                 return blend.to_edge()
 
 
 def round_corner(first_edge, second_edge, *, setback, second_setback=None, p_order=None,
-                 q_order=None, p_scale=1.0, q_scale=1.0, auto_scale=False,
+                 q_order=None, p_scale=None, q_scale=None, auto_scale=None,
                  reverse_first=False, reverse_second=False):
     """The rounded path "along the first edge to the corner, then along the second"
     as a ``Part.Wire`` of three edges (kept part of the first edge, the blend,
@@ -121,9 +122,12 @@ def round_corner(first_edge, second_edge, *, setback, second_setback=None, p_ord
     ``setback`` is the arc length kept off the corner along the first edge,
     ``second_setback`` (default: the same) along the second. Orders above an
     edge's degree are allowed (the edge is elevated first, exactly).
-    With ``auto_scale`` the scales are ignored and chosen by the library
-    (:func:`bezjoin.fillet` with ``auto_scale=True``: least bending energy);
-    use it when the edges are long against the setback, where scale 1 loops.
+    The scale is automatic by default (least bending energy:
+    :func:`bezjoin.fillet_vertex` / :func:`bezjoin.fillet` without scales), so
+    the blend never loops, also when the edges are long against the setback,
+    where the paper's scale 1 does; ``p_scale``/``q_scale`` (or
+    ``auto_scale=False`` for 1.0) give the raw construction, and
+    ``auto_scale=True`` ignores given scales.
     """
     second_setback = setback if second_setback is None else second_setback
     with edge_curve(first_edge, "first edge") as p, edge_curve(second_edge, "second edge") as q:
@@ -132,22 +136,113 @@ def round_corner(first_edge, second_edge, *, setback, second_setback=None, p_ord
             gap = TOUCH_TOLERANCE * max(1.0, p.length(), q.length())
             touching = _distance(_ends(p_oriented)[1], _ends(q_oriented)[0]) <= gap
             options = dict(p_setback=setback, q_setback=second_setback, p_order=p_order,
-                           q_order=q_order, p_scale=p_scale, q_scale=q_scale)
-            if touching and not auto_scale:
+                           q_order=q_order, p_scale=p_scale, q_scale=q_scale,
+                           auto_scale=auto_scale)
+            if touching:
                 # The vertex itself, whatever other crossings the edges have.
                 with bezjoin.fillet_vertex(p_oriented, q_oriented, gap=gap,
                                            **options) as result:
                     return _wire(result.curves())
-            if touching:
-                # bzj_fillet_vertex has no automatic scale: the crossing at
-                # the shared end, found by the intersection search.
-                with bezjoin.fillet(p_oriented, q_oriented, auto_scale=True,
-                                    **options) as result:
-                    return _wire(result.curves())
         with (p.reverse() if reverse_first else p.copy()) as p_work, \
                 (q.reverse() if reverse_second else q.copy()) as q_work, \
-                bezjoin.fillet(p_work, q_work, auto_scale=auto_scale, **options) as result:
+                bezjoin.fillet(p_work, q_work, **options) as result:
             return _wire(result.curves())
+
+
+class RoundedWire:
+    """A wire with every corner rounded by radius (:func:`round_wire_by_radius`):
+    the ``shape`` (a ``Part.Wire``), whether it is ``closed``, and one
+    :class:`bezjoin.RadiusCornerReport` per corner in ``reports`` (corner ``i``
+    between edge ``i`` and the next one, in the wire's order)."""
+
+    def __init__(self, shape, closed, reports):
+        self.shape = shape
+        self.closed = closed
+        self.reports = reports
+
+    @property
+    def max_arc_deviation(self):
+        """The largest distance of a blend from its corner's arc."""
+        return max(report.arc_deviation for report in self.reports)
+
+    def describe(self):
+        """One line for the report view."""
+        kind = "closed" if self.closed else "open"
+        return (f"{len(self.reports)} corners of the {kind} wire rounded; largest distance "
+                f"of a blend from its arc {self.max_arc_deviation:.6g}")
+
+
+def _path_curves(edges):
+    """The curves of ``edges`` (in path order) each oriented to run from the end of the
+    previous one (the first one towards the second), and whether the path closes.
+    The caller closes the curves."""
+    curves = []
+    try:
+        for i, edge in enumerate(edges):
+            curves.append(edge_curve(edge, f"edge {i + 1}"))
+        if len(curves) < 2:
+            raise bezjoin.BezjoinError.invalid_argument(
+                f"a wire to round needs at least 2 edges, {len(curves)} given")
+        size = max([1.0] + [c.length() for c in curves])
+        oriented = []
+        # The first curve runs towards the second: its end is the closer of its ends.
+        first_start, first_end = _ends(curves[0])
+        second_ends = _ends(curves[1])
+        if min(_distance(first_start, e) for e in second_ends) < \
+                min(_distance(first_end, e) for e in second_ends):
+            oriented.append(curves[0].reverse())
+        else:
+            oriented.append(curves[0].copy())
+        for i, curve in enumerate(curves[1:], start=1):
+            previous_end = _ends(oriented[-1])[1]
+            start, end = _ends(curve)
+            if _distance(end, previous_end) < _distance(start, previous_end):
+                oriented.append(curve.reverse())
+            else:
+                oriented.append(curve.copy())
+            if min(_distance(previous_end, start), _distance(previous_end, end)) > \
+                    TOUCH_TOLERANCE * size:
+                for c in oriented:
+                    c.close()
+                raise bezjoin.BezjoinError.invalid_argument(
+                    f"edge {i + 1} does not start where edge {i} ends: the edges are not "
+                    "one path")
+        closed = _distance(_ends(oriented[-1])[1], _ends(oriented[0])[0]) <= \
+            TOUCH_TOLERANCE * size
+        return oriented, closed
+    finally:
+        for curve in curves:
+            curve.close()
+
+
+def round_wire_by_radius(edges, radius, *, order=2, closed=None):
+    """Every corner of a path of edges rounded like the circular fillet of ``radius``,
+    with a fair G^order blend at each (:func:`bezjoin.fillet_radius_chain`;
+    default G2): a ``Part.Wire`` whose edges are the kept parts of the edges and
+    the blends, in path order. Blends by radius have no scales and never loop.
+
+    ``edges``: a ``Part.Wire`` (its ``OrderedEdges``) or edges in path order
+    (each starting where the previous ends, in either direction; they are
+    oriented along the path). ``closed``: round the corner from the last edge
+    back to the first too; default: whether the path closes. Returns a
+    :class:`RoundedWire`.
+
+    Raises:
+        bezjoin.BezjoinError: when the arc of ``radius`` does not fit a corner
+            (the message names the corner and ``radius``), arcs overlap on an
+            edge, the edges are not one path, ...
+    """
+    if hasattr(edges, "OrderedEdges"):
+        edges = edges.OrderedEdges
+    curves, path_closes = _path_curves(list(edges))
+    closed = path_closes if closed is None else closed
+    try:
+        with bezjoin.fillet_radius_chain(curves, radius, order=order,
+                                         closed=bool(closed)) as result:
+            return RoundedWire(_wire(result.pieces), bool(closed), list(result.reports))
+    finally:
+        for curve in curves:
+            curve.close()
 
 
 class MergedEdge:

@@ -24,7 +24,7 @@ use crate::arc::circular_fillet;
 use crate::check::{JoinCheck, Side, curve_json, derivatives, distance, reference_sizes, worst};
 use crate::job::{JobError, Located, ObjectReader};
 use crate::ops::connect::read_scale_choice;
-use crate::ops::fillet_radius::{self, DEFAULT_RADIUS_ORDER};
+use crate::ops::fillet_radius;
 use crate::ops::{OperationKind, Scenario, draw_part};
 use crate::svg::{CurveItem, Figure, Marker, MarkerKind, Role};
 use crate::{CliError, Outcome, Summary};
@@ -118,14 +118,7 @@ pub fn parse(job: &Located) -> Result<FilletJob, JobError> {
     if let Some(radius) = obj.optional("radius") {
         return parse_radius(&obj, p, q, radius.positive()?);
     }
-    for key in ["order", "compare"] {
-        if let Some(f) = obj.optional(key) {
-            return Err(JobError::new(
-                f.path.clone(),
-                "is only used together with \"radius\"",
-            ));
-        }
-    }
+    fillet_radius::refuse_without_radius(&obj, &["order", "compare"])?;
     let p_order = obj
         .optional("p_order")
         .map(|f| f.count())
@@ -229,33 +222,23 @@ fn parse_radius(
     q: Curve,
     radius: f64,
 ) -> Result<FilletJob, JobError> {
-    for key in [
-        "p_setback",
-        "q_setback",
-        "max_deviation",
-        "setback_ratio",
-        "vertex",
-        "gap",
-        "p_order",
-        "q_order",
-        "p_scale",
-        "q_scale",
-        "auto_scale",
-    ] {
-        if let Some(f) = obj.optional(key) {
-            return Err(JobError::new(
-                f.path.clone(),
-                "cannot be given together with \"radius\" (the arc of the radius sets the cuts, \
-                 \"order\" the continuity G^k at both, and the shape values are chosen fair; the \
-                 corner is the vertex when P ends where Q starts, else the first crossing)",
-            ));
-        }
-    }
-    let order = obj
-        .optional("order")
-        .map(|f| f.count())
-        .transpose()?
-        .unwrap_or(DEFAULT_RADIUS_ORDER);
+    let order = fillet_radius::read_radius_fields(
+        obj,
+        &[
+            "p_setback",
+            "q_setback",
+            "max_deviation",
+            "setback_ratio",
+            "vertex",
+            "gap",
+            "p_order",
+            "q_order",
+            "p_scale",
+            "q_scale",
+            "auto_scale",
+        ],
+        "the corner is the vertex when P ends where Q starts, else the first crossing",
+    )?;
     let compare = obj
         .optional("compare")
         .map(|f| f.boolean())

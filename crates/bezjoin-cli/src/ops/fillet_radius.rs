@@ -21,17 +21,17 @@
 //! ranges, jumps and energies.
 
 use bezjoin_core::{
-    BezierCurve, Curve, CurveRef, FilletOptions, KnotSide, RadiusFillet, curvature_variation,
-    fairness_report, fillet_at, fillet_radius,
+    BezierCurve, Curve, CurveRef, FairnessReport, FilletOptions, Intersection, KnotSide,
+    RadiusFillet, curvature_variation, fairness_report, fillet_at, fillet_radius,
 };
 use serde_json::{Value, json};
 
 use crate::check::{JoinCheck, curve_json, derivatives, distance, worst};
 use crate::curvature::{CurvatureProfile, PathPiece};
-use crate::job::JobError;
+use crate::job::{JobError, ObjectReader};
 use crate::ops::connect_geometric::{list, local_part, sampled_length};
 use crate::ops::draw_part;
-use crate::svg::{CurveItem, Figure, Marker, MarkerKind, Plot, Role, Shape};
+use crate::svg::{CurveItem, Figure, Marker, MarkerKind, Plot, PlotSeries, Role, Shape};
 use crate::{CliError, Outcome, Summary};
 
 /// Default of the job's `order` with `"radius"`: G2.
@@ -41,25 +41,80 @@ pub const DEFAULT_RADIUS_ORDER: usize = 2;
 /// its markers' labels in the caption instead of next to them.
 const SMALL_ROUNDING: f64 = 0.15;
 
+/// One corner rounded by radius as the tool re-measures it: the given
+/// curves, the returned pieces around the corner and the library's data
+/// (of [`fillet_radius`], or of one corner of
+/// [`bezjoin_core::fillet_radius_chain`]).
+pub(crate) struct RoundedCorner<'a> {
+    /// The given curve before the corner.
+    pub p: &'a Curve,
+    /// The given curve after the corner.
+    pub q: &'a Curve,
+    /// The returned part of P, ending at the cut `u0`.
+    pub p_kept: &'a Curve,
+    /// The blend.
+    pub blend: &'a BezierCurve,
+    /// The returned part of Q, starting at the cut `v0`.
+    pub q_kept: &'a Curve,
+    /// The corner rounded.
+    pub corner: &'a Intersection,
+    /// The cut on P.
+    pub u0: f64,
+    /// The cut on Q.
+    pub v0: f64,
+    /// The arc's centre.
+    pub arc_centre: &'a [f64],
+    /// The library's largest distance of the blend from the arc's circle.
+    pub arc_deviation: f64,
+    /// Shape values at P.
+    pub p_shape: &'a [f64],
+    /// Shape values at Q.
+    pub q_shape: &'a [f64],
+    /// The library's fairness report of the blend.
+    pub report: &'a FairnessReport,
+}
+
+impl<'a> RoundedCorner<'a> {
+    /// The corner of a single fillet by radius.
+    fn of_fillet(p: &'a Curve, q: &'a Curve, f: &'a RadiusFillet) -> Self {
+        RoundedCorner {
+            p,
+            q,
+            p_kept: &f.p_trimmed,
+            blend: &f.blend,
+            q_kept: &f.q_trimmed,
+            corner: &f.corner,
+            u0: f.u0,
+            v0: f.v0,
+            arc_centre: &f.arc_centre,
+            arc_deviation: f.arc_deviation,
+            p_shape: &f.p_shape,
+            q_shape: &f.q_shape,
+            report: &f.report,
+        }
+    }
+}
+
 /// What the tool measures of the corner and the cuts.
-struct CornerMeasure {
+pub(crate) struct CornerMeasure {
     /// Angle between P's arriving and Q's leaving tangent at the corner.
-    turning_angle: f64,
+    pub turning_angle: f64,
     /// `r tan(theta / 2)`.
-    tangent_length: f64,
+    pub tangent_length: f64,
     /// Arc length along P from the cut to the corner.
-    p_setback: f64,
+    pub p_setback: f64,
     /// Arc length along Q from the corner to the cut.
-    q_setback: f64,
+    pub q_setback: f64,
     /// `|C - P(u0)|`, `|C - Q(v0)|`.
-    centre_distances: [f64; 2],
+    pub centre_distances: [f64; 2],
     /// The corner is where P ends and Q starts.
-    vertex: bool,
+    pub vertex: bool,
 }
 
 impl CornerMeasure {
-    fn new(p: &Curve, q: &Curve, f: &RadiusFillet, radius: f64) -> Self {
-        let x = &f.corner;
+    /// Measure `c` rounded with `radius`.
+    pub(crate) fn new(c: &RoundedCorner, radius: f64) -> Self {
+        let (p, q, x) = (c.p, c.q, c.corner);
         let tp = derivatives(p.into(), x.u, 1, KnotSide::Left);
         let tq = derivatives(q.into(), x.v, 1, KnotSide::Right);
         let dim = p.dim();
@@ -73,21 +128,26 @@ impl CornerMeasure {
         CornerMeasure {
             turning_angle,
             tangent_length: radius * (0.5 * turning_angle).tan(),
-            p_setback: length(p, f.u0, x.u),
-            q_setback: length(q, x.v, f.v0),
+            p_setback: length(p, c.u0, x.u),
+            q_setback: length(q, x.v, c.v0),
             centre_distances: [
-                distance(&f.arc_centre, &p.eval(f.u0)),
-                distance(&f.arc_centre, &q.eval(f.v0)),
+                distance(c.arc_centre, &p.eval(c.u0)),
+                distance(c.arc_centre, &q.eval(c.v0)),
             ],
             vertex: x.u == p.domain().1 && x.v == q.domain().0,
         }
+    }
+
+    /// `vertex` or `crossing`.
+    pub(crate) fn corner_kind(&self) -> &'static str {
+        if self.vertex { "vertex" } else { "crossing" }
     }
 }
 
 /// The circular arc of radius `radius` about `centre` from `start` to
 /// `end`, turning the way `tangent` (the direction at `start`) points:
 /// the drawable arc and the job's `arc` form of it. Plane curves only.
-fn arc_between(
+pub(crate) fn arc_between(
     centre: &[f64],
     radius: f64,
     start: &[f64],
@@ -120,24 +180,163 @@ fn arc_between(
     (shape, form)
 }
 
-/// The G^k joins of the result: from the returned pieces, and from the
-/// original curves at `u0`, `v0`.
-fn measure_joins(p: &Curve, q: &Curve, f: &RadiusFillet, order: usize) -> [[JoinCheck; 2]; 2] {
-    let (pt, qt) = (CurveRef::from(&f.p_trimmed), CurveRef::from(&f.q_trimmed));
-    let r = CurveRef::from(&f.blend);
+/// The arc of radius `radius` of the corner `c` (drawable, and in the
+/// job's `arc` form), for plane curves; `None` in space.
+pub(crate) fn corner_arc(c: &RoundedCorner, radius: f64) -> Option<(Shape, Value)> {
+    (c.p.dim() == 2).then(|| {
+        let tangent = derivatives(c.p.into(), c.u0, 1, KnotSide::Left)[2..].to_vec();
+        arc_between(
+            c.arc_centre,
+            radius,
+            &c.p.eval(c.u0),
+            &c.q.eval(c.v0),
+            &tangent,
+        )
+    })
+}
+
+/// The G^k joins of the corner measured by the tool with derivatives with
+/// respect to arc length ([`JoinCheck::geometric`]: point, unit tangent,
+/// curvature vector, `dK/ds`, ...): from the returned pieces
+/// (`P|R`, `R|Q` for `names` = `[P, R, Q]`), and from the original curves
+/// at `u0`, `v0` (`P(u0)|R(0)`, `R(1)|Q(v0)`; a wrongly trimmed piece
+/// would show).
+pub(crate) fn measure_joins(
+    c: &RoundedCorner,
+    order: usize,
+    [pn, rn, qn]: [&str; 3],
+) -> [[JoinCheck; 2]; 2] {
+    let (pt, qt) = (CurveRef::from(c.p_kept), CurveRef::from(c.q_kept));
+    let r = CurveRef::from(c.blend);
     let pt_end = pt.domain().1;
     let qt_start = qt.domain().0;
-    let (p, q) = (CurveRef::from(p), CurveRef::from(q));
+    let (p, q) = (CurveRef::from(c.p), CurveRef::from(c.q));
     [
         [
-            JoinCheck::geometric("P|R", (pt, pt_end), (r, 0.0), &[pt, r], order),
-            JoinCheck::geometric("R|Q", (r, 1.0), (qt, qt_start), &[r, qt], order),
+            JoinCheck::geometric(
+                format!("{pn}|{rn}"),
+                (pt, pt_end),
+                (r, 0.0),
+                &[pt, r],
+                order,
+            ),
+            JoinCheck::geometric(
+                format!("{rn}|{qn}"),
+                (r, 1.0),
+                (qt, qt_start),
+                &[r, qt],
+                order,
+            ),
         ],
         [
-            JoinCheck::geometric("P(u0)|R(0)", (p, f.u0), (r, 0.0), &[pt, r], order),
-            JoinCheck::geometric("R(1)|Q(v0)", (r, 1.0), (q, f.v0), &[r, qt], order),
+            JoinCheck::geometric(
+                format!("{pn}(u0)|{rn}(0)"),
+                (p, c.u0),
+                (r, 0.0),
+                &[pt, r],
+                order,
+            ),
+            JoinCheck::geometric(
+                format!("{rn}(1)|{qn}(v0)"),
+                (r, 1.0),
+                (q, c.v0),
+                &[r, qt],
+                order,
+            ),
         ],
     ]
+}
+
+/// The report's fields of one corner: the library's (`arc_centre`,
+/// `arc_deviation`, shape values, `fairness`) and the tool's measurements
+/// (turning angle, tangent length, setbacks, centre distances, blend
+/// length, the joins `[returned pieces, original curves]`).
+pub(crate) fn corner_fields(
+    c: &RoundedCorner,
+    m: &CornerMeasure,
+    [checks, original]: &[[JoinCheck; 2]; 2],
+) -> serde_json::Map<String, Value> {
+    let fairness = c.report;
+    let fields = json!({
+        "corner": m.corner_kind(),
+        "arc_centre": c.arc_centre,
+        "arc_deviation": c.arc_deviation,
+        "p_shape": c.p_shape,
+        "q_shape": c.q_shape,
+        "fairness": {
+            "energy": fairness.energy,
+            "curvature_min": fairness.curvature_min,
+            "curvature_max": fairness.curvature_max,
+            "curvature_extrema": fairness.curvature_extrema,
+        },
+        "turning_angle": m.turning_angle,
+        "tangent_length": m.tangent_length,
+        "measured_p_setback": m.p_setback,
+        "measured_q_setback": m.q_setback,
+        "measured_centre_distances": m.centre_distances,
+        "measured_length": sampled_length(c.blend),
+        "measured_continuity": checks.iter().map(JoinCheck::to_json).collect::<Vec<_>>(),
+        "measured_continuity_against_original_curves":
+            original.iter().map(JoinCheck::to_json).collect::<Vec<_>>(),
+    });
+    match fields {
+        Value::Object(map) => map,
+        _ => unreachable!("json! of an object"),
+    }
+}
+
+/// The corner `x` of `p` and `q` in the result: `u`, `v`, `point` and the
+/// re-measured `|P(u) - Q(v)|` as `distance`.
+pub(crate) fn crossing_json(p: &Curve, q: &Curve, x: &Intersection) -> Value {
+    json!({"u": x.u, "v": x.v, "point": x.point, "distance": distance(&p.eval(x.u), &q.eval(x.v))})
+}
+
+/// `head` (an object) with the fields of `tail` added.
+pub(crate) fn with_fields(mut head: Value, tail: serde_json::Map<String, Value>) -> Value {
+    if let Value::Object(map) = &mut head {
+        map.extend(tail);
+    }
+    head
+}
+
+/// The fields of a job by radius besides `radius` (already read): refuse
+/// each of `refused` when given, naming it (`why`: what decides the
+/// corner instead), and read `order` (default [`DEFAULT_RADIUS_ORDER`]).
+pub(crate) fn read_radius_fields(
+    obj: &ObjectReader,
+    refused: &[&str],
+    why: &str,
+) -> Result<usize, JobError> {
+    for key in refused {
+        if let Some(f) = obj.optional(key) {
+            return Err(JobError::new(
+                f.path.clone(),
+                format!(
+                    "cannot be given together with \"radius\" (the arc of the radius sets the \
+                     cuts, \"order\" the continuity G^k at both, and the shape values are \
+                     chosen fair; {why})"
+                ),
+            ));
+        }
+    }
+    Ok(obj
+        .optional("order")
+        .map(|f| f.count())
+        .transpose()?
+        .unwrap_or(DEFAULT_RADIUS_ORDER))
+}
+
+/// Refuse each of `keys` in a job without `"radius"`, naming it.
+pub(crate) fn refuse_without_radius(obj: &ObjectReader, keys: &[&str]) -> Result<(), JobError> {
+    for key in keys {
+        if let Some(f) = obj.optional(key) {
+            return Err(JobError::new(
+                f.path.clone(),
+                "is only used together with \"radius\"",
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// One rounding of the corner in the comparison.
@@ -225,10 +424,8 @@ fn comparison(
     let lead = corner.p_setback.max(corner.q_setback);
     let mut variants = Vec::new();
     // The G1 arc.
-    let start = p.eval(f.u0);
-    let end = q.eval(f.v0);
-    let tangent = derivatives(p.into(), f.u0, 1, KnotSide::Left)[p.dim()..].to_vec();
-    let (arc, arc_form) = arc_between(&f.arc_centre, radius, &start, &end, &tangent);
+    let (arc, arc_form) = corner_arc(&RoundedCorner::of_fillet(p, q, f), radius)
+        .ok_or_else(|| JobError::new("compare", "the comparison is drawn for plane curves"))?;
     let (p_end, q_start) = local_pieces(p, f.u0, q, f.v0, lead);
     let arc_label = format!("G1 circular arc, radius {radius}");
     variants.push(Variant::new(
@@ -423,7 +620,7 @@ pub fn run(
         .into());
     }
     let f = fillet_radius(p, q, radius, order)?;
-    let corner = CornerMeasure::new(p, q, &f, radius);
+    let corner = CornerMeasure::new(&RoundedCorner::of_fillet(p, q, &f), radius);
     let variants = if compare {
         Some(comparison(p, q, &f, radius, order, &corner)?)
     } else {
@@ -449,11 +646,18 @@ fn outcome(
     corner: &CornerMeasure,
     variants: Option<&[Variant]>,
 ) -> Outcome {
-    let [checks, original] = measure_joins(p, q, f, order);
+    let rounded = RoundedCorner::of_fillet(p, q, f);
+    let joins = measure_joins(&rounded, order, ["P", "R", "Q"]);
+    let checks = &joins[0];
     let x = &f.corner;
-    let crossing_gap = distance(&p.eval(x.u), &q.eval(x.v));
     let length = sampled_length(&f.blend);
     let fairness = &f.report;
+    let report = json!({
+        "mode": "radius",
+        "radius": radius,
+        "order": order,
+        "blend_degree": f.blend.degree(),
+    });
     let mut json = json!({
         "operation": "fillet",
         "p_trimmed": curve_json(&f.p_trimmed),
@@ -461,33 +665,8 @@ fn outcome(
         "q_trimmed": curve_json(&f.q_trimmed),
         "u0": f.u0,
         "v0": f.v0,
-        "crossing": {"u": x.u, "v": x.v, "point": x.point, "distance": crossing_gap},
-        "report": {
-            "mode": "radius",
-            "corner": if corner.vertex { "vertex" } else { "crossing" },
-            "radius": radius,
-            "order": order,
-            "blend_degree": f.blend.degree(),
-            "arc_centre": f.arc_centre,
-            "arc_deviation": f.arc_deviation,
-            "p_shape": f.p_shape,
-            "q_shape": f.q_shape,
-            "fairness": {
-                "energy": fairness.energy,
-                "curvature_min": fairness.curvature_min,
-                "curvature_max": fairness.curvature_max,
-                "curvature_extrema": fairness.curvature_extrema,
-            },
-            "turning_angle": corner.turning_angle,
-            "tangent_length": corner.tangent_length,
-            "measured_p_setback": corner.p_setback,
-            "measured_q_setback": corner.q_setback,
-            "measured_centre_distances": corner.centre_distances,
-            "measured_length": length,
-            "measured_continuity": checks.iter().map(JoinCheck::to_json).collect::<Vec<_>>(),
-            "measured_continuity_against_original_curves":
-                original.iter().map(JoinCheck::to_json).collect::<Vec<_>>(),
-        }
+        "crossing": crossing_json(p, q, x),
+        "report": with_fields(report, corner_fields(&rounded, corner, &joins)),
     });
     if let Some(variants) = variants {
         json["comparison"] = variants.iter().map(|v| v.json.clone()).collect();
@@ -537,7 +716,7 @@ fn outcome(
         "R: length {length:.4}; largest distance from the arc's circle {:.4}",
         f.arc_deviation
     ));
-    for check in &checks {
+    for check in checks {
         figure.line(check.describe());
     }
     if let Some(variants) = variants {
@@ -558,7 +737,7 @@ fn outcome(
         figure,
         summary: Summary {
             degree: f.blend.degree(),
-            worst_continuity_jump: Some(worst(&checks)),
+            worst_continuity_jump: Some(worst(checks)),
             max_deviation: Some(f.arc_deviation),
             deviation_meaning: "distance of the blend from the circle of radius r",
         },
@@ -587,22 +766,9 @@ fn draw_single(
             f.blend.degree()
         ),
     ));
-    let plane = p.dim() == 2;
     let start = p.eval(f.u0);
     let end = q.eval(f.v0);
-    let mut arc = None;
-    if plane {
-        let tangent = derivatives(p.into(), f.u0, 1, KnotSide::Left)[2..].to_vec();
-        let (shape, _) = arc_between(&f.arc_centre, radius, &start, &end, &tangent);
-        figure.curve(CurveItem {
-            shape: shape.clone(),
-            role: Role::Reference,
-            label: format!("circular arc of radius {radius} (G1: curvature jumps at its ends)"),
-            polygon: false,
-            comb: true,
-        });
-        arc = Some(shape);
-    }
+    let arc = draw_arc(figure, &RoundedCorner::of_fillet(p, q, f), radius, true);
     // Between long curves the rounding is small in the picture: its
     // markers' labels would cover each other, so they go to the caption.
     let size = |pieces: &[PathPiece]| {
@@ -651,19 +817,46 @@ fn draw_single(
             PathPiece::new(Shape::Bezier(f.blend.clone()), Role::Result, "blend R"),
             q_start,
         ]);
-        let arc_profile =
-            CurvatureProfile::new(&[p_end, PathPiece::new(arc, Role::Reference, "arc")]);
         let mut plot = blend.plot(
             "Curvature along arc length: end of P, blend R (red), start of Q; the arc (dashed)",
         );
-        if let Some(points) = arc_profile.pieces.get(1) {
-            plot.series.push(crate::svg::PlotSeries {
-                role: Role::Reference,
-                label: "circular arc".into(),
-                points: points.clone(),
-            });
-        }
+        let s0 = blend.joins().first().copied().unwrap_or(0.0);
+        plot.series.push(arc_series(arc, s0));
         figure.plot(plot);
+    }
+}
+
+/// Draw the arc of radius `radius` of the corner `c` dashed, with its comb
+/// (a constant band that jumps at its ends) when `comb`, for plane curves;
+/// its shape.
+pub(crate) fn draw_arc(
+    figure: &mut Figure,
+    c: &RoundedCorner,
+    radius: f64,
+    comb: bool,
+) -> Option<Shape> {
+    let (shape, _) = corner_arc(c, radius)?;
+    figure.curve(CurveItem {
+        shape: shape.clone(),
+        role: Role::Reference,
+        label: format!("circular arc of radius {radius} (G1: curvature jumps at its ends)"),
+        polygon: false,
+        comb,
+    });
+    Some(shape)
+}
+
+/// The arc's curvature along its arc length, starting at `s0` (where the
+/// blend it is compared with starts in a graph), dashed.
+pub(crate) fn arc_series(arc: Shape, s0: f64) -> PlotSeries {
+    let profile = CurvatureProfile::new(&[PathPiece::new(arc, Role::Reference, "arc")]);
+    PlotSeries {
+        role: Role::Reference,
+        label: "circular arc".into(),
+        points: profile.pieces[0]
+            .iter()
+            .map(|&[s, k]| [s0 + s, k])
+            .collect(),
     }
 }
 

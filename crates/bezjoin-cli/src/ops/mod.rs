@@ -40,7 +40,8 @@ pub enum Operation {
     /// Round the corner between two crossing curves, or at a vertex (section 2); with `"radius"`
     /// sized like the arc of that radius and rounded by a fair G^k blend.
     Fillet(JobArgs),
-    /// Round every corner of a chain (a wire) of curves.
+    /// Round every corner of a chain (a wire) of curves, open or closed; with `"radius"` each
+    /// sized like the arc of that radius and rounded by a fair G^k blend.
     FilletChain(JobArgs),
     /// Merge two curves (Bezier, or polynomial B-splines) into one by the smallest change
     /// (sections 3 and 6).

@@ -187,3 +187,99 @@ pub fn bezier_of(value: &serde_json::Value) -> bezjoin_core::BezierCurve {
         serde_json::from_value(value.get("points").unwrap_or(value).clone()).unwrap();
     bezjoin_core::BezierCurve::new(rows[0].len(), rows.len() - 1, rows.concat()).unwrap()
 }
+
+/// `a . b`.
+pub fn dot(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum()
+}
+
+/// `|v|`.
+pub fn norm(v: &[f64]) -> f64 {
+    dot(v, v).sqrt()
+}
+
+/// `|a - b|`.
+pub fn dist(a: &[f64], b: &[f64]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y) * (x - y))
+        .sum::<f64>()
+        .sqrt()
+}
+
+/// The Frenet data at `t` from the parametric derivatives `r'`, `r''`,
+/// `r'''`: unit tangent `T = r'/v`, curvature vector
+/// `K = (r'' - (r''.T) T) / v^2` and its arc-length derivative
+/// `K_s = (r''' - (r'''.T + v^3 |K|^2) T - 3 v v' K) / v^3`
+/// (`v = |r'|`, `v' = r''.T`; from `r''' = v'' T + 3 v v' K + v^3 K_s`
+/// and `K_s . T = -|K|^2`).
+pub fn frenet(c: &bezjoin_core::BezierCurve, t: f64) -> [Vec<f64>; 3] {
+    let d = c.eval_derivatives(t, 3);
+    let n = c.dim();
+    let (d1, d2, d3) = (&d[n..2 * n], &d[2 * n..3 * n], &d[3 * n..4 * n]);
+    let v = norm(d1);
+    let tangent: Vec<f64> = d1.iter().map(|x| x / v).collect();
+    let v1 = dot(d2, &tangent);
+    let k: Vec<f64> = (0..n)
+        .map(|i| (d2[i] - v1 * tangent[i]) / (v * v))
+        .collect();
+    let v2 = dot(d3, &tangent) + v.powi(3) * dot(&k, &k);
+    let ks: Vec<f64> = (0..n)
+        .map(|i| (d3[i] - v2 * tangent[i] - 3.0 * v * v1 * k[i]) / v.powi(3))
+        .collect();
+    [tangent, k, ks]
+}
+
+/// Largest `|K|` and `|K_s|` over the blend `c` (sampled): the sizes jumps
+/// are measured against.
+pub fn sizes(c: &bezjoin_core::BezierCurve) -> (f64, f64) {
+    (0..=200).fold((0.0f64, 0.0f64), |(k, ks), i| {
+        let [_, a, b] = frenet(c, i as f64 / 200.0);
+        (k.max(norm(&a)), ks.max(norm(&b)))
+    })
+}
+
+/// The end of `a` (at 1) and the start of `b` (at 0) meet with G^order:
+/// the same point, unit tangent and curvature vector (and `dK/ds` for
+/// order 3), relative to the largest curvature (and its derivative) of
+/// `blend`, the blend on one side; with order 2 the slope of the curvature
+/// jumps (G2 only: the blend need not continue it, and the check can tell
+/// G2 from G3).
+pub fn assert_geometric_join(
+    name: &str,
+    a: &bezjoin_core::BezierCurve,
+    b: &bezjoin_core::BezierCurve,
+    blend: &bezjoin_core::BezierCurve,
+    order: usize,
+) {
+    let (k_size, ks_size) = sizes(blend);
+    assert!(dist(&a.eval(1.0), &b.eval(0.0)) < 1e-12, "{name}: G0");
+    let [t1, k1, s1] = frenet(a, 1.0);
+    let [t2, k2, s2] = frenet(b, 0.0);
+    assert!(
+        dist(&t1, &t2) < 1e-12,
+        "{name}: unit tangents {t1:?} {t2:?}"
+    );
+    assert!(
+        dist(&k1, &k2) < 1e-9 * k_size,
+        "{name}: curvature vectors {k1:?} {k2:?} (largest {k_size})"
+    );
+    let ks_jump = dist(&s1, &s2) / ks_size;
+    if order >= 3 {
+        assert!(ks_jump < 1e-8, "{name}: dK/ds {s1:?} {s2:?}");
+    } else {
+        assert!(ks_jump > 1e-6, "{name}: dK/ds unexpectedly continuous");
+    }
+}
+
+/// The SVG picture at `path`: well-formed XML that contains every text of
+/// `texts`.
+pub fn read_picture(path: &Path, texts: &[&str]) -> String {
+    let picture = std::fs::read_to_string(path)
+        .unwrap_or_else(|e| panic!("cannot read {}: {e}", path.display()));
+    assert_well_formed_xml(&picture);
+    for text in texts {
+        assert!(picture.contains(text), "the picture lacks {text:?}");
+    }
+    picture
+}

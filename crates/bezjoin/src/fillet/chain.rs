@@ -19,9 +19,10 @@
 
 use rayon::prelude::*;
 
+use crate::bezier::BezierCurve;
 use crate::curve::{AsCurveRef, Curve, CurveRef};
 use crate::error::{BezjoinError, Result};
-use crate::intersect::{Intersection, IntersectionKind, intersect};
+use crate::intersect::{IntersectOptions, Intersection, IntersectionKind, intersect};
 
 use super::{Fillet, FilletOptions, fillet_at_validated, validate};
 
@@ -114,6 +115,40 @@ pub fn fillet_chain<C: AsCurveRef + Sync>(
     curves: &[C],
     options: &ChainFilletOptions,
 ) -> Result<ChainFillet> {
+    let curves = chain_refs(curves)?;
+    let n = curves.len();
+    for i in 0..n {
+        validate(curves[i], curves[(i + 1) % n], &options.fillet)?;
+    }
+    let corner_count = if options.closed { n } else { n - 1 };
+    let one = |i: usize| round_corner(i, curves[i], curves[(i + 1) % n], &options.fillet);
+    let results: Vec<Result<Fillet>> = if corner_count > options.parallel_threshold {
+        (0..corner_count).into_par_iter().map(one).collect()
+    } else {
+        (0..corner_count).map(one).collect()
+    };
+    let mut fillets = Vec::with_capacity(corner_count);
+    for r in results {
+        fillets.push(r?);
+    }
+    let cuts: Vec<(f64, f64)> = fillets.iter().map(|f| (f.u0, f.v0)).collect();
+    let blends: Vec<&BezierCurve> = fillets.iter().map(|f| &f.blend).collect();
+    let pieces = chain_pieces(&curves, options.closed, &cuts, &blends)?;
+    let corners = fillets
+        .into_iter()
+        .map(|f| ChainCorner {
+            crossing: f.crossing,
+            u0: f.u0,
+            v0: f.v0,
+            scales: (f.p_scale, f.q_scale),
+            max_residual: f.max_residual,
+        })
+        .collect();
+    Ok(ChainFillet { pieces, corners })
+}
+
+/// The curves of a chain as references, checked: at least 2, one dimension.
+pub(crate) fn chain_refs<C: AsCurveRef>(curves: &[C]) -> Result<Vec<CurveRef<'_>>> {
     let curves: Vec<CurveRef> = curves.iter().map(AsCurveRef::as_curve_ref).collect();
     let n = curves.len();
     if n < 2 {
@@ -130,64 +165,64 @@ pub fn fillet_chain<C: AsCurveRef + Sync>(
             actual: curves[i].dim(),
         });
     }
-    for i in 0..n {
-        validate(curves[i], curves[(i + 1) % n], &options.fillet)?;
-    }
-    let corner_count = if options.closed { n } else { n - 1 };
-    let one = |i: usize| round_corner(i, curves[i], curves[(i + 1) % n], &options.fillet);
-    let results: Vec<Result<Fillet>> = if corner_count > options.parallel_threshold {
-        (0..corner_count).into_par_iter().map(one).collect()
-    } else {
-        (0..corner_count).map(one).collect()
-    };
-    let mut fillets = Vec::with_capacity(corner_count);
-    for r in results {
-        fillets.push(r?);
-    }
+    Ok(curves)
+}
+
+/// The pieces of a rounded chain in path order: curve `i` between the cut
+/// `v0` of corner `i - 1` and the cut `u0` of corner `i` (`cuts[i] = (u0,
+/// v0)`), each followed by its corner's blend ([`ChainFillet::pieces`]).
+///
+/// Errors: two cuts on one curve that pass each other (InvalidArgument
+/// naming the curve).
+pub(crate) fn chain_pieces(
+    curves: &[CurveRef],
+    closed: bool,
+    cuts: &[(f64, f64)],
+    blends: &[&BezierCurve],
+) -> Result<Vec<Curve>> {
+    let n = curves.len();
+    let corner_count = cuts.len();
     let mut pieces = Vec::with_capacity(2 * n);
     for i in 0..n {
         let (first, last) = curves[i].domain();
         let start = if i > 0 {
-            fillets[i - 1].v0
-        } else if options.closed {
-            fillets[corner_count - 1].v0
+            cuts[i - 1].1
+        } else if closed {
+            cuts[corner_count - 1].1
         } else {
             first
         };
-        let end = if i < corner_count {
-            fillets[i].u0
-        } else {
-            last
-        };
+        let end = if i < corner_count { cuts[i].0 } else { last };
         if start >= end || start.is_nan() || end.is_nan() {
             return Err(BezjoinError::invalid(
                 format!("curves[{i}]"),
                 format!(
                     "the cuts of its two corners pass each other (start {start} >= end {end}); \
-                     the setbacks are too long for this curve"
+                     the setbacks (or the radius) are too long for this curve"
                 ),
             ));
         }
         pieces.push(curves[i].segment(start, end)?);
         if i < corner_count {
-            pieces.push(Curve::Bezier(fillets[i].blend.clone()));
+            pieces.push(Curve::Bezier(blends[i].clone()));
         }
     }
-    let corners = fillets
-        .into_iter()
-        .map(|f| ChainCorner {
-            crossing: f.crossing,
-            u0: f.u0,
-            v0: f.v0,
-            scales: (f.p_scale, f.q_scale),
-            max_residual: f.max_residual,
-        })
-        .collect();
-    Ok(ChainFillet { pieces, corners })
+    Ok(pieces)
 }
 
-fn round_corner(index: usize, p: CurveRef, q: CurveRef, options: &FilletOptions) -> Result<Fillet> {
-    let hits = intersect(p, q, &options.intersect).map_err(|e| in_corner(e, index))?;
+/// The crossing of corner `index` (`p` then `q` in the chain): the hit
+/// nearest the curves' shared end (module documentation).
+///
+/// Errors: NoIntersection when there is none or the nearest is a tangency
+/// or an overlap (the message starts with `corner index`); the search's
+/// errors, prefixed likewise.
+pub(crate) fn chain_crossing(
+    index: usize,
+    p: CurveRef,
+    q: CurveRef,
+    options: &IntersectOptions,
+) -> Result<Intersection> {
+    let hits = intersect(p, q, options).map_err(|e| in_corner(e, index))?;
     // Distance from the shared end, in units of each domain's length.
     let (p_first, p_last) = p.domain();
     let (q_first, q_last) = q.domain();
@@ -197,33 +232,31 @@ fn round_corner(index: usize, p: CurveRef, q: CurveRef, options: &FilletOptions)
     let nearest = hits
         .into_iter()
         .min_by(|a, b| from_end(a).total_cmp(&from_end(b)));
-    let crossing = match nearest {
-        Some(h) if h.kind == IntersectionKind::Crossing => h,
-        Some(h) if h.kind == IntersectionKind::Touching => {
-            return Err(BezjoinError::NoIntersection {
-                reason: format!(
-                    "corner {index}: the curves meet tangentially at u = {}, v = {} \
+    match nearest {
+        Some(h) if h.kind == IntersectionKind::Crossing => Ok(h),
+        Some(h) if h.kind == IntersectionKind::Touching => Err(BezjoinError::NoIntersection {
+            reason: format!(
+                "corner {index}: the curves meet tangentially at u = {}, v = {} \
                      (a smooth joint), there is no corner to round",
-                    h.u, h.v
-                ),
-            });
-        }
-        Some(_) => {
-            return Err(BezjoinError::NoIntersection {
-                reason: format!("corner {index}: the curves overlap near their shared end"),
-            });
-        }
-        None => {
-            return Err(BezjoinError::NoIntersection {
-                reason: format!("corner {index}: the curves do not cross"),
-            });
-        }
-    };
+                h.u, h.v
+            ),
+        }),
+        Some(_) => Err(BezjoinError::NoIntersection {
+            reason: format!("corner {index}: the curves overlap near their shared end"),
+        }),
+        None => Err(BezjoinError::NoIntersection {
+            reason: format!("corner {index}: the curves do not cross"),
+        }),
+    }
+}
+
+fn round_corner(index: usize, p: CurveRef, q: CurveRef, options: &FilletOptions) -> Result<Fillet> {
+    let crossing = chain_crossing(index, p, q, &options.intersect)?;
     fillet_at_validated(p, q, crossing, options).map_err(|e| in_corner(e, index))
 }
 
 /// Prefix the argument name (or reason) of an error with its corner.
-fn in_corner(error: BezjoinError, index: usize) -> BezjoinError {
+pub(crate) fn in_corner(error: BezjoinError, index: usize) -> BezjoinError {
     match error {
         BezjoinError::InvalidArgument { name, reason } => BezjoinError::InvalidArgument {
             name: format!("corner {index} {name}"),
@@ -238,6 +271,11 @@ fn in_corner(error: BezjoinError, index: usize) -> BezjoinError {
             estimate,
             limit,
         },
+        BezjoinError::NoIntersection { reason } if !reason.starts_with("corner ") => {
+            BezjoinError::NoIntersection {
+                reason: format!("corner {index}: {reason}"),
+            }
+        }
         other => other,
     }
 }

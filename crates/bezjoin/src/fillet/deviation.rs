@@ -68,8 +68,9 @@ use crate::intersect::{intersect, project};
 
 use super::{
     Blend, Fillet, FilletOptions, SetbackInverses, assemble, available_lengths, blend_at,
-    first_crossing, validate_shape,
+    fillet_at_validated, first_crossing, validate_shape,
 };
+use crate::connect::ShapeScale;
 
 /// Default of [`DeviationFilletOptions::relative_deviation_accuracy`].
 pub const DEFAULT_RELATIVE_DEVIATION_ACCURACY: f64 = 1e-9;
@@ -198,6 +199,80 @@ pub fn fillet_within_deviation<'a>(
     options: &DeviationFilletOptions,
 ) -> Result<DeviationFillet> {
     let (p, q): (CurveRef, CurveRef) = (p.into(), q.into());
+    match options.shape.scale {
+        ShapeScale::Auto => within_deviation_auto_scale(p, q, options),
+        ShapeScale::Given { .. } => within_deviation(p, q, options),
+    }
+}
+
+/// The automatic scale of a fillet within a deviation: `s` is the scale
+/// [`ShapeScale::Auto`] chooses for the very setbacks that the search with
+/// `alpha = beta = s` finds (`s = A(D(s))`), to a relative
+/// [`DEVIATION_SCALE_TOLERANCE`]. The automatic scale cannot be chosen per
+/// trial setback: its own search moves it in steps, and the deviation
+/// then jumps over the acceptance window.
+pub const DEVIATION_SCALE_TOLERANCE: f64 = 1e-6;
+
+/// Most searches of the fixed point `s = A(D(s))`.
+pub const DEVIATION_SCALE_STEPS: usize = 60;
+
+/// [`fillet_within_deviation`] with [`ShapeScale::Auto`]: the fixed point
+/// `s = A(D(s))` solved in `x = ln s` by secant steps on `g(x) = ln A(D(e^x))
+/// - x` (a plain fixed-point step when the secant step is not usable or
+/// longer than `4 |g| + 1`), from the paper's `s = 1`. The result is the
+/// deviation search's at that `s`: the deviation guarantee is unchanged.
+fn within_deviation_auto_scale(
+    p: CurveRef,
+    q: CurveRef,
+    options: &DeviationFilletOptions,
+) -> Result<DeviationFillet> {
+    let evaluate = |x: f64| -> Result<(DeviationFillet, f64)> {
+        let s = x.exp();
+        let mut given = options.clone();
+        given.shape.scale = ShapeScale::Given { p: s, q: s };
+        let found = within_deviation(p, q, &given)?;
+        let mut shape = options.shape.clone();
+        shape.p_setback = found.p_setback;
+        shape.q_setback = found.q_setback;
+        let automatic = fillet_at_validated(p, q, found.fillet.crossing.clone(), &shape)?;
+        Ok((found, automatic.p_scale.ln() - x))
+    };
+    let mut x = 0.0f64;
+    let mut current = evaluate(x)?;
+    let mut previous: Option<(f64, f64)> = None;
+    for _ in 0..DEVIATION_SCALE_STEPS {
+        let g = current.1;
+        if g.abs() <= DEVIATION_SCALE_TOLERANCE {
+            return Ok(current.0);
+        }
+        let mut step = g;
+        if let Some((x0, g0)) = previous {
+            let secant = -g * (x - x0) / (g - g0);
+            if g != g0 && secant.is_finite() && secant.abs() <= 4.0 * g.abs() + 1.0 {
+                step = secant;
+            }
+        }
+        previous = Some((x, g));
+        x += step;
+        current = evaluate(x)?;
+    }
+    Err(BezjoinError::IllConditioned {
+        what: format!(
+            "fillet within a deviation with the automatic scale: s = A(D(s)) did not settle \
+             in {DEVIATION_SCALE_STEPS} steps (last change {:e} in ln s); give the scales",
+            current.1.abs()
+        ),
+        estimate: current.1.abs(),
+        limit: DEVIATION_SCALE_TOLERANCE,
+    })
+}
+
+/// [`fillet_within_deviation`] with given scales.
+fn within_deviation(
+    p: CurveRef,
+    q: CurveRef,
+    options: &DeviationFilletOptions,
+) -> Result<DeviationFillet> {
     if q.dim() != p.dim() {
         return Err(BezjoinError::DimensionMismatch {
             name: "q".into(),

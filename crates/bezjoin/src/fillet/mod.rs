@@ -62,10 +62,13 @@ pub use chain::{
     ChainCorner, ChainFillet, ChainFilletOptions, DEFAULT_PARALLEL_THRESHOLD, fillet_chain,
 };
 pub use deviation::{
-    DEFAULT_RELATIVE_DEVIATION_ACCURACY, DeviationFillet, DeviationFilletOptions,
-    distance_to_curve, fillet_within_deviation,
+    DEFAULT_RELATIVE_DEVIATION_ACCURACY, DEVIATION_SCALE_STEPS, DEVIATION_SCALE_TOLERANCE,
+    DeviationFillet, DeviationFilletOptions, distance_to_curve, fillet_within_deviation,
 };
-pub use radius::{ARC_DEVIATION_SAMPLES, RadiusFillet, VERTEX_TOLERANCE, fillet_radius};
+pub use radius::{
+    ARC_DEVIATION_SAMPLES, RadiusChainFillet, RadiusCorner, RadiusFillet, VERTEX_TOLERANCE,
+    fillet_radius, fillet_radius_chain,
+};
 
 use crate::arclength::ArcLengthInverse;
 use crate::bezier::BezierCurve;

@@ -16,11 +16,16 @@
 
 use crate::basis::KnotSide;
 use crate::bezier::BezierCurve;
-use crate::curve::{Curve, CurveJet, CurveRef};
+use crate::curve::{AsCurveRef, Curve, CurveJet, CurveRef};
 use crate::error::{BezjoinError, Result, check_finite_scalar};
 use crate::geometric::{FairnessReport, GeometricOptions, MAX_GEOMETRIC_ORDER, connect_geometric};
 use crate::intersect::{IntersectOptions, Intersection, IntersectionKind, intersect};
 
+use rayon::prelude::*;
+
+use super::chain::{
+    DEFAULT_PARALLEL_THRESHOLD, chain_crossing, chain_pieces, chain_refs, in_corner,
+};
 use super::first_crossing;
 
 /// Newton steps of the touching-point search.
@@ -131,6 +136,31 @@ pub fn fillet_radius<'a>(
     order: usize,
 ) -> Result<RadiusFillet> {
     let (p, q) = (p.into(), q.into());
+    let scale = check_arguments(p, q, radius, order)?;
+    let corner = match vertex_corner(p, q, scale) {
+        Some(corner) => corner,
+        None => first_crossing(&intersect(p, q, &IntersectOptions::default())?)?,
+    };
+    let (rounded, blend) = round_radius_corner(p, q, corner, radius, order, scale)?;
+    let (p_first, _) = p.domain();
+    let (_, q_last) = q.domain();
+    Ok(RadiusFillet {
+        p_trimmed: p.segment(p_first, rounded.u0)?,
+        blend,
+        q_trimmed: q.segment(rounded.v0, q_last)?,
+        corner: rounded.corner,
+        u0: rounded.u0,
+        v0: rounded.v0,
+        arc_centre: rounded.arc_centre,
+        arc_deviation: rounded.arc_deviation,
+        p_shape: rounded.p_shape,
+        q_shape: rounded.q_shape,
+        report: rounded.report,
+    })
+}
+
+/// Check the arguments of a fillet by radius; the curves' coordinate scale.
+fn check_arguments(p: CurveRef, q: CurveRef, radius: f64, order: usize) -> Result<f64> {
     if q.dim() != p.dim() {
         return Err(BezjoinError::DimensionMismatch {
             name: "q".into(),
@@ -157,26 +187,40 @@ pub fn fillet_radius<'a>(
             format!("{order} is not a geometric order 1..={MAX_GEOMETRIC_ORDER}"),
         ));
     }
-    let scale = p
-        .coordinate_scale()
+    Ok(p.coordinate_scale()
         .max(q.coordinate_scale())
-        .max(f64::MIN_POSITIVE);
-    let (p_first, p_last) = p.domain();
-    let (q_first, q_last) = q.domain();
+        .max(f64::MIN_POSITIVE))
+}
+
+/// The shared vertex as the corner, when P's last point is Q's first
+/// (within [`VERTEX_TOLERANCE`] of `scale`).
+fn vertex_corner(p: CurveRef, q: CurveRef, scale: f64) -> Option<Intersection> {
+    let (_, p_last) = p.domain();
+    let (q_first, _) = q.domain();
     let end = p.eval(p_last);
     let start = q.eval(q_first);
     let gap = crate::bezier::distance(&end, &start);
-    let corner = if gap <= VERTEX_TOLERANCE * scale {
-        Intersection {
-            u: p_last,
-            v: q_first,
-            point: end,
-            distance: gap,
-            kind: IntersectionKind::Crossing,
-        }
-    } else {
-        first_crossing(&intersect(p, q, &IntersectOptions::default())?)?
-    };
+    (gap <= VERTEX_TOLERANCE * scale).then_some(Intersection {
+        u: p_last,
+        v: q_first,
+        point: end,
+        distance: gap,
+        kind: IntersectionKind::Crossing,
+    })
+}
+
+/// Round `corner` of `p` and `q` (module documentation): the corner's data
+/// and the blend.
+fn round_radius_corner(
+    p: CurveRef,
+    q: CurveRef,
+    corner: Intersection,
+    radius: f64,
+    order: usize,
+    scale: f64,
+) -> Result<(RadiusCorner, BezierCurve)> {
+    let (p_first, _) = p.domain();
+    let (_, q_last) = q.domain();
     // The corner's plane: P's arriving tangent and Q's leaving one.
     let (pj, _) = p.jet(corner.u, 1, KnotSide::Left);
     let (qj, _) = q.jet(corner.v, 1, KnotSide::Right);
@@ -282,17 +326,124 @@ pub fn fillet_radius<'a>(
             (crate::bezier::distance(&x, &arc_centre) - radius).abs()
         })
         .fold(0.0f64, f64::max);
-    Ok(RadiusFillet {
-        p_trimmed: p.segment(p_first, u)?,
-        blend: g.curve,
-        q_trimmed: q.segment(v, q_last)?,
-        corner,
-        u0: u,
-        v0: v,
-        arc_centre,
-        arc_deviation,
-        p_shape: g.p_shape,
-        q_shape: g.q_shape,
-        report: g.report,
-    })
+    Ok((
+        RadiusCorner {
+            corner,
+            u0: u,
+            v0: v,
+            arc_centre,
+            arc_deviation,
+            p_shape: g.p_shape,
+            q_shape: g.q_shape,
+            report: g.report,
+        },
+        g.curve,
+    ))
+}
+
+/// One corner of a chain rounded by radius ([`fillet_radius_chain`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct RadiusCorner {
+    /// The corner rounded (the shared vertex, or the crossing nearest the
+    /// curves' shared end).
+    pub corner: Intersection,
+    /// The arc's touching point on the corner's first curve (its cut).
+    pub u0: f64,
+    /// The arc's touching point on the corner's second curve (its cut).
+    pub v0: f64,
+    /// The arc's centre.
+    pub arc_centre: Vec<f64>,
+    /// Largest distance of the blend from the arc's circle (as
+    /// [`RadiusFillet::arc_deviation`]).
+    pub arc_deviation: f64,
+    /// Shape values used at the first curve.
+    pub p_shape: Vec<f64>,
+    /// Shape values used at the second curve.
+    pub q_shape: Vec<f64>,
+    /// Energy, curvature range and extrema of the blend.
+    pub report: FairnessReport,
+}
+
+/// A chain with every corner rounded by radius.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RadiusChainFillet {
+    /// In path order, as [`super::ChainFillet::pieces`]: trimmed curve 0,
+    /// blend 0, trimmed curve 1, ...; `2n - 1` pieces for an open chain of
+    /// `n` curves, `2n` for a closed one. Trimmed curves keep their kind
+    /// and parameters; blends are Bezier curves.
+    pub pieces: Vec<Curve>,
+    /// Corner `i`, between `curves[i]` and `curves[(i + 1) % n]`.
+    pub corners: Vec<RadiusCorner>,
+}
+
+/// Round every corner of the chain `curves` (a wire: open, or `closed`
+/// with one more corner from the last curve to the first) like the
+/// circular fillet of radius `radius`, each with a G^`order` blend of fair
+/// shape values, as [`fillet_radius`] rounds one corner. Corner `i` is the
+/// shared vertex of `curves[i]` and `curves[i + 1]` when they meet there
+/// (within [`VERTEX_TOLERANCE`]), else their crossing nearest the shared
+/// end (as [`super::fillet_chain`] chooses it). Corners are independent;
+/// above [`super::DEFAULT_PARALLEL_THRESHOLD`] of them they are computed in
+/// parallel (the same result bit for bit).
+///
+/// Errors: fewer than 2 curves, different dimensions (naming `curves[i]`);
+/// the errors of [`fillet_radius`] at a corner (InvalidArgument names
+/// `corner i radius`, the other messages start with `corner i`); two
+/// touching points on one curve that pass each other (InvalidArgument
+/// naming the curve: the radius is too large for it).
+///
+/// ```
+/// use bezjoin_core::{BezierCurve, fillet_radius_chain};
+/// // A closed square of side 4, every corner rounded with radius 1.
+/// let side = |a: [f64; 2], b: [f64; 2]| BezierCurve::from_rows(&[a, b]).unwrap();
+/// let square = [
+///     side([0.0, 0.0], [4.0, 0.0]),
+///     side([4.0, 0.0], [4.0, 4.0]),
+///     side([4.0, 4.0], [0.0, 4.0]),
+///     side([0.0, 4.0], [0.0, 0.0]),
+/// ];
+/// let rounded = fillet_radius_chain(&square, 1.0, 2, true).unwrap();
+/// assert_eq!(rounded.pieces.len(), 8);
+/// // Each side keeps its middle 2 units: the arcs touch 1 from each vertex.
+/// assert!((rounded.corners[0].u0 - 0.75).abs() < 1e-12);
+/// ```
+pub fn fillet_radius_chain<C: AsCurveRef + Sync>(
+    curves: &[C],
+    radius: f64,
+    order: usize,
+    closed: bool,
+) -> Result<RadiusChainFillet> {
+    let curves = chain_refs(curves)?;
+    let n = curves.len();
+    check_arguments(curves[0], curves[1], radius, order)?;
+    let corner_count = if closed { n } else { n - 1 };
+    let one = |i: usize| -> Result<(RadiusCorner, BezierCurve)> {
+        let (p, q) = (curves[i], curves[(i + 1) % n]);
+        let scale = p
+            .coordinate_scale()
+            .max(q.coordinate_scale())
+            .max(f64::MIN_POSITIVE);
+        let corner = match vertex_corner(p, q, scale) {
+            Some(corner) => corner,
+            None => chain_crossing(i, p, q, &IntersectOptions::default())?,
+        };
+        round_radius_corner(p, q, corner, radius, order, scale).map_err(|e| in_corner(e, i))
+    };
+    let results: Vec<Result<(RadiusCorner, BezierCurve)>> =
+        if corner_count > DEFAULT_PARALLEL_THRESHOLD {
+            (0..corner_count).into_par_iter().map(one).collect()
+        } else {
+            (0..corner_count).map(one).collect()
+        };
+    let mut corners = Vec::with_capacity(corner_count);
+    let mut blends = Vec::with_capacity(corner_count);
+    for r in results {
+        let (corner, blend) = r?;
+        corners.push(corner);
+        blends.push(blend);
+    }
+    let cuts: Vec<(f64, f64)> = corners.iter().map(|c| (c.u0, c.v0)).collect();
+    let blend_refs: Vec<&BezierCurve> = blends.iter().collect();
+    let pieces = chain_pieces(&curves, closed, &cuts, &blend_refs)?;
+    Ok(RadiusChainFillet { pieces, corners })
 }

@@ -1,12 +1,16 @@
 //! Curvature of a blend, its variation energy, and the search for fair
 //! shape parameters (docs/mathematics.md#geometric-continuity).
 
+use std::borrow::Cow;
+use std::sync::OnceLock;
+
 use crate::basis::bezier_basis_derivatives;
 use crate::bezier::BezierCurve;
-use crate::connect::Problem;
+use crate::connect::{MAX_CONNECT_DEGREE, Problem};
 use crate::error::{BezjoinError, Result};
 
-use super::solve_with_shapes;
+use super::MAX_GEOMETRIC_ORDER;
+use super::trial::TrialSolver;
 
 /// Panels of the composite 8-point Gauss-Legendre rule of
 /// [`curvature_variation`] and of the reported energy: 64 panels agree with
@@ -66,17 +70,11 @@ pub struct FairnessReport {
     pub curvature_extrema: usize,
 }
 
-/// Curvature and its parameter derivative at `t`: signed in 2D,
+/// Curvature and its parameter derivative from the first three
+/// derivatives `a`, `b`, `c` of a curve at one parameter: signed in 2D,
 /// `kappa = (x' y'' - y' x'') / |r'|^3`; in other dimensions
 /// `kappa = sqrt(|r'|^2 |r''|^2 - (r'.r'')^2) / |r'|^3 >= 0`. Returns
 /// `(kappa, dkappa/dt, |r'|)`; `|r'| = 0` (a cusp) gives infinities.
-fn curvature_at(curve: &BezierCurve, t: f64, jet: &mut [f64]) -> (f64, f64, f64) {
-    let d = curve.dim();
-    curve.eval_derivatives_into(t, 3, jet);
-    kappa_from(&jet[d..2 * d], &jet[2 * d..3 * d], &jet[3 * d..4 * d])
-}
-
-/// [`curvature_at`] from the first three derivatives `a`, `b`, `c`.
 fn kappa_from(a: &[f64], b: &[f64], c: &[f64]) -> (f64, f64, f64) {
     let d = a.len();
     let dot = |x: &[f64], y: &[f64]| x.iter().zip(y).map(|(p, q)| p * q).sum::<f64>();
@@ -103,71 +101,199 @@ fn kappa_from(a: &[f64], b: &[f64], c: &[f64]) -> (f64, f64, f64) {
     (kappa, first - 3.0 * kappa * ab / s2, speed)
 }
 
+/// Nodes whose jets are formed together.
+const BLOCK: usize = 32;
+
+/// The Bernstein derivative rows of one degree, orders `1..=orders`, at a
+/// list of parameters, stored for forming the jets of [`BLOCK`] nodes at
+/// once: `rows[((b orders + k) n1 + i) BLOCK + j]` is the `(k + 1)`-th
+/// derivative of `B_i` at node `b BLOCK + j` (zero past the last node).
+/// A node's jet is formed with the same operations in the same order as a
+/// row-by-row product (`sum_i B_i^(k) R_i`, `i` ascending); blocks only
+/// let the compiler run the nodes side by side.
+#[derive(Clone)]
+struct NodeRows {
+    n1: usize,
+    orders: usize,
+    nodes: usize,
+    rows: Vec<f64>,
+}
+
+impl NodeRows {
+    fn new(degree: usize, ts: &[f64], orders: usize) -> Self {
+        let n1 = degree + 1;
+        let nodes = ts.len();
+        let blocks = nodes.div_ceil(BLOCK);
+        let mut rows = vec![0.0; blocks * orders * n1 * BLOCK];
+        for (node, &t) in ts.iter().enumerate() {
+            let basis = bezier_basis_derivatives(degree, t, orders);
+            let (b, j) = (node / BLOCK, node % BLOCK);
+            for k in 0..orders {
+                for i in 0..n1 {
+                    rows[((b * orders + k) * n1 + i) * BLOCK + j] = basis[(k + 1, i)];
+                }
+            }
+        }
+        Self {
+            n1,
+            orders,
+            nodes,
+            rows,
+        }
+    }
+
+    /// `(first node, nodes)` of each block.
+    fn blocks(&self) -> impl Iterator<Item = (usize, usize)> + use<> {
+        let nodes = self.nodes;
+        (0..nodes.div_ceil(BLOCK)).map(move |b| (b * BLOCK, BLOCK.min(nodes - b * BLOCK)))
+    }
+
+    /// The jets of block `b` of the curve with row-major control points
+    /// `points` (`d` coordinates): `out[k d + c][j]` is coordinate `c` of
+    /// the `(k + 1)`-th derivative at node `b BLOCK + j`.
+    #[inline(always)]
+    fn jets(&self, b: usize, points: &[f64], d: usize, out: &mut [[f64; BLOCK]]) {
+        let (n1, orders) = (self.n1, self.orders);
+        let rows = &self.rows[b * orders * n1 * BLOCK..][..orders * n1 * BLOCK];
+        for (k, rows) in rows.chunks_exact(n1 * BLOCK).enumerate() {
+            for c in 0..d {
+                let out = &mut out[k * d + c];
+                // Four nodes at a time, their sums kept in registers over
+                // the control points (i ascending, from zero).
+                for lane in (0..BLOCK).step_by(4) {
+                    let mut sum = [0.0f64; 4];
+                    for (row, x) in rows.chunks_exact(BLOCK).zip(points.chunks_exact(d)) {
+                        let x = x[c];
+                        let row = &row[lane..lane + 4];
+                        sum[0] += row[0] * x;
+                        sum[1] += row[1] * x;
+                        sum[2] += row[2] * x;
+                        sum[3] += row[3] * x;
+                    }
+                    out[lane..lane + 4].copy_from_slice(&sum);
+                }
+            }
+        }
+    }
+}
+
 /// The quadrature of [`curvature_variation`] for one degree: the nodes'
 /// weights and the Bernstein derivative rows (orders 1..3) at every node,
 /// computed once, so each energy costs three small products per node (the
 /// fair search evaluates hundreds of blends of one degree).
+#[derive(Clone)]
 pub(super) struct EnergyRule {
     degree: usize,
     weights: Vec<f64>,
-    /// Per node, `3 (n + 1)` values: the first, second and third
-    /// derivatives of the Bernstein basis there.
-    rows: Vec<f64>,
+    rows: NodeRows,
 }
 
 impl EnergyRule {
     pub(super) fn new(degree: usize, panels: usize) -> Self {
         let h = 1.0 / panels as f64;
-        let n1 = degree + 1;
         let mut weights = Vec::new();
-        let mut rows = Vec::new();
+        let mut ts = Vec::new();
         for panel in 0..panels {
             let mid = (panel as f64 + 0.5) * h;
             for (node, weight) in GL_NODES.iter().zip(GL_WEIGHTS) {
                 for t in [mid - 0.5 * h * node, mid + 0.5 * h * node] {
-                    let basis = bezier_basis_derivatives(degree, t, 3);
+                    ts.push(t);
                     weights.push(weight * 0.5 * h);
-                    for k in 1..=3 {
-                        for i in 0..n1 {
-                            rows.push(basis[(k, i)]);
-                        }
-                    }
                 }
             }
         }
         Self {
             degree,
+            rows: NodeRows::new(degree, &ts, 3),
             weights,
-            rows,
         }
     }
 
     /// `L^3 int (d kappa/ds)^2 ds` of `curve` (of this rule's degree).
     pub(super) fn energy(&self, curve: &BezierCurve) -> f64 {
         debug_assert_eq!(curve.degree(), self.degree);
-        let d = curve.dim();
-        let n1 = self.degree + 1;
-        let points = curve.points();
-        let mut jet = vec![0.0; 3 * d];
+        self.energy_of(curve.points(), curve.dim())
+    }
+
+    /// [`energy`](Self::energy) of the curve with control points `points`
+    /// (row-major, `dim` coordinates each).
+    pub(super) fn energy_of(&self, points: &[f64], dim: usize) -> f64 {
+        debug_assert_eq!(points.len(), (self.degree + 1) * dim);
         let (mut variation, mut length) = (0.0, 0.0);
-        for (node, weight) in self.weights.iter().enumerate() {
-            let rows = &self.rows[node * 3 * n1..(node + 1) * 3 * n1];
-            jet.fill(0.0);
-            for k in 0..3 {
-                let row = &rows[k * n1..(k + 1) * n1];
-                let out = &mut jet[k * d..(k + 1) * d];
-                for (i, &b) in row.iter().enumerate() {
-                    for (o, x) in out.iter_mut().zip(&points[i * d..(i + 1) * d]) {
-                        *o += b * x;
-                    }
+        if dim == 2 {
+            // kappa_from's 2D formulas written out for a block of nodes.
+            // A cusp (|r'| zero or not finite) at any node makes the energy
+            // infinite, as kappa_from's infinities do.
+            let mut jet = [[0.0f64; BLOCK]; 6];
+            for (b, (start, m)) in self.rows.blocks().enumerate() {
+                self.rows.jets(b, points, 2, &mut jet);
+                let [ax, ay, bx, by, cx, cy] = &jet;
+                let mut v = [0.0f64; BLOCK];
+                let mut l = [0.0f64; BLOCK];
+                let mut weights = [1.0f64; BLOCK];
+                weights[..m].copy_from_slice(&self.weights[start..start + m]);
+                let mut speeds = [1.0f64; BLOCK];
+                for j in 0..BLOCK {
+                    let s2 = ax[j] * ax[j] + ay[j] * ay[j];
+                    let speed = s2.sqrt();
+                    let ab = ax[j] * bx[j] + ay[j] * by[j];
+                    let kappa = (ax[j] * by[j] - ay[j] * bx[j]) / (speed * s2);
+                    let dkappa =
+                        (ax[j] * cy[j] - ay[j] * cx[j]) / (speed * s2) - 3.0 * kappa * ab / s2;
+                    let w = weights[j];
+                    v[j] = w * dkappa * dkappa / speed;
+                    l[j] = w * speed;
+                    speeds[j] = speed;
+                }
+                if !speeds[..m]
+                    .iter()
+                    .all(|&speed| speed > 0.0 && speed < f64::INFINITY)
+                {
+                    return f64::INFINITY;
+                }
+                for j in 0..m {
+                    variation += v[j];
+                    length += l[j];
                 }
             }
-            let (_, dkappa, speed) = kappa_from(&jet[..d], &jet[d..2 * d], &jet[2 * d..]);
-            variation += weight * dkappa * dkappa / speed;
-            length += weight * speed;
+        } else {
+            let mut jets = vec![[0.0f64; BLOCK]; 3 * dim];
+            let mut jet = vec![0.0; 3 * dim];
+            for (b, (start, m)) in self.rows.blocks().enumerate() {
+                self.rows.jets(b, points, dim, &mut jets);
+                for j in 0..m {
+                    for (value, lane) in jet.iter_mut().zip(&jets) {
+                        *value = lane[j];
+                    }
+                    let (_, dkappa, speed) =
+                        kappa_from(&jet[..dim], &jet[dim..2 * dim], &jet[2 * dim..]);
+                    let weight = self.weights[start + j];
+                    variation += weight * dkappa * dkappa / speed;
+                    length += weight * speed;
+                }
+            }
         }
         let total = variation * length.powi(3);
         if total.is_nan() { f64::INFINITY } else { total }
+    }
+
+    /// The rule of `degree` on `panels` panels, built once per process for
+    /// the degrees connect produces (at most [`MAX_CONNECT_DEGREE`]) and
+    /// the two panel counts used here; other requests build a new one.
+    pub(super) fn cached(degree: usize, panels: usize) -> Cow<'static, EnergyRule> {
+        static REPORT: [OnceLock<EnergyRule>; MAX_CONNECT_DEGREE + 1] =
+            [const { OnceLock::new() }; MAX_CONNECT_DEGREE + 1];
+        static SEARCH: [OnceLock<EnergyRule>; MAX_CONNECT_DEGREE + 1] =
+            [const { OnceLock::new() }; MAX_CONNECT_DEGREE + 1];
+        let table = match panels {
+            ENERGY_PANELS => &REPORT,
+            SEARCH_PANELS => &SEARCH,
+            _ => return Cow::Owned(Self::new(degree, panels)),
+        };
+        match table.get(degree) {
+            Some(cell) => Cow::Borrowed(cell.get_or_init(|| Self::new(degree, panels))),
+            None => Cow::Owned(Self::new(degree, panels)),
+        }
     }
 }
 
@@ -180,17 +306,69 @@ impl EnergyRule {
 /// [`ENERGY_PANELS`] panels; infinite when the speed vanishes at a node (a
 /// cusp).
 pub fn curvature_variation(curve: &BezierCurve) -> f64 {
-    EnergyRule::new(curve.degree(), ENERGY_PANELS).energy(curve)
+    EnergyRule::cached(curve.degree(), ENERGY_PANELS).energy(curve)
+}
+
+/// The first and second derivatives of the Bernstein basis of `degree` at
+/// the report's [`CURVATURE_SAMPLES`]` + 1` parameters; built once per
+/// degree up to [`MAX_CONNECT_DEGREE`].
+fn sample_rows(degree: usize) -> Cow<'static, NodeRows> {
+    static ROWS: [OnceLock<NodeRows>; MAX_CONNECT_DEGREE + 1] =
+        [const { OnceLock::new() }; MAX_CONNECT_DEGREE + 1];
+    let build = || {
+        let ts: Vec<f64> = (0..=CURVATURE_SAMPLES)
+            .map(|i| i as f64 / CURVATURE_SAMPLES as f64)
+            .collect();
+        NodeRows::new(degree, &ts, 2)
+    };
+    match ROWS.get(degree) {
+        Some(cell) => Cow::Borrowed(cell.get_or_init(build)),
+        None => Cow::Owned(build()),
+    }
+}
+
+/// The curvature of `curve` at the report's samples ([`kappa_from`]).
+fn sampled_curvature(curve: &BezierCurve) -> Vec<f64> {
+    let d = curve.dim();
+    let rows = sample_rows(curve.degree());
+    let points = curve.points();
+    let mut kappas = Vec::with_capacity(CURVATURE_SAMPLES + 1);
+    let mut jets = vec![[0.0f64; BLOCK]; 2 * d];
+    let mut jet = vec![0.0; 2 * d];
+    for (b, (_, m)) in rows.blocks().enumerate() {
+        rows.jets(b, points, d, &mut jets);
+        if d == 2 {
+            // kappa_from's 2D kappa for the block.
+            let [ax, ay, bx, by] = &jets[..] else {
+                unreachable!("four lanes in 2D")
+            };
+            let mut kappa = [0.0f64; BLOCK];
+            for j in 0..BLOCK {
+                let s2 = ax[j] * ax[j] + ay[j] * ay[j];
+                let speed = s2.sqrt();
+                let regular = speed != 0.0 && speed.is_finite();
+                let value = (ax[j] * by[j] - ay[j] * bx[j]) / (speed * s2);
+                kappa[j] = if regular { value } else { f64::INFINITY };
+            }
+            kappas.extend_from_slice(&kappa[..m]);
+            continue;
+        }
+        for j in 0..m {
+            for (value, lane) in jet.iter_mut().zip(&jets) {
+                *value = lane[j];
+            }
+            // The third derivative only enters dkappa/dt, unused here.
+            kappas.push(kappa_from(&jet[..d], &jet[d..], &jet[d..]).0);
+        }
+    }
+    kappas
 }
 
 /// The report of a blend: [`curvature_variation`], and the curvature's
 /// range and interior local extrema over [`CURVATURE_SAMPLES`]` + 1` evenly
 /// spaced parameters (changes below `1e-9` of the range are not counted).
 pub fn fairness_report(curve: &BezierCurve) -> FairnessReport {
-    let mut jet = vec![0.0; 4 * curve.dim()];
-    let kappas: Vec<f64> = (0..=CURVATURE_SAMPLES)
-        .map(|i| curvature_at(curve, i as f64 / CURVATURE_SAMPLES as f64, &mut jet).0)
-        .collect();
+    let kappas = sampled_curvature(curve);
     let min = kappas.iter().copied().fold(f64::INFINITY, f64::min);
     let max = kappas.iter().copied().fold(f64::NEG_INFINITY, f64::max);
     let noise = 1e-9 * (max - min).abs().max(max.abs());
@@ -221,7 +399,34 @@ pub fn fairness_report(curve: &BezierCurve) -> FairnessReport {
 }
 
 /// Shape values from search coordinates: per end `ln beta_1` then
-/// `gamma_j = beta_j / beta_1`.
+/// `gamma_j = beta_j / beta_1`, written into `p` and `q` (of the ends'
+/// orders; a fixed end's values are copied).
+fn fill_shapes(
+    x: &[f64],
+    fixed_p: Option<&[f64]>,
+    fixed_q: Option<&[f64]>,
+    p: &mut [f64],
+    q: &mut [f64],
+) {
+    let mut at = 0;
+    for (shape, fixed) in [(p, fixed_p), (q, fixed_q)] {
+        if let Some(f) = fixed {
+            shape.copy_from_slice(f);
+            continue;
+        }
+        let Some((first, rest)) = shape.split_first_mut() else {
+            continue;
+        };
+        let beta1 = x[at].exp();
+        *first = beta1;
+        for (j, value) in rest.iter_mut().enumerate() {
+            *value = x[at + 1 + j] * beta1;
+        }
+        at += 1 + rest.len();
+    }
+}
+
+/// [`fill_shapes`] into new vectors.
 fn shapes_from(
     x: &[f64],
     p_order: usize,
@@ -229,43 +434,36 @@ fn shapes_from(
     fixed_q: Option<&[f64]>,
     q_order: usize,
 ) -> (Vec<f64>, Vec<f64>) {
-    let mut at = 0;
-    let mut end = |order: usize, fixed: Option<&[f64]>| -> Vec<f64> {
-        if let Some(f) = fixed {
-            return f.to_vec();
-        }
-        if order == 0 {
-            return Vec::new();
-        }
-        let beta1 = x[at].exp();
-        let mut shape = vec![beta1];
-        for j in 1..order {
-            shape.push(x[at + j] * beta1);
-        }
-        at += order;
-        shape
-    };
-    let p = end(p_order, fixed_p);
-    let q = end(q_order, fixed_q);
+    let (mut p, mut q) = (vec![0.0; p_order], vec![0.0; q_order]);
+    fill_shapes(x, fixed_p, fixed_q, &mut p, &mut q);
     (p, q)
 }
 
-/// The fair shape values (module documentation of `geometric`).
+/// The fair shape values (module documentation of `geometric`). With
+/// `checked`, a trial whose solve connect's residual check would refuse
+/// counts as infinitely bad (the search of old, kept as the fallback);
+/// without, trials skip the check and the caller checks the winner.
 pub(super) fn fair_shapes(
     problem: &Problem,
     fixed_p: Option<&[f64]>,
     fixed_q: Option<&[f64]>,
     natural: f64,
+    checked: bool,
 ) -> Result<(Vec<f64>, Vec<f64>)> {
     let (kp, kq) = (problem.p_order, problem.q_order);
     let free_p = if fixed_p.is_some() { 0 } else { kp };
     let free_q = if fixed_q.is_some() { 0 } else { kq };
-    let rule = EnergyRule::new(problem.degree, SEARCH_PANELS);
-    let energy = |x: &[f64]| -> f64 {
-        let (ps, qs) = shapes_from(x, kp, fixed_p, fixed_q, kq);
-        match solve_with_shapes(problem, &ps, &qs) {
-            Ok(c) => rule.energy(&c.curve),
-            Err(_) => f64::INFINITY,
+    let rule = EnergyRule::cached(problem.degree, SEARCH_PANELS);
+    let mut trial = TrialSolver::new(problem);
+    let dim = problem.dim;
+    let mut p_buffer = [0.0; MAX_GEOMETRIC_ORDER];
+    let mut q_buffer = [0.0; MAX_GEOMETRIC_ORDER];
+    let mut energy = |x: &[f64]| -> f64 {
+        let (ps, qs) = (&mut p_buffer[..kp], &mut q_buffer[..kq]);
+        fill_shapes(x, fixed_p, fixed_q, ps, qs);
+        match trial.solve(ps, qs, checked) {
+            Some(points) => rule.energy_of(points, dim),
+            None => f64::INFINITY,
         }
     };
     let dims = free_p + free_q;
@@ -331,6 +529,16 @@ pub(crate) fn nelder_mead(
         simplex.push((value(&mut f, &x), x));
     }
     let mut evaluations = n + 1;
+    // Trial points live in these buffers and are swapped into the simplex
+    // (no allocation per step).
+    let mut centroid = vec![0.0; n];
+    let mut reflected = vec![0.0; n];
+    let mut trial = vec![0.0; n];
+    let along = |out: &mut [f64], centroid: &[f64], scale: f64, worst: &[f64]| {
+        for ((o, c), w) in out.iter_mut().zip(centroid).zip(worst) {
+            *o = c + scale * (c - w);
+        }
+    };
     while evaluations < max_evaluations {
         simplex.sort_by(|a, b| a.0.total_cmp(&b.0));
         let (best, worst) = (simplex[0].0, simplex[n].0);
@@ -340,51 +548,43 @@ pub(crate) fn nelder_mead(
         {
             break;
         }
-        let centroid: Vec<f64> = (0..n)
-            .map(|c| simplex[..n].iter().map(|(_, x)| x[c]).sum::<f64>() / n as f64)
-            .collect();
-        let along = |scale: f64, worst: &[f64]| -> Vec<f64> {
-            centroid
-                .iter()
-                .zip(worst)
-                .map(|(c, w)| c + scale * (c - w))
-                .collect()
-        };
-        let worst_x = simplex[n].1.clone();
-        let reflected = along(1.0, &worst_x);
+        for (c, value) in centroid.iter_mut().enumerate() {
+            *value = simplex[..n].iter().map(|(_, x)| x[c]).sum::<f64>() / n as f64;
+        }
+        along(&mut reflected, &centroid, 1.0, &simplex[n].1);
         let fr = value(&mut f, &reflected);
         evaluations += 1;
         if fr < simplex[0].0 {
-            let expanded = along(2.0, &worst_x);
-            let fe = value(&mut f, &expanded);
+            along(&mut trial, &centroid, 2.0, &simplex[n].1);
+            let fe = value(&mut f, &trial);
             evaluations += 1;
-            simplex[n] = if fe < fr {
-                (fe, expanded)
+            if fe < fr {
+                simplex[n].0 = fe;
+                std::mem::swap(&mut simplex[n].1, &mut trial);
             } else {
-                (fr, reflected)
-            };
+                simplex[n].0 = fr;
+                std::mem::swap(&mut simplex[n].1, &mut reflected);
+            }
         } else if fr < simplex[n - 1].0 {
-            simplex[n] = (fr, reflected);
+            simplex[n].0 = fr;
+            std::mem::swap(&mut simplex[n].1, &mut reflected);
         } else {
-            let contracted = if fr < simplex[n].0 {
-                along(0.5, &worst_x)
-            } else {
-                along(-0.5, &worst_x)
-            };
-            let fc = value(&mut f, &contracted);
+            let scale = if fr < simplex[n].0 { 0.5 } else { -0.5 };
+            along(&mut trial, &centroid, scale, &simplex[n].1);
+            let fc = value(&mut f, &trial);
             evaluations += 1;
             if fc < simplex[n].0.min(fr) {
-                simplex[n] = (fc, contracted);
+                simplex[n].0 = fc;
+                std::mem::swap(&mut simplex[n].1, &mut trial);
             } else {
                 // Shrink towards the best point.
-                let best_x = simplex[0].1.clone();
-                for entry in simplex.iter_mut().skip(1) {
-                    let x: Vec<f64> = best_x
-                        .iter()
-                        .zip(&entry.1)
-                        .map(|(b, y)| b + 0.5 * (y - b))
-                        .collect();
-                    *entry = (value(&mut f, &x), x);
+                let (best, rest) = simplex.split_at_mut(1);
+                let best_x = &best[0].1;
+                for entry in rest.iter_mut() {
+                    for (y, b) in entry.1.iter_mut().zip(best_x) {
+                        *y = b + 0.5 * (*y - b);
+                    }
+                    entry.0 = value(&mut f, &entry.1);
                     evaluations += 1;
                 }
             }
@@ -392,4 +592,94 @@ pub(crate) fn nelder_mead(
     }
     simplex.sort_by(|a, b| a.0.total_cmp(&b.0));
     simplex.swap_remove(0).1
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The energy as first written: node by node, each jet a row-by-row
+    /// product, [`kappa_from`] per node.
+    fn node_by_node(curve: &BezierCurve, panels: usize) -> f64 {
+        let (d, n) = (curve.dim(), curve.degree());
+        let h = 1.0 / panels as f64;
+        let (mut variation, mut length) = (0.0, 0.0);
+        for panel in 0..panels {
+            let mid = (panel as f64 + 0.5) * h;
+            for (node, weight) in GL_NODES.iter().zip(GL_WEIGHTS) {
+                for t in [mid - 0.5 * h * node, mid + 0.5 * h * node] {
+                    let basis = bezier_basis_derivatives(n, t, 3);
+                    let mut jet = vec![0.0; 3 * d];
+                    for k in 0..3 {
+                        for i in 0..=n {
+                            for c in 0..d {
+                                jet[k * d + c] += basis[(k + 1, i)] * curve.points()[i * d + c];
+                            }
+                        }
+                    }
+                    let (_, dkappa, speed) = kappa_from(&jet[..d], &jet[d..2 * d], &jet[2 * d..]);
+                    let weight = weight * 0.5 * h;
+                    variation += weight * dkappa * dkappa / speed;
+                    length += weight * speed;
+                }
+            }
+        }
+        let total = variation * length.powi(3);
+        if total.is_nan() { f64::INFINITY } else { total }
+    }
+
+    #[test]
+    fn blocked_energy_equals_the_node_by_node_energy_bit_for_bit() {
+        let mut seed = 7u64;
+        let mut next = || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+        };
+        for (d, n) in [(2, 3), (2, 5), (2, 7), (3, 5), (4, 4)] {
+            for _ in 0..5 {
+                let points: Vec<f64> = (0..(n + 1) * d).map(|_| next()).collect();
+                let curve = BezierCurve::new(d, n, points).unwrap();
+                for panels in [SEARCH_PANELS, ENERGY_PANELS, 3] {
+                    let blocked = EnergyRule::cached(n, panels).energy(&curve);
+                    assert_eq!(
+                        blocked.to_bits(),
+                        node_by_node(&curve, panels).to_bits(),
+                        "d {d} n {n} panels {panels}"
+                    );
+                }
+            }
+        }
+        // Zero speed at the nodes (a curve standing still) is infinitely bad.
+        let still = BezierCurve::from_rows(&[[1.0, 2.0]; 4]).unwrap();
+        assert_eq!(
+            EnergyRule::cached(3, SEARCH_PANELS).energy(&still),
+            f64::INFINITY
+        );
+        assert_eq!(node_by_node(&still, SEARCH_PANELS), f64::INFINITY);
+    }
+
+    #[test]
+    fn sampled_curvature_matches_the_curve() {
+        let curve = BezierCurve::from_rows(&[
+            [0.0, 0.0],
+            [1.0, 2.0],
+            [3.0, -1.0],
+            [4.0, 1.0],
+            [5.0, 0.5],
+            [6.0, 2.0],
+        ])
+        .unwrap();
+        let kappas = sampled_curvature(&curve);
+        assert_eq!(kappas.len(), CURVATURE_SAMPLES + 1);
+        for (i, kappa) in kappas.iter().enumerate() {
+            let jet = curve.eval_derivatives(i as f64 / CURVATURE_SAMPLES as f64, 3);
+            let (reference, _, _) = kappa_from(&jet[2..4], &jet[4..6], &jet[6..8]);
+            assert!(
+                (kappa - reference).abs() <= 1e-12 * reference.abs().max(1.0),
+                "sample {i}: {kappa} vs {reference}"
+            );
+        }
+    }
 }

@@ -1,0 +1,186 @@
+"""Issue 18 in the workbench, judged by FreeCAD: the operations' defaults never loop
+(the automatic scale), and "Round wire corners by radius" rounds every corner of an
+open or closed wire (lines and arcs, edges in any direction) G2, cutting each corner
+where the arc of that radius touches its edges."""
+
+import math
+import unittest
+
+import FreeCAD
+import Part
+
+import bezjoin
+from bezjoin_workbench import commands, operations
+from judge import gap
+from test_operations_in_freecad import CommandDriver
+
+V = FreeCAD.Vector
+
+
+def assert_g2_path(test, wire, closed):
+    """Consecutive edges of ``wire`` meet with the same tangent and curvature (and the
+    last meets the first when ``closed``)."""
+    edges = wire.OrderedEdges
+    pairs = list(zip(edges, edges[1:]))
+    if closed:
+        pairs.append((edges[-1], edges[0]))
+    for left, right in pairs:
+        a, b = left.valueAt(left.LastParameter), right.valueAt(right.FirstParameter)
+        test.assertLessEqual(gap(a, b), 1e-9)
+        test.assertLessEqual(gap(left.tangentAt(left.LastParameter),
+                                 right.tangentAt(right.FirstParameter)), 1e-8)
+        test.assertLessEqual(abs(left.curvatureAt(left.LastParameter)
+                                 - right.curvatureAt(right.FirstParameter)), 1e-6)
+
+
+def self_intersects(edge, count=400):
+    """Whether a planar (z = 0) edge crosses itself: two non-adjacent chords of a
+    dense polyline on it cross."""
+    points = [edge.valueAt(edge.FirstParameter + i / count * (edge.LastParameter
+                                                               - edge.FirstParameter))
+              for i in range(count + 1)]
+
+    def orientation(p, q, r):
+        return (q.x - p.x) * (r.y - p.y) - (q.y - p.y) * (r.x - p.x)
+
+    chords = list(zip(points, points[1:]))
+    for i, (a, b) in enumerate(chords):
+        for c, d in chords[i + 2:]:
+            if (orientation(a, b, c) * orientation(a, b, d) < 0
+                    and orientation(c, d, a) * orientation(c, d, b) < 0):
+                return True
+    return False
+
+
+class DefaultsNeverLoop(unittest.TestCase):
+    """Lines 40 and 20 long meeting at a vertex, setback 2 (issue 18's example)."""
+
+    first = Part.makeLine(V(-40, 0, 0), V(0, 0, 0))
+    second = Part.makeLine(V(0, 0, 0), V(0, 20, 0))
+
+    def test_round_corner_default_stays_in_the_corner(self):
+        quarter_arc = math.pi  # radius 2, a right angle
+        paper = operations.round_corner(self.first, self.second, setback=2.0,
+                                        auto_scale=False)
+        self.assertTrue(self_intersects(paper.OrderedEdges[1]))
+        for wire in (operations.round_corner(self.first, self.second, setback=2.0),
+                     operations.round_corner(self.second, self.first, setback=2.0)):
+            blend = wire.OrderedEdges[1]
+            self.assertFalse(self_intersects(blend))
+            self.assertLess(blend.Length, 2 * quarter_arc)
+            self.assertTrue(all(p.x <= 1e-12 and p.y >= -1e-12 for p in blend.Curve.getPoles()))
+            edges = wire.OrderedEdges
+            for left, right in zip(edges, edges[1:]):
+                self.assertLessEqual(gap(left.tangentAt(left.LastParameter),
+                                         right.tangentAt(right.FirstParameter)), 1e-9)
+
+    def test_blend_default_stays_in_the_corner(self):
+        # The gap between the lines' facing ends, bridged by the default blend.
+        first = Part.makeLine(V(-40, 0, 0), V(-2, 0, 0))
+        second = Part.makeLine(V(0, 2, 0), V(0, 20, 0))
+        paper = operations.blend_edges(first, second, auto_scale=False)
+        self.assertTrue(self_intersects(paper))
+        edge = operations.blend_edges(first, second)
+        self.assertFalse(self_intersects(edge))
+        self.assertTrue(all(p.x <= 1e-12 and p.y >= -1e-12 for p in edge.Curve.getPoles()))
+        # explicit scales are the raw construction, as before
+        scaled = operations.blend_edges(first, second, p_scale=1.0, q_scale=1.0)
+        self.assertEqual(scaled.Curve.getPoles(), paper.Curve.getPoles())
+
+
+class RoundWireByRadius(unittest.TestCase, CommandDriver):
+    def test_closed_rectangle_is_cut_at_the_radius_and_g2(self):
+        wire = Part.makePolygon([V(0, 0, 0), V(10, 0, 0), V(10, 6, 0), V(0, 6, 0), V(0, 0, 0)])
+        rounded = operations.round_wire_by_radius(wire, 1.5)
+        self.assertTrue(rounded.closed)
+        self.assertEqual(len(rounded.reports), 4)
+        shape = rounded.shape
+        self.assertTrue(shape.isValid() and shape.isClosed())
+        self.assertEqual(len(shape.Edges), 8)
+        assert_g2_path(self, shape, closed=True)
+        # At a right angle the arc of radius r touches each side r from the vertex:
+        # the kept sides are 10 - 3 and 6 - 3 long.
+        lines = sorted(e.Length for e in shape.Edges if e.Curve.TypeId != "Part::GeomBezierCurve")
+        for got, want in zip(lines, [3.0, 3.0, 7.0, 7.0]):
+            self.assertAlmostEqual(got, want, delta=1e-9)
+        # Every corner vertex is cut off; every blend stays in its corner and has one
+        # curvature maximum, measured by FreeCAD.
+        for corner in ((0, 0), (10, 0), (10, 6), (0, 6)):
+            self.assertGreater(shape.distToShape(Part.Vertex(V(*corner, 0)))[0], 0.1)
+        for report in rounded.reports:
+            self.assertEqual(report.curvature_extrema, 1)
+            self.assertLess(report.arc_deviation, 1.5)
+
+    def test_open_sketch_path_with_an_arc_and_reversed_edges(self):
+        # line -> quarter arc (radius 3, tangent to neither line) -> line, edges in
+        # mixed directions as a sketch may store them.
+        arc = Part.ArcOfCircle(Part.Circle(V(0, 0, 0), V(0, 0, 1), 3.0), 0.0,
+                               0.5 * math.pi).toShape()
+        start = Part.makeLine(V(3, 0, 0), V(5, -4, 0))  # runs away from the arc
+        end = Part.makeLine(V(-5, 4, 0), V(0, 3, 0))  # ends at the arc's end
+        rounded = operations.round_wire_by_radius([start, arc, end], 0.5)
+        self.assertFalse(rounded.closed)
+        self.assertEqual(len(rounded.reports), 2)
+        shape = rounded.shape
+        self.assertEqual(len(shape.Edges), 5)
+        assert_g2_path(self, shape, closed=False)
+        ends = sorted([tuple(shape.OrderedVertexes[0].Point),
+                       tuple(shape.OrderedVertexes[-1].Point)])
+        self.assertEqual(ends, [(-5.0, 4.0, 0.0), (5.0, -4.0, 0.0)])
+        # The arc's kept part stays on its circle.
+        arc_part = [e for e in shape.Edges
+                    if abs(e.curvatureAt(0.5 * (e.FirstParameter + e.LastParameter)) - 1 / 3)
+                    < 1e-9]
+        self.assertEqual(len(arc_part), 1)
+        for i in range(11):
+            t = arc_part[0].FirstParameter + i / 10 * (arc_part[0].LastParameter
+                                                       - arc_part[0].FirstParameter)
+            self.assertAlmostEqual(arc_part[0].valueAt(t).Length, 3.0, delta=1e-12)
+
+    def test_closed_choice_overrides_the_path(self):
+        wire = Part.makePolygon([V(0, 0, 0), V(8, 0, 0), V(8, 8, 0), V(0, 0, 0)])
+        open_rounded = operations.round_wire_by_radius(wire, 1.0, closed=False)
+        self.assertEqual(len(open_rounded.reports), 2)
+        self.assertEqual(len(open_rounded.shape.Edges), 5)
+        # The corner from the last edge back to the first is kept sharp; the others are cut.
+        self.assertLessEqual(open_rounded.shape.distToShape(Part.Vertex(V(0, 0, 0)))[0], 1e-12)
+        for corner in ((8, 0), (8, 8)):
+            self.assertGreater(open_rounded.shape.distToShape(Part.Vertex(V(*corner, 0)))[0],
+                               0.05)
+        closed_rounded = operations.round_wire_by_radius(wire, 1.0, order=3)
+        self.assertEqual(len(closed_rounded.reports), 3)
+        assert_g2_path(self, closed_rounded.shape, closed=True)
+
+    def test_errors_name_the_radius_and_the_path(self):
+        wire = Part.makePolygon([V(0, 0, 0), V(4, 0, 0), V(4, 4, 0)])
+        with self.assertRaises(bezjoin.BezjoinError) as caught:
+            operations.round_wire_by_radius(wire, 50.0)
+        self.assertEqual(caught.exception.status_name, "BZJ_ERR_INVALID_ARGUMENT")
+        self.assertIn("radius", caught.exception.message)
+        apart = [Part.makeLine(V(0, 0, 0), V(4, 0, 0)), Part.makeLine(V(5, 1, 0), V(5, 4, 0))]
+        with self.assertRaises(bezjoin.BezjoinError) as caught:
+            operations.round_wire_by_radius(apart, 1.0)
+        self.assertIn("edge 2", caught.exception.message)
+        with self.assertRaises(bezjoin.BezjoinError) as caught:
+            operations.round_wire_by_radius([Part.makeLine(V(0, 0, 0), V(4, 0, 0))], 1.0)
+        self.assertIn("at least 2 edges", caught.exception.message)
+
+    def test_round_wire_command(self):
+        wire = Part.makePolygon([V(0, 0, 0), V(10, 0, 0), V(10, 6, 0), V(0, 6, 0), V(0, 0, 0)])
+        parameters = {"radius": 1.0, "order": 2, "closed": "auto"}
+        made, shown = self.drive(commands.RoundWireByRadiusCommand(), wire.OrderedEdges,
+                                 parameters)
+        self.assertEqual(shown, [])
+        ((name, shape, report),) = made
+        self.assertEqual(name, "RoundedWire")
+        self.assertEqual(len(shape.Edges), 8)
+        self.assertEqual(report["FilletRadius"], 1.0)
+        self.assertGreater(report["MaxArcDeviation"], 0.0)
+        made, shown = self.drive(commands.RoundWireByRadiusCommand(), wire.OrderedEdges,
+                                 dict(parameters, closed="no"))
+        self.assertEqual(len(made[0][1].Edges), 7)
+        made, shown = self.drive(commands.RoundWireByRadiusCommand(), wire.OrderedEdges,
+                                 dict(parameters, radius=40.0))
+        self.assertEqual(made, [])
+        self.assertTrue(shown[0].startswith("BZJ_ERR_INVALID_ARGUMENT: "), shown)
+        self.assertIn("radius", shown[0])
