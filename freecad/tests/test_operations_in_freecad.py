@@ -351,7 +351,7 @@ class MergeJudgedByFreeCAD(unittest.TestCase, CommandDriver):
     def test_merge_edges_feature_and_report(self):
         first = Part.Edge(bezier([(0, 0, 0), (1, 1, 0), (2, 1, 0), (3, 0, 0)]))
         second = Part.Edge(bezier([(6, 0, 0), (5, -1, 0), (4, -1, 0), (3, 0, 0)]))
-        merged = operations.merge_edges(first, second, fix_ends=True)
+        merged = operations.merge_edges(first, second, fix_ends=True, mu="half")
         curve = merged.shape.Curve
         self.assertIsInstance(curve, Part.BezierCurve)
         self.assertEqual(curve.Degree, 3)

@@ -101,10 +101,16 @@ def connect(p, u0, q, v0, *, p_order=None, q_order=None, p_scale=None, q_scale=N
     if automatic:
         library().call("bzj_connect_auto_scale", p_handle, real_argument(u0, "u0"), q_handle,
                        real_argument(v0, "v0"), ctypes.byref(options), ctypes.byref(out), None)
-        return Curve._adopt(out)
-    library().call("bzj_connect", p_handle, real_argument(u0, "u0"), q_handle,
-                   real_argument(v0, "v0"), ctypes.byref(options), ctypes.byref(out))
-    return Curve._adopt(out)
+    else:
+        library().call("bzj_connect", p_handle, real_argument(u0, "u0"), q_handle,
+                       real_argument(v0, "v0"), ctypes.byref(options), ctypes.byref(out))
+    # R is a Bezier curve of degree p_order + q_order + 1 (no constraints) in P's
+    # dimension: known without asking when P's dimension is.
+    known = p._bezier_shape
+    shape = None
+    if known is not None and options.constraint_count == 0:
+        shape = (options.p_order + options.q_order + 1, known[1])
+    return Curve._adopt(out, shape)
 
 
 class AutoScaledConnection(CurveGroup):
@@ -142,9 +148,10 @@ def _options(p, q, p_order, q_order, p_scale, q_scale, constraints):
     """The C options and the arrays they point into (keep both alive for the call)."""
     p_order = p.degree if p_order is None else index_argument(p_order, "p_order")
     q_order = q.degree if q_order is None else index_argument(q_order, "q_order")
-    p_dim = p.dim
     keep_alive = []
     structs = []
+    constraints = list(constraints)
+    p_dim = p.dim if constraints else None
     for j, constraint in enumerate(constraints):
         try:
             t, derivatives = constraint
@@ -160,10 +167,10 @@ def _options(p, q, p_order, q_order, p_scale, q_scale, constraints):
         keep_alive.append(array)
         structs.append(PointConstraintStruct(real_argument(t, f"constraints[{j}] t"),
                                              len(rows) - 1, array))
-    constraint_array = (PointConstraintStruct * max(len(structs), 1))(*structs)
+    constraint_array = (PointConstraintStruct * len(structs))(*structs) if structs else None
     options = ConnectOptionsStruct(
         p_order, q_order, real_argument(p_scale, "p_scale"), real_argument(q_scale, "q_scale"),
-        constraint_array if structs else None, len(structs),
+        constraint_array, len(structs),
     )
     return options, (keep_alive, constraint_array)
 

@@ -9,6 +9,7 @@ messages name the argument.
 
 import ctypes
 import operator
+import struct
 
 from .errors import BezjoinError
 
@@ -62,7 +63,10 @@ def point_rows(points, name):
     for no points, an empty point, or rows of different lengths.
     """
     try:
-        rows = [tuple(real_argument(x, f"{name}[{i}] coordinate") for x in row)
+        # float coordinates pass as they are (real_argument would return them
+        # unchanged); the argument name is formatted only for the others.
+        rows = [tuple([x if type(x) is float else real_argument(x, f"{name}[{i}] coordinate")
+                       for x in row])
                 for i, row in enumerate(points)]
     except TypeError as error:
         raise TypeError(f"{name} must be a sequence of points: {error}") from None
@@ -79,10 +83,31 @@ def point_rows(points, name):
     return rows, dim
 
 
+_ARRAY_TYPES = {}
+
+
+def _array_type(length):
+    """``(ctypes.c_double * length, struct.Struct)``, cached by length."""
+    kind = _ARRAY_TYPES.get(length)
+    if kind is None:
+        if len(_ARRAY_TYPES) > 256:
+            _ARRAY_TYPES.clear()
+        kind = _ARRAY_TYPES[length] = (ctypes.c_double * length, struct.Struct(f"={length}d"))
+    return kind
+
+
 def double_array(values):
     """A ctypes ``double[]`` holding ``values`` (kept alive by the caller)."""
     values = list(values)
-    return (ctypes.c_double * max(len(values), 1))(*values), len(values)
+    length = len(values)
+    array_type, packer = _array_type(max(length, 1))
+    if length:
+        try:
+            # One copy of packed doubles: much cheaper than ctypes' element-wise init.
+            return array_type.from_buffer_copy(packer.pack(*values)), length
+        except (struct.error, TypeError, OverflowError, ValueError):
+            pass  # let ctypes convert (and word any error) as it always has
+    return array_type(*values), length
 
 
 def flat(rows):
@@ -92,4 +117,5 @@ def flat(rows):
 
 def rows_of(buffer, count, dim):
     """``count`` rows of ``dim`` floats from a row-major ctypes buffer."""
-    return [tuple(buffer[i * dim + c] for c in range(dim)) for i in range(count)]
+    values = buffer[:count * dim]  # one slice: plain floats
+    return [tuple(values[i * dim:(i + 1) * dim]) for i in range(count)]

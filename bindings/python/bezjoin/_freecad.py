@@ -10,10 +10,13 @@ given FreeCAD object, in both directions.
 """
 
 import bisect
+import ctypes
 import math
 from collections import namedtuple
 
-from .errors import BezjoinError, UnsupportedGeometryError
+from ._convert import _array_type
+from ._library import CurvePointer, library
+from .errors import STATUS_OK, BezjoinError, UnsupportedGeometryError
 
 #: OpenCASCADE's ``Geom_BezierCurve::MaxDegree()`` and ``Geom_BSplineCurve::MaxDegree()``.
 MAXIMUM_FREECAD_DEGREE = 25
@@ -216,10 +219,21 @@ def _part():
     return Part
 
 
-def _vector(x, y, z):
-    import FreeCAD  # noqa: PLC0415 (FreeCAD only)
+_vector_class = None
 
-    return FreeCAD.Vector(x, y, z)
+
+def _vector_type():
+    """``FreeCAD.Vector`` (looked up once)."""
+    global _vector_class
+    if _vector_class is None:
+        import FreeCAD  # noqa: PLC0415 (FreeCAD only)
+
+        _vector_class = FreeCAD.Vector
+    return _vector_class
+
+
+def _vector(x, y, z):
+    return _vector_type()(x, y, z)
 
 
 def _describe(obj):
@@ -443,7 +457,7 @@ def _self_check(curve, plan):
     breaks = sorted(set(curve.knots))
     breaks = [k for k in breaks if first <= k <= last]
     params = list(breaks) + [0.5 * (a + b) for a, b in zip(breaks, breaks[1:])]
-    ours = [curve.evaluate(u) for u in params]
+    ours = [rows[0] for rows in curve.derivatives_many(params, 0)]
     theirs = [tuple(plan.value(_to_freecad_parameter(plan.mapping, plan.first,
                                                               plan.last, u)))
               for u in params]
@@ -457,8 +471,74 @@ def _self_check(curve, plan):
         )
 
 
+def _verbatim_ratio(degree):
+    """How far (max-norm) the poles of a degree-``degree`` Bezier curve may reach,
+    relative to ``max(1, |P_0|, |P_n|)``, for its sampled self-check to be sure
+    to pass. Assumed: both evaluations (ours, OpenCASCADE's) err at most as
+    one through the power basis does (coefficients up to ``3^n max |P_i|``):
+    ``4 n eps 3^n sqrt(3) max |P_i|``, kept 8 times below
+    :data:`SELF_CHECK_TOLERANCE` times the size (at least the end points,
+    which are sampled). About 1000 for a cubic, 5 at degree 7; 0 (no fast
+    path) from degree 9. (OpenCASCADE's evaluation is off enough for the check
+    to refuse random Bezier edges from degree 16 on.)"""
+    bound = 8.0 * 4.0 * degree * 2.220446049250313e-16 * 3.0 ** degree * math.sqrt(3.0)
+    ratio = SELF_CHECK_TOLERANCE / bound
+    return ratio if ratio >= 1.0 else 0.0
+
+
+_VERBATIM_RATIOS = [0.0] + [_verbatim_ratio(n) for n in range(1, MAXIMUM_FREECAD_DEGREE + 1)]
+
+#: Coordinates below this size cannot overflow in either evaluation.
+_VERBATIM_LIMIT = 1e150
+
+
+def _verbatim_bezier(cls, obj, part):
+    """The fast path of the most common edge, or ``None`` (then the general path
+    runs, with the same result or error): a ``Part.Edge`` on the whole of a
+    polynomial ``Part.BezierCurve`` (FreeCAD's ``[0, 1]``) of low degree whose
+    poles stay near its ends (:func:`_verbatim_ratio`). Its curve is the
+    Bezier curve with FreeCAD's poles, copied bit for bit, on the same
+    parameter (the plan "affine" with ``first, last = 0, 1``): the same
+    Bernstein polynomial, and the sampled self-check is skipped because the
+    bound above proves it would pass (it compares two evaluations of one
+    polynomial)."""
+    if not isinstance(obj, part.Edge) or obj.Degenerated:
+        return None
+    try:
+        curve = obj.Curve
+        whole = obj.ParameterRange == (0.0, 1.0)
+    except Exception:  # noqa: BLE001 (the general path words it)
+        return None
+    if not whole or type(curve) is not part.BezierCurve or curve.isRational():
+        return None
+    poles = curve.getPoles()
+    degree = len(poles) - 1
+    if not 1 <= degree <= MAXIMUM_FREECAD_DEGREE:
+        return None
+    values = [x for pole in poles for x in pole]
+    reach = max(max(values), -min(values))
+    ends = max(1.0, abs(values[0]), abs(values[1]), abs(values[2]),
+               abs(values[-3]), abs(values[-2]), abs(values[-1]))
+    # NaN compares False: the general path takes it.
+    if not (reach < _VERBATIM_LIMIT and reach <= _VERBATIM_RATIOS[degree] * ends):
+        return None
+    length = len(values)
+    array_type, packer = _array_type(length)
+    array = array_type.from_buffer_copy(packer.pack(*values))
+    handle = CurvePointer()
+    status = library().function("bzj_curve_new")(3, degree, array, length,
+                                                 ctypes.byref(handle))
+    if status != STATUS_OK or not handle:
+        return None
+    return cls._adopt(handle, (degree, 3))
+
+
 def curve_from_freecad(cls, obj, nurbs=False):
     """The curve of class ``cls`` for a FreeCAD object (:meth:`bezjoin.Curve.from_freecad`)."""
+    if not nurbs:
+        fast = _verbatim_bezier(cls, obj, _part())
+        if fast is not None:
+            return fast
     plan = _plan(obj, nurbs)
     try:
         curve = plan.build(cls)
@@ -506,7 +586,10 @@ def _check_exportable(dim, degree, kind):
 
 
 def _vectors(points, dim):
-    return [_vector(p[0], p[1], p[2] if dim == 3 else 0.0) for p in points]
+    vector = _vector_type()
+    if dim == 3:
+        return [vector(p[0], p[1], p[2]) for p in points]
+    return [vector(p[0], p[1], 0.0) for p in points]
 
 
 def bezier_curve(points, degree, dim):
@@ -514,7 +597,10 @@ def bezier_curve(points, degree, dim):
     part = _part()
     _check_exportable(dim, degree, "Part.BezierCurve")
     curve = part.BezierCurve()
-    curve.setPoles(_vectors(points, dim))
+    # setPoles takes 3-tuples as it takes vectors (the same poles), without
+    # making a Vector of each first.
+    curve.setPoles(points if dim == 3 and all(type(p) is tuple for p in points)
+                   else _vectors(points, dim))
     return curve
 
 

@@ -75,12 +75,21 @@ class Curve:
         handle = CurvePointer()
         library().call("bzj_curve_new", dim, len(rows) - 1, array, length, ctypes.byref(handle))
         self._handle = handle
+        self._bezier_shape = (len(rows) - 1, dim)
+
+    #: ``(degree, dim)`` of a Bezier curve when the code that made it knows them
+    #: (the curve is immutable), else ``None``: spares :meth:`to_freecad` the
+    #: ``is_nurbs``, ``degree`` and ``dim`` calls across the C ABI.
+    _bezier_shape = None
 
     @classmethod
-    def _adopt(cls, handle):
-        """Wrap a handle the library returned (ownership passes to the new object)."""
+    def _adopt(cls, handle, bezier_shape=None):
+        """Wrap a handle the library returned (ownership passes to the new object);
+        ``bezier_shape``: ``(degree, dim)`` when it is known to be a Bezier curve."""
         curve = cls.__new__(cls)
         curve._handle = handle
+        if bezier_shape is not None:
+            curve._bezier_shape = bezier_shape
         return curve
 
     @classmethod
@@ -236,11 +245,16 @@ class Curve:
             UnsupportedGeometryError: dim other than 2 or 3, degree 0, a degree
                 above OpenCASCADE's maximum of 25, or outside FreeCAD.
         """
-        if self.is_nurbs:
-            weights = self.weights if self.is_rational else None
-            return _freecad.bspline_curve(self.points, self.knots, self.degree, weights,
-                                          self.dim)
-        return _freecad.bezier_curve(self.points, self.degree, self.dim)
+        shape = self._bezier_shape
+        if shape is None:
+            if self.is_nurbs:
+                weights = self.weights if self.is_rational else None
+                return _freecad.bspline_curve(self.points, self.knots, self.degree, weights,
+                                              self.dim)
+            shape = self.degree, self.dim
+        # A Bezier curve has degree + 1 points: no pole_count call.
+        degree, dim = shape
+        return _freecad.bezier_curve(self._read_points(degree + 1, dim), degree, dim)
 
     def to_edge(self):
         """This curve as a ``Part.Edge`` on its :attr:`domain` (see :meth:`to_freecad`)."""
@@ -321,8 +335,10 @@ class Curve:
     def points(self):
         """The control points (``degree + 1`` of a Bezier curve) or poles (of a NURBS
         curve, Cartesian): a list of :attr:`pole_count` tuples of ``dim`` floats."""
+        return self._read_points(self.pole_count, self.dim)
+
+    def _read_points(self, count, dim):
         handle = self._live()
-        count, dim = self.pole_count, self.dim
         buffer = (ctypes.c_double * max(count * dim, 1))()
         library().call("bzj_curve_points", handle, buffer, count * dim)
         return rows_of(buffer, count, dim)

@@ -12,6 +12,7 @@ an edge are given here as fractions of that range (0 = start, 1 = end).
 """
 
 import math
+import re
 
 import Part
 
@@ -24,12 +25,134 @@ bezjoin = ensure_bindings_importable()
 TOUCH_TOLERANCE = 1e-7
 
 
+#: The highest degree of a Bezier edge OpenCASCADE builds (``Geom_BezierCurve::MaxDegree``);
+#: a blend of orders ``p`` and ``q`` has degree ``p + q + 1``.
+MAX_BEZIER_DEGREE = 25
+
+#: Merging two edges whose tangents turn by more than this many degrees at the join is
+#: refused (:func:`merge_edges`, keyword ``max_angle``): one edge cannot follow a corner.
+MAX_MERGE_ANGLE_DEGREES = 30.0
+
+#: The default setback of :func:`round_corner` (and of the command's form): this
+#: fraction of the shorter edge's length, so it scales with the model.
+DEFAULT_SETBACK_FRACTION = 0.1
+
+_ARTICLE = re.compile(r"\b([Aa]) (?=[AEIOUaeiou])")
+
+
+def with_articles(message):
+    """``message`` with "a" before a vowel written "an" ("an Ellipse")."""
+    return _ARTICLE.sub(lambda m: m.group(1) + "n ", message)
+
+
 def edge_curve(edge, name):
     """The :class:`bezjoin.Curve` of ``edge``; the error names the edge (``name``)."""
     try:
         return bezjoin.Curve.from_freecad(edge)
     except bezjoin.UnsupportedGeometryError as error:
-        raise bezjoin.UnsupportedGeometryError(f"{name}: {error}") from None
+        raise bezjoin.UnsupportedGeometryError(with_articles(f"{name}: {error}")) from None
+
+
+def _invalid(message):
+    return bezjoin.BezjoinError.invalid_argument(message)
+
+
+def same_edge(first_edge, second_edge, tolerance=TOUCH_TOLERANCE):
+    """Whether two edges are the same edge (the same FreeCAD shape, or the same ends and
+    middle point, in either direction)."""
+    try:
+        if first_edge.isSame(second_edge):
+            return True
+    except (AttributeError, TypeError):
+        pass
+    try:
+        def samples(edge):
+            first, last = edge.FirstParameter, edge.LastParameter
+            return [edge.valueAt(first + f * (last - first)) for f in (0.0, 0.5, 1.0)]
+        a, b = samples(first_edge), samples(second_edge)
+    except Exception:  # noqa: BLE001 (a degenerate edge: not comparable, not the same)
+        return False
+    size = max(1.0, first_edge.Length, second_edge.Length)
+    limit = tolerance * size
+    return (all(_distance(x, y) <= limit for x, y in zip(a, b))
+            or all(_distance(x, y) <= limit for x, y in zip(a, reversed(b))))
+
+
+def check_edges(edges):
+    """Refuse edges no operation can take, before any form is shown: each must convert
+    (:class:`bezjoin.UnsupportedGeometryError` naming "first edge"/"second edge" for a
+    pair, else "edge i"), and no edge may be
+    given twice (:class:`bezjoin.BezjoinError`)."""
+    edges = list(edges)
+    names = (["first edge", "second edge"] if len(edges) == 2
+             else [f"edge {i + 1}" for i in range(len(edges))])
+    for name, edge in zip(names, edges):
+        edge_curve(edge, name).close()
+    for i in range(len(edges)):
+        for j in range(i + 1, len(edges)):
+            if same_edge(edges[i], edges[j]):
+                raise _invalid(f"the {names[i]} and the {names[j]} are the same edge: select "
+                               "different edges")
+    return edges
+
+
+def _check_orders(p_order, q_order, p, q):
+    """Refuse orders whose blend (degree ``p_order + q_order + 1``) OpenCASCADE cannot
+    hold, before building it."""
+    p_order = p.degree if p_order is None else p_order
+    q_order = q.degree if q_order is None else q_order
+    degree = p_order + q_order + 1
+    if degree > MAX_BEZIER_DEGREE:
+        raise _invalid(
+            f"orders {p_order} and {q_order} give a blend of degree {degree}, above "
+            f"OpenCASCADE's maximum Bezier degree {MAX_BEZIER_DEGREE}: keep p_order + q_order "
+            f"at most {MAX_BEZIER_DEGREE - 1}")
+
+
+def _size(*curves):
+    return max([1.0] + [c.length() for c in curves])
+
+
+def placement_to_model(obj):
+    """The placement taking ``obj.Shape`` (local to its containers: Body, Part) to model
+    (global) coordinates: the containers' placements."""
+    return obj.getGlobalPlacement().multiply(obj.Placement.inverse())
+
+
+def model_shape(obj, subnames=()):
+    """``obj``'s shape, or its sub-elements named in ``subnames`` ("Edge1", ...), in model
+    (global) coordinates: a sketch or feature inside a placed Body or Part is moved by
+    the containers' placements (FreeCAD's ``obj.Shape`` leaves them out). One name gives
+    that element; several give a list."""
+    shape = obj.Shape.copy()
+    shape.Placement = placement_to_model(obj).multiply(shape.Placement)
+    if not subnames:
+        return shape
+    if isinstance(subnames, str):
+        return shape.getElement(subnames)
+    return [shape.getElement(name) for name in subnames]
+
+
+def path_edges(shape):
+    """The edges of a path in order: a ``Part.Wire`` (its ``OrderedEdges``), a shape
+    holding one wire (a sketch's shape), a shape of loose edges that form one path
+    (sorted into path order), or a sequence of edges (taken as given)."""
+    if isinstance(shape, (list, tuple)):
+        return list(shape)
+    if getattr(shape, "ShapeType", None) == "Wire":
+        return list(shape.OrderedEdges)
+    if getattr(shape, "ShapeType", None) == "Edge":
+        return [shape]
+    wires = getattr(shape, "Wires", [])
+    if len(wires) == 1 and len(wires[0].Edges) == len(shape.Edges):
+        return list(wires[0].OrderedEdges)
+    edges = list(getattr(shape, "Edges", []))
+    if not edges:
+        raise _invalid("the shape has no edges to round")
+    sorted_groups = Part.sortEdges(edges)
+    if len(sorted_groups) != 1:
+        raise _invalid(f"the edges form {len(sorted_groups)} separate paths, not one wire")
+    return list(sorted_groups[0])
 
 
 def _distance(a, b):
@@ -90,22 +213,71 @@ def blend_edges(first_edge, second_edge, *, u0=1.0, v0=0.0, p_order=None, q_orde
     and ``auto_scale=True`` ignores given scales (the rule of
     :func:`bezjoin.connect`).
     """
+    if same_edge(first_edge, second_edge):
+        raise _invalid("the first and the second edge are the same edge: select two "
+                       "different edges")
     with edge_curve(first_edge, "first edge") as p, edge_curve(second_edge, "second edge") as q:
+        _check_orders(p_order, q_order, p, q)
         if orient:
             p, q = orient_end_to_start(p, q)
         else:
             p, q = p.copy(), q.copy()
         with p, q:
             u, v = _at_fraction(p, u0), _at_fraction(q, v0)
+            start, end = p.evaluate(u), q.evaluate(v)
+            if _distance(start, end) <= TOUCH_TOLERANCE * _size(p, q):
+                # A blend between two coincident points is a closed loop: never wanted.
+                raise _invalid(
+                    "the blend would start and end at the same point "
+                    f"({', '.join(f'{x:.6g}' for x in start)}): the edges share a vertex "
+                    "there. Use Round corner to round that corner, or choose positions "
+                    "u0/v0 apart")
             with bezjoin.connect(p, u, q, v, p_order=p_order, q_order=q_order,
                                  p_scale=p_scale, q_scale=q_scale,
                                  auto_scale=auto_scale) as blend:
                 return blend.to_edge()
 
 
-def round_corner(first_edge, second_edge, *, setback, second_setback=None, p_order=None,
+def default_setback(edges):
+    """The default setback: ``DEFAULT_SETBACK_FRACTION`` of the shortest edge's length."""
+    return DEFAULT_SETBACK_FRACTION * min(edge.Length for edge in edges)
+
+
+def _snapped_start(q, point):
+    """``q`` (a Bezier or clamped NURBS curve) with its first pole moved to ``point``:
+    closes a solver's tiny gap at a vertex. A new curve (the caller closes it)."""
+    poles = [tuple(point)] + [tuple(x) for x in q.points[1:]]
+    if q.is_nurbs:
+        return bezjoin.Curve.nurbs(poles, q.knots, q.degree,
+                                  q.weights if q.is_rational else None)
+    return bezjoin.Curve(poles)
+
+
+def _round_corner_by_radius(first_edge, second_edge, radius, order, reverse_first,
+                            reverse_second):
+    if same_edge(first_edge, second_edge):
+        raise _invalid("the first and the second edge are the same edge: select two "
+                       "different edges")
+    with edge_curve(first_edge, "first edge") as p, edge_curve(second_edge, "second edge") as q:
+        p_oriented, q_oriented = orient_end_to_start(p, q)
+        with p_oriented, q_oriented:
+            gap = TOUCH_TOLERANCE * _size(p, q)
+            p_end = _ends(p_oriented)[1]
+            if _distance(p_end, _ends(q_oriented)[0]) <= gap:
+                # The shared vertex (whatever other crossings): q starts exactly there.
+                with _snapped_start(q_oriented, p_end) as q_snapped, \
+                        bezjoin.fillet_radius(p_oriented, q_snapped, radius,
+                                              order=order) as result:
+                    return _wire(result.curves())
+        with (p.reverse() if reverse_first else p.copy()) as p_work, \
+                (q.reverse() if reverse_second else q.copy()) as q_work, \
+                bezjoin.fillet_radius(p_work, q_work, radius, order=order) as result:
+            return _wire(result.curves())
+
+
+def round_corner(first_edge, second_edge, *, setback=None, second_setback=None, p_order=None,
                  q_order=None, p_scale=None, q_scale=None, auto_scale=None,
-                 reverse_first=False, reverse_second=False):
+                 reverse_first=False, reverse_second=False, radius=None, order=2):
     """The rounded path "along the first edge to the corner, then along the second"
     as a ``Part.Wire`` of three edges (kept part of the first edge, the blend,
     kept part of the second edge), by :func:`bezjoin.fillet`.
@@ -128,12 +300,32 @@ def round_corner(first_edge, second_edge, *, setback, second_setback=None, p_ord
     where the paper's scale 1 does; ``p_scale``/``q_scale`` (or
     ``auto_scale=False`` for 1.0) give the raw construction, and
     ``auto_scale=True`` ignores given scales.
+
+    Edges that meet at an end are rounded at that shared vertex (also when they
+    cross elsewhere too), with a gap up to ``TOUCH_TOLERANCE`` times the model
+    size (the longer edge, at least 1) allowed there, as sketch solvers leave.
+
+    ``setback`` defaults to ``DEFAULT_SETBACK_FRACTION`` of the shorter edge's
+    length. With ``radius`` instead, the corner is cut where the circular fillet
+    of that radius touches the edges and blended G^``order`` (default 2; 1..6) by
+    :func:`bezjoin.fillet_radius` (no setbacks, scales or orders then).
     """
+    if radius is not None:
+        if setback is not None or second_setback is not None:
+            raise TypeError("give either radius or setback, not both")
+        return _round_corner_by_radius(first_edge, second_edge, radius, order,
+                                       reverse_first, reverse_second)
+    if same_edge(first_edge, second_edge):
+        raise _invalid("the first and the second edge are the same edge: select two "
+                       "different edges")
+    if setback is None:
+        setback = default_setback([first_edge, second_edge])
     second_setback = setback if second_setback is None else second_setback
     with edge_curve(first_edge, "first edge") as p, edge_curve(second_edge, "second edge") as q:
+        _check_orders(p_order, q_order, p, q)
         p_oriented, q_oriented = orient_end_to_start(p, q)
         with p_oriented, q_oriented:
-            gap = TOUCH_TOLERANCE * max(1.0, p.length(), q.length())
+            gap = TOUCH_TOLERANCE * _size(p, q)
             touching = _distance(_ends(p_oriented)[1], _ends(q_oriented)[0]) <= gap
             options = dict(p_setback=setback, q_setback=second_setback, p_order=p_order,
                            q_order=q_order, p_scale=p_scale, q_scale=q_scale,
@@ -245,6 +437,62 @@ def round_wire_by_radius(edges, radius, *, order=2, closed=None):
             curve.close()
 
 
+def _continuity_order(continuity):
+    """``"G2"`` (or ``2``) -> 2; orders 1..6."""
+    text = str(continuity).strip().upper()
+    if text.startswith(("G", "C")):
+        text = text[1:]
+    try:
+        order = int(text)
+    except ValueError:
+        raise _invalid(f"continuity {continuity!r} is not G1..G6") from None
+    if not 1 <= order <= 6:
+        raise _invalid(f"continuity {continuity!r} is not G1..G6")
+    return order
+
+
+def round_wire(shape, *, radius=None, setback=None, continuity="G2", closed=None):
+    """Every corner of a wire rounded at once, as ONE ``Part.Wire`` (kept parts of the
+    edges and the blends in path order): a closed wire stays closed, so ``Part.Face``
+    of a closed planar result works.
+
+    ``shape``: a ``Part.Wire``, a sketch's shape (one wire, or edges forming one
+    path), or edges in path order (see :func:`path_edges`); in model coordinates
+    (:func:`model_shape` for a sketch inside a placed Body or Part).
+
+    Give exactly one of ``radius`` (each corner cut where the circular fillet of that
+    radius touches its edges, blended G^k: :func:`bezjoin.fillet_radius_chain`) or
+    ``setback`` (arc length kept off each corner along both edges, C^k blends with
+    the automatic scale, which never loops: :func:`bezjoin.fillet_chain`).
+    ``continuity``: ``"G1"`` .. ``"G6"`` (default G2). ``closed``: round the corner
+    from the last edge back to the first too; default: whether the path closes.
+
+    Nothing partial: when a fillet does not fit at some corner, the library's
+    :class:`bezjoin.BezjoinError` names it (``corner i`` between ``curves[i]`` and
+    the next curve, ``curves[i]`` being edge ``i + 1`` along the path) and nothing
+    is built.
+    """
+    if (radius is None) == (setback is None):
+        raise TypeError("round_wire needs exactly one of radius and setback")
+    order = _continuity_order(continuity)
+    curves, path_closes = _path_curves(path_edges(shape))
+    closed = bool(path_closes if closed is None else closed)
+    try:
+        if radius is not None:
+            result = bezjoin.fillet_radius_chain(curves, radius, order=order, closed=closed)
+        else:
+            result = bezjoin.fillet_chain(curves, setback=setback, p_order=order,
+                                          q_order=order, closed=closed)
+        with result:
+            wire = _wire(result.pieces)
+    finally:
+        for curve in curves:
+            curve.close()
+    if closed and not wire.isClosed():
+        raise _invalid("the rounded wire did not close (internal error); nothing was built")
+    return wire
+
+
 class MergedEdge:
     """The merged edge and the merge report (``mu``, ``metric_value``, ``max_deviation``)."""
 
@@ -260,8 +508,20 @@ class MergedEdge:
                 f"largest deviation from the two edges {self.max_deviation:.6g}")
 
 
-def merge_edges(first_edge, second_edge, *, metric="discrete", mu="half", fix_ends=False,
-                keep_first=False, keep_second=False, orient=True):
+def _angle_at_join(p, q):
+    """The angle in degrees between ``p``'s tangent at its end and ``q``'s at its start."""
+    a = p.derivatives(p.domain[1], 1)[1]
+    b = q.derivatives(q.domain[0], 1)[1]
+    na, nb = math.sqrt(sum(x * x for x in a)), math.sqrt(sum(x * x for x in b))
+    if na == 0.0 or nb == 0.0:
+        return 0.0
+    cosine = max(-1.0, min(1.0, sum(x * y for x, y in zip(a, b)) / (na * nb)))
+    return math.degrees(math.acos(cosine))
+
+
+def merge_edges(first_edge, second_edge, *, metric="discrete", mu="optimal", fix_ends=True,
+                keep_first=False, keep_second=False, orient=True,
+                max_angle=MAX_MERGE_ANGLE_DEGREES):
     """One edge replacing two consecutive edges (:func:`bezjoin.merge`): a Bezier
     edge for two Bezier edges; for B-spline edges (lines and other polynomial
     curves too) one B-spline edge with both edges' knots mapped and none at the
@@ -270,12 +530,29 @@ def merge_edges(first_edge, second_edge, *, metric="discrete", mu="half", fix_en
 
     With ``orient`` the edges are first ordered end-to-start (see
     :func:`orient_end_to_start`). Returns a :class:`MergedEdge`.
+
+    Defaults: the outer end points are kept (``fix_ends=True``) and the split ``mu``
+    is the optimal one. Edges whose tangents turn by more than ``max_angle`` degrees
+    at the join (default ``MAX_MERGE_ANGLE_DEGREES``, 30) are refused with the angle
+    in the message: one smooth edge cannot follow such a corner (``max_angle=None``
+    or 180 allows any).
     """
+    if same_edge(first_edge, second_edge):
+        raise _invalid("the first and the second edge are the same edge: select two "
+                       "different edges")
     with edge_curve(first_edge, "first edge") as p, edge_curve(second_edge, "second edge") as q:
         if orient:
             p, q = orient_end_to_start(p, q)
         else:
             p, q = p.copy(), q.copy()
+        angle = _angle_at_join(p, q)
+        if max_angle is not None and angle > max_angle:
+            p.close()
+            q.close()
+            raise _invalid(
+                f"the edges turn by {angle:.4g} degrees at the join, more than the "
+                f"{max_angle:g} degrees allowed (max_angle): merging them into one edge "
+                "would lose that corner")
         with p, q, bezjoin.merge(p, q, metric=metric, mu=mu, fix_ends=fix_ends,
                                  keep_p=keep_first, keep_q=keep_second) as result:
             return MergedEdge(result.merged.to_edge(), result.mu, result.metric_value,

@@ -1,0 +1,522 @@
+"""Parametric features: ``Part::FeaturePython`` objects (FreeCAD's ``App::FeaturePython``
+with a shape) whose proxy recomputes the result from linked sources.
+
+Each feature stores
+
+* its sources as link properties: ``App::PropertyLinkSubGlobal`` (one object and one
+  edge name such as ``("Sketch", "Edge2")``) or ``App::PropertyLinkSubListGlobal``
+  (several), so an edge of a sketch stays linked when the sketch changes ("Global":
+  the sources may sit inside a Body or ``App::Part`` while the result lies at the
+  document root);
+* its parameters as typed properties (group "Bezjoin"): setbacks and radii as
+  lengths, orders as integers, modes as enumerations, ...;
+* read-only report properties where the operation reports something (group
+  "Bezjoin report").
+
+``execute`` reads the sources in model (global) coordinates
+(:func:`operations.model_shape`, as the commands' selection readers do) and calls the
+plain operation of :mod:`operations`, so changing a parameter, editing or moving a
+source and then ``doc.recompute()`` updates the result. When the operation fails the
+shape is emptied and the error raised: FreeCAD marks the object invalid and shows the
+library's message (``obj.getStatusString()``), no stale shape is left behind.
+
+``ConsumeSources`` (default True for round corner, round wire and merge, which replace
+their sources, False for blend and spline): the source objects are hidden in the GUI
+when the feature is made or the property is set, and shown again when it is cleared,
+as FreeCAD's own fillet hides its base. Headless (no ``ViewObject``) it does nothing.
+Nothing is deleted or moved in the tree.
+
+The proxies keep no state of their own (``dumps``/``loads`` and
+``__getstate__``/``__setstate__`` return None), so a saved document reopens with
+``bezjoin_workbench.features.<Class>`` and recomputes.
+
+Make features with :func:`make_blend`, :func:`make_round_corner`,
+:func:`make_round_wire`, :func:`make_merge`, :func:`make_spline`; a source is an
+object (its whole shape; one edge for the two-edge features) or ``(object,
+"Edge3")`` / ``(object, ["Edge1", "Edge2"])``.
+"""
+
+import FreeCAD
+import Part
+
+from . import operations
+from .operations import bezjoin
+
+GROUP = "Bezjoin"
+REPORT_GROUP = "Bezjoin report"
+
+#: FreeCAD's property status "read-only in the property editor" (``setEditorMode`` 1).
+READ_ONLY = 1
+#: ... "hidden in the property editor" (``setEditorMode`` 2).
+HIDDEN = 2
+
+
+class FeatureError(RuntimeError):
+    """The operation of a feature failed; the message is the reason (the library's)."""
+
+
+# ---------------------------------------------------------------------------- sources
+
+def _link_value(source):
+    """``source`` as a link property value ``(object, [subnames])``."""
+    if isinstance(source, (tuple, list)) and len(source) == 2 and \
+            hasattr(source[0], "Document"):
+        obj, names = source
+        names = [names] if isinstance(names, str) else list(names)
+        return obj, names
+    return source, []
+
+
+def _link_list_value(sources):
+    """``sources`` (one source or a list of them) as a link list value."""
+    if not isinstance(sources, (list, tuple)) or (len(sources) == 2 and
+                                                  isinstance(sources[1], (str, list, tuple))
+                                                  and hasattr(sources[0], "Document")):
+        sources = [sources]
+    values = []
+    for source in sources:
+        obj, names = _link_value(source)
+        values.append((obj, names or [""]))  # "": the whole object
+    return values
+
+
+def _pairs(value):
+    """A link list property value as ``[(object, subname)]`` in order ("" = whole)."""
+    pairs = []
+    for obj, names in value or []:
+        if isinstance(names, str):
+            names = [names]
+        names = [name for name in names if name]
+        if not names:
+            pairs.append((obj, ""))
+        pairs.extend((obj, name) for name in names)
+    return pairs
+
+
+def _link_edge(value, what):
+    """The edge a ``PropertyLinkSub`` value names, in model coordinates."""
+    if not value or value[0] is None:
+        raise FeatureError(f"no {what} is linked")
+    obj, names = value
+    names = [name for name in ([names] if isinstance(names, str) else names) if name]
+    if names:
+        if len(names) != 1:
+            raise FeatureError(f"the {what} links {len(names)} elements, not one edge")
+        shape = operations.model_shape(obj, names[0])
+        if shape.ShapeType != "Edge":
+            raise FeatureError(f"the {what} ({obj.Label}.{names[0]}) is not an edge")
+        return shape
+    edges = operations.model_shape(obj).Edges
+    if len(edges) != 1:
+        raise FeatureError(f"the {what} ({obj.Label}) has {len(edges)} edges: link one edge "
+                           "(object and edge name)")
+    return edges[0]
+
+
+def source_objects(obj):
+    """The objects ``obj`` (a bezjoin feature) takes its sources from, without repeats."""
+    found = []
+    for name in getattr(obj.Proxy, "LINKS", ()):
+        value = getattr(obj, name, None)
+        if not value:
+            continue
+        objects = [value[0]] if name in obj.Proxy.SINGLE_LINKS else \
+            [source for source, _names in value]
+        for source in objects:
+            if source is not None and source not in found:
+                found.append(source)
+    return found
+
+
+def containers(obj):
+    """The containers (Body, ``App::Part``: GeoFeatureGroups, innermost first, without
+    repeats) holding the sources of ``obj``: their placements move the sources in the
+    model, so the feature depends on them too (property ``Containers``)."""
+    found = []
+    for source in source_objects(obj):
+        group = source.getParentGeoFeatureGroup()
+        while group is not None:
+            if group not in found:
+                found.append(group)
+            group = group.getParentGeoFeatureGroup()
+    return found
+
+
+def _update_containers(obj):
+    if not hasattr(obj, "Containers"):
+        return
+    wanted = containers(obj)
+    if list(obj.Containers) != wanted:
+        obj.Containers = wanted
+
+
+def _set_sources_visible(obj, visible):
+    """Show or hide the source objects in the GUI (nothing headless)."""
+    if not FreeCAD.GuiUp:
+        return
+    for source in source_objects(obj):
+        view = getattr(source, "ViewObject", None)
+        if view is not None:
+            view.Visibility = visible
+
+
+def _restoring(obj):
+    """Whether ``obj`` (or its document) is being read from a file."""
+    document = getattr(obj, "Document", None)
+    return "Restore" in getattr(obj, "State", ()) or bool(getattr(document, "Restoring", False))
+
+
+def _length(value):
+    return float(getattr(value, "Value", value))
+
+
+def _order(value):
+    """An order property (-1 = the curve's degree) for the operations."""
+    return None if value < 0 else int(value)
+
+
+# ---------------------------------------------------------------------------- proxies
+
+class _Feature:
+    """The common part of the proxies: properties, execute frame, persistence."""
+
+    #: Names of the link properties holding the sources.
+    LINKS = ()
+    #: Those of them that are single links (``PropertyLinkSub``).
+    SINGLE_LINKS = ()
+    #: True when the feature replaces its sources (their default ``ConsumeSources``).
+    CONSUMES = False
+
+    def __init__(self, obj):
+        obj.Proxy = self
+        self.add_properties(obj)
+        obj.addProperty("App::PropertyBool", "ConsumeSources", GROUP,
+                        "Hide the source objects (the result replaces them)")
+        obj.ConsumeSources = self.CONSUMES
+        # The sources' containers: a moved Body or Part recomputes the feature.
+        obj.addProperty("App::PropertyLinkListGlobal", "Containers", GROUP,
+                        "The containers of the sources (kept up to date; read only)")
+        obj.setEditorMode("Containers", HIDDEN)
+
+    # properties -------------------------------------------------------------
+    @staticmethod
+    def _add(obj, kind, name, tooltip, value=None, group=GROUP):
+        obj.addProperty(kind, name, group, tooltip)
+        if value is not None:
+            setattr(obj, name, value)
+
+    @classmethod
+    def _add_report(cls, obj, name, tooltip):
+        cls._add(obj, "App::PropertyFloat", name, tooltip, group=REPORT_GROUP)
+        obj.setEditorMode(name, READ_ONLY)
+
+    def add_properties(self, obj):
+        raise NotImplementedError
+
+    # recompute --------------------------------------------------------------
+    def execute(self, obj):  # noqa: D102 (FreeCAD's name)
+        try:
+            _update_containers(obj)  # e.g. a source moved into a Body since
+            shape = self.build(obj)
+        except (FeatureError, bezjoin.BezjoinError, bezjoin.UnsupportedGeometryError,
+                bezjoin.LibraryNotFoundError, TypeError, ValueError, Part.OCCError) as error:
+            obj.Shape = Part.Shape()  # no stale result behind the error
+            message = operations.with_articles(f"{obj.Label}: {error}")
+            raise FeatureError(message) from None
+        obj.Shape = shape
+
+    def build(self, obj):
+        """The result's shape from the current sources and parameters."""
+        raise NotImplementedError
+
+    def onChanged(self, obj, prop):  # noqa: N802 (FreeCAD's name)
+        if _restoring(obj) or not hasattr(obj, "ConsumeSources"):
+            return
+        if prop in self.LINKS:
+            _update_containers(obj)
+        if prop == "ConsumeSources":
+            _set_sources_visible(obj, not obj.ConsumeSources)
+        elif prop in self.LINKS and obj.ConsumeSources:
+            _set_sources_visible(obj, False)
+
+    # persistence: nothing of the proxy's own ----------------------------------
+    def dumps(self):
+        return None
+
+    def loads(self, state):
+        return None
+
+    def __getstate__(self):
+        return None
+
+    def __setstate__(self, state):
+        return None
+
+
+def _add_two_edges(obj):
+    obj.addProperty("App::PropertyLinkSubGlobal", "FirstEdge", GROUP,
+                    "The first source edge (object and edge name)")
+    obj.addProperty("App::PropertyLinkSubGlobal", "SecondEdge", GROUP,
+                    "The second source edge (object and edge name)")
+
+
+def _two_edges(obj):
+    return _link_edge(obj.FirstEdge, "first edge"), _link_edge(obj.SecondEdge, "second edge")
+
+
+def _add_orders_and_scales(obj):
+    _Feature._add(obj, "App::PropertyInteger", "POrder",
+                  "Continuity order at the first edge (-1: the edge's degree)", -1)
+    _Feature._add(obj, "App::PropertyInteger", "QOrder",
+                  "Continuity order at the second edge (-1: the edge's degree)", -1)
+    _Feature._add(obj, "App::PropertyBool", "AutoScale",
+                  "Choose the shape scales automatically (least bending; never loops)", True)
+    _Feature._add(obj, "App::PropertyFloat", "PScale",
+                  "Shape scale at the first edge (when AutoScale is off)", 1.0)
+    _Feature._add(obj, "App::PropertyFloat", "QScale",
+                  "Shape scale at the second edge (when AutoScale is off)", 1.0)
+
+
+def _orders_and_scales(obj):
+    options = dict(p_order=_order(obj.POrder), q_order=_order(obj.QOrder))
+    if obj.AutoScale:
+        options.update(auto_scale=True)
+    else:
+        options.update(p_scale=obj.PScale, q_scale=obj.QScale, auto_scale=False)
+    return options
+
+
+class BlendFeature(_Feature):
+    """:func:`operations.blend_edges` of two linked edges: the blend edge."""
+
+    LINKS = SINGLE_LINKS = ("FirstEdge", "SecondEdge")
+
+    def add_properties(self, obj):
+        _add_two_edges(obj)
+        self._add(obj, "App::PropertyFloat", "U0",
+                  "Position on the first edge (fraction of its range; 1 = its end)", 1.0)
+        self._add(obj, "App::PropertyFloat", "V0",
+                  "Position on the second edge (fraction of its range; 0 = its start)", 0.0)
+        _add_orders_and_scales(obj)
+
+    def build(self, obj):
+        first, second = _two_edges(obj)
+        return operations.blend_edges(first, second, u0=obj.U0, v0=obj.V0,
+                                      **_orders_and_scales(obj))
+
+
+class RoundCornerFeature(_Feature):
+    """:func:`operations.round_corner` of two linked edges, by setback or by radius:
+    the three-edge rounded path."""
+
+    LINKS = SINGLE_LINKS = ("FirstEdge", "SecondEdge")
+    CONSUMES = True
+
+    def add_properties(self, obj):
+        _add_two_edges(obj)
+        self._add(obj, "App::PropertyEnumeration", "Method",
+                  "Setback: arc lengths kept off the corner; Radius: cut where the circular "
+                  "fillet of Radius touches the edges", ["Setback", "Radius"])
+        self._add(obj, "App::PropertyLength", "Setback",
+                  "Setback along the first edge (Method Setback)", 1.0)
+        self._add(obj, "App::PropertyLength", "SecondSetback",
+                  "Setback along the second edge (Method Setback; 0: the same as Setback)",
+                  0.0)
+        self._add(obj, "App::PropertyLength", "Radius", "Fillet radius (Method Radius)", 1.0)
+        self._add(obj, "App::PropertyInteger", "Order",
+                  "Geometric continuity G^k of the blend (Method Radius; 1..6)", 2)
+        _add_orders_and_scales(obj)
+        self._add(obj, "App::PropertyBool", "ReverseFirst",
+                  "Reverse the first edge (crossing edges)", False)
+        self._add(obj, "App::PropertyBool", "ReverseSecond",
+                  "Reverse the second edge (crossing edges)", False)
+
+    def build(self, obj):
+        first, second = _two_edges(obj)
+        reverse = dict(reverse_first=obj.ReverseFirst, reverse_second=obj.ReverseSecond)
+        if obj.Method == "Radius":
+            return operations.round_corner(first, second, radius=_length(obj.Radius),
+                                           order=obj.Order, **reverse)
+        second_setback = _length(obj.SecondSetback) or None
+        return operations.round_corner(first, second, setback=_length(obj.Setback),
+                                       second_setback=second_setback,
+                                       **_orders_and_scales(obj), **reverse)
+
+
+def _linked_path(value):
+    """The edges of the linked path: one whole object (its wire) or linked edges."""
+    pairs = _pairs(value)
+    if not pairs:
+        raise FeatureError("no source wire or edges are linked")
+    if len(pairs) == 1 and not pairs[0][1]:
+        return operations.path_edges(operations.model_shape(pairs[0][0]))
+    edges = []
+    for obj, name in pairs:
+        shape = operations.model_shape(obj, name) if name else operations.model_shape(obj)
+        edges.extend(shape.Edges)
+    return operations.path_edges(Part.Compound(edges))
+
+
+class RoundWireFeature(_Feature):
+    """:func:`operations.round_wire` of a linked wire (a sketch, a polyline) or linked
+    edges of one path: one wire with every corner rounded, by radius or setback."""
+
+    LINKS = ("Sources",)
+    CONSUMES = True
+
+    def add_properties(self, obj):
+        obj.addProperty("App::PropertyLinkSubListGlobal", "Sources", GROUP,
+                        "The wire (a whole object) or the edges of one path")
+        self._add(obj, "App::PropertyEnumeration", "Method",
+                  "Radius: each corner cut where the circular fillet of Radius touches its "
+                  "edges; Setback: arc length kept off each corner", ["Radius", "Setback"])
+        self._add(obj, "App::PropertyLength", "Radius", "Fillet radius (Method Radius)", 1.0)
+        self._add(obj, "App::PropertyLength", "Setback", "Setback (Method Setback)", 1.0)
+        self._add(obj, "App::PropertyEnumeration", "Continuity",
+                  "Continuity of the blends", [f"G{k}" for k in range(1, 7)])
+        obj.Continuity = "G2"
+        self._add(obj, "App::PropertyEnumeration", "Closed",
+                  "Also round the corner from the last edge to the first (auto: when the "
+                  "wire closes)", ["auto", "yes", "no"])
+        self._add_report(obj, "MaxArcDeviation",
+                         "Largest distance of a blend from its corner's arc (Method Radius)")
+
+    def build(self, obj):
+        edges = _linked_path(obj.Sources)
+        closed = {"auto": None, "yes": True, "no": False}[obj.Closed]
+        if obj.Method == "Radius":
+            order = int(obj.Continuity[1:])
+            rounded = operations.round_wire_by_radius(edges, _length(obj.Radius),
+                                                      order=order, closed=closed)
+            obj.MaxArcDeviation = rounded.max_arc_deviation
+            return rounded.shape
+        obj.MaxArcDeviation = 0.0
+        return operations.round_wire(edges, setback=_length(obj.Setback),
+                                     continuity=obj.Continuity, closed=closed)
+
+
+class MergeFeature(_Feature):
+    """:func:`operations.merge_edges` of two linked edges: one edge."""
+
+    LINKS = SINGLE_LINKS = ("FirstEdge", "SecondEdge")
+    CONSUMES = True
+
+    def add_properties(self, obj):
+        _add_two_edges(obj)
+        self._add(obj, "App::PropertyEnumeration", "Metric", "The merge metric",
+                  ["discrete", "l2"])
+        self._add(obj, "App::PropertyEnumeration", "MuMode", "How the split mu is chosen",
+                  ["optimal", "half", "polygon", "given"])
+        self._add(obj, "App::PropertyFloat", "Mu", "The split mu (MuMode given; 0 < mu < 1)",
+                  0.5)
+        self._add(obj, "App::PropertyBool", "FixEnds", "Keep the outer end points", True)
+        self._add(obj, "App::PropertyAngle", "MaxAngle",
+                  "Largest angle between the edges at the join",
+                  operations.MAX_MERGE_ANGLE_DEGREES)
+        self._add(obj, "App::PropertyBool", "KeepFirst", "Keep the first edge unchanged",
+                  False)
+        self._add(obj, "App::PropertyBool", "KeepSecond", "Keep the second edge unchanged",
+                  False)
+        self._add_report(obj, "MergeMu", "The split mu used")
+        self._add_report(obj, "MergeMetric", "The metric's value")
+        self._add_report(obj, "MergeMaxDeviation",
+                         "Largest deviation of the merged edge from the two edges")
+
+    def build(self, obj):
+        first, second = _two_edges(obj)
+        mu = obj.Mu if obj.MuMode == "given" else obj.MuMode
+        merged = operations.merge_edges(first, second, metric=obj.Metric, mu=mu,
+                                        fix_ends=obj.FixEnds, keep_first=obj.KeepFirst,
+                                        keep_second=obj.KeepSecond,
+                                        max_angle=_length(obj.MaxAngle))
+        obj.MergeMu = merged.mu
+        obj.MergeMetric = merged.metric_value
+        obj.MergeMaxDeviation = merged.max_deviation
+        return merged.shape
+
+
+def _linked_points(value):
+    """On-curve points: linked vertices in order, or the ordered vertices of one linked
+    wire (a polyline), in model coordinates."""
+    pairs = _pairs(value)
+    if not pairs:
+        raise FeatureError("no source points are linked")
+    if len(pairs) == 1 and not pairs[0][1]:
+        wires = operations.model_shape(pairs[0][0]).Wires
+        if len(wires) != 1:
+            raise FeatureError(f"{pairs[0][0].Label} is not one polyline: link its vertices")
+        return [vertex.Point for vertex in wires[0].OrderedVertexes]
+    points = []
+    for obj, name in pairs:
+        shape = operations.model_shape(obj, name) if name else operations.model_shape(obj)
+        points.extend(vertex.Point for vertex in shape.Vertexes)
+    return points
+
+
+class SplineFeature(_Feature):
+    """:func:`operations.spline_through_points` of linked vertices (or one polyline)."""
+
+    LINKS = ("Points",)
+
+    def add_properties(self, obj):
+        obj.addProperty("App::PropertyLinkSubListGlobal", "Points", GROUP,
+                        "The on-curve points (vertices in order) or one polyline")
+
+    def build(self, obj):
+        return operations.spline_through_points(_linked_points(obj.Points))
+
+
+# ---------------------------------------------------------------------------- makers
+
+def _make(document, proxy_class, name, links, parameters):
+    obj = document.addObject("Part::FeaturePython", name)
+    proxy_class(obj)
+    # A Part::FeaturePython without a view provider proxy gets no display
+    # modes in FreeCAD 0.20 and is not drawn: 0 selects Part's own view
+    # provider (found by freecad/gui-test.sh; headless there is no ViewObject).
+    if FreeCAD.GuiUp and obj.ViewObject is not None:
+        obj.ViewObject.Proxy = 0
+    for property_name, value in links.items():
+        setattr(obj, property_name, value)
+    for property_name, value in parameters.items():
+        setattr(obj, property_name, value)
+    if obj.ConsumeSources:
+        _set_sources_visible(obj, False)
+    return obj
+
+
+def make_blend(document, first, second, name="Blend", **parameters):
+    """A :class:`BlendFeature` from the ``first`` to the ``second`` source edge;
+    ``parameters`` set properties (``U0``, ``V0``, ``POrder``, ``AutoScale``, ...)."""
+    return _make(document, BlendFeature, name, {"FirstEdge": _link_value(first),
+                                                 "SecondEdge": _link_value(second)},
+                 parameters)
+
+
+def make_round_corner(document, first, second, name="RoundedCorner", **parameters):
+    """A :class:`RoundCornerFeature` (``Method``, ``Setback``, ``Radius``, ...)."""
+    return _make(document, RoundCornerFeature, name, {"FirstEdge": _link_value(first),
+                                                       "SecondEdge": _link_value(second)},
+                 parameters)
+
+
+def make_round_wire(document, sources, name="RoundedWire", **parameters):
+    """A :class:`RoundWireFeature` of ``sources``: one object (its wire) or edges
+    ``[(object, ["Edge1", ...]), ...]`` (``Method``, ``Radius``, ``Setback``,
+    ``Continuity``, ``Closed``)."""
+    return _make(document, RoundWireFeature, name, {"Sources": _link_list_value(sources)},
+                 parameters)
+
+
+def make_merge(document, first, second, name="Merged", **parameters):
+    """A :class:`MergeFeature` (``Metric``, ``MuMode``, ``Mu``, ``FixEnds``, ...)."""
+    return _make(document, MergeFeature, name, {"FirstEdge": _link_value(first),
+                                                 "SecondEdge": _link_value(second)},
+                 parameters)
+
+
+def make_spline(document, points, name="OnCurveSpline", **parameters):
+    """A :class:`SplineFeature` through ``points``: one polyline object or vertices
+    ``[(object, ["Vertex1", ...]), ...]``."""
+    return _make(document, SplineFeature, name, {"Points": _link_list_value(points)},
+                 parameters)

@@ -1,0 +1,504 @@
+"""Parametric features (issue 19): each operation as a ``Part::FeaturePython`` linked to
+its sources (sketch edges in a placed Body, Part features), judged on the shapes in
+model coordinates: a parameter change or a moved / edited source followed by
+``recompute`` updates the result, the document survives save and reopen, and a
+parameter that cannot work marks the object invalid with the library's message."""
+
+import math
+import os
+import shutil
+import tempfile
+import unittest
+
+import FreeCAD
+import Part
+
+from bezjoin_workbench import commands, features, operations
+
+V = FreeCAD.Vector
+TOLERANCE = 1e-7
+
+
+def lines_sketch(document, container, segments, name="Sketch"):
+    """A sketch of line segments ``[(start, end), ...]`` inside ``container``."""
+    sketch = document.addObject("Sketcher::SketchObject", name)
+    if container is not None:
+        container.addObject(sketch)
+    for start, end in segments:
+        sketch.addGeometry(Part.LineSegment(V(*start), V(*end)))
+    document.recompute()
+    return sketch
+
+
+def constrained_rectangle(document, container, width, height):
+    """A fully shaped rectangle sketch (coincident corners, horizontal/vertical sides,
+    width and height constraints); returns (sketch, width constraint index)."""
+    import Sketcher  # noqa: PLC0415 (only here)
+
+    corners = [(0, 0, 0), (width, 0, 0), (width, height, 0), (0, height, 0)]
+    sketch = lines_sketch(document, container,
+                          [(corners[i], corners[(i + 1) % 4]) for i in range(4)])
+    for i in range(4):
+        sketch.addConstraint(Sketcher.Constraint("Coincident", i, 2, (i + 1) % 4, 1))
+    sketch.addConstraint(Sketcher.Constraint("Horizontal", 0))
+    sketch.addConstraint(Sketcher.Constraint("Horizontal", 2))
+    sketch.addConstraint(Sketcher.Constraint("Vertical", 1))
+    sketch.addConstraint(Sketcher.Constraint("Vertical", 3))
+    width_index = sketch.addConstraint(Sketcher.Constraint("DistanceX", 0, 1, 0, 2, width))
+    sketch.addConstraint(Sketcher.Constraint("DistanceY", 1, 1, 1, 2, height))
+    document.recompute()
+    return sketch, width_index
+
+
+def ends(shape):
+    """The two free ends of an edge or an open wire (in path order)."""
+    if shape.ShapeType == "Edge":
+        return shape.valueAt(shape.FirstParameter), shape.valueAt(shape.LastParameter)
+    wire = shape if shape.ShapeType == "Wire" else shape.Wires[0]
+    vertices = wire.OrderedVertexes
+    return vertices[0].Point, vertices[-1].Point
+
+
+def parallel(test, a, b, same_direction=True):
+    """``a`` and ``b`` point the same way (angle below 1e-7 radians)."""
+    a, b = FreeCAD.Vector(a), FreeCAD.Vector(b)
+    test.assertLess(a.cross(b).Length, 1e-7 * a.Length * b.Length, (a, b))
+    if same_direction:
+        test.assertGreater(a.dot(b), 0.0, (a, b))
+
+
+class FeatureCase(unittest.TestCase):
+    def setUp(self):
+        self.document = FreeCAD.newDocument("BezjoinFeatureTest")
+        self.body = self.document.addObject("PartDesign::Body", "Body")
+        self.body.Placement = FreeCAD.Placement(V(100, 0, 0), FreeCAD.Rotation())
+
+    def tearDown(self):
+        FreeCAD.closeDocument(self.document.Name)
+
+    def recompute(self, *objects):
+        self.document.recompute()
+        for obj in objects:
+            self.assertTrue(obj.isValid(), (obj.Name, obj.getStatusString()))
+            self.assertFalse(obj.Shape.isNull(), obj.Name)
+
+    def assert_invalid(self, obj, *words):
+        """``obj`` is marked invalid after recompute, with no stale shape, and its
+        status holds the library's message (``words``)."""
+        self.document.recompute()
+        self.assertFalse(obj.isValid(), obj.Name)
+        self.assertIn("Invalid", obj.State)
+        self.assertTrue(obj.Shape.isNull(), "a stale shape was left behind")
+        status = obj.getStatusString()
+        self.assertTrue(status.startswith(obj.Label + ": "), status)
+        for word in words:
+            self.assertIn(word, status)
+        return status
+
+    def model(self, sketch, name):
+        return operations.model_shape(sketch, name)
+
+    def near(self, a, b, tolerance=TOLERANCE):
+        self.assertLessEqual((V(a) - V(b)).Length, tolerance, (a, b))
+
+
+class BlendFeatureTest(FeatureCase):
+    def make(self):
+        sketch = lines_sketch(self.document, self.body,
+                              [((0, 0, 0), (10, 0, 0)), ((15, 5, 0), (25, 5, 0))])
+        blend = features.make_blend(self.document, (sketch, "Edge1"), (sketch, "Edge2"))
+        self.recompute(blend)
+        return sketch, blend
+
+    def check_joins(self, sketch, blend):
+        """The blend runs from the end of Edge1 to the start of Edge2 (model
+        coordinates), tangent to both."""
+        edge = blend.Shape.Edges[0]
+        first, second = self.model(sketch, "Edge1"), self.model(sketch, "Edge2")
+        start, end = ends(edge)
+        self.near(start, first.valueAt(first.LastParameter))
+        self.near(end, second.valueAt(second.FirstParameter))
+        parallel(self, edge.tangentAt(edge.FirstParameter),
+                 first.tangentAt(first.LastParameter))
+        parallel(self, edge.tangentAt(edge.LastParameter),
+                 second.tangentAt(second.FirstParameter))
+
+    def test_blend_is_parametric_in_its_sources_and_parameters(self):
+        sketch, blend = self.make()
+        self.assertIsInstance(blend.Proxy, features.BlendFeature)
+        self.assertEqual(blend.TypeId, "Part::FeaturePython")
+        self.assertEqual(blend.FirstEdge, (sketch, ["Edge1"]))
+        self.assertFalse(blend.ConsumeSources)  # a blend adds to its sources
+        self.check_joins(sketch, blend)
+        self.assertGreaterEqual(blend.Shape.BoundBox.XMin, 110.0 - TOLERANCE)  # the Body's x
+        # orders p, q (default: the lines' degree 1) give degree p + q + 1
+        self.assertEqual(blend.Shape.Edges[0].Curve.Degree, 1 + 1 + 1)
+        blend.POrder, blend.QOrder = 2, 3
+        self.recompute(blend)
+        self.assertEqual(blend.Shape.Edges[0].Curve.Degree, 2 + 3 + 1)
+        self.check_joins(sketch, blend)
+        # the position on the first edge
+        blend.U0 = 0.5
+        self.recompute(blend)
+        first = self.model(sketch, "Edge1")
+        self.near(ends(blend.Shape.Edges[0])[0],
+                  first.valueAt(0.5 * (first.FirstParameter + first.LastParameter)))
+
+    def test_blend_follows_its_sources(self):
+        sketch, blend = self.make()
+        # edit the sketch: Edge2's start moves
+        sketch.movePoint(1, 1, V(16, 9, 0))
+        self.recompute(blend)
+        self.check_joins(sketch, blend)
+        self.near(ends(blend.Shape.Edges[0])[1], (116, 9, 0))
+        # move the container
+        self.body.Placement = FreeCAD.Placement(V(0, 50, 0), FreeCAD.Rotation(V(0, 0, 1), 30))
+        self.recompute(blend)
+        self.check_joins(sketch, blend)
+        self.near(ends(blend.Shape.Edges[0])[1], self.body.Placement.multVec(V(16, 9, 0)))
+
+    def test_part_feature_sources_and_bad_orders(self):
+        first = self.document.addObject("Part::Feature", "First")
+        first.Shape = Part.makeLine(V(0, 0, 0), V(10, 0, 0))
+        second = self.document.addObject("Part::Feature", "Second")
+        second.Shape = Part.makeLine(V(15, 5, 0), V(25, 5, 0))
+        blend = features.make_blend(self.document, first, second)  # whole single-edge objects
+        self.recompute(blend)
+        second.Placement = FreeCAD.Placement(V(0, 10, 0), FreeCAD.Rotation())
+        self.recompute(blend)
+        self.near(ends(blend.Shape.Edges[0])[1], (15, 15, 0))
+        blend.POrder, blend.QOrder = 12, 13
+        self.assert_invalid(blend, "maximum Bezier degree")
+
+
+class RoundCornerFeatureTest(FeatureCase):
+    def make(self, **parameters):
+        sketch = lines_sketch(self.document, self.body,
+                              [((0, 0, 0), (40, 0, 0)), ((40, 0, 0), (40, 20, 0))])
+        corner = features.make_round_corner(self.document, (sketch, "Edge1"),
+                                            (sketch, "Edge2"), **parameters)
+        self.recompute(corner)
+        return sketch, corner
+
+    def kept_ends(self, corner):
+        """Where the kept parts of the two edges end (the blend's ends)."""
+        return ends(corner.Shape.Wires[0].OrderedEdges[1])
+
+    def test_setback_and_radius_are_parameters(self):
+        sketch, corner = self.make(Setback=2.0)
+        self.assertTrue(corner.ConsumeSources)
+        self.assertEqual(features.source_objects(corner), [sketch])
+        corner_point = V(140, 0, 0)
+        wire = corner.Shape.Wires[0]
+        self.assertEqual(len(wire.Edges), 3)
+        outer = sorted(ends(wire), key=lambda p: p.x)
+        self.near(outer[0], (100, 0, 0))
+        self.near(outer[1], (140, 20, 0))
+        for point in self.kept_ends(corner):  # the setback, along each edge
+            self.assertAlmostEqual((point - corner_point).Length, 2.0, delta=1e-9)
+        corner.Setback = 5.0
+        self.recompute(corner)
+        for point in self.kept_ends(corner):
+            self.assertAlmostEqual((point - corner_point).Length, 5.0, delta=1e-9)
+        # by radius: at a right angle the circular fillet touches each edge at r
+        corner.Method = "Radius"
+        corner.Radius = 3.0
+        self.recompute(corner)
+        for point in self.kept_ends(corner):
+            self.assertAlmostEqual((point - corner_point).Length, 3.0, delta=1e-7)
+
+    def test_radius_too_large_marks_the_feature_invalid(self):
+        sketch, corner = self.make(Method="Radius", Radius=3.0)
+        corner.Radius = 100.0  # the edges are 40 and 20 long
+        status = self.assert_invalid(corner, "BZJ_ERR")
+        self.assertIn("100", status)
+        corner.Radius = 4.0
+        self.recompute(corner)
+
+    def test_corner_follows_a_moved_vertex(self):
+        sketch, corner = self.make(Setback=2.0)
+        sketch.movePoint(1, 2, V(40, 30, 0))  # Edge2's far end
+        self.recompute(corner)
+        self.near(max(ends(corner.Shape.Wires[0]), key=lambda p: p.y), (140, 30, 0))
+
+
+class RoundWireFeatureTest(FeatureCase):
+    corners = [(0, 0), (40, 0), (40, 20), (0, 20)]
+
+    def make(self, **parameters):
+        sketch, width = constrained_rectangle(self.document, self.body, 40.0, 20.0)
+        wire = features.make_round_wire(self.document, sketch, **parameters)
+        self.recompute(wire)
+        return sketch, width, wire
+
+    def check_closed(self, wire, corners):
+        shape = wire.Shape
+        self.assertEqual(len(shape.Wires), 1)
+        self.assertTrue(shape.Wires[0].isClosed())
+        self.assertEqual(len(shape.Edges), 8)
+        self.assertTrue(Part.Face(shape.Wires[0]).isValid())
+        for corner in corners:
+            self.assertGreater(shape.distToShape(Part.Vertex(corner))[0], 1e-3)
+
+    def model_corners(self, width=40.0, height=20.0):
+        return [self.body.Placement.multVec(V(x, y, 0))
+                for x, y in ((0, 0), (width, 0), (width, height), (0, height))]
+
+    def test_radius_and_method_are_parameters(self):
+        sketch, _width, wire = self.make(Radius=2.0)
+        self.assertTrue(wire.ConsumeSources)
+        self.check_closed(wire, self.model_corners())
+        box = wire.Shape.BoundBox
+        self.assertAlmostEqual(box.XMin, 100.0, delta=1e-9)
+        self.assertAlmostEqual(box.XMax, 140.0, delta=1e-9)
+        self.assertGreaterEqual(wire.MaxArcDeviation, 0.0)
+        corner = Part.Vertex(self.model_corners()[0])
+        cut = wire.Shape.distToShape(corner)[0]
+        wire.Radius = 4.0
+        self.recompute(wire)
+        self.check_closed(wire, self.model_corners())
+        self.assertGreater(wire.Shape.distToShape(corner)[0], cut)  # a larger radius cuts more
+        wire.Method = "Setback"
+        wire.Setback = 3.0
+        wire.Continuity = "G3"
+        self.recompute(wire)
+        self.check_closed(wire, self.model_corners())
+        # the blends start 3 along each edge from its corner
+        for vertex in wire.Shape.Vertexes:
+            self.assertTrue(any(abs((vertex.Point - c).Length - 3.0) < 1e-7
+                                for c in self.model_corners()), vertex.Point)
+
+    def test_wire_follows_a_sketch_constraint_and_the_body(self):
+        sketch, width, wire = self.make(Radius=2.0)
+        sketch.setDatum(width, FreeCAD.Units.Quantity("60 mm"))
+        self.recompute(wire)
+        box = wire.Shape.BoundBox
+        self.assertAlmostEqual(box.XMax - box.XMin, 60.0, delta=1e-7)
+        self.body.Placement = FreeCAD.Placement(V(-30, 7, 0), FreeCAD.Rotation())
+        self.recompute(wire)
+        box = wire.Shape.BoundBox
+        self.assertAlmostEqual(box.XMin, -30.0 + sketch.Shape.BoundBox.XMin, delta=1e-7)
+        self.assertAlmostEqual(box.YMin, 7.0 + sketch.Shape.BoundBox.YMin, delta=1e-7)
+        self.check_closed(wire, [v.Point for v in operations.model_shape(sketch).Vertexes])
+
+    def test_radius_too_large_names_the_corner(self):
+        _sketch, _width, wire = self.make(Radius=2.0)
+        wire.Radius = 50.0
+        self.assert_invalid(wire, "corner", "radius")
+        wire.Radius = 2.0
+        self.recompute(wire)
+        self.check_closed(wire, self.model_corners())
+
+    def test_picked_edges_of_an_open_path(self):
+        sketch = lines_sketch(self.document, self.body,
+                              [((0, 0, 0), (40, 0, 0)), ((40, 0, 0), (40, 20, 0)),
+                               ((40, 20, 0), (0, 20, 0))])
+        wire = features.make_round_wire(self.document, [(sketch, ["Edge1", "Edge2"])],
+                                        Radius=2.0)
+        self.recompute(wire)
+        shape = wire.Shape.Wires[0]
+        self.assertFalse(shape.isClosed())
+        self.assertEqual(len(shape.Edges), 3)  # one corner: two kept parts and a blend
+        outer = sorted(ends(shape), key=lambda p: p.y)
+        self.near(outer[0], (100, 0, 0))
+        self.near(outer[1], (140, 20, 0))
+
+
+class MergeFeatureTest(FeatureCase):
+    def make(self):
+        sketch = lines_sketch(self.document, self.body,
+                              [((0, 0, 0), (10, 0, 0)), ((10, 0, 0), (25, 3, 0))])
+        merged = features.make_merge(self.document, (sketch, "Edge1"), (sketch, "Edge2"))
+        self.recompute(merged)
+        return sketch, merged
+
+    def test_merge_keeps_the_ends_and_follows_the_sources(self):
+        sketch, merged = self.make()
+        self.assertTrue(merged.ConsumeSources)
+        self.assertEqual(len(merged.Shape.Edges), 1)
+        self.near(sorted(ends(merged.Shape.Edges[0]), key=lambda p: p.x)[0], (100, 0, 0))
+        self.near(sorted(ends(merged.Shape.Edges[0]), key=lambda p: p.x)[1], (125, 3, 0))
+        self.assertTrue(0.0 < merged.MergeMu < 1.0)
+        self.assertGreaterEqual(merged.MergeMaxDeviation, 0.0)
+        sketch.movePoint(1, 2, V(25, 6, 0))
+        self.recompute(merged)
+        self.near(sorted(ends(merged.Shape.Edges[0]), key=lambda p: p.x)[1], (125, 6, 0))
+        merged.MuMode = "given"
+        merged.Mu = 0.3
+        self.recompute(merged)
+        self.assertEqual(merged.MergeMu, 0.3)
+
+    def test_a_join_beyond_max_angle_is_refused(self):
+        _sketch, merged = self.make()
+        angle = math.degrees(math.atan2(3, 15))
+        merged.MaxAngle = angle / 2
+        status = self.assert_invalid(merged, "degrees")
+        self.assertIn(f"{angle:.4g}", status)
+        merged.MaxAngle = 30.0
+        self.recompute(merged)
+
+
+class SplineFeatureTest(FeatureCase):
+    points = [V(0, 0, 0), V(3, 4, 0), V(7, 5, 0), V(10, 0, 0)]
+
+    def test_spline_passes_through_a_moving_polyline(self):
+        polyline = self.document.addObject("Part::Feature", "Polyline")
+        polyline.Shape = Part.makePolygon(self.points)
+        spline = features.make_spline(self.document, polyline)
+        self.recompute(spline)
+        self.assertFalse(spline.ConsumeSources)
+
+        def through(points):
+            for point in points:
+                self.assertLess(spline.Shape.distToShape(Part.Vertex(point))[0], 1e-9)
+            self.near(ends(spline.Shape)[0], points[0])
+            self.near(ends(spline.Shape)[1], points[-1])
+
+        through(self.points)
+        polyline.Placement = FreeCAD.Placement(V(5, 5, 5), FreeCAD.Rotation(V(1, 0, 0), 90))
+        self.recompute(spline)
+        through([polyline.Placement.multVec(p) for p in self.points])
+
+    def test_linked_vertices_in_order(self):
+        polyline = self.document.addObject("Part::Feature", "Polyline")
+        polyline.Shape = Part.makePolygon(self.points)
+        spline = features.make_spline(
+            self.document, [(polyline, ["Vertex1", "Vertex2", "Vertex3", "Vertex4"])])
+        self.recompute(spline)
+        for point in self.points:
+            self.assertLess(spline.Shape.distToShape(Part.Vertex(point))[0], 1e-9)
+        spline.Points = [(polyline, ["Vertex1", "Vertex2", "Vertex3"])]
+        self.assert_invalid(spline, "3 points given")
+
+
+class SaveAndReopen(FeatureCase):
+    def test_every_feature_survives_save_and_reopen(self):
+        sketch, _width = constrained_rectangle(self.document, self.body, 40.0, 20.0)
+        pair = lines_sketch(self.document, self.body,
+                            [((0, 30, 0), (10, 30, 0)), ((10, 30, 0), (25, 33, 0))], "Pair")
+        polyline = self.document.addObject("Part::Feature", "Polyline")
+        polyline.Shape = Part.makePolygon([V(0, 0, 5), V(3, 4, 5), V(7, 5, 5), V(10, 0, 5)])
+        made = [
+            features.make_blend(self.document, (sketch, "Edge1"), (pair, "Edge2"),
+                                U0=0.5, V0=0.5),
+            features.make_round_corner(self.document, (sketch, "Edge1"), (sketch, "Edge2"),
+                                       Method="Radius", Radius=3.0),
+            features.make_round_wire(self.document, sketch, Radius=2.0),
+            features.make_merge(self.document, (pair, "Edge1"), (pair, "Edge2")),
+            features.make_spline(self.document, polyline),
+        ]
+        self.recompute(*made)
+        before = {obj.Name: (type(obj.Proxy), obj.Shape.copy()) for obj in made}
+        folder = tempfile.mkdtemp(prefix="bezjoin-features-")
+        try:
+            path = os.path.join(folder, "features.FCStd")
+            self.document.saveAs(path)
+            FreeCAD.closeDocument(self.document.Name)
+            self.document = FreeCAD.openDocument(path)
+            reopened = [self.document.getObject(name) for name in before]
+            for obj in reopened:
+                obj.touch()
+            self.recompute(*reopened)
+            for obj in reopened:
+                proxy_class, shape = before[obj.Name]
+                self.assertIs(type(obj.Proxy), proxy_class)
+                self.assertEqual(type(obj.Proxy).__module__, "bezjoin_workbench.features")
+                self.assertTrue(obj.Shape.isEqual(shape) or
+                                obj.Shape.distToShape(shape)[0] < 1e-9, obj.Name)
+                self.assertAlmostEqual(obj.Shape.Length, shape.Length, delta=1e-7)
+            # still parametric after reopening
+            wire = reopened[2]
+            length = wire.Shape.Length
+            wire.Radius = 4.0
+            self.recompute(wire)
+            self.assertLess(wire.Shape.Length, length)  # a larger radius cuts the corners more
+        finally:
+            shutil.rmtree(folder, ignore_errors=True)
+
+
+class Picked:
+    """What ``FreeCADGui.Selection.getSelectionEx()`` gives for one object (no GUI here)."""
+
+    def __init__(self, obj, names=()):
+        self.Object = obj
+        self.SubElementNames = list(names)
+        self.SubObjects = [obj.Shape.getElement(name) for name in names]
+
+
+def two_edges(selections, links):
+    return commands.selected_edges(2, selections, links=links)
+
+
+class CommandsMakeFeatures(FeatureCase):
+    """The GUI commands (selection and form replaced) make linked features."""
+
+    def drive(self, command, selections, reader, parameters):
+        shown = []
+        saved_ask, saved_warning = commands.ask, commands.QtGui.QMessageBox.warning
+        saved_main_window = getattr(commands.FreeCADGui, "getMainWindow", None)
+        command.inputs = lambda: reader(selections, links=command.links)
+        commands.ask = lambda title, fields: dict(parameters)
+        commands.QtGui.QMessageBox.warning = lambda parent, title, text: shown.append(text)
+        commands.FreeCADGui.getMainWindow = lambda: None
+        existing = {obj.Name for obj in self.document.Objects}
+        try:
+            FreeCAD.setActiveDocument(self.document.Name)
+            command.Activated()
+        finally:
+            commands.ask, commands.QtGui.QMessageBox.warning = saved_ask, saved_warning
+            del command.inputs
+            if saved_main_window is None:
+                del commands.FreeCADGui.getMainWindow
+            else:
+                commands.FreeCADGui.getMainWindow = saved_main_window
+        self.assertEqual(shown, [])
+        (made,) = [obj for obj in self.document.Objects if obj.Name not in existing]
+        self.assertEqual(made.TypeId, "Part::FeaturePython")
+        self.assertTrue(made.isValid(), made.getStatusString())
+        return made
+
+    def test_each_command_makes_its_parametric_feature(self):
+        sketch = lines_sketch(self.document, self.body,
+                              [((0, 0, 0), (10, 0, 0)), ((10, 0, 0), (25, 3, 0)),
+                               ((25, 3, 0), (25, 20, 0))])
+        orders = {"p_order": None, "q_order": None, "p_scale": 1.0, "q_scale": 1.0,
+                  "auto_scale": True}
+        made = self.drive(commands.RoundWireByRadiusCommand(), [Picked(sketch)],
+                          commands.selected_path, {"radius": 2.0, "order": 3,
+                                                   "closed": "auto"})
+        self.assertIsInstance(made.Proxy, features.RoundWireFeature)
+        self.assertEqual((made.Radius.Value, made.Continuity, made.Closed), (2.0, "G3", "auto"))
+        self.assertEqual(features.source_objects(made), [sketch])
+        made = self.drive(commands.RoundCornerCommand(), [Picked(sketch, ["Edge2", "Edge3"])],
+                          two_edges,
+                          dict(orders, setback=1.5, second_setback=2.5, reverse_first=False,
+                               reverse_second=False))
+        self.assertIsInstance(made.Proxy, features.RoundCornerFeature)
+        self.assertEqual((made.FirstEdge, made.SecondEdge),
+                         ((sketch, ["Edge2"]), (sketch, ["Edge3"])))
+        self.assertEqual((made.Setback.Value, made.SecondSetback.Value), (1.5, 2.5))
+        made = self.drive(commands.MergeCommand(), [Picked(sketch, ["Edge1", "Edge2"])],
+                          two_edges,
+                          {"metric": "discrete", "mu_mode": "optimal", "mu": 0.5,
+                           "fix_ends": True, "max_angle": 30.0, "keep_first": False,
+                           "keep_second": False})
+        self.assertIsInstance(made.Proxy, features.MergeFeature)
+        made = self.drive(commands.BlendCommand(), [Picked(sketch, ["Edge1", "Edge3"])],
+                          two_edges, dict(orders, u0=0.5, v0=0.5))
+        self.assertIsInstance(made.Proxy, features.BlendFeature)
+        self.assertEqual((made.U0, made.V0, made.AutoScale), (0.5, 0.5, True))
+        polyline = self.document.addObject("Part::Feature", "Polyline")
+        polyline.Shape = Part.makePolygon([V(0, 0, 5), V(3, 4, 5), V(7, 5, 5), V(10, 0, 5)])
+        made = self.drive(commands.SplineCommand(), [Picked(polyline)],
+                          commands.selected_points, {})
+        self.assertIsInstance(made.Proxy, features.SplineFeature)
+        # the command's feature follows its source like any other
+        sketch.movePoint(2, 2, V(25, 30, 0))
+        self.document.recompute()
+        wire = self.document.getObject("RoundedWire")
+        self.assertTrue(wire.isValid())
+        self.near(max(ends(wire.Shape), key=lambda p: p.y), (125, 30, 0))
+
+
+if __name__ == "__main__":
+    unittest.main()
