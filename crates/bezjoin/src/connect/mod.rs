@@ -694,31 +694,49 @@ fn structured_points(
     // Interior constraints: M x M for R_(kp+1)..R_(kp+M), known points moved
     // to the right-hand side, rows scaled to unit 1-norm.
     let m = problem.middle_count();
-    let mut constraint_condition = 1.0;
-    if m > 0 {
-        let first = kp + 1;
-        let start = kp + kq + 2;
-        let mut a = DMatrix::<f64>::zeros(m, m);
-        let mut b = DMatrix::<f64>::zeros(m, dim);
-        for i in 0..m {
-            let row = rows.row(start + i);
-            let norm: f64 = row.iter().map(|v| v.abs()).sum();
-            for j in 0..m {
-                a[(i, j)] = row[first + j] / norm;
-            }
-            for c in 0..dim {
-                let mut sum = targets[(start + i, c)];
-                for j in (0..first).chain(first + m..=n) {
-                    sum -= row[j] * points[(j, c)];
-                }
-                b[(i, c)] = sum / norm;
-            }
-        }
-        let solution = solve_checked(&a, &b, "connect: interior constraints")?;
-        constraint_condition = solution.condition;
-        points.rows_mut(first, m).copy_from(&solution.x);
-    }
+    let constraint_condition = if m > 0 {
+        solve_interior(&conditions, &mut points, kp, kq, m)?
+    } else {
+        1.0
+    };
     Ok((conditions, points, constraint_condition))
+}
+
+/// The interior constraints' `m x m` block for the points `R_(kp+1) ..
+/// R_(kp+m)`, the known points (both ends) moved to the right-hand side,
+/// rows scaled to unit 1-norm, solved into `points`; returns the block's
+/// condition estimate.
+pub(crate) fn solve_interior(
+    conditions: &ConditionRows,
+    points: &mut DMatrix<f64>,
+    kp: usize,
+    kq: usize,
+    m: usize,
+) -> Result<f64> {
+    let (rows, targets) = (&conditions.rows, &conditions.targets);
+    let n = points.nrows() - 1;
+    let dim = points.ncols();
+    let first = kp + 1;
+    let start = kp + kq + 2;
+    let mut a = DMatrix::<f64>::zeros(m, m);
+    let mut b = DMatrix::<f64>::zeros(m, dim);
+    for i in 0..m {
+        let row = rows.row(start + i);
+        let norm: f64 = row.iter().map(|v| v.abs()).sum();
+        for j in 0..m {
+            a[(i, j)] = row[first + j] / norm;
+        }
+        for c in 0..dim {
+            let mut sum = targets[(start + i, c)];
+            for j in (0..first).chain(first + m..=n) {
+                sum -= row[j] * points[(j, c)];
+            }
+            b[(i, c)] = sum / norm;
+        }
+    }
+    let solution = solve_checked(&a, &b, "connect: interior constraints")?;
+    points.rows_mut(first, m).copy_from(&solution.x);
+    Ok(solution.condition)
 }
 
 /// The curve `R` connecting `P` at `u0` to `Q` at `v0` with C^k continuity

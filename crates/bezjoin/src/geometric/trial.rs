@@ -11,9 +11,8 @@
 use nalgebra::DMatrix;
 
 use crate::connect::{
-    CONNECT_RESIDUAL_LIMIT, ConditionRows, Problem, check_residuals, condition_rows,
+    CONNECT_RESIDUAL_LIMIT, ConditionRows, Problem, check_residuals, condition_rows, solve_interior,
 };
-use crate::linalg::solve_checked;
 
 use super::MAX_GEOMETRIC_ORDER;
 
@@ -221,27 +220,8 @@ impl<'a> TrialSolver<'a> {
             }
         }
         if m > 0 {
-            let rows = &self.conditions.rows;
+            solve_interior(&self.conditions, &mut self.points, kp, kq, m).ok()?;
             let first = kp + 1;
-            let start = kp + kq + 2;
-            let mut a = DMatrix::<f64>::zeros(m, m);
-            let mut b = DMatrix::<f64>::zeros(m, dim);
-            for i in 0..m {
-                let row = rows.row(start + i);
-                let norm: f64 = row.iter().map(|v| v.abs()).sum();
-                for j in 0..m {
-                    a[(i, j)] = row[first + j] / norm;
-                }
-                for c in 0..dim {
-                    let mut sum = self.conditions.targets[(start + i, c)];
-                    for j in (0..first).chain(first + m..=n) {
-                        sum -= row[j] * self.points[(j, c)];
-                    }
-                    b[(i, c)] = sum / norm;
-                }
-            }
-            let solution = solve_checked(&a, &b, "connect: interior constraints").ok()?;
-            self.points.rows_mut(first, m).copy_from(&solution.x);
             for i in first..first + m {
                 for c in 0..dim {
                     self.row_major[i * dim + c] = self.points[(i, c)];
