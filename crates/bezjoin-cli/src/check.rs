@@ -254,23 +254,14 @@ pub fn row(values: &[f64], dim: usize, k: usize) -> &[f64] {
 pub fn reference_sizes(pieces: &[(CurveRef, f64)], orders: usize) -> Vec<f64> {
     let mut sizes = vec![0.0f64; orders + 1];
     for &(curve, rate) in pieces {
-        let (a, b) = curve.domain();
-        let dim = curve.dim();
-        for i in 0..=REFERENCE_SAMPLES {
-            let u = a + (b - a) * i as f64 / REFERENCE_SAMPLES as f64;
-            let side = if i == REFERENCE_SAMPLES {
-                KnotSide::Left
-            } else {
-                KnotSide::Right
-            };
-            let d = derivatives(curve, u, orders, side);
+        for_each_sample(curve, orders, |d| {
             for (k, size) in sizes.iter_mut().enumerate() {
-                let n = norm(row(&d, dim, k)) / rate.powi(k as i32);
+                let n = norm(row(d, curve.dim(), k)) / rate.powi(k as i32);
                 if n.is_finite() {
                     *size = size.max(n);
                 }
             }
-        }
+        });
     }
     sizes
 }
@@ -282,18 +273,10 @@ pub fn reference_sizes(pieces: &[(CurveRef, f64)], orders: usize) -> Vec<f64> {
 pub fn geometric_reference_sizes(curves: &[CurveRef], orders: usize) -> Vec<f64> {
     let mut sizes = vec![0.0f64; orders + 1];
     for &curve in curves {
-        let (a, b) = curve.domain();
         let dim = curve.dim();
-        for i in 0..=REFERENCE_SAMPLES {
-            let u = a + (b - a) * i as f64 / REFERENCE_SAMPLES as f64;
-            let side = if i == REFERENCE_SAMPLES {
-                KnotSide::Left
-            } else {
-                KnotSide::Right
-            };
-            let d = derivatives(curve, u, orders, side);
-            let Some(s) = arc_length_derivatives(&d, dim, orders) else {
-                continue;
+        for_each_sample(curve, orders, |d| {
+            let Some(s) = arc_length_derivatives(d, dim, orders) else {
+                return;
             };
             for (k, size) in sizes.iter_mut().enumerate() {
                 let n = norm(row(&s, dim, k));
@@ -301,9 +284,25 @@ pub fn geometric_reference_sizes(curves: &[CurveRef], orders: usize) -> Vec<f64>
                     *size = size.max(n);
                 }
             }
-        }
+        });
     }
     sizes
+}
+
+/// Call `f` with the derivatives `0..=orders` of `curve` at
+/// `REFERENCE_SAMPLES + 1` evenly spaced parameters of its domain (from the
+/// right, the last one from the left).
+fn for_each_sample(curve: CurveRef, orders: usize, mut f: impl FnMut(&[f64])) {
+    let (a, b) = curve.domain();
+    for i in 0..=REFERENCE_SAMPLES {
+        let u = a + (b - a) * i as f64 / REFERENCE_SAMPLES as f64;
+        let side = if i == REFERENCE_SAMPLES {
+            KnotSide::Left
+        } else {
+            KnotSide::Right
+        };
+        f(&derivatives(curve, u, orders, side));
+    }
 }
 
 /// Euclidean norm.

@@ -16,34 +16,25 @@
 /// Taylor coefficients `d_j / j!` of derivative rows `d_j` (`dim` values
 /// each, rows `0..=n`).
 pub fn taylor(derivatives: &[f64], dim: usize) -> Vec<f64> {
-    let mut factorial = 1.0;
-    derivatives
-        .chunks(dim)
-        .enumerate()
-        .flat_map(|(j, row)| {
-            if j > 0 {
-                factorial *= j as f64;
-            }
-            let f = factorial;
-            row.iter().map(move |x| x / f).collect::<Vec<_>>()
-        })
-        .collect()
+    by_factorials(derivatives, dim, |x, f| x / f)
 }
 
 /// Derivative rows `j! c_j` of Taylor coefficient rows `c_j`.
 pub fn untaylor(coefficients: &[f64], dim: usize) -> Vec<f64> {
+    by_factorials(coefficients, dim, |x, f| x * f)
+}
+
+/// Row `j` (`dim` values) of `rows` combined with `j!` by `op`.
+fn by_factorials(rows: &[f64], dim: usize, op: impl Fn(f64, f64) -> f64) -> Vec<f64> {
     let mut factorial = 1.0;
-    coefficients
-        .chunks(dim)
-        .enumerate()
-        .flat_map(|(j, row)| {
-            if j > 0 {
-                factorial *= j as f64;
-            }
-            let f = factorial;
-            row.iter().map(move |x| x * f).collect::<Vec<_>>()
-        })
-        .collect()
+    let mut out = Vec::with_capacity(rows.len());
+    for (j, row) in rows.chunks(dim).enumerate() {
+        if j > 0 {
+            factorial *= j as f64;
+        }
+        out.extend(row.iter().map(|&x| op(x, factorial)));
+    }
+    out
 }
 
 /// `a b` up to `h^n`.
