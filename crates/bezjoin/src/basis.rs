@@ -76,37 +76,73 @@ pub(crate) fn basis_derivatives(
 ) -> DMatrix<f64> {
     let p = degree;
     let n = max_order.min(p);
+    let mut rows = vec![0.0; (n + 1) * (p + 1)];
+    let mut work = vec![0.0; basis_work_len(p)];
+    basis_derivatives_into(knots, p, span, t, n, &mut rows, &mut work);
     let mut ders = DMatrix::<f64>::zeros(max_order + 1, p + 1);
-    // ndu: lower triangle knot differences (then their reciprocals), upper
-    // triangle basis functions.
-    let mut ndu = DMatrix::<f64>::zeros(p + 1, p + 1);
-    let mut left = vec![0.0; p + 1];
-    let mut right = vec![0.0; p + 1];
-    ndu[(0, 0)] = 1.0;
+    for k in 0..=n {
+        for j in 0..=p {
+            ders[(k, j)] = rows[k * (p + 1) + j];
+        }
+    }
+    ders
+}
+
+/// Length of the work buffer [`basis_derivatives_into`] needs for degree `p`.
+pub(crate) const fn basis_work_len(p: usize) -> usize {
+    (p + 1) * (p + 1) + 4 * (p + 1)
+}
+
+/// A2.3 into caller buffers, without allocation: `ders` receives
+/// `(n + 1) x (p + 1)` values row-major (`n <= p`; row `k` holds the k-th
+/// derivatives of `N_(span - p + j)`, `j = 0..=p`, at `t`), `work` holds at
+/// least [`basis_work_len`]`(p)` values. The same arithmetic, in the same
+/// order, as [`basis_derivatives`] (which calls it).
+pub(crate) fn basis_derivatives_into(
+    knots: &[f64],
+    p: usize,
+    span: usize,
+    t: f64,
+    n: usize,
+    ders: &mut [f64],
+    work: &mut [f64],
+) {
+    debug_assert!(n <= p && ders.len() >= (n + 1) * (p + 1));
+    let m = p + 1;
+    // ndu (m x m, row-major): lower triangle knot differences (then their
+    // reciprocals), upper triangle basis functions.
+    let (ndu, rest) = work.split_at_mut(m * m);
+    let (left, rest) = rest.split_at_mut(m);
+    let (right, rest) = rest.split_at_mut(m);
+    let (a0, a1) = rest.split_at_mut(m);
+    ndu[0] = 1.0;
     for j in 1..=p {
         left[j] = t - knots[span + 1 - j];
         right[j] = knots[span + j] - t;
         let mut saved = 0.0;
         for r in 0..j {
-            ndu[(j, r)] = right[r + 1] + left[j - r];
-            let temp = ndu[(r, j - 1)] / ndu[(j, r)];
-            ndu[(r, j)] = saved + right[r + 1] * temp;
+            ndu[j * m + r] = right[r + 1] + left[j - r];
+            let temp = ndu[r * m + j - 1] / ndu[j * m + r];
+            ndu[r * m + j] = saved + right[r + 1] * temp;
             saved = left[j - r] * temp;
         }
-        ndu[(j, j)] = saved;
+        ndu[j * m + j] = saved;
     }
     for j in 0..=p {
-        ders[(0, j)] = ndu[(j, p)];
+        ders[j] = ndu[j * m + p];
+    }
+    if n == 0 {
+        return;
     }
     // Reciprocals of the knot differences (lower triangle of ndu), so that
     // the O(p^2 n) loop below multiplies instead of dividing.
     for j in 1..=p {
         for r in 0..j {
-            ndu[(j, r)] = 1.0 / ndu[(j, r)];
+            ndu[j * m + r] = 1.0 / ndu[j * m + r];
         }
     }
     // Derivatives (Eq. 2.9), two alternating rows of coefficients.
-    let mut a = [vec![0.0; p + 1], vec![0.0; p + 1]];
+    let a: [&mut [f64]; 2] = [a0, &mut a1[..m]];
     for r in 0..=p {
         let (mut s1, mut s2) = (0usize, 1usize);
         a[0][0] = 1.0;
@@ -115,8 +151,8 @@ pub(crate) fn basis_derivatives(
             let rk = r as isize - k as isize;
             let pk = p - k;
             if r >= k {
-                a[s2][0] = a[s1][0] * ndu[(pk + 1, rk as usize)];
-                d = a[s2][0] * ndu[(rk as usize, pk)];
+                a[s2][0] = a[s1][0] * ndu[(pk + 1) * m + rk as usize];
+                d = a[s2][0] * ndu[rk as usize * m + pk];
             }
             let j1: usize = if rk >= -1 { 1 } else { (-rk) as usize };
             let j2: usize = if (r as isize - 1) <= pk as isize {
@@ -126,25 +162,24 @@ pub(crate) fn basis_derivatives(
             };
             for j in j1..=j2 {
                 let idx = (rk + j as isize) as usize;
-                a[s2][j] = (a[s1][j] - a[s1][j - 1]) * ndu[(pk + 1, idx)];
-                d += a[s2][j] * ndu[(idx, pk)];
+                a[s2][j] = (a[s1][j] - a[s1][j - 1]) * ndu[(pk + 1) * m + idx];
+                d += a[s2][j] * ndu[idx * m + pk];
             }
             if r <= pk {
-                a[s2][k] = -a[s1][k - 1] * ndu[(pk + 1, r)];
-                d += a[s2][k] * ndu[(r, pk)];
+                a[s2][k] = -a[s1][k - 1] * ndu[(pk + 1) * m + r];
+                d += a[s2][k] * ndu[r * m + pk];
             }
-            ders[(k, r)] = d;
+            ders[k * m + r] = d;
             std::mem::swap(&mut s1, &mut s2);
         }
     }
     let mut factor = p as f64;
     for k in 1..=n {
         for j in 0..=p {
-            ders[(k, j)] *= factor;
+            ders[k * m + j] *= factor;
         }
         factor *= (p - k) as f64;
     }
-    ders
 }
 
 /// The clamped Bezier knot vector `0^(n+1) 1^(n+1)`.

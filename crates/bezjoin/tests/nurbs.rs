@@ -179,6 +179,47 @@ fn derivatives_agree_with_the_bezier_spans_on_both_sides_of_knots() {
     }
 }
 
+/// The evaluation keeps its work on the stack in three sizes (degrees up to
+/// 3, 7 and 15) and on the heap beyond; every size, with orders past the
+/// degree and past the largest stack buffer of rows, agrees with the Bezier
+/// spans' own derivatives.
+#[test]
+fn derivatives_agree_with_the_bezier_spans_at_every_buffer_size() {
+    let mut rng = Random(0x5eed_0012);
+    for p in [1usize, 2, 3, 4, 7, 8, 12, 15, 16, 21] {
+        for rational in [false, true] {
+            let dim = 1 + rng.below(4);
+            let spans = 1 + rng.below(3);
+            let n = p + spans;
+            let mut knots = vec![0.0; p + 1];
+            knots.extend((1..spans).map(|i| i as f64 + rng.range(-0.3, 0.3)));
+            knots.extend(std::iter::repeat_n(spans as f64, p + 1));
+            let poles = (0..n * dim).map(|_| rng.range(-5.0, 5.0)).collect();
+            let weights = rational.then(|| (0..n).map(|_| rng.range(0.5, 2.0)).collect());
+            let c = NurbsCurve::new(dim, p, poles, weights, knots).unwrap();
+            for order in [0, p.min(3), p, p + 2, 70] {
+                for span in &c.bezier_spans() {
+                    let (a, b) = span.domain();
+                    let u = 0.4 * a + 0.6 * b;
+                    let ours = c.eval_derivatives(u, order);
+                    let reference = span_derivatives(span, u, order);
+                    assert_eq!(ours.len(), reference.len());
+                    for (k, (x, y)) in ours.iter().zip(&reference).enumerate() {
+                        let row = k / dim;
+                        let size = reference[row * dim..(row + 1) * dim]
+                            .iter()
+                            .fold(1.0f64, |m, x| m.max(x.abs()));
+                        assert!(
+                            (x - y).abs() <= 1e-8 * size,
+                            "p {p} rational {rational} order {order} entry {k}: {x} vs {y}"
+                        );
+                    }
+                }
+            }
+        }
+    }
+}
+
 #[test]
 fn polynomial_derivatives_above_the_degree_vanish_rational_ones_do_not() {
     let mut rng = Random(0x5eed_0003);

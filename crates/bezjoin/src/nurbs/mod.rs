@@ -31,7 +31,7 @@ mod spans;
 pub use conic::{AXIS_TOLERANCE, ellipse_arc};
 pub use length::MAX_RATIONAL_EVALUATIONS;
 
-use crate::basis::{KnotSide, basis_derivatives, binomial, find_span};
+use crate::basis::{KnotSide, basis_derivatives_into, basis_work_len, find_span};
 use crate::bezier::{BezierCurve, MAX_DEGREE};
 use crate::curve::CurveRef;
 use crate::error::{BezjoinError, Result, check_finite, check_finite_scalar};
@@ -623,7 +623,9 @@ impl NurbsCurve {
     /// are continued; callers that must refuse such `u` use
     /// [`check_parameter`](Self::check_parameter).
     pub fn eval_derivatives_side(&self, u: f64, max_order: usize, side: KnotSide) -> Vec<f64> {
-        self.eval_derivatives_with_bound(u, max_order, side).0
+        let mut out = vec![0.0; (max_order + 1) * self.dim];
+        self.eval_derivatives_into(u, max_order, side, &mut out, None);
+        out
     }
 
     /// [`eval_derivatives_side`](Self::eval_derivatives_side) with a bound
@@ -636,67 +638,162 @@ impl NurbsCurve {
         max_order: usize,
         side: KnotSide,
     ) -> (Vec<f64>, Vec<f64>) {
+        let mut out = vec![0.0; (max_order + 1) * self.dim];
+        let mut bound = vec![0.0; max_order + 1];
+        self.eval_derivatives_into(u, max_order, side, &mut out, Some(&mut bound));
+        (out, bound)
+    }
+
+    /// Value and derivatives `0..=max_order` at `u` into `out`
+    /// (`(max_order + 1) * dim` values, row `k` the `k`-th derivative), from
+    /// the span on `side` of a knot; with `bound`, also the rounding bound of
+    /// each row as in [`eval_derivatives_with_bound`](Self::eval_derivatives_with_bound).
+    ///
+    /// A2.3 gives the basis derivatives of the span, the homogeneous curve
+    /// `A = sum N_j w_j P_j`, `w = sum N_j w_j` and their derivatives are
+    /// summed from them, and A4.2 (`C^(k) = (A^(k) - sum_(i=1..k) C(k,i)
+    /// w^(i) C^(k-i)) / w`) gives the Cartesian rows. No allocation up to
+    /// degree 15 with `(max_order + 1) * (dim + 1) <= 128`.
+    pub(crate) fn eval_derivatives_into(
+        &self,
+        u: f64,
+        max_order: usize,
+        side: KnotSide,
+        out: &mut [f64],
+        bound: Option<&mut [f64]>,
+    ) {
+        let p = self.degree;
+        let m = p + 1;
+        let rows = max_order + 1;
+        let n = max_order.min(p);
+        debug_assert_eq!(out.len(), rows * self.dim);
+        // Stack buffers sized for the degree (zeroing a large buffer costs
+        // more than a small curve's whole evaluation), the heap beyond 15.
+        let (basis_len, work_len, jets_len) = ((n + 1) * m, basis_work_len(p), 3 * rows);
+        let fits = |b: usize, w: usize, j: usize| basis_len <= b && work_len <= w && jets_len <= j;
+        if fits(16, basis_work_len(3), 48) {
+            let (mut b, mut w, mut j) = ([0.0; 16], [0.0; basis_work_len(3)], [0.0; 48]);
+            self.eval_rows(u, n, side, out, bound, &mut b, &mut w, &mut j);
+        } else if fits(64, basis_work_len(7), 96) {
+            let (mut b, mut w, mut j) = ([0.0; 64], [0.0; basis_work_len(7)], [0.0; 96]);
+            self.eval_rows(u, n, side, out, bound, &mut b, &mut w, &mut j);
+        } else if fits(256, basis_work_len(15), 192) {
+            let (mut b, mut w, mut j) = ([0.0; 256], [0.0; basis_work_len(15)], [0.0; 192]);
+            self.eval_rows(u, n, side, out, bound, &mut b, &mut w, &mut j);
+        } else {
+            let (mut b, mut w, mut j) = (
+                vec![0.0; basis_len],
+                vec![0.0; work_len],
+                vec![0.0; jets_len],
+            );
+            self.eval_rows(u, n, side, out, bound, &mut b, &mut w, &mut j);
+        }
+    }
+
+    /// The body of [`eval_derivatives_into`](Self::eval_derivatives_into)
+    /// on buffers of at least `(n + 1) (p + 1)` (basis), `basis_work_len(p)`
+    /// (work) and `3 (rows)` (jets) values, `n = min(max_order, p)`, where
+    /// `rows = out.len() / dim`.
+    #[allow(clippy::too_many_arguments)]
+    fn eval_rows(
+        &self,
+        u: f64,
+        n: usize,
+        side: KnotSide,
+        out: &mut [f64],
+        mut bound: Option<&mut [f64]>,
+        basis: &mut [f64],
+        work: &mut [f64],
+        jets: &mut [f64],
+    ) {
         let p = self.degree;
         let d = self.dim;
+        let m = p + 1;
+        let rows = out.len() / d;
         let span = find_span(&self.knots, p, u, side);
-        let basis = basis_derivatives(&self.knots, p, span, u, max_order.min(p));
-        let rows = max_order + 1;
-        // Homogeneous derivatives A^(k) (d values) and w^(k); abs sums.
-        let mut a = vec![0.0; rows * d];
-        let mut a_abs = vec![0.0; rows];
-        let mut w = vec![0.0; rows];
-        let mut w_abs = vec![0.0; rows];
-        for k in 0..=max_order.min(p) {
-            for j in 0..=p {
-                let b = basis[(k, j)];
-                if b == 0.0 {
-                    continue;
+        basis_derivatives_into(&self.knots, p, span, u, n, basis, work);
+        // Homogeneous rows: A^(k) in `out`; w^(k), the |w| sums and the |A|
+        // sums in `jets`, `rows` values each.
+        let jets = &mut jets[..3 * rows];
+        let (w, rest) = jets.split_at_mut(rows);
+        let (w_abs, a_abs) = rest.split_at_mut(rows);
+        out.fill(0.0);
+        let first = span - p;
+        let track = bound.is_some();
+        match &self.weights {
+            None => {
+                for k in 0..=n {
+                    let row = &mut out[k * d..(k + 1) * d];
+                    for (j, &b) in basis[k * m..(k + 1) * m].iter().enumerate() {
+                        let pole = &self.points[(first + j) * d..(first + j + 1) * d];
+                        for (o, &x) in row.iter_mut().zip(pole) {
+                            *o += b * x;
+                        }
+                        if track && b != 0.0 {
+                            let size = pole.iter().fold(0.0f64, |s, x| s.max(x.abs()));
+                            a_abs[k] += b.abs() * size;
+                            w_abs[k] += b.abs();
+                        }
+                        w[k] += b;
+                    }
                 }
-                let i = span - p + j;
-                let wi = self.weight(i);
-                let mut size = 0.0f64;
-                for c in 0..d {
-                    let x = wi * self.points[i * d + c];
-                    a[k * d + c] += b * x;
-                    size = size.max(x.abs());
+            }
+            Some(weights) => {
+                for k in 0..=n {
+                    let row = &mut out[k * d..(k + 1) * d];
+                    for (j, &b) in basis[k * m..(k + 1) * m].iter().enumerate() {
+                        if b == 0.0 {
+                            continue;
+                        }
+                        let wi = weights[first + j];
+                        let pole = &self.points[(first + j) * d..(first + j + 1) * d];
+                        let bw = b * wi;
+                        for (o, &x) in row.iter_mut().zip(pole) {
+                            *o += b * (wi * x);
+                        }
+                        if track {
+                            let size = pole.iter().fold(0.0f64, |s, x| s.max((wi * x).abs()));
+                            a_abs[k] += b.abs() * size;
+                            w_abs[k] += b.abs() * wi;
+                        }
+                        w[k] += bw;
+                    }
                 }
-                a_abs[k] += b.abs() * size;
-                w[k] += b * wi;
-                w_abs[k] += b.abs() * wi;
             }
         }
-        let eps = f64::EPSILON * 0.5;
-        let mut out = vec![0.0; rows * d];
-        let mut bound = vec![0.0; rows];
         let rational = self.weights.is_some();
+        let eps = f64::EPSILON * 0.5;
         for k in 0..rows {
             let mut row_abs = a_abs[k];
-            for c in 0..d {
-                out[k * d + c] = a[k * d + c];
-            }
             if rational {
+                // C(k, i) by its recurrence: each step exact in f64 (an
+                // integer times an integer, divided exactly).
+                let mut choose = 1.0;
                 for i in 1..=k {
+                    choose = choose * (k + 1 - i) as f64 / i as f64;
                     if w[i] == 0.0 && w_abs[i] == 0.0 {
                         continue;
                     }
-                    let coef = binomial(k, i) * w[i];
+                    let coef = choose * w[i];
+                    let (done, current) = out.split_at_mut(k * d);
+                    let prev = &done[(k - i) * d..(k - i + 1) * d];
                     let mut size = 0.0f64;
-                    for c in 0..d {
-                        let prev = out[(k - i) * d + c];
-                        out[k * d + c] -= coef * prev;
-                        size = size.max(prev.abs());
+                    for (o, &x) in current[..d].iter_mut().zip(prev) {
+                        *o -= coef * x;
+                        size = size.max(x.abs());
                     }
-                    row_abs += binomial(k, i) * w_abs[i] * size;
+                    row_abs += choose * w_abs[i] * size;
                 }
-                for c in 0..d {
-                    out[k * d + c] /= w[0];
+                for o in &mut out[k * d..(k + 1) * d] {
+                    *o /= w[0];
                 }
                 row_abs /= w[0];
             }
-            let gamma = 2.0 * (p + k + 2) as f64 * eps;
-            bound[k] = gamma * row_abs * (d as f64).sqrt();
+            if let Some(bound) = bound.as_deref_mut() {
+                let gamma = 2.0 * (p + k + 2) as f64 * eps;
+                bound[k] = gamma * row_abs * (d as f64).sqrt();
+            }
         }
-        (out, bound)
     }
 
     /// [`eval_derivatives`](Self::eval_derivatives) for callers that need
