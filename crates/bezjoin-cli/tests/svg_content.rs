@@ -682,3 +682,38 @@ fn nurbs_curves_are_drawn_with_polygons_and_combs() {
     assert!(assert_combs(&svg, &["P on [", "Q on [", "blend R"]) >= 3);
     assert_join_markers(&svg, &map, &[r[0], *r.last().unwrap()]);
 }
+
+/// Marker labels stay inside the picture: measured with DejaVu Sans's widest
+/// common advance at font size 12 (about 0.6 em = 7.2 px per character, an
+/// upper bound for these labels), a label that starts at `x` ends before the
+/// picture's width, and one anchored at its end starts after 0. The merge
+/// and spline examples put a label at a point near the right edge.
+#[test]
+fn marker_labels_stay_inside_the_picture() {
+    for (op, file) in [
+        ("merge", "merge.json"),
+        ("spline", "spline.json"),
+        ("connect", "connect.json"),
+        ("fillet", "fillet.json"),
+    ] {
+        let (_, svg) = run(op, &read_json(&example(file)));
+        let width = number(attr(tags(&svg, "svg")[0], "width").unwrap());
+        let markers = group(&svg, "markers");
+        let labels = tags(markers, "text");
+        let contents = texts(markers);
+        assert_eq!(labels.len(), contents.len());
+        for (tag, text) in labels.iter().zip(&contents) {
+            let x = number(attr(tag, "x").unwrap());
+            let extent = 7.2 * text.chars().count() as f64;
+            let (left, right) = match attr(tag, "text-anchor") {
+                Some("end") => (x - extent, x),
+                None | Some("start") => (x, x + extent),
+                Some(other) => panic!("{file}: anchor {other:?}"),
+            };
+            assert!(
+                left >= 0.0 && right <= width,
+                "{file}: label {text:?} spans {left:.1}..{right:.1} of a {width} px picture"
+            );
+        }
+    }
+}

@@ -129,6 +129,9 @@ fn curve_group(s: &mut String, figure: &Figure, curve_points: &[Vec<[f64; 2]>], 
     let _ = writeln!(s, "</g>");
 }
 
+/// An upper estimate of one character's advance at font size 12 (px).
+const LABEL_CHAR_WIDTH: f64 = 7.2;
+
 /// The markers with their labels.
 fn marker_group(s: &mut String, figure: &Figure, layout: &Layout) {
     let _ = writeln!(s, "<g id=\"markers\">");
@@ -144,10 +147,17 @@ fn marker_group(s: &mut String, figure: &Figure, layout: &Layout) {
         }
         s.push_str(&marker_svg(m.kind, x, y));
         if !m.label.is_empty() {
+            // Right of the marker, or left of it (anchored at its end) when
+            // the label would run past the drawing's right edge.
+            let (lx, anchor) =
+                if x + 8.0 + LABEL_CHAR_WIDTH * m.label.chars().count() as f64 > DRAWING_WIDTH {
+                    (x - 8.0, " text-anchor=\"end\"")
+                } else {
+                    (x + 8.0, "")
+                };
             let _ = writeln!(
                 s,
-                "<text x=\"{:.2}\" y=\"{:.2}\" fill=\"#333\" font-size=\"12\">{}</text>",
-                x + 8.0,
+                "<text x=\"{lx:.2}\" y=\"{:.2}\" fill=\"#333\" font-size=\"12\"{anchor}>{}</text>",
                 y - 8.0,
                 escape(&m.label)
             );
