@@ -59,6 +59,7 @@
 //! is an [`BezjoinError::IllConditioned`] error (it happens only when curves
 //! run within the tolerance of each other without coinciding), never a hang.
 
+mod clip;
 mod track;
 
 use crate::bezier::{BezierCurve, distance, norm};
@@ -66,6 +67,9 @@ use crate::curve::CurveRef;
 use crate::error::{BezjoinError, Result, check_finite_scalar};
 use std::rc::Rc;
 use track::{Piece, Track, boxes_meet};
+
+/// Dimensions up to which polishing keeps its vectors on the stack.
+const POLISH_STACK_DIM: usize = 8;
 
 /// Default of [`IntersectOptions::relative_distance_tolerance`].
 pub const DEFAULT_RELATIVE_DISTANCE_TOLERANCE: f64 = 1e-9;
@@ -181,7 +185,9 @@ pub fn intersect<'a>(
     validate(p, q, options)?;
     let mut search = Search::new(Track::new(p), Track::new(q), options);
     search.find_overlaps();
-    search.subdivide()?;
+    if !search.clip_search() {
+        search.subdivide()?;
+    }
     search.finish()
 }
 
@@ -246,15 +252,24 @@ impl CurvePair<'_> {
         let d = self.p.dim();
         let (u_lo, u_hi) = self.p.domain();
         let (v_lo, v_hi) = self.q.domain();
-        let mut r = vec![0.0; d];
-        let mut trial = vec![0.0; d];
-        let mut work = vec![0.0; d];
-        let mut a = vec![0.0; d];
-        let mut b = vec![0.0; d];
+        // Five vectors of length `d`: on the stack for small dimensions.
+        let mut stack = [0.0f64; 5 * POLISH_STACK_DIM];
+        let mut heap = Vec::new();
+        let scratch: &mut [f64] = if d <= POLISH_STACK_DIM {
+            &mut stack[..5 * d]
+        } else {
+            heap.resize(5 * d, 0.0);
+            &mut heap
+        };
+        let (r, rest) = scratch.split_at_mut(d);
+        let (trial, rest) = rest.split_at_mut(d);
+        let (work, rest) = rest.split_at_mut(d);
+        let (a, b) = rest.split_at_mut(d);
+        let (mut r, mut trial, work, a, b) = (r, trial, work, a, b);
         u = u.clamp(u_lo, u_hi);
         v = v.clamp(v_lo, v_hi);
-        self.gap_into(u, v, &mut r, &mut work);
-        let mut f = norm(&r);
+        self.gap_into(u, v, r, work);
+        let mut f = norm(r);
         // Steps below this are at the rounding level of the parameters.
         let resolution = 4.0
             * f64::EPSILON
@@ -265,13 +280,13 @@ impl CurvePair<'_> {
             if f == 0.0 {
                 break;
             }
-            self.p.tangent_into(u, &mut a);
-            self.q.tangent_into(v, &mut b);
-            let aa = dot(&a, &a);
-            let bb = dot(&b, &b);
-            let ab = dot(&a, &b);
-            let ar = dot(&a, &r);
-            let br = dot(&b, &r);
+            self.p.tangent_into(u, a);
+            self.q.tangent_into(v, b);
+            let aa = dot(a, a);
+            let bb = dot(b, b);
+            let ab = dot(a, b);
+            let ar = dot(a, r);
+            let br = dot(b, r);
             // Normal equations of J = [a, -b]: [aa, -ab; -ab, bb] d = [-ar, br].
             let damping = 1e-15 * (aa + bb) + f64::MIN_POSITIVE;
             let (mut du, mut dv) = solve2(aa + damping, -ab, bb + damping, -ar, br);
@@ -288,14 +303,20 @@ impl CurvePair<'_> {
                 dv = 0.0;
                 du = if aa > 0.0 { -ar / aa } else { 0.0 };
             }
+            // A full step at the rounding level of the parameters cannot
+            // move them (the backtracking below would only halve it 16
+            // times at two evaluations each): converged.
+            if du.abs().max(dv.abs()) <= resolution {
+                break;
+            }
             // Backtracking: accept the first step length that decreases the gap.
             let mut step = 1.0;
             let mut moved = 0.0f64;
             for _ in 0..16 {
                 let nu = (u + step * du).clamp(u_lo, u_hi);
                 let nv = (v + step * dv).clamp(v_lo, v_hi);
-                self.gap_into(nu, nv, &mut trial, &mut work);
-                let nf = norm(&trial);
+                self.gap_into(nu, nv, trial, work);
+                let nf = norm(trial);
                 if nf < f {
                     moved = (nu - u).abs().max((nv - v).abs());
                     u = nu;
@@ -326,6 +347,30 @@ fn solve2(a: f64, b: f64, c: f64, r: f64, s: f64) -> (f64, f64) {
         return (0.0, 0.0);
     }
     ((r * c - b * s) / det, (a * s - b * r) / det)
+}
+
+/// Closest points of the chord lines `a0 + s (a1 - a0)` and `b0 + t (b1 -
+/// b0)` (minimising `|w + s da - t db|^2`, `w = a0 - b0`), clamped to
+/// `[0, 1]^2`; `None` when the chords are nearly parallel
+/// (`det <= 4e-3 |da|^2 |db|^2`, a sine below about 0.06, or NaN): flat
+/// pieces (within 1e-2 of their chords) can cross twice only then.
+fn chord_crossing(a0: &[f64], a1: &[f64], b0: &[f64], b1: &[f64]) -> Option<(f64, f64)> {
+    let (mut aa, mut bb, mut ab, mut wa, mut wb) = (0.0, 0.0, 0.0, 0.0, 0.0);
+    for c in 0..a0.len() {
+        let (da, db, w) = (a1[c] - a0[c], b1[c] - b0[c], a0[c] - b0[c]);
+        aa += da * da;
+        bb += db * db;
+        ab += da * db;
+        wa += w * da;
+        wb += w * db;
+    }
+    let det = aa * bb - ab * ab;
+    if det <= 4e-3 * aa * bb || det.is_nan() {
+        return None;
+    }
+    let s = ((-wa) * bb + ab * wb) / det;
+    let t = (aa * wb - ab * wa) / det;
+    Some((s.clamp(0.0, 1.0), t.clamp(0.0, 1.0)))
 }
 
 /// Closest parameter on the Bezier `curve` to `x` (with its `hodograph`),
@@ -404,6 +449,10 @@ fn project_on(track: &Track, x: &[f64], start: Option<f64>, pieces: &[Piece]) ->
         if dt.is_nan() {
             // Overflowing dot products (coordinates near 1e300): every trial
             // step below would evaluate at NaN and be refused.
+            break;
+        }
+        if dt.abs() <= resolution {
+            // A step at the rounding level of `t`: converged (see `polish`).
             break;
         }
         let mut step = 1.0;
@@ -672,35 +721,18 @@ impl<'a> Search<'a> {
         let a1 = a.point(na);
         let b0 = b.point(0);
         let b1 = b.point(nb);
-        let da: Vec<f64> = a1.iter().zip(a0).map(|(x, y)| x - y).collect();
-        let db: Vec<f64> = b1.iter().zip(b0).map(|(x, y)| x - y).collect();
-        let w: Vec<f64> = a0.iter().zip(b0).map(|(x, y)| x - y).collect();
-        // Closest points of the chord lines: minimise |w + s da - t db|^2.
-        let aa = dot(&da, &da);
-        let bb = dot(&db, &db);
-        let ab = dot(&da, &db);
-        let det = aa * bb - ab * ab;
         let mut seeds: Vec<(f64, f64)> = Vec::with_capacity(5);
-        // Flat pieces (within 1e-2 of their chords) can cross twice only when
-        // the chords make an angle below about 4e-2: seed from all ends then.
-        let nearly_parallel = det <= 4e-3 * aa * bb || det.is_nan();
-        if !nearly_parallel
-            && self
-                .candidates
-                .iter()
-                .rev()
-                .take(8)
-                .any(|c| c.u >= a.lo && c.u <= a.hi && c.v >= b.lo && c.v <= b.hi)
-        {
-            // Chords that are not nearly parallel cross at most once: this
-            // leaf's crossing is already known.
-            return;
-        }
-        if !nearly_parallel {
-            let s = ((-dot(&w, &da)) * bb + ab * dot(&w, &db)) / det;
-            let t = (aa * dot(&w, &db) - ab * dot(&w, &da)) / det;
-            seeds.push((s.clamp(0.0, 1.0), t.clamp(0.0, 1.0)));
+        if let Some(seed) = chord_crossing(a0, a1, b0, b1) {
+            if self.known_in(a.lo, a.hi, b.lo, b.hi) {
+                // Chords that are not nearly parallel cross at most once: this
+                // leaf's crossing is already known.
+                return;
+            }
+            seeds.push(seed);
         } else {
+            let da: Vec<f64> = a1.iter().zip(a0).map(|(x, y)| x - y).collect();
+            let db: Vec<f64> = b1.iter().zip(b0).map(|(x, y)| x - y).collect();
+            let (aa, bb) = (dot(&da, &da), dot(&db, &db));
             let proj = |x: &[f64], origin: &[f64], dir: &[f64], len2: f64| -> f64 {
                 if len2 > 0.0 {
                     let rel: Vec<f64> = x.iter().zip(origin).map(|(p, o)| p - o).collect();
@@ -731,6 +763,16 @@ impl<'a> Search<'a> {
                 self.candidates.push(Candidate { u, v, distance: d });
             }
         }
+    }
+
+    /// Whether one of the last few hits lies in the parameter box
+    /// `[u_lo, u_hi] x [v_lo, v_hi]`.
+    fn known_in(&self, u_lo: f64, u_hi: f64, v_lo: f64, v_hi: f64) -> bool {
+        self.candidates
+            .iter()
+            .rev()
+            .take(8)
+            .any(|c| c.u >= u_lo && c.u <= u_hi && c.v >= v_lo && c.v <= v_hi)
     }
 
     /// Sort the candidates and merge those that are one hit.
