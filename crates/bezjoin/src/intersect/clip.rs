@@ -406,3 +406,174 @@ impl Search<'_> {
         true
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::super::{
+        IntersectOptions, Intersection, IntersectionKind, intersect, intersect_by_clipping,
+        intersect_by_subdivision,
+    };
+    use crate::bezier::BezierCurve;
+    use crate::curve::CurveRef;
+    use crate::nurbs::NurbsCurve;
+
+    /// Fixed-seed linear congruential generator (Knuth's MMIX constants).
+    struct Lcg(u64);
+
+    impl Lcg {
+        fn next(&mut self) -> f64 {
+            self.0 = self
+                .0
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            (self.0 >> 11) as f64 / (1u64 << 53) as f64
+        }
+        fn range(&mut self, lo: f64, hi: f64) -> f64 {
+            lo + (hi - lo) * self.next()
+        }
+    }
+
+    fn random_bezier(rng: &mut Lcg, degree: usize) -> BezierCurve {
+        let points: Vec<f64> = (0..2 * (degree + 1))
+            .map(|_| rng.range(-1.0, 1.0))
+            .collect();
+        BezierCurve::new(2, degree, points).unwrap()
+    }
+
+    /// A cubic B-spline with `poles` poles on uniform interior knots,
+    /// rational with weights in `[0.5, 2]` when asked.
+    fn random_nurbs(rng: &mut Lcg, poles: usize, rational: bool) -> NurbsCurve {
+        let degree = 3;
+        let points: Vec<f64> = (0..2 * poles).map(|_| rng.range(-1.0, 1.0)).collect();
+        let weights = rational.then(|| (0..poles).map(|_| rng.range(0.5, 2.0)).collect());
+        let spans = poles - degree;
+        let mut knots = vec![0.0; degree + 1];
+        knots.extend((1..spans).map(|k| k as f64 / spans as f64));
+        knots.extend(vec![1.0; degree + 1]);
+        NurbsCurve::new(2, degree, points, weights, knots).unwrap()
+    }
+
+    /// `fast` and `reference` report the same hits: same kinds, parameters
+    /// within `1e-9` of the domains (Newton-polished crossings agree to
+    /// rounding; the tolerance covers both polishings' stopping points),
+    /// distances within the tolerance.
+    fn assert_same(fast: &[Intersection], reference: &[Intersection], what: &str) {
+        assert_eq!(
+            fast.len(),
+            reference.len(),
+            "{what}: {fast:?} vs {reference:?}"
+        );
+        for (a, b) in fast.iter().zip(reference) {
+            assert_eq!(a.kind, b.kind, "{what}: {a:?} vs {b:?}");
+            assert!((a.u - b.u).abs() <= 1e-9, "{what}: {a:?} vs {b:?}");
+            assert!((a.v - b.v).abs() <= 1e-9, "{what}: {a:?} vs {b:?}");
+        }
+    }
+
+    fn compare<'a>(p: impl Into<CurveRef<'a>>, q: impl Into<CurveRef<'a>>, what: &str) -> bool {
+        let (p, q) = (p.into(), q.into());
+        let options = IntersectOptions::default();
+        let reference = intersect_by_subdivision(p, q, &options).unwrap();
+        let full = intersect(p, q, &options).unwrap();
+        assert_same(&full, &reference, what);
+        match intersect_by_clipping(p, q, &options) {
+            Some(fast) => {
+                let fast = fast.unwrap();
+                assert_same(&fast, &reference, what);
+                assert!(
+                    fast.iter().all(|h| h.kind == IntersectionKind::Crossing),
+                    "{what}: the fast path reports crossings only: {fast:?}"
+                );
+                true
+            }
+            None => {
+                // Given up: `intersect` is the subdivision's answer, bit for bit.
+                assert_eq!(full, reference, "{what}");
+                false
+            }
+        }
+    }
+
+    #[test]
+    fn clipping_finds_the_subdivisions_crossings_on_random_pairs() {
+        let mut rng = Lcg(20);
+        let (mut fast, mut crossings) = (0, 0);
+        for case in 0..400 {
+            let dp = 1 + (rng.next() * 8.0) as usize;
+            let dq = 1 + (rng.next() * 8.0) as usize;
+            let p = random_bezier(&mut rng, dp);
+            let q = random_bezier(&mut rng, dq);
+            if compare(&p, &q, &format!("case {case}, degrees {dp}, {dq}")) {
+                fast += 1;
+                crossings += intersect(&p, &q, &IntersectOptions::default())
+                    .unwrap()
+                    .len();
+            }
+        }
+        // The fast path takes most pairs, and many of them cross.
+        assert!(
+            fast > 300 && crossings > 400,
+            "fast {fast}, crossings {crossings}"
+        );
+    }
+
+    #[test]
+    fn clipping_at_high_degree_and_on_nurbs_spans() {
+        let mut rng = Lcg(2020);
+        let mut fast = 0;
+        for case in 0..40 {
+            let d = 9 + case % 7;
+            let p = random_bezier(&mut rng, d);
+            let q = random_bezier(&mut rng, 3);
+            fast += usize::from(compare(&p, &q, &format!("degree {d}, case {case}")));
+        }
+        assert!(fast > 20, "fast {fast}");
+        // Above MAX_DEGREE: always the subdivision.
+        let p = random_bezier(&mut rng, super::MAX_DEGREE + 1);
+        let q = random_bezier(&mut rng, 2);
+        assert!(!compare(&p, &q, "degree 16"));
+        let mut fast = 0;
+        for case in 0..60 {
+            let p = random_nurbs(&mut rng, 4 + case % 4, false);
+            let q = random_bezier(&mut rng, 3);
+            fast += usize::from(compare(&p, &q, &format!("B-spline, case {case}")));
+            let r = random_nurbs(&mut rng, 5, false);
+            compare(&p, &r, &format!("two B-splines, case {case}"));
+            // Rational spans: the subdivision, unless no span boxes meet.
+            let w = random_nurbs(&mut rng, 5, true);
+            if compare(&w, &q, &format!("rational, case {case}")) {
+                let h = intersect(&w, &q, &IntersectOptions::default()).unwrap();
+                assert!(h.is_empty(), "rational, case {case}: {h:?}");
+            }
+        }
+        assert!(fast > 30, "fast {fast}");
+    }
+
+    #[test]
+    fn hard_cases_are_left_to_the_subdivision() {
+        let curve = |rows: &[[f64; 2]]| BezierCurve::from_rows(rows).unwrap();
+        // A tangency: a cubic touching a straight cubic at its lowest point.
+        let cup = curve(&[
+            [0.0, 1.0],
+            [1.0 / 3.0, -1.0 / 3.0],
+            [2.0 / 3.0, -1.0 / 3.0],
+            [1.0, 1.0],
+        ]);
+        let floor = curve(&[[0.0, 0.0], [1.0 / 3.0, 0.0], [2.0 / 3.0, 0.0], [1.0, 0.0]]);
+        assert!(!compare(&cup, &floor, "tangency"));
+        let h = intersect(&cup, &floor, &IntersectOptions::default()).unwrap();
+        assert_eq!(h.len(), 1);
+        assert_eq!(h[0].kind, IntersectionKind::Touching);
+        // An overlap: a line and a part of it.
+        let line = curve(&[[0.0, 0.0], [2.0, 1.0]]);
+        let part = curve(&[[0.5, 0.25], [1.0, 0.5], [1.5, 0.75]]);
+        assert!(!compare(&line, &part, "overlap"));
+        // 3D: the subdivision.
+        let a = BezierCurve::from_rows(&[[0.0, 0.0, 0.0], [1.0, 1.0, 0.0]]).unwrap();
+        let b = BezierCurve::from_rows(&[[1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]).unwrap();
+        assert!(!compare(&a, &b, "3D"));
+        // A transversal crossing is the fast path's.
+        let c = curve(&[[0.0, 1.0], [1.0, 0.0]]);
+        assert!(compare(&line, &c, "lines"));
+    }
+}

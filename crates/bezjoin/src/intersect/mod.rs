@@ -191,6 +191,36 @@ pub fn intersect<'a>(
     search.finish()
 }
 
+/// [`intersect`] by the subdivision alone (the fallback of the clipping
+/// fast path, and its independent reference in tests).
+#[cfg(test)]
+pub(crate) fn intersect_by_subdivision<'a>(
+    p: impl Into<CurveRef<'a>>,
+    q: impl Into<CurveRef<'a>>,
+    options: &IntersectOptions,
+) -> Result<Vec<Intersection>> {
+    let (p, q) = (p.into(), q.into());
+    validate(p, q, options)?;
+    let mut search = Search::new(Track::new(p), Track::new(q), options);
+    search.find_overlaps();
+    search.subdivide()?;
+    search.finish()
+}
+
+/// [`intersect`] by the clipping fast path alone; `None` where it gives up.
+#[cfg(test)]
+pub(crate) fn intersect_by_clipping<'a>(
+    p: impl Into<CurveRef<'a>>,
+    q: impl Into<CurveRef<'a>>,
+    options: &IntersectOptions,
+) -> Option<Result<Vec<Intersection>>> {
+    let (p, q) = (p.into(), q.into());
+    validate(p, q, options).ok()?;
+    let mut search = Search::new(Track::new(p), Track::new(q), options);
+    search.find_overlaps();
+    search.clip_search().then(|| search.finish())
+}
+
 fn validate(p: CurveRef, q: CurveRef, options: &IntersectOptions) -> Result<()> {
     if q.dim() != p.dim() {
         return Err(BezjoinError::DimensionMismatch {
