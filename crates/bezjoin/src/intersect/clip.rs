@@ -280,13 +280,14 @@ impl Search<'_> {
                 mut t,
                 mut depth,
             } = stack[pending];
+            // The pieces on the current ranges, each cut from its span.
+            let mut a = pa.segment(s.0, s.1);
+            let mut b = pb.segment(t.0, t.1);
             loop {
                 *rounds += 1;
                 if *rounds > budget || depth > self.options.max_depth {
                     return false;
                 }
-                let a = pa.segment(s.0, s.1);
-                let b = pb.segment(t.0, t.1);
                 if !boxes_meet(&a, &b, margin) {
                     break;
                 }
@@ -311,17 +312,18 @@ impl Search<'_> {
                     // A range shrunk to a point: no room for the pieces.
                     return false;
                 }
-                let a = if (c0, c1) == (0.0, 1.0) {
-                    a
-                } else {
-                    pa.segment(new_s.0, new_s.1)
-                };
+                if (c0, c1) != (0.0, 1.0) {
+                    a = pa.segment(new_s.0, new_s.1);
+                }
                 let Some((d0, d1)) = clip(&b, &a, margin) else {
                     break;
                 };
                 let new_t = (t.0 + d0 * (t.1 - t.0), t.0 + d1 * (t.1 - t.0));
                 if !(new_t.0 < new_t.1) {
                     return false;
+                }
+                if (d0, d1) != (0.0, 1.0) {
+                    b = pb.segment(new_t.0, new_t.1);
                 }
                 let kept_a = (new_s.1 - new_s.0) / (s.1 - s.0);
                 let kept_b = (new_t.1 - new_t.0) / (t.1 - t.0);
@@ -334,11 +336,6 @@ impl Search<'_> {
                         return false;
                     }
                     depth += 1;
-                    let b = if (d0, d1) == (0.0, 1.0) {
-                        b
-                    } else {
-                        pb.segment(t.0, t.1)
-                    };
                     if a.diagonal() >= b.diagonal() {
                         let mid = 0.5 * (s.0 + s.1);
                         stack[pending] = Pending {
@@ -347,6 +344,7 @@ impl Search<'_> {
                             depth,
                         };
                         s = (s.0, mid);
+                        a = pa.segment(s.0, s.1);
                     } else {
                         let mid = 0.5 * (t.0 + t.1);
                         stack[pending] = Pending {
@@ -355,6 +353,7 @@ impl Search<'_> {
                             depth,
                         };
                         t = (t.0, mid);
+                        b = pb.segment(t.0, t.1);
                     }
                     pending += 1;
                 }
