@@ -39,6 +39,62 @@ fn bench_fillet(c: &mut Criterion) {
     c.bench_function("intersect/cubic_cubic", |b| {
         b.iter(|| intersect(black_box(&p), black_box(&q), &IntersectOptions::default()).unwrap())
     });
+    // Issue 20: two crossings, a tangency (a cubic touching a straight
+    // cubic at its lowest point), and a degree-7 pair crossing once.
+    let arch = cubic([[0.0, 0.0], [0.3, 1.0], [0.7, 1.0], [1.0, 0.0]]);
+    let level = cubic([[-0.1, 0.3], [0.33, 0.35], [0.67, 0.35], [1.1, 0.3]]);
+    c.bench_function("intersect/cubic_cubic_two_crossings", |b| {
+        b.iter(|| {
+            intersect(
+                black_box(&arch),
+                black_box(&level),
+                &IntersectOptions::default(),
+            )
+            .unwrap()
+        })
+    });
+    let cup = cubic([
+        [0.0, 1.0],
+        [1.0 / 3.0, -1.0 / 3.0],
+        [2.0 / 3.0, -1.0 / 3.0],
+        [1.0, 1.0],
+    ]);
+    let floor = cubic([[0.0, 0.0], [1.0 / 3.0, 0.0], [2.0 / 3.0, 0.0], [1.0, 0.0]]);
+    c.bench_function("intersect/cubic_cubic_tangency", |b| {
+        b.iter(|| {
+            intersect(
+                black_box(&cup),
+                black_box(&floor),
+                &IntersectOptions::default(),
+            )
+            .unwrap()
+        })
+    });
+    let p7 = BezierCurve::from_rows(&[
+        [-1.0, -1.0],
+        [-0.7, -0.2],
+        [-0.4, 0.4],
+        [-0.1, 0.1],
+        [0.2, 0.6],
+        [0.5, 0.2],
+        [0.8, 0.7],
+        [1.2, 0.3],
+    ])
+    .unwrap();
+    let q7 = BezierCurve::from_rows(&[
+        [0.5, -1.2],
+        [0.2, -0.8],
+        [0.4, -0.3],
+        [0.0, 0.0],
+        [0.2, 0.4],
+        [-0.2, 0.7],
+        [0.1, 1.0],
+        [0.3, 1.4],
+    ])
+    .unwrap();
+    c.bench_function("intersect/degree7_degree7", |b| {
+        b.iter(|| intersect(black_box(&p7), black_box(&q7), &IntersectOptions::default()).unwrap())
+    });
     let options = FilletOptions::symmetric(0.3, 3);
     c.bench_function("fillet/cubic_cubic_c3", |b| {
         b.iter(|| fillet(black_box(&p), black_box(&q), &options).unwrap())

@@ -33,6 +33,25 @@
 //!    from the four chord ends and the middle. A leaf whose chords are not
 //!    nearly parallel and whose parameter box already holds a polished hit
 //!    is skipped (such pieces cross at most once).
+//!
+//!    *Fast path* (module `clip`): for planar curves whose pieces are all
+//!    polynomial of degree 1..=15, when step 1 found no overlap, the pairs
+//!    of spans are first searched by fat-line Bezier clipping (Sederberg
+//!    and Nishita 1990) instead: a piece is cut to the parameter interval
+//!    where the convex hull of its signed distances from the other piece's
+//!    chord meets that piece's fat line widened by the tolerance (only
+//!    parameters that provably hold no point within the tolerance of the
+//!    other piece are dropped, as with the boxes), alternately on both
+//!    pieces, halving the larger one when a round keeps more than 80 % of
+//!    both ranges; at a transversal crossing the ranges shrink
+//!    quadratically. Flat pairs are leaves with the chord seed above. The
+//!    fast path works on the stack (no heap) and gives up, leaving the whole
+//!    search to the subdivision, on nearly parallel leaf chords, on a
+//!    polished hit whose tangents make a sine of at most `1e-3` (tangency)
+//!    or that lies outside its leaf, and past its work bounds (512 rounds,
+//!    32 pending pairs, `max_box_pairs`, `max_depth`); so touching points,
+//!    overlaps and hard cases are the subdivision's, and a crossing found
+//!    by either is the same Newton-polished point.
 //! 3. **Polishing.** Each seed is polished on the original curves by
 //!    Gauss-Newton on `|P(u) - Q(v)|^2` with Levenberg damping, kept inside
 //!    the product of the domains (a variable at its bound is held and the
@@ -40,7 +59,9 @@
 //!    At a transversal crossing this is Newton's method on `P(u) = Q(v)` and
 //!    converges quadratically to full double precision; at a tangency the
 //!    parameters are good to about the square root of the precision, which
-//!    is all the data determine.
+//!    is all the data determine. The iteration stops when a full step is at
+//!    the rounding level of the parameters (`4 eps` times the domain's
+//!    size) or nothing moves.
 //! 4. **Acceptance and merging.** A polished pair is a hit when
 //!    `|P(u) - Q(v)| <= tolerance` (in 3D this is the closest-approach test:
 //!    skew curves do not meet). Hits whose parameters differ by less than
@@ -59,6 +80,7 @@
 //! is an [`BezjoinError::IllConditioned`] error (it happens only when curves
 //! run within the tolerance of each other without coinciding), never a hang.
 
+mod clip;
 mod track;
 
 use crate::bezier::{BezierCurve, distance, norm};
@@ -66,6 +88,9 @@ use crate::curve::CurveRef;
 use crate::error::{BezjoinError, Result, check_finite_scalar};
 use std::rc::Rc;
 use track::{Piece, Track, boxes_meet};
+
+/// Dimensions up to which polishing keeps its vectors on the stack.
+const POLISH_STACK_DIM: usize = 8;
 
 /// Default of [`IntersectOptions::relative_distance_tolerance`].
 pub const DEFAULT_RELATIVE_DISTANCE_TOLERANCE: f64 = 1e-9;
@@ -181,8 +206,40 @@ pub fn intersect<'a>(
     validate(p, q, options)?;
     let mut search = Search::new(Track::new(p), Track::new(q), options);
     search.find_overlaps();
+    if !search.clip_search() {
+        search.subdivide()?;
+    }
+    search.finish()
+}
+
+/// [`intersect`] by the subdivision alone (the fallback of the clipping
+/// fast path, and its independent reference in tests).
+#[cfg(test)]
+pub(crate) fn intersect_by_subdivision<'a>(
+    p: impl Into<CurveRef<'a>>,
+    q: impl Into<CurveRef<'a>>,
+    options: &IntersectOptions,
+) -> Result<Vec<Intersection>> {
+    let (p, q) = (p.into(), q.into());
+    validate(p, q, options)?;
+    let mut search = Search::new(Track::new(p), Track::new(q), options);
+    search.find_overlaps();
     search.subdivide()?;
     search.finish()
+}
+
+/// [`intersect`] by the clipping fast path alone; `None` where it gives up.
+#[cfg(test)]
+pub(crate) fn intersect_by_clipping<'a>(
+    p: impl Into<CurveRef<'a>>,
+    q: impl Into<CurveRef<'a>>,
+    options: &IntersectOptions,
+) -> Option<Result<Vec<Intersection>>> {
+    let (p, q) = (p.into(), q.into());
+    validate(p, q, options).ok()?;
+    let mut search = Search::new(Track::new(p), Track::new(q), options);
+    search.find_overlaps();
+    search.clip_search().then(|| search.finish())
 }
 
 fn validate(p: CurveRef, q: CurveRef, options: &IntersectOptions) -> Result<()> {
@@ -246,15 +303,24 @@ impl CurvePair<'_> {
         let d = self.p.dim();
         let (u_lo, u_hi) = self.p.domain();
         let (v_lo, v_hi) = self.q.domain();
-        let mut r = vec![0.0; d];
-        let mut trial = vec![0.0; d];
-        let mut work = vec![0.0; d];
-        let mut a = vec![0.0; d];
-        let mut b = vec![0.0; d];
+        // Five vectors of length `d`: on the stack for small dimensions.
+        let mut stack = [0.0f64; 5 * POLISH_STACK_DIM];
+        let mut heap = Vec::new();
+        let scratch: &mut [f64] = if d <= POLISH_STACK_DIM {
+            &mut stack[..5 * d]
+        } else {
+            heap.resize(5 * d, 0.0);
+            &mut heap
+        };
+        let (r, rest) = scratch.split_at_mut(d);
+        let (trial, rest) = rest.split_at_mut(d);
+        let (work, rest) = rest.split_at_mut(d);
+        let (a, b) = rest.split_at_mut(d);
+        let (mut r, mut trial, work, a, b) = (r, trial, work, a, b);
         u = u.clamp(u_lo, u_hi);
         v = v.clamp(v_lo, v_hi);
-        self.gap_into(u, v, &mut r, &mut work);
-        let mut f = norm(&r);
+        self.gap_into(u, v, r, work);
+        let mut f = norm(r);
         // Steps below this are at the rounding level of the parameters.
         let resolution = 4.0
             * f64::EPSILON
@@ -265,13 +331,13 @@ impl CurvePair<'_> {
             if f == 0.0 {
                 break;
             }
-            self.p.tangent_into(u, &mut a);
-            self.q.tangent_into(v, &mut b);
-            let aa = dot(&a, &a);
-            let bb = dot(&b, &b);
-            let ab = dot(&a, &b);
-            let ar = dot(&a, &r);
-            let br = dot(&b, &r);
+            self.p.tangent_into(u, a);
+            self.q.tangent_into(v, b);
+            let aa = dot(a, a);
+            let bb = dot(b, b);
+            let ab = dot(a, b);
+            let ar = dot(a, r);
+            let br = dot(b, r);
             // Normal equations of J = [a, -b]: [aa, -ab; -ab, bb] d = [-ar, br].
             let damping = 1e-15 * (aa + bb) + f64::MIN_POSITIVE;
             let (mut du, mut dv) = solve2(aa + damping, -ab, bb + damping, -ar, br);
@@ -288,14 +354,20 @@ impl CurvePair<'_> {
                 dv = 0.0;
                 du = if aa > 0.0 { -ar / aa } else { 0.0 };
             }
+            // A full step at the rounding level of the parameters cannot
+            // move them (the backtracking below would only halve it 16
+            // times at two evaluations each): converged.
+            if du.abs().max(dv.abs()) <= resolution {
+                break;
+            }
             // Backtracking: accept the first step length that decreases the gap.
             let mut step = 1.0;
             let mut moved = 0.0f64;
             for _ in 0..16 {
                 let nu = (u + step * du).clamp(u_lo, u_hi);
                 let nv = (v + step * dv).clamp(v_lo, v_hi);
-                self.gap_into(nu, nv, &mut trial, &mut work);
-                let nf = norm(&trial);
+                self.gap_into(nu, nv, trial, work);
+                let nf = norm(trial);
                 if nf < f {
                     moved = (nu - u).abs().max((nv - v).abs());
                     u = nu;
@@ -326,6 +398,30 @@ fn solve2(a: f64, b: f64, c: f64, r: f64, s: f64) -> (f64, f64) {
         return (0.0, 0.0);
     }
     ((r * c - b * s) / det, (a * s - b * r) / det)
+}
+
+/// Closest points of the chord lines `a0 + s (a1 - a0)` and `b0 + t (b1 -
+/// b0)` (minimising `|w + s da - t db|^2`, `w = a0 - b0`), clamped to
+/// `[0, 1]^2`; `None` when the chords are nearly parallel
+/// (`det <= 4e-3 |da|^2 |db|^2`, a sine below about 0.06, or NaN): flat
+/// pieces (within 1e-2 of their chords) can cross twice only then.
+fn chord_crossing(a0: &[f64], a1: &[f64], b0: &[f64], b1: &[f64]) -> Option<(f64, f64)> {
+    let (mut aa, mut bb, mut ab, mut wa, mut wb) = (0.0, 0.0, 0.0, 0.0, 0.0);
+    for c in 0..a0.len() {
+        let (da, db, w) = (a1[c] - a0[c], b1[c] - b0[c], a0[c] - b0[c]);
+        aa += da * da;
+        bb += db * db;
+        ab += da * db;
+        wa += w * da;
+        wb += w * db;
+    }
+    let det = aa * bb - ab * ab;
+    if det <= 4e-3 * aa * bb || det.is_nan() {
+        return None;
+    }
+    let s = ((-wa) * bb + ab * wb) / det;
+    let t = (aa * wb - ab * wa) / det;
+    Some((s.clamp(0.0, 1.0), t.clamp(0.0, 1.0)))
 }
 
 /// Closest parameter on the Bezier `curve` to `x` (with its `hodograph`),
@@ -404,6 +500,10 @@ fn project_on(track: &Track, x: &[f64], start: Option<f64>, pieces: &[Piece]) ->
         if dt.is_nan() {
             // Overflowing dot products (coordinates near 1e300): every trial
             // step below would evaluate at NaN and be refused.
+            break;
+        }
+        if dt.abs() <= resolution {
+            // A step at the rounding level of `t`: converged (see `polish`).
             break;
         }
         let mut step = 1.0;
@@ -497,8 +597,10 @@ impl<'a> Search<'a> {
         let mut ends: Vec<(f64, f64)> = Vec::new();
         let (p_pieces, q_pieces) = (&self.p_pieces, &self.q_pieces);
         let near = |pieces: &[Piece], x: &[f64]| pieces.iter().any(|b| b.contains(x, tol));
-        for u in pair.p.breaks() {
-            let x = pair.p.eval(u);
+        let mut x = vec![0.0; pair.p.dim()];
+        let (p_breaks, q_breaks) = (pair.p.breaks(), pair.q.breaks());
+        for &u in &p_breaks {
+            pair.p.eval_into(u, &mut x);
             if near(q_pieces, &x) {
                 let (v, d) = project_on(&pair.q, &x, None, q_pieces);
                 if d <= tol {
@@ -506,8 +608,8 @@ impl<'a> Search<'a> {
                 }
             }
         }
-        for v in pair.q.breaks() {
-            let x = pair.q.eval(v);
+        for &v in &q_breaks {
+            pair.q.eval_into(v, &mut x);
             if near(p_pieces, &x) {
                 let (u, d) = project_on(&pair.p, &x, None, p_pieces);
                 if d <= tol {
@@ -520,7 +622,6 @@ impl<'a> Search<'a> {
         }
         ends.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
         let per_span = 2 * (pair.p.degree() + pair.q.degree()) + 8;
-        let (p_breaks, q_breaks) = (pair.p.breaks(), pair.q.breaks());
         let units = self.units;
         // Candidate stretches between two ends. Few ends (Bezier curves have
         // at most four): every pair, longest first, so that a stretch across
@@ -672,35 +773,18 @@ impl<'a> Search<'a> {
         let a1 = a.point(na);
         let b0 = b.point(0);
         let b1 = b.point(nb);
-        let da: Vec<f64> = a1.iter().zip(a0).map(|(x, y)| x - y).collect();
-        let db: Vec<f64> = b1.iter().zip(b0).map(|(x, y)| x - y).collect();
-        let w: Vec<f64> = a0.iter().zip(b0).map(|(x, y)| x - y).collect();
-        // Closest points of the chord lines: minimise |w + s da - t db|^2.
-        let aa = dot(&da, &da);
-        let bb = dot(&db, &db);
-        let ab = dot(&da, &db);
-        let det = aa * bb - ab * ab;
         let mut seeds: Vec<(f64, f64)> = Vec::with_capacity(5);
-        // Flat pieces (within 1e-2 of their chords) can cross twice only when
-        // the chords make an angle below about 4e-2: seed from all ends then.
-        let nearly_parallel = det <= 4e-3 * aa * bb || det.is_nan();
-        if !nearly_parallel
-            && self
-                .candidates
-                .iter()
-                .rev()
-                .take(8)
-                .any(|c| c.u >= a.lo && c.u <= a.hi && c.v >= b.lo && c.v <= b.hi)
-        {
-            // Chords that are not nearly parallel cross at most once: this
-            // leaf's crossing is already known.
-            return;
-        }
-        if !nearly_parallel {
-            let s = ((-dot(&w, &da)) * bb + ab * dot(&w, &db)) / det;
-            let t = (aa * dot(&w, &db) - ab * dot(&w, &da)) / det;
-            seeds.push((s.clamp(0.0, 1.0), t.clamp(0.0, 1.0)));
+        if let Some(seed) = chord_crossing(a0, a1, b0, b1) {
+            if self.known_in(a.lo, a.hi, b.lo, b.hi) {
+                // Chords that are not nearly parallel cross at most once: this
+                // leaf's crossing is already known.
+                return;
+            }
+            seeds.push(seed);
         } else {
+            let da: Vec<f64> = a1.iter().zip(a0).map(|(x, y)| x - y).collect();
+            let db: Vec<f64> = b1.iter().zip(b0).map(|(x, y)| x - y).collect();
+            let (aa, bb) = (dot(&da, &da), dot(&db, &db));
             let proj = |x: &[f64], origin: &[f64], dir: &[f64], len2: f64| -> f64 {
                 if len2 > 0.0 {
                     let rel: Vec<f64> = x.iter().zip(origin).map(|(p, o)| p - o).collect();
@@ -731,6 +815,16 @@ impl<'a> Search<'a> {
                 self.candidates.push(Candidate { u, v, distance: d });
             }
         }
+    }
+
+    /// Whether one of the last few hits lies in the parameter box
+    /// `[u_lo, u_hi] x [v_lo, v_hi]`.
+    fn known_in(&self, u_lo: f64, u_hi: f64, v_lo: f64, v_hi: f64) -> bool {
+        self.candidates
+            .iter()
+            .rev()
+            .take(8)
+            .any(|c| c.u >= u_lo && c.u <= u_hi && c.v >= v_lo && c.v <= v_hi)
     }
 
     /// Sort the candidates and merge those that are one hit.

@@ -238,9 +238,13 @@ impl Piece {
     /// Flat enough to seed Newton from the chord: control points within
     /// `max(absolute, relative_chord * chord)` of the chord.
     pub(super) fn is_flat(&self, absolute: f64, relative_chord: f64) -> bool {
-        let n = self.degree();
-        let chord = distance(self.point(0), self.point(n));
-        self.deviation_from_chord() <= absolute.max(relative_chord * chord)
+        is_flat(
+            self.points(),
+            self.degree(),
+            self.dim,
+            absolute,
+            relative_chord,
+        )
     }
 
     pub(super) fn contains(&self, x: &[f64], margin: f64) -> bool {
@@ -269,52 +273,77 @@ impl Piece {
         distance(self.min(), self.max())
     }
 
-    /// Largest distance of a control point from the chord (from the first
-    /// point when the chord is degenerate).
-    fn deviation_from_chord(&self) -> f64 {
-        let n = self.degree();
-        let a = self.point(0);
-        let b = self.point(n);
-        let len2: f64 = b.iter().zip(a).map(|(x, y)| (x - y) * (x - y)).sum();
-        let mut worst = 0.0f64;
-        for i in 1..n {
-            let p = self.point(i);
-            // |p - a|^2 and (p - a).(b - a), without temporaries
-            let (rel2, along) = p
+    /// Whether the piece is a span of a rational curve.
+    pub(super) fn is_rational(&self) -> bool {
+        self.projected.is_some()
+    }
+
+    /// The Cartesian control points, row-major.
+    pub(super) fn points(&self) -> &[f64] {
+        self.projected.as_deref().unwrap_or(self.curve.points())
+    }
+}
+
+/// [`Piece::is_flat`] for the degree-`n` polygon `points` (row-major,
+/// `dim` coordinates).
+pub(super) fn is_flat(
+    points: &[f64],
+    n: usize,
+    dim: usize,
+    absolute: f64,
+    relative_chord: f64,
+) -> bool {
+    let chord = distance(&points[..dim], &points[n * dim..(n + 1) * dim]);
+    deviation_from_chord(points, n, dim) <= absolute.max(relative_chord * chord)
+}
+
+/// Largest distance of a control point of the degree-`n` polygon `points`
+/// (row-major, `dim` coordinates) from its chord (from the first point when
+/// the chord is degenerate); points beyond the chord's ends count their
+/// distance from the nearer end.
+fn deviation_from_chord(points: &[f64], n: usize, dim: usize) -> f64 {
+    let point = |i: usize| &points[i * dim..(i + 1) * dim];
+    let a = point(0);
+    let b = point(n);
+    let len2: f64 = b.iter().zip(a).map(|(x, y)| (x - y) * (x - y)).sum();
+    let mut worst = 0.0f64;
+    for i in 1..n {
+        let p = point(i);
+        // |p - a|^2 and (p - a).(b - a), without temporaries
+        let (rel2, along) = p
+            .iter()
+            .zip(a)
+            .zip(b)
+            .fold((0.0, 0.0), |(r, s), ((x, y), z)| {
+                let rel = x - y;
+                (r + rel * rel, s + rel * (z - y))
+            });
+        let dev = if len2 > 0.0 {
+            let s = along / len2;
+            let perp: f64 = p
                 .iter()
                 .zip(a)
                 .zip(b)
-                .fold((0.0, 0.0), |(r, s), ((x, y), z)| {
-                    let rel = x - y;
-                    (r + rel * rel, s + rel * (z - y))
-                });
-            let dev = if len2 > 0.0 {
-                let s = along / len2;
-                let perp: f64 = p
-                    .iter()
-                    .zip(a)
-                    .zip(b)
-                    .map(|((x, y), z)| {
-                        let d = (x - y) - s * (z - y);
-                        d * d
-                    })
-                    .sum::<f64>();
-                // Points beyond the chord's ends also count as deviation.
-                let beyond = if s < 0.0 {
-                    -s
-                } else if s > 1.0 {
-                    s - 1.0
-                } else {
-                    0.0
-                };
-                (perp + beyond * beyond * len2).sqrt()
+                .map(|((x, y), z)| {
+                    let d = (x - y) - s * (z - y);
+                    d * d
+                })
+                .sum::<f64>();
+            // Points beyond the chord's ends also count as deviation.
+            let beyond = if s < 0.0 {
+                -s
+            } else if s > 1.0 {
+                s - 1.0
             } else {
-                rel2.sqrt()
+                0.0
             };
-            worst = worst.max(dev);
-        }
-        worst
+            (perp + beyond * beyond * len2).sqrt()
+        } else {
+            rel2.sqrt()
+        };
+        worst = worst.max(dev);
     }
+    worst
 }
 
 pub(super) fn boxes_meet(a: &Piece, b: &Piece, margin: f64) -> bool {

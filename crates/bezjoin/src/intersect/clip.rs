@@ -1,0 +1,578 @@
+//! The fast path of [`super::intersect`]: fat-line Bezier clipping
+//! (Sederberg and Nishita, *Curve intersection using Bezier clipping*,
+//! CAD 22(9), 1990) on planar polynomial pieces, with fixed-capacity stack
+//! buffers (no heap), followed by the same chord seeds and Newton polishing
+//! as the subdivision (module documentation, steps 2 and 3).
+//!
+//! # Clipping
+//! Let `L` be the line through the end points of a piece `B` (unit normal
+//! `n`, `L = {x : n.x + c = 0}`) and `[dmin, dmax]` the range of the signed
+//! distances `n.B_j + c` of B's control points, 0 included: by the convex
+//! hull property B lies in that *fat line*. A point of `A` within the
+//! tolerance `tol` of B therefore has distance in `[dmin - tol, dmax + tol]`
+//! from `L`. The distance of `A(s)` from `L` is a polynomial with Bernstein
+//! coefficients `e_i = n.A_i + c`, so its graph lies in the convex hull of
+//! the points `(i / n, e_i)`; the parameters where that hull meets the band
+//! are an interval `[s0, s1]` outside which no point of `A` is within `tol`
+//! of `B`. `A` is cut to it (de Casteljau, from the span's own poles each
+//! time), then `B` against the fat line of the new `A`, and so on. Only
+//! parameters that provably hold no meeting point are discarded, so every
+//! crossing the subdivision would find is kept. When a round keeps more than
+//! 80 % of both parameter ranges, the larger piece is halved (two crossings,
+//! or a tangency). At a transversal crossing the ranges shrink
+//! quadratically.
+//!
+//! # Leaves and hard cases
+//! When both pieces are flat (the subdivision's criterion), the crossing of
+//! their chords seeds Newton on the whole curves (`Search::polish`). The
+//! fast path gives up, and the caller runs the subdivision from scratch
+//! instead (so its results there are the subdivision's, bit for bit), on
+//! anything it cannot settle by the arguments above alone: a dimension
+//! other than 2, a rational span, degree 0 or above [`MAX_DEGREE`], an
+//! overlap, chords that are nearly parallel, a hit whose tangents make an
+//! angle with sine at most `SURELY_TRANSVERSAL_SINE` (a tangency or
+//! near-tangency), a polished hit outside its leaf's parameter box, or more
+//! than [`MAX_PAIRS`] pairs, [`STACK`] pending pairs, `max_box_pairs` or
+//! `max_depth`.
+
+use super::track::{Piece, is_flat};
+use super::{Candidate, RELATIVE_CHORD_FLATNESS, SURELY_TRANSVERSAL_SINE, Search, chord_crossing};
+
+/// Highest degree the fast path takes (its buffers hold `MAX_DEGREE + 1`
+/// control points).
+pub(super) const MAX_DEGREE: usize = 15;
+/// Pending piece pairs per span pair (halves waiting to be clipped).
+const STACK: usize = 32;
+/// Clipping rounds (over all span pairs) before the fast path gives up.
+const MAX_PAIRS: usize = 512;
+/// A round that keeps more than this share of both ranges halves a piece.
+const SPLIT_RATIO: f64 = 0.8;
+
+/// A planar polynomial Bezier piece, `MAX_DEGREE + 1` points at most,
+/// row-major `x, y`.
+#[derive(Clone, Copy)]
+struct Poly {
+    n: usize,
+    points: [f64; 2 * (MAX_DEGREE + 1)],
+}
+
+impl Poly {
+    fn from_piece(piece: &Piece) -> Option<Poly> {
+        let n = piece.degree();
+        if piece.is_rational() || n == 0 || n > MAX_DEGREE {
+            return None;
+        }
+        let mut points = [0.0; 2 * (MAX_DEGREE + 1)];
+        points[..2 * (n + 1)].copy_from_slice(piece.points());
+        Some(Poly { n, points })
+    }
+
+    fn x(&self, i: usize) -> f64 {
+        self.points[2 * i]
+    }
+
+    fn y(&self, i: usize) -> f64 {
+        self.points[2 * i + 1]
+    }
+
+    fn point(&self, i: usize) -> &[f64] {
+        &self.points[2 * i..2 * i + 2]
+    }
+
+    fn used(&self) -> &[f64] {
+        &self.points[..2 * (self.n + 1)]
+    }
+
+    /// The piece on `[0, t]` (de Casteljau).
+    fn left(&self, t: f64) -> Poly {
+        let n = self.n;
+        let mut work = self.points;
+        let mut out = *self;
+        for r in 1..=n {
+            for i in 0..=n - r {
+                for c in 0..2 {
+                    work[2 * i + c] += t * (work[2 * (i + 1) + c] - work[2 * i + c]);
+                }
+            }
+            out.points[2 * r] = work[0];
+            out.points[2 * r + 1] = work[1];
+        }
+        out
+    }
+
+    /// The piece on `[s, 1]` (de Casteljau).
+    fn right(&self, s: f64) -> Poly {
+        let n = self.n;
+        let mut work = self.points;
+        let mut out = *self;
+        for r in 1..=n {
+            for i in 0..=n - r {
+                for c in 0..2 {
+                    work[2 * i + c] += s * (work[2 * (i + 1) + c] - work[2 * i + c]);
+                }
+            }
+            out.points[2 * (n - r)] = work[2 * (n - r)];
+            out.points[2 * (n - r) + 1] = work[2 * (n - r) + 1];
+        }
+        out
+    }
+
+    /// The piece on `[s, t]`, `0 <= s < t <= 1`.
+    fn segment(&self, s: f64, t: f64) -> Poly {
+        let head = if t < 1.0 { self.left(t) } else { *self };
+        if s > 0.0 { head.right(s / t) } else { head }
+    }
+
+    /// Bounding box of the control points: `(min x, min y, max x, max y)`.
+    fn bounds(&self) -> [f64; 4] {
+        let mut b = [
+            f64::INFINITY,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NEG_INFINITY,
+        ];
+        for i in 0..=self.n {
+            b[0] = b[0].min(self.x(i));
+            b[1] = b[1].min(self.y(i));
+            b[2] = b[2].max(self.x(i));
+            b[3] = b[3].max(self.y(i));
+        }
+        b
+    }
+
+    fn diagonal(&self) -> f64 {
+        let b = self.bounds();
+        (b[2] - b[0]).hypot(b[3] - b[1])
+    }
+}
+
+fn boxes_meet(a: &Poly, b: &Poly, margin: f64) -> bool {
+    let (p, q) = (a.bounds(), b.bounds());
+    p[0] <= q[2] + margin && q[0] <= p[2] + margin && p[1] <= q[3] + margin && q[1] <= p[3] + margin
+}
+
+/// The parameter interval of `a` (in `[0, 1]`) outside which no point of
+/// `a` is within `margin` of `b` (module documentation), `None` when there
+/// is none; `Some((0, 1))` when `b`'s chord is degenerate (no line to clip
+/// against).
+fn clip(a: &Poly, b: &Poly, margin: f64) -> Option<(f64, f64)> {
+    let m = b.n;
+    let (dx, dy) = (b.x(m) - b.x(0), b.y(m) - b.y(0));
+    let len = dx.hypot(dy);
+    if !(len > 0.0 && len.is_finite()) {
+        return Some((0.0, 1.0));
+    }
+    let (nx, ny) = (-dy / len, dx / len);
+    let c = -(nx * b.x(0) + ny * b.y(0));
+    let (mut dmin, mut dmax) = (0.0f64, 0.0f64);
+    for j in 1..m {
+        let d = nx * b.x(j) + ny * b.y(j) + c;
+        dmin = dmin.min(d);
+        dmax = dmax.max(d);
+    }
+    let (lo, hi) = (dmin - margin, dmax + margin);
+    let n = a.n;
+    let mut e = [0.0; MAX_DEGREE + 1];
+    for (i, e) in e.iter_mut().enumerate().take(n + 1) {
+        *e = nx * a.x(i) + ny * a.y(i) + c;
+    }
+    // The t-extent of hull({(i/n, e_i)}) within lo <= y <= hi: its extreme
+    // points are control points inside the band or crossings of the band's
+    // edges by segments between two control points (every hull edge is one,
+    // and every such segment lies in the hull).
+    let (mut t0, mut t1) = (f64::INFINITY, f64::NEG_INFINITY);
+    let mut take = |t: f64| {
+        t0 = t0.min(t);
+        t1 = t1.max(t);
+    };
+    let nf = n as f64;
+    for i in 0..=n {
+        let ti = i as f64 / nf;
+        if e[i] >= lo && e[i] <= hi {
+            take(ti);
+        }
+        for j in i + 1..=n {
+            let tj = j as f64 / nf;
+            for level in [lo, hi] {
+                if (e[i] - level) * (e[j] - level) < 0.0 {
+                    let w = (level - e[i]) / (e[j] - e[i]);
+                    take(ti + w * (tj - ti));
+                }
+            }
+        }
+    }
+    if t0 > t1 || t0.is_nan() || t1.is_nan() {
+        return None;
+    }
+    // A margin for the rounding of the crossings above.
+    let slack = 8.0 * f64::EPSILON * (n + 1) as f64;
+    Some(((t0 - slack).max(0.0), (t1 + slack).min(1.0)))
+}
+
+/// A pending pair: parameter ranges `[s0, s1]` on the P span and
+/// `[t0, t1]` on the Q span (span-local, in `[0, 1]`) and the depth.
+#[derive(Clone, Copy)]
+struct Pending {
+    s: (f64, f64),
+    t: (f64, f64),
+    depth: usize,
+}
+
+impl Search<'_> {
+    /// The fast path: every crossing of the curves into the candidates, or
+    /// `false` (candidates cleared) when the caller must run the
+    /// subdivision (module documentation of this file).
+    pub(super) fn clip_search(&mut self) -> bool {
+        let done = self.pair.p.dim() == 2 && self.overlaps.is_empty() && self.clip_all();
+        if !done {
+            self.candidates.clear();
+        }
+        done
+    }
+
+    fn clip_all(&mut self) -> bool {
+        let mut rounds = 0usize;
+        let p_pieces = std::mem::take(&mut self.p_pieces);
+        let q_pieces = std::mem::take(&mut self.q_pieces);
+        let mut done = true;
+        'spans: for a in &p_pieces {
+            for b in &q_pieces {
+                if !super::track::boxes_meet(a, b, self.tolerance) {
+                    continue;
+                }
+                let (Some(pa), Some(pb)) = (Poly::from_piece(a), Poly::from_piece(b)) else {
+                    done = false;
+                    break 'spans;
+                };
+                if !self.clip_spans(&pa, (a.lo, a.hi), &pb, (b.lo, b.hi), &mut rounds) {
+                    done = false;
+                    break 'spans;
+                }
+            }
+        }
+        self.p_pieces = p_pieces;
+        self.q_pieces = q_pieces;
+        done
+    }
+
+    /// Clipping on one pair of spans (`pa` on `[u_lo, u_hi]` of P, `pb` on
+    /// `[v_lo, v_hi]` of Q); `false` to give up.
+    fn clip_spans(
+        &mut self,
+        pa: &Poly,
+        u_span: (f64, f64),
+        pb: &Poly,
+        v_span: (f64, f64),
+        rounds: &mut usize,
+    ) -> bool {
+        let margin = self.tolerance;
+        let budget = MAX_PAIRS.min(self.options.max_box_pairs);
+        let mut stack = [Pending {
+            s: (0.0, 1.0),
+            t: (0.0, 1.0),
+            depth: 0,
+        }; STACK];
+        let mut pending = 1usize;
+        while pending > 0 {
+            pending -= 1;
+            let Pending {
+                mut s,
+                mut t,
+                mut depth,
+            } = stack[pending];
+            // The pieces on the current ranges, each cut from its span.
+            let mut a = pa.segment(s.0, s.1);
+            let mut b = pb.segment(t.0, t.1);
+            loop {
+                *rounds += 1;
+                if *rounds > budget || depth > self.options.max_depth {
+                    return false;
+                }
+                if !boxes_meet(&a, &b, margin) {
+                    break;
+                }
+                let flat_a = is_flat(a.used(), a.n, 2, self.flatness, RELATIVE_CHORD_FLATNESS);
+                let flat_b = is_flat(b.used(), b.n, 2, self.flatness, RELATIVE_CHORD_FLATNESS);
+                if flat_a && flat_b {
+                    let to_u = |x: f64| u_span.0 + x * (u_span.1 - u_span.0);
+                    let to_v = |x: f64| v_span.0 + x * (v_span.1 - v_span.0);
+                    let u_box = (to_u(s.0), to_u(s.1));
+                    let v_box = (to_v(t.0), to_v(t.1));
+                    if !self.clip_leaf(&a, u_box, &b, v_box) {
+                        return false;
+                    }
+                    break;
+                }
+                // A against B's fat line, then B against the new A's.
+                let Some((c0, c1)) = clip(&a, &b, margin) else {
+                    break;
+                };
+                let new_s = (s.0 + c0 * (s.1 - s.0), s.0 + c1 * (s.1 - s.0));
+                if !(new_s.0 < new_s.1) {
+                    // A range shrunk to a point: no room for the pieces.
+                    return false;
+                }
+                if (c0, c1) != (0.0, 1.0) {
+                    a = pa.segment(new_s.0, new_s.1);
+                }
+                let Some((d0, d1)) = clip(&b, &a, margin) else {
+                    break;
+                };
+                let new_t = (t.0 + d0 * (t.1 - t.0), t.0 + d1 * (t.1 - t.0));
+                if !(new_t.0 < new_t.1) {
+                    return false;
+                }
+                if (d0, d1) != (0.0, 1.0) {
+                    b = pb.segment(new_t.0, new_t.1);
+                }
+                let kept_a = (new_s.1 - new_s.0) / (s.1 - s.0);
+                let kept_b = (new_t.1 - new_t.0) / (t.1 - t.0);
+                s = new_s;
+                t = new_t;
+                if kept_a > SPLIT_RATIO && kept_b > SPLIT_RATIO {
+                    // Halve the larger piece: the half with smaller
+                    // parameters is clipped on, the other waits.
+                    if pending == STACK {
+                        return false;
+                    }
+                    depth += 1;
+                    if a.diagonal() >= b.diagonal() {
+                        let mid = 0.5 * (s.0 + s.1);
+                        stack[pending] = Pending {
+                            s: (mid, s.1),
+                            t,
+                            depth,
+                        };
+                        s = (s.0, mid);
+                        a = pa.segment(s.0, s.1);
+                    } else {
+                        let mid = 0.5 * (t.0 + t.1);
+                        stack[pending] = Pending {
+                            s,
+                            t: (mid, t.1),
+                            depth,
+                        };
+                        t = (t.0, mid);
+                        b = pb.segment(t.0, t.1);
+                    }
+                    pending += 1;
+                }
+            }
+        }
+        true
+    }
+
+    /// The leaf of a flat pair `a` (parameters `u_box` on P) and `b`
+    /// (`v_box` on Q): the seed at the crossing of the chords, polished on
+    /// the whole curves, into the candidates when within the tolerance;
+    /// `false` (give up) for nearly parallel chords, a polished hit outside
+    /// the leaf's box, or a hit that is not surely transversal.
+    fn clip_leaf(&mut self, a: &Poly, u_box: (f64, f64), b: &Poly, v_box: (f64, f64)) -> bool {
+        let Some((s, t)) = chord_crossing(a.point(0), a.point(a.n), b.point(0), b.point(b.n))
+        else {
+            return false;
+        };
+        if self.known_in(u_box.0, u_box.1, v_box.0, v_box.1) {
+            return true;
+        }
+        let u = u_box.0 + s * (u_box.1 - u_box.0);
+        let v = v_box.0 + t * (v_box.1 - v_box.0);
+        let (u, v, d) = self.pair.polish(u, v);
+        if d > self.tolerance {
+            return true;
+        }
+        // The hit must be this leaf's (a crossing elsewhere means Newton
+        // wandered: the leaf's own crossing is not certain).
+        let room_u = 0.01 * (u_box.1 - u_box.0) + 1e-9 * self.units.0;
+        let room_v = 0.01 * (v_box.1 - v_box.0) + 1e-9 * self.units.1;
+        if u < u_box.0 - room_u
+            || u > u_box.1 + room_u
+            || v < v_box.0 - room_v
+            || v > v_box.1 + room_v
+        {
+            return false;
+        }
+        let mut ta = [0.0; 2];
+        let mut tb = [0.0; 2];
+        self.pair.p.tangent_into(u, &mut ta);
+        self.pair.q.tangent_into(v, &mut tb);
+        let cross = ta[0] * tb[1] - ta[1] * tb[0];
+        let sizes = ta[0].hypot(ta[1]) * tb[0].hypot(tb[1]);
+        if !(cross.abs() > SURELY_TRANSVERSAL_SINE * sizes) {
+            return false;
+        }
+        self.candidates.push(Candidate { u, v, distance: d });
+        true
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::{
+        IntersectOptions, Intersection, IntersectionKind, intersect, intersect_by_clipping,
+        intersect_by_subdivision,
+    };
+    use crate::bezier::BezierCurve;
+    use crate::curve::CurveRef;
+    use crate::nurbs::NurbsCurve;
+
+    /// Fixed-seed linear congruential generator (Knuth's MMIX constants).
+    struct Lcg(u64);
+
+    impl Lcg {
+        fn next(&mut self) -> f64 {
+            self.0 = self
+                .0
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            (self.0 >> 11) as f64 / (1u64 << 53) as f64
+        }
+        fn range(&mut self, lo: f64, hi: f64) -> f64 {
+            lo + (hi - lo) * self.next()
+        }
+    }
+
+    fn random_bezier(rng: &mut Lcg, degree: usize) -> BezierCurve {
+        let points: Vec<f64> = (0..2 * (degree + 1))
+            .map(|_| rng.range(-1.0, 1.0))
+            .collect();
+        BezierCurve::new(2, degree, points).unwrap()
+    }
+
+    /// A cubic B-spline with `poles` poles on uniform interior knots,
+    /// rational with weights in `[0.5, 2]` when asked.
+    fn random_nurbs(rng: &mut Lcg, poles: usize, rational: bool) -> NurbsCurve {
+        let degree = 3;
+        let points: Vec<f64> = (0..2 * poles).map(|_| rng.range(-1.0, 1.0)).collect();
+        let weights = rational.then(|| (0..poles).map(|_| rng.range(0.5, 2.0)).collect());
+        let spans = poles - degree;
+        let mut knots = vec![0.0; degree + 1];
+        knots.extend((1..spans).map(|k| k as f64 / spans as f64));
+        knots.extend(vec![1.0; degree + 1]);
+        NurbsCurve::new(2, degree, points, weights, knots).unwrap()
+    }
+
+    /// `fast` and `reference` report the same hits: same kinds, parameters
+    /// within `1e-9` of the domains (Newton-polished crossings agree to
+    /// rounding; the tolerance covers both polishings' stopping points),
+    /// distances within the tolerance.
+    fn assert_same(fast: &[Intersection], reference: &[Intersection], what: &str) {
+        assert_eq!(
+            fast.len(),
+            reference.len(),
+            "{what}: {fast:?} vs {reference:?}"
+        );
+        for (a, b) in fast.iter().zip(reference) {
+            assert_eq!(a.kind, b.kind, "{what}: {a:?} vs {b:?}");
+            assert!((a.u - b.u).abs() <= 1e-9, "{what}: {a:?} vs {b:?}");
+            assert!((a.v - b.v).abs() <= 1e-9, "{what}: {a:?} vs {b:?}");
+        }
+    }
+
+    fn compare<'a>(p: impl Into<CurveRef<'a>>, q: impl Into<CurveRef<'a>>, what: &str) -> bool {
+        let (p, q) = (p.into(), q.into());
+        let options = IntersectOptions::default();
+        let reference = intersect_by_subdivision(p, q, &options).unwrap();
+        let full = intersect(p, q, &options).unwrap();
+        assert_same(&full, &reference, what);
+        match intersect_by_clipping(p, q, &options) {
+            Some(fast) => {
+                let fast = fast.unwrap();
+                assert_same(&fast, &reference, what);
+                assert!(
+                    fast.iter().all(|h| h.kind == IntersectionKind::Crossing),
+                    "{what}: the fast path reports crossings only: {fast:?}"
+                );
+                true
+            }
+            None => {
+                // Given up: `intersect` is the subdivision's answer, bit for bit.
+                assert_eq!(full, reference, "{what}");
+                false
+            }
+        }
+    }
+
+    #[test]
+    fn clipping_finds_the_subdivisions_crossings_on_random_pairs() {
+        let mut rng = Lcg(20);
+        let (mut fast, mut crossings) = (0, 0);
+        for case in 0..400 {
+            let dp = 1 + (rng.next() * 8.0) as usize;
+            let dq = 1 + (rng.next() * 8.0) as usize;
+            let p = random_bezier(&mut rng, dp);
+            let q = random_bezier(&mut rng, dq);
+            if compare(&p, &q, &format!("case {case}, degrees {dp}, {dq}")) {
+                fast += 1;
+                crossings += intersect(&p, &q, &IntersectOptions::default())
+                    .unwrap()
+                    .len();
+            }
+        }
+        // The fast path takes most pairs, and many of them cross.
+        assert!(
+            fast > 300 && crossings > 400,
+            "fast {fast}, crossings {crossings}"
+        );
+    }
+
+    #[test]
+    fn clipping_at_high_degree_and_on_nurbs_spans() {
+        let mut rng = Lcg(2020);
+        let mut fast = 0;
+        for case in 0..40 {
+            let d = 9 + case % 7;
+            let p = random_bezier(&mut rng, d);
+            let q = random_bezier(&mut rng, 3);
+            fast += usize::from(compare(&p, &q, &format!("degree {d}, case {case}")));
+        }
+        assert!(fast > 20, "fast {fast}");
+        // Above MAX_DEGREE: always the subdivision.
+        let p = random_bezier(&mut rng, super::MAX_DEGREE + 1);
+        let q = random_bezier(&mut rng, 2);
+        assert!(!compare(&p, &q, "degree 16"));
+        let mut fast = 0;
+        for case in 0..60 {
+            let p = random_nurbs(&mut rng, 4 + case % 4, false);
+            let q = random_bezier(&mut rng, 3);
+            fast += usize::from(compare(&p, &q, &format!("B-spline, case {case}")));
+            let r = random_nurbs(&mut rng, 5, false);
+            compare(&p, &r, &format!("two B-splines, case {case}"));
+            // Rational spans: the subdivision, unless no span boxes meet.
+            let w = random_nurbs(&mut rng, 5, true);
+            if compare(&w, &q, &format!("rational, case {case}")) {
+                let h = intersect(&w, &q, &IntersectOptions::default()).unwrap();
+                assert!(h.is_empty(), "rational, case {case}: {h:?}");
+            }
+        }
+        assert!(fast > 30, "fast {fast}");
+    }
+
+    #[test]
+    fn hard_cases_are_left_to_the_subdivision() {
+        let curve = |rows: &[[f64; 2]]| BezierCurve::from_rows(rows).unwrap();
+        // A tangency: a cubic touching a straight cubic at its lowest point.
+        let cup = curve(&[
+            [0.0, 1.0],
+            [1.0 / 3.0, -1.0 / 3.0],
+            [2.0 / 3.0, -1.0 / 3.0],
+            [1.0, 1.0],
+        ]);
+        let floor = curve(&[[0.0, 0.0], [1.0 / 3.0, 0.0], [2.0 / 3.0, 0.0], [1.0, 0.0]]);
+        assert!(!compare(&cup, &floor, "tangency"));
+        let h = intersect(&cup, &floor, &IntersectOptions::default()).unwrap();
+        assert_eq!(h.len(), 1);
+        assert_eq!(h[0].kind, IntersectionKind::Touching);
+        // An overlap: a line and a part of it.
+        let line = curve(&[[0.0, 0.0], [2.0, 1.0]]);
+        let part = curve(&[[0.5, 0.25], [1.0, 0.5], [1.5, 0.75]]);
+        assert!(!compare(&line, &part, "overlap"));
+        // 3D: the subdivision.
+        let a = BezierCurve::from_rows(&[[0.0, 0.0, 0.0], [1.0, 1.0, 0.0]]).unwrap();
+        let b = BezierCurve::from_rows(&[[1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]).unwrap();
+        assert!(!compare(&a, &b, "3D"));
+        // A transversal crossing is the fast path's.
+        let c = curve(&[[0.0, 1.0], [1.0, 0.0]]);
+        assert!(compare(&line, &c, "lines"));
+    }
+}
