@@ -159,7 +159,7 @@ int main(void) {
                  BZJ_ERR_NON_FINITE, "u0");
     const double bad_q[] = {6, 0, 0, 7, INFINITY, 1, 9, 0, 2};
     EXPECT_ERROR(bzj_connect_points(3, P, 12, 0.8, bad_q, 9, 0.1, 3, 2, 1, 1, out, OUT_LEN),
-                 BZJ_ERR_NON_FINITE, "points");
+                 BZJ_ERR_NON_FINITE, "q_points[4]");
     EXPECT_ERROR(bzj_connect_points(3, P, 12, 0.8, Q, 9, 0.1, 20, 20, 1, 1, out, OUT_LEN),
                  BZJ_ERR_ILL_CONDITIONED, "degree 41");
     scale = 5.0;

@@ -37,7 +37,13 @@ unsafe fn bezier_from_points(
     }
     // SAFETY: caller promises `len` readable doubles.
     let values = unsafe { input_slice(points, len, &name) }?;
-    Ok(BezierCurve::new(dim, len / dim - 1, values.to_vec())?)
+    BezierCurve::new(dim, len / dim - 1, values.to_vec()).map_err(|error| match error {
+        // The core names its array "points": say which of the two it is.
+        BezjoinError::NonFinite { index, value, .. } => {
+            BezjoinError::NonFinite { name, index, value }.into()
+        }
+        other => other.into(),
+    })
 }
 
 /// The common part of the two entry points: sizes checked in the order the
