@@ -8,6 +8,8 @@ import FreeCAD
 import Part
 
 import bezjoin
+from bezjoin_workbench import features, operations
+from test_features_in_freecad import constrained_rectangle
 
 V = FreeCAD.Vector
 
@@ -95,6 +97,132 @@ class ConnectEdges(unittest.TestCase):
         self.assertIsNone(bezjoin._freecad._verbatim_values(wild, Part))
         self.assertSameCurve(bezjoin.connect_edges(wild, 1.0, self.Q, 0.0, p_scale=1e-3),
                              composition(wild, 1.0, self.Q, 0.0, p_scale=1e-3))
+
+
+class TreePlacement(unittest.TestCase):
+    """A feature goes into the App::Part holding its sources (its shape local to the
+    Part, shown where the sources are); a Body takes PartDesign features only, so a
+    feature on a Body's sketch goes to the Part holding the Body, or to the root."""
+
+    def setUp(self):
+        self.document = FreeCAD.newDocument("BezjoinTree")
+        self.part = self.document.addObject("App::Part", "Part")
+        self.part.Placement = FreeCAD.Placement(V(100, 50, 5), FreeCAD.Rotation(V(0, 0, 1), 30))
+
+    def tearDown(self):
+        FreeCAD.closeDocument(self.document.Name)
+
+    def recompute(self, *objects):
+        self.document.recompute()
+        for obj in objects:
+            self.assertTrue(obj.isValid(), (obj.Name, obj.getStatusString()))
+
+    def check_rounded(self, feature, sketch):
+        """The result, taken to the model as FreeCAD shows it, rounds the sketch's
+        corners in the model (the sketch's own vertices taken to the model): the
+        corners are cut, the sides' middles are on it."""
+        shape = operations.model_shape(feature)
+        self.assertTrue(shape.Wires[0].isClosed())
+        corners = [v.Point for v in operations.model_shape(sketch).Wires[0].OrderedVertexes]
+        self.assertEqual(len(corners), 4)
+        for i, corner in enumerate(corners):
+            self.assertGreater(shape.distToShape(Part.Vertex(corner))[0], 1e-3, corner)
+            middle = (corner + corners[(i + 1) % 4]) * 0.5
+            self.assertLess(shape.distToShape(Part.Vertex(middle))[0], 1e-7, middle)
+
+    def check_corner(self, corner, sketch, setback):
+        """The rounded corner of the sketch's Edge1 and Edge2, in the model: the shared
+        vertex is cut, and the blend starts ``setback`` from it along each edge (a vertex
+        of the result there)."""
+        first, second = (operations.model_shape(sketch, name) for name in ("Edge1", "Edge2"))
+        shared = [v.Point for v in first.Vertexes
+                  if any((v.Point - w.Point).Length < 1e-9 for w in second.Vertexes)][0]
+        shape = operations.model_shape(corner)
+        self.assertGreater(shape.distToShape(Part.Vertex(shared))[0], 1e-3)
+        vertices = [v.Point for v in shape.Vertexes]
+        for edge in (first, second):
+            other = [v.Point for v in edge.Vertexes if (v.Point - shared).Length > 1e-9][0]
+            want = shared + (other - shared).normalize() * setback
+            self.assertLess(min((p - want).Length for p in vertices), 1e-7, want)
+
+    def test_a_sketch_in_a_part_gives_a_feature_in_the_part(self):
+        sketch, width = constrained_rectangle(self.document, self.part, 40.0, 20.0)
+        wire = features.make_round_wire(self.document, sketch, Radius=2.0)
+        self.recompute(wire)
+        self.assertIs(wire.getParentGeoFeatureGroup(), self.part)
+        self.assertIn(wire, self.part.Group)
+        # No dependency cycle: the Part holding the feature is no "container" of it.
+        self.assertNotIn(self.part, list(wire.Containers))
+        self.check_rounded(wire, sketch)
+        # Local to the Part: obj.Shape alone lies where the sketch's own shape does.
+        box, sketch_box = wire.Shape.BoundBox, sketch.Shape.BoundBox
+        self.assertAlmostEqual(box.XMin, sketch_box.XMin, delta=1e-7)
+        self.assertAlmostEqual(box.YMax, sketch_box.YMax, delta=1e-7)
+        # Parametric in the Part: the sketch changes, the Part moves.
+        sketch.setDatum(width, FreeCAD.Units.Quantity("60 mm"))
+        self.recompute(wire)
+        self.check_rounded(wire, sketch)
+        self.part.Placement = FreeCAD.Placement(V(-20, 0, 0), FreeCAD.Rotation(V(1, 0, 0), 90))
+        self.recompute(wire)
+        self.check_rounded(wire, sketch)
+
+    def test_a_sketch_in_a_body_in_a_part_gives_a_feature_in_the_part(self):
+        body = self.document.addObject("PartDesign::Body", "Body")
+        self.part.addObject(body)
+        body.Placement = FreeCAD.Placement(V(0, 0, 30), FreeCAD.Rotation(V(0, 1, 0), 45))
+        sketch, _width = constrained_rectangle(self.document, body, 40.0, 20.0)
+        with self.assertRaises(Exception) as refused:  # what a Body says to a Part feature
+            body.addObject(self.document.addObject("Part::FeaturePython", "Stray"))
+        self.assertIn("not allowed", str(refused.exception))
+        corner = features.make_round_corner(self.document, (sketch, "Edge1"),
+                                            (sketch, "Edge2"), Setback=3.0)
+        self.recompute(corner)
+        self.assertIs(corner.getParentGeoFeatureGroup(), self.part)
+        self.assertEqual(list(corner.Containers), [body])  # the Body moves the sources
+        self.check_corner(corner, sketch, 3.0)
+        body.Placement = FreeCAD.Placement(V(5, 5, 5), FreeCAD.Rotation())
+        self.recompute(corner)
+        self.check_corner(corner, sketch, 3.0)
+
+    def test_a_sketch_in_a_body_alone_gives_a_feature_at_the_root(self):
+        body = self.document.addObject("PartDesign::Body", "Body")
+        body.Placement = FreeCAD.Placement(V(100, 0, 0), FreeCAD.Rotation())
+        sketch, _width = constrained_rectangle(self.document, body, 40.0, 20.0)
+        wire = features.make_round_wire(self.document, sketch, Radius=2.0)
+        self.recompute(wire)
+        self.assertIsNone(wire.getParentGeoFeatureGroup())
+        self.assertEqual(list(wire.Containers), [body])
+        self.assertAlmostEqual(wire.Shape.BoundBox.XMin, 100.0, delta=1e-7)
+        self.check_rounded(wire, sketch)
+
+    def test_sources_in_different_containers_give_their_common_part(self):
+        inner = self.document.addObject("App::Part", "Inner")
+        self.part.addObject(inner)
+        inner.Placement = FreeCAD.Placement(V(0, 0, 10), FreeCAD.Rotation())
+        first = self.document.addObject("Part::Feature", "First")
+        first.Shape = Part.LineSegment(V(0, 0, 0), V(10, 0, 0)).toShape()
+        inner.addObject(first)
+        second = self.document.addObject("Part::Feature", "Second")
+        second.Shape = Part.LineSegment(V(15, 0, 0), V(25, 5, 0)).toShape()
+        self.part.addObject(second)
+        self.document.recompute()
+        blend = features.make_blend(self.document, first, second)
+        self.recompute(blend)
+        self.assertIs(blend.getParentGeoFeatureGroup(), self.part)
+        self.assertEqual(list(blend.Containers), [inner])
+        shape = operations.model_shape(blend)
+        start, end = (shape.Edges[0].valueAt(shape.Edges[0].FirstParameter),
+                      shape.Edges[0].valueAt(shape.Edges[0].LastParameter))
+        want_start = operations.model_shape(first).Vertexes[1].Point
+        want_end = operations.model_shape(second).Vertexes[0].Point
+        self.assertLess((start - want_start).Length, 1e-7)
+        self.assertLess((end - want_end).Length, 1e-7)
+        # Loose sources at the root: the feature stays at the root.
+        loose = self.document.addObject("Part::Feature", "Loose")
+        loose.Shape = Part.LineSegment(V(30, 0, 0), V(40, 0, 0)).toShape()
+        blend2 = features.make_blend(self.document, second, loose)
+        self.recompute(blend2)
+        self.assertIsNone(blend2.getParentGeoFeatureGroup())
 
 
 if __name__ == "__main__":
