@@ -225,5 +225,62 @@ class TreePlacement(unittest.TestCase):
         self.assertIsNone(blend2.getParentGeoFeatureGroup())
 
 
+class TinyEdge(unittest.TestCase):
+    """Issue 19, item 4: "a 40 mm line plus a 1e-9 mm line moves 10 mm". FreeCAD holds a
+    1e-9 mm edge when it is made from a curve (Part.LineSegment(...).toShape(),
+    Part.Edge(curve), a Bezier curve's edge); its two vertices fall within the vertex
+    tolerance (1e-7 mm) and become one, so the edge is topologically closed. What
+    cannot make it is the vertex route: Part.makeLine gives a null shape below 1e-7 mm,
+    Part.Edge(Vertex, Vertex) raises "BRep_API: command not done". The smallest step a
+    curve at x = 40 can take is one ulp (7.1e-15 mm); equal points raise "Both points
+    are equal"."""
+
+    FIRST = Part.LineSegment(V(0, 0, 0), V(40, 0, 0)).toShape()
+
+    def merged_ends(self, second):
+        shape = operations.merge_edges(self.FIRST, second).shape
+        self.assertEqual(shape.ShapeType, "Edge")
+        return shape.valueAt(shape.FirstParameter), shape.valueAt(shape.LastParameter)
+
+    def test_a_1e_9_mm_edge_merges_with_the_ends_kept(self):
+        tiny_end = V(40 + 1e-9, 0, 0)
+        for second in (Part.LineSegment(V(40, 0, 0), tiny_end).toShape(),
+                       Part.Edge(Part.LineSegment(V(40, 0, 0), tiny_end)),
+                       bezier_edge([(40, 0, 0), (40 + 1e-9, 0, 0)])):
+            with self.subTest(curve=second.Curve.TypeId):
+                self.assertTrue(second.isValid())
+                self.assertAlmostEqual(second.Length, tiny_end.x - 40.0, delta=1e-20)
+                self.assertTrue(second.isClosed())  # one vertex: 1e-9 < the tolerance 1e-7
+                start, end = self.merged_ends(second)
+                # kept to a few ulps of 40 (7.1e-15), not moved by 10 mm
+                self.assertLessEqual(start.Length, 1e-14)
+                self.assertLessEqual((end - second.valueAt(second.LastParameter)).Length, 2e-14)
+
+    def test_the_smallest_step_freecad_represents(self):
+        ulp = math.ulp(40.0)
+        for steps in (1, 2):
+            second = Part.LineSegment(V(40, 0, 0), V(40 + steps * ulp, 0, 0)).toShape()
+            self.assertEqual(second.Length, steps * ulp)
+            start, end = self.merged_ends(second)
+            self.assertLessEqual(start.Length, 1e-14)
+            self.assertLessEqual(abs(end.x - (40 + steps * ulp)), ulp)
+        with self.assertRaises(Part.OCCError) as caught:
+            Part.LineSegment(V(40, 0, 0), V(40, 0, 0))
+        self.assertIn("Both points are equal", str(caught.exception))
+
+    def test_the_vertex_routes_refuse_edges_below_the_tolerance(self):
+        """FreeCAD's limit as FreeCAD words it (why the 1e-9 case needs a curve first)."""
+        made = Part.makeLine(V(40, 0, 0), V(40 + 1e-9, 0, 0))
+        with self.assertRaises(Exception) as caught:
+            made.Length
+        self.assertIn("Unknown exception while reading attribute 'Length'", str(caught.exception))
+        with self.assertRaises(Part.OCCError) as caught:
+            Part.Edge(Part.Vertex(V(40, 0, 0)), Part.Vertex(V(40 + 1e-9, 0, 0)))
+        self.assertIn("BRep_API: command not done", str(caught.exception))
+        # at the tolerance itself the vertex route still works
+        self.assertAlmostEqual(Part.makeLine(V(40, 0, 0), V(40 + 1e-7, 0, 0)).Length,
+                               (40 + 1e-7) - 40, delta=1e-20)
+
+
 if __name__ == "__main__":
     unittest.main()
