@@ -3254,6 +3254,25 @@ void check_auto_scale(Report& report) {
                           "at s * 1.01^+-1",
                           s, e, e_other));
     });
+    guarded(report, "g.connect_points", [&] {
+        // The handle-free entries give connect()'s and connect_auto_scale()'s
+        // control points bit for bit (the same curves, the same solve).
+        const Curve p(3, 3, {0.0, 0.0, 0.0, 1.0, 0.3, 0.1, 2.0, 0.1, 0.2, 3.0, 0.0, 0.0});
+        const Curve q(3, 4, {4.0, 1.0, 0.0, 4.2, 2.0, 0.1, 4.1, 3.0, -0.1, 4.0, 4.0, 0.0, 3.8, 5.0, 0.0});
+        bezjoin::ConnectOptions opts;
+        opts.p_order = 2;
+        opts.q_order = 3;
+        opts.p_scale = 0.7;
+        opts.q_scale = 0.9;
+        const std::vector<double> given =
+            bezjoin::connect_points(3, p.points(), 0.8, q.points(), 0.2, 2, 3, 0.7, 0.9);
+        const bool same_given = given == bezjoin::connect(p, 0.8, q, 0.2, opts).points();
+        const auto automatic = bezjoin::connect_points_auto_scale(3, p.points(), 0.8, q.points(), 0.2, 2, 3);
+        const bezjoin::AutoScaledConnection r = bezjoin::connect_auto_scale(p, 0.8, q, 0.2, opts);
+        const bool same_auto = automatic.first == r.curve.points() && automatic.second == r.scale;
+        report.row(same_given && same_auto, "g.connect_points", same_given && same_auto ? 0.0 : 1.0, 0.0,
+                   "connect_points / connect_points_auto_scale equal connect / connect_auto_scale bit for bit");
+    });
     guarded(report, "g.fillet_auto_scale", [&] {
         // Lines of speed 8 as cubics crossing at the origin, C^3, setback 0.5:
         // the chosen scale keeps the blend's control polygon in the corner.

@@ -734,6 +734,52 @@ BzjStatus bzj_connect(const struct BzjCurve *p, double u0, const struct BzjCurve
 BzjStatus bzj_connect_auto_scale(const struct BzjCurve *p, double u0, const struct BzjCurve *q, double v0, const struct BzjConnectOptions *options, struct BzjCurve **out, double *scale_out);
 
 /**
+ * [`bzj_connect`] of the Bezier curves `P` and `Q` given by their control
+ * points, without handles: `R` from `P(u0)` to `Q(v0)` with
+ * `R^(k)(0) = p_scale^k P^(k)(u0)` (k = 0..p_order) and
+ * `R^(k)(1) = q_scale^k Q^(k)(v0)` (k = 0..q_order), of degree
+ * `p_order + q_order + 1`; its `(p_order + q_order + 2) * dim` control
+ * points (row-major) are written to `out_points`. `P` has the
+ * `p_len / dim` control points `p_points` (degree `p_len / dim - 1`), `Q`
+ * likewise. The result is the one of `bzj_curve_new` for both curves,
+ * `bzj_connect` with these orders and scales and no interior constraints,
+ * and `bzj_curve_points`, bit for bit, with the same guarantee (every
+ * condition to a relative residual of 1e-8, or BZJ_ERR_ILL_CONDITIONED).
+ *
+ * @return BZJ_ERR_NULL_POINTER if `p_points`, `q_points` or `out_points`
+ *         is NULL;
+ *         BZJ_ERR_INVALID_ARGUMENT if `dim` is 0, `p_len` or `q_len` is not a
+ *         positive multiple of `dim`, `u0` or `v0` is outside [0, 1], a
+ *         scale is not > 0;
+ *         BZJ_ERR_BUFFER_TOO_SMALL if `out_len < (p_order + q_order + 2) * dim`;
+ *         BZJ_ERR_NON_FINITE if a coordinate, `u0`, `v0` or a scale is NaN
+ *         or infinite;
+ *         BZJ_ERR_ILL_CONDITIONED as `bzj_connect` (the degree
+ *         `p_order + q_order + 1` above 31 is refused before anything is read).
+ *         On an error `out_points` is left unchanged.
+ *
+ * # Safety
+ * `p_points` is NULL or points to `p_len` readable doubles, `q_points` to
+ * `q_len`; `out_points` is NULL or points to `out_len` writable doubles.
+ */
+BzjStatus bzj_connect_points(size_t dim, const double *p_points, size_t p_len, double u0, const double *q_points, size_t q_len, double v0, size_t p_order, size_t q_order, double p_scale, double q_scale, double *out_points, size_t out_len);
+
+/**
+ * [`bzj_connect_points`] with `p_scale = q_scale = s` chosen as
+ * [`bzj_connect_auto_scale`] chooses it (least fairness energy
+ * `integral_0^1 |R''(t)|^2 dt`); `s` is written to `scale_out` when it is
+ * not NULL. The control points are those of `bzj_connect_auto_scale` on
+ * the same curves, bit for bit.
+ *
+ * @return the statuses of [`bzj_connect_points`] (no scale is read);
+ *         `scale_out` is left unchanged on an error.
+ *
+ * # Safety
+ * As [`bzj_connect_points`]; `scale_out` is NULL or writable.
+ */
+BzjStatus bzj_connect_points_auto_scale(size_t dim, const double *p_points, size_t p_len, double u0, const double *q_points, size_t q_len, double v0, size_t p_order, size_t q_order, double *out_points, size_t out_len, double *scale_out);
+
+/**
  * Create a Bezier curve of degree `degree` in dimension `dim` from
  * `points_len == (degree + 1) * dim` row-major coordinates.
  *

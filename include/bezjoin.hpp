@@ -422,6 +422,39 @@ inline AutoScaledConnection connect_auto_scale(const Curve& p, double u0, const 
     return AutoScaledConnection{Curve(out), scale};
 }
 
+/// connect() of the Bezier curves with control points `p_points` and
+/// `q_points` (row-major, dim coordinates each) without handles
+/// (bzj_connect_points): the (p_order + q_order + 2) * dim control points of
+/// R, bit for bit those of connect() on Curve(dim, ..., p_points) and
+/// Curve(dim, ..., q_points). The points' lengths are checked by the library
+/// (a positive multiple of dim).
+inline std::vector<double> connect_points(std::size_t dim, const std::vector<double>& p_points,
+                                          double u0, const std::vector<double>& q_points, double v0,
+                                          std::size_t p_order, std::size_t q_order,
+                                          double p_scale = 1.0, double q_scale = 1.0) {
+    // A degree above 31 is refused by the library before it writes anything.
+    std::vector<double> out(p_order + q_order < 64 ? (p_order + q_order + 2) * dim : 0);
+    check(bzj_connect_points(dim, p_points.data(), p_points.size(), u0, q_points.data(),
+                             q_points.size(), v0, p_order, q_order, p_scale, q_scale, out.data(),
+                             out.size()),
+          "bzj_connect_points");
+    return out;
+}
+
+/// connect_points() with alpha = beta = s chosen as connect_auto_scale()
+/// chooses it (bzj_connect_points_auto_scale): R's control points and s.
+inline std::pair<std::vector<double>, double> connect_points_auto_scale(
+    std::size_t dim, const std::vector<double>& p_points, double u0,
+    const std::vector<double>& q_points, double v0, std::size_t p_order, std::size_t q_order) {
+    std::vector<double> out(p_order + q_order < 64 ? (p_order + q_order + 2) * dim : 0);
+    double scale = 0.0;
+    check(bzj_connect_points_auto_scale(dim, p_points.data(), p_points.size(), u0,
+                                        q_points.data(), q_points.size(), v0, p_order, q_order,
+                                        out.data(), out.size(), &scale),
+          "bzj_connect_points_auto_scale");
+    return {std::move(out), scale};
+}
+
 /// Options of connect_geometric(): G^k orders and, per end, the shape values
 /// beta_1 > 0, beta_2, ... (empty: chosen by the library for fairness).
 struct GeometricOptions {

@@ -55,6 +55,8 @@ def cubic_edge(points):
 EDGE_P = cubic_edge([(0, 0, 0), (1, 1, 0.2), (2, 1, 0.1), (3, 0, 0)])
 EDGE_Q = cubic_edge([(4, 0.5, 0), (5, 0, 0.3), (6, 1, 0.2), (7, 0, 0)])
 CUBIC = bezjoin.Curve([(0, 0, 0), (1, 1, 0.2), (2, 1, 0.1), (3, 0, 0)])
+TUPLES_4 = [(0.0, 0.0, 0.0), (1.0, 1.0, 0.2), (2.0, 1.0, 0.1), (3.0, 0.0, 0.0)]
+TUPLES_8 = TUPLES_4 + TUPLES_4
 
 
 def ours_from():
@@ -75,6 +77,43 @@ def ours_blend_given():
     blend = bezjoin.connect(p, U0, q, V0, p_order=ORDER, q_order=ORDER,
                             p_scale=SCALE, q_scale=SCALE)
     return blend.to_freecad()
+
+
+def ours_edges_given():
+    return bezjoin.connect_edges(EDGE_P, U0, EDGE_Q, V0, p_order=ORDER, q_order=ORDER,
+                                 p_scale=SCALE, q_scale=SCALE)
+
+
+def ours_edges_auto():
+    return bezjoin.connect_edges(EDGE_P, U0, EDGE_Q, V0, p_order=ORDER, q_order=ORDER)
+
+
+def freecad_reads():
+    """What any blend from poles must ask FreeCAD for: per edge its curve, its
+    parameter range, whether it is degenerated or rational, and the poles; then one
+    Part.BezierCurve with the 8 poles of the blend (here P's poles twice, as
+    tuples). The floor of a blend that reads the poles (no Python, no library)."""
+    p_curve, q_curve = EDGE_P.Curve, EDGE_Q.Curve
+    EDGE_P.Degenerated, EDGE_Q.Degenerated
+    EDGE_P.ParameterRange, EDGE_Q.ParameterRange
+    p_curve.isRational(), q_curve.isRational()
+    poles = p_curve.getPoles(), q_curve.getPoles()
+    blend = Part.BezierCurve()
+    blend.setPoles(TUPLES_8)
+    return poles, blend
+
+
+def freecad_curve_reads():
+    """FreeCAD's reads of one cubic edge in from_freecad's fast path."""
+    curve = EDGE_P.Curve
+    return EDGE_P.Degenerated, EDGE_P.ParameterRange, curve.isRational(), curve.getPoles()
+
+
+def freecad_bezier_out():
+    """FreeCAD's part of to_freecad: a Part.BezierCurve and one setPoles of 4 tuples."""
+    curve = Part.BezierCurve()
+    curve.setPoles(TUPLES_4)
+    return curve
 
 
 def ours_blend_auto():
@@ -147,6 +186,10 @@ def main():
         "given scale: ours vs FreeCAD, max pole distance": pole_distance(given, theirs),
         "auto scale: ours vs FreeCAD at that scale, max pole distance":
             pole_distance(ours_blend_auto(), freecad_blend_auto_scale()),
+        "connect_edges vs from_freecad+connect+to_freecad, given scale (must be 0)":
+            pole_distance(ours_edges_given(), given),
+        "connect_edges vs from_freecad+connect+to_freecad, auto scale (must be 0)":
+            pole_distance(ours_edges_auto(), ours_blend_auto()),
     }
 
     cases = [
@@ -156,6 +199,11 @@ def main():
         ("blend, ours, given scale", ours_blend_given),
         ("blend, ours, automatic scale", ours_blend_auto),
         ("blend, FreeCAD getDN + BezierCurve.interpolate", freecad_blend),
+        ("blend, ours connect_edges, given scale", ours_edges_given),
+        ("blend, ours connect_edges, automatic scale", ours_edges_auto),
+        ("floor: FreeCAD reads of one cubic edge", freecad_curve_reads),
+        ("floor: Part.BezierCurve + setPoles(4 tuples)", freecad_bezier_out),
+        ("floor: FreeCAD reads + output of a blend", freecad_reads),
     ]
     best = measure(cases, repeat, seconds)
 
@@ -170,8 +218,10 @@ def main():
     for name, _ in cases:
         print(f"  {name:<{width}}  {best[name] * 1e6:8.2f} us")
     reference = best["blend, FreeCAD getDN + BezierCurve.interpolate"]
-    for name in ("blend, ours, given scale", "blend, ours, automatic scale"):
-        print(f"  ours / FreeCAD ({name.split(', ')[-1]}): {best[name] / reference:.2f}")
+    for name in ("blend, ours, given scale", "blend, ours, automatic scale",
+                 "blend, ours connect_edges, given scale",
+                 "blend, ours connect_edges, automatic scale"):
+        print(f"  {name} / FreeCAD's blend: {best[name] / reference:.2f}")
     sys.stdout.flush()
 
 

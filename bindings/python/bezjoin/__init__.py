@@ -23,7 +23,10 @@ from ._connect import (
     GeometricConnection,
     connect,
     connect_auto_scale,
+    connect_edges,
     connect_geometric,
+    connect_points,
+    connect_points_auto_scale,
 )
 from ._fillet import (
     DetailedRadiusFilletResult,
@@ -71,7 +74,10 @@ __all__ = [
     "candidate_paths",
     "connect",
     "connect_auto_scale",
+    "connect_edges",
     "connect_geometric",
+    "connect_points",
+    "connect_points_auto_scale",
     "fillet",
     "fillet_chain",
     "fillet_deviation",

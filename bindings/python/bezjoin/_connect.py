@@ -7,9 +7,10 @@ section 1).
 
 import ctypes
 
-from ._convert import (automatic_scale, double_array, flat, index_argument, point_rows,
-                       real_argument)
-from ._library import CurvePointer, library, register_prototype
+from . import _freecad
+from ._convert import (_array_type, automatic_scale, double_array, flat, index_argument,
+                       point_rows, real_argument)
+from ._library import CurvePointer, function, library, register_prototype
 from .curve import Curve, handle_of
 from .errors import BezjoinError
 from .results import CurveGroup
@@ -173,6 +174,148 @@ def _options(p, q, p_order, q_order, p_scale, q_scale, constraints):
         constraint_array, len(structs),
     )
     return options, (keep_alive, constraint_array)
+
+
+_double_pointer = ctypes.POINTER(ctypes.c_double)
+_size = ctypes.c_size_t
+
+register_prototype(
+    "bzj_connect_points",
+    ctypes.c_int32,
+    [_size, _double_pointer, _size, ctypes.c_double, _double_pointer, _size, ctypes.c_double,
+     _size, _size, ctypes.c_double, ctypes.c_double, _double_pointer, _size],
+)
+register_prototype(
+    "bzj_connect_points_auto_scale",
+    ctypes.c_int32,
+    [_size, _double_pointer, _size, ctypes.c_double, _double_pointer, _size, ctypes.c_double,
+     _size, _size, _double_pointer, _size, _double_pointer],
+)
+
+
+def _order(value, name, default):
+    if value is None:
+        return default
+    # The common case (a non-negative int) without the general conversion.
+    return value if type(value) is int and value >= 0 else index_argument(value, name)
+
+
+def _real(value, name):
+    return value if type(value) is float else real_argument(value, name)
+
+
+def _connect_flat(dim, p_values, q_values, u0, v0, p_order, q_order, automatic, p_scale,
+                  q_scale):
+    """``bzj_connect_points`` (``automatic``: ``bzj_connect_points_auto_scale``) on the
+    flat coordinate sequences ``p_values`` and ``q_values``: ``(status, values,
+    scale)`` with ``values`` the flat tuple of R's control points and ``scale`` the
+    scale chosen (``None`` for given scales); on a failure ``values`` is ``None``
+    (the caller reads the message, in this thread, right away). One call across the
+    ABI; each array is made by one copy of packed doubles."""
+    p_length, q_length = len(p_values), len(q_values)
+    p_type, p_packer = _array_type(p_length)
+    q_type, q_packer = _array_type(q_length)
+    p_array = p_type.from_buffer_copy(p_packer.pack(*p_values))
+    q_array = q_type.from_buffer_copy(q_packer.pack(*q_values))
+    out_length = (p_order + q_order + 2) * dim if p_order + q_order < 64 else 0
+    out_type, out_packer = _array_type(max(out_length, 1))
+    out = out_type()
+    if automatic:
+        scale = ctypes.c_double()
+        status = function("bzj_connect_points_auto_scale")(
+            dim, p_array, p_length, u0, q_array, q_length, v0, p_order, q_order, out,
+            out_length, ctypes.byref(scale))
+        scale = scale.value
+    else:
+        scale = None
+        status = function("bzj_connect_points")(
+            dim, p_array, p_length, u0, q_array, q_length, v0, p_order, q_order, p_scale,
+            q_scale, out, out_length)
+    if status:
+        return status, None, None
+    return status, out_packer.unpack_from(out), scale
+
+
+def _raise(status):
+    lib = library()
+    raise BezjoinError(status, lib.status_name(status), lib.last_error())
+
+
+def connect_points(p_points, u0, q_points, v0, *, p_order=None, q_order=None, p_scale=None,
+                   q_scale=None, auto_scale=None):
+    """:func:`connect` of the Bezier curves with control points ``p_points`` and
+    ``q_points`` without making :class:`Curve` objects: the control points of ``R``
+    (a list of tuples), the same, bit for bit, as ``connect(Curve(p_points), u0,
+    Curve(q_points), v0, ...).points`` (``bzj_connect_points``,
+    ``bzj_connect_points_auto_scale``: one call into the library). No interior
+    constraints; the scale rule and the order defaults (each curve's degree) are
+    those of :func:`connect`. :func:`connect_points_auto_scale` also returns the
+    automatic scale.
+
+    Raises:
+        BezjoinError: with the library's status and message.
+    """
+    points, _scale = _connect_rows(p_points, u0, q_points, v0, p_order, q_order,
+                                   *automatic_scale(auto_scale, p_scale, q_scale))
+    return points
+
+
+def connect_points_auto_scale(p_points, u0, q_points, v0, *, p_order=None, q_order=None):
+    """:func:`connect_points` with the automatic scale: ``(points, scale)``, ``scale``
+    the ``s = alpha = beta`` chosen (as :func:`connect_auto_scale`)."""
+    return _connect_rows(p_points, u0, q_points, v0, p_order, q_order, True, 1.0, 1.0)
+
+
+def _connect_rows(p_points, u0, q_points, v0, p_order, q_order, automatic, p_scale, q_scale):
+    p_rows, dim = point_rows(p_points, "p_points")
+    q_rows, q_dim = point_rows(q_points, "q_points")
+    if q_dim != dim:
+        raise BezjoinError.dimension_mismatch(
+            f"q_points have dimension {q_dim} but p_points have dimension {dim}")
+    p_order = _order(p_order, "p_order", len(p_rows) - 1)
+    q_order = _order(q_order, "q_order", len(q_rows) - 1)
+    status, values, scale = _connect_flat(
+        dim, flat(p_rows), flat(q_rows), real_argument(u0, "u0"), real_argument(v0, "v0"),
+        p_order, q_order, automatic, p_scale, q_scale)
+    if status:
+        _raise(status)
+    return [values[i:i + dim] for i in range(0, len(values), dim)], scale
+
+
+def connect_edges(p_edge, u0, q_edge, v0, *, p_order=None, q_order=None, p_scale=None,
+                  q_scale=None, auto_scale=None):
+    """The blend of two FreeCAD edges (or curves) as a ``Part.BezierCurve``: the curve
+    of ``connect(Curve.from_freecad(p_edge), u0, Curve.from_freecad(q_edge), v0,
+    ...).to_freecad()``, the same poles bit for bit, with the same arguments (``u0``,
+    ``v0`` in the converted curves' parameters: ``[0, 1]`` for a Bezier edge), the
+    same defaults and the same errors.
+
+    For the common edge, on the whole of a polynomial ``Part.BezierCurve`` (the
+    fast path of :meth:`Curve.from_freecad`), FreeCAD's poles go to the library and
+    the blend's poles come back in one call (``bzj_connect_points``) with no
+    :class:`Curve` made; anything else (and any error) takes the composition
+    above.
+    """
+    part = _freecad._part()
+    automatic, p_scale, q_scale = automatic_scale(auto_scale, p_scale, q_scale)
+    p_found = _freecad._verbatim_values(p_edge, part)
+    q_found = p_found and _freecad._verbatim_values(q_edge, part)
+    if q_found:
+        p_values, p_degree = p_found
+        q_values, q_degree = q_found
+        p_order = _order(p_order, "p_order", p_degree)
+        q_order = _order(q_order, "q_order", q_degree)
+        status, values, _scale = _connect_flat(3, p_values, q_values, _real(u0, "u0"),
+                                               _real(v0, "v0"), p_order, q_order, automatic,
+                                               p_scale, q_scale)
+        if not status:
+            return _freecad.bezier_curve_from_values(values, p_order + q_order + 1)
+    # Not both fast, or an error: the composition words the error.
+    with Curve.from_freecad(p_edge) as p, Curve.from_freecad(q_edge) as q:
+        scales = {} if automatic else {"p_scale": p_scale, "q_scale": q_scale}
+        with connect(p, u0, q, v0, p_order=p_order, q_order=q_order,
+                     auto_scale=automatic, **scales) as blend:
+            return blend.to_freecad()
 
 
 class GeometricOptionsStruct(ctypes.Structure):

@@ -117,5 +117,6 @@ def flat(rows):
 
 def rows_of(buffer, count, dim):
     """``count`` rows of ``dim`` floats from a row-major ctypes buffer."""
-    values = buffer[:count * dim]  # one slice: plain floats
-    return [tuple(values[i * dim:(i + 1) * dim]) for i in range(count)]
+    values = iter(buffer[:count * dim])  # one slice: plain floats
+    # zip of one iterator dim times: the rows as tuples, no per-row slicing.
+    return list(zip(*[values] * dim))

@@ -11,11 +11,12 @@ given FreeCAD object, in both directions.
 
 import bisect
 import ctypes
+import itertools
 import math
 from collections import namedtuple
 
 from ._convert import _array_type
-from ._library import CurvePointer, library
+from ._library import CurvePointer, function, library
 from .errors import STATUS_OK, BezjoinError, UnsupportedGeometryError
 
 #: OpenCASCADE's ``Geom_BezierCurve::MaxDegree()`` and ``Geom_BSplineCurve::MaxDegree()``.
@@ -37,6 +38,8 @@ CONIC_SPAN = 0.5 * math.pi
 SELF_CHECK_TOLERANCE = 1e-9
 
 _TURN = 2.0 * math.pi
+
+_chain = itertools.chain.from_iterable
 
 #: How a FreeCAD object becomes a curve: ``mapping`` is ``"affine"`` (a Bezier
 #: curve on [0, 1] for FreeCAD's [first, last]), ``"same"`` (a NURBS curve on
@@ -209,14 +212,21 @@ def _to_curve_parameter(mapping, first, last, t):
 # -- FreeCAD -------------------------------------------------------------------------------
 
 
+_part_module = None
+
+
 def _part():
-    try:
-        import Part  # noqa: PLC0415 (FreeCAD only)
-    except ImportError as error:
-        raise UnsupportedGeometryError(
-            "FreeCAD's Part module is not importable (run inside FreeCAD or freecadcmd)"
-        ) from error
-    return Part
+    """FreeCAD's ``Part`` module (imported on the first conversion, then kept)."""
+    global _part_module
+    if _part_module is None:
+        try:
+            import Part  # noqa: PLC0415 (FreeCAD only)
+        except ImportError as error:
+            raise UnsupportedGeometryError(
+                "FreeCAD's Part module is not importable (run inside FreeCAD or freecadcmd)"
+            ) from error
+        _part_module = Part
+    return _part_module
 
 
 _vector_class = None
@@ -492,16 +502,18 @@ _VERBATIM_RATIOS = [0.0] + [_verbatim_ratio(n) for n in range(1, MAXIMUM_FREECAD
 _VERBATIM_LIMIT = 1e150
 
 
-def _verbatim_bezier(cls, obj, part):
-    """The fast path of the most common edge, or ``None`` (then the general path
-    runs, with the same result or error): a ``Part.Edge`` on the whole of a
-    polynomial ``Part.BezierCurve`` (FreeCAD's ``[0, 1]``) of low degree whose
-    poles stay near its ends (:func:`_verbatim_ratio`). Its curve is the
-    Bezier curve with FreeCAD's poles, copied bit for bit, on the same
+def _verbatim_values(obj, part):
+    """The fast path of the most common edge: ``(values, degree)`` with ``values``
+    the flat tuple of the poles' coordinates (3D), or ``None`` (then the general
+    path runs, with the same result or error). It applies to a ``Part.Edge`` on
+    the whole of a polynomial ``Part.BezierCurve`` (FreeCAD's ``[0, 1]``) of low
+    degree whose poles stay near its ends (:func:`_verbatim_ratio`). Its curve
+    is the Bezier curve with FreeCAD's poles, copied bit for bit, on the same
     parameter (the plan "affine" with ``first, last = 0, 1``): the same
     Bernstein polynomial, and the sampled self-check is skipped because the
     bound above proves it would pass (it compares two evaluations of one
-    polynomial)."""
+    polynomial). Values that are not finite are left to the library, which
+    refuses them (the caller then takes the general path)."""
     if not isinstance(obj, part.Edge) or obj.Degenerated:
         return None
     try:
@@ -511,23 +523,36 @@ def _verbatim_bezier(cls, obj, part):
         return None
     if not whole or type(curve) is not part.BezierCurve or curve.isRational():
         return None
-    poles = curve.getPoles()
-    degree = len(poles) - 1
+    values = tuple(_chain(curve.getPoles()))
+    degree = len(values) // 3 - 1
     if not 1 <= degree <= MAXIMUM_FREECAD_DEGREE:
         return None
-    values = [x for pole in poles for x in pole]
-    reach = max(max(values), -min(values))
+    # A NaN compares False everywhere: the library refuses it later.
+    reach = max(map(abs, values))
+    ratio = _VERBATIM_RATIOS[degree]
+    if reach <= ratio:
+        # max(1, |P_0|, |P_n|) >= 1: no need to look at the ends.
+        return values, degree
+    if not reach < _VERBATIM_LIMIT:
+        return None
     ends = max(1.0, abs(values[0]), abs(values[1]), abs(values[2]),
                abs(values[-3]), abs(values[-2]), abs(values[-1]))
-    # NaN compares False: the general path takes it.
-    if not (reach < _VERBATIM_LIMIT and reach <= _VERBATIM_RATIOS[degree] * ends):
+    if not reach <= ratio * ends:
         return None
+    return values, degree
+
+
+def _verbatim_bezier(cls, obj, part):
+    """The curve of :func:`_verbatim_values`' fast path, or ``None``."""
+    found = _verbatim_values(obj, part)
+    if found is None:
+        return None
+    values, degree = found
     length = len(values)
     array_type, packer = _array_type(length)
     array = array_type.from_buffer_copy(packer.pack(*values))
     handle = CurvePointer()
-    status = library().function("bzj_curve_new")(3, degree, array, length,
-                                                 ctypes.byref(handle))
+    status = function("bzj_curve_new")(3, degree, array, length, ctypes.byref(handle))
     if status != STATUS_OK or not handle:
         return None
     return cls._adopt(handle, (degree, 3))
@@ -601,6 +626,18 @@ def bezier_curve(points, degree, dim):
     # making a Vector of each first.
     curve.setPoles(points if dim == 3 and all(type(p) is tuple for p in points)
                    else _vectors(points, dim))
+    return curve
+
+
+def bezier_curve_from_values(values, degree):
+    """A ``Part.BezierCurve`` of degree ``degree`` with the 3D poles whose coordinates
+    are the flat sequence ``values`` (one ``setPoles`` of tuples)."""
+    part = _part()
+    _check_exportable(3, degree, "Part.BezierCurve")
+    curve = part.BezierCurve()
+    coordinates = iter(values)
+    # zip of one iterator three times: the rows (x, y, z), no slicing.
+    curve.setPoles(list(zip(coordinates, coordinates, coordinates)))
     return curve
 
 

@@ -24,6 +24,7 @@ mod pointers;
 mod status;
 
 mod connect;
+mod connect_points;
 mod curve;
 mod fillet;
 mod geometric;
@@ -33,6 +34,7 @@ mod nurbs;
 mod version;
 
 pub use connect::*;
+pub use connect_points::*;
 pub use curve::*;
 pub use fillet::*;
 pub use geometric::*;

@@ -6,12 +6,17 @@ Each feature stores
 * its sources as link properties: ``App::PropertyLinkSubGlobal`` (one object and one
   edge name such as ``("Sketch", "Edge2")``) or ``App::PropertyLinkSubListGlobal``
   (several), so an edge of a sketch stays linked when the sketch changes ("Global":
-  the sources may sit inside a Body or ``App::Part`` while the result lies at the
-  document root);
+  the sources may sit inside a Body or ``App::Part`` other than the result's);
 * its parameters as typed properties (group "Bezjoin"): setbacks and radii as
   lengths, orders as integers, modes as enumerations, ...;
 * read-only report properties where the operation reports something (group
   "Bezjoin report").
+
+Tree placement (:func:`home_container`): a feature is put in the innermost
+``App::Part`` holding all its sources; a PartDesign Body accepts PartDesign features
+only, so a feature on a Body's sketch goes to the Part holding that Body, or to the
+document root, as FreeCAD's own Part workbench tools do. Its shape is stored in that
+container's coordinates, so it shows where the sources are.
 
 ``execute`` reads the sources in model (global) coordinates
 (:func:`operations.model_shape`, as the commands' selection readers do) and calls the
@@ -128,18 +133,70 @@ def source_objects(obj):
     return found
 
 
+def _chain_of_containers(obj):
+    """The GeoFeatureGroups (Body, ``App::Part``) holding ``obj``, innermost first."""
+    chain = []
+    group = obj.getParentGeoFeatureGroup()
+    while group is not None:
+        chain.append(group)
+        group = group.getParentGeoFeatureGroup()
+    return chain
+
+
+def _accepts_features(group):
+    """Whether ``group`` can hold a ``Part::FeaturePython``: an ``App::Part`` (or any
+    GeoFeatureGroup) can; a PartDesign Body cannot (it holds PartDesign features,
+    sketches and datums only: ``Body.addObject`` raises "Body: object is not allowed")."""
+    return not group.isDerivedFrom("PartDesign::Body")
+
+
+def home_container(obj):
+    """Where a feature belongs in the tree: the innermost container that holds every
+    one of its sources and accepts a ``Part::FeaturePython`` (see
+    :func:`_accepts_features`), or ``None`` (the document root).
+
+    A sketch in an ``App::Part`` gives a result in that Part. A sketch in a Body gives
+    a result in the Part holding the Body, if any, else at the document root: a Body
+    takes PartDesign features only, so FreeCAD's own Part workbench tools (Part
+    Fillet, Part Extrude in 0.20) put their result on a Body's sketch outside the
+    Body too, and hide the source."""
+    sources = source_objects(obj)
+    if not sources:
+        return None
+    chains = [_chain_of_containers(source) for source in sources]
+    for group in chains[0]:
+        if all(group in chain for chain in chains[1:]) and _accepts_features(group):
+            return group
+    return None
+
+
 def containers(obj):
     """The containers (Body, ``App::Part``: GeoFeatureGroups, innermost first, without
-    repeats) holding the sources of ``obj``: their placements move the sources in the
-    model, so the feature depends on them too (property ``Containers``)."""
+    repeats) holding the sources of ``obj`` but not ``obj`` itself: their placements
+    move the sources in the model, so the feature depends on them too (property
+    ``Containers``). A container holding the feature as well moves the result with
+    the sources (the shape is local to it), and a link to it would be a cycle (its
+    ``Group`` links the feature)."""
+    own = _chain_of_containers(obj)
     found = []
     for source in source_objects(obj):
-        group = source.getParentGeoFeatureGroup()
-        while group is not None:
-            if group not in found:
+        for group in _chain_of_containers(source):
+            if group not in found and group not in own:
                 found.append(group)
-            group = group.getParentGeoFeatureGroup()
     return found
+
+
+def _local_shape(obj, shape):
+    """``shape`` (built in model coordinates) in the coordinates of ``obj``'s containers,
+    so that FreeCAD's display (the containers' placements applied on top) shows it
+    where the sources are. The geometry is moved (``transformShape`` with a copy): a
+    feature's own ``Placement`` replaces a shape's placement on recompute."""
+    to_model = operations.placement_to_model(obj)
+    if to_model.isIdentity():
+        return shape
+    local = shape.copy()
+    local.transformShape(to_model.inverse().toMatrix(), True)
+    return local
 
 
 def _update_containers(obj):
@@ -223,7 +280,7 @@ class _Feature:
             obj.Shape = Part.Shape()  # no stale result behind the error
             message = operations.with_articles(f"{obj.Label}: {error}")
             raise FeatureError(message) from None
-        obj.Shape = shape
+        obj.Shape = _local_shape(obj, shape)
 
     def build(self, obj):
         """The result's shape from the current sources and parameters."""
@@ -478,6 +535,10 @@ def _make(document, proxy_class, name, links, parameters):
         obj.ViewObject.Proxy = 0
     for property_name, value in links.items():
         setattr(obj, property_name, value)
+    container = home_container(obj)
+    if container is not None:
+        container.addObject(obj)
+        _update_containers(obj)  # the new home is no dependency
     for property_name, value in parameters.items():
         setattr(obj, property_name, value)
     if obj.ConsumeSources:

@@ -26,7 +26,10 @@ What it does, as a user would:
   by the Body), and that it recomputes when a parameter changes and when the Body
   moves;
 * writes screenshots with ``ActiveView.saveImage`` into the folder named by
-  ``BEZJOIN_GUI_OUTPUT`` (default ``/tmp/bezjoin-gui``) and checks they are not blank.
+  ``BEZJOIN_GUI_OUTPUT`` (default ``/tmp/bezjoin-gui``) and checks they are not blank;
+* then rounds a corner of a sketch in a rotated, placed ``App::Part``: the feature must
+  land in that Part (the Body's results cannot: a Body takes PartDesign features
+  only), be drawn where the sketch is, and hide the sketch.
 
 FreeCAD's exit status says nothing about a macro, so the outcome goes to the result
 file ``BEZJOIN_GUI_RESULT`` (default ``<output>/result.txt``): first line ``OK <n>
@@ -411,6 +414,41 @@ def test_round_wire(doc, body, sketches):
     return obj
 
 
+def test_round_corner_in_a_part(doc):
+    """A sketch in a rotated, placed App::Part: the command's feature goes into that Part
+    (the Body's features cannot: a Body takes PartDesign features only), is drawn where
+    the sketch is (its shape local to the Part), and hides its sketch."""
+    part = doc.addObject("App::Part", "Assembly")
+    part.Placement = FreeCAD.Placement(V(0, -80, 5), FreeCAD.Rotation(V(0, 0, 1), 30))
+    sketch = doc.addObject("Sketcher::SketchObject", "PartCorner")
+    part.addObject(sketch)
+    for element in polyline([(0, 0, 0), (30, 0, 0), (30, 20, 0)]):
+        sketch.addGeometry(element, False)
+    sketch.addConstraint(Sketcher.Constraint("Coincident", 0, 2, 1, 1))
+    doc.recompute()
+    obj = run_command(doc, "Bezjoin_RoundCorner", [(sketch, edge_name(sketch, (0, 0, 0), (30, 0, 0))),
+                                                   (sketch, edge_name(sketch, (30, 0, 0), (30, 20, 0)))],
+                      {"Setback along the first edge": 4.0,
+                       "Setback along the second edge": 4.0})
+    check(obj.getParentGeoFeatureGroup() == part,
+          f"{obj.Name} is in {obj.getParentGeoFeatureGroup()}, not in the Part of its sketch")
+    check(obj.isValid(), f"{obj.Name} is invalid: {obj.getStatusString()}")
+    check(part not in list(obj.Containers), "the feature depends on its own Part (a cycle)")
+    # Model coordinates: the Part's placement on top of the local shape.
+    shape = obj.Shape.copy()
+    shape.Placement = obj.getGlobalPlacement()
+    in_model = part.Placement.multVec
+    same_ends(shape, in_model(V(0, 0, 0)), in_model(V(30, 20, 0)), "the corner in the Part")
+    distance = shape.distToShape(Part.Vertex(in_model(V(30, 0, 0))))[0]
+    check(distance > 0.5, f"the corner in the Part passes {distance} from the sharp corner")
+    view = obj.ViewObject
+    check(view is not None and view.Visibility and view.DisplayMode,
+          f"{obj.Name} in the Part is not drawn")
+    check(not sketch.ViewObject.Visibility, "the corner in the Part did not hide its sketch")
+    log(f"round corner in an App::Part: in {part.Name}, {distance:.3f} from the corner")
+    return obj
+
+
 def screenshot(name, orientation):
     view = FreeCADGui.ActiveDocument.ActiveView
     getattr(view, orientation)()
@@ -468,6 +506,11 @@ def main():
         check(obj.isValid(), f"{obj.Name} is invalid: {obj.getStatusString()}")
     screenshot("bezjoin-gui-top.png", "viewTop")
     screenshot("bezjoin-gui-isometric.png", "viewIsometric")
+    # After the screenshots (a Part far from the Body would shrink them).
+    test_round_corner_in_a_part(doc)
+    doc.recompute()
+    for obj in doc.Objects:
+        check(obj.isValid(), f"{obj.Name} is invalid: {obj.getStatusString()}")
     log(f"done in {time.time() - started:.1f} s")
 
 
