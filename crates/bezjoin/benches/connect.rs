@@ -1,6 +1,15 @@
 //! Connect (mathematics.md, section 1): cubic to cubic with C3 at both ends
 //! (degree 7), in 2D and 3D, with and without one K = 2 interior constraint
 //! (degree 10), structured solve versus the dense reference solve.
+//!
+//! `connect_vs_jets/<case>/{connect,jets}` (issue 20): a connect next to
+//! the evaluation of the two input jets it needs (`P^(k)(u0)`, k <= kp, and
+//! `Q^(k)(v0)`, k <= kq, by `eval_derivatives_into` into stack buffers), the
+//! physical limit of the operation; the goal is connect <= 2x jets. Cases:
+//! cubic + cubic C3 in 2D (at the ends `u0 = 1, v0 = 0` and at the C++
+//! demo's interior parameters `u0 = 0.6, v0 = 0.3`) and 3D, cubic + quartic
+//! C3/C4 in 3D (the demo's case), each without and with one interior point
+//! (position and tangent at `t = 0.4`, as the demo).
 use std::hint::black_box;
 
 use bezjoin_core::BezierCurve;
@@ -47,5 +56,62 @@ fn bench_connect(c: &mut Criterion) {
     }
 }
 
-criterion_group!(benches, bench_connect);
+fn curve(dim: usize, degree: usize, offset: f64) -> BezierCurve {
+    let pts: Vec<f64> = (0..(degree + 1) * dim)
+        .map(|i| offset + ((i * 7919) % 97) as f64 / 9.7)
+        .collect();
+    BezierCurve::new(dim, degree, pts).unwrap()
+}
+
+fn bench_connect_vs_jets(c: &mut Criterion) {
+    // (label, dim, degree of Q, kp, kq, u0, v0)
+    let cases = [
+        ("cubic_cubic_c3_2d_ends", 2, 3, 3, 3, 1.0, 0.0),
+        ("cubic_cubic_c3_2d", 2, 3, 3, 3, 0.6, 0.3),
+        ("cubic_cubic_c3_3d", 3, 3, 3, 3, 0.6, 0.3),
+        ("cubic_quartic_c3c4_3d", 3, 4, 3, 4, 0.6, 0.3),
+    ];
+    for (label, dim, q_degree, kp, kq, u0, v0) in cases {
+        let p = curve(dim, 3, 0.0);
+        let q = curve(dim, q_degree, 20.0);
+        let plain = ConnectOptions::new(kp, kq);
+        let base = connect(&p, u0, &q, v0, &plain).unwrap();
+        let values = base
+            .curve
+            .eval_derivatives(0.4, 1)
+            .iter()
+            .map(|v| v * 1.05)
+            .collect();
+        let point = plain
+            .clone()
+            .with_constraint(PointConstraint::new(0.4, 1, values));
+        for (suffix, options) in [("", &plain), ("_point", &point)] {
+            c.bench_function(&format!("connect_vs_jets/{label}{suffix}/connect"), |b| {
+                b.iter(|| {
+                    connect(black_box(&p), black_box(u0), black_box(&q), black_box(v0), options)
+                        .unwrap()
+                })
+            });
+            c.bench_function(&format!("connect_vs_jets/{label}{suffix}/jets"), |b| {
+                let mut pj = [0.0f64; 16];
+                let mut qj = [0.0f64; 16];
+                b.iter(|| {
+                    black_box(&p).eval_derivatives_into(
+                        black_box(u0),
+                        kp,
+                        &mut pj[..(kp + 1) * dim],
+                    );
+                    black_box(&q).eval_derivatives_into(
+                        black_box(v0),
+                        kq,
+                        &mut qj[..(kq + 1) * dim],
+                    );
+                    black_box((&mut pj, &mut qj));
+                })
+            });
+        }
+    }
+}
+
+criterion_group!(benches, bench_connect, bench_connect_vs_jets);
 criterion_main!(benches);

@@ -74,85 +74,115 @@ pub(crate) fn basis_derivatives(
     t: f64,
     max_order: usize,
 ) -> DMatrix<f64> {
-    let p = degree;
-    let n = max_order.min(p);
-    let mut rows = vec![0.0; (n + 1) * (p + 1)];
-    let mut work = vec![0.0; basis_work_len(p)];
-    basis_derivatives_into(knots, p, span, t, n, &mut rows, &mut work);
-    let mut ders = DMatrix::<f64>::zeros(max_order + 1, p + 1);
-    for k in 0..=n {
-        for j in 0..=p {
-            ders[(k, j)] = rows[k * (p + 1) + j];
-        }
-    }
+    let mut ders = DMatrix::<f64>::zeros(max_order + 1, degree + 1);
+    let mut scratch = vec![0.0; basis_scratch_len(degree)];
+    // Column-major: entry (k, j) at k + j (max_order + 1).
+    basis_derivatives_into(
+        |i| knots[i],
+        degree,
+        span,
+        t,
+        max_order,
+        BasisLayout {
+            order_stride: 1,
+            index_stride: max_order + 1,
+        },
+        ders.as_mut_slice(),
+        &mut scratch,
+    );
     ders
 }
 
-/// Length of the work buffer [`basis_derivatives_into`] needs for degree `p`.
-pub(crate) const fn basis_work_len(p: usize) -> usize {
-    (p + 1) * (p + 1) + 4 * (p + 1)
+/// Where [`basis_derivatives_into`] writes entry `(k, j)` (derivative order
+/// `k`, basis function `j`): at `k * order_stride + j * index_stride`.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct BasisLayout {
+    pub(crate) order_stride: usize,
+    pub(crate) index_stride: usize,
 }
 
-/// A2.3 into caller buffers, without allocation: `ders` receives
-/// `(n + 1) x (p + 1)` values row-major (`n <= p`; row `k` holds the k-th
-/// derivatives of `N_(span - p + j)`, `j = 0..=p`, at `t`), `work` holds at
-/// least [`basis_work_len`]`(p)` values. The same arithmetic, in the same
-/// order, as [`basis_derivatives`] (which calls it).
+impl BasisLayout {
+    /// Row-major `(max_order + 1) x (degree + 1)`: row `k` is contiguous.
+    pub(crate) fn row_major(degree: usize) -> Self {
+        Self {
+            order_stride: degree + 1,
+            index_stride: 1,
+        }
+    }
+}
+
+/// The scratch doubles [`basis_derivatives_into`] needs at degree `degree`:
+/// `(p + 1)^2 + 4 (p + 1)`.
+pub(crate) const fn basis_scratch_len(degree: usize) -> usize {
+    (degree + 1) * (degree + 5)
+}
+
+/// A2.3 ([`basis_derivatives`]) into caller storage, without allocating:
+/// knot `i` is `knot(i)`, the entries go to `ders` as `layout` says (rows
+/// above `degree` are set to zero), `scratch` holds at least
+/// [`basis_scratch_len`]`(degree)` doubles. The same operations in the same
+/// order as ever, so the same values bit for bit whatever the storage.
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn basis_derivatives_into(
-    knots: &[f64],
-    p: usize,
+    knot: impl Fn(usize) -> f64,
+    degree: usize,
     span: usize,
     t: f64,
-    n: usize,
+    max_order: usize,
+    layout: BasisLayout,
     ders: &mut [f64],
-    work: &mut [f64],
+    scratch: &mut [f64],
 ) {
-    debug_assert!(n <= p && ders.len() >= (n + 1) * (p + 1));
-    let m = p + 1;
-    // ndu (m x m, row-major): lower triangle knot differences (then their
-    // reciprocals), upper triangle basis functions.
-    let (ndu, rest) = work.split_at_mut(m * m);
-    let (left, rest) = rest.split_at_mut(m);
-    let (right, rest) = rest.split_at_mut(m);
-    let (a0, a1) = rest.split_at_mut(m);
+    let p = degree;
+    let p1 = p + 1;
+    let n = max_order.min(p);
+    let at = |k: usize, j: usize| k * layout.order_stride + j * layout.index_stride;
+    // ndu: lower triangle knot differences (then their reciprocals), upper
+    // triangle basis functions; entry (j, r) at j * (p + 1) + r. Every entry
+    // read below is written first.
+    let (ndu, rest) = scratch[..basis_scratch_len(p)].split_at_mut(p1 * p1);
+    let (left, rest) = rest.split_at_mut(p1);
+    let (right, a) = rest.split_at_mut(p1);
     ndu[0] = 1.0;
     for j in 1..=p {
-        left[j] = t - knots[span + 1 - j];
-        right[j] = knots[span + j] - t;
+        left[j] = t - knot(span + 1 - j);
+        right[j] = knot(span + j) - t;
         let mut saved = 0.0;
         for r in 0..j {
-            ndu[j * m + r] = right[r + 1] + left[j - r];
-            let temp = ndu[r * m + j - 1] / ndu[j * m + r];
-            ndu[r * m + j] = saved + right[r + 1] * temp;
+            ndu[j * p1 + r] = right[r + 1] + left[j - r];
+            let temp = ndu[r * p1 + j - 1] / ndu[j * p1 + r];
+            ndu[r * p1 + j] = saved + right[r + 1] * temp;
             saved = left[j - r] * temp;
         }
-        ndu[j * m + j] = saved;
+        ndu[j * p1 + j] = saved;
     }
     for j in 0..=p {
-        ders[j] = ndu[j * m + p];
+        ders[at(0, j)] = ndu[j * p1 + p];
     }
-    if n == 0 {
-        return;
+    for k in n + 1..=max_order {
+        for j in 0..=p {
+            ders[at(k, j)] = 0.0;
+        }
     }
     // Reciprocals of the knot differences (lower triangle of ndu), so that
     // the O(p^2 n) loop below multiplies instead of dividing.
     for j in 1..=p {
         for r in 0..j {
-            ndu[j * m + r] = 1.0 / ndu[j * m + r];
+            ndu[j * p1 + r] = 1.0 / ndu[j * p1 + r];
         }
     }
-    // Derivatives (Eq. 2.9), two alternating rows of coefficients.
-    let a: [&mut [f64]; 2] = [a0, &mut a1[..m]];
+    // Derivatives (Eq. 2.9), two alternating rows of coefficients (row s at
+    // a[s * (p + 1)..]).
     for r in 0..=p {
-        let (mut s1, mut s2) = (0usize, 1usize);
-        a[0][0] = 1.0;
+        let (mut s1, mut s2) = (0usize, p1);
+        a[0] = 1.0;
         for k in 1..=n {
             let mut d = 0.0;
             let rk = r as isize - k as isize;
             let pk = p - k;
             if r >= k {
-                a[s2][0] = a[s1][0] * ndu[(pk + 1) * m + rk as usize];
-                d = a[s2][0] * ndu[rk as usize * m + pk];
+                a[s2] = a[s1] * ndu[(pk + 1) * p1 + rk as usize];
+                d = a[s2] * ndu[rk as usize * p1 + pk];
             }
             let j1: usize = if rk >= -1 { 1 } else { (-rk) as usize };
             let j2: usize = if (r as isize - 1) <= pk as isize {
@@ -162,31 +192,24 @@ pub(crate) fn basis_derivatives_into(
             };
             for j in j1..=j2 {
                 let idx = (rk + j as isize) as usize;
-                a[s2][j] = (a[s1][j] - a[s1][j - 1]) * ndu[(pk + 1) * m + idx];
-                d += a[s2][j] * ndu[idx * m + pk];
+                a[s2 + j] = (a[s1 + j] - a[s1 + j - 1]) * ndu[(pk + 1) * p1 + idx];
+                d += a[s2 + j] * ndu[idx * p1 + pk];
             }
             if r <= pk {
-                a[s2][k] = -a[s1][k - 1] * ndu[(pk + 1) * m + r];
-                d += a[s2][k] * ndu[r * m + pk];
+                a[s2 + k] = -a[s1 + k - 1] * ndu[(pk + 1) * p1 + r];
+                d += a[s2 + k] * ndu[r * p1 + pk];
             }
-            ders[k * m + r] = d;
+            ders[at(k, r)] = d;
             std::mem::swap(&mut s1, &mut s2);
         }
     }
     let mut factor = p as f64;
     for k in 1..=n {
         for j in 0..=p {
-            ders[k * m + j] *= factor;
+            ders[at(k, j)] *= factor;
         }
         factor *= (p - k) as f64;
     }
-}
-
-/// The clamped Bezier knot vector `0^(n+1) 1^(n+1)`.
-pub(crate) fn bezier_knots(degree: usize) -> Vec<f64> {
-    let mut knots = vec![0.0; degree + 1];
-    knots.extend(std::iter::repeat_n(1.0, degree + 1));
-    knots
 }
 
 /// `D(t)`: the Bernstein basis of degree `degree` and its derivatives up to
@@ -196,13 +219,36 @@ pub(crate) fn bezier_knots(degree: usize) -> Vec<f64> {
 /// triangular and `D(1)` anti-triangular (docs/mathematics.md#bezier-basics). Any
 /// finite `t` is accepted (the polynomials are continued outside `[0, 1]`).
 pub(crate) fn bezier_basis_derivatives(degree: usize, t: f64, max_order: usize) -> DMatrix<f64> {
+    let mut d = DMatrix::zeros(max_order + 1, degree + 1);
+    let mut scratch = vec![0.0; basis_scratch_len(degree)];
+    let layout = BasisLayout {
+        order_stride: 1,
+        index_stride: max_order + 1,
+    };
+    bezier_basis_derivatives_into(degree, t, max_order, layout, d.as_mut_slice(), &mut scratch);
+    d
+}
+
+/// [`bezier_basis_derivatives`] into caller storage (as
+/// [`basis_derivatives_into`]; `ders` entirely written), without
+/// allocating: A2.3 on the knots `0^(n+1) 1^(n+1)`, read as `knot(i) = 0`
+/// for `i <= n` and 1 above, with no knot vector built.
+pub(crate) fn bezier_basis_derivatives_into(
+    degree: usize,
+    t: f64,
+    max_order: usize,
+    layout: BasisLayout,
+    ders: &mut [f64],
+    scratch: &mut [f64],
+) {
     if degree == 0 {
-        let mut d = DMatrix::zeros(max_order + 1, 1);
-        d[(0, 0)] = 1.0;
-        return d;
+        for k in 0..=max_order {
+            ders[k * layout.order_stride] = if k == 0 { 1.0 } else { 0.0 };
+        }
+        return;
     }
-    let knots = bezier_knots(degree);
-    basis_derivatives(&knots, degree, degree, t, max_order)
+    let knot = |i: usize| if i <= degree { 0.0 } else { 1.0 };
+    basis_derivatives_into(knot, degree, degree, t, max_order, layout, ders, scratch);
 }
 
 /// Binomial coefficient `C(n, k)` as `f64` (exact while it is below 2^53).

@@ -176,6 +176,33 @@ pub trait CurveJet {
     /// matrix; any order: above a polynomial's degree they vanish) and a
     /// bound on the absolute rounding error of each row.
     fn jet(&self, u: f64, order: usize, side: KnotSide) -> (DMatrix<f64>, Vec<f64>);
+    /// [`jet`](Self::jet) written into caller storage: row `k` of the
+    /// derivatives at `values[k * dim..(k + 1) * dim]` (`(order + 1) * dim`
+    /// values), the bound of row `k` at `errors[k]` (`order + 1` values);
+    /// the same numbers bit for bit. The default copies from `jet`; a
+    /// Bezier curve computes it without allocating for small degrees, the
+    /// hot path of [`connect`](crate::connect).
+    ///
+    /// # Panics
+    /// If the lengths are not as stated.
+    fn jet_into(
+        &self,
+        u: f64,
+        order: usize,
+        side: KnotSide,
+        values: &mut [f64],
+        errors: &mut [f64],
+    ) {
+        let (jet, bound) = self.jet(u, order, side);
+        let dim = jet.ncols();
+        assert_eq!(values.len(), (order + 1) * dim);
+        for k in 0..=order {
+            for c in 0..dim {
+                values[k * dim + c] = jet[(k, c)];
+            }
+        }
+        errors.copy_from_slice(&bound);
+    }
 }
 
 impl CurveJet for BezierCurve {
@@ -196,6 +223,17 @@ impl CurveJet for BezierCurve {
     /// `gamma = 2 (n + k + 2) eps`.
     fn jet(&self, t: f64, order: usize, _side: KnotSide) -> (DMatrix<f64>, Vec<f64>) {
         crate::connect::derivatives_with_error(self, t, order)
+    }
+
+    fn jet_into(
+        &self,
+        t: f64,
+        order: usize,
+        _side: KnotSide,
+        values: &mut [f64],
+        errors: &mut [f64],
+    ) {
+        crate::connect::derivatives_with_error_into(self, t, order, values, errors)
     }
 }
 
@@ -218,6 +256,19 @@ impl CurveJet for NurbsCurve {
             DMatrix::from_row_slice(order + 1, NurbsCurve::dim(self), &values),
             bound,
         )
+    }
+
+    fn jet_into(
+        &self,
+        u: f64,
+        order: usize,
+        side: KnotSide,
+        values: &mut [f64],
+        errors: &mut [f64],
+    ) {
+        let (jet, bound) = self.eval_derivatives_with_bound(u, order, side);
+        values.copy_from_slice(&jet);
+        errors.copy_from_slice(&bound);
     }
 }
 
@@ -244,6 +295,20 @@ impl CurveJet for Curve {
         match self {
             Curve::Bezier(c) => c.jet(u, order, side),
             Curve::Nurbs(c) => c.jet(u, order, side),
+        }
+    }
+
+    fn jet_into(
+        &self,
+        u: f64,
+        order: usize,
+        side: KnotSide,
+        values: &mut [f64],
+        errors: &mut [f64],
+    ) {
+        match self {
+            Curve::Bezier(c) => c.jet_into(u, order, side, values, errors),
+            Curve::Nurbs(c) => c.jet_into(u, order, side, values, errors),
         }
     }
 }
@@ -389,6 +454,20 @@ impl CurveJet for CurveRef<'_> {
         match self {
             CurveRef::Bezier(c) => c.jet(u, order, side),
             CurveRef::Nurbs(c) => c.jet(u, order, side),
+        }
+    }
+
+    fn jet_into(
+        &self,
+        u: f64,
+        order: usize,
+        side: KnotSide,
+        values: &mut [f64],
+        errors: &mut [f64],
+    ) {
+        match self {
+            CurveRef::Bezier(c) => c.jet_into(u, order, side, values, errors),
+            CurveRef::Nurbs(c) => c.jet_into(u, order, side, values, errors),
         }
     }
 }

@@ -771,3 +771,83 @@ fn print_exhaustive_residuals() {
     }
     println!("\nmax residual / ((n + 1) u A) = {floor_ratio:.2}");
 }
+
+/// Random inputs for the comparisons of the hot path (issue 20): degrees
+/// 0..=7 in dimensions 1..=4, orders 0..=6, parameters at the ends and
+/// inside, scales in `[1/4, 4]`; `nurbs` also gives P as a NURBS curve.
+fn random_pair(rng: &mut Random, nurbs: bool) -> (bezjoin_core::Curve, f64, BezierCurve, f64, ConnectOptions) {
+    let dim = 1 + rng.below(4);
+    let (np, nq) = (rng.below(8), rng.below(8));
+    let p = rng.curve(dim, np, 3.0);
+    let q = rng.curve(dim, nq, 3.0);
+    let parameter = |rng: &mut Random| match rng.below(4) {
+        0 => 0.0,
+        1 => 1.0,
+        _ => rng.next(),
+    };
+    let (u0, v0) = (parameter(rng), parameter(rng));
+    let (kp, kq) = (rng.below(7), rng.below(7));
+    let (alpha, beta) = (rng.range(-2.0, 2.0).exp2(), rng.range(-2.0, 2.0).exp2());
+    let options = ConnectOptions::new(kp, kq).with_scales(alpha, beta);
+    let p = if nurbs && rng.below(2) == 0 {
+        bezjoin_core::Curve::Nurbs(bezjoin_core::NurbsCurve::from_bezier(&p))
+    } else {
+        bezjoin_core::Curve::Bezier(p)
+    };
+    (p, u0, q, v0, options)
+}
+
+/// `connect` without interior constraints runs its allocation-free path
+/// (the jets into stack buffers, the bands of `D(0)` and `D(1)`, the
+/// substitutions and the residual check without matrices); the general
+/// structured path with the condition rows as matrices stays behind
+/// `connect_unchecked`. Same operations in the same order: the same control
+/// points, residual and estimate bit for bit, and a refusal exactly when the
+/// general path's estimate exceeds the limit (with that estimate). Bezier
+/// and NURBS inputs, 600 random cases (fixed seed).
+#[test]
+fn connect_without_constraints_equals_the_general_structured_path() {
+    let mut rng = Random(0x2020_c0ec_7001);
+    let mut refused = 0;
+    for case in 0..600 {
+        let (p, u0, q, v0, options) = random_pair(&mut rng, true);
+        let general = connect_unchecked(&p, u0, &q, v0, &options).unwrap();
+        match connect(&p, u0, &q, v0, &options) {
+            Ok(fast) => assert_eq!(fast, general, "case {case}: {options:?} u0 {u0} v0 {v0}"),
+            Err(BezjoinError::IllConditioned { estimate, .. }) => {
+                assert!(general.error_estimate > CONNECT_RESIDUAL_LIMIT, "case {case}");
+                assert_eq!(estimate, general.error_estimate, "case {case}");
+                refused += 1;
+            }
+            Err(e) => panic!("case {case}: {e}"),
+        }
+    }
+    eprintln!("{refused} of 600 refused by both paths");
+    assert!(refused < 60, "{refused} of 600 refused");
+}
+
+/// The hot path against the dense LU reference (another algorithm, the
+/// whole `(n+1) x (n+1)` system): both are checked to the residual limit by
+/// the solver; their control points agree to `1e-11` of the larger control
+/// point (measured at most 2.1e-14 on these 400 cases, fixed seed; result
+/// degrees up to 13, backward-stable triangular solves against LU with
+/// refinement).
+#[test]
+fn connect_without_constraints_agrees_with_the_dense_reference() {
+    let mut rng = Random(0x2020_de45_e001);
+    let mut worst = 0.0f64;
+    for case in 0..400 {
+        let (p, u0, q, v0, options) = random_pair(&mut rng, false);
+        let (Ok(fast), Ok(dense)) = (
+            connect(&p, u0, &q, v0, &options),
+            connect_dense_reference(&p, u0, &q, v0, &options),
+        ) else {
+            continue;
+        };
+        let scale = fast.curve.coordinate_scale();
+        let gap = common::max_abs_gap(fast.curve.points(), dense.curve.points()) / scale;
+        worst = worst.max(gap);
+        assert!(gap <= 1e-11, "case {case}: {gap:e} ({options:?})");
+    }
+    eprintln!("structured vs dense reference: worst relative gap {worst:e}");
+}

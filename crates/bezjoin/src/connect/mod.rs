@@ -79,11 +79,15 @@
 //! rational reference, are in `docs/accuracy.md` (Connect).
 
 mod dense;
+mod ends;
 mod energy;
 
 use nalgebra::DMatrix;
 
-use crate::basis::{KnotSide, bezier_basis_derivatives};
+use crate::basis::{
+    BasisLayout, KnotSide, basis_scratch_len, bezier_basis_derivatives,
+    bezier_basis_derivatives_into,
+};
 use crate::bezier::BezierCurve;
 use crate::curve::CurveJet;
 use crate::error::{BezjoinError, Result, check_finite, check_open_range, check_positive};
@@ -322,11 +326,16 @@ fn unit_roundoff() -> f64 {
     f64::EPSILON / 2.0
 }
 
-/// Row `k` (`k <= order`) of `D(0)` (`at_one = false`) or `D(1)` (`at_one =
-/// true`) for degree `degree`, by the closed form (module documentation,
-/// "Where the basis rows come from"), written into `out[(k, ..)]` of a
-/// `rows x (degree + 1)` column-major buffer; the other entries are left alone.
-fn end_basis_row(degree: usize, k: usize, at_one: bool, out: &mut DMatrix<f64>, row: usize) {
+/// `k (k + 1) / 2`: where row `k` of a packed lower triangle starts.
+fn triangular_number(k: usize) -> usize {
+    k * (k + 1) / 2
+}
+
+/// The non-zero band of row `k <= degree` of `D(0)` (`at_one = false`:
+/// columns `0..=k`) or `D(1)` (`at_one = true`: columns `n-k..=n`) for
+/// degree `n = degree`, by the closed form (module documentation, "Where
+/// the basis rows come from"), in ascending column order into `band[..=k]`.
+pub(crate) fn end_band(degree: usize, k: usize, at_one: bool, band: &mut [f64]) {
     // n!/(n-k)! (exact while below 2^53, else within k units of roundoff) and
     // C(k, j) by the exact integer recurrence C(k, j+1) = C(k, j) (k-j)/(j+1).
     let mut falling = 1.0f64;
@@ -336,20 +345,48 @@ fn end_basis_row(degree: usize, k: usize, at_one: bool, out: &mut DMatrix<f64>, 
     let mut coefficient = 1.0f64; // C(k, j)
     for j in 0..=k {
         // D(0)[k][j] = n!/(n-k)! (-1)^(k-j) C(k, j);
-        // D(1)[k][n-j] = n!/(n-k)! (-1)^j C(k, j)  (B_i(t) = B_(n-i)(1-t)).
-        let (column, negative) = if at_one {
-            (degree - j, j % 2 == 1)
+        // D(1)[k][n-j] = n!/(n-k)! (-1)^j C(k, j)  (B_i(t) = B_(n-i)(1-t)),
+        // at band position (n - j) - (n - k) = k - j.
+        let (slot, negative) = if at_one {
+            (k - j, j % 2 == 1)
         } else {
             (j, (k - j) % 2 == 1)
         };
         let value = falling * coefficient;
-        out[(row, column)] = if negative { -value } else { value };
+        band[slot] = if negative { -value } else { value };
         coefficient = coefficient * (k - j) as f64 / (j + 1) as f64;
     }
 }
 
+/// Run `f` on `len` zeroed doubles: on the stack up to 96 or 512 of them
+/// (the small degrees and dimensions of the hot paths), on the heap above.
+pub(crate) fn with_scratch<R>(len: usize, f: impl FnOnce(&mut [f64]) -> R) -> R {
+    if len <= 96 {
+        f(&mut [0.0f64; 96][..len])
+    } else if len <= 512 {
+        f(&mut [0.0f64; 512][..len])
+    } else {
+        f(&mut vec![0.0f64; len])
+    }
+}
+
+/// Row `k` (`k <= order`, `k <= degree`) of `D(0)` (`at_one = false`) or
+/// `D(1)` (`at_one = true`) for degree `degree` ([`end_band`]), written
+/// into `out[(row, ..)]` of a `rows x (degree + 1)` column-major buffer;
+/// the other entries are left alone.
+fn end_basis_row(degree: usize, k: usize, at_one: bool, out: &mut DMatrix<f64>, row: usize) {
+    with_scratch(k + 1, |band| {
+        end_band(degree, k, at_one, band);
+        let first = if at_one { degree - k } else { 0 };
+        for (i, &value) in band.iter().enumerate() {
+            out[(row, first + i)] = value;
+        }
+    });
+}
+
 /// `D(t)` for derivatives `0..=order` of degree `degree`: the closed form at
 /// `t = 0` and `t = 1`, A2.3 ([`bezier_basis_derivatives`]) elsewhere.
+#[cfg(test)]
 fn basis_rows(degree: usize, t: f64, order: usize) -> DMatrix<f64> {
     if degree > 0 && (t == 0.0 || t == 1.0) {
         let mut d = DMatrix::zeros(order + 1, degree + 1);
@@ -363,53 +400,99 @@ fn basis_rows(degree: usize, t: f64, order: usize) -> DMatrix<f64> {
 }
 
 /// `P^(k)(t)` for `k = 0..=order` with a first-order rounding bound per row
-/// (`gamma * |D| |P|`, `gamma = 2 (n + k + 2) u`).
+/// (`gamma * |D| |P|`, `gamma = 2 (n + k + 2) u`), as a matrix
+/// ([`derivatives_with_error_into`]).
 pub(crate) fn derivatives_with_error(
     curve: &BezierCurve,
     t: f64,
     order: usize,
 ) -> (DMatrix<f64>, Vec<f64>) {
-    let basis = basis_rows(curve.degree(), t, order);
     let dim = curve.dim();
-    let points = curve.points();
-    let mut values = DMatrix::zeros(order + 1, dim);
-    let mut errors = Vec::with_capacity(order + 1);
-    let mut abs_row = [0.0f64; 16];
-    let mut abs_heap = Vec::new();
-    let abs_row: &mut [f64] = if dim <= abs_row.len() {
-        &mut abs_row[..dim]
-    } else {
-        abs_heap.resize(dim, 0.0);
-        &mut abs_heap
-    };
-    for k in 0..=order {
-        abs_row.fill(0.0);
-        for i in 0..=curve.degree() {
-            let b = basis[(k, i)];
-            if b == 0.0 {
-                continue;
-            }
-            let point = &points[i * dim..(i + 1) * dim];
-            for c in 0..dim {
-                values[(k, c)] += b * point[c];
-                abs_row[c] += b.abs() * point[c].abs();
-            }
-        }
-        let gamma = 2.0 * (curve.degree() + k + 2) as f64 * unit_roundoff();
-        let norm = abs_row.iter().map(|v| v * v).sum::<f64>().sqrt();
-        errors.push(gamma * norm);
-    }
-    (values, errors)
+    let mut values = vec![0.0; (order + 1) * dim];
+    let mut errors = vec![0.0; order + 1];
+    derivatives_with_error_into(curve, t, order, &mut values, &mut errors);
+    (DMatrix::from_row_slice(order + 1, dim, &values), errors)
 }
 
-/// Validate the inputs (everything except the scales) and evaluate the end data.
-pub(crate) fn prepare<P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
+/// `P^(k)(t) = D(t)_k P` for `k = 0..=order`, row-major into `values`
+/// (`(order + 1) * dim`), and the first-order rounding bound of each row,
+/// `gamma * |D(t)_k| |P|` with `gamma = 2 (n + k + 2) u`, into `errors`
+/// (`order + 1`). `D(t)` is the closed form at `t = 0` and `t = 1` (only
+/// the band of each row is formed) and A2.3 elsewhere; the sums run over
+/// the non-zero entries in ascending column order. Allocation-free while
+/// the basis rows and A2.3's scratch fit [`with_scratch`]'s stack buffers
+/// (degree 3 to 7 at the usual orders).
+pub(crate) fn derivatives_with_error_into(
+    curve: &BezierCurve,
+    t: f64,
+    order: usize,
+    values: &mut [f64],
+    errors: &mut [f64],
+) {
+    let n = curve.degree();
+    let dim = curve.dim();
+    let points = curve.points();
+    assert_eq!(values.len(), (order + 1) * dim);
+    assert_eq!(errors.len(), order + 1);
+    values.fill(0.0);
+    let at_end = n > 0 && (t == 0.0 || t == 1.0);
+    // End rows: one band of at most n + 1 entries at a time; elsewhere the
+    // whole (order + 1) x (n + 1) A2.3 matrix, row-major, and its scratch.
+    let basis_len = if at_end {
+        n + 1
+    } else {
+        (order + 1) * (n + 1) + basis_scratch_len(n)
+    };
+    with_scratch(basis_len + dim, |buffer| {
+        let (basis, abs_row) = buffer.split_at_mut(basis_len);
+        if !at_end {
+            let (rows, scratch) = basis.split_at_mut((order + 1) * (n + 1));
+            bezier_basis_derivatives_into(
+                n,
+                t,
+                order,
+                BasisLayout::row_major(n),
+                rows,
+                scratch,
+            );
+        }
+        for k in 0..=order {
+            abs_row.fill(0.0);
+            // The row's non-zero columns `first..first + len` and entries.
+            let (first, row): (usize, &[f64]) = if !at_end {
+                (0, &basis[k * (n + 1)..(k + 1) * (n + 1)])
+            } else if k <= n {
+                end_band(n, k, t == 1.0, &mut basis[..=k]);
+                (if t == 1.0 { n - k } else { 0 }, &basis[..=k])
+            } else {
+                (0, &[])
+            };
+            let value = &mut values[k * dim..(k + 1) * dim];
+            for (i, &b) in row.iter().enumerate() {
+                if b == 0.0 {
+                    continue;
+                }
+                let point = &points[(first + i) * dim..(first + i + 1) * dim];
+                for c in 0..dim {
+                    value[c] += b * point[c];
+                    abs_row[c] += b.abs() * point[c].abs();
+                }
+            }
+            let gamma = 2.0 * (n + k + 2) as f64 * unit_roundoff();
+            let norm = abs_row.iter().map(|v| v * v).sum::<f64>().sqrt();
+            errors[k] = gamma * norm;
+        }
+    });
+}
+
+/// The checks of the curves and parameters, first in [`prepare`]: equal
+/// dimensions, `u0` in P's domain, `v0` in Q's. Returns the dimension.
+fn check_pair<P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
     p: &P,
     u0: f64,
     q: &Q,
     v0: f64,
-    options: &ConnectOptions,
-) -> Result<Problem> {
+) -> Result<usize> {
     let dim = p.dim();
     if q.dim() != dim {
         return Err(BezjoinError::DimensionMismatch {
@@ -420,6 +503,18 @@ pub(crate) fn prepare<P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
     }
     p.check_parameter("u0", u0)?;
     q.check_parameter("v0", v0)?;
+    Ok(dim)
+}
+
+/// Validate the inputs (everything except the scales) and evaluate the end data.
+pub(crate) fn prepare<P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
+    p: &P,
+    u0: f64,
+    q: &Q,
+    v0: f64,
+    options: &ConnectOptions,
+) -> Result<Problem> {
+    let dim = check_pair(p, u0, q, v0)?;
     let mut constraints: Vec<(f64, DMatrix<f64>)> = Vec::with_capacity(options.constraints.len());
     let data_scale = p.coordinate_scale().max(q.coordinate_scale());
     for (j, c) in options.constraints.iter().enumerate() {
@@ -788,6 +883,15 @@ pub fn connect<P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
     v0: f64,
     options: &ConnectOptions,
 ) -> Result<Connection> {
+    if options.constraints.is_empty() {
+        // The checks of `prepare` in its order, then the scales'.
+        check_pair(p, u0, q, v0)?;
+        check_connect_degree(options.p_order, options.q_order, [])?;
+        if let Some((alpha, beta)) = options.scale.checked()? {
+            let (kp, kq) = (options.p_order, options.q_order);
+            return ends::connect_ends(p, u0, q, v0, kp, kq, alpha, beta);
+        }
+    }
     let problem = prepare(p, u0, q, v0, options)?;
     match options.scale.checked()? {
         Some((alpha, beta)) => solve_structured(&problem, alpha, beta),
@@ -959,6 +1063,51 @@ mod tests {
                         // Exact zeros: D(0) is lower triangular, D(1) anti-triangular.
                         if (!at_one && i > k) || (at_one && i + k < n) {
                             assert_eq!(a, 0.0);
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    /// The jets computed in place (bands at the ends, A2.3 into stack
+    /// buffers inside) are the products of the basis rows `D(t)`
+    /// ([`basis_rows`]: the closed-form matrix at the ends, A2.3's matrix
+    /// elsewhere) with the control points, summed over the non-zero entries
+    /// in ascending column order, and the bounds `gamma |D| |P|`: bit for
+    /// bit, for degrees 0..=9, dimensions 1..=4, orders up to 11 (above the
+    /// degree too), at the ends and inside (and outside) `[0, 1]`, with
+    /// stack and heap buffers.
+    #[test]
+    fn jets_in_place_equal_the_basis_row_products() {
+        for n in 0..=9 {
+            for dim in 1..=4 {
+                let points: Vec<f64> = (0..(n + 1) * dim)
+                    .map(|i| ((i * 7919) % 97) as f64 / 9.7 - 5.0)
+                    .collect();
+                let curve = BezierCurve::new(dim, n, points).unwrap();
+                for t in [0.0, 1.0, 0.3, 0.5, 0.77, -0.2, 1.4] {
+                    for order in [0, 1, 2, 3, n, n + 2] {
+                        let d = basis_rows(n, t, order);
+                        let (values, errors) = derivatives_with_error(&curve, t, order);
+                        for k in 0..=order {
+                            let mut value = vec![0.0; dim];
+                            let mut abs = vec![0.0; dim];
+                            for i in 0..=n {
+                                let b = d[(k, i)];
+                                if b != 0.0 {
+                                    for c in 0..dim {
+                                        value[c] += b * curve.point(i)[c];
+                                        abs[c] += b.abs() * curve.point(i)[c].abs();
+                                    }
+                                }
+                            }
+                            let gamma = 2.0 * (n + k + 2) as f64 * unit_roundoff();
+                            let bound = gamma * abs.iter().map(|v| v * v).sum::<f64>().sqrt();
+                            for c in 0..dim {
+                                assert_eq!(values[(k, c)], value[c], "n {n} t {t} k {k}");
+                            }
+                            assert_eq!(errors[k], bound, "n {n} dim {dim} t {t} k {k}");
                         }
                     }
                 }

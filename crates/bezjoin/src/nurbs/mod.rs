@@ -31,7 +31,7 @@ mod spans;
 pub use conic::{AXIS_TOLERANCE, ellipse_arc};
 pub use length::MAX_RATIONAL_EVALUATIONS;
 
-use crate::basis::{KnotSide, basis_derivatives_into, basis_work_len, find_span};
+use crate::basis::{BasisLayout, KnotSide, basis_derivatives_into, basis_scratch_len, find_span};
 use crate::bezier::{BezierCurve, MAX_DEGREE};
 use crate::curve::CurveRef;
 use crate::error::{BezjoinError, Result, check_finite, check_finite_scalar};
@@ -669,16 +669,16 @@ impl NurbsCurve {
         debug_assert_eq!(out.len(), rows * self.dim);
         // Stack buffers sized for the degree (zeroing a large buffer costs
         // more than a small curve's whole evaluation), the heap beyond 15.
-        let (basis_len, work_len, jets_len) = ((n + 1) * m, basis_work_len(p), 3 * rows);
+        let (basis_len, work_len, jets_len) = ((n + 1) * m, basis_scratch_len(p), 3 * rows);
         let fits = |b: usize, w: usize, j: usize| basis_len <= b && work_len <= w && jets_len <= j;
-        if fits(16, basis_work_len(3), 48) {
-            let (mut b, mut w, mut j) = ([0.0; 16], [0.0; basis_work_len(3)], [0.0; 48]);
+        if fits(16, basis_scratch_len(3), 48) {
+            let (mut b, mut w, mut j) = ([0.0; 16], [0.0; basis_scratch_len(3)], [0.0; 48]);
             self.eval_rows(u, n, side, out, bound, &mut b, &mut w, &mut j);
-        } else if fits(64, basis_work_len(7), 96) {
-            let (mut b, mut w, mut j) = ([0.0; 64], [0.0; basis_work_len(7)], [0.0; 96]);
+        } else if fits(64, basis_scratch_len(7), 96) {
+            let (mut b, mut w, mut j) = ([0.0; 64], [0.0; basis_scratch_len(7)], [0.0; 96]);
             self.eval_rows(u, n, side, out, bound, &mut b, &mut w, &mut j);
-        } else if fits(256, basis_work_len(15), 192) {
-            let (mut b, mut w, mut j) = ([0.0; 256], [0.0; basis_work_len(15)], [0.0; 192]);
+        } else if fits(256, basis_scratch_len(15), 192) {
+            let (mut b, mut w, mut j) = ([0.0; 256], [0.0; basis_scratch_len(15)], [0.0; 192]);
             self.eval_rows(u, n, side, out, bound, &mut b, &mut w, &mut j);
         } else {
             let (mut b, mut w, mut j) = (
@@ -691,7 +691,7 @@ impl NurbsCurve {
     }
 
     /// The body of [`eval_derivatives_into`](Self::eval_derivatives_into)
-    /// on buffers of at least `(n + 1) (p + 1)` (basis), `basis_work_len(p)`
+    /// on buffers of at least `(n + 1) (p + 1)` (basis), `basis_scratch_len(p)`
     /// (work) and `3 (rows)` (jets) values, `n = min(max_order, p)`, where
     /// `rows = out.len() / dim`.
     #[allow(clippy::too_many_arguments)]
@@ -711,7 +711,17 @@ impl NurbsCurve {
         let m = p + 1;
         let rows = out.len() / d;
         let span = find_span(&self.knots, p, u, side);
-        basis_derivatives_into(&self.knots, p, span, u, n, basis, work);
+        let knots = &self.knots;
+        basis_derivatives_into(
+            |i| knots[i],
+            p,
+            span,
+            u,
+            n,
+            BasisLayout::row_major(p),
+            basis,
+            work,
+        );
         // Homogeneous rows: A^(k) in `out`; w^(k), the |w| sums and the |A|
         // sums in `jets`, `rows` values each.
         let jets = &mut jets[..3 * rows];
