@@ -32,30 +32,42 @@ fn bench_eval_ffi(c: &mut Criterion) {
         );
         for (kind, handle) in [("bezier", h), ("nurbs", nurbs)] {
             let mut out = [0.0f64; 3];
-            c.bench_function(&format!("bzj_curve_eval/{kind}/deg{degree}/3d/value"), |b| {
-                b.iter(|| {
-                    let s = unsafe {
-                        bzj_curve_eval(black_box(handle), black_box(0.37), 0, out.as_mut_ptr(), 3)
-                    };
-                    black_box((s, &mut out));
-                })
-            });
-            if degree == 3 {
-                let mut out = [0.0f64; 9];
-                c.bench_function(&format!("bzj_curve_eval/{kind}/deg{degree}/3d/order2"), |b| {
+            c.bench_function(
+                &format!("bzj_curve_eval/{kind}/deg{degree}/3d/value"),
+                |b| {
                     b.iter(|| {
                         let s = unsafe {
                             bzj_curve_eval(
                                 black_box(handle),
                                 black_box(0.37),
-                                2,
+                                0,
                                 out.as_mut_ptr(),
-                                9,
+                                3,
                             )
                         };
                         black_box((s, &mut out));
                     })
-                });
+                },
+            );
+            if degree == 3 {
+                let mut out = [0.0f64; 9];
+                c.bench_function(
+                    &format!("bzj_curve_eval/{kind}/deg{degree}/3d/order2"),
+                    |b| {
+                        b.iter(|| {
+                            let s = unsafe {
+                                bzj_curve_eval(
+                                    black_box(handle),
+                                    black_box(0.37),
+                                    2,
+                                    out.as_mut_ptr(),
+                                    9,
+                                )
+                            };
+                            black_box((s, &mut out));
+                        })
+                    },
+                );
                 let count = 1000usize;
                 let ts: Vec<f64> = (0..count).map(|i| i as f64 / (count - 1) as f64).collect();
                 let mut group = c.benchmark_group(format!("bzj_curve_eval_many/{kind}"));

@@ -88,8 +88,14 @@ fn bench_connect_vs_jets(c: &mut Criterion) {
         for (suffix, options) in [("", &plain), ("_point", &point)] {
             c.bench_function(&format!("connect_vs_jets/{label}{suffix}/connect"), |b| {
                 b.iter(|| {
-                    connect(black_box(&p), black_box(u0), black_box(&q), black_box(v0), options)
-                        .unwrap()
+                    connect(
+                        black_box(&p),
+                        black_box(u0),
+                        black_box(&q),
+                        black_box(v0),
+                        options,
+                    )
+                    .unwrap()
                 })
             });
             c.bench_function(&format!("connect_vs_jets/{label}{suffix}/jets"), |b| {

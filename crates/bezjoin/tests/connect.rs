@@ -775,7 +775,10 @@ fn print_exhaustive_residuals() {
 /// Random inputs for the comparisons of the hot path (issue 20): degrees
 /// 0..=7 in dimensions 1..=4, orders 0..=6, parameters at the ends and
 /// inside, scales in `[1/4, 4]`; `nurbs` also gives P as a NURBS curve.
-fn random_pair(rng: &mut Random, nurbs: bool) -> (bezjoin_core::Curve, f64, BezierCurve, f64, ConnectOptions) {
+fn random_pair(
+    rng: &mut Random,
+    nurbs: bool,
+) -> (bezjoin_core::Curve, f64, BezierCurve, f64, ConnectOptions) {
     let dim = 1 + rng.below(4);
     let (np, nq) = (rng.below(8), rng.below(8));
     let p = rng.curve(dim, np, 3.0);
@@ -815,7 +818,10 @@ fn connect_without_constraints_equals_the_general_structured_path() {
         match connect(&p, u0, &q, v0, &options) {
             Ok(fast) => assert_eq!(fast, general, "case {case}: {options:?} u0 {u0} v0 {v0}"),
             Err(BezjoinError::IllConditioned { estimate, .. }) => {
-                assert!(general.error_estimate > CONNECT_RESIDUAL_LIMIT, "case {case}");
+                assert!(
+                    general.error_estimate > CONNECT_RESIDUAL_LIMIT,
+                    "case {case}"
+                );
                 assert_eq!(estimate, general.error_estimate, "case {case}");
                 refused += 1;
             }

@@ -71,7 +71,8 @@ pub(super) fn connect_ends<P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
                 }
                 let norm = square.sqrt();
                 target_norms[r] = norm;
-                errors[k] = scale.powi(k as i32) * errors[k] + (k + 1) as f64 * unit_roundoff() * norm;
+                errors[k] =
+                    scale.powi(k as i32) * errors[k] + (k + 1) as f64 * unit_roundoff() * norm;
                 factor *= scale;
                 r += 1;
             }
@@ -127,7 +128,11 @@ pub(super) fn connect_ends<P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
         let mut worst_bound = 0.0f64;
         for r in 0..count {
             let (band, first, target) = if r <= kp {
-                (&p_bands[triangular_number(r)..][..=r], 0, &p_targets[r * dim..(r + 1) * dim])
+                (
+                    &p_bands[triangular_number(r)..][..=r],
+                    0,
+                    &p_targets[r * dim..(r + 1) * dim],
+                )
             } else {
                 let k = r - kp - 1;
                 (

@@ -447,14 +447,7 @@ pub(crate) fn derivatives_with_error_into(
         let (basis, abs_row) = buffer.split_at_mut(basis_len);
         if !at_end {
             let (rows, scratch) = basis.split_at_mut((order + 1) * (n + 1));
-            bezier_basis_derivatives_into(
-                n,
-                t,
-                order,
-                BasisLayout::row_major(n),
-                rows,
-                scratch,
-            );
+            bezier_basis_derivatives_into(n, t, order, BasisLayout::row_major(n), rows, scratch);
         }
         for k in 0..=order {
             abs_row.fill(0.0);
