@@ -37,6 +37,7 @@
 
 use super::track::{Piece, is_flat};
 use super::{Candidate, RELATIVE_CHORD_FLATNESS, SURELY_TRANSVERSAL_SINE, Search, chord_crossing};
+use std::cmp::Ordering;
 
 /// Highest degree the fast path takes (its buffers hold `MAX_DEGREE + 1`
 /// control points).
@@ -308,7 +309,7 @@ impl Search<'_> {
                     break;
                 };
                 let new_s = (s.0 + c0 * (s.1 - s.0), s.0 + c1 * (s.1 - s.0));
-                if !(new_s.0 < new_s.1) {
+                if new_s.0.partial_cmp(&new_s.1) != Some(Ordering::Less) {
                     // A range shrunk to a point: no room for the pieces.
                     return false;
                 }
@@ -319,7 +320,7 @@ impl Search<'_> {
                     break;
                 };
                 let new_t = (t.0 + d0 * (t.1 - t.0), t.0 + d1 * (t.1 - t.0));
-                if !(new_t.0 < new_t.1) {
+                if new_t.0.partial_cmp(&new_t.1) != Some(Ordering::Less) {
                     return false;
                 }
                 if (d0, d1) != (0.0, 1.0) {
@@ -398,7 +399,7 @@ impl Search<'_> {
         self.pair.q.tangent_into(v, &mut tb);
         let cross = ta[0] * tb[1] - ta[1] * tb[0];
         let sizes = ta[0].hypot(ta[1]) * tb[0].hypot(tb[1]);
-        if !(cross.abs() > SURELY_TRANSVERSAL_SINE * sizes) {
+        if cross.abs().partial_cmp(&(SURELY_TRANSVERSAL_SINE * sizes)) != Some(Ordering::Greater) {
             return false;
         }
         self.candidates.push(Candidate { u, v, distance: d });
