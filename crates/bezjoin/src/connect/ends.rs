@@ -15,7 +15,8 @@
 //! bounds fit [`super::with_scratch`]'s stack buffers.
 
 use super::{
-    CONNECT_RESIDUAL_LIMIT, Connection, end_band, triangular_number, unit_roundoff, with_scratch,
+    CONNECT_RESIDUAL_LIMIT, Connection, end_band, residual_and_bound, triangular_number,
+    unit_roundoff, with_scratch,
 };
 use crate::basis::KnotSide;
 use crate::bezier::BezierCurve;
@@ -156,13 +157,13 @@ pub(super) fn connect_ends<P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
                 difference_square += difference * difference;
                 abs_square += abs_value * abs_value;
             }
-            let residual = difference_square.sqrt() / denominator;
-            let bound = residual + (gamma * abs_square.sqrt() + target_errors[r]) / denominator;
-            let (residual, bound) = if residual.is_finite() && bound.is_finite() {
-                (residual, bound)
-            } else {
-                (f64::INFINITY, f64::INFINITY)
-            };
+            let (residual, bound) = residual_and_bound(
+                difference_square,
+                abs_square,
+                gamma,
+                target_errors[r],
+                denominator,
+            );
             worst = worst.max(residual);
             worst_bound = worst_bound.max(bound);
         }

@@ -684,14 +684,13 @@ pub(crate) fn check_residuals(
             difference_square += difference * difference;
             abs_square += abs_value * abs_value;
         }
-        let residual = difference_square.sqrt() / denominator;
-        let bound =
-            residual + (gamma * abs_square.sqrt() + conditions.target_errors[r]) / denominator;
-        let (residual, bound) = if residual.is_finite() && bound.is_finite() {
-            (residual, bound)
-        } else {
-            (f64::INFINITY, f64::INFINITY)
-        };
+        let (residual, bound) = residual_and_bound(
+            difference_square,
+            abs_square,
+            gamma,
+            conditions.target_errors[r],
+            denominator,
+        );
         worst = worst.max(residual);
         worst_bound = worst_bound.max(bound);
     }
@@ -934,6 +933,28 @@ pub fn connect_unchecked<P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
         error_estimate,
         constraint_condition,
     })
+}
+
+/// One end condition's relative residual `sqrt(difference_square) /
+/// denominator` and its bound with the rounding of the row product
+/// (`gamma * sqrt(abs_square)`) and of the target (`target_error`); both
+/// infinite when either is not finite. Shared by the general residual check
+/// and the end-condition fast path (`ends.rs`), so both judge alike.
+#[inline]
+pub(super) fn residual_and_bound(
+    difference_square: f64,
+    abs_square: f64,
+    gamma: f64,
+    target_error: f64,
+    denominator: f64,
+) -> (f64, f64) {
+    let residual = difference_square.sqrt() / denominator;
+    let bound = residual + (gamma * abs_square.sqrt() + target_error) / denominator;
+    if residual.is_finite() && bound.is_finite() {
+        (residual, bound)
+    } else {
+        (f64::INFINITY, f64::INFINITY)
+    }
 }
 
 #[cfg(test)]
