@@ -296,6 +296,16 @@ def connect_edges(p_edge, u0, q_edge, v0, *, p_order=None, q_order=None, p_scale
     :class:`Curve` made; anything else (and any error) takes the composition
     above.
     """
+    fast = _freecad.native()
+    if fast is not None:
+        # The compiled route (bezjoin/_native.c): the same reads, checks and call.
+        curve = fast.connect_edges(p_edge, u0, q_edge, v0, p_order, q_order, p_scale,
+                                   q_scale, auto_scale)
+        if curve is None:
+            return _compose_edges(p_edge, u0, q_edge, v0, p_order, q_order,
+                                  *automatic_scale(auto_scale, p_scale, q_scale))
+        if curve is not NotImplemented:
+            return curve
     part = _freecad._part()
     automatic, p_scale, q_scale = automatic_scale(auto_scale, p_scale, q_scale)
     p_found = _freecad._verbatim_values(p_edge, part)
@@ -311,6 +321,12 @@ def connect_edges(p_edge, u0, q_edge, v0, *, p_order=None, q_order=None, p_scale
         if not status:
             return _freecad.bezier_curve_from_values(values, p_order + q_order + 1)
     # Not both fast, or an error: the composition words the error.
+    return _compose_edges(p_edge, u0, q_edge, v0, p_order, q_order, automatic, p_scale,
+                          q_scale)
+
+
+def _compose_edges(p_edge, u0, q_edge, v0, p_order, q_order, automatic, p_scale, q_scale):
+    """``connect(from_freecad(p_edge), u0, from_freecad(q_edge), v0, ...).to_freecad()``."""
     with Curve.from_freecad(p_edge) as p, Curve.from_freecad(q_edge) as q:
         scales = {} if automatic else {"p_scale": p_scale, "q_scale": q_scale}
         with connect(p, u0, q, v0, p_order=p_order, q_order=q_order,

@@ -15,6 +15,7 @@ import itertools
 import math
 from collections import namedtuple
 
+from . import _library
 from ._convert import _array_type
 from ._library import CurvePointer, function, library
 from .errors import STATUS_OK, BezjoinError, UnsupportedGeometryError
@@ -542,8 +543,75 @@ def _verbatim_values(obj, part):
     return values, degree
 
 
+# -- the optional compiled fast path (bezjoin/_native.c) ----------------------------------
+
+#: Set to ``0`` to keep the compiled module unused (the ctypes route only).
+NATIVE_VARIABLE = "BEZJOIN_NATIVE"
+
+_UNBOUND = object()
+_native_module = _UNBOUND
+_native_library = None
+_native_enabled = None
+
+
+def _bind_native():
+    """Import ``bezjoin._native`` (built by ``bindings/python/build-native.sh``) and hand
+    it the loaded library's functions, FreeCAD's types and the verbatim bounds; ``None``
+    when it is absent, disabled or does not fit (the ctypes route then runs)."""
+    global _native_module, _native_library, _native_enabled
+    lib = library()
+    module = None
+    if _native_enabled is None:
+        import os  # noqa: PLC0415
+
+        _native_enabled = os.environ.get(NATIVE_VARIABLE, "1") != "0"
+    names = ("bzj_curve_new", "bzj_curve_points", "bzj_connect_points",
+             "bzj_connect_points_auto_scale")
+    if _native_enabled and all(lib.has(name) for name in names):
+        try:
+            from . import _native as module  # noqa: PLC0415
+        except ImportError:
+            module = None
+        if module is not None:
+            try:
+                part = _part()
+            except UnsupportedGeometryError:  # outside FreeCAD: nothing to speed up
+                part = module = None
+        if module is not None:
+            addresses = [ctypes.cast(getattr(lib._cdll, name), ctypes.c_void_p).value
+                         for name in names]
+            module.bind(*addresses, part.Edge, part.BezierCurve, _VERBATIM_RATIOS,
+                        _VERBATIM_LIMIT)
+    _native_module, _native_library = module, lib
+    return module
+
+
+def native():
+    """The compiled fast path bound to the loaded library, or ``None`` (absent, disabled
+    by ``BEZJOIN_NATIVE=0`` or :func:`use_native`)."""
+    module = _native_module
+    if module is not _UNBOUND and _library._library is _native_library:
+        return module
+    return _bind_native()
+
+
+def use_native(enabled):
+    """Use the compiled fast path when it is present (``True``) or the ctypes route only
+    (``False``); returns the previous setting. Both give the same results bit for bit."""
+    global _native_enabled, _native_module
+    previous = native() is not None
+    _native_enabled = bool(enabled)
+    _native_module = _UNBOUND
+    return previous
+
+
 def _verbatim_bezier(cls, obj, part):
     """The curve of :func:`_verbatim_values`' fast path, or ``None``."""
+    fast = native()
+    if fast is not None:
+        handle = CurvePointer()
+        degree = fast.curve_new(obj, handle)
+        return None if degree is None else cls._adopt(handle, (degree, 3))
     found = _verbatim_values(obj, part)
     if found is None:
         return None

@@ -254,6 +254,12 @@ class Curve:
             shape = self.degree, self.dim
         # A Bezier curve has degree + 1 points: no pole_count call.
         degree, dim = shape
+        if dim == 3:
+            fast = _freecad.native()
+            if fast is not None:
+                curve = fast.bezier_curve(self._live(), degree)
+                if curve is not None:
+                    return curve
         return _freecad.bezier_curve(self._read_points(degree + 1, dim), degree, dim)
 
     def to_edge(self):
