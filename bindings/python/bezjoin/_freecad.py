@@ -565,7 +565,7 @@ def _bind_native():
         import os  # noqa: PLC0415
 
         _native_enabled = os.environ.get(NATIVE_VARIABLE, "1") != "0"
-    names = ("bzj_curve_new", "bzj_curve_points", "bzj_connect_points",
+    names = ("bzj_curve_new", "bzj_curve_free", "bzj_curve_points", "bzj_connect_points",
              "bzj_connect_points_auto_scale")
     if _native_enabled and all(lib.has(name) for name in names):
         try:
@@ -580,8 +580,8 @@ def _bind_native():
         if module is not None:
             addresses = [ctypes.cast(getattr(lib._cdll, name), ctypes.c_void_p).value
                          for name in names]
-            module.bind(*addresses, part.Edge, part.BezierCurve, _VERBATIM_RATIOS,
-                        _VERBATIM_LIMIT)
+            module.bind(*addresses, CurvePointer, part.Edge, part.BezierCurve,
+                        _VERBATIM_RATIOS, _VERBATIM_LIMIT)
     _native_module, _native_library = module, lib
     return module
 
@@ -593,6 +593,15 @@ def native():
     if module is not _UNBOUND and _library._library is _native_library:
         return module
     return _bind_native()
+
+
+def native_module():
+    """The compiled module when it is bound to the loaded library, else ``None``; never
+    binds it (:meth:`bezjoin.Curve.close` releases through it)."""
+    module = _native_module
+    if module is not _UNBOUND and _library._library is _native_library:
+        return module
+    return None
 
 
 def use_native(enabled):
@@ -609,9 +618,7 @@ def _verbatim_bezier(cls, obj, part):
     """The curve of :func:`_verbatim_values`' fast path, or ``None``."""
     fast = native()
     if fast is not None:
-        handle = CurvePointer()
-        degree = fast.curve_new(obj, handle)
-        return None if degree is None else cls._adopt(handle, (degree, 3))
+        return fast.curve_new(obj, cls)
     found = _verbatim_values(obj, part)
     if found is None:
         return None
@@ -626,9 +633,10 @@ def _verbatim_bezier(cls, obj, part):
     return cls._adopt(handle, (degree, 3))
 
 
-def curve_from_freecad(cls, obj, nurbs=False):
-    """The curve of class ``cls`` for a FreeCAD object (:meth:`bezjoin.Curve.from_freecad`)."""
-    if not nurbs:
+def curve_from_freecad(cls, obj, nurbs=False, verbatim_tried=False):
+    """The curve of class ``cls`` for a FreeCAD object (:meth:`bezjoin.Curve.from_freecad`);
+    ``verbatim_tried``: the caller found that the verbatim fast path does not apply."""
+    if not nurbs and not verbatim_tried:
         fast = _verbatim_bezier(cls, obj, _part())
         if fast is not None:
             return fast

@@ -30,6 +30,7 @@
 #define MAX_ORDER_SUM 64
 
 typedef BzjStatus (*curve_new_fn)(size_t, size_t, const double *, size_t, BzjCurve **);
+typedef void (*curve_free_fn)(BzjCurve *);
 typedef BzjStatus (*curve_points_fn)(const BzjCurve *, double *, size_t);
 typedef BzjStatus (*connect_points_fn)(size_t, const double *, size_t, double, const double *,
                                        size_t, double, size_t, size_t, double, double,
@@ -39,16 +40,18 @@ typedef BzjStatus (*connect_points_auto_fn)(size_t, const double *, size_t, doub
                                             double *, size_t, double *);
 
 static curve_new_fn curve_new;
+static curve_free_fn curve_free;
 static curve_points_fn curve_points;
 static connect_points_fn connect_points;
 static connect_points_auto_fn connect_points_auto;
 static PyObject *edge_type;   /* Part.Edge */
 static PyObject *bezier_type; /* Part.BezierCurve */
+static PyObject *pointer_type; /* bezjoin._library.CurvePointer */
 static double ratios[MAX_DEGREE + 1];
 static double reach_limit;
 
 static PyObject *s_degenerated, *s_curve, *s_parameter_range, *s_is_rational, *s_get_poles,
-    *s_set_poles;
+    *s_set_poles, *s_handle, *s_bezier_shape, *s_new;
 
 static int bound(void) {
     if (curve_new && edge_type) {
@@ -63,15 +66,17 @@ static void *address(PyObject *value) {
 }
 
 static PyObject *bind(PyObject *self, PyObject *args) {
-    PyObject *a_new, *a_points, *a_connect, *a_auto, *edge, *bezier, *ratio_seq;
+    PyObject *a_new, *a_free, *a_points, *a_connect, *a_auto, *pointer, *edge, *bezier,
+        *ratio_seq;
     double limit;
     (void)self;
-    if (!PyArg_ParseTuple(args, "OOOOOOOd", &a_new, &a_points, &a_connect, &a_auto, &edge,
-                          &bezier, &ratio_seq, &limit)) {
+    if (!PyArg_ParseTuple(args, "OOOOOOOOOd", &a_new, &a_free, &a_points, &a_connect, &a_auto,
+                          &pointer, &edge, &bezier, &ratio_seq, &limit)) {
         return NULL;
     }
-    if (!PyType_Check(edge) || !PyType_Check(bezier)) {
-        PyErr_SetString(PyExc_TypeError, "bind: Part.Edge and Part.BezierCurve must be types");
+    if (!PyType_Check(pointer) || !PyType_Check(edge) || !PyType_Check(bezier)) {
+        PyErr_SetString(PyExc_TypeError,
+                        "bind: CurvePointer, Part.Edge and Part.BezierCurve must be types");
         return NULL;
     }
     PyObject *fast = PySequence_Fast(ratio_seq, "bind: ratios must be a sequence");
@@ -92,19 +97,22 @@ static PyObject *bind(PyObject *self, PyObject *args) {
         }
     }
     Py_DECREF(fast);
-    void *p_new = address(a_new), *p_points = address(a_points),
+    void *p_new = address(a_new), *p_free = address(a_free), *p_points = address(a_points),
          *p_connect = address(a_connect), *p_auto = address(a_auto);
     if (PyErr_Occurred()) {
         return NULL;
     }
-    if (!p_new || !p_points || !p_connect || !p_auto) {
+    if (!p_new || !p_free || !p_points || !p_connect || !p_auto) {
         PyErr_SetString(PyExc_ValueError, "bind: a function address is 0");
         return NULL;
     }
     curve_new = (curve_new_fn)p_new;
+    curve_free = (curve_free_fn)p_free;
     curve_points = (curve_points_fn)p_points;
     connect_points = (connect_points_fn)p_connect;
     connect_points_auto = (connect_points_auto_fn)p_auto;
+    Py_INCREF(pointer);
+    Py_XSETREF(pointer_type, pointer);
     Py_INCREF(edge);
     Py_XSETREF(edge_type, edge);
     Py_INCREF(bezier);
@@ -295,38 +303,114 @@ static int handle_buffer(PyObject *handle, Py_buffer *view, int writable) {
     return 1;
 }
 
-/* curve_new(obj, handle): the fast path of Curve.from_freecad. When obj is an
+/* A new instance of the class `cls` without __init__ (cls.__new__(cls)). */
+static PyObject *bare_instance(PyObject *cls) {
+    PyTypeObject *type = (PyTypeObject *)cls;
+    if (type->tp_new == PyBaseObject_Type.tp_new) {
+        PyObject *empty = PyTuple_New(0);
+        if (!empty) {
+            return NULL;
+        }
+        PyObject *instance = type->tp_new(type, empty, NULL);
+        Py_DECREF(empty);
+        return instance;
+    }
+    return PyObject_CallMethodOneArg(cls, s_new, cls);
+}
+
+/* The Curve (class `cls`) owning `curve`, a Bezier curve of this degree in 3D:
+ * as Curve._adopt(handle, (degree, 3)). Frees `curve` on a failure. */
+static PyObject *adopt(PyObject *cls, BzjCurve *curve, size_t degree) {
+    PyObject *handle = PyObject_CallNoArgs(pointer_type);
+    if (!handle) {
+        curve_free(curve);
+        return NULL;
+    }
+    Py_buffer view;
+    if (PyObject_GetBuffer(handle, &view, PyBUF_WRITABLE) < 0 ||
+        view.len != (Py_ssize_t)sizeof curve) {
+        if (!PyErr_Occurred()) {
+            PyBuffer_Release(&view);
+            PyErr_SetString(PyExc_TypeError, "CurvePointer is not a pointer");
+        }
+        Py_DECREF(handle);
+        curve_free(curve);
+        return NULL;
+    }
+    memcpy(view.buf, &curve, sizeof curve);
+    PyBuffer_Release(&view);
+    PyObject *shape = Py_BuildValue("(ni)", (Py_ssize_t)degree, 3);
+    PyObject *instance = shape ? bare_instance(cls) : NULL;
+    if (!instance || PyObject_SetAttr(instance, s_handle, handle) < 0) {
+        /* No Curve owns the curve. */
+        curve_free(curve);
+        Py_XDECREF(instance);
+        Py_XDECREF(shape);
+        Py_DECREF(handle);
+        return NULL;
+    }
+    Py_DECREF(handle);
+    /* From here the instance owns the curve (its close() frees it). */
+    int failed = PyObject_SetAttr(instance, s_bezier_shape, shape) < 0;
+    Py_DECREF(shape);
+    if (failed) {
+        Py_DECREF(instance);
+        return NULL;
+    }
+    return instance;
+}
+
+/* curve_new(obj, cls): the fast path of Curve.from_freecad. When obj is an
  * edge on the whole of a polynomial Part.BezierCurve that the verbatim path
- * takes, makes the Bezier curve with its poles (bzj_curve_new), stores the
- * handle in the CurvePointer `handle` and returns the degree; else None. */
-static PyObject *native_curve_new(PyObject *self, PyObject *args) {
-    PyObject *obj, *handle;
+ * takes, the Bezier curve with its poles (bzj_curve_new) as an instance of
+ * cls (a Curve, as Curve._adopt makes it); else None. */
+static PyObject *native_curve_new(PyObject *self, PyObject *const *args, Py_ssize_t nargs) {
     (void)self;
-    if (!PyArg_ParseTuple(args, "OO", &obj, &handle) || !bound()) {
+    if (nargs != 2) {
+        PyErr_SetString(PyExc_TypeError, "curve_new takes 2 arguments");
+        return NULL;
+    }
+    if (!bound()) {
+        return NULL;
+    }
+    if (!PyType_Check(args[1])) {
+        PyErr_SetString(PyExc_TypeError, "curve_new: cls must be a class");
         return NULL;
     }
     double values[MAX_VALUES];
     size_t length = 0, degree = 0;
-    int found = verbatim_values(obj, values, &length, &degree);
+    int found = verbatim_values(args[0], values, &length, &degree);
     if (found <= 0) {
         if (found < 0) {
             return NULL;
         }
         Py_RETURN_NONE;
     }
-    Py_buffer view;
-    if (!handle_buffer(handle, &view, 1)) {
-        return NULL;
-    }
     BzjCurve *out = NULL;
     BzjStatus status = curve_new(3, degree, values, length, &out);
     if (status != BZJ_OK || !out) {
-        PyBuffer_Release(&view);
         Py_RETURN_NONE;
     }
-    memcpy(view.buf, &out, sizeof out);
+    return adopt(args[1], out, degree);
+}
+
+/* curve_free(handle): bzj_curve_free of the CurvePointer's curve (Curve.close). */
+static PyObject *native_curve_free(PyObject *self, PyObject *handle) {
+    (void)self;
+    if (!bound()) {
+        return NULL;
+    }
+    Py_buffer view;
+    if (!handle_buffer(handle, &view, 0)) {
+        return NULL;
+    }
+    BzjCurve *curve;
+    memcpy(&curve, view.buf, sizeof curve);
     PyBuffer_Release(&view);
-    return PyLong_FromSize_t(degree);
+    if (curve) {
+        curve_free(curve);
+    }
+    Py_RETURN_NONE;
 }
 
 /* bezier_curve(handle, degree): the Part.BezierCurve of the 3D Bezier curve
@@ -472,11 +556,13 @@ static PyObject *native_connect_edges(PyObject *self, PyObject *const *args, Py_
 
 static PyMethodDef methods[] = {
     {"bind", bind, METH_VARARGS,
-     "bind(curve_new, curve_points, connect_points, connect_points_auto_scale, Part.Edge, "
-     "Part.BezierCurve, ratios, limit): the library functions (addresses) and FreeCAD types "
+     "bind(curve_new, curve_free, curve_points, connect_points, connect_points_auto_scale, "
+     "CurvePointer, Part.Edge, Part.BezierCurve, ratios, limit): the library functions (addresses) and FreeCAD types "
      "to use."},
-    {"curve_new", native_curve_new, METH_VARARGS,
-     "curve_new(edge, handle) -> degree or None: the fast path of Curve.from_freecad."},
+    {"curve_new", (PyCFunction)(void (*)(void))native_curve_new, METH_FASTCALL,
+     "curve_new(edge, cls) -> cls instance or None: the fast path of Curve.from_freecad."},
+    {"curve_free", native_curve_free, METH_O,
+     "curve_free(handle): bzj_curve_free of a CurvePointer's curve."},
     {"bezier_curve", native_bezier_curve, METH_VARARGS,
      "bezier_curve(handle, degree) -> Part.BezierCurve or None: a 3D Bezier curve out."},
     {"connect_edges", (PyCFunction)(void (*)(void))native_connect_edges, METH_FASTCALL,
@@ -498,8 +584,11 @@ PyMODINIT_FUNC PyInit__native(void) {
     s_is_rational = PyUnicode_InternFromString("isRational");
     s_get_poles = PyUnicode_InternFromString("getPoles");
     s_set_poles = PyUnicode_InternFromString("setPoles");
+    s_handle = PyUnicode_InternFromString("_handle");
+    s_bezier_shape = PyUnicode_InternFromString("_bezier_shape");
+    s_new = PyUnicode_InternFromString("__new__");
     if (!s_degenerated || !s_curve || !s_parameter_range || !s_is_rational || !s_get_poles ||
-        !s_set_poles) {
+        !s_set_poles || !s_handle || !s_bezier_shape || !s_new) {
         return NULL;
     }
     return PyModule_Create(&module);

@@ -231,6 +231,14 @@ class Curve:
                 approximate it), 2D ``Part.Geom2d`` curves, unbounded curves, a
                 shape with other than one edge, or outside FreeCAD.
         """
+        if not nurbs:
+            fast = _freecad.native()
+            if fast is not None:
+                # The compiled route (bezjoin/_native.c) of the verbatim fast path.
+                curve = fast.curve_new(edge_or_curve, cls)
+                if curve is not None:
+                    return curve
+                return _freecad.curve_from_freecad(cls, edge_or_curve, nurbs, True)
         return _freecad.curve_from_freecad(cls, edge_or_curve, nurbs)
 
     def to_freecad(self):
@@ -274,7 +282,11 @@ class Curve:
         with _close_lock:
             handle, self._handle = self._handle, None
         if handle:
-            library().function("bzj_curve_free")(handle)
+            fast = _freecad.native_module()
+            if fast is not None:
+                fast.curve_free(handle)
+            else:
+                library().function("bzj_curve_free")(handle)
 
     def copy(self):
         """An independent curve with the same control points (its own handle; a

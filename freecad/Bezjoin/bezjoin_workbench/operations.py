@@ -193,6 +193,65 @@ def _wire(curves):
     return Part.Wire(edges)
 
 
+def _fraction(value):
+    """The parameter of ``_at_fraction`` on the domain [0, 1] of a Bezier curve, the
+    same float, when ``value`` is a plain number (not a bool); else ``None``."""
+    if type(value) not in (float, int):
+        return None
+    return 1.0 if value == 1.0 else 0.0 + value * (1.0 - 0.0)
+
+
+def _polygon_length(values):
+    """The length of the control polygon of the 3D poles with flat coordinates ``values``:
+    at least the length of the Bezier curve."""
+    rows = [values[i:i + 3] for i in range(0, len(values), 3)]
+    return sum(_distance(a, b) for a, b in zip(rows, rows[1:]))
+
+
+def _blend_bezier_edges(first_edge, second_edge, u0, v0, p_order, q_order, p_scale,
+                        q_scale, auto_scale, orient):
+    """:func:`blend_edges` by :func:`bezjoin.connect_edges` (the fast path) when both
+    edges lie on the whole of polynomial ``Part.BezierCurve``s that
+    :meth:`bezjoin.Curve.from_freecad` copies verbatim, the orientation keeps them as
+    they are and the blend's ends are clearly apart: then the general path makes
+    the same curve (same poles, same parameter [0, 1]: ``connect_edges`` is
+    ``connect`` of these curves bit for bit) and passes its checks. Otherwise
+    ``None``: the general path decides and words any error."""
+    verbatim = bezjoin._freecad._verbatim_values
+    u, v = _fraction(u0), _fraction(v0)
+    p_found = u is not None and v is not None and verbatim(first_edge, Part)
+    q_found = p_found and verbatim(second_edge, Part)
+    if not q_found:
+        return None
+    (p_values, p_degree), (q_values, q_degree) = p_found, q_found
+    orders = [p_degree if p_order is None else p_order, q_degree if q_order is None else q_order]
+    if any(type(order) is not int or order < 0 for order in orders) \
+            or sum(orders) + 1 > MAX_BEZIER_DEGREE:
+        return None
+    if orient:
+        # orient_end_to_start on the exact end points (the first and last poles).
+        p_ends, q_ends = (p_values[:3], p_values[-3:]), (q_values[:3], q_values[-3:])
+        pairing = min((_distance(p_ends[i], q_ends[j]), (i == 0) + (j == 1), i, j)
+                      for i in (0, 1) for j in (0, 1))
+        if pairing[2:] != (1, 0):
+            return None
+    try:
+        curve = bezjoin.connect_edges(first_edge, u, second_edge, v, p_order=orders[0],
+                                      q_order=orders[1], p_scale=p_scale, q_scale=q_scale,
+                                      auto_scale=auto_scale)
+    except Exception:  # noqa: BLE001 (the general path words it)
+        return None
+    poles = curve.getPoles()
+    start, end = tuple(poles[0]), tuple(poles[-1])
+    # The general path refuses a gap <= TOUCH_TOLERANCE * max(1, lengths); the
+    # control polygons bound the lengths from above, the margin covers rounding.
+    size = max(1.0, _polygon_length(p_values), _polygon_length(q_values))
+    reach = max(map(abs, p_values + q_values))
+    if not _distance(start, end) > TOUCH_TOLERANCE * size * (1.0 + 1e-9) + 1e-12 * reach:
+        return None
+    return Part.Edge(curve, 0.0, 1.0)
+
+
 def blend_edges(first_edge, second_edge, *, u0=1.0, v0=0.0, p_order=None, q_order=None,
                 p_scale=None, q_scale=None, auto_scale=None, orient=True):
     """The blend curve from ``first_edge`` at ``u0`` to ``second_edge`` at ``v0``
@@ -216,6 +275,10 @@ def blend_edges(first_edge, second_edge, *, u0=1.0, v0=0.0, p_order=None, q_orde
     if same_edge(first_edge, second_edge):
         raise _invalid("the first and the second edge are the same edge: select two "
                        "different edges")
+    fast = _blend_bezier_edges(first_edge, second_edge, u0, v0, p_order, q_order, p_scale,
+                               q_scale, auto_scale, orient)
+    if fast is not None:
+        return fast
     with edge_curve(first_edge, "first edge") as p, edge_curve(second_edge, "second edge") as q:
         _check_orders(p_order, q_order, p, q)
         if orient:
