@@ -30,6 +30,33 @@ if [[ ! -f "$library" ]]; then
 fi
 export BEZJOIN_LIBRARY="$library"
 
+# The optional compiled fast path (bezjoin/_native.c) against the headers of
+# FreeCAD's Python: Debian's python3-dev is installed when missing (as
+# freecad-python3 above). The tests compare it with the ctypes route, in the
+# same process; BEZJOIN_EXPECT_NATIVE=1 makes a module that was built but is
+# not used a failure. BEZJOIN_NATIVE_BUILD=0: test the ctypes route alone.
+if [[ "${BEZJOIN_NATIVE_BUILD:-1}" != "0" ]]; then
+    include="$(freecadcmd -c 'import sysconfig; print("BEZJOIN_INC=" + sysconfig.get_paths()["include"])' 2>/dev/null \
+        | sed -n 's/^BEZJOIN_INC=//p' | tail -n 1)" || include=""
+    if [[ -n "$include" && ! -f "$include/Python.h" ]] && command -v apt-get >/dev/null 2>&1 \
+            && [[ "$(id -u)" == 0 ]]; then
+        echo "freecad/run-tests.sh: installing python3-dev (Python.h for the compiled fast path)"
+        export DEBIAN_FRONTEND=noninteractive
+        apt-get update
+        apt-get install -y --no-install-recommends python3-dev
+    fi
+    native_status=0
+    bash bindings/python/build-native.sh || native_status=$?
+    if [[ $native_status -eq 0 ]]; then
+        export BEZJOIN_EXPECT_NATIVE=1
+    elif [[ $native_status -ne 3 ]]; then
+        echo "freecad/run-tests.sh: building the compiled fast path failed" >&2
+        exit 1
+    fi
+else
+    rm -f bindings/python/bezjoin/_native*.so
+fi
+
 marker="$(mktemp)"
 rm -f "$marker"
 trap 'rm -f "$marker"' EXIT

@@ -5,7 +5,11 @@
 # that the workbench, the Python package and the library all come from the
 # installed folder and that a blend of two edges works; install again (it
 # replaces its own install) and check that a foreign Mod/Bezjoin folder is
-# left alone. Exits 0 when every check passed. Run by .ci/run.
+# left alone. The first install must carry the compiled fast path
+# (bezjoin._native, used by the installed package) whenever a C compiler and
+# the headers of FreeCAD's Python are present; the reinstall is made without
+# it (BEZJOIN_NATIVE_BUILD=0) and must work through the ctypes route.
+# Exits 0 when every check passed. Run by .ci/run.
 set -euo pipefail
 ROOT="$(cd "$(dirname "$0")/.." && pwd)"
 cd "$ROOT"
@@ -23,6 +27,17 @@ FAKE_HOME="$WORK/home"
 mkdir -p "$FAKE_HOME"
 
 run_install() { env -u BEZJOIN_LIBRARY -u BEZJOIN_PYTHON_PATH HOME="$FAKE_HOME" bash scripts/install-freecad.sh "$@"; }
+
+# Whether the compiled fast path can be built here (the install must then build it).
+EXPECT_NATIVE=0
+if command -v "${CC:-cc}" >/dev/null 2>&1; then
+    PY_INCLUDE="$(freecadcmd -c 'import sysconfig; print("BEZJOIN_INC=" + sysconfig.get_paths()["include"])' 2>/dev/null \
+        | sed -n 's/^BEZJOIN_INC=//p' | tail -n 1)" || PY_INCLUDE=""
+    if [ -n "$PY_INCLUDE" ] && [ -f "$PY_INCLUDE/Python.h" ]; then
+        EXPECT_NATIVE=1
+    fi
+fi
+echo "freecad/test-install.sh: compiled fast path expected: $EXPECT_NATIVE" >&2
 
 run_install
 MOD_BEZJOIN="$(find "$FAKE_HOME" -type d -path '*/Mod/Bezjoin' | head -n 1)"
@@ -50,9 +65,24 @@ try:
         "package": os.path.realpath(bezjoin.__file__),
         "library": os.path.realpath(bezjoin._library.library_path()),
     }
+    from bezjoin import _freecad
+
+    import Part  # noqa: E402
+
+    fast = _freecad.native()
+    expect_native = os.environ["BEZJOIN_INSTALL_EXPECT_NATIVE"] == "1"
+    assert (fast is not None) == expect_native, \
+        f"compiled fast path {'missing' if expect_native else 'present'}: {fast!r}"
+    if fast is not None:
+        where["native"] = os.path.realpath(fast.__file__)
     for name, path in where.items():
         assert path.startswith(mod + os.sep), f"{name} from {path}, not from {mod}"
-    import Part
+    p_curve, q_curve = Part.BezierCurve(), Part.BezierCurve()
+    p_curve.setPoles([FreeCAD.Vector(0, 0, 0), FreeCAD.Vector(1, 1, 0), FreeCAD.Vector(2, 0, 0)])
+    q_curve.setPoles([FreeCAD.Vector(3, 0, 0), FreeCAD.Vector(4, 1, 0), FreeCAD.Vector(5, 0, 0)])
+    joined = bezjoin.connect_edges(p_curve.toShape(), 1.0, q_curve.toShape(), 0.0)
+    assert joined.StartPoint.distanceToPoint(FreeCAD.Vector(2, 0, 0)) < 1e-12, joined.StartPoint
+    assert joined.EndPoint.distanceToPoint(FreeCAD.Vector(3, 0, 0)) < 1e-12, joined.EndPoint
 
     first = Part.LineSegment(FreeCAD.Vector(0, 0, 0), FreeCAD.Vector(10, 0, 0)).toShape()
     second = Part.LineSegment(FreeCAD.Vector(12, 2, 0), FreeCAD.Vector(12, 10, 0)).toShape()
@@ -70,7 +100,8 @@ except Exception:
 PY
 check() {
     rm -f "$WORK/result"
-    env -u BEZJOIN_LIBRARY -u BEZJOIN_PYTHON_PATH HOME="$FAKE_HOME" BEZJOIN_INSTALL_RESULT="$WORK/result" \
+    env -u BEZJOIN_LIBRARY -u BEZJOIN_PYTHON_PATH -u BEZJOIN_NATIVE HOME="$FAKE_HOME" \
+        BEZJOIN_INSTALL_RESULT="$WORK/result" BEZJOIN_INSTALL_EXPECT_NATIVE="$1" \
         freecadcmd "$WORK/check.py" >"$WORK/freecad.log" 2>&1 || true
     if ! grep -q '^OK ' "$WORK/result" 2>/dev/null; then
         echo "freecad/test-install.sh: the installed workbench failed in FreeCAD:" >&2
@@ -79,13 +110,17 @@ check() {
     fi
     sed 's/^/freecad\/test-install.sh: /' "$WORK/result" >&2
 }
-check
+check "$EXPECT_NATIVE"
 
-# A second install replaces the first.
+# A second install replaces the first; this one without the compiled fast path.
 echo stale >"$MOD_BEZJOIN/stale-file"
-run_install
+BEZJOIN_NATIVE_BUILD=0 run_install
 [ ! -e "$MOD_BEZJOIN/stale-file" ] || { echo "freecad/test-install.sh: reinstall kept a stale file" >&2; exit 1; }
-check
+if ls "$MOD_BEZJOIN"/bezjoin/_native*.so >/dev/null 2>&1; then
+    echo "freecad/test-install.sh: BEZJOIN_NATIVE_BUILD=0 still installed the compiled module" >&2
+    exit 1
+fi
+check 0
 
 # A folder the script did not install is left alone.
 rm -rf "$MOD_BEZJOIN"
@@ -97,4 +132,4 @@ if run_install 2>"$WORK/refused.log"; then
 fi
 grep -q "was not installed by this script" "$WORK/refused.log"
 [ -f "$MOD_BEZJOIN/user-file" ]
-echo "freecad/test-install.sh: OK (install, FreeCAD without BEZJOIN_* variables, reinstall, foreign folder kept)" >&2
+echo "freecad/test-install.sh: OK (install with the compiled fast path: $EXPECT_NATIVE, FreeCAD without BEZJOIN_* variables, reinstall without it, foreign folder kept)" >&2

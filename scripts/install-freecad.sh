@@ -10,6 +10,10 @@
 #   Bezjoin/bezjoin/                                  (bindings/python/bezjoin)
 #   Bezjoin/bezjoin/libbezjoin.so                     (the library, found next
 #                                                      to the package)
+#   Bezjoin/bezjoin/_native.<python suffix>.so        (the compiled fast path of
+#                                                      the FreeCAD conversions, when
+#                                                      a C compiler and the headers of
+#                                                      FreeCAD's Python are present)
 #   Bezjoin/INSTALLED_BY_BEZJOIN                      (version and source)
 #
 # No environment variable is needed afterwards: the workbench finds the
@@ -19,6 +23,11 @@
 # ~/.local/share/FreeCAD/Mod. A previous install (or the developer's
 # symbolic link) at MOD_FOLDER/Bezjoin is replaced; any other folder of
 # that name is left alone and the script stops.
+#
+# The compiled fast path (bindings/python/build-native.sh) is optional: without
+# a C compiler or Python.h (Debian: apt-get install gcc python3-dev) the
+# script says so and installs the package without it (its ctypes route gives
+# the same results, slower). BEZJOIN_NATIVE_BUILD=0 skips it on purpose.
 set -euo pipefail
 ROOT="$(cd "$(dirname "$0")/.." && pwd)"
 cd "$ROOT"
@@ -68,11 +77,30 @@ cp -R freecad/Bezjoin/. "$STAGE/"
 cp -R bindings/python/bezjoin "$STAGE/bezjoin"
 cp "$LIBRARY" "$STAGE/bezjoin/libbezjoin.so"
 find "$STAGE" -name '__pycache__' -type d -prune -exec rm -rf {} +
+# A module built in the source tree may be for another Python: build afresh.
+rm -f "$STAGE"/bezjoin/_native*.so
+NATIVE="not built"
+if [ "${BEZJOIN_NATIVE_BUILD:-1}" = "0" ]; then
+    NATIVE="not built (BEZJOIN_NATIVE_BUILD=0)"
+    echo "install-freecad.sh: the compiled fast path is not built (BEZJOIN_NATIVE_BUILD=0)" >&2
+else
+    native_status=0
+    bash bindings/python/build-native.sh "$STAGE/bezjoin" || native_status=$?
+    if [ "$native_status" -eq 0 ]; then
+        NATIVE="built"
+    elif [ "$native_status" -eq 3 ]; then
+        NATIVE="not built (no C compiler or Python headers)"
+        echo "install-freecad.sh: installing without the compiled fast path (the ctypes route is used: same results, slower)" >&2
+    else
+        echo "install-freecad.sh: building the compiled fast path failed" >&2
+        exit 1
+    fi
+fi
 VERSION="$(sed -n 's/^version = "\(.*\)"$/\1/p' Cargo.toml | head -n 1)"
 COMMIT="$(git rev-parse --short HEAD 2>/dev/null || echo unknown)"
-printf 'bezjoin %s (commit %s), installed by scripts/install-freecad.sh from %s\n' \
-    "${VERSION:-unknown}" "$COMMIT" "$ROOT" >"$STAGE/$MARKER"
+printf 'bezjoin %s (commit %s), installed by scripts/install-freecad.sh from %s\ncompiled fast path: %s\n' \
+    "${VERSION:-unknown}" "$COMMIT" "$ROOT" "$NATIVE" >"$STAGE/$MARKER"
 chmod -R u+rwX,go+rX "$STAGE"
 mv "$STAGE" "$TARGET"
 trap - EXIT
-echo "install-freecad.sh: installed the Bezjoin workbench in $TARGET (restart FreeCAD)" >&2
+echo "install-freecad.sh: installed the Bezjoin workbench in $TARGET (compiled fast path: $NATIVE; restart FreeCAD)" >&2
