@@ -39,6 +39,7 @@ import FreeCAD  # noqa: E402
 import Part  # noqa: E402
 
 import bezjoin  # noqa: E402
+from bezjoin import _freecad  # noqa: E402
 
 V = FreeCAD.Vector
 ORDER = 3          # C^3 at both ends: the degree-7 blend of two cubics
@@ -82,6 +83,21 @@ def ours_blend_given():
 def ours_edges_given():
     return bezjoin.connect_edges(EDGE_P, U0, EDGE_Q, V0, p_order=ORDER, q_order=ORDER,
                                  p_scale=SCALE, q_scale=SCALE)
+
+
+def ctypes_route(function):
+    """``function`` run with the compiled fast path (bezjoin._native) switched off: the
+    ctypes route, measured in the same process; the result is released inside."""
+
+    def run():
+        saved = _freecad._native_module
+        _freecad._native_module = None
+        try:
+            function()
+        finally:
+            _freecad._native_module = saved
+
+    return run
 
 
 def ours_edges_auto():
@@ -201,6 +217,9 @@ def main():
         ("blend, FreeCAD getDN + BezierCurve.interpolate", freecad_blend),
         ("blend, ours connect_edges, given scale", ours_edges_given),
         ("blend, ours connect_edges, automatic scale", ours_edges_auto),
+        ("ctypes route: from_freecad(cubic Bezier edge)", ctypes_route(ours_from)),
+        ("ctypes route: to_freecad(cubic)", ctypes_route(ours_to)),
+        ("ctypes route: blend, connect_edges, given scale", ctypes_route(ours_edges_given)),
         ("floor: FreeCAD reads of one cubic edge", freecad_curve_reads),
         ("floor: Part.BezierCurve + setPoles(4 tuples)", freecad_bezier_out),
         ("floor: FreeCAD reads + output of a blend", freecad_reads),
@@ -210,6 +229,11 @@ def main():
     print(f"bezjoin {bezjoin.library_version()} ({bezjoin.library_path()}), "
           f"bindings {os.path.dirname(os.path.dirname(os.path.abspath(bezjoin.__file__)))}, "
           f"FreeCAD {'.'.join(FreeCAD.Version()[:3])}, Python {sys.version.split()[0]}")
+    fast = _freecad.native()
+    print("compiled fast path: " + (fast.__file__ if fast is not None else
+                                    "absent (ctypes route only)"))
+    print(f"load average {os.getloadavg()[0]:.2f} {os.getloadavg()[1]:.2f} "
+          f"{os.getloadavg()[2]:.2f}")
     print(f"min of {repeat} repeats; degree-7 C^{ORDER} blend of two cubic edges, "
           f"given scale {SCALE}, automatic scale {AUTO_SCALE:.6g}")
     for name, value in checks.items():
@@ -220,7 +244,8 @@ def main():
     reference = best["blend, FreeCAD getDN + BezierCurve.interpolate"]
     for name in ("blend, ours, given scale", "blend, ours, automatic scale",
                  "blend, ours connect_edges, given scale",
-                 "blend, ours connect_edges, automatic scale"):
+                 "blend, ours connect_edges, automatic scale",
+                 "ctypes route: blend, connect_edges, given scale"):
         print(f"  {name} / FreeCAD's blend: {best[name] / reference:.2f}")
     sys.stdout.flush()
 
