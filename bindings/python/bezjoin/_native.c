@@ -50,6 +50,18 @@ static PyObject *pointer_type; /* bezjoin._library.CurvePointer */
 static double ratios[MAX_DEGREE + 1];
 static double reach_limit;
 
+/* The descriptors behind Part.Edge's Degenerated, Curve and ParameterRange
+ * (getset descriptors) and Part.BezierCurve's isRational, getPoles and
+ * setPoles (method descriptors), found at bind(); NULL when FreeCAD has no
+ * such descriptor (then the attribute is asked by name). Calling them skips
+ * FreeCAD's __getattro__ (a walk through its method tables and a new bound
+ * method per call) and runs the same generated callback (its validity check
+ * and C++ exception guard included). They are used for objects of exactly
+ * these types only; FreeCAD's __getattro__ also links a returned object to
+ * its parent for write-back, which a read of these values does not need. */
+static PyObject *d_degenerated, *d_curve, *d_parameter_range, *d_is_rational, *d_get_poles,
+    *d_set_poles;
+
 static PyObject *s_degenerated, *s_curve, *s_parameter_range, *s_is_rational, *s_get_poles,
     *s_set_poles, *s_handle, *s_bezier_shape, *s_new;
 
@@ -63,6 +75,36 @@ static int bound(void) {
 
 static void *address(PyObject *value) {
     return PyLong_AsVoidPtr(value);
+}
+
+/* The descriptor `name` of `type` when it is of the descriptor type `kind`, else NULL
+ * (a new reference). */
+static PyObject *descriptor(PyObject *type, PyObject *name, PyTypeObject *kind) {
+    PyObject *found = _PyType_Lookup((PyTypeObject *)type, name);
+    if (!found || !Py_IS_TYPE(found, kind)) {
+        return NULL;
+    }
+    Py_INCREF(found);
+    return found;
+}
+
+/* obj.<name> for a Part.Edge (through the getset descriptor when obj is exactly one). */
+static PyObject *edge_attribute(PyObject *obj, PyObject *descr, PyObject *name) {
+    if (descr && Py_TYPE(obj) == (PyTypeObject *)edge_type) {
+        return Py_TYPE(descr)->tp_descr_get(descr, obj, (PyObject *)Py_TYPE(obj));
+    }
+    return PyObject_GetAttr(obj, name);
+}
+
+/* curve.<name>(*args) for a Part.BezierCurve (through the method descriptor when
+ * curve is exactly one). */
+static PyObject *bezier_method(PyObject *curve, PyObject *descr, PyObject *name, PyObject *arg) {
+    if (descr && Py_TYPE(curve) == (PyTypeObject *)bezier_type) {
+        PyObject *args[2] = {curve, arg};
+        return PyObject_Vectorcall(descr, args, arg ? 2 : 1, NULL);
+    }
+    return arg ? PyObject_CallMethodOneArg(curve, name, arg)
+               : PyObject_CallMethodNoArgs(curve, name);
 }
 
 static PyObject *bind(PyObject *self, PyObject *args) {
@@ -117,6 +159,12 @@ static PyObject *bind(PyObject *self, PyObject *args) {
     Py_XSETREF(edge_type, edge);
     Py_INCREF(bezier);
     Py_XSETREF(bezier_type, bezier);
+    Py_XSETREF(d_degenerated, descriptor(edge, s_degenerated, &PyGetSetDescr_Type));
+    Py_XSETREF(d_curve, descriptor(edge, s_curve, &PyGetSetDescr_Type));
+    Py_XSETREF(d_parameter_range, descriptor(edge, s_parameter_range, &PyGetSetDescr_Type));
+    Py_XSETREF(d_is_rational, descriptor(bezier, s_is_rational, &PyMethodDescr_Type));
+    Py_XSETREF(d_get_poles, descriptor(bezier, s_get_poles, &PyMethodDescr_Type));
+    Py_XSETREF(d_set_poles, descriptor(bezier, s_set_poles, &PyMethodDescr_Type));
     memcpy(ratios, new_ratios, sizeof ratios);
     reach_limit = limit;
     Py_RETURN_NONE;
@@ -136,7 +184,7 @@ static int verbatim_values(PyObject *obj, double *values, size_t *length, size_t
     if (is_edge <= 0) {
         return is_edge;
     }
-    PyObject *degenerated = PyObject_GetAttr(obj, s_degenerated);
+    PyObject *degenerated = edge_attribute(obj, d_degenerated, s_degenerated);
     if (!degenerated) {
         return -1; /* raised outside the try in _verbatim_values too */
     }
@@ -147,11 +195,11 @@ static int verbatim_values(PyObject *obj, double *values, size_t *length, size_t
     }
     /* try: curve = obj.Curve; whole = obj.ParameterRange == (0.0, 1.0)
      * except Exception: return None */
-    PyObject *curve = PyObject_GetAttr(obj, s_curve);
+    PyObject *curve = edge_attribute(obj, d_curve, s_curve);
     if (!curve) {
         goto swallow;
     }
-    PyObject *range = PyObject_GetAttr(obj, s_parameter_range);
+    PyObject *range = edge_attribute(obj, d_parameter_range, s_parameter_range);
     if (!range) {
         Py_DECREF(curve);
         goto swallow;
@@ -177,7 +225,7 @@ static int verbatim_values(PyObject *obj, double *values, size_t *length, size_t
         Py_DECREF(curve);
         return 0;
     }
-    PyObject *rational = PyObject_CallMethodNoArgs(curve, s_is_rational);
+    PyObject *rational = bezier_method(curve, d_is_rational, s_is_rational, NULL);
     if (!rational) {
         Py_DECREF(curve);
         return -1;
@@ -188,7 +236,7 @@ static int verbatim_values(PyObject *obj, double *values, size_t *length, size_t
         Py_DECREF(curve);
         return is_rational < 0 ? -1 : 0;
     }
-    PyObject *poles = PyObject_CallMethodNoArgs(curve, s_get_poles);
+    PyObject *poles = bezier_method(curve, d_get_poles, s_get_poles, NULL);
     Py_DECREF(curve);
     if (!poles) {
         return -1;
@@ -281,7 +329,7 @@ static PyObject *bezier_from_values(const double *values, size_t count) {
         Py_DECREF(rows);
         return NULL;
     }
-    PyObject *done = PyObject_CallMethodOneArg(curve, s_set_poles, rows);
+    PyObject *done = bezier_method(curve, d_set_poles, s_set_poles, rows);
     Py_DECREF(rows);
     if (!done) {
         Py_DECREF(curve);
