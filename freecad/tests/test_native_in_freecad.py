@@ -82,11 +82,12 @@ class CompiledModule(unittest.TestCase):
         self.assertIsNotNone(_freecad.native(), "bezjoin._native was built but is not used")
 
     def test_use_native_switches_routes(self):
-        present = _freecad.native() is not None
-        previous = _freecad.use_native(False)
+        previous = _freecad.use_native(True)
         try:
+            present = _freecad.native() is not None
+            self.assertEqual(_freecad.use_native(False), present)
             self.assertIsNone(_freecad.native())
-            _freecad.use_native(True)
+            self.assertFalse(_freecad.use_native(True))
             self.assertEqual(_freecad.native() is not None, present)
         finally:
             _freecad.use_native(previous)
