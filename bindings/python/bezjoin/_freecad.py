@@ -13,6 +13,7 @@ import bisect
 import ctypes
 import itertools
 import math
+import os
 from collections import namedtuple
 
 from . import _library
@@ -562,8 +563,6 @@ def _bind_native():
     lib = library()
     module = None
     if _native_enabled is None:
-        import os  # noqa: PLC0415
-
         _native_enabled = os.environ.get(NATIVE_VARIABLE, "1") != "0"
     names = ("bzj_curve_new", "bzj_curve_free", "bzj_curve_points", "bzj_connect_points",
              "bzj_connect_points_auto_scale")
