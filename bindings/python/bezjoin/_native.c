@@ -605,8 +605,8 @@ static PyObject *native_connect_edges(PyObject *self, PyObject *const *args, Py_
 static PyMethodDef methods[] = {
     {"bind", bind, METH_VARARGS,
      "bind(curve_new, curve_free, curve_points, connect_points, connect_points_auto_scale, "
-     "CurvePointer, Part.Edge, Part.BezierCurve, ratios, limit): the library functions (addresses) and FreeCAD types "
-     "to use."},
+     "CurvePointer, Part.Edge, Part.BezierCurve, ratios, limit): the library functions "
+     "(addresses) and FreeCAD types to use."},
     {"curve_new", (PyCFunction)(void (*)(void))native_curve_new, METH_FASTCALL,
      "curve_new(edge, cls) -> cls instance or None: the fast path of Curve.from_freecad."},
     {"curve_free", native_curve_free, METH_O,
