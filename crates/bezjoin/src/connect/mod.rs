@@ -38,9 +38,13 @@
 //!   above 2^53). The unit test `closed_form_end_rows_equal_a23` holds them
 //!   to [`bezier_basis_derivatives`] for every degree up to
 //!   [`MAX_CONNECT_DEGREE`], with the exact zero pattern.
-//! * Rows of `D(t_j)` for interior constraints, and `P^(k)(u0)`, `Q^(k)(v0)`
-//!   at interior parameters: A2.3 ([`bezier_basis_derivatives`]), as the
-//!   specification requires for the solvers.
+//! * Rows of `D(t_j)` for interior constraints: A2.3
+//!   ([`bezier_basis_derivatives`]), as the specification requires for the
+//!   solvers.
+//! * The targets `P^(k)(u0)`, `Q^(k)(v0)` at interior parameters are values
+//!   of the input curves, not solver rows: the de Casteljau triangle
+//!   ([`de_casteljau_jet_into`]), `O(n^2 d)` with a first-order rounding
+//!   bound, instead of the `O(n^3)` A2.3 matrix and its product (issue 20).
 //!
 //! The end rows are the hot path of [`connect`] (and of every trial scale of
 //! [`ShapeScale::Auto`]); the closed form avoids A2.3's allocations there.
@@ -84,10 +88,7 @@ mod energy;
 
 use nalgebra::DMatrix;
 
-use crate::basis::{
-    BasisLayout, KnotSide, basis_scratch_len, bezier_basis_derivatives,
-    bezier_basis_derivatives_into,
-};
+use crate::basis::{KnotSide, bezier_basis_derivatives};
 use crate::bezier::BezierCurve;
 use crate::curve::CurveJet;
 use crate::error::{BezjoinError, Result, check_finite, check_open_range, check_positive};
@@ -326,24 +327,26 @@ fn unit_roundoff() -> f64 {
     f64::EPSILON / 2.0
 }
 
-/// `k (k + 1) / 2`: where row `k` of a packed lower triangle starts.
-fn triangular_number(k: usize) -> usize {
-    k * (k + 1) / 2
-}
-
 /// The non-zero band of row `k <= degree` of `D(0)` (`at_one = false`:
 /// columns `0..=k`) or `D(1)` (`at_one = true`: columns `n-k..=n`) for
 /// degree `n = degree`, by the closed form (module documentation, "Where
 /// the basis rows come from"), in ascending column order into `band[..=k]`.
+#[allow(clippy::needless_range_loop)] // j indexes the table and the band
 pub(crate) fn end_band(degree: usize, k: usize, at_one: bool, band: &mut [f64]) {
     // n!/(n-k)! (exact while below 2^53, else within k units of roundoff) and
-    // C(k, j) by the exact integer recurrence C(k, j+1) = C(k, j) (k-j)/(j+1).
-    let mut falling = 1.0f64;
-    for j in 0..k {
-        falling *= (degree - j) as f64;
-    }
+    // C(k, j) by the exact integer recurrence C(k, j+1) = C(k, j) (k-j)/(j+1),
+    // from the tables below the table size (the same operations, done once).
+    let small = degree < END_TABLE_SIZE;
+    let falling = if small {
+        FALLING_FACTORIALS[degree][k]
+    } else {
+        falling_factorial(degree, k)
+    };
     let mut coefficient = 1.0f64; // C(k, j)
     for j in 0..=k {
+        if small {
+            coefficient = BINOMIALS[k][j];
+        }
         // D(0)[k][j] = n!/(n-k)! (-1)^(k-j) C(k, j);
         // D(1)[k][n-j] = n!/(n-k)! (-1)^j C(k, j)  (B_i(t) = B_(n-i)(1-t)),
         // at band position (n - j) - (n - k) = k - j.
@@ -354,9 +357,48 @@ pub(crate) fn end_band(degree: usize, k: usize, at_one: bool, band: &mut [f64]) 
         };
         let value = falling * coefficient;
         band[slot] = if negative { -value } else { value };
-        coefficient = coefficient * (k - j) as f64 / (j + 1) as f64;
+        if !small {
+            coefficient = coefficient * (k - j) as f64 / (j + 1) as f64;
+        }
     }
 }
+
+/// Degrees below which [`end_band`] reads its factors from tables.
+const END_TABLE_SIZE: usize = MAX_CONNECT_DEGREE + 1;
+
+/// `FALLING_FACTORIALS[n][k] = n (n-1) ... (n-k+1)` (as [`falling_factorial`]).
+static FALLING_FACTORIALS: [[f64; END_TABLE_SIZE]; END_TABLE_SIZE] = {
+    let mut table = [[0.0f64; END_TABLE_SIZE]; END_TABLE_SIZE];
+    let mut n = 0;
+    while n < END_TABLE_SIZE {
+        let mut falling = 1.0f64;
+        let mut k = 0;
+        while k <= n {
+            table[n][k] = falling;
+            falling *= (n - k) as f64;
+            k += 1;
+        }
+        n += 1;
+    }
+    table
+};
+
+/// `BINOMIALS[k][j] = C(k, j)` by the recurrence of [`end_band`].
+static BINOMIALS: [[f64; END_TABLE_SIZE]; END_TABLE_SIZE] = {
+    let mut table = [[0.0f64; END_TABLE_SIZE]; END_TABLE_SIZE];
+    let mut k = 0;
+    while k < END_TABLE_SIZE {
+        let mut coefficient = 1.0f64;
+        let mut j = 0;
+        while j <= k {
+            table[k][j] = coefficient;
+            coefficient = coefficient * (k - j) as f64 / (j + 1) as f64;
+            j += 1;
+        }
+        k += 1;
+    }
+    table
+};
 
 /// Run `f` on `len` zeroed doubles: on the stack up to 96 or 512 of them
 /// (the small degrees and dimensions of the hot paths), on the heap above.
@@ -414,14 +456,19 @@ pub(crate) fn derivatives_with_error(
     (DMatrix::from_row_slice(order + 1, dim, &values), errors)
 }
 
-/// `P^(k)(t) = D(t)_k P` for `k = 0..=order`, row-major into `values`
-/// (`(order + 1) * dim`), and the first-order rounding bound of each row,
-/// `gamma * |D(t)_k| |P|` with `gamma = 2 (n + k + 2) u`, into `errors`
-/// (`order + 1`). `D(t)` is the closed form at `t = 0` and `t = 1` (only
-/// the band of each row is formed) and A2.3 elsewhere; the sums run over
-/// the non-zero entries in ascending column order. Allocation-free while
-/// the basis rows and A2.3's scratch fit [`with_scratch`]'s stack buffers
-/// (degree 3 to 7 at the usual orders).
+/// `P^(k)(t)` for `k = 0..=order`, row-major into `values`
+/// (`(order + 1) * dim`), and a first-order rounding bound of each row into
+/// `errors` (`order + 1`); rows above the degree are exact zeros (bound 0).
+///
+/// * At `t = 0` and `t = 1`: `D(t)_k P` with the closed-form band of the row
+///   ([`end_band`]), summed in ascending column order, bound
+///   `gamma |D(t)_k| |P|` with `gamma = 2 (n + k + 2) u`.
+/// * Elsewhere: the de Casteljau triangle ([`de_casteljau_jet_into`]).
+///
+/// These are the *targets* `P^(k)(u0)`, `Q^(k)(v0)` of the connect system,
+/// values of the input curves; the solver's own rows (`D(0)`, `D(1)` and
+/// `D(t_j)` of interior constraints) stay the closed form and A2.3.
+/// Allocation-free while the scratch fits [`with_scratch`]'s stack buffers.
 pub(crate) fn derivatives_with_error_into(
     curve: &BezierCurve,
     t: f64,
@@ -434,27 +481,17 @@ pub(crate) fn derivatives_with_error_into(
     let points = curve.points();
     assert_eq!(values.len(), (order + 1) * dim);
     assert_eq!(errors.len(), order + 1);
+    if !(n > 0 && (t == 0.0 || t == 1.0)) {
+        de_casteljau_jet_into(points, dim, n, t, order, values, errors);
+        return;
+    }
     values.fill(0.0);
-    let at_end = n > 0 && (t == 0.0 || t == 1.0);
-    // End rows: one band of at most n + 1 entries at a time; elsewhere the
-    // whole (order + 1) x (n + 1) A2.3 matrix, row-major, and its scratch.
-    let basis_len = if at_end {
-        n + 1
-    } else {
-        (order + 1) * (n + 1) + basis_scratch_len(n)
-    };
-    with_scratch(basis_len + dim, |buffer| {
-        let (basis, abs_row) = buffer.split_at_mut(basis_len);
-        if !at_end {
-            let (rows, scratch) = basis.split_at_mut((order + 1) * (n + 1));
-            bezier_basis_derivatives_into(n, t, order, BasisLayout::row_major(n), rows, scratch);
-        }
+    with_scratch(n + 1 + dim, |buffer| {
+        let (basis, abs_row) = buffer.split_at_mut(n + 1);
         for k in 0..=order {
             abs_row.fill(0.0);
             // The row's non-zero columns `first..first + len` and entries.
-            let (first, row): (usize, &[f64]) = if !at_end {
-                (0, &basis[k * (n + 1)..(k + 1) * (n + 1)])
-            } else if k <= n {
+            let (first, row): (usize, &[f64]) = if k <= n {
                 end_band(n, k, t == 1.0, &mut basis[..=k]);
                 (if t == 1.0 { n - k } else { 0 }, &basis[..=k])
             } else {
@@ -462,9 +499,6 @@ pub(crate) fn derivatives_with_error_into(
             };
             let value = &mut values[k * dim..(k + 1) * dim];
             for (i, &b) in row.iter().enumerate() {
-                if b == 0.0 {
-                    continue;
-                }
                 let point = &points[(first + i) * dim..(first + i + 1) * dim];
                 for c in 0..dim {
                     value[c] += b * point[c];
@@ -474,6 +508,180 @@ pub(crate) fn derivatives_with_error_into(
             let gamma = 2.0 * (n + k + 2) as f64 * unit_roundoff();
             let norm = abs_row.iter().map(|v| v * v).sum::<f64>().sqrt();
             errors[k] = gamma * norm;
+        }
+    });
+}
+
+/// The jet `P^(k)(t)`, `k = 0..=order`, of the Bezier curve with control
+/// points `points` (degree `n`, dimension `dim`, row-major) from the de
+/// Casteljau triangle: with `b^L_i` the points of level `L`
+/// (`b^L_i = (1 - t) b^(L-1)_i + t b^(L-1)_(i+1)`),
+/// `P^(k)(t) = n!/(n-k)! Delta^k b^(n-k)_0` (Farin, *Curves and Surfaces
+/// for CAGD*, 5.5): `O(n^2 d)`, no basis matrix.
+///
+/// Bound of row `k` (first order, `u` the unit roundoff): with `a_i = |P_i|`
+/// (Euclidean) and `a^L_i` the same triangle on the `a_i` with weights
+/// `|1 - t|`, `|t|`, each level adds at most `3u` relative to `a^L` (the
+/// rounding of `1 - t`, two products, one sum), each of the `k` difference
+/// levels `u` relative to `S_k = sum_j C(k, j) a^(n-k)_j`, and the factor
+/// `n!/(n-k)!` one more `u`, so
+/// `|fl(P^(k)) - P^(k)| <= (3 (n - k) + k + 1) u n!/(n-k)! S_k`; the
+/// Euclidean norm over the coordinates is at most that with the Euclidean
+/// `a_i` (Minkowski). `errors[k]` is twice it, which also covers the
+/// rounding of `S_k` itself (sums of non-negative terms). It is never below
+/// the A2.3 bound's `|D(t)_k| |P|` term: `|B_i^(k)(t)| <= n!/(n-k)!
+/// sum_j C(k, j) |B_(i-j)^(n-k)(t)|`.
+pub(crate) fn de_casteljau_jet_into(
+    points: &[f64],
+    dim: usize,
+    n: usize,
+    t: f64,
+    order: usize,
+    values: &mut [f64],
+    errors: &mut [f64],
+) {
+    if n >= SMALL_JET_POINTS || dim > 3 {
+        de_casteljau_jet_slices(points, dim, n, t, order, values, errors);
+        return;
+    }
+    let m = order.min(n);
+    values[(m + 1) * dim..].fill(0.0);
+    errors[m + 1..].fill(0.0);
+    match dim {
+        1 => de_casteljau_jet_small::<1>(points, n, t, m, values, errors),
+        2 => de_casteljau_jet_small::<2>(points, n, t, m, values, errors),
+        _ => de_casteljau_jet_small::<3>(points, n, t, m, values, errors),
+    }
+}
+
+/// Control points up to which [`de_casteljau_jet_small`] works on the stack.
+const SMALL_JET_POINTS: usize = 16;
+
+/// [`de_casteljau_jet_into`] for dimension `D <= 3`, fewer than
+/// [`SMALL_JET_POINTS`] control points, in fixed
+/// arrays, orders `0..=m`: lanes `0..D` the coordinates, lane 3 the size `a^L_i`. The same
+/// operations on every lane as [`de_casteljau_jet_slices`] (a difference
+/// `x - 1 * y` is `x - y`, a size sum `x - (-1) * y` is `x + y`), so the
+/// same values and bounds bit for bit (unit test
+/// `small_jets_equal_the_slice_jets`).
+fn de_casteljau_jet_small<const D: usize>(
+    points: &[f64],
+    n: usize,
+    t: f64,
+    m: usize,
+    values: &mut [f64],
+    errors: &mut [f64],
+) {
+    let mut level = [[0.0f64; 4]; SMALL_JET_POINTS];
+    for (i, slot) in level.iter_mut().enumerate().take(n + 1) {
+        let point = &points[i * D..(i + 1) * D];
+        slot[..D].copy_from_slice(point);
+        slot[3] = point.iter().map(|v| v * v).sum::<f64>().sqrt();
+    }
+    let s = 1.0 - t;
+    let weights_here = [s, s, s, s.abs()];
+    let weights_next = [t, t, t, t.abs()];
+    // Differences in lanes 0..3, sums of the sizes in lane 3.
+    let signs = [1.0, 1.0, 1.0, -1.0];
+    let gamma_unit = 2.0 * unit_roundoff();
+    for l in 0..=n {
+        if l > 0 {
+            for i in 0..=n - l {
+                let next = level[i + 1];
+                let here = &mut level[i];
+                for c in 0..4 {
+                    here[c] = weights_here[c] * here[c] + weights_next[c] * next[c];
+                }
+            }
+        }
+        let k = n - l;
+        if k > m {
+            continue;
+        }
+        let mut work = level;
+        for pass in 0..k {
+            for i in 0..k - pass {
+                let next = work[i + 1];
+                let here = &mut work[i];
+                for c in 0..4 {
+                    here[c] = next[c] - signs[c] * here[c];
+                }
+            }
+        }
+        let falling = falling_factorial(n, k);
+        for c in 0..D {
+            values[k * D + c] = falling * work[0][c];
+        }
+        errors[k] = gamma_unit * (3 * (n - k) + k + 1) as f64 * falling * work[0][3];
+    }
+}
+
+/// `n!/(n-k)!` as the product `n (n-1) ... (n-k+1)` in that order.
+fn falling_factorial(n: usize, k: usize) -> f64 {
+    let mut falling = 1.0f64;
+    for j in 0..k {
+        falling *= (n - j) as f64;
+    }
+    falling
+}
+
+/// [`de_casteljau_jet_into`] in slices of any length.
+fn de_casteljau_jet_slices(
+    points: &[f64],
+    dim: usize,
+    n: usize,
+    t: f64,
+    order: usize,
+    values: &mut [f64],
+    errors: &mut [f64],
+) {
+    let m = order.min(n);
+    values[(m + 1) * dim..].fill(0.0);
+    errors[m + 1..].fill(0.0);
+    let width = dim + 1;
+    with_scratch(2 * (n + 1) * width, |buffer| {
+        // Level L of the triangle, point i at level[i * width..], its
+        // coordinates then its size a^L_i; `work` for the differences.
+        let (level, work) = buffer.split_at_mut((n + 1) * width);
+        for i in 0..=n {
+            let point = &points[i * dim..(i + 1) * dim];
+            let slot = &mut level[i * width..(i + 1) * width];
+            slot[..dim].copy_from_slice(point);
+            slot[dim] = point.iter().map(|v| v * v).sum::<f64>().sqrt();
+        }
+        let s = 1.0 - t;
+        let (s_abs, t_abs) = (s.abs(), t.abs());
+        let gamma_unit = 2.0 * unit_roundoff();
+        for l in 0..=n {
+            if l > 0 {
+                for i in 0..=n - l {
+                    let (here, next) = level[i * width..(i + 2) * width].split_at_mut(width);
+                    for c in 0..dim {
+                        here[c] = s * here[c] + t * next[c];
+                    }
+                    here[dim] = s_abs * here[dim] + t_abs * next[dim];
+                }
+            }
+            let k = n - l;
+            if k > m {
+                continue;
+            }
+            // Delta^k of b^l_0..b^l_k (and the binomial sums of the sizes).
+            let work = &mut work[..(k + 1) * width];
+            work.copy_from_slice(&level[..(k + 1) * width]);
+            for pass in 0..k {
+                for i in 0..k - pass {
+                    for c in 0..dim {
+                        work[i * width + c] = work[(i + 1) * width + c] - work[i * width + c];
+                    }
+                    work[i * width + dim] += work[(i + 1) * width + dim];
+                }
+            }
+            let falling = falling_factorial(n, k);
+            for c in 0..dim {
+                values[k * dim + c] = falling * work[c];
+            }
+            errors[k] = gamma_unit * (3 * (n - k) + k + 1) as f64 * falling * work[dim];
         }
     });
 }
@@ -1084,26 +1292,59 @@ mod tests {
         }
     }
 
-    /// The jets computed in place (bands at the ends, A2.3 into stack
-    /// buffers inside) are the products of the basis rows `D(t)`
-    /// ([`basis_rows`]: the closed-form matrix at the ends, A2.3's matrix
-    /// elsewhere) with the control points, summed over the non-zero entries
-    /// in ascending column order, and the bounds `gamma |D| |P|`: bit for
-    /// bit, for degrees 0..=9, dimensions 1..=4, orders up to 11 (above the
-    /// degree too), at the ends and inside (and outside) `[0, 1]`, with
-    /// stack and heap buffers.
+    /// `derivatives_with_error_into` at `t = 0`, `1`: the closed-form band
+    /// times the control points, in ascending column order, with the bound
+    /// `gamma |D| |P|`, bit for bit. Elsewhere (the de Casteljau triangle,
+    /// inside and outside `[0, 1]`): within its bound of the exact jet
+    /// (exact rational arithmetic on the same f64 inputs), and within the
+    /// sum of both bounds of the A2.3 products. Degrees 0..=9, dimensions
+    /// 1..=4, orders up to 11 (above the degree too), stack and heap buffers.
     #[test]
-    fn jets_in_place_equal_the_basis_row_products() {
+    #[allow(clippy::needless_range_loop)]
+    fn jets_in_place_are_within_their_bounds() {
+        use num_rational::BigRational;
+        use num_traits::{ToPrimitive, Zero};
+        let exact = |x: f64| BigRational::from_float(x).expect("finite");
         for n in 0..=9 {
             for dim in 1..=4 {
                 let points: Vec<f64> = (0..(n + 1) * dim)
                     .map(|i| ((i * 7919) % 97) as f64 / 9.7 - 5.0)
                     .collect();
                 let curve = BezierCurve::new(dim, n, points).unwrap();
-                for t in [0.0, 1.0, 0.3, 0.5, 0.77, -0.2, 1.4] {
+                for t in [0.0, 1.0, 0.3, 0.5, 0.77, 1e-9, -0.2, 1.4] {
+                    // The exact jet: de Casteljau in rationals, then n!/(n-k)! Delta^k.
+                    let (tq, sq) = (exact(t), exact(1.0) - exact(t));
+                    let mut level: Vec<Vec<BigRational>> = (0..=n)
+                        .map(|i| curve.point(i).iter().map(|&v| exact(v)).collect())
+                        .collect();
+                    let mut exact_jet = vec![vec![BigRational::zero(); dim]; n + 1];
+                    for l in 0..=n {
+                        if l > 0 {
+                            for i in 0..=n - l {
+                                for c in 0..dim {
+                                    level[i][c] = &sq * &level[i][c] + &tq * &level[i + 1][c];
+                                }
+                            }
+                        }
+                        let k = n - l;
+                        let mut work: Vec<Vec<BigRational>> = level[..=k].to_vec();
+                        for pass in 0..k {
+                            for i in 0..k - pass {
+                                for c in 0..dim {
+                                    work[i][c] = &work[i + 1][c] - &work[i][c];
+                                }
+                            }
+                        }
+                        let falling: i64 = (0..k).map(|j| (n - j) as i64).product();
+                        for c in 0..dim {
+                            exact_jet[k][c] =
+                                &work[0][c] * BigRational::from_integer(falling.into());
+                        }
+                    }
                     for order in [0, 1, 2, 3, n, n + 2] {
                         let d = basis_rows(n, t, order);
                         let (values, errors) = derivatives_with_error(&curve, t, order);
+                        let at_end = n > 0 && (t == 0.0 || t == 1.0);
                         for k in 0..=order {
                             let mut value = vec![0.0; dim];
                             let mut abs = vec![0.0; dim];
@@ -1117,14 +1358,151 @@ mod tests {
                                 }
                             }
                             let gamma = 2.0 * (n + k + 2) as f64 * unit_roundoff();
-                            let bound = gamma * abs.iter().map(|v| v * v).sum::<f64>().sqrt();
-                            for c in 0..dim {
-                                assert_eq!(values[(k, c)], value[c], "n {n} t {t} k {k}");
+                            let a23_bound = gamma * abs.iter().map(|v| v * v).sum::<f64>().sqrt();
+                            if at_end {
+                                for c in 0..dim {
+                                    assert_eq!(values[(k, c)], value[c], "n {n} t {t} k {k}");
+                                }
+                                assert_eq!(errors[k], a23_bound, "n {n} dim {dim} t {t} k {k}");
+                                continue;
                             }
-                            assert_eq!(errors[k], bound, "n {n} dim {dim} t {t} k {k}");
+                            if k > n {
+                                assert!((0..dim).all(|c| values[(k, c)] == 0.0));
+                                assert_eq!(errors[k], 0.0);
+                                continue;
+                            }
+                            let miss = (0..dim)
+                                .map(|c| {
+                                    (exact(values[(k, c)]) - &exact_jet[k][c])
+                                        .to_f64()
+                                        .unwrap()
+                                        .powi(2)
+                                })
+                                .sum::<f64>()
+                                .sqrt();
+                            assert!(
+                                miss <= errors[k],
+                                "n {n} dim {dim} t {t} k {k}: miss {miss:e} above bound {:e}",
+                                errors[k]
+                            );
+                            let gap = (0..dim)
+                                .map(|c| (values[(k, c)] - value[c]).powi(2))
+                                .sum::<f64>()
+                                .sqrt();
+                            assert!(gap <= 1.01 * (errors[k] + a23_bound), "n {n} t {t} k {k}");
                         }
                     }
                 }
+            }
+        }
+    }
+
+    /// The fixed-array jets (dimensions 1..=3, degree below 16) against the
+    /// slice code they replace on the hot path: bit for bit, values and
+    /// bounds, every order, inside and outside `[0, 1]`.
+    #[test]
+    fn small_jets_equal_the_slice_jets() {
+        for n in 0..SMALL_JET_POINTS {
+            for dim in 1..=3 {
+                let points: Vec<f64> = (0..(n + 1) * dim)
+                    .map(|i| ((i * 7919) % 97) as f64 / 9.7 - 5.0)
+                    .collect();
+                for t in [0.3, 0.5, 0.77, 1e-9, -0.2, 1.4] {
+                    for order in [0, 1, n, n + 2] {
+                        let mut fast = (vec![7.0; (order + 1) * dim], vec![7.0; order + 1]);
+                        let mut slow = fast.clone();
+                        de_casteljau_jet_into(&points, dim, n, t, order, &mut fast.0, &mut fast.1);
+                        de_casteljau_jet_slices(
+                            &points,
+                            dim,
+                            n,
+                            t,
+                            order,
+                            &mut slow.0,
+                            &mut slow.1,
+                        );
+                        assert_eq!(fast, slow, "n {n} dim {dim} t {t} order {order}");
+                    }
+                }
+            }
+        }
+    }
+
+    /// The end-condition hot path ([`ends::connect_ends`], fixed arrays)
+    /// against the general structured path ([`prepare`],
+    /// [`solve_structured`]): the same control points, residual and
+    /// estimate bit for bit, for dimensions 1..=5 (5 takes the general path
+    /// inside too), degrees of P and Q 1..=7, orders up to the degrees,
+    /// parameters at the ends and inside, and several scales.
+    #[test]
+    fn end_path_equals_the_general_path() {
+        let mut cases = 0;
+        for dim in 1..=5 {
+            for (np, nq) in [(1, 1), (3, 3), (3, 4), (5, 2), (7, 7)] {
+                let curve = |degree: usize, offset: usize| {
+                    let points: Vec<f64> = (0..(degree + 1) * dim)
+                        .map(|i| (((i + offset) * 7919) % 97) as f64 / 9.7 - 5.0)
+                        .collect();
+                    BezierCurve::new(dim, degree, points).unwrap()
+                };
+                let (p, q) = (curve(np, 3), curve(nq, 41));
+                for (u0, v0) in [(1.0, 0.0), (0.6, 0.3), (0.0, 1.0), (0.25, 0.0)] {
+                    for (kp, kq) in [(0, 0), (1, 2), (np, nq), (np.min(2), nq)] {
+                        for (alpha, beta) in [(1.0, 1.0), (0.3, 2.5)] {
+                            let options = ConnectOptions::new(kp, kq).with_scales(alpha, beta);
+                            let fast = connect(&p, u0, &q, v0, &options);
+                            let problem = prepare(&p, u0, &q, v0, &options).unwrap();
+                            let general = solve_structured(&problem, alpha, beta);
+                            match (fast, general) {
+                                (Ok(a), Ok(b)) => {
+                                    assert_eq!(
+                                        a.curve.points(),
+                                        b.curve.points(),
+                                        "dim {dim} {np}/{nq} {u0}/{v0} {kp}/{kq}"
+                                    );
+                                    assert_eq!(a.max_residual, b.max_residual);
+                                    assert_eq!(a.error_estimate, b.error_estimate);
+                                }
+                                (Err(a), Err(b)) => assert_eq!(a.to_string(), b.to_string()),
+                                (a, b) => panic!("paths disagree: {a:?} / {b:?}"),
+                            }
+                            cases += 1;
+                        }
+                    }
+                }
+            }
+        }
+        assert_eq!(cases, 5 * 5 * 4 * 4 * 2);
+    }
+
+    /// [`end_band`]'s tables give the values of its run-time recurrence bit
+    /// for bit (degrees up to the table size, every order and end).
+    #[test]
+    fn end_band_tables_equal_the_recurrence() {
+        for n in 0..END_TABLE_SIZE {
+            for k in 0..=n {
+                let falling = falling_factorial(n, k);
+                let mut coefficient = 1.0f64;
+                let mut band = vec![0.0; k + 1];
+                for at_one in [false, true] {
+                    end_band(n, k, at_one, &mut band);
+                    coefficient = 1.0;
+                    for j in 0..=k {
+                        let (slot, negative) = if at_one {
+                            (k - j, j % 2 == 1)
+                        } else {
+                            (j, (k - j) % 2 == 1)
+                        };
+                        let value = falling * coefficient;
+                        assert_eq!(
+                            band[slot],
+                            if negative { -value } else { value },
+                            "n {n} k {k} j {j}"
+                        );
+                        coefficient = coefficient * (k - j) as f64 / (j + 1) as f64;
+                    }
+                }
+                assert!(coefficient == 0.0 || k == 0 || coefficient.is_finite());
             }
         }
     }
