@@ -15,7 +15,9 @@
 //! degree up to [`super::MAX_CONNECT_DEGREE`]; the unused lanes stay exact
 //! zeros) and one allocation, the result's control points.
 
-use super::{CONNECT_RESIDUAL_LIMIT, Connection, end_band, residual_and_bound, unit_roundoff};
+use super::{
+    CONNECT_RESIDUAL_LIMIT, Connection, end_band, end_band_norm, residual_and_bound, unit_roundoff,
+};
 use crate::basis::KnotSide;
 use crate::bezier::BezierCurve;
 use crate::curve::CurveJet;
@@ -93,48 +95,11 @@ pub(super) fn connect_ends<P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
             factor *= scale;
         }
     }
-    // The band of row r, its first column and its order.
-    let band_of = |r: usize, band: &mut [f64; MAX_POINTS]| -> (usize, usize) {
-        if r <= kp {
-            end_band(n, r, false, &mut band[..=r]);
-            (0, r)
-        } else {
-            let k = r - kp - 1;
-            end_band(n, k, true, &mut band[..=k]);
-            (n - k, k)
-        }
-    };
-    let mut band = [0.0f64; MAX_POINTS];
-    // P end: row k of D(0) touches R_0..R_k only (lower triangular); Q end:
-    // row k of D(1) touches R_(n-k)..R_n only (anti-triangular). The two
-    // sets of unknowns are disjoint (n - kq = kp + 1).
-    for r in 0..count {
-        let (first, k) = band_of(r, &mut band);
-        row_norms[r] = band[..=k].iter().map(|v| v.abs()).sum();
-        let target = targets[r];
-        if r <= kp {
-            let diagonal = band[k];
-            for c in 0..LANES {
-                let mut sum = target[c];
-                for i in 0..k {
-                    sum -= band[i] * points[i][c];
-                }
-                points[k][c] = sum / diagonal;
-            }
-        } else {
-            let diagonal = band[0];
-            for c in 0..LANES {
-                let mut sum = target[c];
-                for i in first + 1..=n {
-                    sum -= band[i - first] * points[i][c];
-                }
-                points[first][c] = sum / diagonal;
-            }
-        }
-    }
-    // The residual check of `check_residuals` on the bands.
+    // The 1-norms of the rows (the tables of `end_band_norm`, the sums the
+    // general path forms) and the data scale of `check_residuals`.
     let mut data_scale = p.coordinate_scale().max(q.coordinate_scale());
     for r in 0..count {
+        row_norms[r] = end_band_norm(n, if r <= kp { r } else { r - kp - 1 });
         let v = target_norms[r] / row_norms[r];
         if v.is_finite() {
             data_scale = data_scale.max(v);
@@ -143,8 +108,40 @@ pub(super) fn connect_ends<P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
     let gamma = 2.0 * (2 * n + 4) as f64 * unit_roundoff();
     let mut max_residual = 0.0f64;
     let mut error_estimate = 0.0f64;
+    let mut band = [0.0f64; MAX_POINTS];
+    // Row by row: the band once, the unknown it determines, its residual.
+    // P end: row k of D(0) touches R_0..R_k only (lower triangular); Q end:
+    // row k of D(1) touches R_(n-k)..R_n only (anti-triangular). The two
+    // sets of unknowns are disjoint (n - kq = kp + 1), so a row's residual
+    // is final as soon as its own unknown is solved.
     for r in 0..count {
-        let (first, k) = band_of(r, &mut band);
+        let target = targets[r];
+        let (first, k) = if r <= kp {
+            let k = r;
+            end_band(n, k, false, &mut band[..=k]);
+            let diagonal = band[k];
+            for c in 0..LANES {
+                let mut sum = target[c];
+                for i in 0..k {
+                    sum -= band[i] * points[i][c];
+                }
+                points[k][c] = sum / diagonal;
+            }
+            (0, k)
+        } else {
+            let k = r - kp - 1;
+            let first = n - k;
+            end_band(n, k, true, &mut band[..=k]);
+            let diagonal = band[0];
+            for c in 0..LANES {
+                let mut sum = target[c];
+                for i in first + 1..=n {
+                    sum -= band[i - first] * points[i][c];
+                }
+                points[first][c] = sum / diagonal;
+            }
+            (first, k)
+        };
         let denominator = target_norms[r].max(data_scale * row_norms[r]);
         let mut difference_square = 0.0;
         let mut abs_square = 0.0;
@@ -156,7 +153,7 @@ pub(super) fn connect_ends<P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
                 value += b * x;
                 abs_value += b.abs() * x.abs();
             }
-            let difference = value - targets[r][c];
+            let difference = value - target[c];
             difference_square += difference * difference;
             abs_square += abs_value * abs_value;
         }

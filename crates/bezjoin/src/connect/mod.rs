@@ -363,6 +363,42 @@ pub(crate) fn end_band(degree: usize, k: usize, at_one: bool, band: &mut [f64]) 
     }
 }
 
+/// `sum_j |band_j|` of [`end_band`]`(degree, k, ..)` (either end: the same
+/// entries in reverse order, and `C(k, j) = C(k, k - j)` exactly), summed in
+/// band order from `0.0` as the general path sums a row (from the table
+/// below the table size).
+pub(crate) fn end_band_norm(degree: usize, k: usize) -> f64 {
+    if degree < END_TABLE_SIZE {
+        return END_BAND_NORMS[degree][k];
+    }
+    let mut band = vec![0.0; k + 1];
+    end_band(degree, k, false, &mut band);
+    band.iter().map(|v| v.abs()).sum()
+}
+
+/// `END_BAND_NORMS[n][k]`: [`end_band_norm`] by the operations of
+/// [`end_band`] and the sum.
+static END_BAND_NORMS: [[f64; END_TABLE_SIZE]; END_TABLE_SIZE] = {
+    let mut table = [[0.0f64; END_TABLE_SIZE]; END_TABLE_SIZE];
+    let mut n = 0;
+    while n < END_TABLE_SIZE {
+        let mut k = 0;
+        while k <= n {
+            let falling = FALLING_FACTORIALS[n][k];
+            let mut sum = 0.0f64;
+            let mut j = 0;
+            while j <= k {
+                sum += (falling * BINOMIALS[k][j]).abs();
+                j += 1;
+            }
+            table[n][k] = sum;
+            k += 1;
+        }
+        n += 1;
+    }
+    table
+};
+
 /// Degrees below which [`end_band`] reads its factors from tables.
 const END_TABLE_SIZE: usize = MAX_CONNECT_DEGREE + 1;
 
@@ -1503,6 +1539,21 @@ mod tests {
                     }
                 }
                 assert!(coefficient == 0.0 || k == 0 || coefficient.is_finite());
+            }
+        }
+    }
+
+    /// [`end_band_norm`]'s table against the sum of the bands of both ends.
+    #[test]
+    fn end_band_norms_equal_the_band_sums() {
+        for n in 0..END_TABLE_SIZE + 3 {
+            for k in 0..=n {
+                let mut band = vec![0.0; k + 1];
+                for at_one in [false, true] {
+                    end_band(n, k, at_one, &mut band);
+                    let sum: f64 = band.iter().map(|v| v.abs()).sum();
+                    assert_eq!(end_band_norm(n, k), sum, "n {n} k {k} at_one {at_one}");
+                }
             }
         }
     }
