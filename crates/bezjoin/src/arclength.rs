@@ -1788,3 +1788,83 @@ mod kept_inverse_tests {
         }
     }
 }
+
+#[cfg(test)]
+mod chebyshev_tests {
+    use super::*;
+
+    /// The two cubics of the fillet benchmark and of the C++ demo.
+    fn gentle() -> Vec<BezierCurve> {
+        [
+            [[-1.0, -1.0], [-0.3, 0.2], [0.4, 0.5], [1.2, 0.3]],
+            [[0.5, -1.2], [0.1, -0.2], [-0.1, 0.6], [0.3, 1.4]],
+            [[0.0, 0.0], [0.8, 0.3], [1.5, -0.2], [2.2, 0.4]],
+            [[1.0, -1.0], [1.3, -0.2], [0.8, 0.6], [1.2, 1.4]],
+        ]
+        .iter()
+        .map(|rows| BezierCurve::from_rows(rows).unwrap())
+        .collect()
+    }
+
+    /// The Chebyshev inversion answers on gentle curves for setbacks up to a
+    /// fifth of the remaining length (so the fast path is the one the
+    /// fillet takes), its answer meets the accuracy against the
+    /// adaptive rule at 1e-16, and it agrees with the adaptive inversion to
+    /// within the sum of both accuracies.
+    #[test]
+    fn the_chebyshev_inversion_answers_and_meets_the_accuracy() {
+        for c in gentle() {
+            let speed = ChebyshevSpeed::new(&c).expect("a gentle curve qualifies");
+            let h = c.hodograph();
+            for &start in &[0.1, 0.45, 0.9] {
+                for &relative in &[1e-12, 1e-9] {
+                    for &fraction in &[0.01, 0.2, 0.6] {
+                        for forward in [true, false] {
+                            let end = if forward { 1.0 } else { 0.0 };
+                            let available = arc_length_with(&h, start, end, 1e-16).abs();
+                            let target = fraction * available;
+                            let accuracy = relative * target;
+                            let signed = if forward { target } else { -target };
+                            // Short setbacks (the fillet's) must be answered;
+                            // a long one may be declined (a wide bracket).
+                            let Some(t) = speed.param_at_length(start, signed, accuracy) else {
+                                assert!(fraction > 0.5, "no answer: start {start}, {fraction}");
+                                continue;
+                            };
+                            let measured = arc_length_with(&h, start, t, 1e-16).abs();
+                            assert!(
+                                (measured - target).abs() <= accuracy,
+                                "start {start}, fraction {fraction}, forward {forward}: \
+                                 {measured} vs {target}"
+                            );
+                            assert_eq!(c.param_at_length(start, signed, accuracy).unwrap(), t);
+                            let adaptive = ArcLengthInverse::new(&c, start)
+                                .param_at_length_adaptive(signed, accuracy)
+                                .unwrap();
+                            let between = arc_length_with(&h, t, adaptive, 1e-16).abs();
+                            assert!(between <= 2.0 * accuracy, "{between:e}");
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    /// Curves the control-polygon bound cannot clear (a cusp, a curve
+    /// turning back) and lengths past the end are left to the adaptive path.
+    #[test]
+    fn the_chebyshev_inversion_declines_what_it_cannot_certify() {
+        let cusp =
+            BezierCurve::from_rows(&[[0.0, 0.0], [2.0, 1.0], [0.0, 1.0], [2.0, 0.0]]).unwrap();
+        assert!(ChebyshevSpeed::new(&cusp).is_none());
+        let back = BezierCurve::from_rows(&[[0.0], [2.0], [-1.0], [1.0]]).unwrap();
+        assert!(ChebyshevSpeed::new(&back).is_none());
+        let c = &gentle()[0];
+        let speed = ChebyshevSpeed::new(c).unwrap();
+        let total = c.arc_length(0.5, 1.0, 1e-14).unwrap();
+        assert!(speed.param_at_length(0.5, 1.01 * total, 1e-12).is_none());
+        assert!(speed.param_at_length(1.0, 0.1, 1e-12).is_none());
+        // Below the parameter resolution: no certified answer here.
+        assert!(speed.param_at_length(0.5, 1e-300, 1e-310).is_none());
+    }
+}
