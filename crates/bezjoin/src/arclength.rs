@@ -1170,8 +1170,27 @@ fn fold_apply<const ROWS: usize, const COLUMNS: usize>(
     }
     for (k, row) in matrix.iter().enumerate() {
         let folded = if k % 2 == 0 { &even } else { &odd };
-        out[k] = row.iter().zip(folded).map(|(m, f)| m * f).sum();
+        out[k] = dot(row, folded);
     }
+}
+
+/// `sum_j a_j b_j` in four interleaved partial sums (independent chains the
+/// compiler can pair into vector instructions), then the remainder.
+#[inline(always)]
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    let mut partial = [0.0; 4];
+    let (a4, b4) = (a.chunks_exact(4), b.chunks_exact(4));
+    let (ra, rb) = (a4.remainder(), b4.remainder());
+    for (x, y) in a4.zip(b4) {
+        for i in 0..4 {
+            partial[i] += x[i] * y[i];
+        }
+    }
+    let mut sum = (partial[0] + partial[2]) + (partial[1] + partial[3]);
+    for (x, y) in ra.iter().zip(rb) {
+        sum += x * y;
+    }
+    sum
 }
 
 /// The speed `|P'(t)|` on `[0, 1]` of a curve whose hodograph's control
@@ -1261,32 +1280,38 @@ impl ChebyshevSpeed {
 
     /// `|P'(t)|` for `t` in `[0, 1]`: Bernstein-Horner in `t / (1 - t)` or
     /// `(1 - t) / t`, whichever is at most 1 (the scheme of
-    /// [`BezierCurve::eval`]).
+    /// [`BezierCurve::eval`]), with the dimension fixed at compile time for
+    /// the plane and space.
     #[inline(always)]
     fn at(&self, t: f64) -> f64 {
-        let (m, d) = (self.degree, self.dim);
+        match self.dim {
+            2 => self.at_in::<2>(t),
+            3 => self.at_in::<3>(t),
+            _ => self.at_in::<CHEBYSHEV_MAX_DIM>(t),
+        }
+    }
+
+    /// [`Self::at`] in `D >= dim` coordinates (the unused ones stay 0).
+    #[inline(always)]
+    fn at_in<const D: usize>(&self, t: f64) -> f64 {
+        let (m, d) = (self.degree, self.dim.min(D));
         let w = &self.weighted;
-        let mut acc = [0.0; CHEBYSHEV_MAX_DIM];
+        let row = |i: usize| {
+            let mut p = [0.0; D];
+            p[..d].copy_from_slice(&w[i * self.dim..i * self.dim + d]);
+            p
+        };
         let s = 1.0 - t;
-        let factor;
-        if t <= 0.5 {
-            let r = t / s;
-            acc[..d].copy_from_slice(&w[m * d..(m + 1) * d]);
-            for i in (0..m).rev() {
-                for c in 0..d {
-                    acc[c] = acc[c] * r + w[i * d + c];
-                }
-            }
-            factor = s;
+        let (r, factor, mut acc) = if t <= 0.5 {
+            (t / s, s, row(m))
         } else {
-            let r = s / t;
-            acc[..d].copy_from_slice(&w[..d]);
-            for i in 1..=m {
-                for c in 0..d {
-                    acc[c] = acc[c] * r + w[i * d + c];
-                }
+            (s / t, t, row(0))
+        };
+        for k in 1..=m {
+            let p = if t <= 0.5 { row(m - k) } else { row(k) };
+            for c in 0..D {
+                acc[c] = acc[c] * r + p[c];
             }
-            factor = t;
         }
         let mut power = 1.0;
         for _ in 0..m {
