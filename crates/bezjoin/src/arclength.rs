@@ -1266,7 +1266,10 @@ impl ChebyshevSpeed {
         if weighted[..n * d].iter().any(|x| !x.is_finite()) {
             return None;
         }
-        let scale = h.iter().fold(0.0f64, |s, x| s.max(x.abs())).max(f64::MIN_POSITIVE);
+        let scale = h
+            .iter()
+            .fold(0.0f64, |s, x| s.max(x.abs()))
+            .max(f64::MIN_POSITIVE);
         let noise_per_unit = 4.0 * n as f64 * f64::EPSILON * scale * (d as f64).sqrt();
         Some(ChebyshevSpeed {
             weighted,
@@ -1357,7 +1360,14 @@ impl ChebyshevSpeed {
             let (width, far) = if width >= room || !width.is_finite() {
                 (room, if forward { 1.0 } else { 0.0 })
             } else {
-                (width, if forward { start + width } else { start - width })
+                (
+                    width,
+                    if forward {
+                        start + width
+                    } else {
+                        start - width
+                    },
+                )
             };
             let answer = self.invert_on(start, far, target, accuracy, &mut samples);
             if answer.is_some() || width == room || width >= bound {

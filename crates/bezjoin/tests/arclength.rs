@@ -272,8 +272,14 @@ fn the_inverse_meets_its_accuracy_near_a_cusp() {
     let mut failures = Vec::new();
     for (degree, curve, t0) in near_cusp_curves() {
         let minima = speed_minima(&curve);
-        assert!(minima.iter().any(|m| (m - t0).abs() < 1e-6), "{minima:?} vs {t0}");
-        failures.extend(inverse_failures(&curve, &format!("near-cusp degree {degree}")));
+        assert!(
+            minima.iter().any(|m| (m - t0).abs() < 1e-6),
+            "{minima:?} vs {t0}"
+        );
+        failures.extend(inverse_failures(
+            &curve,
+            &format!("near-cusp degree {degree}"),
+        ));
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
@@ -284,7 +290,11 @@ fn near_cusp_curves() -> Vec<(usize, BezierCurve, f64)> {
         .map(|degree| {
             let t0 = 0.25 + 0.5 * rng.next();
             let curve = with_near_cusp(&random_curve(&mut rng, degree, 2), t0, 1e-6);
-            assert!(speed(&curve, t0) < 2e-6, "degree {degree}: {}", speed(&curve, t0));
+            assert!(
+                speed(&curve, t0) < 2e-6,
+                "degree {degree}: {}",
+                speed(&curve, t0)
+            );
             (degree, curve, t0)
         })
         .collect()
