@@ -24,6 +24,15 @@
 //! the start of that panel (from `start` only when the range's length
 //! overflows and there is no table).
 //!
+//! Before all that, curves whose hodograph polygon keeps the speed away
+//! from zero (no cusp; degree and dimension small enough for a stack
+//! buffer) are inverted by [`ChebyshevSpeed::param_at_length`]: 33 speed
+//! samples on a bracket of the answer, the interpolant integrated in closed
+//! form, Newton on that polynomial, and a check of the interpolant against
+//! the one through every other sample (the analogue of the rule against its
+//! halves) and of the residual at the returned parameter; whatever it
+//! cannot certify goes the adaptive way above.
+//!
 //! Repeated inversions from one start (the fillet's deviation search, one
 //! per trial setback) go through a kept [`ArcLengthInverse`]: it keeps the
 //! adaptive rule's bisection tree with its values ([`QuadratureTree`]) and
