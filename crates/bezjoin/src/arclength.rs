@@ -24,6 +24,15 @@
 //! the start of that panel (from `start` only when the range's length
 //! overflows and there is no table).
 //!
+//! Before all that, curves whose hodograph polygon keeps the speed away
+//! from zero (no cusp; degree and dimension small enough for a stack
+//! buffer) are inverted by [`ChebyshevSpeed::param_at_length`]: 33 speed
+//! samples on a bracket of the answer, the interpolant integrated in closed
+//! form, Newton on that polynomial, and a check of the interpolant against
+//! the one through every other sample (the analogue of the rule against its
+//! halves) and of the residual at the returned parameter; whatever it
+//! cannot certify goes the adaptive way above.
+//!
 //! Repeated inversions from one start (the fillet's deviation search, one
 //! per trial setback) go through a kept [`ArcLengthInverse`]: it keeps the
 //! adaptive rule's bisection tree with its values ([`QuadratureTree`]) and
@@ -489,8 +498,13 @@ impl BezierCurve {
 /// `curve.param_at_length(start, length, accuracy)` returns, bit for bit
 /// (that function is a fresh `ArcLengthInverse`); the fillet's deviation
 /// search keeps one per curve across its trial setbacks.
-pub(crate) struct ArcLengthInverse {
-    hodograph: BezierCurve,
+pub(crate) struct ArcLengthInverse<'a> {
+    curve: &'a BezierCurve,
+    /// Built on the first call that needs the adaptive path.
+    hodograph: Option<BezierCurve>,
+    /// The Chebyshev inversion's speed ([`ChebyshevSpeed`]), `None` when the
+    /// curve does not qualify; built on first use.
+    chebyshev: Option<Option<ChebyshevSpeed>>,
     start: f64,
     /// The trees on `[0, start]` (index 0, backwards) and `[start, 1]`
     /// (index 1, forwards).
@@ -498,11 +512,13 @@ pub(crate) struct ArcLengthInverse {
     partials: Partials,
 }
 
-impl ArcLengthInverse {
+impl<'a> ArcLengthInverse<'a> {
     /// Inversion from `start` along `curve` (`start` is checked by each call).
-    pub(crate) fn new(curve: &BezierCurve, start: f64) -> Self {
+    pub(crate) fn new(curve: &'a BezierCurve, start: f64) -> Self {
         ArcLengthInverse {
-            hodograph: curve.hodograph(),
+            curve,
+            hodograph: None,
+            chebyshev: None,
             start,
             trees: [None, None],
             partials: Partials::default(),
@@ -528,7 +544,26 @@ impl ArcLengthInverse {
         if length == 0.0 {
             return Ok(start);
         }
-        let hodograph = &self.hodograph;
+        let curve = self.curve;
+        if let Some(speed) = self
+            .chebyshev
+            .get_or_insert_with(|| ChebyshevSpeed::new(curve))
+        {
+            if let Some(t) = speed.param_at_length(start, length, accuracy) {
+                return Ok(t);
+            }
+        }
+        self.param_at_length_adaptive(length, accuracy)
+    }
+
+    /// [`Self::param_at_length`] without the Chebyshev inversion: the
+    /// adaptive rule's panels and Newton inside the panel holding the answer
+    /// (the path of every curve the Chebyshev inversion does not certify).
+    /// `start`, `length != 0` and `accuracy` already checked.
+    fn param_at_length_adaptive(&mut self, length: f64, accuracy: f64) -> Result<f64> {
+        let start = self.start;
+        let curve = self.curve;
+        let hodograph = &*self.hodograph.get_or_insert_with(|| curve.hodograph());
         let end = if length > 0.0 { 1.0 } else { 0.0 };
         let forward = length > 0.0;
         let (range_lo, range_hi) = if forward { (start, 1.0) } else { (0.0, start) };
@@ -1053,6 +1088,413 @@ fn isolate(coefficients: &[f64], s0: f64, s1: f64, roots: &mut Vec<f64>, budget:
     isolate(&right, mid, s1, roots, budget);
 }
 
+/// Chebyshev-Lobatto intervals of the Chebyshev inversion: the speed is
+/// sampled at `CHEBYSHEV_N + 1` points.
+const CHEBYSHEV_N: usize = 32;
+
+/// The coarser interpolant of the error estimate uses every other sample.
+const CHEBYSHEV_HALF: usize = CHEBYSHEV_N / 2;
+
+/// Largest `(degree + 1) * dim` of a hodograph the Chebyshev inversion
+/// keeps on the stack (degree 15 in 4D, degree 31 in 2D).
+const CHEBYSHEV_MAX_POINTS: usize = 64;
+
+/// Largest dimension of the Chebyshev inversion.
+const CHEBYSHEV_MAX_DIM: usize = 8;
+
+/// Share of the inversion's `accuracy` given to the interpolant's error
+/// estimate; the residual gets [`CHEBYSHEV_RESIDUAL_SHARE`], so the length
+/// at the returned parameter errs by at most `0.75 accuracy` (or by the
+/// rounding level where that is larger).
+const CHEBYSHEV_ESTIMATE_SHARE: f64 = 0.25;
+const CHEBYSHEV_RESIDUAL_SHARE: f64 = 0.5;
+
+/// First try of the bracket: this factor times `length / |P'(start)|`.
+const CHEBYSHEV_FIRST_WIDTH: f64 = 1.25;
+
+/// The interpolation matrices of the Chebyshev inversion, folded by the
+/// symmetry `cos(pi (N - j) k / N) = (-1)^k cos(pi j k / N)`: row `k` of
+/// `fine` maps the folded samples `f_j + (-1)^k f_(N-j)`, `j = 0..=N/2`, to
+/// the coefficient `a_k` of the interpolant through all `N + 1` samples;
+/// `coarse` does the same for the `N/2 + 1` even samples.
+struct ChebyshevTables {
+    fine: [[f64; CHEBYSHEV_HALF + 1]; CHEBYSHEV_N + 1],
+    coarse: [[f64; CHEBYSHEV_HALF / 2 + 1]; CHEBYSHEV_HALF + 1],
+    /// `cos(pi j / N)`, `j = 0..=N`: the nodes on `[-1, 1]`.
+    nodes: [f64; CHEBYSHEV_N + 1],
+}
+
+/// The matrix of [`ChebyshevTables`] for `n` intervals: `(2 / n) w_j cos(pi
+/// j k / n)` with `w_0 = 1/2` (the end samples' half weight), `w_(n/2) =
+/// 1/2` (the middle sample, counted twice by the folding), rows `0` and `n`
+/// halved (the interpolant's end coefficients).
+fn folded_matrix<const ROWS: usize, const COLUMNS: usize>() -> [[f64; COLUMNS]; ROWS] {
+    let n = ROWS - 1;
+    let mut matrix = [[0.0; COLUMNS]; ROWS];
+    for (k, row) in matrix.iter_mut().enumerate() {
+        for (j, entry) in row.iter_mut().enumerate() {
+            let mut w = 2.0 / n as f64;
+            if j == 0 || 2 * j == n {
+                w *= 0.5;
+            }
+            if k == 0 || k == n {
+                w *= 0.5;
+            }
+            *entry = w * (std::f64::consts::PI * ((j * k) % (2 * n)) as f64 / n as f64).cos();
+        }
+    }
+    matrix
+}
+
+fn chebyshev_tables() -> &'static ChebyshevTables {
+    static TABLES: std::sync::OnceLock<ChebyshevTables> = std::sync::OnceLock::new();
+    TABLES.get_or_init(|| {
+        let mut nodes = [0.0; CHEBYSHEV_N + 1];
+        for (j, x) in nodes.iter_mut().enumerate() {
+            *x = (std::f64::consts::PI * j as f64 / CHEBYSHEV_N as f64).cos();
+        }
+        nodes[CHEBYSHEV_N / 2] = 0.0;
+        ChebyshevTables {
+            fine: folded_matrix(),
+            coarse: folded_matrix(),
+            nodes,
+        }
+    })
+}
+
+/// `matrix` applied to the samples `f_0..=f_n` folded as in
+/// [`ChebyshevTables`].
+fn fold_apply<const ROWS: usize, const COLUMNS: usize>(
+    matrix: &[[f64; COLUMNS]; ROWS],
+    samples: impl Fn(usize) -> f64,
+    out: &mut [f64],
+) {
+    let n = ROWS - 1;
+    let mut even = [0.0; COLUMNS];
+    let mut odd = [0.0; COLUMNS];
+    for j in 0..COLUMNS {
+        let (f, g) = (samples(j), samples(n - j));
+        even[j] = f + g;
+        odd[j] = f - g;
+    }
+    for (k, row) in matrix.iter().enumerate() {
+        let folded = if k % 2 == 0 { &even } else { &odd };
+        out[k] = dot(row, folded);
+    }
+}
+
+/// `sum_j a_j b_j` in four interleaved partial sums (independent chains the
+/// compiler can pair into vector instructions), then the remainder.
+#[inline(always)]
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    let mut partial = [0.0; 4];
+    let (a4, b4) = (a.chunks_exact(4), b.chunks_exact(4));
+    let (ra, rb) = (a4.remainder(), b4.remainder());
+    for (x, y) in a4.zip(b4) {
+        for i in 0..4 {
+            partial[i] += x[i] * y[i];
+        }
+    }
+    let mut sum = (partial[0] + partial[2]) + (partial[1] + partial[3]);
+    for (x, y) in ra.iter().zip(rb) {
+        sum += x * y;
+    }
+    sum
+}
+
+/// The speed `|P'(t)|` on `[0, 1]` of a curve whose hodograph's control
+/// polygon keeps the speed provably away from zero
+/// ([`speed_bounded_away_from_zero`]: no cusp, no kink of `|P'|`, which is
+/// then analytic on `[0, 1]`), for the Chebyshev inversion
+/// ([`ChebyshevSpeed::param_at_length`]). The hodograph is kept once as
+/// its binomial-weighted control points `C(m, i) H_i` on the stack, so an
+/// evaluation is one Horner pass with no allocation.
+struct ChebyshevSpeed {
+    weighted: [f64; CHEBYSHEV_MAX_POINTS],
+    /// Hodograph degree `m` and dimension.
+    degree: usize,
+    dim: usize,
+    /// `|P'(t)| >= low` on `[0, 1]` (the polygon's projection bound) and
+    /// `|P'(t)| <= high` (convex hull).
+    low: f64,
+    high: f64,
+    /// [`speed_noise_per_unit`] on `[0, 1]`.
+    noise_per_unit: f64,
+}
+
+impl ChebyshevSpeed {
+    /// `None` when the curve does not qualify: degree 0, a hodograph larger
+    /// than the stack buffer, non-finite points, or a speed not provably
+    /// bounded away from zero.
+    fn new(curve: &BezierCurve) -> Option<Self> {
+        let n = curve.degree();
+        let d = curve.dim();
+        if n == 0 || d > CHEBYSHEV_MAX_DIM || n * d > CHEBYSHEV_MAX_POINTS {
+            return None;
+        }
+        let m = n - 1;
+        let mut hodograph = [0.0; CHEBYSHEV_MAX_POINTS];
+        for i in 0..n {
+            for c in 0..d {
+                hodograph[i * d + c] = n as f64 * (curve.point(i + 1)[c] - curve.point(i)[c]);
+            }
+        }
+        let h = &hodograph[..n * d];
+        if h.iter().any(|x| !x.is_finite()) {
+            return None;
+        }
+        // The bound of `speed_bounded_away_from_zero`, with its margin.
+        let mut mean = [0.0; CHEBYSHEV_MAX_DIM];
+        for i in 0..n {
+            for c in 0..d {
+                mean[c] += h[i * d + c];
+            }
+        }
+        let mean_norm = norm(&mean[..d]);
+        if !(mean_norm > 0.0 && mean_norm.is_finite()) {
+            return None;
+        }
+        let mut low = f64::INFINITY;
+        let mut high = 0.0f64;
+        for i in 0..n {
+            let p = &h[i * d..(i + 1) * d];
+            let along: f64 = p.iter().zip(&mean).map(|(x, u)| x * u).sum::<f64>() / mean_norm;
+            low = low.min(along);
+            high = high.max(norm(p));
+        }
+        if !(high.is_finite() && low >= SPEED_MARGIN * high && low > 0.0) {
+            return None;
+        }
+        let mut weighted = [0.0; CHEBYSHEV_MAX_POINTS];
+        for i in 0..=m {
+            let w = binomial(m, i);
+            for c in 0..d {
+                weighted[i * d + c] = w * h[i * d + c];
+            }
+        }
+        if weighted[..n * d].iter().any(|x| !x.is_finite()) {
+            return None;
+        }
+        let scale = h
+            .iter()
+            .fold(0.0f64, |s, x| s.max(x.abs()))
+            .max(f64::MIN_POSITIVE);
+        let noise_per_unit = 4.0 * n as f64 * f64::EPSILON * scale * (d as f64).sqrt();
+        Some(ChebyshevSpeed {
+            weighted,
+            degree: m,
+            dim: d,
+            low,
+            high,
+            noise_per_unit,
+        })
+    }
+
+    /// `|P'(t)|` for `t` in `[0, 1]`: Bernstein-Horner in `t / (1 - t)` or
+    /// `(1 - t) / t`, whichever is at most 1 (the scheme of
+    /// [`BezierCurve::eval`]), with the dimension fixed at compile time for
+    /// the plane and space.
+    #[inline(always)]
+    fn at(&self, t: f64) -> f64 {
+        match self.dim {
+            2 => self.at_in::<2>(t),
+            3 => self.at_in::<3>(t),
+            _ => self.at_in::<CHEBYSHEV_MAX_DIM>(t),
+        }
+    }
+
+    /// [`Self::at`] in `D >= dim` coordinates (the unused ones stay 0).
+    #[inline(always)]
+    fn at_in<const D: usize>(&self, t: f64) -> f64 {
+        let (m, d) = (self.degree, self.dim.min(D));
+        let w = &self.weighted;
+        let row = |i: usize| {
+            let mut p = [0.0; D];
+            p[..d].copy_from_slice(&w[i * self.dim..i * self.dim + d]);
+            p
+        };
+        let s = 1.0 - t;
+        let (r, factor, mut acc) = if t <= 0.5 {
+            (t / s, s, row(m))
+        } else {
+            (s / t, t, row(0))
+        };
+        for k in 1..=m {
+            let p = if t <= 0.5 { row(m - k) } else { row(k) };
+            for c in 0..D {
+                acc[c] = acc[c] * r + p[c];
+            }
+        }
+        let mut power = 1.0;
+        for _ in 0..m {
+            power *= factor;
+        }
+        norm(&acc[..d]) * power
+    }
+
+    /// The parameter at signed arc length `length != 0` from `start` in
+    /// `[0, 1]`, certified to `accuracy`, or `None` (then the adaptive path
+    /// answers, including every error).
+    ///
+    /// The speed is sampled at the `N + 1 = 33` Chebyshev-Lobatto points of
+    /// a bracket `[start, far]` (first `1.25 length / |P'(start)|` wide, then
+    /// `length / low`, which holds the answer by the speed bound, each at
+    /// most up to the curve's end). Its interpolant `p_N` is integrated in
+    /// closed form (Chebyshev series), and Newton's method safeguarded by
+    /// bisection solves `int_start^t p_N = |length|` on that polynomial,
+    /// without further speed evaluations (Trefethen, *Approximation Theory
+    /// and Approximation Practice*, ch. 3 and 19).
+    ///
+    /// The check, as the adaptive rule's (a rule against a refined one): the
+    /// interpolant `p_(N/2)` through every other sample differs from `p_N`
+    /// by at most `sum_k |a_k - b_k|` on the bracket (Chebyshev polynomials
+    /// are bounded by 1), so their lengths at `t` differ by at most `|t -
+    /// start|` times that; the answer is accepted when this is within a
+    /// quarter of `accuracy` (or the rounding level of the length and of the
+    /// speed's evaluation, [`rounding_level`], [`speed_noise_per_unit`])
+    /// and the residual, recomputed at the returned `t`, within half of it.
+    fn param_at_length(&self, start: f64, length: f64, accuracy: f64) -> Option<f64> {
+        let target = length.abs();
+        let forward = length > 0.0;
+        let room = if forward { 1.0 - start } else { start };
+        if !(room > 0.0 && target.is_finite()) {
+            return None;
+        }
+        let at_start = self.at(start);
+        let bound = target / self.low;
+        let first = (CHEBYSHEV_FIRST_WIDTH * target / at_start).max(target / self.high);
+        let mut samples = [0.0; CHEBYSHEV_N + 1];
+        samples[CHEBYSHEV_N] = at_start;
+        for width in [first.min(bound), bound] {
+            let (width, far) = if width >= room || !width.is_finite() {
+                (room, if forward { 1.0 } else { 0.0 })
+            } else {
+                (
+                    width,
+                    if forward {
+                        start + width
+                    } else {
+                        start - width
+                    },
+                )
+            };
+            let answer = self.invert_on(start, far, target, accuracy, &mut samples);
+            if answer.is_some() || width == room || width >= bound {
+                return answer.flatten();
+            }
+        }
+        None
+    }
+
+    /// One bracket `[start, far]` of [`Self::param_at_length`]: `None` when
+    /// the length there is shorter than `target` (try a wider bracket),
+    /// `Some(None)` when the answer is inside but not certified.
+    fn invert_on(
+        &self,
+        start: f64,
+        far: f64,
+        target: f64,
+        accuracy: f64,
+        samples: &mut [f64; CHEBYSHEV_N + 1],
+    ) -> Option<Option<f64>> {
+        const N: usize = CHEBYSHEV_N;
+        const H: usize = CHEBYSHEV_HALF;
+        let tables = chebyshev_tables();
+        let span = far - start;
+        // x = cos(pi j / N) in [-1, 1] is t = start + (x + 1) span / 2: x = -1
+        // at `start` (sample N, already taken), x = 1 at `far`.
+        for (j, sample) in samples.iter_mut().enumerate().take(N) {
+            let t = start + 0.5 * (tables.nodes[j] + 1.0) * span;
+            *sample = self.at(t);
+        }
+        if samples.iter().any(|f| !f.is_finite()) {
+            return Some(None);
+        }
+        // Coefficients of p_N = sum_k a_k T_k and of p_(N/2) from the even
+        // samples.
+        let mut a = [0.0; N + 3];
+        let mut b = [0.0; H + 1];
+        fold_apply(&tables.fine, |j| samples[j], &mut a[..=N]);
+        fold_apply(&tables.coarse, |i| samples[2 * i], &mut b);
+        let difference: f64 = (0..=N)
+            .map(|k| (a[k] - if k <= H { b[k] } else { 0.0 }).abs())
+            .sum();
+        // The antiderivative G = sum_k c_k T_k with G(-1) = 0, degree N + 1.
+        let mut c = [0.0; N + 2];
+        c[1] = a[0] - 0.5 * a[2];
+        for k in 2..=N + 1 {
+            c[k] = (a[k - 1] - a[k + 1]) / (2 * k) as f64;
+        }
+        c[0] = -(1..=N + 1)
+            .map(|k| if k % 2 == 0 { c[k] } else { -c[k] })
+            .sum::<f64>();
+        let half = 0.5 * span.abs();
+        let total = half * clenshaw(&c, 1.0);
+        if !total.is_finite() {
+            return Some(None);
+        }
+        if total < target {
+            return None;
+        }
+        // Newton on x with bisection: length(x) - target, increasing.
+        let (mut lo, mut hi) = (-1.0f64, 1.0f64);
+        let mut x = -1.0 + 2.0 * (target / total);
+        let residual_tolerance = CHEBYSHEV_RESIDUAL_SHARE * accuracy;
+        let mut converged = false;
+        for _ in 0..PANEL_NEWTON_STEPS {
+            let g = half * clenshaw(&c, x) - target;
+            if g.abs() <= residual_tolerance {
+                converged = true;
+                break;
+            }
+            if g > 0.0 {
+                hi = x;
+            } else {
+                lo = x;
+            }
+            let slope = half * clenshaw(&a[..=N], x);
+            let newton = x - g / slope;
+            let next = if slope > 0.0 && newton > lo && newton < hi {
+                newton
+            } else {
+                0.5 * (lo + hi)
+            };
+            if next == x || hi - lo <= 4.0 * f64::EPSILON {
+                break;
+            }
+            x = next;
+        }
+        if !converged {
+            return Some(None);
+        }
+        let t = (start + 0.5 * (x + 1.0) * span).clamp(start.min(far), start.max(far));
+        // The residual and the estimate at the parameter returned.
+        let x = if span != 0.0 {
+            (2.0 * (t - start) / span - 1.0).clamp(-1.0, 1.0)
+        } else {
+            -1.0
+        };
+        let value = half * clenshaw(&c, x);
+        let width = (t - start).abs();
+        let estimate = width * difference;
+        let floor = rounding_level(value, width) + self.noise_per_unit * width;
+        let certified = estimate <= (CHEBYSHEV_ESTIMATE_SHARE * accuracy).max(floor)
+            && (value - target).abs() <= residual_tolerance;
+        Some(certified.then_some(t))
+    }
+}
+
+/// `sum_k coefficients[k] T_k(x)` by Clenshaw's recurrence.
+fn clenshaw(coefficients: &[f64], x: f64) -> f64 {
+    let (mut b1, mut b2) = (0.0, 0.0);
+    for &c in coefficients[1..].iter().rev() {
+        let b0 = 2.0 * x * b1 - b2 + c;
+        b2 = b1;
+        b1 = b0;
+    }
+    x * b1 - b2 + coefficients[0]
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -1189,7 +1631,10 @@ mod panel_inversion_tests {
                                  accuracy {accuracy:e}: {measured} vs {target}"
                             );
                             let public = if forward { target } else { -target };
-                            assert_eq!(c.param_at_length(start, public, accuracy).unwrap(), t);
+                            let adaptive = ArcLengthInverse::new(&c, start)
+                                .param_at_length_adaptive(public, accuracy)
+                                .unwrap();
+                            assert_eq!(adaptive, t);
                         }
                     }
                 }
@@ -1385,5 +1830,85 @@ mod kept_inverse_tests {
                 assert!(c.arc_length(0.0, b, 5e-324).is_ok());
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod chebyshev_tests {
+    use super::*;
+
+    /// The two cubics of the fillet benchmark and of the C++ demo.
+    fn gentle() -> Vec<BezierCurve> {
+        [
+            [[-1.0, -1.0], [-0.3, 0.2], [0.4, 0.5], [1.2, 0.3]],
+            [[0.5, -1.2], [0.1, -0.2], [-0.1, 0.6], [0.3, 1.4]],
+            [[0.0, 0.0], [0.8, 0.3], [1.5, -0.2], [2.2, 0.4]],
+            [[1.0, -1.0], [1.3, -0.2], [0.8, 0.6], [1.2, 1.4]],
+        ]
+        .iter()
+        .map(|rows| BezierCurve::from_rows(rows).unwrap())
+        .collect()
+    }
+
+    /// The Chebyshev inversion answers on gentle curves for setbacks up to a
+    /// fifth of the remaining length (so the fast path is the one the
+    /// fillet takes), its answer meets the accuracy against the
+    /// adaptive rule at 1e-16, and it agrees with the adaptive inversion to
+    /// within the sum of both accuracies.
+    #[test]
+    fn the_chebyshev_inversion_answers_and_meets_the_accuracy() {
+        for c in gentle() {
+            let speed = ChebyshevSpeed::new(&c).expect("a gentle curve qualifies");
+            let h = c.hodograph();
+            for &start in &[0.1, 0.45, 0.9] {
+                for &relative in &[1e-12, 1e-9] {
+                    for &fraction in &[0.01, 0.2, 0.6] {
+                        for forward in [true, false] {
+                            let end = if forward { 1.0 } else { 0.0 };
+                            let available = arc_length_with(&h, start, end, 1e-16).abs();
+                            let target = fraction * available;
+                            let accuracy = relative * target;
+                            let signed = if forward { target } else { -target };
+                            // Short setbacks (the fillet's) must be answered;
+                            // a long one may be declined (a wide bracket).
+                            let Some(t) = speed.param_at_length(start, signed, accuracy) else {
+                                assert!(fraction > 0.5, "no answer: start {start}, {fraction}");
+                                continue;
+                            };
+                            let measured = arc_length_with(&h, start, t, 1e-16).abs();
+                            assert!(
+                                (measured - target).abs() <= accuracy,
+                                "start {start}, fraction {fraction}, forward {forward}: \
+                                 {measured} vs {target}"
+                            );
+                            assert_eq!(c.param_at_length(start, signed, accuracy).unwrap(), t);
+                            let adaptive = ArcLengthInverse::new(&c, start)
+                                .param_at_length_adaptive(signed, accuracy)
+                                .unwrap();
+                            let between = arc_length_with(&h, t, adaptive, 1e-16).abs();
+                            assert!(between <= 2.0 * accuracy, "{between:e}");
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    /// Curves the control-polygon bound cannot clear (a cusp, a curve
+    /// turning back) and lengths past the end are left to the adaptive path.
+    #[test]
+    fn the_chebyshev_inversion_declines_what_it_cannot_certify() {
+        let cusp =
+            BezierCurve::from_rows(&[[0.0, 0.0], [2.0, 1.0], [0.0, 1.0], [2.0, 0.0]]).unwrap();
+        assert!(ChebyshevSpeed::new(&cusp).is_none());
+        let back = BezierCurve::from_rows(&[[0.0], [2.0], [-1.0], [1.0]]).unwrap();
+        assert!(ChebyshevSpeed::new(&back).is_none());
+        let c = &gentle()[0];
+        let speed = ChebyshevSpeed::new(c).unwrap();
+        let total = c.arc_length(0.5, 1.0, 1e-14).unwrap();
+        assert!(speed.param_at_length(0.5, 1.01 * total, 1e-12).is_none());
+        assert!(speed.param_at_length(1.0, 0.1, 1e-12).is_none());
+        // Below the parameter resolution: no certified answer here.
+        assert!(speed.param_at_length(0.5, 1e-300, 1e-310).is_none());
     }
 }

@@ -386,7 +386,7 @@ pub(crate) struct SetbackInverses<'a> {
 /// ([`ArcLengthInverse`]); a NURBS curve inverts span by span
 /// ([`NurbsCurve::param_at_length`]) each time.
 enum SetbackInverse<'a> {
-    Bezier(Box<ArcLengthInverse>),
+    Bezier(Box<ArcLengthInverse<'a>>),
     Nurbs { curve: &'a NurbsCurve, start: f64 },
 }
 
