@@ -163,21 +163,33 @@ pub unsafe extern "C" fn bzj_curve_eval(
             .into());
         }
         let needed = derivative_rows_len(max_order, curve.dim())?;
-        if let Curve::Nurbs(n) = curve {
-            n.check_parameter("t", t)?;
-        }
-        // SAFETY: caller contract.
-        let buf = unsafe { output_slice(out, out_len, needed, "out") }?;
-        // Computed in full (its size bounded by the caller's buffer) and
-        // checked before anything is written.
-        let nurbs_values = match curve {
-            Curve::Nurbs(n) => Some(n.eval_derivatives_checked("t", t, max_order)?),
-            Curve::Bezier(_) => None,
-        };
-        match (curve, nurbs_values) {
-            (Curve::Bezier(c), _) if max_order == 0 => c.eval_into(t, buf),
-            (Curve::Bezier(c), _) => c.eval_derivatives_into(t, max_order, buf),
-            (Curve::Nurbs(_), values) => buf.copy_from_slice(&values.unwrap_or_default()),
+        match curve {
+            Curve::Bezier(c) => {
+                // SAFETY: caller contract.
+                let buf = unsafe { output_slice(out, out_len, needed, "out") }?;
+                if max_order == 0 {
+                    c.eval_into(t, buf);
+                } else {
+                    c.eval_derivatives_into(t, max_order, buf);
+                }
+            }
+            Curve::Nurbs(n) => {
+                n.check_parameter("t", t)?;
+                // SAFETY: caller contract.
+                let buf = unsafe { output_slice(out, out_len, needed, "out") }?;
+                // Computed into a scratch block (on the stack up to 64
+                // doubles) and checked before anything is written.
+                let mut stack = [0.0f64; 64];
+                let mut heap = Vec::new();
+                let block: &mut [f64] = if needed <= stack.len() {
+                    &mut stack[..needed]
+                } else {
+                    heap.resize(needed, 0.0);
+                    &mut heap
+                };
+                n.eval_derivatives_checked_into(|| "t".into(), t, max_order, block)?;
+                buf.copy_from_slice(block);
+            }
         }
         Ok(())
     })
@@ -391,7 +403,9 @@ pub unsafe extern "C" fn bzj_curve_length(
 ///
 /// @return BZJ_ERR_NULL_POINTER if `c`, or `ts` or `out` with `n > 0`, is NULL;
 ///         BZJ_ERR_NON_FINITE if some `ts[i]` is NaN or infinite (named), or
-///         (NURBS) a derivative overflows `double`;
+///         (NURBS) a derivative overflows `double` (the message names
+///         `ts[i]` and the order; the blocks are evaluated in order straight
+///         into `out`, so those before block `i` are written);
 ///         BZJ_ERR_INVALID_ARGUMENT if some `ts[i]` is outside a NURBS
 ///         handle's domain (named), `n * (max_order + 1) * dim` overflows
 ///         `size_t`, or `n` or `out_len` is larger than any array can be;
@@ -443,29 +457,30 @@ pub unsafe extern "C" fn bzj_curve_eval_many(
         }
         // SAFETY: caller contract.
         let buf = unsafe { output_slice(out, out_len, needed, "out") }?;
-        // A NURBS curve: every block computed and checked (values finite)
-        // before anything is written; the size is the caller's buffer's.
-        let nurbs_values = match curve {
-            Curve::Nurbs(n) => {
-                let mut all = Vec::with_capacity(needed);
-                for (i, &t) in ts.iter().enumerate() {
-                    all.extend(n.eval_derivatives_checked(&format!("ts[{i}]"), t, max_order)?);
-                }
-                Some(all)
-            }
-            Curve::Bezier(_) => None,
-        };
-        match (curve, nurbs_values) {
-            (Curve::Bezier(c), _) => {
-                for (&t, row) in ts.iter().zip(buf.chunks_exact_mut(block)) {
-                    if max_order == 0 {
-                        c.eval_into(t, row);
-                    } else {
-                        c.eval_derivatives_into(t, max_order, row);
-                    }
+        // Every argument is checked: evaluate straight into the caller's
+        // buffer, one block per parameter.
+        let blocks = ts.iter().zip(buf.chunks_exact_mut(block));
+        match curve {
+            Curve::Bezier(c) if max_order == 0 => {
+                for (&t, value) in blocks {
+                    c.eval_into(t, value);
                 }
             }
-            (Curve::Nurbs(_), values) => buf.copy_from_slice(&values.unwrap_or_default()),
+            Curve::Bezier(c) => {
+                for (&t, rows) in blocks {
+                    c.eval_derivatives_into(t, max_order, rows);
+                }
+            }
+            Curve::Nurbs(nurbs) => {
+                for (i, (&t, rows)) in blocks.enumerate() {
+                    nurbs.eval_derivatives_checked_into(
+                        || format!("ts[{i}]"),
+                        t,
+                        max_order,
+                        rows,
+                    )?;
+                }
+            }
         }
         Ok(())
     })

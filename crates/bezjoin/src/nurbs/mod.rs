@@ -817,9 +817,39 @@ impl NurbsCurve {
         u: f64,
         max_order: usize,
     ) -> Result<Vec<f64>> {
-        self.check_parameter(name, u)?;
-        let out = self.eval_derivatives(u, max_order);
+        let mut out = vec![0.0; (max_order + 1) * self.dim];
+        self.eval_derivatives_checked_into(|| name.to_owned(), u, max_order, &mut out)?;
+        Ok(out)
+    }
+
+    /// [`eval_derivatives_checked`](Self::eval_derivatives_checked) into
+    /// `out` (`(max_order + 1) * dim` values, row `k` the `k`-th derivative,
+    /// from the right at a knot), without allocating up to degree 15 with
+    /// `(max_order + 1) * (dim + 1) <= 128` (the stack buffers of
+    /// `eval_derivatives_into`): the same values to the bit. `name` is
+    /// called only to build an error message (a caller evaluating many
+    /// parameters formats their names only when one fails). On an error
+    /// from the parameter nothing is written; on an overflowing derivative
+    /// `out` holds the values computed, the non-finite one included.
+    ///
+    /// # Panics
+    /// If `out.len() != (max_order + 1) * dim`.
+    pub fn eval_derivatives_checked_into(
+        &self,
+        name: impl Fn() -> String,
+        u: f64,
+        max_order: usize,
+        out: &mut [f64],
+    ) -> Result<()> {
+        assert_eq!(out.len(), (max_order + 1) * self.dim);
+        let (first, last) = self.domain();
+        if !(first..=last).contains(&u) {
+            // Not finite or outside: the message of `check_parameter`.
+            self.check_parameter(&name(), u)?;
+        }
+        self.eval_derivatives_into(u, max_order, KnotSide::Right, out, None);
         if let Some(i) = out.iter().position(|x| !x.is_finite()) {
+            let name = name();
             return Err(BezjoinError::NonFiniteScalar {
                 name: format!(
                     "derivative of order {} at {name} = {u} (it overflows f64)",
@@ -828,7 +858,7 @@ impl NurbsCurve {
                 value: out[i],
             });
         }
-        Ok(out)
+        Ok(())
     }
 
     /// Value and derivatives at `u` (from the right at a knot, from the
