@@ -174,12 +174,15 @@ pub unsafe extern "C" fn bzj_curve_eval(
                 }
             }
             Curve::Nurbs(n) => {
-                n.check_parameter("t", t)?;
+                let (first, last) = n.domain();
+                if !(first..=last).contains(&t) {
+                    n.check_parameter("t", t)?;
+                }
                 // SAFETY: caller contract.
                 let buf = unsafe { output_slice(out, out_len, needed, "out") }?;
-                // Computed into a scratch block (on the stack up to 64
+                // Computed into a scratch block (on the stack up to 16
                 // doubles) and checked before anything is written.
-                let mut stack = [0.0f64; 64];
+                let mut stack = [0.0f64; 16];
                 let mut heap = Vec::new();
                 let block: &mut [f64] = if needed <= stack.len() {
                     &mut stack[..needed]
