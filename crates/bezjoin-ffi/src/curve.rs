@@ -593,6 +593,82 @@ mod tests {
         unsafe { bzj_curve_free(c) };
     }
 
+    /// `eval_many` blocks are `bzj_curve_eval`'s bits (Bezier handles of
+    /// dimensions 1 to 4, the unrolled and the general paths, and the
+    /// same curves as NURBS handles), and a success after a failure
+    /// empties the last error, a success after a success keeps it empty.
+    #[test]
+    fn eval_many_blocks_are_eval_bits_and_success_clears_the_message() {
+        use crate::nurbs::bzj_curve_to_nurbs;
+        for dim in 1..=4usize {
+            for degree in [0usize, 1, 3, 7, 9, 20] {
+                let pts: Vec<f64> = (0..(degree + 1) * dim)
+                    .map(|i| ((i * 7919) % 97) as f64 / 9.7 - 5.0)
+                    .collect();
+                let mut bezier = std::ptr::null_mut();
+                // SAFETY: valid buffers.
+                let s = unsafe { bzj_curve_new(dim, degree, pts.as_ptr(), pts.len(), &mut bezier) };
+                assert_eq!(s, BzjStatus::BZJ_OK);
+                let mut nurbs = std::ptr::null_mut();
+                // SAFETY: live handle, writable out.
+                assert_eq!(
+                    unsafe { bzj_curve_to_nurbs(bezier, &mut nurbs) },
+                    BzjStatus::BZJ_OK
+                );
+                let ts: Vec<f64> = (0..50).map(|i| i as f64 / 49.0).collect();
+                for handle in [bezier, nurbs] {
+                    for max_order in [0usize, 2] {
+                        let block = (max_order + 1) * dim;
+                        let mut many = vec![0.0; ts.len() * block];
+                        // SAFETY: live handle, buffers of the lengths given.
+                        let s = unsafe {
+                            bzj_curve_eval_many(
+                                handle,
+                                ts.as_ptr(),
+                                ts.len(),
+                                max_order,
+                                many.as_mut_ptr(),
+                                many.len(),
+                            )
+                        };
+                        assert_eq!(s, BzjStatus::BZJ_OK, "{}", last_error());
+                        for (i, &t) in ts.iter().enumerate() {
+                            let mut one = vec![0.0; block];
+                            // SAFETY: as above.
+                            let s = unsafe {
+                                bzj_curve_eval(handle, t, max_order, one.as_mut_ptr(), block)
+                            };
+                            assert_eq!(s, BzjStatus::BZJ_OK);
+                            let got = &many[i * block..(i + 1) * block];
+                            assert!(
+                                got.iter()
+                                    .zip(&one)
+                                    .all(|(a, b)| a.to_bits() == b.to_bits()),
+                                "dim {dim}, degree {degree}, order {max_order}, t {t}"
+                            );
+                        }
+                    }
+                }
+                let mut v = vec![0.0; dim];
+                // SAFETY: live handle, `dim` writable doubles.
+                let s = unsafe { bzj_curve_eval(nurbs, 2.0, 0, v.as_mut_ptr(), dim) };
+                assert_eq!(s, BzjStatus::BZJ_ERR_INVALID_ARGUMENT);
+                assert!(last_error().contains("t = 2"), "{}", last_error());
+                for _ in 0..2 {
+                    // SAFETY: as above.
+                    let s = unsafe { bzj_curve_eval(nurbs, 0.5, 0, v.as_mut_ptr(), dim) };
+                    assert_eq!(s, BzjStatus::BZJ_OK);
+                    assert_eq!(last_error(), "");
+                }
+                // SAFETY: live handles, released once.
+                unsafe {
+                    bzj_curve_free(bezier);
+                    bzj_curve_free(nurbs);
+                }
+            }
+        }
+    }
+
     #[test]
     fn free_keeps_the_last_error() {
         let c = line();

@@ -1185,7 +1185,9 @@ mod fixed_dimension_evaluation_tests {
 
     fn same_bits(a: &[f64], b: &[f64]) -> bool {
         a.len() == b.len()
-            && a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits() || (x.is_nan() && y.is_nan()))
+            && a.iter()
+                .zip(b)
+                .all(|(x, y)| x.to_bits() == y.to_bits() || (x.is_nan() && y.is_nan()))
     }
 
     /// The products of `power` are those of `f64::powi`: equal to the bit.
@@ -1215,8 +1217,9 @@ mod fixed_dimension_evaluation_tests {
         for dim in [2usize, 3] {
             for n in 0..=BINOMIAL_TABLE_DEGREE {
                 for magnitude in [1.0, 1e3, 1e-200, 9e300] {
-                    let points: Vec<f64> =
-                        (0..(n + 1) * dim).map(|_| magnitude * values.next()).collect();
+                    let points: Vec<f64> = (0..(n + 1) * dim)
+                        .map(|_| magnitude * values.next())
+                        .collect();
                     for t in parameters(&mut values) {
                         for scale in [1.0, 3.0, 42.0 * 41.0] {
                             let mut general = vec![0.0; dim];

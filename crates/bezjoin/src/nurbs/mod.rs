@@ -788,7 +788,8 @@ impl NurbsCurve {
             Some(weights) => {
                 let mut w = 0.0;
                 let weights = &weights[first..=span];
-                for ((&b, &wi), pole) in basis[..=p].iter().zip(weights).zip(points.chunks_exact(D)) {
+                for ((&b, &wi), pole) in basis[..=p].iter().zip(weights).zip(points.chunks_exact(D))
+                {
                     if b == 0.0 {
                         continue;
                     }
@@ -1241,7 +1242,9 @@ mod value_fast_path_tests {
         u += 0.2 + values.next();
         knots.extend(std::iter::repeat_n(u, degree + 1));
         let count = knots.len() - degree - 1;
-        let poles = (0..count * dim).map(|_| 4.0 * values.next() - 2.0).collect();
+        let poles = (0..count * dim)
+            .map(|_| 4.0 * values.next() - 2.0)
+            .collect();
         let weights = rational.then(|| (0..count).map(|_| 0.3 + 3.0 * values.next()).collect());
         NurbsCurve::new(dim, degree, poles, weights, knots).unwrap()
     }
@@ -1268,7 +1271,10 @@ mod value_fast_path_tests {
                             .unwrap();
                         let mut general = vec![0.0; dim];
                         c.eval_derivatives_into(u, 0, KnotSide::Right, &mut general, None);
-                        let same = fast.iter().zip(&general).all(|(a, b)| a.to_bits() == b.to_bits());
+                        let same = fast
+                            .iter()
+                            .zip(&general)
+                            .all(|(a, b)| a.to_bits() == b.to_bits());
                         assert!(
                             same,
                             "dim {dim}, degree {degree}, rational {rational}, u {u}: \
@@ -1301,6 +1307,9 @@ mod value_fast_path_tests {
         let mut out = [0.0; 6];
         c.eval_derivatives_checked_into(|| unreachable!("no error, no name"), last, 1, &mut out)
             .unwrap();
-        assert_eq!(out.to_vec(), c.eval_derivatives_checked("u", last, 1).unwrap());
+        assert_eq!(
+            out.to_vec(),
+            c.eval_derivatives_checked("u", last, 1).unwrap()
+        );
     }
 }
