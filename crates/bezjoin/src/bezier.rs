@@ -741,12 +741,21 @@ fn bernstein_horner_fixed<const D: usize>(
     let ratio = numerator / base;
     let factor = power(base, n);
     let row = n * (n + 1) / 2;
-    let at = |j: usize| if forward { j } else { n - j };
+    // Point j of the sum is P_j forwards, P_(n-j) backwards: as an offset
+    // and a stride chosen once (selects, not a branch the loop is split on:
+    // the direction follows `t`, which a caller sweeping a curve's
+    // parameters makes unpredictable).
+    let (start, stride) = if forward {
+        (0, D as isize)
+    } else {
+        ((n * D) as isize, -(D as isize))
+    };
+    let at = |j: usize| (start + j as isize * stride) as usize;
     let mut sum = [0.0f64; D];
-    sum.copy_from_slice(&points[at(0) * D..][..D]);
+    sum.copy_from_slice(&points[at(0)..][..D]);
     for j in 1..=n {
         let coef = BINOMIALS[row + j];
-        let p = &points[at(j) * D..][..D];
+        let p = &points[at(j)..][..D];
         for c in 0..D {
             sum[c] = sum[c] * ratio + coef * p[c];
         }
