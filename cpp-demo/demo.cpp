@@ -709,6 +709,47 @@ void check_error_path(Report& report) {
     });
 }
 
+// bzj_curve_eval_many against OCCT's D0 and D2 at the same parameters (1e-12
+// relative), and each block against bzj_curve_eval's (the same bits).
+void check_eval_many(Report& report, const Curve& curve, const Handle(Geom_BezierCurve)& occ,
+                     const std::vector<double>& params, std::size_t count, std::size_t degree) {
+    const std::string name = format("b.eval_many-vs-D0-D2[deg %zu]", degree);
+    guarded(report, name, [&] {
+        const std::vector<double> ts(params.begin(), params.begin() + static_cast<long>(count));
+        const std::vector<double> values = curve.eval_many(ts, 0);
+        const std::vector<double> jets = curve.eval_many(ts, 2);
+        double worst = 0.0;
+        std::size_t same_bits = 0;
+        gp_Pnt p;
+        gp_Vec d1;
+        gp_Vec d2;
+        for (std::size_t i = 0; i < count; ++i) {
+            occ->D2(ts[i], p, d1, d2);
+            const gp_XYZ occt[3] = {p.XYZ(), d1.XYZ(), d2.XYZ()};
+            for (int k = 0; k < 3; ++k) {
+                const double scale = std::max(1.0, occt[k].Modulus());
+                const double* ours = &jets[(i * 3 + k) * 3];
+                const gp_XYZ gap = gp_XYZ(ours[0], ours[1], ours[2]) - occt[k];
+                worst = std::max(worst, gap.Modulus() / scale);
+            }
+            const gp_XYZ value(values[i * 3], values[i * 3 + 1], values[i * 3 + 2]);
+            worst = std::max(worst, (value - occt[0]).Modulus() / std::max(1.0, occt[0].Modulus()));
+            double one[9];
+            curve.eval_into(ts[i], 2, one, 9);
+            double value_one[3];
+            curve.eval_into(ts[i], 0, value_one, 3);
+            if (std::memcmp(one, &jets[i * 9], sizeof one) == 0 &&
+                std::memcmp(value_one, &values[i * 3], sizeof value_one) == 0) {
+                ++same_bits;
+            }
+        }
+        report.row(worst <= 1e-12 && same_bits == count, name, worst, 1e-12,
+                   format("%zu parameters, orders 0 and 0..2, relative; blocks equal to bzj_curve_eval's "
+                          "bits: %zu of %zu",
+                          count, same_bits, count));
+    });
+}
+
 void time_evaluation(Report& report, std::vector<Timing>& timings, const Options& options) {
     guarded(report, "timing.eval", [&] {
         const int batches = options.quick ? 1 : 15;
@@ -736,6 +777,58 @@ void time_evaluation(Report& report, std::vector<Timing>& timings, const Options
                 });
             timings.push_back({format("evaluation, degree %zu 3D", degree), "bzj_curve_eval order 0",
                                "Geom_BezierCurve::D0", pair});
+
+            // eval_many: one call for 1000 parameters against 1000 calls of
+            // D0 (times per 1000 points; the ratio is per point).
+            const std::size_t count = 1000;
+            std::vector<double> many(count * 3);
+            check_eval_many(report, curve, occ, params, count, degree);
+            const Pair many_pair = time_pair(
+                batches, std::max(1, calls / static_cast<int>(count)),
+                [&](int) {
+                    bzj_curve_eval_many(curve.get(), params.data(), count, 0, many.data(), many.size());
+                    g_sink = g_sink + many[3 * count - 1];
+                },
+                std::max(1, calls / static_cast<int>(count)),
+                [&](int) {
+                    for (std::size_t i = 0; i < count; ++i) {
+                        occ->D0(params[i], p);
+                        g_sink = g_sink + p.X();
+                    }
+                });
+            timings.push_back({format("eval_many 1000 points, degree %zu 3D", degree),
+                               "bzj_curve_eval_many order 0", "1000 x D0", many_pair});
+
+            // The same curve as a NURBS handle (one span) against OCCT's
+            // B-spline of it; and our NURBS time beside our Bezier time.
+            const Curve nurbs = curve.to_nurbs();
+            const Handle(Geom_BSplineCurve) occ_nurbs = GeomConvert::CurveToBSplineCurve(occ);
+            double worst = 0.0;
+            for (std::size_t i = 0; i < count; ++i) {
+                nurbs.eval_into(params[i], 0, buffer, 3);
+                occ_nurbs->D0(params[i], p);
+                const double scale = std::max(1.0, p.XYZ().Modulus());
+                worst = std::max(worst, gp_Pnt(buffer[0], buffer[1], buffer[2]).Distance(p) / scale);
+            }
+            report.row(worst <= 1e-12, format("b.nurbs-eval-vs-BSpline-D0[deg %zu]", degree), worst, 1e-12,
+                       "the Bezier as a one-span NURBS handle, 1000 parameters, relative");
+            const Pair nurbs_pair = time_pair(
+                batches, calls,
+                [&](int i) {
+                    nurbs.eval_into(params[i & 1023], 0, buffer, 3);
+                    g_sink = g_sink + buffer[0];
+                },
+                calls,
+                [&](int i) {
+                    occ_nurbs->D0(params[i & 1023], p);
+                    g_sink = g_sink + p.X();
+                });
+            timings.push_back({format("NURBS evaluation, degree %zu 3D (one span)", degree),
+                               "bzj_curve_eval order 0", "Geom_BSplineCurve::D0", nurbs_pair});
+            report.info(format("timing.nurbs-vs-bezier[deg %zu]", degree),
+                        format("our NURBS handle %s, our Bezier handle %s per value: %.2fx the Bezier time",
+                               format_time(nurbs_pair.ours_ns).c_str(), format_time(pair.ours_ns).c_str(),
+                               nurbs_pair.ours_ns / pair.ours_ns));
         }
         // The cost of one trip through the C ABI (guard, status, last-error
         // bookkeeping) on a function that does no work: part of every call.

@@ -967,7 +967,9 @@ BzjStatus bzj_curve_length(const struct BzjCurve *c, double a, double b, double 
  *
  * @return BZJ_ERR_NULL_POINTER if `c`, or `ts` or `out` with `n > 0`, is NULL;
  *         BZJ_ERR_NON_FINITE if some `ts[i]` is NaN or infinite (named), or
- *         (NURBS) a derivative overflows `double`;
+ *         (NURBS) a derivative overflows `double` (the message names
+ *         `ts[i]` and the order; the blocks are evaluated in order straight
+ *         into `out`, so those before block `i` are written);
  *         BZJ_ERR_INVALID_ARGUMENT if some `ts[i]` is outside a NURBS
  *         handle's domain (named), `n * (max_order + 1) * dim` overflows
  *         `size_t`, or `n` or `out_len` is larger than any array can be;

@@ -163,21 +163,36 @@ pub unsafe extern "C" fn bzj_curve_eval(
             .into());
         }
         let needed = derivative_rows_len(max_order, curve.dim())?;
-        if let Curve::Nurbs(n) = curve {
-            n.check_parameter("t", t)?;
-        }
-        // SAFETY: caller contract.
-        let buf = unsafe { output_slice(out, out_len, needed, "out") }?;
-        // Computed in full (its size bounded by the caller's buffer) and
-        // checked before anything is written.
-        let nurbs_values = match curve {
-            Curve::Nurbs(n) => Some(n.eval_derivatives_checked("t", t, max_order)?),
-            Curve::Bezier(_) => None,
-        };
-        match (curve, nurbs_values) {
-            (Curve::Bezier(c), _) if max_order == 0 => c.eval_into(t, buf),
-            (Curve::Bezier(c), _) => c.eval_derivatives_into(t, max_order, buf),
-            (Curve::Nurbs(_), values) => buf.copy_from_slice(&values.unwrap_or_default()),
+        match curve {
+            Curve::Bezier(c) => {
+                // SAFETY: caller contract.
+                let buf = unsafe { output_slice(out, out_len, needed, "out") }?;
+                if max_order == 0 {
+                    c.eval_into(t, buf);
+                } else {
+                    c.eval_derivatives_into(t, max_order, buf);
+                }
+            }
+            Curve::Nurbs(n) => {
+                let (first, last) = n.domain();
+                if !(first..=last).contains(&t) {
+                    n.check_parameter("t", t)?;
+                }
+                // SAFETY: caller contract.
+                let buf = unsafe { output_slice(out, out_len, needed, "out") }?;
+                // Computed into a scratch block (on the stack up to 16
+                // doubles) and checked before anything is written.
+                let mut stack = [0.0f64; 16];
+                let mut heap = Vec::new();
+                let block: &mut [f64] = if needed <= stack.len() {
+                    &mut stack[..needed]
+                } else {
+                    heap.resize(needed, 0.0);
+                    &mut heap
+                };
+                n.eval_derivatives_checked_into(|| "t".into(), t, max_order, block)?;
+                buf.copy_from_slice(block);
+            }
         }
         Ok(())
     })
@@ -391,7 +406,9 @@ pub unsafe extern "C" fn bzj_curve_length(
 ///
 /// @return BZJ_ERR_NULL_POINTER if `c`, or `ts` or `out` with `n > 0`, is NULL;
 ///         BZJ_ERR_NON_FINITE if some `ts[i]` is NaN or infinite (named), or
-///         (NURBS) a derivative overflows `double`;
+///         (NURBS) a derivative overflows `double` (the message names
+///         `ts[i]` and the order; the blocks are evaluated in order straight
+///         into `out`, so those before block `i` are written);
 ///         BZJ_ERR_INVALID_ARGUMENT if some `ts[i]` is outside a NURBS
 ///         handle's domain (named), `n * (max_order + 1) * dim` overflows
 ///         `size_t`, or `n` or `out_len` is larger than any array can be;
@@ -443,29 +460,30 @@ pub unsafe extern "C" fn bzj_curve_eval_many(
         }
         // SAFETY: caller contract.
         let buf = unsafe { output_slice(out, out_len, needed, "out") }?;
-        // A NURBS curve: every block computed and checked (values finite)
-        // before anything is written; the size is the caller's buffer's.
-        let nurbs_values = match curve {
-            Curve::Nurbs(n) => {
-                let mut all = Vec::with_capacity(needed);
-                for (i, &t) in ts.iter().enumerate() {
-                    all.extend(n.eval_derivatives_checked(&format!("ts[{i}]"), t, max_order)?);
-                }
-                Some(all)
-            }
-            Curve::Bezier(_) => None,
-        };
-        match (curve, nurbs_values) {
-            (Curve::Bezier(c), _) => {
-                for (&t, row) in ts.iter().zip(buf.chunks_exact_mut(block)) {
-                    if max_order == 0 {
-                        c.eval_into(t, row);
-                    } else {
-                        c.eval_derivatives_into(t, max_order, row);
-                    }
+        // Every argument is checked: evaluate straight into the caller's
+        // buffer, one block per parameter.
+        let blocks = ts.iter().zip(buf.chunks_exact_mut(block));
+        match curve {
+            Curve::Bezier(c) if max_order == 0 => {
+                for (&t, value) in blocks {
+                    c.eval_into(t, value);
                 }
             }
-            (Curve::Nurbs(_), values) => buf.copy_from_slice(&values.unwrap_or_default()),
+            Curve::Bezier(c) => {
+                for (&t, rows) in blocks {
+                    c.eval_derivatives_into(t, max_order, rows);
+                }
+            }
+            Curve::Nurbs(nurbs) => {
+                for (i, (&t, rows)) in blocks.enumerate() {
+                    nurbs.eval_derivatives_checked_into(
+                        || format!("ts[{i}]"),
+                        t,
+                        max_order,
+                        rows,
+                    )?;
+                }
+            }
         }
         Ok(())
     })
@@ -573,6 +591,82 @@ mod tests {
         assert_eq!(last_error(), "t = NaN is not finite");
         // SAFETY: live handle.
         unsafe { bzj_curve_free(c) };
+    }
+
+    /// `eval_many` blocks are `bzj_curve_eval`'s bits (Bezier handles of
+    /// dimensions 1 to 4, the unrolled and the general paths, and the
+    /// same curves as NURBS handles), and a success after a failure
+    /// empties the last error, a success after a success keeps it empty.
+    #[test]
+    fn eval_many_blocks_are_eval_bits_and_success_clears_the_message() {
+        use crate::nurbs::bzj_curve_to_nurbs;
+        for dim in 1..=4usize {
+            for degree in [0usize, 1, 3, 7, 9, 20] {
+                let pts: Vec<f64> = (0..(degree + 1) * dim)
+                    .map(|i| ((i * 7919) % 97) as f64 / 9.7 - 5.0)
+                    .collect();
+                let mut bezier = std::ptr::null_mut();
+                // SAFETY: valid buffers.
+                let s = unsafe { bzj_curve_new(dim, degree, pts.as_ptr(), pts.len(), &mut bezier) };
+                assert_eq!(s, BzjStatus::BZJ_OK);
+                let mut nurbs = std::ptr::null_mut();
+                // SAFETY: live handle, writable out.
+                assert_eq!(
+                    unsafe { bzj_curve_to_nurbs(bezier, &mut nurbs) },
+                    BzjStatus::BZJ_OK
+                );
+                let ts: Vec<f64> = (0..50).map(|i| i as f64 / 49.0).collect();
+                for handle in [bezier, nurbs] {
+                    for max_order in [0usize, 2] {
+                        let block = (max_order + 1) * dim;
+                        let mut many = vec![0.0; ts.len() * block];
+                        // SAFETY: live handle, buffers of the lengths given.
+                        let s = unsafe {
+                            bzj_curve_eval_many(
+                                handle,
+                                ts.as_ptr(),
+                                ts.len(),
+                                max_order,
+                                many.as_mut_ptr(),
+                                many.len(),
+                            )
+                        };
+                        assert_eq!(s, BzjStatus::BZJ_OK, "{}", last_error());
+                        for (i, &t) in ts.iter().enumerate() {
+                            let mut one = vec![0.0; block];
+                            // SAFETY: as above.
+                            let s = unsafe {
+                                bzj_curve_eval(handle, t, max_order, one.as_mut_ptr(), block)
+                            };
+                            assert_eq!(s, BzjStatus::BZJ_OK);
+                            let got = &many[i * block..(i + 1) * block];
+                            assert!(
+                                got.iter()
+                                    .zip(&one)
+                                    .all(|(a, b)| a.to_bits() == b.to_bits()),
+                                "dim {dim}, degree {degree}, order {max_order}, t {t}"
+                            );
+                        }
+                    }
+                }
+                let mut v = vec![0.0; dim];
+                // SAFETY: live handle, `dim` writable doubles.
+                let s = unsafe { bzj_curve_eval(nurbs, 2.0, 0, v.as_mut_ptr(), dim) };
+                assert_eq!(s, BzjStatus::BZJ_ERR_INVALID_ARGUMENT);
+                assert!(last_error().contains("t = 2"), "{}", last_error());
+                for _ in 0..2 {
+                    // SAFETY: as above.
+                    let s = unsafe { bzj_curve_eval(nurbs, 0.5, 0, v.as_mut_ptr(), dim) };
+                    assert_eq!(s, BzjStatus::BZJ_OK);
+                    assert_eq!(last_error(), "");
+                }
+                // SAFETY: live handles, released once.
+                unsafe {
+                    bzj_curve_free(bezier);
+                    bzj_curve_free(nurbs);
+                }
+            }
+        }
     }
 
     #[test]

@@ -4,7 +4,7 @@
 //! Status codes and the error-to-status mapping are in `status.rs`, the
 //! pointer helpers in `pointers.rs`, the handle outputs in `handles.rs`.
 
-use std::cell::RefCell;
+use std::cell::{Cell, RefCell};
 use std::ffi::{CStr, CString, c_char};
 use std::panic::{AssertUnwindSafe, catch_unwind};
 
@@ -12,6 +12,10 @@ use crate::status::{BzjStatus, FfiResult};
 
 thread_local! {
     static LAST_ERROR: RefCell<CString> = RefCell::new(CString::default());
+    /// Whether `LAST_ERROR` may hold a message. Constant-initialised and
+    /// without a destructor: the success path of every call reads it with
+    /// one thread-local load, no lazy initialisation, no borrow.
+    static HAS_MESSAGE: Cell<bool> = const { Cell::new(false) };
 }
 
 /// Returned by [`bzj_last_error`] when the thread's message cannot be read
@@ -22,15 +26,19 @@ static NO_MESSAGE: &CStr = c"";
 /// is being destroyed (a call from another thread-local's destructor at
 /// thread exit) the message is dropped, and the status still returned.
 fn set_last_error(message: &str) {
+    // A success after a success: nothing to store (no allocation, and no
+    // access to the message storage, on the hot path of evaluation calls).
+    if message.is_empty() && !HAS_MESSAGE.try_with(Cell::get).unwrap_or(true) {
+        return;
+    }
     let _ = LAST_ERROR.try_with(|e| {
-        // A success after a success: nothing to store (no allocation on the
-        // hot path of evaluation calls).
         if message.is_empty() && e.try_borrow().is_ok_and(|m| m.as_bytes().is_empty()) {
             return;
         }
         let text = CString::new(message.replace('\0', " ")).unwrap_or_default();
         if let Ok(mut slot) = e.try_borrow_mut() {
             *slot = text;
+            let _ = HAS_MESSAGE.try_with(|has| has.set(!message.is_empty()));
         }
     });
 }

@@ -43,6 +43,7 @@ pub(crate) unsafe fn input_slice<'a, T>(
 ///
 /// # Safety
 /// `ptr` is null or points to `given` writable doubles.
+#[inline]
 pub(crate) unsafe fn output_slice<'a>(
     ptr: *mut f64,
     given: usize,

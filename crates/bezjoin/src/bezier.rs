@@ -206,7 +206,7 @@ impl BezierCurve {
     /// If `out.len() != dim`.
     pub fn eval_into(&self, t: f64, out: &mut [f64]) {
         assert_eq!(out.len(), self.dim);
-        bernstein_horner(&self.points, self.degree, self.dim, t, 1.0, out);
+        bernstein_horner_any(&self.points, self.degree, self.dim, t, 1.0, out);
     }
 
     /// `P(t)`.
@@ -261,7 +261,7 @@ impl BezierCurve {
         let mut factor = 1.0;
         for k in 0..=top {
             let m = n - k;
-            bernstein_horner(
+            bernstein_horner_any(
                 &diff[..(m + 1) * d],
                 m,
                 d,
@@ -647,6 +647,146 @@ pub(crate) fn bernstein_horner(
     }
 }
 
+/// `scale * sum_i B_i^n(t) P_i` into `out` as [`bernstein_horner`] computes
+/// it, choosing the unrolled form for dimensions 2 and 3 up to degree
+/// [`BINOMIAL_TABLE_DEGREE`] ([`bernstein_horner_fixed`], the same
+/// operations in the same order: bit-identical) and the general one
+/// otherwise. The evaluation entry points of [`BezierCurve`] go through it.
+#[inline]
+pub(crate) fn bernstein_horner_any(
+    points: &[f64],
+    n: usize,
+    dim: usize,
+    t: f64,
+    scale: f64,
+    out: &mut [f64],
+) {
+    if n <= BINOMIAL_TABLE_DEGREE {
+        match dim {
+            3 => {
+                if let Ok(out) = <&mut [f64; 3]>::try_from(&mut *out) {
+                    return bernstein_horner_small_degree(points, n, t, scale, out);
+                }
+            }
+            2 => {
+                if let Ok(out) = <&mut [f64; 2]>::try_from(&mut *out) {
+                    return bernstein_horner_small_degree(points, n, t, scale, out);
+                }
+            }
+            _ => {}
+        }
+    }
+    bernstein_horner(points, n, dim, t, scale, out);
+}
+
+/// [`bernstein_horner_fixed`] with the degree a constant up to 8 (one
+/// function per degree, [`bernstein_horner_degree`], the Horner loop and
+/// the power unrolled), a variable above.
+#[inline(always)]
+fn bernstein_horner_small_degree<const D: usize>(
+    points: &[f64],
+    n: usize,
+    t: f64,
+    scale: f64,
+    out: &mut [f64; D],
+) {
+    match n {
+        0 => bernstein_horner_degree::<D, 0>(points, t, scale, out),
+        1 => bernstein_horner_degree::<D, 1>(points, t, scale, out),
+        2 => bernstein_horner_degree::<D, 2>(points, t, scale, out),
+        3 => bernstein_horner_degree::<D, 3>(points, t, scale, out),
+        4 => bernstein_horner_degree::<D, 4>(points, t, scale, out),
+        5 => bernstein_horner_degree::<D, 5>(points, t, scale, out),
+        6 => bernstein_horner_degree::<D, 6>(points, t, scale, out),
+        7 => bernstein_horner_degree::<D, 7>(points, t, scale, out),
+        8 => bernstein_horner_degree::<D, 8>(points, t, scale, out),
+        _ => bernstein_horner_fixed(points, n, t, scale, out),
+    }
+}
+
+/// [`bernstein_horner_fixed`] at the constant degree `N`.
+#[inline(never)]
+fn bernstein_horner_degree<const D: usize, const N: usize>(
+    points: &[f64],
+    t: f64,
+    scale: f64,
+    out: &mut [f64; D],
+) {
+    bernstein_horner_fixed(points, N, t, scale, out);
+}
+
+/// [`bernstein_horner`] for `D` coordinates known at compile time and
+/// `n <= BINOMIAL_TABLE_DEGREE`, with no call and no branch on `t` inside:
+/// the coordinate loop unrolled, `t^n` or `(1 - t)^n` by [`power`] (the
+/// products of `f64::powi`), the direction of the Horner sum chosen by
+/// index arithmetic. Every floating-point operation is the one
+/// [`bernstein_horner`] performs, in the same order, so the result is the
+/// same to the bit (tested); a sum that is not finite is handed to
+/// [`bernstein_horner`], whose rescaled and de Casteljau fallbacks decide.
+#[inline(always)]
+fn bernstein_horner_fixed<const D: usize>(
+    points: &[f64],
+    n: usize,
+    t: f64,
+    scale: f64,
+    out: &mut [f64; D],
+) {
+    debug_assert!(n <= BINOMIAL_TABLE_DEGREE);
+    let points = &points[..(n + 1) * D];
+    let s = 1.0 - t;
+    // t > 1/2: Horner in s / t from P_0 up, times t^n; otherwise in t / s
+    // from P_n down, times s^n.
+    let forward = t > 0.5;
+    let (numerator, base) = if forward { (s, t) } else { (t, s) };
+    let ratio = numerator / base;
+    let factor = power(base, n);
+    let row = n * (n + 1) / 2;
+    // Point j of the sum is P_j forwards, P_(n-j) backwards: as an offset
+    // and a stride chosen once (selects, not a branch the loop is split on:
+    // the direction follows `t`, which a caller sweeping a curve's
+    // parameters makes unpredictable).
+    let (start, stride) = if forward {
+        (0, D as isize)
+    } else {
+        ((n * D) as isize, -(D as isize))
+    };
+    let at = |j: usize| (start + j as isize * stride) as usize;
+    let mut sum = [0.0f64; D];
+    sum.copy_from_slice(&points[at(0)..][..D]);
+    for j in 1..=n {
+        let coef = BINOMIALS[row + j];
+        let p = &points[at(j)..][..D];
+        for c in 0..D {
+            sum[c] = sum[c] * ratio + coef * p[c];
+        }
+    }
+    let factor = factor * scale;
+    for c in 0..D {
+        out[c] = sum[c] * factor;
+    }
+    if out.iter().any(|v| !v.is_finite()) && !t.is_nan() {
+        bernstein_horner(points, n, D, t, scale, out);
+    }
+}
+
+/// `base^n` by binary powering: the products of `f64::powi` in the same
+/// order (the runtime routine `__powidf2` multiplies the running result by
+/// the running square at each set bit), inlined instead of a library call.
+#[inline(always)]
+fn power(mut base: f64, mut n: usize) -> f64 {
+    let mut result = 1.0;
+    loop {
+        if n & 1 != 0 {
+            result *= base;
+        }
+        n >>= 1;
+        if n == 0 {
+            return result;
+        }
+        base *= base;
+    }
+}
+
 /// [`bernstein_horner`] again on the coordinates of `out` that are not
 /// finite, with the points scaled by `2^-(n+1)` (exactly, a power of two)
 /// and the sum scaled back at the end: with `|ratio| <= 1` the partial sums
@@ -1008,6 +1148,145 @@ mod high_degree_evaluation_tests {
                     d[1]
                 );
                 assert!(d[1].is_finite(), "n = {n}, t = {t}: {}", d[1]);
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod fixed_dimension_evaluation_tests {
+    use super::*;
+
+    /// Deterministic values in `[-1, 1)` (a 64-bit LCG, fixed seed).
+    struct Values(u64);
+
+    impl Values {
+        fn next(&mut self) -> f64 {
+            self.0 = self
+                .0
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (self.0 >> 11) as f64 / (1u64 << 52) as f64 - 1.0
+        }
+    }
+
+    /// Parameters that exercise both Horner directions, the switch at 1/2
+    /// to the last bit, the ends, extrapolation and NaN.
+    fn parameters(values: &mut Values) -> Vec<f64> {
+        let half = 0.5f64;
+        let mut ts = vec![
+            0.0,
+            1.0,
+            half,
+            f64::from_bits(half.to_bits() + 1),
+            f64::from_bits(half.to_bits() - 1),
+            1e-300,
+            1.0 - f64::EPSILON,
+            -0.3,
+            1.7,
+            -40.0,
+            1e3,
+            f64::NAN,
+        ];
+        ts.extend((0..40).map(|_| 0.5 + 0.5 * values.next()));
+        ts
+    }
+
+    fn same_bits(a: &[f64], b: &[f64]) -> bool {
+        a.len() == b.len()
+            && a.iter()
+                .zip(b)
+                .all(|(x, y)| x.to_bits() == y.to_bits() || (x.is_nan() && y.is_nan()))
+    }
+
+    /// The products of `power` are those of `f64::powi`: equal to the bit.
+    #[test]
+    fn power_is_powi_to_the_bit() {
+        let mut values = Values(7);
+        for _ in 0..500 {
+            let base = 1.5 * values.next();
+            for n in 0..=64usize {
+                assert_eq!(
+                    power(base, n).to_bits(),
+                    base.powi(n as i32).to_bits(),
+                    "{base}^{n}"
+                );
+            }
+        }
+    }
+
+    /// The unrolled dimension-2 and dimension-3 scheme (the path of
+    /// `eval_into`, `eval_derivatives_into` and so of `bzj_curve_eval`)
+    /// gives the bits of the general scheme it replaced, for every degree
+    /// of the binomial table, scale factors (the derivative rows), and
+    /// coordinates so large that the plain sums overflow (the fallbacks).
+    #[test]
+    fn fixed_dimension_scheme_is_the_general_scheme_to_the_bit() {
+        let mut values = Values(20);
+        for dim in [2usize, 3] {
+            for n in 0..=BINOMIAL_TABLE_DEGREE {
+                for magnitude in [1.0, 1e3, 1e-200, 9e300] {
+                    let points: Vec<f64> = (0..(n + 1) * dim)
+                        .map(|_| magnitude * values.next())
+                        .collect();
+                    for t in parameters(&mut values) {
+                        for scale in [1.0, 3.0, 42.0 * 41.0] {
+                            let mut general = vec![0.0; dim];
+                            bernstein_horner(&points, n, dim, t, scale, &mut general);
+                            let mut fast = vec![0.0; dim];
+                            bernstein_horner_any(&points, n, dim, t, scale, &mut fast);
+                            assert!(
+                                same_bits(&fast, &general),
+                                "dim {dim}, n {n}, |P| {magnitude}, t {t}, scale {scale}: \
+                                 {fast:?} vs {general:?}"
+                            );
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    /// `eval_into` and `eval_derivatives_into` on curves of dimension 2 and
+    /// 3 give the bits of the general scheme applied by hand (the old
+    /// path: differences of the points, one general sum per order).
+    #[test]
+    fn curve_evaluation_is_the_general_scheme_to_the_bit() {
+        let mut values = Values(33);
+        for dim in [2usize, 3] {
+            for n in [0usize, 1, 3, 5, 7, 15, 32] {
+                let points: Vec<f64> = (0..(n + 1) * dim).map(|_| 4.0 * values.next()).collect();
+                let curve = BezierCurve::new(dim, n, points.clone()).unwrap();
+                for t in parameters(&mut values) {
+                    let mut value = vec![0.0; dim];
+                    curve.eval_into(t, &mut value);
+                    let mut general = vec![0.0; dim];
+                    bernstein_horner(&points, n, dim, t, 1.0, &mut general);
+                    assert!(same_bits(&value, &general), "dim {dim}, n {n}, t {t}");
+
+                    let max_order = n + 1;
+                    let mut rows = vec![0.0; (max_order + 1) * dim];
+                    curve.eval_derivatives_into(t, max_order, &mut rows);
+                    let mut expected = vec![0.0; (max_order + 1) * dim];
+                    let mut diff = points.clone();
+                    let mut factor = 1.0;
+                    for k in 0..=n {
+                        let m = n - k;
+                        bernstein_horner(
+                            &diff[..(m + 1) * dim],
+                            m,
+                            dim,
+                            t,
+                            factor,
+                            &mut expected[k * dim..(k + 1) * dim],
+                        );
+                        for i in 0..m * dim {
+                            diff[i] = diff[i + dim] - diff[i];
+                        }
+                        factor *= m as f64;
+                    }
+                    assert!(same_bits(&rows, &expected), "dim {dim}, n {n}, t {t}");
+                }
             }
         }
     }

@@ -469,7 +469,13 @@ impl NurbsCurve {
 
     /// The parameter domain `[u_p, u_(n+1)]`.
     pub fn domain(&self) -> (f64, f64) {
-        (self.knots[self.degree], self.knots[self.point_count()])
+        // knots.len() == point_count + degree + 1: the same knot as
+        // `knots[point_count]`, without an integer division (every
+        // evaluation checks its parameter against the domain).
+        (
+            self.knots[self.degree],
+            self.knots[self.knots.len() - self.degree - 1],
+        )
     }
 
     /// Largest absolute pole coordinate (at least `f64::MIN_POSITIVE`).
@@ -690,6 +696,115 @@ impl NurbsCurve {
         }
     }
 
+    /// The value at `u` (from the right at a knot) into `out` for
+    /// dimensions 2 and 3 up to degree [`VALUE_FAST_MAX_DEGREE`], returning
+    /// `false` (nothing written) otherwise: row 0 of
+    /// [`eval_derivatives_into`](Self::eval_derivatives_into) with its
+    /// operations in its order, so the same bits (tested), without the
+    /// derivative machinery, its buffers and their zeroing. The basis
+    /// functions by A2.2, which is the first part of A2.3 operation for
+    /// operation; the homogeneous sums as `eval_rows` forms them (from
+    /// `0.0`, a zero basis function skipped in the rational sums only), then
+    /// one division by the weight.
+    fn value_fast_into(&self, u: f64, out: &mut [f64]) -> bool {
+        if self.degree > VALUE_FAST_MAX_DEGREE {
+            return false;
+        }
+        match self.dim {
+            3 => {
+                if let Ok(out) = <&mut [f64; 3]>::try_from(out) {
+                    self.value_small_degree(u, out);
+                    return true;
+                }
+            }
+            2 => {
+                if let Ok(out) = <&mut [f64; 2]>::try_from(out) {
+                    self.value_small_degree(u, out);
+                    return true;
+                }
+            }
+            _ => {}
+        }
+        false
+    }
+
+    /// [`value_fixed`](Self::value_fixed) with the degree a constant up to
+    /// 7 (one function per degree, [`value_degree`](Self::value_degree):
+    /// the loops unrolled, the scratch arrays in registers), a variable
+    /// above.
+    #[inline(always)]
+    fn value_small_degree<const D: usize>(&self, u: f64, out: &mut [f64; D]) {
+        match self.degree {
+            1 => self.value_degree::<D, 1>(u, out),
+            2 => self.value_degree::<D, 2>(u, out),
+            3 => self.value_degree::<D, 3>(u, out),
+            4 => self.value_degree::<D, 4>(u, out),
+            5 => self.value_degree::<D, 5>(u, out),
+            6 => self.value_degree::<D, 6>(u, out),
+            7 => self.value_degree::<D, 7>(u, out),
+            p => self.value_fixed::<D, { VALUE_FAST_MAX_DEGREE + 1 }>(u, p, out),
+        }
+    }
+
+    /// [`value_fixed`](Self::value_fixed) at the constant degree `P < 8`.
+    #[inline(never)]
+    fn value_degree<const D: usize, const P: usize>(&self, u: f64, out: &mut [f64; D]) {
+        self.value_fixed::<D, 8>(u, P, out);
+    }
+
+    /// [`value_fast_into`](Self::value_fast_into) for `D == dim`
+    /// coordinates and `p == degree < M`.
+    #[inline(always)]
+    fn value_fixed<const D: usize, const M: usize>(&self, u: f64, p: usize, out: &mut [f64; D]) {
+        debug_assert!(p == self.degree && p < M);
+        let knots = &self.knots;
+        let span = find_span(knots, p, u, KnotSide::Right);
+        // A2.2: basis[r] is N_(span - p + r) of degree j after step j.
+        let (mut left, mut right, mut basis) = ([0.0f64; M], [0.0f64; M], [0.0f64; M]);
+        basis[0] = 1.0;
+        for j in 1..=p {
+            left[j] = u - knots[span + 1 - j];
+            right[j] = knots[span + j] - u;
+            let mut saved = 0.0;
+            for r in 0..j {
+                let temp = basis[r] / (right[r + 1] + left[j - r]);
+                basis[r] = saved + right[r + 1] * temp;
+                saved = left[j - r] * temp;
+            }
+            basis[j] = saved;
+        }
+        let first = span - p;
+        let points = &self.points[first * D..(span + 1) * D];
+        let mut sum = [0.0f64; D];
+        match &self.weights {
+            None => {
+                for (b, pole) in basis[..=p].iter().zip(points.chunks_exact(D)) {
+                    for c in 0..D {
+                        sum[c] += b * pole[c];
+                    }
+                }
+                *out = sum;
+            }
+            Some(weights) => {
+                let mut w = 0.0;
+                let weights = &weights[first..=span];
+                for ((&b, &wi), pole) in basis[..=p].iter().zip(weights).zip(points.chunks_exact(D))
+                {
+                    if b == 0.0 {
+                        continue;
+                    }
+                    for c in 0..D {
+                        sum[c] += b * (wi * pole[c]);
+                    }
+                    w += b * wi;
+                }
+                for c in 0..D {
+                    out[c] = sum[c] / w;
+                }
+            }
+        }
+    }
+
     /// The body of [`eval_derivatives_into`](Self::eval_derivatives_into)
     /// on buffers of at least `(n + 1) (p + 1)` (basis), `basis_scratch_len(p)`
     /// (work) and `3 (rows)` (jets) values, `n = min(max_order, p)`, where
@@ -817,9 +932,41 @@ impl NurbsCurve {
         u: f64,
         max_order: usize,
     ) -> Result<Vec<f64>> {
-        self.check_parameter(name, u)?;
-        let out = self.eval_derivatives(u, max_order);
+        let mut out = vec![0.0; (max_order + 1) * self.dim];
+        self.eval_derivatives_checked_into(|| name.to_owned(), u, max_order, &mut out)?;
+        Ok(out)
+    }
+
+    /// [`eval_derivatives_checked`](Self::eval_derivatives_checked) into
+    /// `out` (`(max_order + 1) * dim` values, row `k` the `k`-th derivative,
+    /// from the right at a knot), without allocating up to degree 15 with
+    /// `(max_order + 1) * (dim + 1) <= 128` (the stack buffers of
+    /// `eval_derivatives_into`): the same values to the bit. `name` is
+    /// called only to build an error message (a caller evaluating many
+    /// parameters formats their names only when one fails). On an error
+    /// from the parameter nothing is written; on an overflowing derivative
+    /// `out` holds the values computed, the non-finite one included.
+    ///
+    /// # Panics
+    /// If `out.len() != (max_order + 1) * dim`.
+    pub fn eval_derivatives_checked_into(
+        &self,
+        name: impl Fn() -> String,
+        u: f64,
+        max_order: usize,
+        out: &mut [f64],
+    ) -> Result<()> {
+        assert_eq!(out.len(), (max_order + 1) * self.dim);
+        let (first, last) = self.domain();
+        if !(first..=last).contains(&u) {
+            // Not finite or outside: the message of `check_parameter`.
+            self.check_parameter(&name(), u)?;
+        }
+        if !(max_order == 0 && self.value_fast_into(u, out)) {
+            self.eval_derivatives_into(u, max_order, KnotSide::Right, out, None);
+        }
         if let Some(i) = out.iter().position(|x| !x.is_finite()) {
+            let name = name();
             return Err(BezjoinError::NonFiniteScalar {
                 name: format!(
                     "derivative of order {} at {name} = {u} (it overflows f64)",
@@ -828,7 +975,7 @@ impl NurbsCurve {
                 value: out[i],
             });
         }
-        Ok(out)
+        Ok(())
     }
 
     /// Value and derivatives at `u` (from the right at a knot, from the
@@ -865,6 +1012,11 @@ impl NurbsCurve {
         order
     }
 }
+
+/// Highest degree whose values [`NurbsCurve::eval_derivatives_checked_into`]
+/// computes without the derivative machinery (stack arrays of this size
+/// plus one).
+const VALUE_FAST_MAX_DEGREE: usize = 15;
 
 /// The checks shared by the chain builders: one interval `> 0` per piece,
 /// pieces of one dimension (returned). `dims` is not empty.
@@ -1053,5 +1205,111 @@ mod degenerate_input_tests {
         assert_eq!(s.continuity_at(0.5, 1e-12), Some(3));
         // A point that is not a knot is inside one polynomial piece.
         assert_eq!(s.continuity_at(0.25, 1e-12), Some(3));
+    }
+}
+
+#[cfg(test)]
+mod value_fast_path_tests {
+    use super::*;
+
+    /// Deterministic values in `[0, 1)` (a 64-bit LCG, fixed seed).
+    struct Values(u64);
+
+    impl Values {
+        fn next(&mut self) -> f64 {
+            self.0 = self
+                .0
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (self.0 >> 11) as f64 / (1u64 << 53) as f64
+        }
+    }
+
+    /// A clamped curve of `spans` spans with one double interior knot,
+    /// uneven knot spacing, poles in `[-2, 2)` and (when `rational`)
+    /// weights in `[0.3, 3.3)`.
+    fn curve(values: &mut Values, dim: usize, degree: usize, rational: bool) -> NurbsCurve {
+        let spans = 4;
+        let mut knots = vec![-1.0; degree + 1];
+        let mut u = -1.0;
+        for s in 1..spans {
+            u += 0.2 + values.next();
+            knots.push(u);
+            if s == 2 && degree > 1 {
+                knots.push(u);
+            }
+        }
+        u += 0.2 + values.next();
+        knots.extend(std::iter::repeat_n(u, degree + 1));
+        let count = knots.len() - degree - 1;
+        let poles = (0..count * dim)
+            .map(|_| 4.0 * values.next() - 2.0)
+            .collect();
+        let weights = rational.then(|| (0..count).map(|_| 0.3 + 3.0 * values.next()).collect());
+        NurbsCurve::new(dim, degree, poles, weights, knots).unwrap()
+    }
+
+    /// The order-0 path of `eval_derivatives_checked_into` (the value of
+    /// `bzj_curve_eval` and `bzj_curve_eval_many` on a NURBS handle) gives
+    /// the bits of row 0 of the general A2.3 path it bypasses, at random
+    /// parameters, at every knot (from the right) and at both ends, for
+    /// polynomial and rational curves of dimensions 1 to 4 (1 and 4 take
+    /// the general path) and degrees 1 to 17 (above 15 the general path).
+    #[test]
+    fn value_fast_path_is_the_general_path_to_the_bit() {
+        let mut values = Values(2024);
+        for dim in 1..=4 {
+            for degree in 1..=17 {
+                for rational in [false, true] {
+                    let c = curve(&mut values, dim, degree, rational);
+                    let (first, last) = c.domain();
+                    let mut us: Vec<f64> = c.knots().to_vec();
+                    us.extend((0..30).map(|_| first + (last - first) * values.next()));
+                    for u in us {
+                        let mut fast = vec![0.0; dim];
+                        c.eval_derivatives_checked_into(|| "u".into(), u, 0, &mut fast)
+                            .unwrap();
+                        let mut general = vec![0.0; dim];
+                        c.eval_derivatives_into(u, 0, KnotSide::Right, &mut general, None);
+                        let same = fast
+                            .iter()
+                            .zip(&general)
+                            .all(|(a, b)| a.to_bits() == b.to_bits());
+                        assert!(
+                            same,
+                            "dim {dim}, degree {degree}, rational {rational}, u {u}: \
+                             {fast:?} vs {general:?}"
+                        );
+                    }
+                }
+            }
+        }
+    }
+
+    /// The allocation-free checked evaluation names the parameter as
+    /// `eval_derivatives_checked` does, and writes nothing when the
+    /// parameter is refused.
+    #[test]
+    fn checked_into_refuses_parameters_like_the_allocating_form() {
+        let mut values = Values(5);
+        let c = curve(&mut values, 3, 3, true);
+        let (first, last) = c.domain();
+        for u in [first - 1.0, last + 1e-9, f64::NAN, f64::INFINITY] {
+            let mut out = [7.0; 6];
+            let err = c
+                .eval_derivatives_checked_into(|| "ts[4]".into(), u, 1, &mut out)
+                .unwrap_err();
+            let expected = c.eval_derivatives_checked("ts[4]", u, 1).unwrap_err();
+            assert_eq!(err.to_string(), expected.to_string());
+            assert!(err.to_string().contains("ts[4]"), "{err}");
+            assert_eq!(out, [7.0; 6]);
+        }
+        let mut out = [0.0; 6];
+        c.eval_derivatives_checked_into(|| unreachable!("no error, no name"), last, 1, &mut out)
+            .unwrap();
+        assert_eq!(
+            out.to_vec(),
+            c.eval_derivatives_checked("u", last, 1).unwrap()
+        );
     }
 }
