@@ -88,7 +88,9 @@
 
 mod bspline;
 mod kept;
+#[cfg(test)]
 mod kkt;
+mod orthogonal;
 mod rows;
 mod stage_one;
 mod stage_two;
@@ -97,7 +99,7 @@ use crate::bezier::BezierCurve;
 use crate::error::{
     BezjoinError, Result, check_closed_range, check_finite_scalar, check_open_range, check_positive,
 };
-use crate::minimize::minimize_on_grid_then_brent;
+use crate::minimize::{minimize_on_grid_then_brent, minimize_with_slope};
 
 pub use bspline::{
     BSplineChainMerge, BSplineMerge, CurveChainMerge, CurveMerge, merge_bspline_chain,
@@ -120,6 +122,14 @@ pub const MU_SEARCH_MIN: f64 = 1e-3;
 /// Number of evenly spaced samples of the metric that bracket the optimal
 /// `mu` before the refinement by Brent's method.
 pub const MU_SEARCH_SAMPLES: usize = 32;
+
+/// Evenly spaced samples of the metric and its slope that start the
+/// derivative-based search of the optimal `mu` (no kept curve, no keep
+/// points) at degree 0; one more per degree, at most
+/// [`MU_SEARCH_SAMPLES`] + 1 (the metric's features narrow like `1 / n`).
+/// Every interval whose cubic Hermite model has a minimum (or whose values
+/// contradict its slopes) is searched.
+pub const MU_SEARCH_SLOPE_SAMPLES: usize = 9;
 
 /// The refinement (Brent's method) stops when the bracket around the best
 /// `mu` is about this wide.
@@ -292,7 +302,12 @@ pub fn merge(p: &BezierCurve, q: &BezierCurve, options: &MergeOptions) -> Result
         }
     };
     let breakpoints = [0.0, mu, 1.0];
-    let (merged, split_check_error) = stage_two(&stage_one.pieces, &breakpoints, options.accuracy)?;
+    let (merged, split_check_error) = stage_two(
+        &stage_one.pieces,
+        &breakpoints,
+        options.accuracy,
+        stage_one.merged.as_ref(),
+    )?;
     let max_deviation = max_deviation(&merged, &[p, q], &breakpoints);
     let mut hats = stage_one.pieces.iter().map(BezierCurve::from_matrix);
     let p_hat = hats.next().expect("two pieces")?;
@@ -386,9 +401,37 @@ impl<'a> PairProblem<'a> {
     }
 
     /// The search of [`Breakpoints::Optimal`], each trial solved with
-    /// `check`.
+    /// `check`: on the metric and its slope (closed form) when the
+    /// conditions do not depend on `mu` (no kept curve, no keep points),
+    /// on the metric alone otherwise.
     fn optimal_mu(&self, check: StageOneCheck) -> Result<f64> {
-        optimal_mu(|mu| self.solve(mu, check).map(|s| s.metric_value))
+        let with_slope = self.pieces.iter().all(|p| !p.keep && p.points.is_empty());
+        if !with_slope {
+            return optimal_mu(|mu| self.solve(mu, check).map(|s| s.metric_value));
+        }
+        let mut first_error = None;
+        let minimum = minimize_with_slope(
+            |mu| match self.solve(mu, check) {
+                Ok(s) => Some((s.metric_value, s.slope.unwrap_or(f64::NAN))),
+                Err(e) => {
+                    first_error.get_or_insert(e);
+                    None
+                }
+            },
+            MU_SEARCH_MIN,
+            1.0 - MU_SEARCH_MIN,
+            (MU_SEARCH_SLOPE_SAMPLES + self.pieces[0].curve.degree()).min(MU_SEARCH_SAMPLES + 1),
+            MU_SEARCH_TOLERANCE,
+            MU_SEARCH_MAX_STEPS,
+        );
+        match (minimum, first_error) {
+            (Some(m), _) => Ok(m.x),
+            (None, Some(e)) => Err(e),
+            (None, None) => Err(BezjoinError::NonFiniteScalar {
+                name: "merge metric at every sampled mu".into(),
+                value: f64::INFINITY,
+            }),
+        }
     }
 }
 
@@ -562,7 +605,12 @@ pub fn merge_chain(curves: &[BezierCurve], options: &ChainMergeOptions) -> Resul
         options.accuracy,
         StageOneCheck::Full,
     )?;
-    let (merged, split_check_error) = stage_two(&stage_one.pieces, &breakpoints, options.accuracy)?;
+    let (merged, split_check_error) = stage_two(
+        &stage_one.pieces,
+        &breakpoints,
+        options.accuracy,
+        stage_one.merged.as_ref(),
+    )?;
     let max_deviation = max_deviation(&merged, &refs, &breakpoints);
     let pieces = stage_one
         .pieces
@@ -828,5 +876,53 @@ mod tests {
             fallbacks > 0 && quick_kept > 0,
             "{fallbacks} fallbacks, {quick_kept} quick answers kept: the test no longer covers both paths"
         );
+    }
+}
+
+#[cfg(test)]
+mod slope_tests {
+    use super::*;
+
+    fn curve(state: &mut u64, degree: usize) -> BezierCurve {
+        let points = (0..(degree + 1) * 2)
+            .map(|_| {
+                *state = state
+                    .wrapping_mul(6_364_136_223_846_793_005)
+                    .wrapping_add(1_442_695_040_888_963_407);
+                (*state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+            })
+            .collect();
+        BezierCurve::new(2, degree, points).unwrap()
+    }
+
+    /// The closed-form slope (envelope theorem) against a central
+    /// difference of the metric, both metrics, with and without fix ends.
+    #[test]
+    fn slope_is_the_derivative_of_the_metric() {
+        let mut state = 3;
+        for degree in [1, 3, 7, 15] {
+            let (p, q) = (curve(&mut state, degree), curve(&mut state, degree));
+            for metric in [MergeMetric::Discrete, MergeMetric::Integral] {
+                for fix_ends in [false, true] {
+                    let options = MergeOptions {
+                        metric,
+                        fix_ends,
+                        ..MergeOptions::default()
+                    };
+                    let problem = PairProblem::new(&p, &q, &options).unwrap();
+                    for mu in [0.1, 0.37, 0.5, 0.8] {
+                        let h = 1e-5;
+                        let at = |mu| problem.solve(mu, StageOneCheck::Trial).unwrap();
+                        let difference =
+                            (at(mu + h).metric_value - at(mu - h).metric_value) / (2.0 * h);
+                        let slope = at(mu).slope.unwrap();
+                        assert!(
+                            (slope - difference).abs() <= 1e-5 * (1.0 + difference.abs()),
+                            "degree {degree} {metric:?} fix ends {fix_ends} mu {mu}: slope {slope} vs {difference}"
+                        );
+                    }
+                }
+            }
+        }
     }
 }
