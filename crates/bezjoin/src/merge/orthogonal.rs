@@ -27,22 +27,27 @@
 //! Casteljau (convex combinations), and `R` is stage 2's answer directly.
 //!
 //! **Error estimate** (first order, a posteriori: measured on the answer's
-//! own factor and residual). With `A = M Z = Q T`, the pieces move by
-//! `S Z delta_y`, and a relative perturbation `gamma` of `A` and of the
-//! target moves `y` by `T^-1 Q^T (delta_t - delta_A y) + T^-1 T^-T
-//! delta_A^T res`. So
+//! own factor and residual, componentwise). With `A = M Z = Q T`, the
+//! pieces move by `S Z delta_y`, and a perturbation `delta_A`, `delta_t`
+//! of the sample matrix and the target moves `y` by `A^+ (delta_t -
+//! delta_A y) + (A^T A)^-1 delta_A^T res`. Every entry of `A` and `t`
+//! carries a relative rounding of at most `gamma`, so, entry by entry,
 //!
 //! ```text
-//! |delta x| <= gamma (|K1| (|t| + |A| |y|) + |K2| |A| |res|),
-//! K1 = S Z T^-1,  K2 = S Z T^-1 T^-T
+//! |delta x| <= gamma (|K1| (|t| + |A| |y|) + |K2| |A|^T |res|),
+//! K1 = S Z A^+ = S Z T^-1 Q^T,  K2 = S Z T^-1 T^-T
 //! ```
 //!
-//! (Frobenius norms, `gamma` the rounding of the sample matrix and of the
-//! QR), plus the kept rows' own rounding magnified by their condition,
-//! plus the de Casteljau rounding of the pieces. `K1`, `K2` map to the
-//! control points of the pieces, so the bound follows the pieces' actual
-//! sensitivity instead of the condition number of any matrix; measured
-//! against an exact rational reference in test `merge_exact`.
+//! for every coordinate (the rounding of the entries), plus the same with
+//! norms for the QR's normwise backward error (`QR_MARGIN eps sqrt(rows cols) ||A||`),
+//! plus the kept rows' own rounding magnified by
+//! their condition, plus the de Casteljau rounding of the pieces. `K1`,
+//! `K2` map straight to the pieces' control points, and the absolute
+//! values keep the structure of the Bernstein sample matrices (totally
+//! positive: a relative change of their entries moves the answer far less
+//! than their condition number says), so the bound follows the pieces'
+//! actual sensitivity; measured against an exact rational reference in
+//! test `merge_exact`.
 
 use nalgebra::{DMatrix, DVector};
 
@@ -55,11 +60,17 @@ use super::rows::{Dependent, Problem, Row, WorstUndecided, classify, extend_orth
 use super::stage_one::{CONSISTENCY_TOLERANCE, RANK_TOLERANCE};
 use super::stage_two::restriction_matrix;
 
-/// The rounding `gamma` of the first-order estimate, in units of `eps`
-/// per `sqrt` of the sample matrix's size (Householder QR's backward error
-/// grows like the matrix's dimensions; measured margin: test
-/// `merge_exact`, degrees 1..31, every case bounded).
+/// The rounding `gamma` of the first-order estimate is this times
+/// `(m + 2) eps` relative per entry of the sample matrix and the target
+/// (measured margin: test `merge_exact`, degrees 1..30, every case
+/// bounded).
 pub const ESTIMATE_MARGIN: f64 = 4.0;
+
+/// The normwise backward error of the Householder QR solve in the
+/// estimate: this times `eps sqrt(rows columns)` times `||A||_F` (the
+/// backward error grows with the matrix's size; measured margin: test
+/// `merge_exact`).
+pub const QR_MARGIN: f64 = 8.0;
 
 /// What a solve of the orthogonal path returns.
 pub(super) struct Orthogonal {
@@ -364,7 +375,7 @@ pub(super) fn orthogonal_solution(
             Some(z) => &samples * z,
             None => samples.clone(),
         };
-        let a_norm = a.norm();
+        let a_abs = a.abs();
         let qr = a.qr();
         let mut qt = reduced_target.clone();
         qr.q_tr_mul(&mut qt);
@@ -376,7 +387,8 @@ pub(super) fn orthogonal_solution(
             Some(z) => &particular + z * &y,
             None => y.clone(),
         };
-        factor = Some((t, y, a_norm));
+        let q = if full { Some(qr.q()) } else { None };
+        factor = Some((t, y, a_abs, q));
     }
     if merged.iter().any(|v| !v.is_finite()) {
         return Err(ill_conditioned_factor(accuracy));
@@ -420,23 +432,40 @@ pub(super) fn orthogonal_solution(
     let result_scale = x.amax().max(problem.scale);
     let eps = f64::EPSILON;
     let mut estimate = (m as f64 + 2.0) * eps * x.amax() / result_scale;
-    if let Some((t, y, a_norm)) = &factor {
-        let gamma = ESTIMATE_MARGIN * eps * ((count * points * free) as f64).sqrt();
+    if let Some((t, y, a_abs, Some(q))) = &factor {
+        // Componentwise (Skeel-style) first order: every entry of A and of
+        // the target carries a relative rounding of at most gamma.
+        let gamma = ESTIMATE_MARGIN * (m as f64 + 2.0) * eps;
         let sz = match &z {
             Some(z) => &s * z,
             None => s.clone(),
         };
-        // K1^T = T^-T (S Z)^T, K2^T = T^-1 K1^T.
-        let Some(k1t) = t.transpose().solve_lower_triangular(&sz.transpose()) else {
+        // K0^T = T^-T (S Z)^T; K1 = K0 Q^T = S Z A^+; K2 = S Z T^-1 T^-T.
+        let Some(k0t) = t.transpose().solve_lower_triangular(&sz.transpose()) else {
             return Err(ill_conditioned_factor(accuracy));
         };
-        let Some(k2t) = t.solve_upper_triangular(&k1t) else {
+        let Some(k2t) = t.solve_upper_triangular(&k0t) else {
             return Err(ill_conditioned_factor(accuracy));
         };
-        let (k1, k2) = (k1t.norm(), k2t.norm());
-        let first = gamma
-            * (k1 * (reduced_target.norm() + a_norm * y.norm()) + k2 * a_norm * residual.norm());
-        estimate += first / result_scale;
+        // Householder QR's own backward error is normwise (column by
+        // column), not componentwise: its first-order effect, with the
+        // Frobenius norms of the same maps.
+        let a_norm = a_abs.norm();
+        let normwise = QR_MARGIN
+            * eps
+            * ((count * points * free) as f64).sqrt()
+            * (k0t.norm() * (reduced_target.norm() + a_norm * y.norm())
+                + k2t.norm() * a_norm * residual.norm());
+        let k1 = (q * &k0t).transpose().abs();
+        let k2 = k2t.transpose().abs();
+        let mut worst = 0.0f64;
+        for c in 0..problem.dim {
+            let through_values = reduced_target.column(c).abs() + a_abs * y.column(c).abs();
+            let through_residual = a_abs.tr_mul(&residual.column(c).abs());
+            let bound = &k1 * through_values + &k2 * through_residual;
+            worst = worst.max(gamma * bound.amax());
+        }
+        estimate += (worst + normwise) / result_scale;
     }
     if !kept.is_empty() {
         // The kept rows carry their entries' rounding: the feasible set
