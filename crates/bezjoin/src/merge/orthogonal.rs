@@ -38,9 +38,13 @@
 //! K1 = S Z A^+ = S Z T^-1 Q^T,  K2 = S Z T^-1 T^-T
 //! ```
 //!
-//! for every coordinate (the rounding of the entries), plus the same with
-//! norms for the QR's normwise backward error (`QR_MARGIN eps sqrt(rows cols) ||A||`),
-//! plus the kept rows' own rounding magnified by
+//! for every coordinate (the rounding of the entries; the same with `Z`
+//! in place of `S Z` bounds `R`'s own control points, and the estimate is
+//! the larger). The solve is refined twice in working precision (the
+//! correction from the residual through the same factor, which makes it
+//! componentwise backward stable); the last correction, mapped, times
+//! [`REFINEMENT_MARGIN`] is the a-posteriori part for the solve's own
+//! rounding. Plus the kept rows' own rounding magnified by
 //! their condition, plus the de Casteljau rounding of the pieces. `K1`,
 //! `K2` map straight to the pieces' control points, and the absolute
 //! values keep the structure of the Bernstein sample matrices (totally
@@ -66,11 +70,19 @@ use super::stage_two::restriction_matrix;
 /// bounded).
 pub const ESTIMATE_MARGIN: f64 = 4.0;
 
-/// The normwise backward error of the Householder QR solve in the
-/// estimate: this times `eps sqrt(rows columns)` times `||A||_F` (the
-/// backward error grows with the matrix's size; measured margin: test
-/// `merge_exact`).
-pub const QR_MARGIN: f64 = 8.0;
+/// Weight of `R`'s own control-point bound in the estimate. The curve `R`
+/// is its pieces, but its control points are less well determined than
+/// theirs; their componentwise bound overstates their true error 200..350x
+/// (test `merge_accuracy`, degrees 20..30, merge back of a split curve), so
+/// it enters with this measured weight (a margin of at least 12 left).
+pub const MERGED_WEIGHT: f64 = 1.0 / 16.0;
+
+/// Refinement steps of the least-squares solve (working precision).
+pub const REFINEMENT_STEPS: usize = 2;
+
+/// The last refinement correction, mapped to the pieces or `R`, times this
+/// is the estimate's part for the solve's own rounding.
+pub const REFINEMENT_MARGIN: f64 = 8.0;
 
 /// What a solve of the orthogonal path returns.
 pub(super) struct Orthogonal {
@@ -376,19 +388,38 @@ pub(super) fn orthogonal_solution(
             None => samples.clone(),
         };
         let a_abs = a.abs();
-        let qr = a.qr();
-        let mut qt = reduced_target.clone();
-        qr.q_tr_mul(&mut qt);
+        let qr = a.clone().qr();
         let t = qr.r();
-        let Some(y) = t.solve_upper_triangular(&qt.rows(0, free).into_owned()) else {
+        let least_squares = |rhs: &DMatrix<f64>| {
+            let mut qt = rhs.clone();
+            qr.q_tr_mul(&mut qt);
+            t.solve_upper_triangular(&qt.rows(0, free).into_owned())
+        };
+        let Some(mut y) = least_squares(&reduced_target) else {
             return Err(ill_conditioned_factor(accuracy));
         };
+        // Two steps of refinement in working precision (the correction
+        // from the residual through the same factor): they make the answer
+        // componentwise backward stable, and the last correction measures
+        // what the solve's rounding leaves (the estimate's a-posteriori
+        // part).
+        let mut correction = DMatrix::zeros(free, problem.dim);
+        for _ in 0..REFINEMENT_STEPS {
+            let Some(step) = least_squares(&(&reduced_target - &a * &y)) else {
+                break;
+            };
+            if step.iter().any(|v| !v.is_finite()) {
+                break;
+            }
+            y += &step;
+            correction = step;
+        }
         merged = match &z {
             Some(z) => &particular + z * &y,
             None => y.clone(),
         };
         let q = if full { Some(qr.q()) } else { None };
-        factor = Some((t, y, a_abs, q));
+        factor = Some((t, y, a_abs, q, correction));
     }
     if merged.iter().any(|v| !v.is_finite()) {
         return Err(ill_conditioned_factor(accuracy));
@@ -432,49 +463,49 @@ pub(super) fn orthogonal_solution(
     let result_scale = x.amax().max(problem.scale);
     let eps = f64::EPSILON;
     let mut estimate = (m as f64 + 2.0) * eps * x.amax() / result_scale;
-    if let Some((t, y, a_abs, Some(q))) = &factor {
-        // Componentwise (Skeel-style) first order: every entry of A and of
-        // the target carries a relative rounding of at most gamma.
-        let gamma = ESTIMATE_MARGIN * (m as f64 + 2.0) * eps;
+    let mut reduced_gain = 0.0;
+    if let Some((t, y, a_abs, Some(q), correction)) = &factor {
         let sz = match &z {
             Some(z) => &s * z,
             None => s.clone(),
         };
-        // K0^T = T^-T (S Z)^T; K1 = K0 Q^T = S Z A^+; K2 = S Z T^-1 T^-T.
-        let Some(k0t) = t.transpose().solve_lower_triangular(&sz.transpose()) else {
-            return Err(ill_conditioned_factor(accuracy));
+        let zr = match &z {
+            Some(z) => z.clone(),
+            None => DMatrix::identity(points, points),
         };
-        let Some(k2t) = t.solve_upper_triangular(&k0t) else {
-            return Err(ill_conditioned_factor(accuracy));
+        // The pieces (through S Z) and R itself (through Z): R's control
+        // points are less well determined than the pieces' (S has small
+        // singular values at high degree), and R is an answer too.
+        let shared = Shared {
+            t,
+            q,
+            y,
+            a_abs,
+            target: &reduced_target,
+            residual: &residual,
+            m,
+            correction,
         };
-        // Householder QR's own backward error is normwise (column by
-        // column), not componentwise: its first-order effect, with the
-        // Frobenius norms of the same maps.
-        let a_norm = a_abs.norm();
-        let normwise = QR_MARGIN
-            * eps
-            * ((count * points * free) as f64).sqrt()
-            * (k0t.norm() * (reduced_target.norm() + a_norm * y.norm())
-                + k2t.norm() * a_norm * residual.norm());
-        let k1 = (q * &k0t).transpose().abs();
-        let k2 = k2t.transpose().abs();
-        let mut worst = 0.0f64;
-        for c in 0..problem.dim {
-            let through_values = reduced_target.column(c).abs() + a_abs * y.column(c).abs();
-            let through_residual = a_abs.tr_mul(&residual.column(c).abs());
-            let bound = &k1 * through_values + &k2 * through_residual;
-            worst = worst.max(gamma * bound.amax());
-        }
-        estimate += (worst + normwise) / result_scale;
+        let (pieces_bound, pieces_gain) =
+            first_order_bound(&shared, &sz).ok_or_else(|| ill_conditioned_factor(accuracy))?;
+        let (merged_bound, _) =
+            first_order_bound(&shared, &zr).ok_or_else(|| ill_conditioned_factor(accuracy))?;
+        estimate += pieces_bound.max(MERGED_WEIGHT * merged_bound) / result_scale;
+        // ||S Z A^+||_F ||M||_F: how much a move of the particular solution
+        // (the kept rows' rounding, below) reaches the pieces through the
+        // least-squares problem.
+        reduced_gain = pieces_gain * samples.norm();
     }
     if !kept.is_empty() {
         // The kept rows carry their entries' rounding: the feasible set
         // moves by up to cond(rows) eps relative, which the pieces feel
-        // through S.
+        // through S directly and through the reduced least-squares problem
+        // (the optimum moves along with the particular solution).
         let g = DMatrix::from_fn(kept.len(), points, |k, i| kept[k].coefficients[i]);
         let singular = g.singular_values();
         let condition = singular.max() / singular.min().max(f64::MIN_POSITIVE);
-        estimate += ESTIMATE_MARGIN * eps * condition * s.norm() * merged.norm() / result_scale;
+        estimate += ESTIMATE_MARGIN * eps * condition * (s.norm() + reduced_gain) * merged.norm()
+            / result_scale;
     }
 
     // Dependent rows, checked at the answer (as the KKT path).
@@ -526,6 +557,56 @@ pub(super) fn orthogonal_solution(
         metric_value,
         slope,
     })
+}
+
+/// What the first-order bound needs of the least-squares solve.
+struct Shared<'s> {
+    /// `A = Q T`, `T` upper triangular (`free x free`), `Q` thin.
+    t: &'s DMatrix<f64>,
+    q: &'s DMatrix<f64>,
+    y: &'s DMatrix<f64>,
+    a_abs: &'s DMatrix<f64>,
+    target: &'s DMatrix<f64>,
+    residual: &'s DMatrix<f64>,
+    m: usize,
+    /// The last refinement correction of `y`.
+    correction: &'s DMatrix<f64>,
+}
+
+/// The first-order bound (module documentation) of the largest change of
+/// `map y` (`map` = `S Z` for the pieces, `Z` for `R`), absolute, and
+/// `||map A^+||_F`.
+fn first_order_bound(shared: &Shared<'_>, map: &DMatrix<f64>) -> Option<(f64, f64)> {
+    let Shared {
+        t,
+        q,
+        y,
+        a_abs,
+        target,
+        residual,
+        m,
+        correction,
+    } = *shared;
+    let eps = f64::EPSILON;
+    // Componentwise (Skeel-style): every entry of A and of the target
+    // carries a relative rounding of at most gamma.
+    let gamma = ESTIMATE_MARGIN * (m as f64 + 2.0) * eps;
+    // K0^T = T^-T map^T; K1 = K0 Q^T = map A^+; K2 = map T^-1 T^-T.
+    let k0t = t.transpose().solve_lower_triangular(&map.transpose())?;
+    let k2t = t.solve_upper_triangular(&k0t)?;
+    // What the solve's own rounding leaves after refinement: the last
+    // correction mapped, with a margin (a-posteriori).
+    let measured = REFINEMENT_MARGIN * (map * correction).amax();
+    let k1 = (q * &k0t).transpose().abs();
+    let k2 = k2t.transpose().abs();
+    let mut worst = 0.0f64;
+    for c in 0..y.ncols() {
+        let through_values = target.column(c).abs() + a_abs * y.column(c).abs();
+        let through_residual = a_abs.tr_mul(&residual.column(c).abs());
+        let bound = &k1 * through_values + &k2 * through_residual;
+        worst = worst.max(gamma * bound.amax());
+    }
+    Some((worst + measured, k0t.norm()))
 }
 
 fn ill_conditioned_factor(accuracy: f64) -> BezjoinError {
