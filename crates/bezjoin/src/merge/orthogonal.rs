@@ -44,7 +44,10 @@
 //! correction from the residual through the same factor, which makes it
 //! componentwise backward stable); the last correction, mapped, times
 //! [`REFINEMENT_MARGIN`] is the a-posteriori part for the solve's own
-//! rounding. Plus the kept rows' own rounding magnified by
+//! rounding; and, for the pieces, the same first-order bound with norms
+//! for the QR's normwise backward error ([`QR_MARGIN`] `eps sqrt(rows
+//! cols) ||A||_F`), which the refinement does not remove entirely. Plus
+//! the kept rows' own rounding magnified by
 //! their condition, plus the de Casteljau rounding of the pieces. `K1`,
 //! `K2` map straight to the pieces' control points, and the absolute
 //! values keep the structure of the Bernstein sample matrices (totally
@@ -71,11 +74,18 @@ use super::stage_two::restriction_matrix;
 pub const ESTIMATE_MARGIN: f64 = 4.0;
 
 /// Weight of `R`'s own control-point bound in the estimate. The curve `R`
-/// is its pieces, but its control points are less well determined than
-/// theirs; their componentwise bound overstates their true error 200..350x
-/// (test `merge_accuracy`, degrees 20..30, merge back of a split curve), so
-/// it enters with this measured weight (a margin of at least 12 left).
-pub const MERGED_WEIGHT: f64 = 1.0 / 16.0;
+/// is its pieces (the promise is about them), but its control points are
+/// less well determined than theirs; their componentwise bound overstates
+/// their true error 200..350x (test `merge_accuracy`, degrees 20..30,
+/// merge back of a split curve), so it enters with this measured weight
+/// (a margin of about 4 left there): a guard against returning control
+/// points of `R` far off while the pieces are fine, not a proven bound.
+pub const MERGED_WEIGHT: f64 = 1.0 / 64.0;
+
+/// The normwise backward error of the Householder QR solve in the
+/// estimate of the pieces: this times `eps sqrt(rows columns)` times
+/// `||A||_F` (measured margin: test `merge_exact`).
+pub const QR_MARGIN: f64 = 8.0;
 
 /// Refinement steps of the least-squares solve (working precision).
 pub const REFINEMENT_STEPS: usize = 2;
@@ -201,9 +211,9 @@ fn metric_samples(
     breakpoints: &[f64],
     metric: MergeMetric,
     s: &DMatrix<f64>,
-) -> (DMatrix<f64>, DMatrix<f64>) {
+) -> (DMatrix<f64>, DMatrix<f64>, DMatrix<f64>) {
     match metric {
-        MergeMetric::Discrete => (s.clone(), problem.x0.clone()),
+        MergeMetric::Discrete => (s.clone(), problem.x0.clone(), problem.x0.abs()),
         MergeMetric::Integral => {
             let points = problem.points_per_piece;
             let m = points - 1;
@@ -212,6 +222,10 @@ fn metric_samples(
             let (nodes, weights) = gauss_legendre_unit(points);
             let mut samples = DMatrix::zeros(count * points, points);
             let mut target = DMatrix::zeros(count * points, dim);
+            // sqrt(w_k) sum_i B_i(u_k) |P_i|: the size the target's
+            // rounding is relative to (the values may cancel).
+            let mut target_abs = DMatrix::zeros(count * points, dim);
+            let mut own = vec![0.0; points];
             let mut row = vec![0.0; points];
             let mut value = vec![0.0; dim];
             for (j, piece) in problem.pieces.iter().enumerate() {
@@ -223,12 +237,17 @@ fn metric_samples(
                         samples[(j * points + k, i)] = root * row[i];
                     }
                     piece.curve.eval_into(u, &mut value);
+                    bernstein_row(m, u, &mut own);
                     for c in 0..dim {
                         target[(j * points + k, c)] = root * value[c];
+                        target_abs[(j * points + k, c)] = root
+                            * (0..points)
+                                .map(|i| own[i] * piece.curve.point(i)[c].abs())
+                                .sum::<f64>();
                     }
                 }
             }
-            (samples, target)
+            (samples, target, target_abs)
         }
     }
 }
@@ -337,7 +356,7 @@ pub(super) fn orthogonal_solution(
     let count = problem.pieces.len();
     let x0 = &problem.x0;
     let s = restrictions(m, breakpoints);
-    let (samples, target) = metric_samples(problem, breakpoints, metric, &s);
+    let (samples, target, target_abs) = metric_samples(problem, breakpoints, metric, &s);
 
     // The constraint rows on r: (G S) r = G x0 + rhs.
     let rows_r: Vec<Row> = problem
@@ -377,6 +396,7 @@ pub(super) fn orthogonal_solution(
         Some(null_space(&basis, points))
     };
     let free = points - basis.len();
+    let particular_abs = particular.abs();
     let reduced_target = &target - &samples * &particular;
     let merged;
     let mut factor = None;
@@ -482,14 +502,15 @@ pub(super) fn orthogonal_solution(
             y,
             a_abs,
             target: &reduced_target,
+            target_size: &(&target_abs + samples.abs() * particular_abs),
             residual: &residual,
             m,
             correction,
         };
-        let (pieces_bound, pieces_gain) =
-            first_order_bound(&shared, &sz).ok_or_else(|| ill_conditioned_factor(accuracy))?;
-        let (merged_bound, _) =
-            first_order_bound(&shared, &zr).ok_or_else(|| ill_conditioned_factor(accuracy))?;
+        let (pieces_bound, pieces_gain) = first_order_bound(&shared, &sz, true)
+            .ok_or_else(|| ill_conditioned_factor(accuracy))?;
+        let (merged_bound, _) = first_order_bound(&shared, &zr, false)
+            .ok_or_else(|| ill_conditioned_factor(accuracy))?;
         estimate += pieces_bound.max(MERGED_WEIGHT * merged_bound) / result_scale;
         // ||S Z A^+||_F ||M||_F: how much a move of the particular solution
         // (the kept rows' rounding, below) reaches the pieces through the
@@ -567,6 +588,9 @@ struct Shared<'s> {
     y: &'s DMatrix<f64>,
     a_abs: &'s DMatrix<f64>,
     target: &'s DMatrix<f64>,
+    /// What the reduced target's rounding is relative to: `|b|` as
+    /// evaluated (`sum |B| |P|`) plus `|M| |r_p|`.
+    target_size: &'s DMatrix<f64>,
     residual: &'s DMatrix<f64>,
     m: usize,
     /// The last refinement correction of `y`.
@@ -576,13 +600,18 @@ struct Shared<'s> {
 /// The first-order bound (module documentation) of the largest change of
 /// `map y` (`map` = `S Z` for the pieces, `Z` for `R`), absolute, and
 /// `||map A^+||_F`.
-fn first_order_bound(shared: &Shared<'_>, map: &DMatrix<f64>) -> Option<(f64, f64)> {
+fn first_order_bound(
+    shared: &Shared<'_>,
+    map: &DMatrix<f64>,
+    with_normwise: bool,
+) -> Option<(f64, f64)> {
     let Shared {
         t,
         q,
         y,
         a_abs,
         target,
+        target_size,
         residual,
         m,
         correction,
@@ -597,16 +626,29 @@ fn first_order_bound(shared: &Shared<'_>, map: &DMatrix<f64>) -> Option<(f64, f6
     // What the solve's own rounding leaves after refinement: the last
     // correction mapped, with a margin (a-posteriori).
     let measured = REFINEMENT_MARGIN * (map * correction).amax();
+    // Householder QR's own backward error is normwise (column by column),
+    // not componentwise, and refinement in working precision does not
+    // remove all of it (measured: test merge_exact, degree 20, mu ~0.1,
+    // integral metric): its first-order effect with Frobenius norms.
+    let a_norm = a_abs.norm();
+    let normwise = QR_MARGIN
+        * eps
+        * ((a_abs.nrows() * a_abs.ncols()) as f64).sqrt()
+        * (k0t.norm() * (target.norm() + a_norm * y.norm())
+            + k2t.norm() * a_norm * residual.norm());
     let k1 = (q * &k0t).transpose().abs();
     let k2 = k2t.transpose().abs();
     let mut worst = 0.0f64;
     for c in 0..y.ncols() {
-        let through_values = target.column(c).abs() + a_abs * y.column(c).abs();
+        let through_values = target_size.column(c) + a_abs * y.column(c).abs();
         let through_residual = a_abs.tr_mul(&residual.column(c).abs());
         let bound = &k1 * through_values + &k2 * through_residual;
         worst = worst.max(gamma * bound.amax());
     }
-    Some((worst + measured, k0t.norm()))
+    Some((
+        worst + measured + if with_normwise { normwise } else { 0.0 },
+        k0t.norm(),
+    ))
 }
 
 fn ill_conditioned_factor(accuracy: f64) -> BezjoinError {
