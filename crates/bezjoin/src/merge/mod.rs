@@ -945,3 +945,64 @@ mod slope_tests {
         }
     }
 }
+
+#[cfg(test)]
+mod reference_tests {
+    use super::rows::Problem;
+    use super::*;
+
+    fn curve(state: &mut u64, degree: usize) -> BezierCurve {
+        let points = (0..(degree + 1) * 2)
+            .map(|_| {
+                *state = state
+                    .wrapping_mul(6_364_136_223_846_793_005)
+                    .wrapping_add(1_442_695_040_888_963_407);
+                (*state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+            })
+            .collect();
+        BezierCurve::new(2, degree, points).unwrap()
+    }
+
+    /// The orthogonal stage 1 against the paper's Lagrange-multiplier (KKT)
+    /// formulation on the pieces, kept as the reference: same pieces.
+    #[test]
+    fn orthogonal_stage_one_agrees_with_the_kkt_formulation() {
+        let mut state = 9;
+        for degree in 1..=10 {
+            let (p, q) = (curve(&mut state, degree), curve(&mut state, degree));
+            for metric in [MergeMetric::Discrete, MergeMetric::Integral] {
+                for fix_ends in [false, true] {
+                    let options = MergeOptions {
+                        metric,
+                        fix_ends,
+                        p_points: if degree >= 3 {
+                            vec![KeepPoint {
+                                param: 0.4,
+                                max_order: 1,
+                            }]
+                        } else {
+                            Vec::new()
+                        },
+                        ..MergeOptions::default()
+                    };
+                    let pair = PairProblem::new(&p, &q, &options).unwrap();
+                    for mu in [0.2, 0.5, 0.7] {
+                        let ours = pair.solve(mu, StageOneCheck::Full).unwrap();
+                        let problem = Problem::new(&pair.pieces, &[mu, 1.0 - mu], fix_ends);
+                        let (x, _) =
+                            kkt::kkt_solution(&problem, metric, 1.0, StageOneCheck::Full).unwrap();
+                        let scale = x.amax().max(1.0);
+                        for (j, piece) in ours.pieces.iter().enumerate() {
+                            let reference = x.rows(j * (degree + 1), degree + 1);
+                            let gap = (piece - reference).amax() / scale;
+                            assert!(
+                                gap < 1e-9,
+                                "degree {degree} {metric:?} fix ends {fix_ends} mu {mu}: gap {gap:e}"
+                            );
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
