@@ -1222,7 +1222,13 @@ fn optimal_mu_is_the_minimum_of_a_dense_scan() {
                         max_order: 0,
                     }];
                 }
-                let m = merge(&p, &q, &o).unwrap();
+                let m = match merge(&p, &q, &o) {
+                    Ok(m) => m,
+                    // Refusing is allowed at high degree (integral metric):
+                    // nothing to compare then.
+                    Err(BezjoinError::IllConditioned { .. }) if n >= 20 => continue,
+                    Err(e) => panic!("n {n} {metric:?} constraint {constraint}: {e}"),
+                };
                 let best = m.report.metric_value;
                 // A mu where the solve is refused (IllConditioned) is no
                 // answer, as in the search.
