@@ -96,7 +96,6 @@
 
 mod bspline;
 mod kept;
-#[cfg(test)]
 mod kkt;
 mod orthogonal;
 mod rows;
@@ -418,9 +417,13 @@ impl<'a> PairProblem<'a> {
             return optimal_mu(|mu| self.solve(mu, check).map(|s| s.metric_value));
         }
         let mut first_error = None;
+        let mut without_slope = false;
         let minimum = minimize_with_slope(
             |mu| match self.solve(mu, check) {
-                Ok(s) => Some((s.metric_value, s.slope.unwrap_or(f64::NAN))),
+                Ok(s) => {
+                    without_slope |= s.slope.is_none();
+                    Some((s.metric_value, s.slope.unwrap_or(f64::NAN)))
+                }
                 Err(e) => {
                     first_error.get_or_insert(e);
                     None
@@ -432,6 +435,11 @@ impl<'a> PairProblem<'a> {
             MU_SEARCH_TOLERANCE,
             MU_SEARCH_MAX_STEPS,
         );
+        if without_slope {
+            // Some trials were answered by the KKT fallback of stage 1,
+            // which has no slope: the search on the values alone.
+            return optimal_mu(|mu| self.solve(mu, check).map(|s| s.metric_value));
+        }
         match (minimum, first_error) {
             (Some(m), _) => Ok(m.x),
             (None, Some(e)) => Err(e),

@@ -22,6 +22,7 @@ use crate::bezier::BezierCurve;
 use crate::error::{BezjoinError, Result};
 
 use super::kept::kept_solution;
+use super::kkt::kkt_solution;
 use super::orthogonal::orthogonal_solution;
 use super::rows::Problem;
 use super::{KeepPoint, MergeMetric};
@@ -57,7 +58,6 @@ pub const DEVIATION_SAMPLES: usize = 256;
 
 /// Safety margin of the data-rounding term of the stage-1 KKT error estimate
 /// (measured against an exact rational reference, test `merge_exact`).
-#[cfg(test)]
 pub const DATA_ROUNDING_MARGIN: f64 = 4.0;
 
 /// One input piece with its constraints, already at the working degree.
@@ -145,16 +145,32 @@ pub(crate) fn solve_stage_one(
         kept_solution(&problem, breakpoints, &lengths, accuracy)?
     } else {
         let want_slope = count == 2 && pieces.iter().all(|p| p.points.is_empty());
-        let solved = orthogonal_solution(
+        match orthogonal_solution(
             &problem,
             breakpoints,
             metric,
             accuracy,
             check == StageOneCheck::Full,
             want_slope,
-        )?;
-        found = Some((solved.merged, solved.metric_value, solved.slope));
-        (solved.x, solved.estimate)
+        ) {
+            Ok(solved) => {
+                found = Some((solved.merged, solved.metric_value, solved.slope));
+                (solved.x, solved.estimate)
+            }
+            // The orthogonal estimate can be far more pessimistic than the
+            // KKT formulation's (the integral metric at degrees above ~15):
+            // the KKT solve, with its own full check, is tried before
+            // refusing, so nothing answered before the orthogonal stage 1
+            // is refused now. No slope then (the search falls back to
+            // values, `PairProblem::optimal_mu`).
+            Err(refusal @ BezjoinError::IllConditioned { .. }) => {
+                match kkt_solution(&problem, metric, accuracy, check) {
+                    Ok(solution) => solution,
+                    Err(_) => return Err(refusal),
+                }
+            }
+            Err(other) => return Err(other),
+        }
     };
     let e = &x - &problem.x0;
 
