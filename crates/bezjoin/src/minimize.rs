@@ -174,6 +174,273 @@ fn brent(
     (x, fx, steps)
 }
 
+/// A sample of a function with its derivative.
+#[derive(Debug, Clone, Copy)]
+struct Sample {
+    x: f64,
+    value: f64,
+    slope: f64,
+}
+
+/// The local minimiser in `(0, 1)` of the cubic Hermite interpolant of
+/// `a`, `b` (in the interval's own parameter `s`), with its model value;
+/// `None` when the cubic has no interior local minimum.
+fn hermite_minimum(a: &Sample, b: &Sample) -> Option<(f64, f64)> {
+    let h = b.x - a.x;
+    let (fa, fb, da, db) = (a.value, b.value, a.slope * h, b.slope * h);
+    let c1 = da;
+    let c2 = 3.0 * (fb - fa) - 2.0 * da - db;
+    let c3 = 2.0 * (fa - fb) + da + db;
+    let model = |s: f64| fa + s * (c1 + s * (c2 + s * c3));
+    // p'(s) = c1 + 2 c2 s + 3 c3 s^2; a minimum has p''(s) = 2 c2 + 6 c3 s > 0.
+    let mut roots = [f64::NAN; 2];
+    if c3.abs() <= 1e-14 * (c2.abs() + c1.abs()) {
+        if c2 > 0.0 {
+            roots[0] = -c1 / (2.0 * c2);
+        }
+    } else {
+        let discriminant = c2 * c2 - 3.0 * c3 * c1;
+        if discriminant >= 0.0 {
+            let root = discriminant.sqrt();
+            // Numerically stable pair of roots of 3 c3 s^2 + 2 c2 s + c1.
+            let q = -(c2 + c2.signum() * root);
+            if q != 0.0 {
+                roots[0] = q / (3.0 * c3);
+                roots[1] = c1 / q;
+            } else {
+                roots[0] = 0.0;
+            }
+        }
+    }
+    roots
+        .into_iter()
+        .filter(|&s| s > 0.0 && s < 1.0 && 2.0 * c2 + 6.0 * c3 * s > 0.0)
+        .map(|s| (s, model(s)))
+        .min_by(|p, q| p.1.total_cmp(&q.1))
+}
+
+/// Minimise `f` over `[lo, hi]` when `f` returns its value and derivative
+/// (`None`: no value there): `grid_points >= 2` evenly spaced samples,
+/// then, in every grid interval whose cubic Hermite interpolant has a local
+/// minimum or whose values contradict its slopes (best model first), a
+/// safeguarded cubic-interpolation search on the derivative (the bracket
+/// always holds a sign change of the slope from - to +; a step that does
+/// not halve the bracket within two steps is replaced by bisection) until
+/// the bracket or the step is about `tolerance` wide. An interval with a
+/// failed end is searched by [`brent`] on the values instead (never
+/// skipped). Returns the best point evaluated; `None` when every grid
+/// sample failed.
+pub(crate) fn minimize_with_slope(
+    mut f: impl FnMut(f64) -> Option<(f64, f64)>,
+    lo: f64,
+    hi: f64,
+    grid_points: usize,
+    tolerance: f64,
+    max_steps: usize,
+) -> Option<Minimum> {
+    debug_assert!(grid_points >= 2 && lo < hi && tolerance > 0.0);
+    let mut evaluations = 0usize;
+    let mut evaluate = |x: f64| {
+        evaluations += 1;
+        match f(x) {
+            Some((value, slope)) if value.is_finite() && slope.is_finite() => {
+                Sample { x, value, slope }
+            }
+            _ => Sample {
+                x,
+                value: f64::INFINITY,
+                slope: f64::NAN,
+            },
+        }
+    };
+    let step = (hi - lo) / (grid_points - 1) as f64;
+    let grid: Vec<Sample> = (0..grid_points)
+        .map(|i| {
+            evaluate(if i + 1 == grid_points {
+                hi
+            } else {
+                lo + step * i as f64
+            })
+        })
+        .collect();
+    let mut best = *grid
+        .iter()
+        .min_by(|a, b| a.value.total_cmp(&b.value))
+        .expect("at least two samples");
+    if !best.value.is_finite() {
+        return None;
+    }
+    // Candidate intervals: (model value, index); failed ends: value search.
+    let mut candidates: Vec<(f64, usize)> = Vec::new();
+    let mut failed = Vec::new();
+    for i in 0..grid.len() - 1 {
+        let (a, b) = (&grid[i], &grid[i + 1]);
+        match (a.value.is_finite(), b.value.is_finite()) {
+            (true, true) => {
+                if let Some((_, model)) = hermite_minimum(a, b) {
+                    candidates.push((model, i));
+                } else if may_hide_minimum(a, b) {
+                    candidates.push((a.value.min(b.value), i));
+                }
+            }
+            (false, false) => {}
+            _ => failed.push(i),
+        }
+    }
+    candidates.sort_by(|p, q| p.0.total_cmp(&q.0));
+    let mut budget = max_steps;
+    // Every candidate is searched: a cubic model of a grid interval is too
+    // rough to rule one out (two minima of nearly equal value are common).
+    for (_, i) in candidates {
+        if budget == 0 {
+            break;
+        }
+        let found = slope_search(&mut evaluate, grid[i], grid[i + 1], tolerance, &mut budget);
+        if found.value < best.value {
+            best = found;
+        }
+    }
+    for i in failed {
+        if budget == 0 {
+            break;
+        }
+        let (a, b) = (grid[i], grid[i + 1]);
+        let start = if a.value.is_finite() { a } else { b };
+        let mut values = |x: f64| evaluate(x).value;
+        let (x, value, steps) = brent(
+            &mut values,
+            a.x,
+            b.x,
+            start.x,
+            start.value,
+            tolerance,
+            budget,
+        );
+        budget = budget.saturating_sub(steps);
+        if value < best.value {
+            best = Sample {
+                x,
+                value,
+                slope: f64::NAN,
+            };
+        }
+    }
+    Some(Minimum {
+        x: best.x,
+        value: best.value,
+        evaluations,
+    })
+}
+
+/// The search of [`minimize_with_slope`] inside one grid interval: returns
+/// the best sample evaluated (the ends included).
+fn slope_search(
+    evaluate: &mut impl FnMut(f64) -> Sample,
+    a: Sample,
+    b: Sample,
+    tolerance: f64,
+    budget: &mut usize,
+) -> Sample {
+    let mut best = if a.value <= b.value { a } else { b };
+    // Without a sign change of the slope, the model's minimum splits the
+    // interval and both halves are looked at again (a few levels deep):
+    // the slope may rise, fall and rise again inside one grid interval.
+    let mut work = vec![(a, b, 0usize)];
+    while let Some((a, b, depth)) = work.pop() {
+        if *budget == 0 {
+            break;
+        }
+        if a.slope < 0.0 && b.slope > 0.0 {
+            let found = bracket_search(evaluate, a, b, tolerance, budget);
+            if found.value < best.value {
+                best = found;
+            }
+            continue;
+        }
+        if depth >= SPLIT_DEPTH || b.x - a.x <= tolerance {
+            continue;
+        }
+        // Split at the model's minimum, kept away from the ends (the model
+        // can be poor where the slope changes fast), or in the middle when
+        // the values contradict the slopes without a model minimum.
+        let s = match hermite_minimum(&a, &b) {
+            Some((s, _)) => s.clamp(0.1, 0.9),
+            None if may_hide_minimum(&a, &b) => 0.5,
+            None => continue,
+        };
+        *budget -= 1;
+        let c = evaluate(a.x + s * (b.x - a.x));
+        if !c.value.is_finite() {
+            continue;
+        }
+        if c.value < best.value {
+            best = c;
+        }
+        work.push((c, b, depth + 1));
+        work.push((a, c, depth + 1));
+    }
+    best
+}
+
+/// Slopes of one sign with values that contradict them (rising at `a`
+/// yet lower at `b`, or falling at `b` yet lower at `a`), or a sign change
+/// from - to +: the function turns inside, a minimum may hide there.
+fn may_hide_minimum(a: &Sample, b: &Sample) -> bool {
+    (a.slope < 0.0 && b.slope > 0.0)
+        || (a.slope >= 0.0 && b.value < a.value)
+        || (b.slope <= 0.0 && a.value < b.value)
+}
+
+/// How often an interval without a sign change of the slope is split at
+/// its model's minimum.
+const SPLIT_DEPTH: usize = 6;
+
+/// Safeguarded cubic-interpolation search for the minimum in `[a, b]`,
+/// `a.slope < 0 < b.slope`.
+fn bracket_search(
+    evaluate: &mut impl FnMut(f64) -> Sample,
+    mut a: Sample,
+    mut b: Sample,
+    tolerance: f64,
+    budget: &mut usize,
+) -> Sample {
+    let mut best = if a.value <= b.value { a } else { b };
+    // Bracket widths one and two steps ago.
+    let mut history = [f64::INFINITY; 2];
+    let mut previous = f64::NAN;
+    while *budget > 0 && b.x - a.x > tolerance {
+        let width = b.x - a.x;
+        let s = hermite_minimum(&a, &b).map_or(0.5, |(s, _)| s);
+        // Bisect when two steps did not halve the bracket.
+        let s = if width > 0.5 * history[0] { 0.5 } else { s };
+        let x = a.x + s * width;
+        if !(x > a.x && x < b.x) {
+            break;
+        }
+        *budget -= 1;
+        let c = evaluate(x);
+        if c.value < best.value {
+            best = c;
+        }
+        if !c.value.is_finite() || c.slope == 0.0 {
+            break;
+        }
+        if c.slope < 0.0 {
+            a = c;
+        } else {
+            b = c;
+        }
+        history = [history[1], width];
+        // Converged: two successive model minimisers closer than the
+        // tolerance.
+        if (x - previous).abs() <= tolerance {
+            break;
+        }
+        previous = x;
+    }
+    best
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

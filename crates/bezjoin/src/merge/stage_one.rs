@@ -23,6 +23,7 @@ use crate::error::{BezjoinError, Result};
 
 use super::kept::kept_solution;
 use super::kkt::kkt_solution;
+use super::orthogonal::orthogonal_solution;
 use super::rows::Problem;
 use super::{KeepPoint, MergeMetric};
 
@@ -77,8 +78,14 @@ pub(crate) struct StageOne {
     pub pieces: Vec<DMatrix<f64>>,
     /// The minimised metric.
     pub metric_value: f64,
-    /// Relative error estimate of the KKT solve (condition x backward error).
+    /// Relative error estimate of the stage-1 solve.
     pub error_estimate: f64,
+    /// `R` itself when stage 1 found it (the orthogonal path); stage 2 then
+    /// only checks it.
+    pub merged: Option<DMatrix<f64>>,
+    /// `d metric / d mu` for two pieces without keep points (orthogonal
+    /// path), for the search of the optimal `mu`.
+    pub slope: Option<f64>,
 }
 
 /// The exact Bernstein Gram matrix `G_ij = int_0^1 B_i^n B_j^n =
@@ -133,10 +140,37 @@ pub(crate) fn solve_stage_one(
     let lengths: Vec<f64> = breakpoints.windows(2).map(|w| w[1] - w[0]).collect();
     let m = pieces[0].curve.degree();
     let problem = Problem::new(pieces, &lengths, fix_ends);
+    let mut found = None;
     let (x, estimate) = if pieces.iter().any(|p| p.keep) {
         kept_solution(&problem, breakpoints, &lengths, accuracy)?
     } else {
-        kkt_solution(&problem, metric, accuracy, check)?
+        let want_slope = count == 2 && pieces.iter().all(|p| p.points.is_empty());
+        match orthogonal_solution(
+            &problem,
+            breakpoints,
+            metric,
+            accuracy,
+            check == StageOneCheck::Full,
+            want_slope,
+        ) {
+            Ok(solved) => {
+                found = Some((solved.merged, solved.metric_value, solved.slope));
+                (solved.x, solved.estimate)
+            }
+            // The orthogonal estimate can be far more pessimistic than the
+            // KKT formulation's (the integral metric at degrees above ~15):
+            // the KKT solve, with its own full check, is tried before
+            // refusing, so nothing answered before the orthogonal stage 1
+            // is refused now. No slope then (the search falls back to
+            // values, `PairProblem::optimal_mu`).
+            Err(refusal @ BezjoinError::IllConditioned { .. }) => {
+                match kkt_solution(&problem, metric, accuracy, check) {
+                    Ok(solution) => solution,
+                    Err(_) => return Err(refusal),
+                }
+            }
+            Err(other) => return Err(other),
+        }
     };
     let e = &x - &problem.x0;
 
@@ -159,16 +193,30 @@ pub(crate) fn solve_stage_one(
 
     let points_per_piece = problem.points_per_piece;
     let mut metric_value = 0.0;
-    let weight = match metric {
-        MergeMetric::Discrete => DMatrix::identity(points_per_piece, points_per_piece),
-        MergeMetric::Integral => bernstein_gram_matrix(m),
+    // The kept path's metric from the changes (the orthogonal path
+    // measured it on its residual).
+    let weight = match (&found, metric) {
+        (Some(_), _) => DMatrix::zeros(0, 0),
+        (None, MergeMetric::Discrete) => DMatrix::identity(points_per_piece, points_per_piece),
+        (None, MergeMetric::Integral) => bernstein_gram_matrix(m),
     };
     let mut new_pieces = Vec::with_capacity(count);
     for j in 0..count {
-        let ej = e.rows(j * points_per_piece, points_per_piece);
-        metric_value += (ej.transpose() * &weight * ej).trace();
+        if found.is_none() {
+            let ej = e.rows(j * points_per_piece, points_per_piece);
+            metric_value += (ej.transpose() * &weight * ej).trace();
+        }
         new_pieces.push(x.rows(j * points_per_piece, points_per_piece).into_owned());
     }
+    let (merged, slope) = match found {
+        // The orthogonal path measured the metric on its least-squares
+        // residual (no Gram matrix).
+        Some((merged, value, slope)) => {
+            metric_value = value;
+            (Some(merged), slope)
+        }
+        None => (None, None),
+    };
     // Coordinates near the top of the f64 range can overflow the squared
     // changes (or the solution itself) without any NaN in the input; the
     // optimal-`mu` search would then see no finite value at all.
@@ -186,5 +234,7 @@ pub(crate) fn solve_stage_one(
         pieces: new_pieces,
         metric_value: metric_value.max(0.0),
         error_estimate: estimate,
+        merged,
+        slope,
     })
 }

@@ -14,11 +14,24 @@ use super::stage_one::DEVIATION_SAMPLES;
 /// there), then checked: `R` restricted to every `[t_j, t_{j+1}]` must
 /// give back that piece. Returns `R` and the largest control-point
 /// difference of that check relative to the coordinate scale.
+///
+/// When stage 1 found `R` itself (`found`, the orthogonal path), `R` is
+/// taken as it is and only checked.
 pub(crate) fn stage_two(
     pieces: &[DMatrix<f64>],
     breakpoints: &[f64],
     accuracy: f64,
+    found: Option<&DMatrix<f64>>,
 ) -> Result<(BezierCurve, f64)> {
+    let merged = match found {
+        Some(r) => BezierCurve::from_matrix(r)?,
+        None => extrapolate(pieces, breakpoints)?,
+    };
+    check_restrictions(merged, pieces, breakpoints, accuracy)
+}
+
+/// `R` extrapolated from the piece with the shortest extrapolation, refined.
+fn extrapolate(pieces: &[DMatrix<f64>], breakpoints: &[f64]) -> Result<BezierCurve> {
     let lengths: Vec<f64> = breakpoints.windows(2).map(|w| w[1] - w[0]).collect();
     // Extrapolating piece j to [0, 1] runs de Casteljau steps at parameters
     // down to -t_j / h_j and up to 1 + (1 - t_{j+1}) / h_j; each step at a
@@ -38,6 +51,16 @@ pub(crate) fn stage_two(
     // restriction matrices [S_0; S_1; ...] are well conditioned together,
     // unlike any one of them) remove most of it.
     refine(&mut merged, pieces, breakpoints);
+    Ok(merged)
+}
+
+/// `R` restricted to every piece's interval against the piece.
+fn check_restrictions(
+    merged: BezierCurve,
+    pieces: &[DMatrix<f64>],
+    breakpoints: &[f64],
+    accuracy: f64,
+) -> Result<(BezierCurve, f64)> {
     let scale = pieces
         .iter()
         .map(|p| p.amax())
@@ -45,6 +68,8 @@ pub(crate) fn stage_two(
         .max(f64::MIN_POSITIVE);
     let mut worst = 0.0f64;
     for (j, p) in pieces.iter().enumerate() {
+        // segment (blossoms) is a second computation of what stage 1's
+        // de Casteljau split gave.
         let back = merged.segment(breakpoints[j], breakpoints[j + 1])?;
         let diff = (back.control_matrix() - p).amax();
         worst = worst.max(diff / scale);

@@ -1,0 +1,666 @@
+//! The orthogonal path of stage 1 (no piece kept): the merged curve `R`
+//! itself is the unknown, the continuity conditions (3) are eliminated by
+//! construction, and the metric is minimised by Householder QR of a
+//! well-scaled sample matrix; no KKT system, no Gram matrix.
+//!
+//! With `R`'s control points `r` (`(m + 1) x dim`) the pieces are `S_j r`
+//! (`S_j` the exact restriction of `R` to `[t_j, t_{j+1}]`), so every `r`
+//! satisfies (3) and the feasible set of (3) is exactly `{S r}` (`S` the
+//! stacked `S_j`, full column rank): a basis of the null space of the
+//! continuity rows without forming them. The metric is a least-squares
+//! norm `||M r - b||^2`:
+//!
+//! * discrete: `M = S`, `b` the input control points;
+//! * integral: the rows of `M` are `sqrt(w_k) B^m(t_j + h_j u_k)` (Bernstein
+//!   values of `R` at the Gauss-Legendre nodes `u_k` of each piece, `m + 1`
+//!   nodes: exact for the degree-`2m` integrand), `b` the rows
+//!   `sqrt(w_k) C_j(u_k)`. This is `W^(1/2) B S` in exact arithmetic: the
+//!   Gram matrix `B^T W B` is never formed, so its condition (`1e16` near
+//!   degree 25) is never squared into the answer.
+//!
+//! Fix ends and keep points are rows on the pieces, `G x = G x0`, hence on
+//! `r`: `(G S) r = G x0`. They are orthonormalised (Gram-Schmidt, two
+//! passes, dependent rows set aside to be checked at the answer), a
+//! particular solution `r_p` and an orthonormal null-space basis `Z` of the
+//! kept rows follow, and the reduced problem `min ||M Z y - (b - M r_p)||`
+//! is solved by QR. The pieces are then `R` split at the breakpoints by de
+//! Casteljau (convex combinations), and `R` is stage 2's answer directly.
+//!
+//! **Error estimate** (first order, a posteriori: measured on the answer's
+//! own factor and residual, componentwise). With `A = M Z = Q T`, the
+//! pieces move by `S Z delta_y`, and a perturbation `delta_A`, `delta_t`
+//! of the sample matrix and the target moves `y` by `A^+ (delta_t -
+//! delta_A y) + (A^T A)^-1 delta_A^T res`. Every entry of `A` and `t`
+//! carries a relative rounding of at most `gamma`, so, entry by entry,
+//!
+//! ```text
+//! |delta x| <= gamma (|K1| (|t| + |A| |y|) + |K2| |A|^T |res|),
+//! K1 = S Z A^+ = S Z T^-1 Q^T,  K2 = S Z T^-1 T^-T
+//! ```
+//!
+//! for every coordinate (the rounding of the entries; the same with `Z`
+//! in place of `S Z` bounds `R`'s own control points, and the estimate is
+//! the larger). The solve is refined twice in working precision (the
+//! correction from the residual through the same factor, which makes it
+//! componentwise backward stable); the last correction, mapped, times
+//! [`REFINEMENT_MARGIN`] is the a-posteriori part for the solve's own
+//! rounding; and, for the pieces, the same first-order bound with norms
+//! for the QR's normwise backward error ([`QR_MARGIN`] `eps sqrt(rows
+//! cols) ||A||_F`), which the refinement does not remove entirely. Plus
+//! the kept rows' own rounding magnified by
+//! their condition, plus the de Casteljau rounding of the pieces. `K1`,
+//! `K2` map straight to the pieces' control points, and the absolute
+//! values keep the structure of the Bernstein sample matrices (totally
+//! positive: a relative change of their entries moves the answer far less
+//! than their condition number says), so the bound follows the pieces'
+//! actual sensitivity; measured against an exact rational reference in
+//! test `merge_exact`.
+
+use nalgebra::{DMatrix, DVector};
+
+use crate::basis::binomial;
+use crate::bezier::BezierCurve;
+use crate::error::{BezjoinError, Result};
+
+use super::MergeMetric;
+use super::rows::{Dependent, Problem, Row, WorstUndecided, classify, extend_orthonormal};
+use super::stage_one::{CONSISTENCY_TOLERANCE, RANK_TOLERANCE};
+use super::stage_two::restriction_matrix;
+
+/// The rounding `gamma` of the first-order estimate is this times
+/// `(m + 2) eps` relative per entry of the sample matrix and the target
+/// (measured margin: test `merge_exact`, degrees 1..30, every case
+/// bounded).
+pub const ESTIMATE_MARGIN: f64 = 4.0;
+
+/// Weight of `R`'s own control-point bound in the estimate. The curve `R`
+/// is its pieces (the promise is about them), but its control points are
+/// less well determined than theirs; their componentwise bound overstates
+/// their true error 200..350x (test `merge_accuracy`, degrees 20..30,
+/// merge back of a split curve), so it enters with this measured weight
+/// (a margin of about 4 left there): a guard against returning control
+/// points of `R` far off while the pieces are fine, not a proven bound.
+pub const MERGED_WEIGHT: f64 = 1.0 / 64.0;
+
+/// The normwise backward error of the Householder QR solve in the
+/// estimate of the pieces: this times `eps sqrt(rows columns)` times
+/// `||A||_F` (measured margin: test `merge_exact`).
+pub const QR_MARGIN: f64 = 4.0;
+
+/// Refinement steps of the least-squares solve (working precision).
+pub const REFINEMENT_STEPS: usize = 2;
+
+/// The last refinement correction, mapped to the pieces or `R`, times this
+/// is the estimate's part for the solve's own rounding.
+pub const REFINEMENT_MARGIN: f64 = 8.0;
+
+/// What a solve of the orthogonal path returns.
+pub(super) struct Orthogonal {
+    /// `R`'s control points, `(m + 1) x dim`.
+    pub(super) merged: DMatrix<f64>,
+    /// The pieces `R|[t_j, t_{j+1}]`, stacked, `(count (m + 1)) x dim`.
+    pub(super) x: DMatrix<f64>,
+    /// Relative error estimate of the pieces (0 for a trial).
+    pub(super) estimate: f64,
+    /// `||M r - b||^2`, the metric measured at the answer.
+    pub(super) metric_value: f64,
+    /// `d metric / d mu` (two pieces, rows independent of `mu`), by the
+    /// envelope theorem: the derivative of `||M(mu) r - b||^2` at the
+    /// optimal, fixed `r`.
+    pub(super) slope: Option<f64>,
+}
+
+/// Gauss-Legendre nodes and weights on `[0, 1]` (`count` nodes, exact for
+/// polynomials of degree `2 count - 1`): Newton's method on the Legendre
+/// polynomial from the asymptotic guesses, to full precision.
+pub(crate) fn gauss_legendre_unit(count: usize) -> (Vec<f64>, Vec<f64>) {
+    let mut nodes = vec![0.0; count];
+    let mut weights = vec![0.0; count];
+    let n = count as f64;
+    for i in 0..count.div_ceil(2) {
+        let mut x = (std::f64::consts::PI * (i as f64 + 0.75) / (n + 0.5)).cos();
+        let mut derivative = 1.0;
+        for _ in 0..100 {
+            // Legendre recurrence: p = P_count(x), derivative = P'_count(x).
+            let (mut p0, mut p1) = (1.0, x);
+            for k in 2..=count {
+                let k = k as f64;
+                let p2 = ((2.0 * k - 1.0) * x * p1 - (k - 1.0) * p0) / k;
+                p0 = p1;
+                p1 = p2;
+            }
+            let p = if count == 0 { 1.0 } else { p1 };
+            let p_prev = if count == 1 { 1.0 } else { p0 };
+            derivative = n * (x * p - p_prev) / (x * x - 1.0);
+            let step = p / derivative;
+            x -= step;
+            if step.abs() <= 1e-16 * x.abs().max(1e-300) {
+                break;
+            }
+        }
+        let w = 2.0 / ((1.0 - x * x) * derivative * derivative);
+        // x runs from near +1 down; map [-1, 1] to [0, 1].
+        nodes[count - 1 - i] = 0.5 * (1.0 + x);
+        nodes[i] = 0.5 * (1.0 - x);
+        weights[count - 1 - i] = 0.5 * w;
+        weights[i] = 0.5 * w;
+    }
+    (nodes, weights)
+}
+
+/// All Bernstein values `B_i^m(t)`, `i = 0..m`, into `out` (product form
+/// with exact binomials).
+fn bernstein_row(m: usize, t: f64, out: &mut [f64]) {
+    let s = 1.0 - t;
+    // out[i] = C(m,i) t^i, then times s^(m-i) from the right.
+    let mut tp = 1.0;
+    for (i, o) in out.iter_mut().enumerate().take(m + 1) {
+        *o = binomial(m, i) * tp;
+        tp *= t;
+    }
+    let mut sp = 1.0;
+    for i in (0..=m).rev() {
+        out[i] *= sp;
+        sp *= s;
+    }
+}
+
+/// The stacked restriction matrices `[S_0; S_1; ...]` (`R`'s control
+/// points to the pieces'). Two pieces: from the Bernstein triangle at `mu`,
+/// `S_L[i][k] = B_k^i(mu)`, `S_R[i][k] = B_(k-i)^(m-i)(mu)`; more: segment
+/// of every unit vector.
+fn restrictions(m: usize, breakpoints: &[f64]) -> DMatrix<f64> {
+    if breakpoints.len() != 3 {
+        return restriction_matrix(m, breakpoints);
+    }
+    let mu = breakpoints[1];
+    let points = m + 1;
+    // triangle[i][k] = B_k^i(mu), i = 0..m.
+    let mut triangle = vec![vec![0.0; points]; points];
+    triangle[0][0] = 1.0;
+    for i in 1..points {
+        for k in 0..=i {
+            let from_same = if k < i {
+                (1.0 - mu) * triangle[i - 1][k]
+            } else {
+                0.0
+            };
+            let from_below = if k > 0 {
+                mu * triangle[i - 1][k - 1]
+            } else {
+                0.0
+            };
+            triangle[i][k] = from_same + from_below;
+        }
+    }
+    let mut s = DMatrix::zeros(2 * points, points);
+    for i in 0..points {
+        for k in 0..=i {
+            s[(i, k)] = triangle[i][k];
+        }
+        for k in i..points {
+            s[(points + i, k)] = triangle[m - i][k - i];
+        }
+    }
+    s
+}
+
+/// The metric's sample matrix `M` and target `b` (see the module).
+fn metric_samples(
+    problem: &Problem<'_, '_>,
+    breakpoints: &[f64],
+    metric: MergeMetric,
+    s: &DMatrix<f64>,
+) -> (DMatrix<f64>, DMatrix<f64>, DMatrix<f64>) {
+    match metric {
+        MergeMetric::Discrete => (s.clone(), problem.x0.clone(), problem.x0.abs()),
+        MergeMetric::Integral => {
+            let points = problem.points_per_piece;
+            let m = points - 1;
+            let count = problem.pieces.len();
+            let dim = problem.dim;
+            let (nodes, weights) = gauss_legendre_unit(points);
+            let mut samples = DMatrix::zeros(count * points, points);
+            let mut target = DMatrix::zeros(count * points, dim);
+            // sqrt(w_k) sum_i B_i(u_k) |P_i|: the size the target's
+            // rounding is relative to (the values may cancel).
+            let mut target_abs = DMatrix::zeros(count * points, dim);
+            let mut own = vec![0.0; points];
+            let mut row = vec![0.0; points];
+            let mut value = vec![0.0; dim];
+            for (j, piece) in problem.pieces.iter().enumerate() {
+                let (t0, t1) = (breakpoints[j], breakpoints[j + 1]);
+                for (k, (&u, &w)) in nodes.iter().zip(&weights).enumerate() {
+                    let root = w.sqrt();
+                    bernstein_row(m, t0 + (t1 - t0) * u, &mut row);
+                    for i in 0..points {
+                        samples[(j * points + k, i)] = root * row[i];
+                    }
+                    piece.curve.eval_into(u, &mut value);
+                    bernstein_row(m, u, &mut own);
+                    for c in 0..dim {
+                        target[(j * points + k, c)] = root * value[c];
+                        target_abs[(j * points + k, c)] = root
+                            * (0..points)
+                                .map(|i| own[i] * piece.curve.point(i)[c].abs())
+                                .sum::<f64>();
+                    }
+                }
+            }
+            (samples, target, target_abs)
+        }
+    }
+}
+
+/// `d/d mu` of the samples `M(mu) r` at fixed `r`, two pieces: discrete,
+/// the control points of `u R'(mu u)` and `(1 - v) R'(mu + (1 - mu) v)`;
+/// integral, `sqrt(w_k)` times those functions at the nodes.
+fn sample_slopes(
+    merged: &DMatrix<f64>,
+    breakpoints: &[f64],
+    metric: MergeMetric,
+) -> Result<DMatrix<f64>> {
+    let points = merged.nrows();
+    let m = points - 1;
+    let dim = merged.ncols();
+    let mu = breakpoints[1];
+    let mut out = DMatrix::zeros(2 * points, dim);
+    if m == 0 {
+        return Ok(out);
+    }
+    let hodograph = BezierCurve::from_matrix(merged)?.hodograph();
+    match metric {
+        MergeMetric::Discrete => {
+            let (left, right) = hodograph.split_unchecked(mu);
+            let scale = 1.0 / m as f64;
+            for i in 1..=m {
+                let d = left.point(i - 1);
+                for c in 0..dim {
+                    out[(i, c)] = i as f64 * scale * d[c];
+                }
+            }
+            for i in 0..m {
+                let e = right.point(i);
+                for c in 0..dim {
+                    out[(points + i, c)] = (m - i) as f64 * scale * e[c];
+                }
+            }
+        }
+        MergeMetric::Integral => {
+            let (nodes, weights) = gauss_legendre_unit(points);
+            let mut value = vec![0.0; dim];
+            for (k, (&u, &w)) in nodes.iter().zip(&weights).enumerate() {
+                let root = w.sqrt();
+                hodograph.eval_into(mu * u, &mut value);
+                for c in 0..dim {
+                    out[(k, c)] = root * u * value[c];
+                }
+                hodograph.eval_into(mu + (1.0 - mu) * u, &mut value);
+                for c in 0..dim {
+                    out[(points + k, c)] = root * (1.0 - u) * value[c];
+                }
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// Orthonormal completion of the orthonormal rows `basis` (length `n`):
+/// `n - basis.len()` columns orthogonal to them and to each other (greedy
+/// Gram-Schmidt on the unit vectors, largest remainder first).
+fn null_space(basis: &[(DVector<f64>, DVector<f64>)], n: usize) -> DMatrix<f64> {
+    let mut vectors: Vec<DVector<f64>> = basis.iter().map(|(b, _)| b.clone()).collect();
+    let mut columns = Vec::with_capacity(n - basis.len());
+    while vectors.len() < n {
+        let mut best: Option<DVector<f64>> = None;
+        let mut best_norm = -1.0;
+        for k in 0..n {
+            let mut v = DVector::zeros(n);
+            v[k] = 1.0;
+            for _ in 0..2 {
+                for b in &vectors {
+                    let dot = b.dot(&v);
+                    v.axpy(-dot, b, 1.0);
+                }
+            }
+            let norm = v.norm();
+            if norm > best_norm {
+                best_norm = norm;
+                best = Some(v);
+            }
+        }
+        let v = best.expect("n > 0") / best_norm;
+        vectors.push(v.clone());
+        columns.push(v);
+    }
+    if columns.is_empty() {
+        return DMatrix::zeros(n, 0);
+    }
+    DMatrix::from_columns(&columns)
+}
+
+/// Stage 1 by the orthogonal path. `full`: every check and the error
+/// estimate (every answer a caller receives); otherwise a trial of the
+/// `mu` search (value and slope only, no refusal for conditioning).
+/// `want_slope`: two pieces and rows independent of `mu` (no keep points).
+pub(super) fn orthogonal_solution(
+    problem: &Problem<'_, '_>,
+    breakpoints: &[f64],
+    metric: MergeMetric,
+    accuracy: f64,
+    full: bool,
+    want_slope: bool,
+) -> Result<Orthogonal> {
+    let points = problem.points_per_piece;
+    let m = points - 1;
+    let count = problem.pieces.len();
+    let x0 = &problem.x0;
+    let s = restrictions(m, breakpoints);
+    let (samples, target, target_abs) = metric_samples(problem, breakpoints, metric, &s);
+
+    // The constraint rows on r: (G S) r = G x0 + rhs.
+    let rows_r: Vec<Row> = problem
+        .constraints
+        .iter()
+        .map(|row| {
+            let coefficients = s.tr_mul(&row.coefficients);
+            let rhs = x0.tr_mul(&row.coefficients) + &row.rhs;
+            let norm = coefficients.norm();
+            if norm > 0.0 {
+                Row {
+                    coefficients: coefficients / norm,
+                    rhs: rhs / norm,
+                    label: row.label.clone(),
+                }
+            } else {
+                Row {
+                    coefficients,
+                    rhs,
+                    label: row.label.clone(),
+                }
+            }
+        })
+        .collect();
+    let mut basis: Vec<(DVector<f64>, DVector<f64>)> = Vec::new();
+    let rank_tolerance = RANK_TOLERANCE * (problem.unknowns as f64).sqrt();
+    let (kept, dependent) = extend_orthonormal(&mut basis, &rows_r, rank_tolerance, points);
+
+    // Particular solution and null space of the kept rows.
+    let mut particular = DMatrix::zeros(points, problem.dim);
+    for (b, rhs) in &basis {
+        particular.ger(1.0, b, rhs, 1.0);
+    }
+    let z = if basis.is_empty() {
+        None
+    } else {
+        Some(null_space(&basis, points))
+    };
+    let free = points - basis.len();
+    let particular_abs = particular.abs();
+    let reduced_target = &target - &samples * &particular;
+    let merged;
+    let mut factor = None;
+    if free == 0 {
+        merged = particular;
+    } else {
+        let a = match &z {
+            Some(z) => &samples * z,
+            None => samples.clone(),
+        };
+        let a_abs = a.abs();
+        let qr = a.clone().qr();
+        let t = qr.r();
+        let least_squares = |rhs: &DMatrix<f64>| {
+            let mut qt = rhs.clone();
+            qr.q_tr_mul(&mut qt);
+            t.solve_upper_triangular(&qt.rows(0, free).into_owned())
+        };
+        let Some(mut y) = least_squares(&reduced_target) else {
+            return Err(ill_conditioned_factor(accuracy));
+        };
+        // Two steps of refinement in working precision (the correction
+        // from the residual through the same factor): they make the answer
+        // componentwise backward stable, and the last correction measures
+        // what the solve's rounding leaves (the estimate's a-posteriori
+        // part).
+        let mut correction = DMatrix::zeros(free, problem.dim);
+        for _ in 0..REFINEMENT_STEPS {
+            let Some(step) = least_squares(&(&reduced_target - &a * &y)) else {
+                break;
+            };
+            if step.iter().any(|v| !v.is_finite()) {
+                break;
+            }
+            y += &step;
+            correction = step;
+        }
+        merged = match &z {
+            Some(z) => &particular + z * &y,
+            None => y.clone(),
+        };
+        let q = if full { Some(qr.q()) } else { None };
+        factor = Some((t, y, a_abs, q, correction));
+    }
+    if merged.iter().any(|v| !v.is_finite()) {
+        return Err(ill_conditioned_factor(accuracy));
+    }
+    let residual = &target - &samples * &merged;
+    let metric_value = residual.norm_squared();
+
+    // The pieces: R split at the breakpoints (de Casteljau).
+    let curve = BezierCurve::from_matrix(&merged)?;
+    let mut x = DMatrix::zeros(count * points, problem.dim);
+    if count == 2 {
+        let (left, right) = curve.split_unchecked(breakpoints[1]);
+        x.rows_mut(0, points).copy_from(&left.control_matrix());
+        x.rows_mut(points, points)
+            .copy_from(&right.control_matrix());
+    } else {
+        for j in 0..count {
+            let piece = curve.segment_unchecked(breakpoints[j], breakpoints[j + 1]);
+            x.rows_mut(j * points, points)
+                .copy_from(&piece.control_matrix());
+        }
+    }
+
+    let slope = if want_slope && count == 2 {
+        let derivative = sample_slopes(&merged, breakpoints, metric)?;
+        Some(-2.0 * residual.dot(&derivative))
+    } else {
+        None
+    };
+    if !full {
+        return Ok(Orthogonal {
+            merged,
+            x,
+            estimate: 0.0,
+            metric_value,
+            slope,
+        });
+    }
+
+    // First-order error estimate of the pieces (see the module).
+    let result_scale = x.amax().max(problem.scale);
+    let eps = f64::EPSILON;
+    let mut estimate = (m as f64 + 2.0) * eps * x.amax() / result_scale;
+    let mut reduced_gain = 0.0;
+    if let Some((t, y, a_abs, Some(q), correction)) = &factor {
+        let sz = match &z {
+            Some(z) => &s * z,
+            None => s.clone(),
+        };
+        let zr = match &z {
+            Some(z) => z.clone(),
+            None => DMatrix::identity(points, points),
+        };
+        // The pieces (through S Z) and R itself (through Z): R's control
+        // points are less well determined than the pieces' (S has small
+        // singular values at high degree), and R is an answer too.
+        let shared = Shared {
+            t,
+            q,
+            y,
+            a_abs,
+            target: &reduced_target,
+            target_size: &(&target_abs + samples.abs() * particular_abs),
+            residual: &residual,
+            m,
+            correction,
+        };
+        let (pieces_bound, pieces_gain) = first_order_bound(&shared, &sz, true)
+            .ok_or_else(|| ill_conditioned_factor(accuracy))?;
+        let (merged_bound, _) = first_order_bound(&shared, &zr, false)
+            .ok_or_else(|| ill_conditioned_factor(accuracy))?;
+        estimate += pieces_bound.max(MERGED_WEIGHT * merged_bound) / result_scale;
+        // ||S Z A^+||_F ||M||_F: how much a move of the particular solution
+        // (the kept rows' rounding, below) reaches the pieces through the
+        // least-squares problem.
+        reduced_gain = pieces_gain * samples.norm();
+    }
+    if !kept.is_empty() {
+        // The kept rows carry their entries' rounding: the feasible set
+        // moves by up to cond(rows) eps relative, which the pieces feel
+        // through S directly and through the reduced least-squares problem
+        // (the optimum moves along with the particular solution).
+        let g = DMatrix::from_fn(kept.len(), points, |k, i| kept[k].coefficients[i]);
+        let singular = g.singular_values();
+        let condition = singular.max() / singular.min().max(f64::MIN_POSITIVE);
+        estimate += ESTIMATE_MARGIN * eps * condition * (s.norm() + reduced_gain) * merged.norm()
+            / result_scale;
+    }
+
+    // Dependent rows, checked at the answer (as the KKT path).
+    let e = &x - x0;
+    let tolerance = CONSISTENCY_TOLERANCE.max(accuracy) * result_scale;
+    let unknowns = problem.unknowns;
+    let root = (unknowns as f64).sqrt();
+    let explained = root * (estimate + unknowns as f64 * eps) * result_scale;
+    let mut undecided = WorstUndecided::default();
+    for row_r in &dependent {
+        // rows_r is problem.constraints row for row, in order.
+        let index = rows_r
+            .iter()
+            .position(|r| std::ptr::eq(r, *row_r))
+            .expect("a row of rows_r");
+        let row = &problem.constraints[index];
+        let residual = (e.transpose() * &row.coefficients - &row.rhs).amax();
+        match classify(residual, tolerance, explained) {
+            Dependent::Contradictory => {
+                let before: Vec<String> = kept.iter().map(|r| r.label.clone()).collect();
+                return Err(problem.contradiction(
+                    row,
+                    residual,
+                    result_scale,
+                    &before,
+                    kept.len(),
+                ));
+            }
+            Dependent::Undecided => undecided.note(residual, &row.label),
+            Dependent::Consistent => {}
+        }
+    }
+    if estimate.is_nan() || estimate > accuracy {
+        return Err(BezjoinError::IllConditioned {
+            what: format!(
+                "merge stage 1 (least squares for R of degree {m}, {} conditions kept, \
+                 first-order error estimate of the pieces)",
+                kept.len()
+            ),
+            estimate,
+            limit: accuracy,
+        });
+    }
+    undecided.into_result(result_scale, accuracy)?;
+    Ok(Orthogonal {
+        merged,
+        x,
+        estimate,
+        metric_value,
+        slope,
+    })
+}
+
+/// What the first-order bound needs of the least-squares solve.
+struct Shared<'s> {
+    /// `A = Q T`, `T` upper triangular (`free x free`), `Q` thin.
+    t: &'s DMatrix<f64>,
+    q: &'s DMatrix<f64>,
+    y: &'s DMatrix<f64>,
+    a_abs: &'s DMatrix<f64>,
+    target: &'s DMatrix<f64>,
+    /// What the reduced target's rounding is relative to: `|b|` as
+    /// evaluated (`sum |B| |P|`) plus `|M| |r_p|`.
+    target_size: &'s DMatrix<f64>,
+    residual: &'s DMatrix<f64>,
+    m: usize,
+    /// The last refinement correction of `y`.
+    correction: &'s DMatrix<f64>,
+}
+
+/// The first-order bound (module documentation) of the largest change of
+/// `map y` (`map` = `S Z` for the pieces, `Z` for `R`), absolute, and
+/// `||map A^+||_F`.
+fn first_order_bound(
+    shared: &Shared<'_>,
+    map: &DMatrix<f64>,
+    with_normwise: bool,
+) -> Option<(f64, f64)> {
+    let Shared {
+        t,
+        q,
+        y,
+        a_abs,
+        target,
+        target_size,
+        residual,
+        m,
+        correction,
+    } = *shared;
+    let eps = f64::EPSILON;
+    // Componentwise (Skeel-style): every entry of A and of the target
+    // carries a relative rounding of at most gamma.
+    let gamma = ESTIMATE_MARGIN * (m as f64 + 2.0) * eps;
+    // K0^T = T^-T map^T; K1 = K0 Q^T = map A^+; K2 = map T^-1 T^-T.
+    let k0t = t.transpose().solve_lower_triangular(&map.transpose())?;
+    let k2t = t.solve_upper_triangular(&k0t)?;
+    // What the solve's own rounding leaves after refinement: the last
+    // correction mapped, with a margin (a-posteriori).
+    let measured = REFINEMENT_MARGIN * (map * correction).amax();
+    // Householder QR's own backward error is normwise (column by column),
+    // not componentwise, and refinement in working precision does not
+    // remove all of it (measured: test merge_exact, degree 20, mu ~0.1,
+    // integral metric): its first-order effect with Frobenius norms.
+    let a_norm = a_abs.norm();
+    let normwise = QR_MARGIN
+        * eps
+        * ((a_abs.nrows() * a_abs.ncols()) as f64).sqrt()
+        * (k0t.norm() * (target.norm() + a_norm * y.norm())
+            + k2t.norm() * a_norm * residual.norm());
+    let k1 = (q * &k0t).transpose().abs();
+    let k2 = k2t.transpose().abs();
+    let mut worst = 0.0f64;
+    for c in 0..y.ncols() {
+        let through_values = target_size.column(c) + a_abs * y.column(c).abs();
+        let through_residual = a_abs.tr_mul(&residual.column(c).abs());
+        let bound = if with_normwise {
+            &k1 * through_values + &k2 * through_residual
+        } else {
+            // R's guard: the values term only (what the measured weight
+            // was calibrated on, merge back with zero residual).
+            &k1 * through_values
+        };
+        worst = worst.max(gamma * bound.amax());
+    }
+    Some((
+        worst + measured + if with_normwise { normwise } else { 0.0 },
+        k0t.norm(),
+    ))
+}
+
+fn ill_conditioned_factor(accuracy: f64) -> BezjoinError {
+    BezjoinError::IllConditioned {
+        what: "merge stage 1 (the least-squares factor is singular or overflows)".into(),
+        estimate: f64::INFINITY,
+        limit: accuracy,
+    }
+}

@@ -1,0 +1,50 @@
+//! A fixed amount of merge work for instruction counts (callgrind), the
+//! same pairs as `benches/merge.rs`: `MERGE_CASE="degree,metric,split"`
+//! (metric `discrete` / `integral`, split `given` (mu = 0.4) / `optimal`),
+//! `MERGE_REPEATS` merges. Run the difference of two repeat counts under
+//! `valgrind --tool=callgrind` for the per-merge count:
+//! `MERGE_CASE=15,discrete,given MERGE_REPEATS=10 cargo test --release -p
+//! bezjoin-core --test merge_instructions -- --ignored`.
+
+use bezjoin_core::{BezierCurve, Breakpoints, MergeMetric, MergeOptions, merge};
+
+fn pair(degree: usize) -> (BezierCurve, BezierCurve) {
+    let make = |offset: usize, shift: f64| {
+        let pts: Vec<f64> = (0..(degree + 1) * 2)
+            .map(|i| ((i * 7919 + offset) % 97) as f64 / 9.7 + if i % 2 == 0 { shift } else { 0.0 })
+            .collect();
+        BezierCurve::new(2, degree, pts).unwrap()
+    };
+    (make(0, 0.0), make(31, 10.0))
+}
+
+#[test]
+#[ignore]
+fn merge_work() {
+    let Ok(case) = std::env::var("MERGE_CASE") else {
+        return;
+    };
+    let repeats: usize = std::env::var("MERGE_REPEATS")
+        .ok()
+        .and_then(|r| r.parse().ok())
+        .unwrap_or(1);
+    let parts: Vec<&str> = case.split(',').collect();
+    let degree: usize = parts[0].parse().unwrap();
+    let metric = match parts[1] {
+        "integral" => MergeMetric::Integral,
+        _ => MergeMetric::Discrete,
+    };
+    let split = match parts[2] {
+        "optimal" => Breakpoints::Optimal,
+        _ => Breakpoints::Given(vec![0.4]),
+    };
+    let (p, q) = pair(degree);
+    let options = MergeOptions::default()
+        .with_metric(metric)
+        .with_split(split);
+    let mut answered = 0;
+    for _ in 0..repeats {
+        answered += usize::from(std::hint::black_box(merge(&p, &q, &options)).is_ok());
+    }
+    println!("{case}: {answered}/{repeats} answered");
+}
