@@ -261,13 +261,12 @@ fn the_inverse_meets_its_accuracy_on_gentle_curves() {
 }
 
 /// Near-cusp curves (speed `1e-6` at a known parameter; the adaptive path).
-/// Known failure, also at 854f4ce before the Chebyshev inversion: on the
-/// degree-9 curve of this seed the adaptive inverse misses its accuracy by
-/// 8.4 % at one of its 90 cases (start 0.2, 30 %, 1e-12; the reference is
-/// unchanged at 4x the mesh); run with
-/// `--ignored` to list them.
+/// Fails without the graded cuts at near-cusps (`grade_at_near_cusps` in
+/// arclength.rs; before them, also at 854f4ce): on the degree-9 curve of
+/// this seed the adaptive inverse missed its accuracy by 7-8 % at one of
+/// its 90 cases (start 0.2, forwards, 30 %, `1e-12`; the reference is
+/// unchanged at 4x the mesh).
 #[test]
-#[ignore = "pre-existing: the adaptive inverse misses its accuracy by 8.4 % in one near-cusp case"]
 fn the_inverse_meets_its_accuracy_near_a_cusp() {
     let mut failures = Vec::new();
     for (degree, curve, t0) in near_cusp_curves() {
