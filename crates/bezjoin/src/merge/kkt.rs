@@ -7,7 +7,7 @@ use crate::error::{BezjoinError, Result};
 use crate::linalg::solve_checked;
 
 use super::MergeMetric;
-use super::rows::{Dependent, Problem, Row, WorstUndecided, classify, extend_orthonormal};
+use super::rows::{Problem, Row, check_dependent_rows, extend_orthonormal};
 use super::stage_one::{
     CONSISTENCY_TOLERANCE, DATA_ROUNDING_MARGIN, RANK_TOLERANCE, StageOneCheck,
     bernstein_gram_matrix,
@@ -112,24 +112,13 @@ pub(super) fn kkt_solution(
     let tolerance = CONSISTENCY_TOLERANCE.max(accuracy) * result_scale;
     let root = (unknowns as f64).sqrt();
     let explained = root * (estimate + unknowns as f64 * f64::EPSILON) * result_scale;
-    let mut undecided = WorstUndecided::default();
-    for row in &dependent {
-        let residual = (e.transpose() * &row.coefficients - &row.rhs).amax();
-        match classify(residual, tolerance, explained) {
-            Dependent::Contradictory => {
-                let before: Vec<String> = kept.iter().map(|r| r.label.clone()).collect();
-                return Err(problem.contradiction(
-                    row,
-                    residual,
-                    result_scale,
-                    &before,
-                    kept.len(),
-                ));
-            }
-            Dependent::Undecided => undecided.note(residual, &row.label),
-            _ => {}
-        }
-    }
+    let undecided = check_dependent_rows(
+        problem,
+        dependent.iter().copied(),
+        &kept,
+        &e,
+        (tolerance, explained, result_scale),
+    )?;
     if estimate > accuracy {
         return Err(BezjoinError::IllConditioned {
             what: format!(

@@ -63,7 +63,7 @@ use crate::bezier::BezierCurve;
 use crate::error::{BezjoinError, Result};
 
 use super::MergeMetric;
-use super::rows::{Dependent, Problem, Row, WorstUndecided, classify, extend_orthonormal};
+use super::rows::{Problem, Row, check_dependent_rows, extend_orthonormal};
 use super::stage_one::{CONSISTENCY_TOLERANCE, RANK_TOLERANCE};
 use super::stage_two::restriction_matrix;
 
@@ -535,30 +535,21 @@ pub(super) fn orthogonal_solution(
     let unknowns = problem.unknowns;
     let root = (unknowns as f64).sqrt();
     let explained = root * (estimate + unknowns as f64 * eps) * result_scale;
-    let mut undecided = WorstUndecided::default();
-    for row_r in &dependent {
-        // rows_r is problem.constraints row for row, in order.
+    // rows_r is problem.constraints row for row, in order.
+    let rows = dependent.iter().map(|row_r| {
         let index = rows_r
             .iter()
             .position(|r| std::ptr::eq(r, *row_r))
             .expect("a row of rows_r");
-        let row = &problem.constraints[index];
-        let residual = (e.transpose() * &row.coefficients - &row.rhs).amax();
-        match classify(residual, tolerance, explained) {
-            Dependent::Contradictory => {
-                let before: Vec<String> = kept.iter().map(|r| r.label.clone()).collect();
-                return Err(problem.contradiction(
-                    row,
-                    residual,
-                    result_scale,
-                    &before,
-                    kept.len(),
-                ));
-            }
-            Dependent::Undecided => undecided.note(residual, &row.label),
-            Dependent::Consistent => {}
-        }
-    }
+        &problem.constraints[index]
+    });
+    let undecided = check_dependent_rows(
+        problem,
+        rows,
+        &kept,
+        &e,
+        (tolerance, explained, result_scale),
+    )?;
     if estimate.is_nan() || estimate > accuracy {
         return Err(BezjoinError::IllConditioned {
             what: format!(

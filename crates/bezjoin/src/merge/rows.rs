@@ -227,6 +227,39 @@ impl WorstUndecided {
     }
 }
 
+/// The dependent conditions `rows` at the answer (`e`, the unknowns): each
+/// is [`classify`]'d by its residual `|e^T a - b|_max`; the first
+/// contradictory one is the `Inconsistent` error naming the `kept` rows it
+/// depends on; otherwise the worst undecided one, to be reported once the
+/// caller's own checks are done. One check for both stage-1 formulations.
+pub(super) fn check_dependent_rows<'r>(
+    problem: &Problem<'_, '_>,
+    rows: impl IntoIterator<Item = &'r Row>,
+    kept: &[&Row],
+    e: &DMatrix<f64>,
+    (tolerance, explained, result_scale): (f64, f64, f64),
+) -> Result<WorstUndecided> {
+    let mut undecided = WorstUndecided::default();
+    for row in rows {
+        let residual = (e.transpose() * &row.coefficients - &row.rhs).amax();
+        match classify(residual, tolerance, explained) {
+            Dependent::Contradictory => {
+                let before: Vec<String> = kept.iter().map(|r| r.label.clone()).collect();
+                return Err(problem.contradiction(
+                    row,
+                    residual,
+                    result_scale,
+                    &before,
+                    kept.len(),
+                ));
+            }
+            Dependent::Undecided => undecided.note(residual, &row.label),
+            Dependent::Consistent => {}
+        }
+    }
+    Ok(undecided)
+}
+
 pub(super) fn summarise<S: AsRef<str>>(labels: &[S]) -> String {
     const SHOWN: usize = 4;
     let shown: Vec<&str> = labels.iter().take(SHOWN).map(AsRef::as_ref).collect();
