@@ -1,7 +1,9 @@
 //! A fixed amount of merge work for instruction counts (callgrind), the
 //! same pairs as `benches/merge.rs`: `MERGE_CASE="degree,metric,split"`
 //! (metric `discrete` / `integral`, split `given` (mu = 0.4) / `optimal`),
-//! `MERGE_REPEATS` merges. Run the difference of two repeat counts under
+//! `MERGE_REPEATS` merges. `MERGE_PAIR=back` merges the two pieces of one
+//! curve split at 0.4 instead (a pair every degree answers: the default
+//! pair is refused at degree 31, so it counts only the refusal). Run the difference of two repeat counts under
 //! `valgrind --tool=callgrind` for the per-merge count:
 //! `MERGE_CASE=15,discrete,given MERGE_REPEATS=10 cargo test --release -p
 //! bezjoin-core --test merge_instructions -- --ignored`.
@@ -38,13 +40,25 @@ fn merge_work() {
         "optimal" => Breakpoints::Optimal,
         _ => Breakpoints::Given(vec![0.4]),
     };
-    let (p, q) = pair(degree);
+    let (p, q) = if std::env::var("MERGE_PAIR").is_ok_and(|v| v == "back") {
+        let (whole, _) = pair(degree);
+        whole.split_at(0.4).unwrap()
+    } else {
+        pair(degree)
+    };
     let options = MergeOptions::default()
         .with_metric(metric)
         .with_split(split);
     let mut answered = 0;
+    let mut refusal = None;
     for _ in 0..repeats {
-        answered += usize::from(std::hint::black_box(merge(&p, &q, &options)).is_ok());
+        match std::hint::black_box(merge(&p, &q, &options)) {
+            Ok(_) => answered += 1,
+            Err(e) => refusal = Some(e),
+        }
     }
     println!("{case}: {answered}/{repeats} answered");
+    if let Some(e) = refusal {
+        println!("refused: {e}");
+    }
 }
