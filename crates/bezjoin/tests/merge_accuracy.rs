@@ -97,7 +97,8 @@ fn deviation_by_two_evaluations(merged: &BezierCurve, curves: &[&BezierCurve], t
 /// documented sampled quantity: it agrees with the two-evaluation form
 /// within rounding, `|new - old| <= 16 (n + 1) eps` times the largest
 /// coordinate of `R` and the inputs. Deviations from zero (a split curve
-/// merged back) to large (unrelated curves), given and optimal `mu`, lower
+/// merged back) to large (unrelated curves), free or fixed ends, given and
+/// optimal `mu`, lower
 /// input degrees (elevated), chains of three.
 #[test]
 fn reported_deviation_is_the_two_evaluation_sample_maximum() {
@@ -120,7 +121,10 @@ fn reported_deviation_is_the_two_evaluation_sample_maximum() {
     for degree in [1, 2, 3, 5, 8, 15, 20, 31] {
         for seed in 0..3u64 {
             let p = curve(degree, 7 + seed * 31 + degree as u64);
-            let q = curve(degree.saturating_sub(seed as usize).max(1), 5003 + seed + degree as u64);
+            let q = curve(
+                degree.saturating_sub(seed as usize).max(1),
+                5003 + seed + degree as u64,
+            );
             let split = [
                 Breakpoints::Given(vec![0.4]),
                 Breakpoints::Optimal,
@@ -128,6 +132,8 @@ fn reported_deviation_is_the_two_evaluation_sample_maximum() {
             ];
             for (k, split) in split.into_iter().enumerate() {
                 let mut options = MergeOptions::default().with_split(split);
+                // Fixed ends move the largest deviation inside.
+                options.fix_ends = seed == 1;
                 if k == 2 {
                     options.degree = Some(degree + 2);
                 }
@@ -141,14 +147,24 @@ fn reported_deviation_is_the_two_evaluation_sample_maximum() {
             let (a, b) = original.split_at(0.35).unwrap();
             let options = MergeOptions::default().with_split(Breakpoints::Given(vec![0.35]));
             if let Ok(m) = merge(&a, &b, &options) {
-                check(&m.merged, &[&a, &b], &[0.0, 0.35, 1.0], m.report.max_deviation);
+                check(
+                    &m.merged,
+                    &[&a, &b],
+                    &[0.0, 0.35, 1.0],
+                    m.report.max_deviation,
+                );
             }
             // Chains of three.
             let r = curve(degree, 333 + seed);
             let chain = [p.clone(), q.clone(), r];
             if let Ok(m) = merge_chain(&chain, &ChainMergeOptions::default()) {
                 let refs: Vec<&BezierCurve> = chain.iter().collect();
-                check(&m.merged, &refs, &m.report.breakpoints, m.report.max_deviation);
+                check(
+                    &m.merged,
+                    &refs,
+                    &m.report.breakpoints,
+                    m.report.max_deviation,
+                );
             }
         }
     }
