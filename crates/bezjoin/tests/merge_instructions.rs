@@ -1,12 +1,18 @@
 //! A fixed amount of merge work for instruction counts (callgrind), the
 //! same pairs as `benches/merge.rs`: `MERGE_CASE="degree,metric,split"`
 //! (metric `discrete` / `integral`, split `given` (mu = 0.4) / `optimal`),
-//! `MERGE_REPEATS` merges. Run the difference of two repeat counts under
+//! `MERGE_REPEATS` merges. `MERGE_PAIR=back` merges the two pieces of one
+//! curve split at 0.4 instead (a pair every degree answers: the default
+//! pair is refused at degree 31, so it counts only the refusal).
+//! `MERGE_KIND=bspline` merges the same pair as one-span B-splines with
+//! `merge_bsplines` (the B-spline / Bezier ratio of issue 20). Run the difference of two repeat counts under
 //! `valgrind --tool=callgrind` for the per-merge count:
 //! `MERGE_CASE=15,discrete,given MERGE_REPEATS=10 cargo test --release -p
 //! bezjoin-core --test merge_instructions -- --ignored`.
 
-use bezjoin_core::{BezierCurve, Breakpoints, MergeMetric, MergeOptions, merge};
+use bezjoin_core::{
+    BezierCurve, Breakpoints, MergeMetric, MergeOptions, NurbsCurve, merge, merge_bsplines,
+};
 
 fn pair(degree: usize) -> (BezierCurve, BezierCurve) {
     let make = |offset: usize, shift: f64| {
@@ -38,13 +44,36 @@ fn merge_work() {
         "optimal" => Breakpoints::Optimal,
         _ => Breakpoints::Given(vec![0.4]),
     };
-    let (p, q) = pair(degree);
+    let (p, q) = if std::env::var("MERGE_PAIR").is_ok_and(|v| v == "back") {
+        let (whole, _) = pair(degree);
+        whole.split_at(0.4).unwrap()
+    } else {
+        pair(degree)
+    };
     let options = MergeOptions::default()
         .with_metric(metric)
         .with_split(split);
+    let one_span = |c: &BezierCurve| {
+        let knots = [vec![0.0; degree + 1], vec![1.0; degree + 1]].concat();
+        NurbsCurve::new(2, degree, c.points().to_vec(), None, knots).unwrap()
+    };
+    let bspline = std::env::var("MERGE_KIND").is_ok_and(|v| v == "bspline");
+    let (ps, qs) = (one_span(&p), one_span(&q));
     let mut answered = 0;
+    let mut refusal = None;
     for _ in 0..repeats {
-        answered += usize::from(std::hint::black_box(merge(&p, &q, &options)).is_ok());
+        let outcome = if bspline {
+            std::hint::black_box(merge_bsplines(&ps, &qs, &options)).map(|_| ())
+        } else {
+            std::hint::black_box(merge(&p, &q, &options)).map(|_| ())
+        };
+        match outcome {
+            Ok(()) => answered += 1,
+            Err(e) => refusal = Some(e),
+        }
     }
     println!("{case}: {answered}/{repeats} answered");
+    if let Some(e) = refusal {
+        println!("refused: {e}");
+    }
 }

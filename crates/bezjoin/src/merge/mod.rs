@@ -309,13 +309,13 @@ pub fn merge(p: &BezierCurve, q: &BezierCurve, options: &MergeOptions) -> Result
         }
     };
     let breakpoints = [0.0, mu, 1.0];
-    let (merged, split_check_error) = stage_two(
+    let (merged, split_check_error, restrictions) = stage_two(
         &stage_one.pieces,
         &breakpoints,
         options.accuracy,
         stage_one.merged.as_ref(),
     )?;
-    let max_deviation = max_deviation(&merged, &[p, q], &breakpoints);
+    let max_deviation = max_deviation(&restrictions, &[p, q])?;
     let mut hats = stage_one.pieces.iter().map(BezierCurve::from_matrix);
     let p_hat = hats.next().expect("two pieces")?;
     let q_hat = hats.next().expect("two pieces")?;
@@ -629,13 +629,13 @@ pub fn merge_chain(curves: &[BezierCurve], options: &ChainMergeOptions) -> Resul
         options.accuracy,
         StageOneCheck::Full,
     )?;
-    let (merged, split_check_error) = stage_two(
+    let (merged, split_check_error, restrictions) = stage_two(
         &stage_one.pieces,
         &breakpoints,
         options.accuracy,
         stage_one.merged.as_ref(),
     )?;
-    let max_deviation = max_deviation(&merged, &refs, &breakpoints);
+    let max_deviation = max_deviation(&restrictions, &refs)?;
     let pieces = stage_one
         .pieces
         .iter()
