@@ -532,7 +532,11 @@ pub(crate) fn bezier_trim(curve: &BezierCurve, t: f64, left: bool) -> Option<Bez
         de_casteljau_step(&mut work, n + 2 - level, d, t);
         // The left piece takes the first point of each level, the right
         // piece the last.
-        let (k, from) = if left { (level, 0) } else { (n - level, n - level) };
+        let (k, from) = if left {
+            (level, 0)
+        } else {
+            (n - level, n - level)
+        };
         out[k * d..(k + 1) * d].copy_from_slice(&work[from * d..(from + 1) * d]);
     }
     out.iter()

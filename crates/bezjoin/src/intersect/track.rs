@@ -112,10 +112,13 @@ impl<'a> Track<'a> {
     /// start or stop coinciding).
     pub(super) fn breaks(&self) -> Vec<f64> {
         let (a, b) = self.domain();
-        let mut out = vec![a];
-        if let Track::Nurbs(n) = self {
-            out.extend(n.interior_knots().0);
-        }
+        let knots = match self {
+            Track::Bezier { .. } => Vec::new(),
+            Track::Nurbs(n) => n.interior_knots().0,
+        };
+        let mut out = Vec::with_capacity(knots.len() + 2);
+        out.push(a);
+        out.extend(knots);
         out.push(b);
         out
     }
