@@ -218,8 +218,15 @@ pub fn fillet<'a>(
 ) -> Result<Fillet> {
     let (p, q) = (p.into(), q.into());
     validate(p, q, options)?;
-    let hits = intersect(p, q, &options.intersect)?;
-    let crossing = first_crossing(&hits)?;
+    let mut hits = intersect(p, q, &options.intersect)?;
+    // The first crossing, taken out of the hits (not copied).
+    let crossing = match hits
+        .iter()
+        .position(|h| h.kind == IntersectionKind::Crossing)
+    {
+        Some(first) => hits.swap_remove(first),
+        None => first_crossing(&hits)?,
+    };
     fillet_at_validated(p, q, crossing, options)
 }
 
@@ -516,32 +523,36 @@ pub(crate) fn assemble(
 }
 
 /// A Bezier curve on `[0, t]` (`left`) or on `[t, 1]`, by one de Casteljau
-/// pass. [`BezierCurve::segment`] gives the same control points bit for bit
-/// (up to the sign of a zero): its de Casteljau steps at 0 and at 1 are
-/// exact (`1 * x + 0 * y = x`, `0 * x + 1 * y = y`), and what remains are
-/// the same steps at `t` on the same points, taken here once instead of
-/// once per control point. `None` when a control point is not finite (the
-/// caller then takes the segment path and its error).
+/// pass in place on a copy of the control points (one allocation).
+/// [`BezierCurve::segment`] gives the same control points bit for bit (up
+/// to the sign of a zero): its de Casteljau steps at 0 and at 1 are exact
+/// (`1 * x + 0 * y = x`, `0 * x + 1 * y = y`), and what remains are the
+/// same steps `(1 - t) x + t y` at `t` on the same points, taken here once
+/// instead of once per control point. `None` when a control point is not
+/// finite (the caller then takes the segment path and its error).
 pub(crate) fn bezier_trim(curve: &BezierCurve, t: f64, left: bool) -> Option<BezierCurve> {
     let (n, d) = (curve.degree(), curve.dim());
-    let mut work = curve.points().to_vec();
-    let mut out = vec![0.0; (n + 1) * d];
-    let end = if left { 0 } else { n };
-    out[end * d..(end + 1) * d].copy_from_slice(&work[end * d..(end + 1) * d]);
-    for level in 1..=n {
-        de_casteljau_step(&mut work, n + 2 - level, d, t);
-        // The left piece takes the first point of each level, the right
-        // piece the last.
-        let (k, from) = if left {
-            (level, 0)
-        } else {
-            (n - level, n - level)
-        };
-        out[k * d..(k + 1) * d].copy_from_slice(&work[from * d..(from + 1) * d]);
+    let mut points = curve.points().to_vec();
+    if left {
+        // After step `r`, point `i >= r` holds level `r`'s point `i - r`:
+        // point `r` is final (the left piece's point `r`).
+        for r in 1..=n {
+            for i in (r..=n).rev() {
+                for c in 0..d {
+                    points[i * d + c] = (1.0 - t) * points[(i - 1) * d + c] + t * points[i * d + c];
+                }
+            }
+        }
+    } else {
+        // After step `r`, point `n - r` is final (the right piece's).
+        for r in 1..=n {
+            de_casteljau_step(&mut points, n + 2 - r, d, t);
+        }
     }
-    out.iter()
+    points
+        .iter()
         .all(|x| x.is_finite())
-        .then(|| BezierCurve::from_parts(d, n, out))
+        .then(|| BezierCurve::from_parts(d, n, points))
 }
 
 #[cfg(test)]

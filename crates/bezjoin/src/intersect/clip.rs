@@ -211,8 +211,8 @@ fn clip(a: &Poly, b: &Poly, margin: f64) -> Option<(f64, f64)> {
     }
     let n = a.n;
     let mut e = [0.0; MAX_DEGREE + 1];
-    let (mut lo, mut hi) = (0.0, 0.0);
-    for scale in [1.0, 1.0 / len] {
+    let mut scale = 1.0;
+    let (lo, hi) = loop {
         let (nx, ny) = (-dy * scale, dx * scale);
         let c = -(nx * b.x(0) + ny * b.y(0));
         let (mut dmin, mut dmax) = (0.0f64, 0.0f64);
@@ -222,24 +222,30 @@ fn clip(a: &Poly, b: &Poly, margin: f64) -> Option<(f64, f64)> {
             dmax = dmax.max(d);
         }
         let widened = margin * len * scale;
-        (lo, hi) = (dmin - widened, dmax + widened);
+        let (lo, hi) = (dmin - widened, dmax + widened);
         let mut finite = lo.is_finite() && hi.is_finite();
         for (i, e) in e.iter_mut().enumerate().take(n + 1) {
             *e = nx * a.x(i) + ny * a.y(i) + c;
             finite &= e.is_finite();
         }
-        if finite {
-            break;
+        if finite || scale != 1.0 {
+            break (lo, hi);
         }
-    }
+        scale = 1.0 / len;
+    };
     // The t-extent of hull({(i/n, e_i)}) within lo <= y <= hi: its extreme
     // points are control points inside the band or crossings of the band's
     // edges by segments between two control points (every hull edge is one,
     // and every such segment lies in the hull).
     let (mut t0, mut t1) = (f64::INFINITY, f64::NEG_INFINITY);
+    // (Comparisons rather than `min`/`max`: a NaN `t` is skipped either way.)
     let mut take = |t: f64| {
-        t0 = t0.min(t);
-        t1 = t1.max(t);
+        if t < t0 {
+            t0 = t;
+        }
+        if t > t1 {
+            t1 = t;
+        }
     };
     let nf = n as f64;
     for i in 0..=n {
