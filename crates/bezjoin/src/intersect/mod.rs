@@ -597,21 +597,30 @@ impl<'a> Search<'a> {
         let mut ends: Vec<(f64, f64)> = Vec::new();
         let (p_pieces, q_pieces) = (&self.p_pieces, &self.q_pieces);
         let near = |pieces: &[Piece], x: &[f64]| pieces.iter().any(|b| b.contains(x, tol));
-        let mut x = vec![0.0; pair.p.dim()];
+        // The end points: on the stack for small dimensions.
+        let dim = pair.p.dim();
+        let mut stack = [0.0f64; POLISH_STACK_DIM];
+        let mut heap = Vec::new();
+        let x: &mut [f64] = if dim <= POLISH_STACK_DIM {
+            &mut stack[..dim]
+        } else {
+            heap.resize(dim, 0.0);
+            &mut heap
+        };
         let (p_breaks, q_breaks) = (pair.p.breaks(), pair.q.breaks());
-        for &u in &p_breaks {
-            pair.p.eval_into(u, &mut x);
-            if near(q_pieces, &x) {
-                let (v, d) = project_on(&pair.q, &x, None, q_pieces);
+        for &u in p_breaks.iter() {
+            pair.p.eval_into(u, x);
+            if near(q_pieces, x) {
+                let (v, d) = project_on(&pair.q, x, None, q_pieces);
                 if d <= tol {
                     ends.push((u, v));
                 }
             }
         }
-        for &v in &q_breaks {
-            pair.q.eval_into(v, &mut x);
-            if near(p_pieces, &x) {
-                let (u, d) = project_on(&pair.p, &x, None, p_pieces);
+        for &v in q_breaks.iter() {
+            pair.q.eval_into(v, x);
+            if near(p_pieces, x) {
+                let (u, d) = project_on(&pair.p, x, None, p_pieces);
                 if d <= tol {
                     ends.push((u, v));
                 }

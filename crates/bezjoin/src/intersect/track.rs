@@ -110,17 +110,20 @@ impl<'a> Track<'a> {
     /// The parameters where pieces meet: the domain's ends and, for a
     /// NURBS curve, its interior knots (where two polynomial pieces can
     /// start or stop coinciding).
-    pub(super) fn breaks(&self) -> Vec<f64> {
-        let (a, b) = self.domain();
-        let knots = match self {
-            Track::Bezier { .. } => Vec::new(),
-            Track::Nurbs(n) => n.interior_knots().0,
-        };
-        let mut out = Vec::with_capacity(knots.len() + 2);
-        out.push(a);
-        out.extend(knots);
-        out.push(b);
-        out
+    pub(super) fn breaks(&self) -> Cow<'static, [f64]> {
+        match self {
+            // A Bezier curve's domain is [0, 1]: nothing to allocate.
+            Track::Bezier { .. } => Cow::Borrowed(&[0.0, 1.0]),
+            Track::Nurbs(n) => {
+                let (a, b) = n.domain();
+                let knots = n.interior_knots().0;
+                let mut out = Vec::with_capacity(knots.len() + 2);
+                out.push(a);
+                out.extend(knots);
+                out.push(b);
+                Cow::Owned(out)
+            }
+        }
     }
 
     /// Number of Bezier spans.
