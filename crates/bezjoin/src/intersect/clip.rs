@@ -84,44 +84,82 @@ impl Poly {
         &self.points[..2 * (self.n + 1)]
     }
 
-    /// The piece on `[0, t]` (de Casteljau).
-    fn left(&self, t: f64) -> Poly {
+    /// `self` becomes the piece on `[0, t]` (de Casteljau in place: after
+    /// step `r`, point `i >= r` holds level `r`'s point `i - r`, so point
+    /// `r` is final; the same operations as the textbook triangle).
+    fn keep_left(&mut self, t: f64) {
         let n = self.n;
-        let mut work = self.points;
-        let mut out = *self;
+        let p = &mut self.points;
         for r in 1..=n {
-            for i in 0..=n - r {
+            for i in (r..=n).rev() {
                 for c in 0..2 {
-                    work[2 * i + c] += t * (work[2 * (i + 1) + c] - work[2 * i + c]);
+                    p[2 * i + c] = p[2 * (i - 1) + c] + t * (p[2 * i + c] - p[2 * (i - 1) + c]);
                 }
             }
-            out.points[2 * r] = work[0];
-            out.points[2 * r + 1] = work[1];
         }
-        out
     }
 
-    /// The piece on `[s, 1]` (de Casteljau).
-    fn right(&self, s: f64) -> Poly {
+    /// `self` becomes the piece on `[s, 1]` (de Casteljau in place: after
+    /// step `r`, point `n - r` is final).
+    fn keep_right(&mut self, s: f64) {
         let n = self.n;
-        let mut work = self.points;
-        let mut out = *self;
+        let p = &mut self.points;
         for r in 1..=n {
             for i in 0..=n - r {
                 for c in 0..2 {
-                    work[2 * i + c] += s * (work[2 * (i + 1) + c] - work[2 * i + c]);
+                    p[2 * i + c] += s * (p[2 * (i + 1) + c] - p[2 * i + c]);
                 }
             }
-            out.points[2 * (n - r)] = work[2 * (n - r)];
-            out.points[2 * (n - r) + 1] = work[2 * (n - r) + 1];
         }
-        out
     }
 
     /// The piece on `[s, t]`, `0 <= s < t <= 1`.
     fn segment(&self, s: f64, t: f64) -> Poly {
-        let head = if t < 1.0 { self.left(t) } else { *self };
-        if s > 0.0 { head.right(s / t) } else { head }
+        let mut out = *self;
+        if t < 1.0 {
+            out.keep_left(t);
+        }
+        if s > 0.0 {
+            out.keep_right(s / t);
+        }
+        out
+    }
+
+    /// [`is_flat`] for a planar piece, on squared distances (no square
+    /// roots): the control points' distances from the chord (from its
+    /// nearer end beyond its ends) within `max(absolute, relative_chord *
+    /// chord)`. Squares that are not normal numbers (overflow, underflow,
+    /// a degenerate chord) take the general [`is_flat`].
+    fn is_flat(&self, absolute: f64, relative_chord: f64) -> bool {
+        let n = self.n;
+        let (ax, ay) = (self.x(0), self.y(0));
+        let (dx, dy) = (self.x(n) - ax, self.y(n) - ay);
+        let len2 = dx * dx + dy * dy;
+        if !len2.is_normal() {
+            return is_flat(self.used(), n, 2, absolute, relative_chord);
+        }
+        let bound = absolute.max(relative_chord * len2.sqrt());
+        let bound2 = bound * bound;
+        for i in 1..n {
+            let (rx, ry) = (self.x(i) - ax, self.y(i) - ay);
+            let s = (rx * dx + ry * dy) / len2;
+            let (px, py) = (rx - s * dx, ry - s * dy);
+            let beyond = if s < 0.0 {
+                -s
+            } else if s > 1.0 {
+                s - 1.0
+            } else {
+                0.0
+            };
+            let dev2 = px * px + py * py + beyond * beyond * len2;
+            if !dev2.is_finite() {
+                return is_flat(self.used(), n, 2, absolute, relative_chord);
+            }
+            if dev2 > bound2 {
+                return false;
+            }
+        }
+        true
     }
 
     /// Bounding box of the control points: `(min x, min y, max x, max y)`.
@@ -159,32 +197,55 @@ fn boxes_meet(a: &Poly, b: &Poly, margin: f64) -> bool {
 fn clip(a: &Poly, b: &Poly, margin: f64) -> Option<(f64, f64)> {
     let m = b.n;
     let (dx, dy) = (b.x(m) - b.x(0), b.y(m) - b.y(0));
-    let len = dx.hypot(dy);
+    // The normal `(-dy, dx)` is first taken unnormalised: every signed
+    // distance and the margin are scaled by `len` alike (one square root,
+    // no divisions). Should a product overflow, the unit normal is taken.
+    let len2 = dx * dx + dy * dy;
+    let len = if len2.is_normal() {
+        len2.sqrt()
+    } else {
+        dx.hypot(dy)
+    };
     if !(len > 0.0 && len.is_finite()) {
         return Some((0.0, 1.0));
     }
-    let (nx, ny) = (-dy / len, dx / len);
-    let c = -(nx * b.x(0) + ny * b.y(0));
-    let (mut dmin, mut dmax) = (0.0f64, 0.0f64);
-    for j in 1..m {
-        let d = nx * b.x(j) + ny * b.y(j) + c;
-        dmin = dmin.min(d);
-        dmax = dmax.max(d);
-    }
-    let (lo, hi) = (dmin - margin, dmax + margin);
     let n = a.n;
     let mut e = [0.0; MAX_DEGREE + 1];
-    for (i, e) in e.iter_mut().enumerate().take(n + 1) {
-        *e = nx * a.x(i) + ny * a.y(i) + c;
-    }
+    let mut scale = 1.0;
+    let (lo, hi) = loop {
+        let (nx, ny) = (-dy * scale, dx * scale);
+        let c = -(nx * b.x(0) + ny * b.y(0));
+        let (mut dmin, mut dmax) = (0.0f64, 0.0f64);
+        for j in 1..m {
+            let d = nx * b.x(j) + ny * b.y(j) + c;
+            dmin = dmin.min(d);
+            dmax = dmax.max(d);
+        }
+        let widened = margin * len * scale;
+        let (lo, hi) = (dmin - widened, dmax + widened);
+        let mut finite = lo.is_finite() && hi.is_finite();
+        for (i, e) in e.iter_mut().enumerate().take(n + 1) {
+            *e = nx * a.x(i) + ny * a.y(i) + c;
+            finite &= e.is_finite();
+        }
+        if finite || scale != 1.0 {
+            break (lo, hi);
+        }
+        scale = 1.0 / len;
+    };
     // The t-extent of hull({(i/n, e_i)}) within lo <= y <= hi: its extreme
     // points are control points inside the band or crossings of the band's
     // edges by segments between two control points (every hull edge is one,
     // and every such segment lies in the hull).
     let (mut t0, mut t1) = (f64::INFINITY, f64::NEG_INFINITY);
+    // (Comparisons rather than `min`/`max`: a NaN `t` is skipped either way.)
     let mut take = |t: f64| {
-        t0 = t0.min(t);
-        t1 = t1.max(t);
+        if t < t0 {
+            t0 = t;
+        }
+        if t > t1 {
+            t1 = t;
+        }
     };
     let nf = n as f64;
     for i in 0..=n {
@@ -292,8 +353,8 @@ impl Search<'_> {
                 if !boxes_meet(&a, &b, margin) {
                     break;
                 }
-                let flat_a = is_flat(a.used(), a.n, 2, self.flatness, RELATIVE_CHORD_FLATNESS);
-                let flat_b = is_flat(b.used(), b.n, 2, self.flatness, RELATIVE_CHORD_FLATNESS);
+                let flat_a = a.is_flat(self.flatness, RELATIVE_CHORD_FLATNESS);
+                let flat_b = flat_a && b.is_flat(self.flatness, RELATIVE_CHORD_FLATNESS);
                 if flat_a && flat_b {
                     let to_u = |x: f64| u_span.0 + x * (u_span.1 - u_span.0);
                     let to_v = |x: f64| v_span.0 + x * (v_span.1 - v_span.0);

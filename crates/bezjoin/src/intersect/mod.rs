@@ -597,21 +597,30 @@ impl<'a> Search<'a> {
         let mut ends: Vec<(f64, f64)> = Vec::new();
         let (p_pieces, q_pieces) = (&self.p_pieces, &self.q_pieces);
         let near = |pieces: &[Piece], x: &[f64]| pieces.iter().any(|b| b.contains(x, tol));
-        let mut x = vec![0.0; pair.p.dim()];
+        // The end points: on the stack for small dimensions.
+        let dim = pair.p.dim();
+        let mut stack = [0.0f64; POLISH_STACK_DIM];
+        let mut heap = Vec::new();
+        let x: &mut [f64] = if dim <= POLISH_STACK_DIM {
+            &mut stack[..dim]
+        } else {
+            heap.resize(dim, 0.0);
+            &mut heap
+        };
         let (p_breaks, q_breaks) = (pair.p.breaks(), pair.q.breaks());
-        for &u in &p_breaks {
-            pair.p.eval_into(u, &mut x);
-            if near(q_pieces, &x) {
-                let (v, d) = project_on(&pair.q, &x, None, q_pieces);
+        for &u in p_breaks.iter() {
+            pair.p.eval_into(u, x);
+            if near(q_pieces, x) {
+                let (v, d) = project_on(&pair.q, x, None, q_pieces);
                 if d <= tol {
                     ends.push((u, v));
                 }
             }
         }
-        for &v in &q_breaks {
-            pair.q.eval_into(v, &mut x);
-            if near(p_pieces, &x) {
-                let (u, d) = project_on(&pair.p, &x, None, p_pieces);
+        for &v in q_breaks.iter() {
+            pair.q.eval_into(v, x);
+            if near(p_pieces, x) {
+                let (u, d) = project_on(&pair.p, x, None, p_pieces);
                 if d <= tol {
                     ends.push((u, v));
                 }
@@ -829,6 +838,10 @@ impl<'a> Search<'a> {
 
     /// Sort the candidates and merge those that are one hit.
     fn merge_candidates(&mut self) {
+        if self.candidates.len() <= 1 && self.overlaps.is_empty() {
+            // Nothing to sort, merge or drop.
+            return;
+        }
         let mut cands = std::mem::take(&mut self.candidates);
         cands.sort_by(|a, b| a.u.total_cmp(&b.u).then(a.v.total_cmp(&b.v)));
         let mut merged: Vec<Candidate> = Vec::with_capacity(cands.len());
@@ -922,12 +935,24 @@ impl<'a> Search<'a> {
     /// Crossing or touching (module documentation, step 5). `lower`,
     /// `upper`: parameters on `P` of the neighbouring hits (or the ends).
     fn classify(&self, c: &Candidate, lower: f64, upper: f64) -> IntersectionKind {
-        let a = self.pair.p.tangent(c.u);
-        let b = self.pair.q.tangent(c.v);
-        let na = norm(&a);
-        let nb = norm(&b);
+        // The two tangents: on the stack for small dimensions.
+        let d = self.pair.p.dim();
+        let mut stack = [0.0f64; 2 * POLISH_STACK_DIM];
+        let mut heap = Vec::new();
+        let scratch: &mut [f64] = if d <= POLISH_STACK_DIM {
+            &mut stack[..2 * d]
+        } else {
+            heap.resize(2 * d, 0.0);
+            &mut heap
+        };
+        let (a, b) = scratch.split_at_mut(d);
+        self.pair.p.tangent_into(c.u, a);
+        self.pair.q.tangent_into(c.v, b);
+        let (a, b) = (&*a, &*b);
+        let na = norm(a);
+        let nb = norm(b);
         let sine = if na > 0.0 && nb > 0.0 {
-            let cos = dot(&a, &b) / (na * nb);
+            let cos = dot(a, b) / (na * nb);
             (1.0 - cos * cos).max(0.0).sqrt()
         } else {
             0.0

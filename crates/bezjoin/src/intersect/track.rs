@@ -110,14 +110,20 @@ impl<'a> Track<'a> {
     /// The parameters where pieces meet: the domain's ends and, for a
     /// NURBS curve, its interior knots (where two polynomial pieces can
     /// start or stop coinciding).
-    pub(super) fn breaks(&self) -> Vec<f64> {
-        let (a, b) = self.domain();
-        let mut out = vec![a];
-        if let Track::Nurbs(n) = self {
-            out.extend(n.interior_knots().0);
+    pub(super) fn breaks(&self) -> Cow<'static, [f64]> {
+        match self {
+            // A Bezier curve's domain is [0, 1]: nothing to allocate.
+            Track::Bezier { .. } => Cow::Borrowed(&[0.0, 1.0]),
+            Track::Nurbs(n) => {
+                let (a, b) = n.domain();
+                let knots = n.interior_knots().0;
+                let mut out = Vec::with_capacity(knots.len() + 2);
+                out.push(a);
+                out.extend(knots);
+                out.push(b);
+                Cow::Owned(out)
+            }
         }
-        out.push(b);
-        out
     }
 
     /// Number of Bezier spans.
@@ -166,8 +172,35 @@ pub(super) struct Piece {
     pub(super) lo: f64,
     pub(super) hi: f64,
     /// The bounding box of the Cartesian control points: `dim` minima,
-    /// then `dim` maxima (one allocation).
-    bounds: Vec<f64>,
+    /// then `dim` maxima (inline up to dimension [`INLINE_BOUNDS_DIM`],
+    /// else one allocation).
+    bounds: Bounds,
+}
+
+/// Dimensions up to which a piece's box is kept inline.
+const INLINE_BOUNDS_DIM: usize = 4;
+
+/// A piece's box: `dim` minima then `dim` maxima.
+#[derive(Clone)]
+enum Bounds {
+    Inline([f64; 2 * INLINE_BOUNDS_DIM]),
+    Heap(Vec<f64>),
+}
+
+impl Bounds {
+    fn as_slice(&self) -> &[f64] {
+        match self {
+            Bounds::Inline(b) => b,
+            Bounds::Heap(b) => b,
+        }
+    }
+
+    fn as_mut_slice(&mut self) -> &mut [f64] {
+        match self {
+            Bounds::Inline(b) => b,
+            Bounds::Heap(b) => b,
+        }
+    }
 }
 
 impl Piece {
@@ -184,16 +217,22 @@ impl Piece {
                 .flat_map(|row| row[..dim].iter().map(move |x| x / row[dim]))
                 .collect()
         });
-        let mut bounds = vec![f64::INFINITY; 2 * dim];
-        bounds[dim..].fill(f64::NEG_INFINITY);
+        let mut bounds = if dim <= INLINE_BOUNDS_DIM {
+            Bounds::Inline([0.0; 2 * INLINE_BOUNDS_DIM])
+        } else {
+            Bounds::Heap(vec![0.0; 2 * dim])
+        };
+        let b = bounds.as_mut_slice();
+        b[..dim].fill(f64::INFINITY);
+        b[dim..2 * dim].fill(f64::NEG_INFINITY);
         for row in projected
             .as_deref()
             .unwrap_or(curve.points())
             .chunks_exact(dim)
         {
             for c in 0..dim {
-                bounds[c] = bounds[c].min(row[c]);
-                bounds[dim + c] = bounds[dim + c].max(row[c]);
+                b[c] = b[c].min(row[c]);
+                b[dim + c] = b[dim + c].max(row[c]);
             }
         }
         Self {
@@ -208,12 +247,12 @@ impl Piece {
 
     /// Lower corner of the bounding box.
     pub(super) fn min(&self) -> &[f64] {
-        &self.bounds[..self.dim]
+        &self.bounds.as_slice()[..self.dim]
     }
 
     /// Upper corner of the bounding box.
     pub(super) fn max(&self) -> &[f64] {
-        &self.bounds[self.dim..]
+        &self.bounds.as_slice()[self.dim..2 * self.dim]
     }
 
     pub(super) fn degree(&self) -> usize {
