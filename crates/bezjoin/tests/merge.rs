@@ -1200,14 +1200,17 @@ fn breakpoints_are_one_type_for_pairs_and_chains() {
 }
 
 /// The optimal `mu` is the global minimum of the metric: no value of a
-/// dense scan (999 evenly spaced `mu`, refined by a local scan around the
-/// best, inside the search range `[1e-3, 1 - 1e-3]`) lies below the answer's metric. Fixed seeds, degrees 2..20, both
-/// metrics, with and without fix ends (the derivative-based search) and
-/// with a keep point (the value-only search).
+/// dense scan (333 evenly spaced `mu`, ten times the search's densest grid
+/// of 33, refined by 61 points over three scan steps around the best,
+/// inside the search range `[1e-3, 1 - 1e-3]`) lies below the answer's
+/// metric. Fixed seeds, degrees 2..15, both metrics, with and without fix
+/// ends (the derivative-based search) and with a keep point (the
+/// value-only search). (999 points and degree 20 as well cost five minutes
+/// of the debug test run; the search grid is `9 + degree` points.)
 #[test]
 fn optimal_mu_is_the_minimum_of_a_dense_scan() {
     let mut rng = Random(23);
-    for n in [2, 3, 5, 7, 10, 15, 20] {
+    for n in [2, 3, 5, 7, 10, 15] {
         for metric in [MergeMetric::Discrete, MergeMetric::Integral] {
             for constraint in 0..3 {
                 let p = rng.curve(2, n, 2.0);
@@ -1224,9 +1227,6 @@ fn optimal_mu_is_the_minimum_of_a_dense_scan() {
                 }
                 let m = match merge(&p, &q, &o) {
                     Ok(m) => m,
-                    // Refusing is allowed at high degree (integral metric):
-                    // nothing to compare then.
-                    Err(BezjoinError::IllConditioned { .. }) if n >= 20 => continue,
                     Err(e) => panic!("n {n} {metric:?} constraint {constraint}: {e}"),
                 };
                 let best = m.report.metric_value;
@@ -1238,15 +1238,17 @@ fn optimal_mu_is_the_minimum_of_a_dense_scan() {
                     Err(e) => panic!("{e}"),
                 };
                 let (mut scan_mu, mut scan_best) = (0.0, f64::INFINITY);
-                for k in 1..1000 {
-                    let mu = k as f64 / 1000.0;
+                const STEPS: usize = 334;
+                let step = 1.0 / STEPS as f64;
+                for k in 1..STEPS {
+                    let mu = k as f64 * step;
                     let v = scan(mu);
                     if v < scan_best {
                         (scan_mu, scan_best) = (mu, v);
                     }
                 }
-                for k in -50..=50 {
-                    let mu = scan_mu + k as f64 * 2e-5;
+                for k in -30..=30 {
+                    let mu = scan_mu + k as f64 * step / 20.0;
                     // The search range.
                     if (1e-3..=1.0 - 1e-3).contains(&mu) {
                         scan_best = scan_best.min(scan(mu));
