@@ -620,6 +620,8 @@ fn de_casteljau_jet_small<const D: usize>(
     // Differences in lanes 0..3, sums of the sizes in lane 3.
     let signs = [1.0, 1.0, 1.0, -1.0];
     let gamma_unit = 2.0 * unit_roundoff();
+    // Delta^k of b^l_0..b^l_k, on a copy of the level's first k + 1 points.
+    let mut work = [[0.0f64; 4]; SMALL_JET_POINTS];
     for l in 0..=n {
         if l > 0 {
             for i in 0..=n - l {
@@ -634,7 +636,7 @@ fn de_casteljau_jet_small<const D: usize>(
         if k > m {
             continue;
         }
-        let mut work = level;
+        work[..=k].copy_from_slice(&level[..=k]);
         for pass in 0..k {
             for i in 0..k - pass {
                 let next = work[i + 1];
