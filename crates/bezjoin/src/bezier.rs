@@ -1157,18 +1157,7 @@ mod high_degree_evaluation_tests {
 mod fixed_dimension_evaluation_tests {
     use super::*;
 
-    /// Deterministic values in `[-1, 1)` (a 64-bit LCG, fixed seed).
-    struct Values(u64);
-
-    impl Values {
-        fn next(&mut self) -> f64 {
-            self.0 = self
-                .0
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (self.0 >> 11) as f64 / (1u64 << 52) as f64 - 1.0
-        }
-    }
+    use crate::test_values::Values;
 
     /// Parameters that exercise both Horner directions, the switch at 1/2
     /// to the last bit, the ends, extrapolation and NaN.
@@ -1188,7 +1177,7 @@ mod fixed_dimension_evaluation_tests {
             1e3,
             f64::NAN,
         ];
-        ts.extend((0..40).map(|_| 0.5 + 0.5 * values.next()));
+        ts.extend((0..40).map(|_| 0.5 + 0.5 * values.signed()));
         ts
     }
 
@@ -1204,7 +1193,7 @@ mod fixed_dimension_evaluation_tests {
     fn power_is_powi_to_the_bit() {
         let mut values = Values(7);
         for _ in 0..500 {
-            let base = 1.5 * values.next();
+            let base = 1.5 * values.signed();
             for n in 0..=64usize {
                 assert_eq!(
                     power(base, n).to_bits(),
@@ -1227,7 +1216,7 @@ mod fixed_dimension_evaluation_tests {
             for n in 0..=BINOMIAL_TABLE_DEGREE {
                 for magnitude in [1.0, 1e3, 1e-200, 9e300] {
                     let points: Vec<f64> = (0..(n + 1) * dim)
-                        .map(|_| magnitude * values.next())
+                        .map(|_| magnitude * values.signed())
                         .collect();
                     for t in parameters(&mut values) {
                         for scale in [1.0, 3.0, 42.0 * 41.0] {
@@ -1255,7 +1244,7 @@ mod fixed_dimension_evaluation_tests {
         let mut values = Values(33);
         for dim in [2usize, 3] {
             for n in [0usize, 1, 3, 5, 7, 15, 32] {
-                let points: Vec<f64> = (0..(n + 1) * dim).map(|_| 4.0 * values.next()).collect();
+                let points: Vec<f64> = (0..(n + 1) * dim).map(|_| 4.0 * values.signed()).collect();
                 let curve = BezierCurve::new(dim, n, points.clone()).unwrap();
                 for t in parameters(&mut values) {
                     let mut value = vec![0.0; dim];

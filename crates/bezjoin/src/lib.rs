@@ -48,6 +48,8 @@ mod linalg;
 mod merge;
 mod minimize;
 mod nurbs;
+#[cfg(test)]
+mod test_values;
 
 pub use arclength::DEFAULT_ARC_LENGTH_ACCURACY;
 pub use basis::KnotSide;

@@ -1212,18 +1212,7 @@ mod degenerate_input_tests {
 mod value_fast_path_tests {
     use super::*;
 
-    /// Deterministic values in `[0, 1)` (a 64-bit LCG, fixed seed).
-    struct Values(u64);
-
-    impl Values {
-        fn next(&mut self) -> f64 {
-            self.0 = self
-                .0
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (self.0 >> 11) as f64 / (1u64 << 53) as f64
-        }
-    }
+    use crate::test_values::Values;
 
     /// A clamped curve of `spans` spans with one double interior knot,
     /// uneven knot spacing, poles in `[-2, 2)` and (when `rational`)
@@ -1233,19 +1222,19 @@ mod value_fast_path_tests {
         let mut knots = vec![-1.0; degree + 1];
         let mut u = -1.0;
         for s in 1..spans {
-            u += 0.2 + values.next();
+            u += 0.2 + values.unit();
             knots.push(u);
             if s == 2 && degree > 1 {
                 knots.push(u);
             }
         }
-        u += 0.2 + values.next();
+        u += 0.2 + values.unit();
         knots.extend(std::iter::repeat_n(u, degree + 1));
         let count = knots.len() - degree - 1;
         let poles = (0..count * dim)
-            .map(|_| 4.0 * values.next() - 2.0)
+            .map(|_| 4.0 * values.unit() - 2.0)
             .collect();
-        let weights = rational.then(|| (0..count).map(|_| 0.3 + 3.0 * values.next()).collect());
+        let weights = rational.then(|| (0..count).map(|_| 0.3 + 3.0 * values.unit()).collect());
         NurbsCurve::new(dim, degree, poles, weights, knots).unwrap()
     }
 
@@ -1264,7 +1253,7 @@ mod value_fast_path_tests {
                     let c = curve(&mut values, dim, degree, rational);
                     let (first, last) = c.domain();
                     let mut us: Vec<f64> = c.knots().to_vec();
-                    us.extend((0..30).map(|_| first + (last - first) * values.next()));
+                    us.extend((0..30).map(|_| first + (last - first) * values.unit()));
                     for u in us {
                         let mut fast = vec![0.0; dim];
                         c.eval_derivatives_checked_into(|| "u".into(), u, 0, &mut fast)
