@@ -498,3 +498,30 @@ fn work_bounds_up_to_usize_max_are_accepted() {
         assert_eq!(h, expected, "bounds {big}");
     }
 }
+
+/// Found by the fuzzer (`intersect_detailed`): a control point of 3e105
+/// overflows the arithmetic of the search; the answer was a "crossing" with
+/// `u = NaN` and distance NaN. Every coordinate of Q is at y >= 67 and P
+/// stays at y <= 0, so there is no hit at all.
+#[test]
+fn overflowing_coordinates_give_no_nan_hit() {
+    let p = BezierCurve::new(2, 1, vec![-1e2, 0.0, 0.0, -7.7349853515625e1]).unwrap();
+    let mut q_points = vec![-3.1299510524152305e105, 6.70562744140625e1];
+    q_points.extend([
+        6.70562744140625e1,
+        6.70562744140625e1,
+        6.70562744140625e1,
+        6.70562744140625e1,
+        6.70562744140625e1,
+        7.33062744140625e1,
+        6.70562744140625e1,
+        6.7071533203125e1,
+        7.0977783203125e1,
+        6.70562744140625e1,
+        6.70562744140625e1,
+        6.70562744140625e1,
+    ]);
+    let q = BezierCurve::new(2, 6, q_points).unwrap();
+    let found = intersect(&p, &q, &IntersectOptions::default()).unwrap();
+    assert!(found.is_empty(), "{found:?}");
+}

@@ -383,6 +383,12 @@ impl CurvePair<'_> {
                 break;
             }
         }
+        // A parameter or gap that is not finite (overflow in the inputs'
+        // arithmetic, or a non-finite seed) is no point of either curve: no
+        // hit, whatever the gap's comparisons would say.
+        if !(u.is_finite() && v.is_finite() && f.is_finite()) {
+            return (u, v, f64::INFINITY);
+        }
         (u, v, f)
     }
 }
