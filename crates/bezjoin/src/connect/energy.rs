@@ -5,6 +5,7 @@ use crate::basis::binomial;
 use crate::bezier::BezierCurve;
 use crate::error::{BezjoinError, Result};
 use crate::minimize::minimize_on_grid_then_brent;
+use nalgebra::DMatrix;
 
 /// Decades of `s` searched on either side of the natural scale `s0`.
 pub const AUTO_SCALE_SEARCH_DECADES: f64 = 2.0;
@@ -70,7 +71,186 @@ pub(crate) fn natural_scale(problem: &Problem) -> f64 {
     if s0.is_finite() && s0 > 0.0 { s0 } else { 1.0 }
 }
 
+/// Log-spaced samples of the closed-form energy over the search range, per
+/// unit of the polynomial's degree `2 K` (which bounds the number of its
+/// critical points by `2 K - 1`), at least 65 and at most 257; every sign
+/// change of the slope between two samples is then refined.
+const POLYNOMIAL_GRID_PER_DEGREE: usize = 16;
+
+/// The connection for `p_scale = q_scale = s` is linear in the scaled
+/// jets: `R(s) = sum_k s^k C_k`, `C_k` the solution for the order-`k`
+/// derivatives alone at both ends (plus the interior targets for `k = 0`).
+/// So its fairness energy is the polynomial `E(s) = sum_j e_j s^j` of degree
+/// `2 K` (`K = max(p_order, q_order)`), `e_j = sum_(k + l = j) <C_k, C_l>_E`
+/// with the bilinear form of [`fairness_energy`].
+///
+/// Returns `(e_j s0^j)_j` (the polynomial in `sigma = s / s0`), or `None`
+/// when a component cannot be solved or a coefficient is not finite (the
+/// caller then searches by full solves).
+fn energy_polynomial(problem: &Problem, s0: f64) -> Option<Vec<f64>> {
+    let n = problem.degree;
+    if n < 2 {
+        return None;
+    }
+    let dim = problem.dim;
+    let order = problem.p_order.max(problem.q_order);
+    let m = n - 2;
+    let factor = (n * (n - 1)) as f64;
+    // G_ij = C(m,i) C(m,j) / ((2m+1) C(2m,i+j)), from m + 1 and 2m + 1 binomials.
+    let single: Vec<f64> = (0..=m).map(|i| binomial(m, i)).collect();
+    let double: Vec<f64> = (0..=2 * m)
+        .map(|i| binomial(2 * m, i) * (2 * m + 1) as f64)
+        .collect();
+    // The rows do not depend on the scales; the targets of scale 1 are the
+    // jets themselves, row k of each end holding order k.
+    let conditions = super::condition_rows(problem, 1.0, 1.0);
+    let p_rows = problem.p_order + 1;
+    let end_rows = p_rows + problem.q_order + 1;
+    // Column k dim + c: coordinate c of the second hodograph of C_k.
+    let mut hodographs = DMatrix::<f64>::zeros(m + 1, (order + 1) * dim);
+    let mut part = conditions.clone();
+    for k in 0..=order {
+        for r in 0..part.targets.nrows() {
+            let row_order = if r < p_rows {
+                Some(r)
+            } else if r < end_rows {
+                Some(r - p_rows)
+            } else {
+                None
+            };
+            // Interior targets belong to the scale-free component k = 0.
+            let keep = row_order.map_or(k == 0, |o| o == k);
+            for c in 0..dim {
+                part.targets[(r, c)] = if keep {
+                    conditions.targets[(r, c)]
+                } else {
+                    0.0
+                };
+            }
+        }
+        let (points, _) = super::solve_condition_rows(problem, &part).ok()?;
+        for c in 0..dim {
+            for i in 0..=m {
+                hodographs[(i, k * dim + c)] =
+                    factor * (points[(i + 2, c)] - 2.0 * points[(i + 1, c)] + points[(i, c)]);
+            }
+        }
+    }
+    let gram = DMatrix::from_fn(m + 1, m + 1, |i, j| single[i] * single[j] / double[i + j]);
+    let weighted = &gram * &hodographs;
+    let mut coefficients = vec![0.0; 2 * order + 1];
+    for k in 0..=order {
+        for l in k..=order {
+            let dot: f64 = (0..dim)
+                .map(|c| {
+                    hodographs
+                        .column(k * dim + c)
+                        .dot(&weighted.column(l * dim + c))
+                })
+                .sum();
+            coefficients[k + l] += if k == l { dot } else { 2.0 * dot };
+        }
+    }
+    let mut power = 1.0;
+    for e in &mut coefficients {
+        *e *= power;
+        power *= s0;
+    }
+    coefficients
+        .iter()
+        .all(|e| e.is_finite())
+        .then_some(coefficients)
+}
+
+/// `(E(sigma), sigma E'(sigma))`: the energy and its slope in `log sigma`.
+fn energy_and_log_slope(coefficients: &[f64], sigma: f64) -> (f64, f64) {
+    let mut value = 0.0;
+    let mut slope = 0.0;
+    for (j, e) in coefficients.iter().enumerate().rev() {
+        value = value * sigma + e;
+        slope = slope * sigma + j as f64 * e;
+    }
+    (value, slope)
+}
+
+/// The `sigma` in `[e^lo, e^hi]` of the least energy: the smallest of the
+/// range's ends and of every interior minimum, each found from a sign
+/// change of the slope on a log-spaced sample grid and refined by bisection
+/// (geometric midpoints) to [`LOG_SCALE_TOLERANCE`]. `None` if a value is
+/// not finite.
+fn polynomial_minimum(coefficients: &[f64], lo: f64, hi: f64) -> Option<f64> {
+    let at = |sigma: f64| energy_and_log_slope(coefficients, sigma);
+    let (first, last) = (lo.exp(), hi.exp());
+    let points = (POLYNOMIAL_GRID_PER_DEGREE * coefficients.len()).clamp(65, 257);
+    let ratio = ((hi - lo) / (points - 1) as f64).exp();
+    let mut best = (first, at(first).0);
+    let mut previous = (first, at(first));
+    let mut sigma = first;
+    for i in 1..points {
+        sigma = if i + 1 == points { last } else { sigma * ratio };
+        let current = (sigma, at(sigma));
+        let (value, slope) = current.1;
+        if !value.is_finite() || !slope.is_finite() {
+            return None;
+        }
+        if value < best.1 {
+            best = (sigma, value);
+        }
+        if previous.1.1 < 0.0 && slope > 0.0 {
+            // A minimum inside (previous, sigma): bisect the slope.
+            let (mut a, mut b) = (previous.0, sigma);
+            while b / a - 1.0 > LOG_SCALE_TOLERANCE {
+                let middle = (a * b).sqrt();
+                if middle <= a || middle >= b {
+                    break;
+                }
+                if at(middle).1 < 0.0 {
+                    a = middle;
+                } else {
+                    b = middle;
+                }
+            }
+            let x = (a * b).sqrt();
+            let value = at(x).0;
+            if value < best.1 {
+                best = (x, value);
+            }
+        }
+        previous = current;
+    }
+    Some(best.0)
+}
+
+/// The automatic scale: `s = argmin E(s)` over `AUTO_SCALE_SEARCH_DECADES`
+/// either side of [`natural_scale`], then one fully checked solve at it.
+///
+/// The energy is the closed-form polynomial of [`energy_polynomial`]
+/// (`K + 1` triangular solves instead of a full connect per trial). If
+/// that fails, or the solve at its minimum is refused, the scale is searched
+/// by full solves ([`auto_scale_by_search`]), which skips scales whose
+/// connection is refused.
 pub(crate) fn auto_scale(problem: &Problem) -> Result<Connection> {
+    if problem.p_order == 0 && problem.q_order == 0 {
+        return solve_structured(problem, 1.0, 1.0);
+    }
+    let s0 = natural_scale(problem);
+    let half_width = AUTO_SCALE_SEARCH_DECADES * std::f64::consts::LN_10;
+    if let Some(coefficients) = energy_polynomial(problem, s0) {
+        if let Some(sigma) = polynomial_minimum(&coefficients, -half_width, half_width) {
+            let s = s0 * sigma;
+            if let Ok(result) = solve_structured(problem, s, s) {
+                if result.curve.points().iter().all(|v| v.is_finite()) {
+                    return Ok(result);
+                }
+            }
+        }
+    }
+    auto_scale_by_search(problem)
+}
+
+/// The automatic scale by full solves: a grid of [`GRID_POINTS`] in `log s`,
+/// then Brent's method; a refused scale counts as infinite energy.
+pub(crate) fn auto_scale_by_search(problem: &Problem) -> Result<Connection> {
     if problem.p_order == 0 && problem.q_order == 0 {
         return solve_structured(problem, 1.0, 1.0);
     }
@@ -109,6 +289,123 @@ pub(crate) fn auto_scale(problem: &Problem) -> Result<Connection> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::connect::{ConnectOptions, PointConstraint, prepare};
+    use crate::test_values::Values;
+
+    /// Random pairs (dimensions 1..3, degrees 1..9, orders up to the
+    /// degree, half of them with an interior point constraint), fixed seed.
+    fn problems(count: usize) -> Vec<Problem> {
+        let mut values = Values(0x5ca1e);
+        let mut out = Vec::new();
+        while out.len() < count {
+            let dim = 1 + (values.unit() * 3.0) as usize;
+            let np = 1 + (values.unit() * 9.0) as usize;
+            let nq = 1 + (values.unit() * 9.0) as usize;
+            let mut curve = |n: usize, shift: f64| {
+                let rows: Vec<Vec<f64>> = (0..=n)
+                    .map(|i| {
+                        (0..dim)
+                            .map(|c| {
+                                values.signed() * 4.0 + if c == 0 { shift + i as f64 } else { 0.0 }
+                            })
+                            .collect()
+                    })
+                    .collect();
+                BezierCurve::from_rows(&rows).unwrap()
+            };
+            let (p, q) = (curve(np, 0.0), curve(nq, 12.0));
+            let kp = (values.unit() * (np + 1) as f64) as usize;
+            let kq = (values.unit() * (nq + 1) as f64) as usize;
+            let mut options = ConnectOptions::new(kp.min(np), kq.min(nq));
+            if out.len() % 2 == 1 {
+                let point: Vec<f64> = (0..dim).map(|_| 6.0 + values.signed() * 4.0).collect();
+                options = options.with_constraint(PointConstraint::new(0.5, 0, point));
+            }
+            let (u0, v0) = (0.5 + 0.5 * values.unit(), 0.5 * values.unit());
+            if let Ok(problem) = prepare(&p, u0, &q, v0, &options) {
+                if problem.p_order + problem.q_order > 0 && problem.degree >= 2 {
+                    out.push(problem);
+                }
+            }
+        }
+        out
+    }
+
+    #[test]
+    fn energy_polynomial_is_the_energy_of_the_connection() {
+        for problem in problems(40) {
+            let s0 = natural_scale(&problem);
+            let coefficients = energy_polynomial(&problem, s0).expect("components solve");
+            for sigma in [0.01, 0.1, 0.7, 1.0, 3.0, 40.0, 100.0] {
+                let s = s0 * sigma;
+                let direct = solve_structured(&problem, s, s).map(|c| fairness_energy(&c.curve));
+                let Ok(direct) = direct else { continue };
+                let (value, _) = energy_and_log_slope(&coefficients, sigma);
+                // Rounding: of the terms' size, not of their (cancelling) sum.
+                let size: f64 = coefficients
+                    .iter()
+                    .enumerate()
+                    .map(|(j, e)| e.abs() * sigma.powi(j as i32))
+                    .sum();
+                assert!(
+                    (value - direct).abs() <= 1e-10 * size.max(direct),
+                    "sigma {sigma}: polynomial {value:e}, direct {direct:e} (terms {size:e})"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn log_slope_is_the_derivative_of_the_energy() {
+        for problem in problems(12) {
+            let coefficients = energy_polynomial(&problem, natural_scale(&problem)).unwrap();
+            for x in [-3.0f64, -0.5, 0.0, 1.2, 4.0] {
+                let h = 1e-5;
+                let (plus, _) = energy_and_log_slope(&coefficients, (x + h).exp());
+                let (minus, _) = energy_and_log_slope(&coefficients, (x - h).exp());
+                let (value, slope) = energy_and_log_slope(&coefficients, x.exp());
+                let central = (plus - minus) / (2.0 * h);
+                assert!(
+                    (slope - central).abs() <= 1e-6 * (slope.abs() + value.abs() + 1e-300),
+                    "x {x}: slope {slope:e}, central difference {central:e}"
+                );
+            }
+        }
+    }
+
+    /// The closed-form search finds the global minimum over the documented
+    /// range: never above a dense scan of full solves (refined around its
+    /// best by the old search), nor above the old grid-and-Brent answer.
+    #[test]
+    fn auto_scale_is_the_minimum_of_a_dense_scan() {
+        let half_width = AUTO_SCALE_SEARCH_DECADES * std::f64::consts::LN_10;
+        for problem in problems(24) {
+            let Ok(auto) = auto_scale(&problem) else {
+                continue;
+            };
+            let best = fairness_energy(&auto.curve);
+            let center = natural_scale(&problem).ln();
+            let mut scan = f64::INFINITY;
+            for i in 0..=800 {
+                let s = (center - half_width + 2.0 * half_width * i as f64 / 800.0).exp();
+                if let Ok(c) = solve_structured(&problem, s, s) {
+                    scan = scan.min(fairness_energy(&c.curve));
+                }
+            }
+            let searched = auto_scale_by_search(&problem)
+                .map(|c| fairness_energy(&c.curve))
+                .unwrap_or(f64::INFINITY);
+            let slack = 1e-9 * best.abs() + 1e-300;
+            assert!(
+                best <= scan + slack,
+                "auto {best:e} above the scan's {scan:e}"
+            );
+            assert!(
+                best <= searched + slack,
+                "auto {best:e} above the search's {searched:e}"
+            );
+        }
+    }
 
     #[test]
     fn energy_of_a_parabola_is_exact() {

@@ -245,8 +245,13 @@ pub enum ShapeScale {
     /// [`fairness_energy`]) by a bounded 1-D search on `log s` over
     /// [`AUTO_SCALE_SEARCH_DECADES`] decades either side of the natural scale
     /// `s0 = |Q(v0) - P(u0)| / mean(|P'(u0)|, |Q'(v0)|)` (1 when the gap or
-    /// the speeds vanish): a grid of 33 points, then Brent's method around
-    /// the best, to a relative precision of about 1e-9 in `s`. When
+    /// the speeds vanish). `R_s` is linear in the scaled jets, so `E` is a
+    /// polynomial of degree `2 max(kp, kq)` in `s`, formed from
+    /// `max(kp, kq) + 1` triangular solves: its global minimum on the range
+    /// (every sign change of its slope on a log-spaced grid, refined by
+    /// bisection to about 1e-9 relative in `s`, and the range's ends), then
+    /// one fully checked solve there. Should that solve be refused, a grid of
+    /// 33 full solves, then Brent's method, skips the refused scales. When
     /// `kp = kq = 0` the result does not depend on `s` and `s = 1`. Keeps
     /// blends whose ends move fast (`|P'(u0)|` large against the gap) from
     /// looping, which scale 1 does not. The chosen `s` is reported in
@@ -812,6 +817,7 @@ pub(crate) fn prepare<P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
 /// The basis rows of every condition, in the order P end (k = 0..kp), Q end
 /// (k = 0..kq), constraints (sorted by t, k = 0..K_j), with their targets and
 /// the targets' rounding bounds.
+#[derive(Clone)]
 pub(crate) struct ConditionRows {
     pub(crate) rows: DMatrix<f64>,
     pub(crate) targets: DMatrix<f64>,
@@ -987,16 +993,27 @@ pub(crate) fn solve_structured(problem: &Problem, alpha: f64, beta: f64) -> Resu
 }
 
 /// The structured solve without the final accuracy check.
-fn structured_points(
+pub(crate) fn structured_points(
     problem: &Problem,
     alpha: f64,
     beta: f64,
 ) -> Result<(ConditionRows, DMatrix<f64>, f64)> {
+    let conditions = condition_rows(problem, alpha, beta);
+    let (points, constraint_condition) = solve_condition_rows(problem, &conditions)?;
+    Ok((conditions, points, constraint_condition))
+}
+
+/// The control points that meet `conditions` (end bands by the triangular
+/// solves, then the interior block), and the interior block's condition
+/// estimate (1 without interior constraints). Linear in the targets.
+pub(crate) fn solve_condition_rows(
+    problem: &Problem,
+    conditions: &ConditionRows,
+) -> Result<(DMatrix<f64>, f64)> {
     let n = problem.degree;
     let kp = problem.p_order;
     let kq = problem.q_order;
     let dim = problem.dim;
-    let conditions = condition_rows(problem, alpha, beta);
     let rows = &conditions.rows;
     let targets = &conditions.targets;
     let mut points = DMatrix::<f64>::zeros(n + 1, dim);
@@ -1028,11 +1045,11 @@ fn structured_points(
     // to the right-hand side, rows scaled to unit 1-norm.
     let m = problem.middle_count();
     let constraint_condition = if m > 0 {
-        solve_interior(&conditions, &mut points, kp, kq, m)?
+        solve_interior(conditions, &mut points, kp, kq, m)?
     } else {
         1.0
     };
-    Ok((conditions, points, constraint_condition))
+    Ok((points, constraint_condition))
 }
 
 /// The interior constraints' `m x m` block for the points `R_(kp+1) ..
