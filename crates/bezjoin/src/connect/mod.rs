@@ -1601,6 +1601,75 @@ mod tests {
         assert_eq!(cases, 5 * 5 * 4 * 4 * 2);
     }
 
+    /// The end path against the general path on random cases from the
+    /// fixed-seed generator: dimensions 1..=6 (5 and 6 take the general
+    /// path inside), input degrees 0..=15 (the compile-time-degree jets,
+    /// the run-time ones and the slice ones), orders up to result degree
+    /// 31 (the whole table range; many such cases are refused, and then
+    /// both paths must refuse alike), parameters at the ends and inside,
+    /// scales over four decades. Control points, residual and estimate
+    /// bit for bit, or the same error.
+    #[test]
+    fn end_path_equals_the_general_path_on_random_cases() {
+        let mut values = crate::test_values::Values(2025);
+        let mut pick = |below: usize| ((values.unit() * below as f64) as usize).min(below - 1);
+        let mut agreed = 0;
+        for case in 0..600 {
+            let dim = 1 + pick(6);
+            let (np, nq) = (pick(16), pick(16));
+            let kp = pick(np + 3).min(15);
+            let kq = pick((nq + 3).min(MAX_CONNECT_DEGREE - kp));
+            let mut coordinates = crate::test_values::Values(7 + case as u64);
+            let mut curve = |degree: usize, offset: f64| {
+                let points: Vec<f64> = (0..(degree + 1) * dim)
+                    .map(|_| offset + 4.0 * coordinates.signed())
+                    .collect();
+                BezierCurve::new(dim, degree, points).unwrap()
+            };
+            let (p, q) = (curve(np, 0.0), curve(nq, 3.0));
+            let parameter = |choice: usize, value: f64| match choice {
+                0 => 0.0,
+                1 => 1.0,
+                _ => value,
+            };
+            let u0 = parameter(pick(4), values_unit(case, 1));
+            let v0 = parameter(pick(4), values_unit(case, 2));
+            let alpha = 10f64.powf(2.0 * values_unit(case, 3) - 1.0);
+            let beta = 10f64.powf(2.0 * values_unit(case, 4) - 1.0);
+            let options = ConnectOptions::new(kp, kq).with_scales(alpha, beta);
+            let fast = connect(&p, u0, &q, v0, &options);
+            let problem = prepare(&p, u0, &q, v0, &options).unwrap();
+            let general = solve_structured(&problem, alpha, beta);
+            let label = format!("case {case}: dim {dim} {np}/{nq} {kp}/{kq} {u0}/{v0}");
+            match (fast, general) {
+                (Ok(a), Ok(b)) => {
+                    assert_eq!(a.curve.points(), b.curve.points(), "{label}");
+                    assert_eq!(
+                        a.max_residual.to_bits(),
+                        b.max_residual.to_bits(),
+                        "{label}"
+                    );
+                    assert_eq!(
+                        a.error_estimate.to_bits(),
+                        b.error_estimate.to_bits(),
+                        "{label}"
+                    );
+                    agreed += 1;
+                }
+                (Err(a), Err(b)) => assert_eq!(a.to_string(), b.to_string(), "{label}"),
+                (a, b) => panic!("{label}: paths disagree: {a:?} / {b:?}"),
+            }
+        }
+        // Most cases are answered (not a test of two identical refusals).
+        assert!(agreed > 300, "only {agreed} answered cases");
+    }
+
+    /// A value in [0, 1) for case `case`, slot `slot` (its own generator,
+    /// so the draws of one case do not shift those of the next).
+    fn values_unit(case: usize, slot: u64) -> f64 {
+        crate::test_values::Values(1000 * case as u64 + slot).unit()
+    }
+
     /// [`end_band`]'s tables give the values of its run-time recurrence bit
     /// for bit (degrees up to the table size, every order and end).
     #[test]
