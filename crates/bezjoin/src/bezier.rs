@@ -182,10 +182,24 @@ impl BezierCurve {
     /// Largest absolute coordinate of any control point (a size scale for
     /// relative tolerances; at least the smallest positive normal number).
     pub fn coordinate_scale(&self) -> f64 {
-        self.points
-            .iter()
-            .fold(0.0f64, |m, v| m.max(v.abs()))
-            .max(f64::MIN_POSITIVE)
+        // Four running maxima by comparison, then their maximum: the value
+        // of `fold(0.0, f64::max)` in order (max is exact; a NaN |v| fails
+        // `>` as f64::max ignores it; all terms are >= +0), in a quarter of
+        // the dependent steps and without maxnum's NaN handling (the hot
+        // path of connect).
+        let larger = |m: f64, v: f64| if v > m { v } else { m };
+        let mut lanes = [0.0f64; 4];
+        let chunks = self.points.chunks_exact(4);
+        let rest = chunks.remainder();
+        for chunk in chunks {
+            for (m, v) in lanes.iter_mut().zip(chunk) {
+                *m = larger(*m, v.abs());
+            }
+        }
+        for (m, v) in lanes.iter_mut().zip(rest) {
+            *m = larger(*m, v.abs());
+        }
+        larger(larger(lanes[0], lanes[1]), larger(lanes[2], lanes[3])).max(f64::MIN_POSITIVE)
     }
 
     /// Length of the control polygon.

@@ -11,28 +11,28 @@
 //! [`super::structured_points`], [`super::check_residuals`]), so the same
 //! control points, residual and estimate bit for bit (unit test
 //! `end_path_equals_the_general_path`), in `O(n^2 d)` with no matrices:
-//! fixed arrays of four coordinate lanes per point (dimensions 1 to 4,
-//! degree up to [`super::MAX_CONNECT_DEGREE`]; the unused lanes stay exact
-//! zeros) and one allocation, the result's control points.
+//! fixed arrays of `[f64; dim]` rows (dimensions 1 to 4, a const
+//! parameter; degree up to [`super::MAX_CONNECT_DEGREE`]), the band entries
+//! from the tables, and one allocation, the result's control points.
 
 use super::{
-    CONNECT_RESIDUAL_LIMIT, Connection, end_band, end_band_norm, residual_and_bound, unit_roundoff,
+    CONNECT_RESIDUAL_LIMIT, Connection, END_BAND_NORMS, FALLING_FACTORIALS, SIGNED_BINOMIALS,
+    power, residual_and_bound, unit_roundoff,
 };
 use crate::basis::KnotSide;
 use crate::bezier::BezierCurve;
 use crate::curve::CurveJet;
 use crate::error::{BezjoinError, Result};
 
-/// Result degrees up to which [`connect_ends`] works in fixed arrays
-/// (lanes of [`LANES`] coordinates); larger problems take the general path.
+/// Result degrees below which [`connect_ends`] works in fixed arrays
+/// (the table range of [`END_BAND_NORMS`], [`FALLING_FACTORIALS`]);
+/// larger problems take the general path.
 const MAX_POINTS: usize = super::MAX_CONNECT_DEGREE + 1;
-
-/// Coordinates per point in the fixed arrays: dimensions 1 to 4.
-const LANES: usize = 4;
 
 /// [`super::connect`] for `kp`, `kq`, given scales `alpha`, `beta` and no
 /// interior constraints, on inputs already validated (dimensions, `u0`,
-/// `v0`, the degree). Dimensions above [`LANES`] take the general path
+/// `v0`, the degree). Dimensions 1 to 4 run [`connect_fixed`] (rows of
+/// exactly `dim` coordinates); above, the general path
 /// ([`super::prepare`], [`super::solve_structured`]), which computes the
 /// same numbers.
 #[allow(clippy::too_many_arguments)]
@@ -46,117 +46,160 @@ pub(super) fn connect_ends<P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
     alpha: f64,
     beta: f64,
 ) -> Result<Connection> {
-    let dim = p.dim();
     let n = kp + kq + 1;
-    if dim > LANES || n >= MAX_POINTS {
-        let problem = super::prepare(p, u0, q, v0, &super::ConnectOptions::new(kp, kq))?;
-        return super::solve_structured(&problem, alpha, beta);
+    if n < MAX_POINTS {
+        let args = (u0, v0, kp, kq, alpha, beta);
+        match p.dim() {
+            1 => return connect_fixed::<1, P, Q>(p, q, args),
+            2 => return connect_fixed::<2, P, Q>(p, q, args),
+            3 => return connect_fixed::<3, P, Q>(p, q, args),
+            4 => return connect_fixed::<4, P, Q>(p, q, args),
+            _ => {}
+        }
     }
+    let problem = super::prepare(p, u0, q, v0, &super::ConnectOptions::new(kp, kq))?;
+    super::solve_structured(&problem, alpha, beta)
+}
+
+/// [`connect_ends`] in dimension `D` (`p.dim() == q.dim() == D`), result
+/// degree `n = kp + kq + 1 < MAX_POINTS`; `args` is
+/// `(u0, v0, kp, kq, alpha, beta)`.
+///
+/// Row `r` of the system: `r <= kp` the P end (row `r` of `D(0)`),
+/// `r = kp + 1 + k` the Q end (row `k` of `D(1)`), as in
+/// [`super::condition_rows`]. Both ends' bands are `n!/(n-k)! (-1)^(k-j)
+/// C(k, j)` ([`super::end_band`]), formed from the tables.
+fn connect_fixed<const D: usize, P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
+    p: &P,
+    q: &Q,
+    (u0, v0, kp, kq, alpha, beta): (f64, f64, usize, usize, f64, f64),
+) -> Result<Connection> {
+    let n = kp + kq + 1;
     let count = n + 1;
-    // Row r of the system: r <= kp the P end (row r of D(0)), r = kp + 1 + k
-    // the Q end (row k of D(1)), as in `condition_rows`. Coordinates beyond
-    // `dim` stay exact zeros, so sums over all lanes equal sums over `dim`.
-    let mut points = [[0.0f64; LANES]; MAX_POINTS];
-    let mut targets = [[0.0f64; LANES]; MAX_POINTS];
+    // The jets straight into the target rows: P arrives at u0 (from the
+    // left of a knot), Q leaves v0.
+    let mut targets = [[0.0f64; D]; MAX_POINTS];
     let mut target_errors = [0.0f64; MAX_POINTS];
-    let mut target_norms = [0.0f64; MAX_POINTS];
-    let mut row_norms = [0.0f64; MAX_POINTS];
     {
-        // P arrives at u0 (from the left of a knot), Q leaves v0.
-        let mut jet = [0.0f64; MAX_POINTS * LANES];
-        let values = &mut jet[..(kp + 1) * dim];
-        p.jet_into(u0, kp, KnotSide::Left, values, &mut target_errors[..=kp]);
-        spread_rows(values, dim, &mut targets[..=kp]);
-        let values = &mut jet[..(kq + 1) * dim];
-        q.jet_into(
-            v0,
-            kq,
-            KnotSide::Right,
-            values,
-            &mut target_errors[kp + 1..=n],
-        );
-        spread_rows(values, dim, &mut targets[kp + 1..=n]);
+        let (p_rows, q_rows) = targets[..count].split_at_mut(kp + 1);
+        let (p_errors, q_errors) = target_errors[..count].split_at_mut(kp + 1);
+        p.jet_into(u0, kp, KnotSide::Left, p_rows.as_flattened_mut(), p_errors);
+        q.jet_into(v0, kq, KnotSide::Right, q_rows.as_flattened_mut(), q_errors);
     }
     // Targets and their bounds in place: T_k = s^k X^(k),
     // e_k = s^k err_k + (k + 1) u |T_k|.
+    let mut target_norms = [0.0f64; MAX_POINTS];
     for (first, order, scale) in [(0, kp, alpha), (kp + 1, kq, beta)] {
         let mut factor = 1.0f64;
         for k in 0..=order {
             let r = first + k;
             let mut square = 0.0;
-            for v in &mut targets[r][..dim] {
+            for v in &mut targets[r] {
                 *v *= factor;
                 square += *v * *v;
             }
             let norm = square.sqrt();
             target_norms[r] = norm;
             target_errors[r] =
-                scale.powi(k as i32) * target_errors[r] + (k + 1) as f64 * unit_roundoff() * norm;
+                power(scale, k) * target_errors[r] + (k + 1) as f64 * unit_roundoff() * norm;
             factor *= scale;
         }
     }
-    // The 1-norms of the rows (the tables of `end_band_norm`, the sums the
+    // The order of the derivative of row r.
+    let order_of = |r: usize| if r <= kp { r } else { r - kp - 1 };
+    // The 1-norms of the rows (the table of `end_band_norm`, the sums the
     // general path forms) and the data scale of `check_residuals`.
+    let norms = &END_BAND_NORMS[n];
     let mut data_scale = p.coordinate_scale().max(q.coordinate_scale());
     for r in 0..count {
-        row_norms[r] = end_band_norm(n, if r <= kp { r } else { r - kp - 1 });
-        let v = target_norms[r] / row_norms[r];
+        let v = target_norms[r] / norms[order_of(r)];
         if v.is_finite() {
             data_scale = data_scale.max(v);
         }
     }
     let gamma = 2.0 * (2 * n + 4) as f64 * unit_roundoff();
+    let falling = &FALLING_FACTORIALS[n];
+    let mut points = [[0.0f64; D]; MAX_POINTS];
     let mut max_residual = 0.0f64;
     let mut error_estimate = 0.0f64;
-    let mut band = [0.0f64; MAX_POINTS];
     // Row by row: the band once, the unknown it determines, its residual.
     // P end: row k of D(0) touches R_0..R_k only (lower triangular); Q end:
     // row k of D(1) touches R_(n-k)..R_n only (anti-triangular). The two
     // sets of unknowns are disjoint (n - kq = kp + 1), so a row's residual
-    // is final as soon as its own unknown is solved.
+    // is final as soon as its own unknown is solved. One pass over the
+    // known points of the band feeds both the substitution sum
+    // `T - sum b_i R_i` and the residual's `sum b_i R_i`, `sum |b_i| |R_i|`
+    // (each accumulator in the general path's order), then the new point
+    // adds its terms.
     for r in 0..count {
-        let target = targets[r];
-        let (first, k) = if r <= kp {
-            let k = r;
-            end_band(n, k, false, &mut band[..=k]);
-            let diagonal = band[k];
-            for c in 0..LANES {
-                let mut sum = target[c];
-                for i in 0..k {
-                    sum -= band[i] * points[i][c];
-                }
-                points[k][c] = sum / diagonal;
-            }
-            (0, k)
+        let (k, new, known) = if r <= kp {
+            // Row k of D(0): unknown R_k, known R_0..R_(k-1) at band 0..k.
+            (r, r, 0)
         } else {
+            // Row k of D(1): unknown R_(n-k) at band 0, known R_(n-k+1)..R_n.
             let k = r - kp - 1;
-            let first = n - k;
-            end_band(n, k, true, &mut band[..=k]);
-            let diagonal = band[0];
-            for c in 0..LANES {
-                let mut sum = target[c];
-                for i in first + 1..=n {
-                    sum -= band[i - first] * points[i][c];
-                }
-                points[first][c] = sum / diagonal;
-            }
-            (first, k)
+            (k, n - k, n - k + 1)
         };
-        let denominator = target_norms[r].max(data_scale * row_norms[r]);
+        let f = falling[k];
+        let signed = &SIGNED_BINOMIALS[k];
+        let target = targets[r];
+        // Band slots of the known points and of the new one.
+        let (known_slots, new_slot) = if r <= kp { (0..k, k) } else { (1..k + 1, 0) };
+        let mut sum = target;
+        let mut value = [0.0f64; D];
+        let mut abs_value = [0.0f64; D];
+        let new_band = f * signed[new_slot];
+        // D(0): the known points come before the new one in the residual's
+        // order (columns ascending); D(1): after it.
+        if r > kp {
+            // The new point's residual terms come first; solve it first.
+            for (slot, point) in known_slots.clone().zip(&points[known..=n]) {
+                let b = f * signed[slot];
+                for c in 0..D {
+                    sum[c] -= b * point[c];
+                }
+            }
+            for c in 0..D {
+                points[new][c] = sum[c] / new_band;
+            }
+            let x = points[new];
+            for c in 0..D {
+                value[c] += new_band * x[c];
+                abs_value[c] += new_band.abs() * x[c].abs();
+            }
+            for (slot, point) in known_slots.zip(&points[known..=n]) {
+                let b = f * signed[slot];
+                for c in 0..D {
+                    value[c] += b * point[c];
+                    abs_value[c] += b.abs() * point[c].abs();
+                }
+            }
+        } else {
+            for (slot, point) in known_slots.zip(&points[..k]) {
+                let b = f * signed[slot];
+                for c in 0..D {
+                    sum[c] -= b * point[c];
+                    value[c] += b * point[c];
+                    abs_value[c] += b.abs() * point[c].abs();
+                }
+            }
+            for c in 0..D {
+                points[new][c] = sum[c] / new_band;
+            }
+            let x = points[new];
+            for c in 0..D {
+                value[c] += new_band * x[c];
+                abs_value[c] += new_band.abs() * x[c].abs();
+            }
+        }
         let mut difference_square = 0.0;
         let mut abs_square = 0.0;
-        for c in 0..dim {
-            let mut value = 0.0;
-            let mut abs_value = 0.0;
-            for (i, &b) in band[..=k].iter().enumerate() {
-                let x = points[first + i][c];
-                value += b * x;
-                abs_value += b.abs() * x.abs();
-            }
-            let difference = value - target[c];
+        for c in 0..D {
+            let difference = value[c] - target[c];
             difference_square += difference * difference;
-            abs_square += abs_value * abs_value;
+            abs_square += abs_value[c] * abs_value[c];
         }
+        let denominator = target_norms[r].max(data_scale * norms[k]);
         let (residual, bound) = residual_and_bound(
             difference_square,
             abs_square,
@@ -167,10 +210,7 @@ pub(super) fn connect_ends<P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
         max_residual = max_residual.max(residual);
         error_estimate = error_estimate.max(bound);
     }
-    let mut flat = Vec::with_capacity(count * dim);
-    for point in &points[..count] {
-        flat.extend_from_slice(&point[..dim]);
-    }
+    let flat = points[..count].as_flattened().to_vec();
     let trusted = error_estimate.is_finite() && error_estimate <= CONNECT_RESIDUAL_LIMIT;
     if !trusted || flat.iter().any(|v| !v.is_finite()) {
         return Err(BezjoinError::IllConditioned {
@@ -180,18 +220,11 @@ pub(super) fn connect_ends<P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
         });
     }
     Ok(Connection {
-        curve: BezierCurve::from_parts(dim, n, flat),
+        curve: BezierCurve::from_parts(D, n, flat),
         p_scale: alpha,
         q_scale: beta,
         max_residual,
         error_estimate,
         constraint_condition: 1.0,
     })
-}
-
-/// Rows of `dim` values into the first `dim` lanes of `rows`.
-fn spread_rows(values: &[f64], dim: usize, rows: &mut [[f64; LANES]]) {
-    for (row, value) in rows.iter_mut().zip(values.chunks_exact(dim)) {
-        row[..dim].copy_from_slice(value);
-    }
 }

@@ -332,6 +332,27 @@ fn unit_roundoff() -> f64 {
     f64::EPSILON / 2.0
 }
 
+/// `x^k` by binary powering, the operations of `f64::powi` (compiler-rt's
+/// `__powidf2`: multiply by the running square for each set bit, from the
+/// lowest), inlined: the same value bit for bit (unit test
+/// `power_equals_powi`) without the library call on the hot path.
+#[inline]
+pub(crate) fn power(x: f64, k: usize) -> f64 {
+    let mut base = x;
+    let mut bits = k;
+    let mut result = 1.0f64;
+    loop {
+        if bits & 1 != 0 {
+            result *= base;
+        }
+        bits >>= 1;
+        if bits == 0 {
+            return result;
+        }
+        base *= base;
+    }
+}
+
 /// The non-zero band of row `k <= degree` of `D(0)` (`at_one = false`:
 /// columns `0..=k`) or `D(1)` (`at_one = true`: columns `n-k..=n`) for
 /// degree `n = degree`, by the closed form (module documentation, "Where
@@ -347,11 +368,18 @@ pub(crate) fn end_band(degree: usize, k: usize, at_one: bool, band: &mut [f64]) 
     } else {
         falling_factorial(degree, k)
     };
+    if small {
+        // Both ends have the same band: slot s of D(1)'s row is
+        // n!/(n-k)! (-1)^(k-s) C(k, k-s), and C(k, k-s) = C(k, s) exactly
+        // (integers below 2^53); f (-c) = -(f c) in IEEE arithmetic.
+        let signed = &SIGNED_BINOMIALS[k];
+        for (slot, &c) in band[..=k].iter_mut().zip(signed) {
+            *slot = falling * c;
+        }
+        return;
+    }
     let mut coefficient = 1.0f64; // C(k, j)
     for j in 0..=k {
-        if small {
-            coefficient = BINOMIALS[k][j];
-        }
         // D(0)[k][j] = n!/(n-k)! (-1)^(k-j) C(k, j);
         // D(1)[k][n-j] = n!/(n-k)! (-1)^j C(k, j)  (B_i(t) = B_(n-i)(1-t)),
         // at band position (n - j) - (n - k) = k - j.
@@ -362,9 +390,7 @@ pub(crate) fn end_band(degree: usize, k: usize, at_one: bool, band: &mut [f64]) 
         };
         let value = falling * coefficient;
         band[slot] = if negative { -value } else { value };
-        if !small {
-            coefficient = coefficient * (k - j) as f64 / (j + 1) as f64;
-        }
+        coefficient = coefficient * (k - j) as f64 / (j + 1) as f64;
     }
 }
 
@@ -372,6 +398,7 @@ pub(crate) fn end_band(degree: usize, k: usize, at_one: bool, band: &mut [f64]) 
 /// entries in reverse order, and `C(k, j) = C(k, k - j)` exactly), summed in
 /// band order from `0.0` as the general path sums a row (from the table
 /// below the table size).
+#[cfg(test)]
 pub(crate) fn end_band_norm(degree: usize, k: usize) -> f64 {
     if degree < END_TABLE_SIZE {
         return END_BAND_NORMS[degree][k];
@@ -383,7 +410,7 @@ pub(crate) fn end_band_norm(degree: usize, k: usize) -> f64 {
 
 /// `END_BAND_NORMS[n][k]`: [`end_band_norm`] by the operations of
 /// [`end_band`] and the sum.
-static END_BAND_NORMS: [[f64; END_TABLE_SIZE]; END_TABLE_SIZE] = {
+pub(crate) static END_BAND_NORMS: [[f64; END_TABLE_SIZE]; END_TABLE_SIZE] = {
     let mut table = [[0.0f64; END_TABLE_SIZE]; END_TABLE_SIZE];
     let mut n = 0;
     while n < END_TABLE_SIZE {
@@ -405,10 +432,10 @@ static END_BAND_NORMS: [[f64; END_TABLE_SIZE]; END_TABLE_SIZE] = {
 };
 
 /// Degrees below which [`end_band`] reads its factors from tables.
-const END_TABLE_SIZE: usize = MAX_CONNECT_DEGREE + 1;
+pub(crate) const END_TABLE_SIZE: usize = MAX_CONNECT_DEGREE + 1;
 
 /// `FALLING_FACTORIALS[n][k] = n (n-1) ... (n-k+1)` (as [`falling_factorial`]).
-static FALLING_FACTORIALS: [[f64; END_TABLE_SIZE]; END_TABLE_SIZE] = {
+pub(crate) static FALLING_FACTORIALS: [[f64; END_TABLE_SIZE]; END_TABLE_SIZE] = {
     let mut table = [[0.0f64; END_TABLE_SIZE]; END_TABLE_SIZE];
     let mut n = 0;
     while n < END_TABLE_SIZE {
@@ -434,6 +461,22 @@ static BINOMIALS: [[f64; END_TABLE_SIZE]; END_TABLE_SIZE] = {
         while j <= k {
             table[k][j] = coefficient;
             coefficient = coefficient * (k - j) as f64 / (j + 1) as f64;
+            j += 1;
+        }
+        k += 1;
+    }
+    table
+};
+
+/// `SIGNED_BINOMIALS[k][j] = (-1)^(k-j) C(k, j)`, from [`BINOMIALS`] (exact).
+pub(crate) static SIGNED_BINOMIALS: [[f64; END_TABLE_SIZE]; END_TABLE_SIZE] = {
+    let mut table = [[0.0f64; END_TABLE_SIZE]; END_TABLE_SIZE];
+    let mut k = 0;
+    while k < END_TABLE_SIZE {
+        let mut j = 0;
+        while j <= k {
+            let c = BINOMIALS[k][j];
+            table[k][j] = if (k - j) % 2 == 1 { -c } else { c };
             j += 1;
         }
         k += 1;
@@ -581,7 +624,7 @@ pub(crate) fn de_casteljau_jet_into(
     values: &mut [f64],
     errors: &mut [f64],
 ) {
-    if n >= SMALL_JET_POINTS || dim > 3 {
+    if n >= SMALL_JET_POINTS || dim > 4 {
         de_casteljau_jet_slices(points, dim, n, t, order, values, errors);
         return;
     }
@@ -589,23 +632,17 @@ pub(crate) fn de_casteljau_jet_into(
     values[(m + 1) * dim..].fill(0.0);
     errors[m + 1..].fill(0.0);
     match dim {
-        1 => de_casteljau_jet_small::<1>(points, n, t, m, values, errors),
-        2 => de_casteljau_jet_small::<2>(points, n, t, m, values, errors),
-        _ => de_casteljau_jet_small::<3>(points, n, t, m, values, errors),
+        1 => de_casteljau_jet_small::<1, SMALL_JET_POINTS>(points, n, t, m, values, errors),
+        2 => de_casteljau_jet_by_degree::<2>(points, n, t, m, values, errors),
+        3 => de_casteljau_jet_by_degree::<3>(points, n, t, m, values, errors),
+        _ => de_casteljau_jet_small::<4, SMALL_JET_POINTS>(points, n, t, m, values, errors),
     }
 }
 
-/// Control points up to which [`de_casteljau_jet_small`] works on the stack.
-const SMALL_JET_POINTS: usize = 16;
-
-/// [`de_casteljau_jet_into`] for dimension `D <= 3`, fewer than
-/// [`SMALL_JET_POINTS`] control points, in fixed
-/// arrays, orders `0..=m`: lanes `0..D` the coordinates, lane 3 the size `a^L_i`. The same
-/// operations on every lane as [`de_casteljau_jet_slices`] (a difference
-/// `x - 1 * y` is `x - y`, a size sum `x - (-1) * y` is `x + y`), so the
-/// same values and bounds bit for bit (unit test
-/// `small_jets_equal_the_slice_jets`).
-fn de_casteljau_jet_small<const D: usize>(
+/// [`de_casteljau_jet_small`] with the degree a compile-time constant for
+/// degrees 1 to 7 in dimension `D` (2 and 3, the plane and space): the
+/// triangle's loops unrolled and sized exactly, the same operations.
+fn de_casteljau_jet_by_degree<const D: usize>(
     points: &[f64],
     n: usize,
     t: f64,
@@ -613,49 +650,100 @@ fn de_casteljau_jet_small<const D: usize>(
     values: &mut [f64],
     errors: &mut [f64],
 ) {
-    let mut level = [[0.0f64; 4]; SMALL_JET_POINTS];
-    for (i, slot) in level.iter_mut().enumerate().take(n + 1) {
-        let point = &points[i * D..(i + 1) * D];
-        slot[..D].copy_from_slice(point);
-        slot[3] = point.iter().map(|v| v * v).sum::<f64>().sqrt();
+    match n {
+        1 => de_casteljau_jet_small::<D, 2>(points, 1, t, m, values, errors),
+        2 => de_casteljau_jet_small::<D, 3>(points, 2, t, m, values, errors),
+        3 => de_casteljau_jet_small::<D, 4>(points, 3, t, m, values, errors),
+        4 => de_casteljau_jet_small::<D, 5>(points, 4, t, m, values, errors),
+        5 => de_casteljau_jet_small::<D, 6>(points, 5, t, m, values, errors),
+        6 => de_casteljau_jet_small::<D, 7>(points, 6, t, m, values, errors),
+        7 => de_casteljau_jet_small::<D, 8>(points, 7, t, m, values, errors),
+        _ => de_casteljau_jet_small::<D, SMALL_JET_POINTS>(points, n, t, m, values, errors),
+    }
+}
+
+/// Control points up to which [`de_casteljau_jet_small`] works on the stack.
+const SMALL_JET_POINTS: usize = 16;
+
+/// [`de_casteljau_jet_into`] for dimension `D <= 4`, at most `CAP <=`
+/// [`SMALL_JET_POINTS`] control points, in fixed arrays, orders `0..=m`:
+/// the coordinates in `[f64; D]` rows, the sizes `a^L_i` beside them. The
+/// same operations on every coordinate and size as
+/// [`de_casteljau_jet_slices`] (the factor `n!/(n-k)!` from the table of
+/// the same products), so the same values and bounds bit for bit (unit
+/// test `small_jets_equal_the_slice_jets`).
+#[inline(always)]
+fn de_casteljau_jet_small<const D: usize, const CAP: usize>(
+    points: &[f64],
+    n: usize,
+    t: f64,
+    m: usize,
+    values: &mut [f64],
+    errors: &mut [f64],
+) {
+    // Level 0: the control points and their sizes (unused slots zero).
+    let mut level = [[0.0f64; D]; CAP];
+    let mut size = [0.0f64; CAP];
+    for ((slot, a), point) in level
+        .iter_mut()
+        .zip(size.iter_mut())
+        .zip(points.chunks_exact(D))
+        .take(n + 1)
+    {
+        slot.copy_from_slice(point);
+        *a = point.iter().map(|v| v * v).sum::<f64>().sqrt();
     }
     let s = 1.0 - t;
-    let weights_here = [s, s, s, s.abs()];
-    let weights_next = [t, t, t, t.abs()];
-    // Differences in lanes 0..3, sums of the sizes in lane 3.
-    let signs = [1.0, 1.0, 1.0, -1.0];
+    let (s_abs, t_abs) = (s.abs(), t.abs());
     let gamma_unit = 2.0 * unit_roundoff();
-    // Delta^k of b^l_0..b^l_k, on a copy of the level's first k + 1 points.
-    let mut work = [[0.0f64; 4]; SMALL_JET_POINTS];
+    let falling_row = &FALLING_FACTORIALS[n];
+    // Delta^k of b^l_0..b^l_k: the first pass reads the level (x_(i+1) -
+    // x_i, sizes a_i + a_(i+1)), the others work in place, as the slice
+    // code's passes on its copy of the level.
+    let mut work = [[0.0f64; D]; CAP];
+    let mut work_size = [0.0f64; CAP];
     for l in 0..=n {
         if l > 0 {
             for i in 0..=n - l {
                 let next = level[i + 1];
                 let here = &mut level[i];
-                for c in 0..4 {
-                    here[c] = weights_here[c] * here[c] + weights_next[c] * next[c];
+                for c in 0..D {
+                    here[c] = s * here[c] + t * next[c];
                 }
+                size[i] = s_abs * size[i] + t_abs * size[i + 1];
             }
         }
         let k = n - l;
         if k > m {
             continue;
         }
-        work[..=k].copy_from_slice(&level[..=k]);
-        for pass in 0..k {
-            for i in 0..k - pass {
-                let next = work[i + 1];
-                let here = &mut work[i];
-                for c in 0..4 {
-                    here[c] = next[c] - signs[c] * here[c];
+        let (difference, difference_size) = if k == 0 {
+            (level[0], size[0])
+        } else {
+            for i in 0..k {
+                let (here, next) = (level[i], level[i + 1]);
+                for c in 0..D {
+                    work[i][c] = next[c] - here[c];
+                }
+                work_size[i] = size[i] + size[i + 1];
+            }
+            for pass in 1..k {
+                for i in 0..k - pass {
+                    let next = work[i + 1];
+                    let here = &mut work[i];
+                    for c in 0..D {
+                        here[c] = next[c] - here[c];
+                    }
+                    work_size[i] += work_size[i + 1];
                 }
             }
+            (work[0], work_size[0])
+        };
+        let falling = falling_row[k];
+        for (v, w) in values[k * D..(k + 1) * D].iter_mut().zip(difference) {
+            *v = falling * w;
         }
-        let falling = falling_factorial(n, k);
-        for c in 0..D {
-            values[k * D + c] = falling * work[0][c];
-        }
-        errors[k] = gamma_unit * (3 * (n - k) + k + 1) as f64 * falling * work[0][3];
+        errors[k] = gamma_unit * (3 * (n - k) + k + 1) as f64 * falling * difference_size;
     }
 }
 
@@ -858,9 +946,9 @@ pub(crate) fn condition_rows(problem: &Problem, alpha: f64, beta: f64) -> Condit
                 targets[(r, c)] = v;
                 square += v * v;
             }
-            // alpha^k by powi, as the bound is stated.
+            // alpha^k as powi forms it ([`power`]), as the bound is stated.
             let error =
-                scale.powi(k as i32) * errors[k] + (k + 1) as f64 * unit_roundoff() * square.sqrt();
+                power(scale, k) * errors[k] + (k + 1) as f64 * unit_roundoff() * square.sqrt();
             target_errors.push(error);
             factor *= scale;
             r += 1;
@@ -1452,13 +1540,13 @@ mod tests {
         }
     }
 
-    /// The fixed-array jets (dimensions 1..=3, degree below 16) against the
+    /// The fixed-array jets (dimensions 1..=4, degree below 16) against the
     /// slice code they replace on the hot path: bit for bit, values and
     /// bounds, every order, inside and outside `[0, 1]`.
     #[test]
     fn small_jets_equal_the_slice_jets() {
         for n in 0..SMALL_JET_POINTS {
-            for dim in 1..=3 {
+            for dim in 1..=4 {
                 let points: Vec<f64> = (0..(n + 1) * dim)
                     .map(|i| ((i * 7919) % 97) as f64 / 9.7 - 5.0)
                     .collect();
@@ -1530,6 +1618,75 @@ mod tests {
         assert_eq!(cases, 5 * 5 * 4 * 4 * 2);
     }
 
+    /// The end path against the general path on random cases from the
+    /// fixed-seed generator: dimensions 1..=6 (5 and 6 take the general
+    /// path inside), input degrees 0..=15 (the compile-time-degree jets,
+    /// the run-time ones and the slice ones), orders up to result degree
+    /// 31 (the whole table range; many such cases are refused, and then
+    /// both paths must refuse alike), parameters at the ends and inside,
+    /// scales over four decades. Control points, residual and estimate
+    /// bit for bit, or the same error.
+    #[test]
+    fn end_path_equals_the_general_path_on_random_cases() {
+        let mut values = crate::test_values::Values(2025);
+        let mut pick = |below: usize| ((values.unit() * below as f64) as usize).min(below - 1);
+        let mut agreed = 0;
+        for case in 0..600 {
+            let dim = 1 + pick(6);
+            let (np, nq) = (pick(16), pick(16));
+            let kp = pick(np + 3).min(15);
+            let kq = pick((nq + 3).min(MAX_CONNECT_DEGREE - kp));
+            let mut coordinates = crate::test_values::Values(7 + case as u64);
+            let mut curve = |degree: usize, offset: f64| {
+                let points: Vec<f64> = (0..(degree + 1) * dim)
+                    .map(|_| offset + 4.0 * coordinates.signed())
+                    .collect();
+                BezierCurve::new(dim, degree, points).unwrap()
+            };
+            let (p, q) = (curve(np, 0.0), curve(nq, 3.0));
+            let parameter = |choice: usize, value: f64| match choice {
+                0 => 0.0,
+                1 => 1.0,
+                _ => value,
+            };
+            let u0 = parameter(pick(4), values_unit(case, 1));
+            let v0 = parameter(pick(4), values_unit(case, 2));
+            let alpha = 10f64.powf(2.0 * values_unit(case, 3) - 1.0);
+            let beta = 10f64.powf(2.0 * values_unit(case, 4) - 1.0);
+            let options = ConnectOptions::new(kp, kq).with_scales(alpha, beta);
+            let fast = connect(&p, u0, &q, v0, &options);
+            let problem = prepare(&p, u0, &q, v0, &options).unwrap();
+            let general = solve_structured(&problem, alpha, beta);
+            let label = format!("case {case}: dim {dim} {np}/{nq} {kp}/{kq} {u0}/{v0}");
+            match (fast, general) {
+                (Ok(a), Ok(b)) => {
+                    assert_eq!(a.curve.points(), b.curve.points(), "{label}");
+                    assert_eq!(
+                        a.max_residual.to_bits(),
+                        b.max_residual.to_bits(),
+                        "{label}"
+                    );
+                    assert_eq!(
+                        a.error_estimate.to_bits(),
+                        b.error_estimate.to_bits(),
+                        "{label}"
+                    );
+                    agreed += 1;
+                }
+                (Err(a), Err(b)) => assert_eq!(a.to_string(), b.to_string(), "{label}"),
+                (a, b) => panic!("{label}: paths disagree: {a:?} / {b:?}"),
+            }
+        }
+        // Most cases are answered (not a test of two identical refusals).
+        assert!(agreed > 300, "only {agreed} answered cases");
+    }
+
+    /// A value in [0, 1) for case `case`, slot `slot` (its own generator,
+    /// so the draws of one case do not shift those of the next).
+    fn values_unit(case: usize, slot: u64) -> f64 {
+        crate::test_values::Values(1000 * case as u64 + slot).unit()
+    }
+
     /// [`end_band`]'s tables give the values of its run-time recurrence bit
     /// for bit (degrees up to the table size, every order and end).
     #[test]
@@ -1558,6 +1715,23 @@ mod tests {
                     }
                 }
                 assert!(coefficient == 0.0 || k == 0 || coefficient.is_finite());
+            }
+        }
+    }
+
+    /// [`power`] is `powi` bit for bit (scales of every size, inexact
+    /// products, overflow and underflow; exponents up to past the degree
+    /// limit).
+    #[test]
+    fn power_equals_powi() {
+        let mut values = crate::test_values::Values(25);
+        let mut scales = vec![1.0, 0.5, 2.0, 1.7, 0.6, 1e-300, 1e300, 0.0, -1.3];
+        for _ in 0..200 {
+            scales.push(10f64.powf(8.0 * values.signed()) * values.unit());
+        }
+        for x in scales {
+            for k in 0..=2 * MAX_CONNECT_DEGREE {
+                assert_eq!(power(x, k).to_bits(), x.powi(k as i32).to_bits(), "{x}^{k}");
             }
         }
     }
