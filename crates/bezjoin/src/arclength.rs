@@ -29,8 +29,8 @@
 //!
 //! Before all that, curves whose hodograph polygon keeps the speed away
 //! from zero (no cusp; degree and dimension small enough for a stack
-//! buffer) are inverted by [`ChebyshevSpeed::param_at_length`]: 33 speed
-//! samples on a bracket of the answer, the interpolant integrated in closed
+//! buffer) are inverted by [`ChebyshevSpeed::param_at_length`]: 25 speed
+//! samples (49 when those do not certify) on a bracket of the answer, the interpolant integrated in closed
 //! form, Newton on that polynomial, and a check of the interpolant against
 //! the one through every other sample (the analogue of the rule against its
 //! halves) and of the residual at the returned parameter; whatever it
