@@ -29,8 +29,8 @@
 //!
 //! Before all that, curves whose hodograph polygon keeps the speed away
 //! from zero (no cusp; degree and dimension small enough for a stack
-//! buffer) are inverted by [`ChebyshevSpeed::param_at_length`]: 33 speed
-//! samples on a bracket of the answer, the interpolant integrated in closed
+//! buffer) are inverted by [`ChebyshevSpeed::param_at_length`]: 25 speed
+//! samples (49 when those do not certify) on a bracket of the answer, the interpolant integrated in closed
 //! form, Newton on that polynomial, and a check of the interpolant against
 //! the one through every other sample (the analogue of the rule against its
 //! halves) and of the residual at the returned parameter; whatever it
@@ -1164,12 +1164,15 @@ fn isolate(coefficients: &[f64], s0: f64, s1: f64, roots: &mut Vec<f64>, budget:
     isolate(&right, mid, s1, roots, budget);
 }
 
-/// Chebyshev-Lobatto intervals of the Chebyshev inversion: the speed is
-/// sampled at `CHEBYSHEV_N + 1` points.
-const CHEBYSHEV_N: usize = 32;
+/// Chebyshev-Lobatto intervals of the Chebyshev inversion's two levels: the
+/// speed is first sampled at `CHEBYSHEV_LEVELS[0] + 1` points, and only
+/// when that interpolant cannot be certified at the `CHEBYSHEV_LEVELS[1] +
+/// 1` points of the finer level, which contain the first level's (every
+/// other one), so the first samples are kept.
+const CHEBYSHEV_LEVELS: [usize; 2] = [24, 48];
 
-/// The coarser interpolant of the error estimate uses every other sample.
-const CHEBYSHEV_HALF: usize = CHEBYSHEV_N / 2;
+/// The finer level's intervals: the sample buffer's size and the node grid.
+const CHEBYSHEV_MAX_N: usize = CHEBYSHEV_LEVELS[1];
 
 /// Largest `(degree + 1) * dim` of a hodograph the Chebyshev inversion
 /// keeps on the stack (degree 15 in 4D, degree 31 in 2D).
@@ -1188,32 +1191,43 @@ const CHEBYSHEV_RESIDUAL_SHARE: f64 = 0.5;
 /// First try of the bracket: this factor times `length / |P'(start)|`.
 const CHEBYSHEV_FIRST_WIDTH: f64 = 1.25;
 
-/// The interpolation matrices of the Chebyshev inversion, folded by the
-/// symmetry `cos(pi (N - j) k / N) = (-1)^k cos(pi j k / N)`: row `k` of
-/// `fine` maps the folded samples `f_j + (-1)^k f_(N-j)`, `j = 0..=N/2`, to
-/// the coefficient `a_k` of the interpolant through all `N + 1` samples;
-/// `coarse` does the same for the `N/2 + 1` even samples.
+/// Columns of the two levels' matrices (`n/2 + 1`).
+const CHEBYSHEV_COLUMNS_0: usize = CHEBYSHEV_LEVELS[0] / 2 + 1;
+const CHEBYSHEV_COLUMNS_1: usize = CHEBYSHEV_LEVELS[1] / 2 + 1;
+
+/// The interpolation matrices of the Chebyshev inversion, one per level of
+/// `n` intervals, folded twice. By `cos(pi (n - j) k / n) = (-1)^k cos(pi j
+/// k / n)`, row `k` maps the folded samples `F_j = f_j + (-1)^k f_(n-j)`,
+/// `j = 0..=n/2`, to the coefficient `a_k` of the interpolant through all
+/// `n + 1` samples; by `cos(pi j (n - k) / n) = (-1)^j cos(pi j k / n)`
+/// (and `n - k` of the parity of `k`, `n` even), row `n - k` is row `k`
+/// with the odd columns negated, so only rows `0..=n/2` are kept and
+/// `a_k = E + O`, `a_(n-k) = E - O` from the even- and odd-column parts of
+/// one row's product ([`fold_apply`]).
 struct ChebyshevTables {
-    fine: [[f64; CHEBYSHEV_HALF + 1]; CHEBYSHEV_N + 1],
-    coarse: [[f64; CHEBYSHEV_HALF / 2 + 1]; CHEBYSHEV_HALF + 1],
-    /// `cos(pi j / N)`, `j = 0..=N`: the nodes on `[-1, 1]`.
-    nodes: [f64; CHEBYSHEV_N + 1],
+    coarse: [[f64; CHEBYSHEV_COLUMNS_0]; CHEBYSHEV_COLUMNS_0],
+    fine: [[f64; CHEBYSHEV_COLUMNS_1]; CHEBYSHEV_COLUMNS_1],
+    /// `cos(pi j / N)`, `j = 0..=N`, `N` = [`CHEBYSHEV_MAX_N`]: the finer
+    /// level's nodes on `[-1, 1]`; the coarser level's node `j` is node
+    /// `2 j` (the same number, so its samples are the finer level's).
+    nodes: [f64; CHEBYSHEV_MAX_N + 1],
 }
 
-/// The matrix of [`ChebyshevTables`] for `n` intervals: `(2 / n) w_j cos(pi
-/// j k / n)` with `w_0 = 1/2` (the end samples' half weight), `w_(n/2) =
-/// 1/2` (the middle sample, counted twice by the folding), rows `0` and `n`
-/// halved (the interpolant's end coefficients).
-fn folded_matrix<const ROWS: usize, const COLUMNS: usize>() -> [[f64; COLUMNS]; ROWS] {
-    let n = ROWS - 1;
-    let mut matrix = [[0.0; COLUMNS]; ROWS];
+/// Rows `0..=n/2` of the matrix of [`ChebyshevTables`] for `n = 2 (C -
+/// 1)` intervals: `(2 / n) w_j cos(pi j k / n)` with `w_0 = 1/2` (the end
+/// samples' half weight), `w_(n/2) = 1/2` (the middle sample, counted twice
+/// by the folding), row `0` halved (the interpolant's end coefficients `a_0`
+/// and, by the second folding, `a_n`).
+fn folded_matrix<const C: usize>() -> [[f64; C]; C] {
+    let n = 2 * (C - 1);
+    let mut matrix = [[0.0; C]; C];
     for (k, row) in matrix.iter_mut().enumerate() {
         for (j, entry) in row.iter_mut().enumerate() {
             let mut w = 2.0 / n as f64;
             if j == 0 || 2 * j == n {
                 w *= 0.5;
             }
-            if k == 0 || k == n {
+            if k == 0 {
                 w *= 0.5;
             }
             *entry = w * (std::f64::consts::PI * ((j * k) % (2 * n)) as f64 / n as f64).cos();
@@ -1225,57 +1239,61 @@ fn folded_matrix<const ROWS: usize, const COLUMNS: usize>() -> [[f64; COLUMNS]; 
 fn chebyshev_tables() -> &'static ChebyshevTables {
     static TABLES: std::sync::OnceLock<ChebyshevTables> = std::sync::OnceLock::new();
     TABLES.get_or_init(|| {
-        let mut nodes = [0.0; CHEBYSHEV_N + 1];
+        let mut nodes = [0.0; CHEBYSHEV_MAX_N + 1];
         for (j, x) in nodes.iter_mut().enumerate() {
-            *x = (std::f64::consts::PI * j as f64 / CHEBYSHEV_N as f64).cos();
+            *x = (std::f64::consts::PI * j as f64 / CHEBYSHEV_MAX_N as f64).cos();
         }
-        nodes[CHEBYSHEV_N / 2] = 0.0;
+        nodes[CHEBYSHEV_MAX_N / 2] = 0.0;
         ChebyshevTables {
-            fine: folded_matrix(),
             coarse: folded_matrix(),
+            fine: folded_matrix(),
             nodes,
         }
     })
 }
 
-/// `matrix` applied to the samples `f_0..=f_n` folded as in
-/// [`ChebyshevTables`].
-fn fold_apply<const ROWS: usize, const COLUMNS: usize>(
-    matrix: &[[f64; COLUMNS]; ROWS],
+/// The coefficients `out[k] = a_k`, `k = 0..=n`, of the interpolant through
+/// the samples `f_0..=f_n` (`samples(j)`, `n = 2 (C - 1)`), by the twice
+/// folded `matrix` of [`ChebyshevTables`]: `(n/2 + 1)^2` products instead
+/// of `(n + 1)^2`.
+fn fold_apply<const C: usize>(
+    matrix: &[[f64; C]; C],
     samples: impl Fn(usize) -> f64,
     out: &mut [f64],
 ) {
-    let n = ROWS - 1;
-    let mut even = [0.0; COLUMNS];
-    let mut odd = [0.0; COLUMNS];
-    for j in 0..COLUMNS {
+    let n = 2 * (C - 1);
+    let mut even = [0.0; C];
+    let mut odd = [0.0; C];
+    for j in 0..C {
         let (f, g) = (samples(j), samples(n - j));
         even[j] = f + g;
         odd[j] = f - g;
     }
     for (k, row) in matrix.iter().enumerate() {
         let folded = if k % 2 == 0 { &even } else { &odd };
-        out[k] = dot(row, folded);
-    }
-}
-
-/// `sum_j a_j b_j` in four interleaved partial sums (independent chains the
-/// compiler can pair into vector instructions), then the remainder.
-#[inline(always)]
-fn dot(a: &[f64], b: &[f64]) -> f64 {
-    let mut partial = [0.0; 4];
-    let (a4, b4) = (a.chunks_exact(4), b.chunks_exact(4));
-    let (ra, rb) = (a4.remainder(), b4.remainder());
-    for (x, y) in a4.zip(b4) {
-        for i in 0..4 {
-            partial[i] += x[i] * y[i];
+        let (mut e, mut o) = ([0.0; 2], [0.0; 2]);
+        let mut j = 0;
+        while j + 3 < C {
+            e[0] += row[j] * folded[j];
+            o[0] += row[j + 1] * folded[j + 1];
+            e[1] += row[j + 2] * folded[j + 2];
+            o[1] += row[j + 3] * folded[j + 3];
+            j += 4;
+        }
+        while j < C {
+            if j % 2 == 0 {
+                e[0] += row[j] * folded[j];
+            } else {
+                o[0] += row[j] * folded[j];
+            }
+            j += 1;
+        }
+        let (e, o) = (e[0] + e[1], o[0] + o[1]);
+        out[k] = e + o;
+        if 2 * k < n {
+            out[n - k] = e - o;
         }
     }
-    let mut sum = (partial[0] + partial[2]) + (partial[1] + partial[3]);
-    for (x, y) in ra.iter().zip(rb) {
-        sum += x * y;
-    }
-    sum
 }
 
 /// The speed `|P'(t)|` on `[0, 1]` of a curve whose hodograph's control
@@ -1412,23 +1430,28 @@ impl ChebyshevSpeed {
     /// `[0, 1]`, certified to `accuracy`, or `None` (then the adaptive path
     /// answers, including every error).
     ///
-    /// The speed is sampled at the `N + 1 = 33` Chebyshev-Lobatto points of
-    /// a bracket `[start, far]` (first `1.25 length / |P'(start)|` wide, then
+    /// The speed is sampled at the `n + 1` Chebyshev-Lobatto points of a
+    /// bracket `[start, far]` (first `1.25 length / |P'(start)|` wide, then
     /// `length / low`, which holds the answer by the speed bound, each at
-    /// most up to the curve's end). Its interpolant `p_N` is integrated in
-    /// closed form (Chebyshev series), and Newton's method safeguarded by
-    /// bisection solves `int_start^t p_N = |length|` on that polynomial,
-    /// without further speed evaluations (Trefethen, *Approximation Theory
-    /// and Approximation Practice*, ch. 3 and 19).
+    /// most up to the curve's end), `n = 24`, and `n = 48` (24 more samples
+    /// between the first) only when the first level cannot be certified.
+    /// The interpolant `p_n` is integrated in closed form (Chebyshev
+    /// series), and Newton's method safeguarded by bisection solves
+    /// `int_start^t p_n = |length|` on that polynomial, without further
+    /// speed evaluations (Trefethen, *Approximation Theory and Approximation
+    /// Practice*, ch. 3 and 19).
     ///
     /// The check, as the adaptive rule's (a rule against a refined one): the
-    /// interpolant `p_(N/2)` through every other sample differs from `p_N`
+    /// interpolant `p_(n/2)` through every other sample differs from `p_n`
     /// by at most `sum_k |a_k - b_k|` on the bracket (Chebyshev polynomials
     /// are bounded by 1), so their lengths at `t` differ by at most `|t -
     /// start|` times that; the answer is accepted when this is within a
     /// quarter of `accuracy` (or the rounding level of the length and of the
     /// speed's evaluation, [`rounding_level`], [`speed_noise_per_unit`])
     /// and the residual, recomputed at the returned `t`, within half of it.
+    /// `sum_k |a_k - b_k|` is `2 sum_(k > n/2) |a_k|` ([`coarse_difference`]:
+    /// at the even nodes `T_k = T_(n-k)`, so `b_k = a_k + a_(n-k)`), so
+    /// `p_(n/2)` is never formed.
     fn param_at_length(&self, start: f64, length: f64, accuracy: f64) -> Option<f64> {
         let target = length.abs();
         let forward = length > 0.0;
@@ -1439,8 +1462,8 @@ impl ChebyshevSpeed {
         let at_start = self.at(start);
         let bound = target / self.low;
         let first = (CHEBYSHEV_FIRST_WIDTH * target / at_start).max(target / self.high);
-        let mut samples = [0.0; CHEBYSHEV_N + 1];
-        samples[CHEBYSHEV_N] = at_start;
+        let mut samples = [0.0; CHEBYSHEV_MAX_N + 1];
+        samples[CHEBYSHEV_MAX_N] = at_start;
         for width in [first.min(bound), bound] {
             let (width, far) = if width >= room || !width.is_finite() {
                 (room, if forward { 1.0 } else { 0.0 })
@@ -1464,100 +1487,150 @@ impl ChebyshevSpeed {
 
     /// One bracket `[start, far]` of [`Self::param_at_length`]: `None` when
     /// the length there is shorter than `target` (try a wider bracket),
-    /// `Some(None)` when the answer is inside but not certified.
+    /// `Some(None)` when the answer is inside but not certified at either
+    /// level. `samples[CHEBYSHEV_MAX_N]` holds the speed at `start`.
     fn invert_on(
         &self,
         start: f64,
         far: f64,
         target: f64,
         accuracy: f64,
-        samples: &mut [f64; CHEBYSHEV_N + 1],
+        samples: &mut [f64; CHEBYSHEV_MAX_N + 1],
     ) -> Option<Option<f64>> {
-        const N: usize = CHEBYSHEV_N;
-        const H: usize = CHEBYSHEV_HALF;
         let tables = chebyshev_tables();
         let span = far - start;
-        // x = cos(pi j / N) in [-1, 1] is t = start + (x + 1) span / 2: x = -1
-        // at `start` (sample N, already taken), x = 1 at `far`.
-        for (j, sample) in samples.iter_mut().enumerate().take(N) {
-            let t = start + 0.5 * (tables.nodes[j] + 1.0) * span;
-            *sample = self.at(t);
-        }
-        if samples.iter().any(|f| !f.is_finite()) {
-            return Some(None);
-        }
-        // Coefficients of p_N = sum_k a_k T_k and of p_(N/2) from the even
-        // samples.
-        let mut a = [0.0; N + 3];
-        let mut b = [0.0; H + 1];
-        fold_apply(&tables.fine, |j| samples[j], &mut a[..=N]);
-        fold_apply(&tables.coarse, |i| samples[2 * i], &mut b);
-        let difference: f64 = (0..=N)
-            .map(|k| (a[k] - if k <= H { b[k] } else { 0.0 }).abs())
-            .sum();
-        // The antiderivative G = sum_k c_k T_k with G(-1) = 0, degree N + 1.
-        let mut c = [0.0; N + 2];
-        c[1] = a[0] - 0.5 * a[2];
-        for k in 2..=N + 1 {
-            c[k] = (a[k - 1] - a[k + 1]) / (2 * k) as f64;
-        }
-        c[0] = -(1..=N + 1)
-            .map(|k| if k % 2 == 0 { c[k] } else { -c[k] })
-            .sum::<f64>();
-        let half = 0.5 * span.abs();
-        let total = half * clenshaw(&c, 1.0);
-        if !total.is_finite() {
-            return Some(None);
-        }
-        if total < target {
-            return None;
-        }
-        // Newton on x with bisection: length(x) - target, increasing.
-        let (mut lo, mut hi) = (-1.0f64, 1.0f64);
-        let mut x = -1.0 + 2.0 * (target / total);
-        let residual_tolerance = CHEBYSHEV_RESIDUAL_SHARE * accuracy;
-        let mut converged = false;
-        for _ in 0..PANEL_NEWTON_STEPS {
-            let g = half * clenshaw(&c, x) - target;
-            if g.abs() <= residual_tolerance {
-                converged = true;
-                break;
+        for (level, &n) in CHEBYSHEV_LEVELS.iter().enumerate() {
+            // Grid index of this level's node j: j * step; the coarser
+            // level's samples are every other one of the finer level's.
+            let step = CHEBYSHEV_MAX_N / n;
+            let new = if level == 0 { step } else { 2 * step };
+            let first_new = if level == 0 { 0 } else { step };
+            // x = cos(pi j / N) in [-1, 1] is t = start + (x + 1) span / 2:
+            // x = -1 at `start` (the last sample, already taken), x = 1 at
+            // `far`.
+            let mut i = first_new;
+            while i < CHEBYSHEV_MAX_N {
+                let t = start + 0.5 * (tables.nodes[i] + 1.0) * span;
+                let f = self.at(t);
+                if !f.is_finite() {
+                    return Some(None);
+                }
+                samples[i] = f;
+                i += new;
             }
-            if g > 0.0 {
-                hi = x;
+            // Coefficients of p_n = sum_k a_k T_k (two zeros past the end
+            // for the antiderivative's recurrence).
+            let mut a = [0.0; CHEBYSHEV_MAX_N + 3];
+            let sample = |j: usize| samples[j * step];
+            if level == 0 {
+                fold_apply(&tables.coarse, sample, &mut a);
             } else {
-                lo = x;
+                fold_apply(&tables.fine, sample, &mut a);
             }
-            let slope = half * clenshaw(&a[..=N], x);
-            let newton = x - g / slope;
-            let next = if slope > 0.0 && newton > lo && newton < hi {
-                newton
-            } else {
-                0.5 * (lo + hi)
-            };
-            if next == x || hi - lo <= 4.0 * f64::EPSILON {
-                break;
+            match invert_level(&a, n, start, far, target, accuracy, self.noise_per_unit) {
+                // Too short a bracket, or an answer: done with this bracket.
+                None => return None,
+                Some(Some(t)) => return Some(Some(t)),
+                Some(None) => {}
             }
-            x = next;
         }
-        if !converged {
-            return Some(None);
-        }
-        let t = (start + 0.5 * (x + 1.0) * span).clamp(start.min(far), start.max(far));
-        // The residual and the estimate at the parameter returned.
-        let x = if span != 0.0 {
-            (2.0 * (t - start) / span - 1.0).clamp(-1.0, 1.0)
-        } else {
-            -1.0
-        };
-        let value = half * clenshaw(&c, x);
-        let width = (t - start).abs();
-        let estimate = width * difference;
-        let floor = rounding_level(value, width) + self.noise_per_unit * width;
-        let certified = estimate <= (CHEBYSHEV_ESTIMATE_SHARE * accuracy).max(floor)
-            && (value - target).abs() <= residual_tolerance;
-        Some(certified.then_some(t))
+        Some(None)
     }
+}
+
+/// `sum_k |a_k - b_k|` of the Chebyshev inversion's check, `b` the
+/// coefficients of the interpolant through every other of the `n + 1`
+/// Lobatto samples of `p_n = sum_k a_k T_k`: at the even nodes `x_(2i) =
+/// cos(pi i / (n/2))` `T_k = T_(n-k)` for `k > n/2`, so `b_j = a_j +
+/// a_(n-j)` for `j < n/2`, `b_(n/2) = a_(n/2)`, and the sum is `2
+/// sum_(k > n/2) |a_k|`.
+fn coarse_difference(a: &[f64], n: usize) -> f64 {
+    2.0 * a[n / 2 + 1..=n].iter().map(|x| x.abs()).sum::<f64>()
+}
+
+/// One level of [`ChebyshevSpeed::invert_on`]: `n` intervals, `a[..=n]`
+/// the coefficients of the speed's interpolant `p_n` on the bracket (`x =
+/// -1` at `start`), `a[n + 1] = a[n + 2] = 0`. `None` when
+/// the interpolant's length on the bracket is shorter than `target`,
+/// `Some(None)` when the answer is not certified.
+#[allow(clippy::too_many_arguments)]
+fn invert_level(
+    a: &[f64; CHEBYSHEV_MAX_N + 3],
+    n: usize,
+    start: f64,
+    far: f64,
+    target: f64,
+    accuracy: f64,
+    noise_per_unit: f64,
+) -> Option<Option<f64>> {
+    let span = far - start;
+    let difference = coarse_difference(a, n);
+    // The antiderivative G = sum_k c_k T_k with G(-1) = 0, degree n + 1.
+    let mut c = [0.0; CHEBYSHEV_MAX_N + 2];
+    c[1] = a[0] - 0.5 * a[2];
+    for k in 2..=n + 1 {
+        c[k] = (a[k - 1] - a[k + 1]) / (2 * k) as f64;
+    }
+    let mut alternating = 0.0;
+    for (k, ck) in c[1..=n + 1].iter().enumerate() {
+        // c[k + 1]: sign (-1)^(k + 1).
+        alternating += if k % 2 == 0 { -ck } else { *ck };
+    }
+    c[0] = -alternating;
+    let (a, c) = (&a[..=n], &c[..=n + 1]);
+    let half = 0.5 * span.abs();
+    let total = half * clenshaw(c, 1.0);
+    if !total.is_finite() {
+        return Some(None);
+    }
+    if total < target {
+        return None;
+    }
+    // Newton on x with bisection: length(x) - target, increasing.
+    let (mut lo, mut hi) = (-1.0f64, 1.0f64);
+    let mut x = -1.0 + 2.0 * (target / total);
+    let residual_tolerance = CHEBYSHEV_RESIDUAL_SHARE * accuracy;
+    let mut converged = false;
+    for _ in 0..PANEL_NEWTON_STEPS {
+        let g = half * clenshaw(c, x) - target;
+        if g.abs() <= residual_tolerance {
+            converged = true;
+            break;
+        }
+        if g > 0.0 {
+            hi = x;
+        } else {
+            lo = x;
+        }
+        let slope = half * clenshaw(a, x);
+        let newton = x - g / slope;
+        let next = if slope > 0.0 && newton > lo && newton < hi {
+            newton
+        } else {
+            0.5 * (lo + hi)
+        };
+        if next == x || hi - lo <= 4.0 * f64::EPSILON {
+            break;
+        }
+        x = next;
+    }
+    if !converged {
+        return Some(None);
+    }
+    let t = (start + 0.5 * (x + 1.0) * span).clamp(start.min(far), start.max(far));
+    // The residual and the estimate at the parameter returned.
+    let x = if span != 0.0 {
+        (2.0 * (t - start) / span - 1.0).clamp(-1.0, 1.0)
+    } else {
+        -1.0
+    };
+    let value = half * clenshaw(c, x);
+    let width = (t - start).abs();
+    let estimate = width * difference;
+    let floor = rounding_level(value, width) + noise_per_unit * width;
+    let certified = estimate <= (CHEBYSHEV_ESTIMATE_SHARE * accuracy).max(floor)
+        && (value - target).abs() <= residual_tolerance;
+    Some(certified.then_some(t))
 }
 
 /// `sum_k coefficients[k] T_k(x)` by Clenshaw's recurrence.
@@ -1967,6 +2040,60 @@ mod chebyshev_tests {
                     }
                 }
             }
+        }
+    }
+
+    /// The twice-folded matrices give the coefficients of the direct
+    /// interpolation sum `a_k = (2 / n) sum'' f_j cos(pi j k / n)` (end
+    /// terms and end coefficients halved), and the check's `sum_k |a_k -
+    /// b_k|` from the aliasing identity equals the one with `b` interpolated
+    /// directly through every other sample, on a smooth function with slowly
+    /// decaying coefficients, at both levels.
+    #[test]
+    fn folded_coefficients_and_coarse_difference_match_the_direct_sums() {
+        let direct = |f: &[f64]| -> Vec<f64> {
+            let n = f.len() - 1;
+            (0..=n)
+                .map(|k| {
+                    let mut sum = 0.0;
+                    for (j, fj) in f.iter().enumerate() {
+                        let w = if j == 0 || j == n { 0.5 } else { 1.0 };
+                        sum += w * fj * (std::f64::consts::PI * (j * k) as f64 / n as f64).cos();
+                    }
+                    let a = 2.0 / n as f64 * sum;
+                    if k == 0 || k == n { 0.5 * a } else { a }
+                })
+                .collect()
+        };
+        let function = |x: f64| 1.0 / (1.1 - x) + (3.0 * x).sin();
+        let tables = chebyshev_tables();
+        for (level, &n) in CHEBYSHEV_LEVELS.iter().enumerate() {
+            let step = CHEBYSHEV_MAX_N / n;
+            let f: Vec<f64> = (0..=n).map(|j| function(tables.nodes[j * step])).collect();
+            let mut a = [0.0; CHEBYSHEV_MAX_N + 3];
+            if level == 0 {
+                fold_apply(&tables.coarse, |j| f[j], &mut a);
+            } else {
+                fold_apply(&tables.fine, |j| f[j], &mut a);
+            }
+            let reference = direct(&f);
+            for k in 0..=n {
+                assert!((a[k] - reference[k]).abs() <= 1e-14, "n {n}, k {k}");
+            }
+            let even: Vec<f64> = f.iter().step_by(2).copied().collect();
+            let b = direct(&even);
+            let explicit: f64 = (0..=n)
+                .map(|k| (reference[k] - b.get(k).copied().unwrap_or(0.0)).abs())
+                .sum();
+            let identity = coarse_difference(&a, n);
+            assert!(
+                explicit > 1e-9,
+                "the function must not be resolved at n / 2"
+            );
+            assert!(
+                (identity - explicit).abs() <= 1e-12,
+                "n {n}: {identity:e} vs {explicit:e}"
+            );
         }
     }
 
