@@ -14,6 +14,10 @@
 //! fixed arrays of `[f64; dim]` rows (dimensions 1 to 4, a const
 //! parameter; degree up to [`super::MAX_CONNECT_DEGREE`]), the band entries
 //! from the tables, and one allocation, the result's control points.
+//!
+//! The G^k connect with given shape values ([`connect_ends_shaped`], for
+//! [`crate::connect_geometric_curve`]) is the same path with other targets:
+//! the jets combined by the partial Bell polynomials of the shapes, scales 1.
 
 use super::{
     CONNECT_RESIDUAL_LIMIT, Connection, END_BAND_NORMS, FALLING_FACTORIALS, SIGNED_BINOMIALS,
@@ -46,19 +50,86 @@ pub(super) fn connect_ends<P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
     alpha: f64,
     beta: f64,
 ) -> Result<Connection> {
-    let n = kp + kq + 1;
-    if n < MAX_POINTS {
-        let args = (u0, v0, kp, kq, alpha, beta);
-        match p.dim() {
-            1 => return connect_fixed::<1, P, Q>(p, q, args),
-            2 => return connect_fixed::<2, P, Q>(p, q, args),
-            3 => return connect_fixed::<3, P, Q>(p, q, args),
-            4 => return connect_fixed::<4, P, Q>(p, q, args),
-            _ => {}
-        }
+    if let Some(connection) = connect_small(p, q, (u0, v0, kp, kq, alpha, beta), None) {
+        return connection;
     }
     let problem = super::prepare(p, u0, q, v0, &super::ConnectOptions::new(kp, kq))?;
     super::solve_structured(&problem, alpha, beta)
+}
+
+/// The beta-constraints of G^kp, G^kq with the given shape values
+/// (`p_shape`: `kp` values, `q_shape`: `kq`, checked by the caller, orders
+/// at most [`crate::MAX_GEOMETRIC_ORDER`]) as the end path: the targets are
+/// the Bell-polynomial combinations of the jets of [`crate::geometric`]'s
+/// `geometric_targets` (the same operations in the same order,
+/// [`bell_targets_in_place`]), the scales 1, then the solve and residual
+/// check of [`connect_fixed`]. `None` when the problem is outside the
+/// fixed arrays (dimension above 4, degree `kp + kq + 1 >= MAX_POINTS`):
+/// the caller takes the general path.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn connect_ends_shaped<P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
+    p: &P,
+    u0: f64,
+    q: &Q,
+    v0: f64,
+    kp: usize,
+    kq: usize,
+    p_shape: &[f64],
+    q_shape: &[f64],
+) -> Option<Result<Connection>> {
+    connect_small(p, q, (u0, v0, kp, kq, 1.0, 1.0), Some((p_shape, q_shape)))
+}
+
+/// [`connect_fixed`] in the dimension of `p` when it is 1 to 4 and the
+/// degree fits the fixed arrays; `None` otherwise.
+fn connect_small<P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
+    p: &P,
+    q: &Q,
+    args: (f64, f64, usize, usize, f64, f64),
+    shapes: Option<(&[f64], &[f64])>,
+) -> Option<Result<Connection>> {
+    let (_, _, kp, kq, _, _) = args;
+    if kp + kq + 1 >= MAX_POINTS {
+        return None;
+    }
+    Some(match p.dim() {
+        1 => connect_fixed::<1, P, Q>(p, q, args, shapes),
+        2 => connect_fixed::<2, P, Q>(p, q, args, shapes),
+        3 => connect_fixed::<3, P, Q>(p, q, args, shapes),
+        4 => connect_fixed::<4, P, Q>(p, q, args, shapes),
+        _ => return None,
+    })
+}
+
+/// Rows `1..=k` of `rows` (the jet `X^(0..=k)`, bounds `errors`) replaced
+/// by the targets of the beta-constraints, `T_j = sum_(i=1..j) B_(j,i)(beta)
+/// X^(i)` with bound `sum_i |B_(j,i)| (err_i + 4 eps |X^(i)|)`; row 0 stays.
+/// Rows are rewritten from `k` down, so every row read is still the jet's.
+/// The operations and their order are those of `geometric_targets` (sums
+/// from `+0.0`, `i` ascending), so the targets are the same bit for bit.
+fn bell_targets_in_place<const D: usize>(rows: &mut [[f64; D]], errors: &mut [f64], shape: &[f64]) {
+    let k = rows.len() - 1;
+    if k == 0 {
+        return;
+    }
+    let bell = crate::geometric::partial_bell_small(shape, k);
+    let mut norms = [0.0f64; crate::geometric::MAX_GEOMETRIC_ORDER + 1];
+    for (norm, row) in norms.iter_mut().zip(rows.iter()) {
+        *norm = row.iter().map(|v| v * v).sum::<f64>().sqrt();
+    }
+    for j in (1..=k).rev() {
+        let mut target = [0.0f64; D];
+        let mut bound = 0.0;
+        for i in 1..=j {
+            let coefficient = bell[j][i];
+            for c in 0..D {
+                target[c] += coefficient * rows[i][c];
+            }
+            bound += coefficient.abs() * (errors[i] + 4.0 * f64::EPSILON * norms[i]);
+        }
+        rows[j] = target;
+        errors[j] = bound;
+    }
 }
 
 /// [`connect_ends`] in dimension `D` (`p.dim() == q.dim() == D`), result
@@ -73,6 +144,7 @@ fn connect_fixed<const D: usize, P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
     p: &P,
     q: &Q,
     (u0, v0, kp, kq, alpha, beta): (f64, f64, usize, usize, f64, f64),
+    shapes: Option<(&[f64], &[f64])>,
 ) -> Result<Connection> {
     let n = kp + kq + 1;
     let count = n + 1;
@@ -85,6 +157,10 @@ fn connect_fixed<const D: usize, P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
         let (p_errors, q_errors) = target_errors[..count].split_at_mut(kp + 1);
         p.jet_into(u0, kp, KnotSide::Left, p_rows.as_flattened_mut(), p_errors);
         q.jet_into(v0, kq, KnotSide::Right, q_rows.as_flattened_mut(), q_errors);
+        if let Some((p_shape, q_shape)) = shapes {
+            bell_targets_in_place(p_rows, p_errors, p_shape);
+            bell_targets_in_place(q_rows, q_errors, q_shape);
+        }
     }
     // Targets and their bounds in place: T_k = s^k X^(k),
     // e_k = s^k err_k + (k + 1) u |T_k|.

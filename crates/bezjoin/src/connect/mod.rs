@@ -84,6 +84,7 @@
 
 mod dense;
 mod ends;
+pub(crate) use ends::connect_ends_shaped;
 mod energy;
 
 use nalgebra::DMatrix;
@@ -819,7 +820,7 @@ fn de_casteljau_jet_slices(
 
 /// The checks of the curves and parameters, first in [`prepare`]: equal
 /// dimensions, `u0` in P's domain, `v0` in Q's. Returns the dimension.
-fn check_pair<P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
+pub(crate) fn check_pair<P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
     p: &P,
     u0: f64,
     q: &Q,

@@ -46,7 +46,8 @@ use nalgebra::DMatrix;
 
 use crate::bezier::BezierCurve;
 use crate::connect::{
-    ConnectOptions, Connection, PointConstraint, Problem, natural_scale, prepare, solve_structured,
+    ConnectOptions, Connection, PointConstraint, Problem, check_connect_degree, check_pair,
+    connect_ends_shaped, natural_scale, prepare, solve_structured,
 };
 use crate::curve::CurveJet;
 use crate::error::{BezjoinError, Result, check_finite};
@@ -110,13 +111,62 @@ pub struct GeometricConnection {
     pub error_estimate: f64,
 }
 
+/// A G^k connecting curve with the shape values used, without the
+/// fairness report ([`connect_geometric_curve`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct GeometricCurve {
+    /// The Bezier curve `R` (degree `kp + kq + 1 + sum (K_j + 1)`).
+    pub curve: BezierCurve,
+    /// `beta_1..beta_kp` used at `P`.
+    pub p_shape: Vec<f64>,
+    /// `beta_1..beta_kq` used at `Q`.
+    pub q_shape: Vec<f64>,
+    /// The residual check of the structured solve (scales are 1: the shape
+    /// values are in the targets).
+    pub max_residual: f64,
+    /// Bound on the worst relative residual of the beta-constraints and the
+    /// interior constraints (at most [`crate::CONNECT_RESIDUAL_LIMIT`]).
+    pub error_estimate: f64,
+}
+
+impl GeometricCurve {
+    fn new(p_shape: Vec<f64>, q_shape: Vec<f64>, connection: Connection) -> Self {
+        Self {
+            curve: connection.curve,
+            p_shape,
+            q_shape,
+            max_residual: connection.max_residual,
+            error_estimate: connection.error_estimate,
+        }
+    }
+}
+
 /// The partial Bell polynomials `B_(j,i)(x_1, ..., x_(j-i+1))` for
 /// `0 <= i <= j <= order` (`x[0]` is `x_1`), by the recurrence
 /// `B_(j,i) = sum_(m=1..j-i+1) C(j-1, m-1) x_m B_(j-m,i-1)`,
 /// `B_(0,0) = 1`. Row `j`, column `i`.
 pub fn partial_bell(x: &[f64], order: usize) -> DMatrix<f64> {
-    let mut b = DMatrix::zeros(order + 1, order + 1);
-    b[(0, 0)] = 1.0;
+    let mut b = vec![0.0; (order + 1) * (order + 1)];
+    partial_bell_into(x, order, &mut b, order + 1);
+    DMatrix::from_row_slice(order + 1, order + 1, &b)
+}
+
+/// [`partial_bell`] for `order <= MAX_GEOMETRIC_ORDER` in a fixed array
+/// (row `j`, column `i`; the entries outside `i <= j <= order` zero): the
+/// same recurrence, the same numbers bit for bit.
+pub(crate) fn partial_bell_small(
+    x: &[f64],
+    order: usize,
+) -> [[f64; MAX_GEOMETRIC_ORDER + 1]; MAX_GEOMETRIC_ORDER + 1] {
+    let mut b = [[0.0; MAX_GEOMETRIC_ORDER + 1]; MAX_GEOMETRIC_ORDER + 1];
+    partial_bell_into(x, order, b.as_flattened_mut(), MAX_GEOMETRIC_ORDER + 1);
+    b
+}
+
+/// The recurrence of [`partial_bell`] into the row-major `b` (row stride
+/// `stride`), whose entries must be zero on entry.
+fn partial_bell_into(x: &[f64], order: usize, b: &mut [f64], stride: usize) {
+    b[0] = 1.0;
     for j in 1..=order {
         for i in 1..=j {
             let mut sum = 0.0;
@@ -125,12 +175,11 @@ pub fn partial_bell(x: &[f64], order: usize) -> DMatrix<f64> {
                 if m > 1 {
                     binomial = binomial * (j - m + 1) as f64 / (m - 1) as f64;
                 }
-                sum += binomial * x[m - 1] * b[(j - m, i - 1)];
+                sum += binomial * x[m - 1] * b[(j - m) * stride + i - 1];
             }
-            b[(j, i)] = sum;
+            b[j * stride + i] = sum;
         }
     }
-    b
 }
 
 /// `jet` (rows `P^(0..=k)`) turned into the targets `R^(j)` of the
@@ -215,13 +264,13 @@ fn solve_with_shapes(problem: &Problem, p_shape: &[f64], q_shape: &[f64]) -> Res
 /// finite, or `beta_1 <= 0` (InvalidArgument / LengthMismatch naming
 /// `p_shape` or `q_shape`); no shape values with which the solve succeeds
 /// and the curvature is defined (IllConditioned).
-pub fn connect_geometric<P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
+pub fn connect_geometric_curve<P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
     p: &P,
     u0: f64,
     q: &Q,
     v0: f64,
     options: &GeometricOptions,
-) -> Result<GeometricConnection> {
+) -> Result<GeometricCurve> {
     for (name, order) in [("p_order", options.p_order), ("q_order", options.q_order)] {
         if order > MAX_GEOMETRIC_ORDER {
             return Err(BezjoinError::invalid(
@@ -235,6 +284,19 @@ pub fn connect_geometric<P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
     }
     if let Some(shape) = &options.q_shape {
         check_shape("q_shape", shape, options.q_order)?;
+    }
+    if let (Some(ps), Some(qs), true) = (
+        &options.p_shape,
+        &options.q_shape,
+        options.constraints.is_empty(),
+    ) {
+        // The checks of `prepare` in its order, then the end path.
+        check_pair(p, u0, q, v0)?;
+        check_connect_degree(options.p_order, options.q_order, [])?;
+        let (kp, kq) = (options.p_order, options.q_order);
+        if let Some(connection) = connect_ends_shaped(p, u0, q, v0, kp, kq, ps, qs) {
+            return Ok(GeometricCurve::new(ps.clone(), qs.clone(), connection?));
+        }
     }
     let mut connect_options = ConnectOptions::new(options.p_order, options.q_order);
     connect_options.constraints = options.constraints.clone();
@@ -269,13 +331,142 @@ pub fn connect_geometric<P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
             }
         }
     };
-    let report = fairness_report(&connection.curve);
+    Ok(GeometricCurve::new(p_shape, q_shape, connection))
+}
+
+/// [`connect_geometric`] with its [`FairnessReport`]: the curve of
+/// [`connect_geometric_curve`] and [`fairness_report`] of it (energy,
+/// curvature range and extrema on [`ENERGY_PANELS`] panels and
+/// [`CURVATURE_SAMPLES`] samples, which cost far more than the solve with
+/// given shape values: callers that do not need the report should call
+/// [`connect_geometric_curve`]).
+///
+/// Errors: those of [`connect_geometric_curve`].
+pub fn connect_geometric<P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
+    p: &P,
+    u0: f64,
+    q: &Q,
+    v0: f64,
+    options: &GeometricOptions,
+) -> Result<GeometricConnection> {
+    let g = connect_geometric_curve(p, u0, q, v0, options)?;
+    let report = fairness_report(&g.curve);
     Ok(GeometricConnection {
-        curve: connection.curve,
-        p_shape,
-        q_shape,
+        curve: g.curve,
+        p_shape: g.p_shape,
+        q_shape: g.q_shape,
         report,
-        max_residual: connection.max_residual,
-        error_estimate: connection.error_estimate,
+        max_residual: g.max_residual,
+        error_estimate: g.error_estimate,
     })
+}
+
+#[cfg(test)]
+mod end_path_tests {
+    use super::*;
+    use crate::nurbs::NurbsCurve;
+
+    /// The end path of [`connect_geometric_curve`] (given shapes, no
+    /// interior constraints) equals the general path (`prepare` +
+    /// `solve_with_shapes`) bit for bit: control points, residual and
+    /// estimate, or the same error, on random Bezier and NURBS pairs of
+    /// dimensions 1 to 6 (5 and 6 take the general path inside too), every
+    /// order up to [`MAX_GEOMETRIC_ORDER`], parameters at the ends and
+    /// inside, shape values of both signs after `beta_1`.
+    #[test]
+    fn end_path_equals_the_general_path_on_random_cases() {
+        let mut values = crate::test_values::Values(2026);
+        let mut agreed = 0;
+        for case in 0..400 {
+            let mut pick = |below: usize| ((values.unit() * below as f64) as usize).min(below - 1);
+            let dim = 1 + pick(6);
+            let (np, nq) = (pick(10), pick(10));
+            let (kp, kq) = (pick(MAX_GEOMETRIC_ORDER + 1), pick(MAX_GEOMETRIC_ORDER + 1));
+            let (u_choice, v_choice, nurbs) = (pick(4), pick(4), pick(3) == 0);
+            let mut draws = crate::test_values::Values(11 + case as u64);
+            let mut curve = |degree: usize, offset: f64| {
+                let points: Vec<f64> = (0..(degree + 1) * dim)
+                    .map(|_| offset + 4.0 * draws.signed())
+                    .collect();
+                BezierCurve::new(dim, degree, points).unwrap()
+            };
+            let (p, q) = (curve(np, 0.0), curve(nq, 3.0));
+            let mut shape = |order: usize| -> Vec<f64> {
+                (0..order)
+                    .map(|i| {
+                        if i == 0 {
+                            0.2 + 2.0 * draws.unit()
+                        } else {
+                            2.0 * draws.signed()
+                        }
+                    })
+                    .collect()
+            };
+            let (ps, qs) = (shape(kp), shape(kq));
+            let parameter = |choice: usize, value: f64| match choice {
+                0 => 0.0,
+                1 => 1.0,
+                _ => value,
+            };
+            let u0 = parameter(u_choice, draws.unit());
+            let v0 = parameter(v_choice, draws.unit());
+            let options = GeometricOptions::new(kp, kq).with_shapes(ps.clone(), qs.clone());
+            let label = format!("case {case}: dim {dim} {np}/{nq} G{kp}/G{kq} {u0}/{v0}");
+            let (fast, general) = if nurbs {
+                let (p, q) = (NurbsCurve::from_bezier(&p), NurbsCurve::from_bezier(&q));
+                let fast = connect_geometric_curve(&p, u0, &q, v0, &options);
+                let problem = prepare(&p, u0, &q, v0, &ConnectOptions::new(kp, kq)).unwrap();
+                (fast, solve_with_shapes(&problem, &ps, &qs))
+            } else {
+                let fast = connect_geometric_curve(&p, u0, &q, v0, &options);
+                let problem = prepare(&p, u0, &q, v0, &ConnectOptions::new(kp, kq)).unwrap();
+                (fast, solve_with_shapes(&problem, &ps, &qs))
+            };
+            match (fast, general) {
+                (Ok(a), Ok(b)) => {
+                    assert_eq!(a.curve.points(), b.curve.points(), "{label}");
+                    assert_eq!(
+                        a.max_residual.to_bits(),
+                        b.max_residual.to_bits(),
+                        "{label}"
+                    );
+                    assert_eq!(
+                        a.error_estimate.to_bits(),
+                        b.error_estimate.to_bits(),
+                        "{label}"
+                    );
+                    assert_eq!((a.p_shape, a.q_shape), (ps, qs), "{label}");
+                    agreed += 1;
+                }
+                (Err(a), Err(b)) => assert_eq!(a.to_string(), b.to_string(), "{label}"),
+                (a, b) => panic!("{label}: paths disagree: {a:?} / {b:?}"),
+            }
+        }
+        // Most cases are answered (not a test of two identical refusals).
+        assert!(agreed > 250, "only {agreed} answered cases");
+    }
+
+    /// The fixed-array Bell polynomials are those of [`partial_bell`].
+    #[test]
+    fn small_bell_table_equals_partial_bell() {
+        let mut values = crate::test_values::Values(5);
+        for order in 0..=MAX_GEOMETRIC_ORDER {
+            let x: Vec<f64> = (0..order.max(1)).map(|_| 3.0 * values.signed()).collect();
+            let (small, big) = (partial_bell_small(&x, order), partial_bell(&x, order));
+            for j in 0..=MAX_GEOMETRIC_ORDER {
+                for i in 0..=MAX_GEOMETRIC_ORDER {
+                    let expected = if i <= order && j <= order {
+                        big[(j, i)]
+                    } else {
+                        0.0
+                    };
+                    assert_eq!(
+                        small[j][i].to_bits(),
+                        expected.to_bits(),
+                        "order {order} ({j}, {i})"
+                    );
+                }
+            }
+        }
+    }
 }
