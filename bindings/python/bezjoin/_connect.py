@@ -378,17 +378,19 @@ class GeometricConnection(CurveGroup):
         self.curve = curve
         self.p_shape = p_shape
         self.q_shape = q_shape
-        self.energy = report.energy
-        self.curvature_min = report.curvature_min
-        self.curvature_max = report.curvature_max
-        self.curvature_extrema = report.curvature_extrema
+        # Without a report (``report=False``) the four fields are None.
+        self.energy = report.energy if report else None
+        self.curvature_min = report.curvature_min if report else None
+        self.curvature_max = report.curvature_max if report else None
+        self.curvature_extrema = report.curvature_extrema if report else None
 
     def _fields(self):
         return self._curve_fields + ("p_shape", "q_shape", "energy", "curvature_min",
                                      "curvature_max", "curvature_extrema")
 
 
-def connect_geometric(p, u0, q, v0, *, p_order=2, q_order=2, p_shape=None, q_shape=None):
+def connect_geometric(p, u0, q, v0, *, p_order=2, q_order=2, p_shape=None, q_shape=None,
+                      report=True):
     """The Bezier curve from ``P(u0)`` to ``Q(v0)`` meeting ``P`` with G^p_order and
     ``Q`` with G^q_order (``bzj_connect_geometric``; mathematics.md section 7):
     C^k after a reparametrisation with shape values ``beta_1 > 0, beta_2, ...``
@@ -402,6 +404,10 @@ def connect_geometric(p, u0, q, v0, *, p_order=2, q_order=2, p_shape=None, q_sha
             ``None`` (the default): chosen by the library to minimise the
             blend's fairness energy, so the default never loops on a corner
             between long edges.
+        report: compute the fairness report (energy, curvature range and
+            extrema, sampled along the blend); ``False`` skips it (the
+            report costs far more than a solve with given shapes) and
+            leaves those fields None.
 
     Returns:
         :class:`GeometricConnection`.
@@ -427,10 +433,10 @@ def connect_geometric(p, u0, q, v0, *, p_order=2, q_order=2, p_shape=None, q_sha
                                      shape_array(q_shape, q_order, "q_shape"))
     p_out = (ctypes.c_double * max(p_order, 1))()
     q_out = (ctypes.c_double * max(q_order, 1))()
-    report = FairnessReportStruct()
+    fairness = FairnessReportStruct() if report else None
     out = CurvePointer()
     library().call("bzj_connect_geometric", p_handle, real_argument(u0, "u0"), q_handle,
                    real_argument(v0, "v0"), ctypes.byref(options), ctypes.byref(out),
-                   p_out, q_out, ctypes.byref(report))
+                   p_out, q_out, ctypes.byref(fairness) if report else None)
     return GeometricConnection(Curve._adopt(out), list(p_out)[:p_order],
-                               list(q_out)[:q_order], report)
+                               list(q_out)[:q_order], fairness)

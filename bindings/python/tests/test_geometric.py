@@ -32,6 +32,19 @@ def test_given_shapes_are_the_beta_constraints():
         assert_close(r1[2], [1.44 * x - 0.2 * y for x, y in zip(qj[2], qj[1])], 1e-9)
 
 
+def test_report_false_gives_the_same_curve_without_the_report():
+    with Curve([(0, 0), (1, 2), (3, 2), (4, 0)]) as p, \
+            Curve([(6, 1), (7, 3), (9, 2), (10, 0)]) as q:
+        for shapes in ({"p_shape": [0.8, 0.3], "q_shape": [1.2, -0.2]}, {}):
+            with bezjoin.connect_geometric(p, 0.7, q, 0.2, **shapes) as full, \
+                    bezjoin.connect_geometric(p, 0.7, q, 0.2, report=False, **shapes) as bare:
+                assert bare.curve.points == full.curve.points
+                assert (bare.p_shape, bare.q_shape) == (full.p_shape, full.q_shape)
+                assert full.energy > 0 and full.curvature_extrema >= 0
+                assert (bare.energy, bare.curvature_min, bare.curvature_max,
+                        bare.curvature_extrema) == (None, None, None, None)
+
+
 def test_default_g2_corner_is_fair_and_loop_free():
     with Curve([(-40, 0), (0, 0)]) as a, Curve([(0, 0), (0, 20)]) as b, \
             bezjoin.connect_geometric(a, 0.95, b, 0.1) as g:

@@ -3,7 +3,7 @@
 
 use bezjoin_core::{
     BezjoinError, FairnessReport, GeometricOptions, MAX_GEOMETRIC_ORDER, RadiusFillet,
-    connect_geometric, fillet_radius, fillet_radius_chain,
+    connect_geometric_curve, fairness_report, fillet_radius, fillet_radius_chain,
 };
 
 use crate::fillet::{ChainCall, chain_call, chain_pieces_out, fillet_outputs};
@@ -137,7 +137,9 @@ pub unsafe extern "C" fn bzj_connect_geometric(
             q_shape: read(o.q_shape, o.q_order, "options.q_shape")?,
             constraints: Vec::new(),
         };
-        let g = connect_geometric(p, u0, q, v0, &options).map_err(|e| match e {
+        // The fairness report costs far more than a solve with given
+        // shapes: formed only when asked for.
+        let g = connect_geometric_curve(p, u0, q, v0, &options).map_err(|e| match e {
             BezjoinError::InvalidArgument { name, reason }
                 if name.starts_with("p_shape") || name.starts_with("q_shape") =>
             {
@@ -158,8 +160,10 @@ pub unsafe extern "C" fn bzj_connect_geometric(
                     .copy_from_slice(values);
             }
         }
-        // SAFETY: NULL or writable (caller contract).
-        unsafe { write_optional(report, g.report.into()) };
+        if !report.is_null() {
+            // SAFETY: writable (caller contract).
+            unsafe { write_optional(report, fairness_report(&g.curve).into()) };
+        }
         out.write(g.curve);
         Ok(())
     })
