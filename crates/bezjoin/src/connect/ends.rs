@@ -198,6 +198,9 @@ fn connect_fixed<const D: usize, P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
     let mut points = [[0.0f64; D]; MAX_POINTS];
     let mut max_residual = 0.0f64;
     let mut error_estimate = 0.0f64;
+    let mut difference_squares = [0.0f64; MAX_POINTS];
+    let mut abs_squares = [0.0f64; MAX_POINTS];
+    let mut denominators = [0.0f64; MAX_POINTS];
     // Row by row: the band once, the unknown it determines, its residual.
     // P end: row k of D(0) touches R_0..R_k only (lower triangular); Q end:
     // row k of D(1) touches R_(n-k)..R_n only (anti-triangular). The two
@@ -275,13 +278,20 @@ fn connect_fixed<const D: usize, P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
             difference_square += difference * difference;
             abs_square += abs_value[c] * abs_value[c];
         }
-        let denominator = target_norms[r].max(data_scale * norms[k]);
+        difference_squares[r] = difference_square;
+        abs_squares[r] = abs_square;
+        denominators[r] = target_norms[r].max(data_scale * norms[k]);
+    }
+    // The residuals and their bounds in a pass of their own: the square
+    // roots and divisions of different rows are independent there (the
+    // substitution above is a chain), the same operations per row.
+    for r in 0..count {
         let (residual, bound) = residual_and_bound(
-            difference_square,
-            abs_square,
+            difference_squares[r],
+            abs_squares[r],
             gamma,
             target_errors[r],
-            denominator,
+            denominators[r],
         );
         max_residual = max_residual.max(residual);
         error_estimate = error_estimate.max(bound);
