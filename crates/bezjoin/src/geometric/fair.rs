@@ -256,6 +256,53 @@ impl EnergyRule {
                     length += l[j];
                 }
             }
+        } else if dim == 3 {
+            // kappa_from's 3D formulas written out for a block of nodes,
+            // the same operations in the same order (its dot products
+            // summed left to right; a sum from -0.0 adds nothing); a cusp
+            // at any node makes the energy infinite, as there.
+            let mut jet = [[0.0f64; BLOCK]; 9];
+            for (b, (start, m)) in self.rows.blocks().enumerate() {
+                self.rows.jets(b, points, 3, &mut jet);
+                let [ax, ay, az, bx, by, bz, cx, cy, cz] = &jet;
+                let mut v = [0.0f64; BLOCK];
+                let mut l = [0.0f64; BLOCK];
+                let mut weights = [1.0f64; BLOCK];
+                weights[..m].copy_from_slice(&self.weights[start..start + m]);
+                let mut speeds = [1.0f64; BLOCK];
+                for j in 0..BLOCK {
+                    let s2 = ax[j] * ax[j] + ay[j] * ay[j] + az[j] * az[j];
+                    let speed = s2.sqrt();
+                    let ab = ax[j] * bx[j] + ay[j] * by[j] + az[j] * bz[j];
+                    let bb = bx[j] * bx[j] + by[j] * by[j] + bz[j] * bz[j];
+                    let bc = bx[j] * cx[j] + by[j] * cy[j] + bz[j] * cz[j];
+                    let ac = ax[j] * cx[j] + ay[j] * cy[j] + az[j] * cz[j];
+                    let gram = (s2 * bb - ab * ab).max(0.0);
+                    let root = gram.sqrt();
+                    let kappa = root / (speed * s2);
+                    let dgram = 2.0 * s2 * bc - 2.0 * ab * ac;
+                    let first = if gram > 0.0 {
+                        dgram / (2.0 * root * speed * s2)
+                    } else {
+                        0.0
+                    };
+                    let dkappa = first - 3.0 * kappa * ab / s2;
+                    let w = weights[j];
+                    v[j] = w * dkappa * dkappa / speed;
+                    l[j] = w * speed;
+                    speeds[j] = speed;
+                }
+                if !speeds[..m]
+                    .iter()
+                    .all(|&speed| speed > 0.0 && speed < f64::INFINITY)
+                {
+                    return f64::INFINITY;
+                }
+                for j in 0..m {
+                    variation += v[j];
+                    length += l[j];
+                }
+            }
         } else {
             let mut jets = vec![[0.0f64; BLOCK]; 3 * dim];
             let mut jet = vec![0.0; 3 * dim];
@@ -637,7 +684,7 @@ mod tests {
                 .wrapping_add(1442695040888963407);
             (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
         };
-        for (d, n) in [(2, 3), (2, 5), (2, 7), (3, 5), (4, 4)] {
+        for (d, n) in [(2, 3), (2, 5), (2, 7), (3, 3), (3, 5), (3, 9), (4, 4)] {
             for _ in 0..5 {
                 let points: Vec<f64> = (0..(n + 1) * d).map(|_| next()).collect();
                 let curve = BezierCurve::new(d, n, points).unwrap();
