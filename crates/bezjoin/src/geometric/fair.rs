@@ -215,111 +215,115 @@ impl EnergyRule {
         self.energy_of(curve.points(), curve.dim())
     }
 
+    /// The quadrature sums `(sum w dkappa^2 / speed, sum w speed)` over the
+    /// nodes, the jets formed [`BLOCK`] nodes at a time (`R = 3 dim` rows)
+    /// and `node(jet, j)` giving `(dkappa/dt, |r'|)` at lane `j` (the
+    /// formulas of [`kappa_from`] written out, so the compiler runs the
+    /// lanes side by side); `None` at a cusp (a node's speed zero or not
+    /// finite), whose energy is infinite.
+    #[inline(always)]
+    fn block_sums<const R: usize>(
+        &self,
+        points: &[f64],
+        dim: usize,
+        node: impl Fn(&[[f64; BLOCK]; R], usize) -> (f64, f64),
+    ) -> Option<(f64, f64)> {
+        let (mut variation, mut length) = (0.0, 0.0);
+        let mut jet = [[0.0f64; BLOCK]; R];
+        for (b, (start, m)) in self.rows.blocks().enumerate() {
+            self.rows.jets(b, points, dim, &mut jet);
+            let mut v = [0.0f64; BLOCK];
+            let mut l = [0.0f64; BLOCK];
+            let mut weights = [1.0f64; BLOCK];
+            weights[..m].copy_from_slice(&self.weights[start..start + m]);
+            let mut speeds = [1.0f64; BLOCK];
+            for j in 0..BLOCK {
+                let (dkappa, speed) = node(&jet, j);
+                let w = weights[j];
+                v[j] = w * dkappa * dkappa / speed;
+                l[j] = w * speed;
+                speeds[j] = speed;
+            }
+            if !speeds[..m]
+                .iter()
+                .all(|&speed| speed > 0.0 && speed < f64::INFINITY)
+            {
+                return None;
+            }
+            for j in 0..m {
+                variation += v[j];
+                length += l[j];
+            }
+        }
+        Some((variation, length))
+    }
+
+    /// The sums of [`block_sums`](Self::block_sums) node by node through
+    /// [`kappa_from`], for dimensions other than 2 and 3.
+    fn node_sums(&self, points: &[f64], dim: usize) -> (f64, f64) {
+        let (mut variation, mut length) = (0.0, 0.0);
+        let mut jets = vec![[0.0f64; BLOCK]; 3 * dim];
+        let mut jet = vec![0.0; 3 * dim];
+        for (b, (start, m)) in self.rows.blocks().enumerate() {
+            self.rows.jets(b, points, dim, &mut jets);
+            for j in 0..m {
+                for (value, lane) in jet.iter_mut().zip(&jets) {
+                    *value = lane[j];
+                }
+                let (_, dkappa, speed) =
+                    kappa_from(&jet[..dim], &jet[dim..2 * dim], &jet[2 * dim..]);
+                let weight = self.weights[start + j];
+                variation += weight * dkappa * dkappa / speed;
+                length += weight * speed;
+            }
+        }
+        (variation, length)
+    }
+
     /// [`energy`](Self::energy) of the curve with control points `points`
     /// (row-major, `dim` coordinates each).
     pub(super) fn energy_of(&self, points: &[f64], dim: usize) -> f64 {
         debug_assert_eq!(points.len(), (self.degree + 1) * dim);
-        let (mut variation, mut length) = (0.0, 0.0);
-        if dim == 2 {
-            // kappa_from's 2D formulas written out for a block of nodes.
-            // A cusp (|r'| zero or not finite) at any node makes the energy
-            // infinite, as kappa_from's infinities do.
-            let mut jet = [[0.0f64; BLOCK]; 6];
-            for (b, (start, m)) in self.rows.blocks().enumerate() {
-                self.rows.jets(b, points, 2, &mut jet);
-                let [ax, ay, bx, by, cx, cy] = &jet;
-                let mut v = [0.0f64; BLOCK];
-                let mut l = [0.0f64; BLOCK];
-                let mut weights = [1.0f64; BLOCK];
-                weights[..m].copy_from_slice(&self.weights[start..start + m]);
-                let mut speeds = [1.0f64; BLOCK];
-                for j in 0..BLOCK {
-                    let s2 = ax[j] * ax[j] + ay[j] * ay[j];
-                    let speed = s2.sqrt();
-                    let ab = ax[j] * bx[j] + ay[j] * by[j];
-                    let kappa = (ax[j] * by[j] - ay[j] * bx[j]) / (speed * s2);
-                    let dkappa =
-                        (ax[j] * cy[j] - ay[j] * cx[j]) / (speed * s2) - 3.0 * kappa * ab / s2;
-                    let w = weights[j];
-                    v[j] = w * dkappa * dkappa / speed;
-                    l[j] = w * speed;
-                    speeds[j] = speed;
-                }
-                if !speeds[..m]
-                    .iter()
-                    .all(|&speed| speed > 0.0 && speed < f64::INFINITY)
-                {
-                    return f64::INFINITY;
-                }
-                for j in 0..m {
-                    variation += v[j];
-                    length += l[j];
-                }
-            }
+        let blocked = if dim == 2 {
+            // kappa_from's 2D formulas.
+            self.block_sums::<6>(points, 2, |jet, j| {
+                let [ax, ay, bx, by, cx, cy] = jet;
+                let s2 = ax[j] * ax[j] + ay[j] * ay[j];
+                let speed = s2.sqrt();
+                let ab = ax[j] * bx[j] + ay[j] * by[j];
+                let kappa = (ax[j] * by[j] - ay[j] * bx[j]) / (speed * s2);
+                let dkappa = (ax[j] * cy[j] - ay[j] * cx[j]) / (speed * s2) - 3.0 * kappa * ab / s2;
+                (dkappa, speed)
+            })
         } else if dim == 3 {
-            // kappa_from's 3D formulas written out for a block of nodes,
-            // the same operations in the same order (its dot products
-            // summed left to right; a sum from -0.0 adds nothing); a cusp
-            // at any node makes the energy infinite, as there.
-            let mut jet = [[0.0f64; BLOCK]; 9];
-            for (b, (start, m)) in self.rows.blocks().enumerate() {
-                self.rows.jets(b, points, 3, &mut jet);
-                let [ax, ay, az, bx, by, bz, cx, cy, cz] = &jet;
-                let mut v = [0.0f64; BLOCK];
-                let mut l = [0.0f64; BLOCK];
-                let mut weights = [1.0f64; BLOCK];
-                weights[..m].copy_from_slice(&self.weights[start..start + m]);
-                let mut speeds = [1.0f64; BLOCK];
-                for j in 0..BLOCK {
-                    let s2 = ax[j] * ax[j] + ay[j] * ay[j] + az[j] * az[j];
-                    let speed = s2.sqrt();
-                    let ab = ax[j] * bx[j] + ay[j] * by[j] + az[j] * bz[j];
-                    let bb = bx[j] * bx[j] + by[j] * by[j] + bz[j] * bz[j];
-                    let bc = bx[j] * cx[j] + by[j] * cy[j] + bz[j] * cz[j];
-                    let ac = ax[j] * cx[j] + ay[j] * cy[j] + az[j] * cz[j];
-                    let gram = (s2 * bb - ab * ab).max(0.0);
-                    let root = gram.sqrt();
-                    let kappa = root / (speed * s2);
-                    let dgram = 2.0 * s2 * bc - 2.0 * ab * ac;
-                    let first = if gram > 0.0 {
-                        dgram / (2.0 * root * speed * s2)
-                    } else {
-                        0.0
-                    };
-                    let dkappa = first - 3.0 * kappa * ab / s2;
-                    let w = weights[j];
-                    v[j] = w * dkappa * dkappa / speed;
-                    l[j] = w * speed;
-                    speeds[j] = speed;
-                }
-                if !speeds[..m]
-                    .iter()
-                    .all(|&speed| speed > 0.0 && speed < f64::INFINITY)
-                {
-                    return f64::INFINITY;
-                }
-                for j in 0..m {
-                    variation += v[j];
-                    length += l[j];
-                }
-            }
+            // kappa_from's 3D formulas, its dot products summed left to
+            // right (a sum from -0.0 adds nothing).
+            self.block_sums::<9>(points, 3, |jet, j| {
+                let [ax, ay, az, bx, by, bz, cx, cy, cz] = jet;
+                let s2 = ax[j] * ax[j] + ay[j] * ay[j] + az[j] * az[j];
+                let speed = s2.sqrt();
+                let ab = ax[j] * bx[j] + ay[j] * by[j] + az[j] * bz[j];
+                let bb = bx[j] * bx[j] + by[j] * by[j] + bz[j] * bz[j];
+                let bc = bx[j] * cx[j] + by[j] * cy[j] + bz[j] * cz[j];
+                let ac = ax[j] * cx[j] + ay[j] * cy[j] + az[j] * cz[j];
+                let gram = (s2 * bb - ab * ab).max(0.0);
+                let root = gram.sqrt();
+                let kappa = root / (speed * s2);
+                let dgram = 2.0 * s2 * bc - 2.0 * ab * ac;
+                let first = if gram > 0.0 {
+                    dgram / (2.0 * root * speed * s2)
+                } else {
+                    0.0
+                };
+                (first - 3.0 * kappa * ab / s2, speed)
+            })
         } else {
-            let mut jets = vec![[0.0f64; BLOCK]; 3 * dim];
-            let mut jet = vec![0.0; 3 * dim];
-            for (b, (start, m)) in self.rows.blocks().enumerate() {
-                self.rows.jets(b, points, dim, &mut jets);
-                for j in 0..m {
-                    for (value, lane) in jet.iter_mut().zip(&jets) {
-                        *value = lane[j];
-                    }
-                    let (_, dkappa, speed) =
-                        kappa_from(&jet[..dim], &jet[dim..2 * dim], &jet[2 * dim..]);
-                    let weight = self.weights[start + j];
-                    variation += weight * dkappa * dkappa / speed;
-                    length += weight * speed;
-                }
-            }
-        }
+            Some(self.node_sums(points, dim))
+        };
+        // None: a cusp at a node, infinitely bad (kappa_from's infinities).
+        let Some((variation, length)) = blocked else {
+            return f64::INFINITY;
+        };
         let total = variation * length.powi(3);
         if total.is_nan() { f64::INFINITY } else { total }
     }
