@@ -177,12 +177,7 @@ pub(crate) fn solve_stage_one(
     // The continuity conditions (3) themselves, on the original rows (unit
     // length), relative to the coordinate scale of the input and result.
     let result_scale = x.amax().max(problem.scale);
-    let continuity_residual = problem
-        .continuity
-        .iter()
-        .map(|row| (x.transpose() * &row.coefficients).amax())
-        .fold(0.0f64, f64::max)
-        / result_scale;
+    let continuity_residual = problem.continuity_residual(&x) / result_scale;
     if continuity_residual.is_nan() || continuity_residual > accuracy {
         return Err(BezjoinError::IllConditioned {
             what: "merge stage 1 (residual of the continuity conditions (3))".into(),

@@ -1,6 +1,8 @@
 //! Stage 2: the single curve `R` from the stage-1 pieces, checked by
 //! restricting it back to every piece, and the measured deviation.
 
+use std::sync::OnceLock;
+
 use nalgebra::DMatrix;
 
 use crate::bezier::BezierCurve;
@@ -72,7 +74,7 @@ fn check_restrictions(
     for (j, p) in pieces.iter().enumerate() {
         // segment (blossoms) is a second computation of what stage 1's
         // de Casteljau split gave.
-        let back = merged.segment(breakpoints[j], breakpoints[j + 1])?;
+        let back = restriction(&merged, breakpoints[j], breakpoints[j + 1])?;
         let diff = (back.control_matrix() - p).amax();
         worst = worst.max(diff / scale);
         restrictions.push(back);
@@ -88,6 +90,29 @@ fn check_restrictions(
         });
     }
     Ok((merged, worst, restrictions))
+}
+
+/// `R` on `[a, b]`: control point `i` is the blossom `R[a^(n-i), b^i]`, as
+/// [`BezierCurve::segment`] computes it (`i` de Casteljau steps at `b`,
+/// then `n - i` at `a`). On an end piece (`a = 0` or `b = 1`) the steps at
+/// `0` and `1` only select points (`1 p + 0 q = p`, `0 p + 1 q = q`
+/// exactly for finite values), so the blossoms are the edges of one de
+/// Casteljau triangle at the other end, the same values in `O(n^2)`
+/// instead of `O(n^3)`; a non-finite result is recomputed by `segment`
+/// for its error.
+fn restriction(merged: &BezierCurve, a: f64, b: f64) -> Result<BezierCurve> {
+    let back = if a == 0.0 {
+        merged.split_unchecked(b).0
+    } else if b == 1.0 {
+        merged.split_unchecked(a).1
+    } else {
+        return merged.segment(a, b);
+    };
+    if back.points().iter().all(|v| v.is_finite()) {
+        Ok(back)
+    } else {
+        merged.segment(a, b)
+    }
 }
 
 /// Restriction matrices: row block `j` maps `R`'s control points to those of
@@ -145,10 +170,15 @@ pub(super) fn refine(merged: &mut BezierCurve, pieces: &[DMatrix<f64>], breakpoi
 /// arithmetic). The difference `R(t_j + h_j u) - C_j(u)` is then one Bezier
 /// curve of the working degree, `restrictions[j]` minus `C_j` elevated to
 /// it (convex combinations, exact in exact arithmetic), evaluated once per
-/// sample instead of evaluating `R` and `C_j` separately (by the
-/// Bernstein-Horner scheme of [`BezierCurve::eval_into`]): the same sampled
-/// quantity, changed by rounding only (a few `n eps` of the coordinate
-/// scale; tests/merge_accuracy.rs compares it with the two-evaluation form).
+/// sample instead of evaluating `R` and `C_j` separately: as
+/// `sum_i B_i^n(u) D_i` with the Bernstein values at the samples read from
+/// a table computed once per degree (up to [`DEVIATION_TABLE_DEGREE`]; by
+/// the Bernstein-Horner scheme of [`BezierCurve::eval_into`] above). Both
+/// are stable: the table's entries carry `(n + 1) eps` relative, the sum of
+/// nonnegative weights another `(n + 1) eps` of `max |D_i|`, so this is the
+/// same sampled quantity, changed by rounding only (a few `n eps` of the
+/// coordinate scale; tests/merge_accuracy.rs compares it with the
+/// two-evaluation form).
 ///
 /// The differences are taken of the halved points (exact, a power of two)
 /// and the distance doubled at the end, so that points near the top of the
@@ -184,17 +214,117 @@ pub(crate) fn max_deviation(
                 .map(|(r, c)| 0.5 * r - 0.5 * c),
         );
     }
-    let mut value = vec![0.0; d];
-    let mut worst = 0.0f64;
-    // One Horner evaluation per sample: a table of the basis values at the
-    // samples, shared by the pieces, measured slower (the unrolled Horner
-    // of dimensions 2 and 3 beats a general dot product).
-    for half in halves.chunks_exact(len) {
-        for s in 0..=DEVIATION_SAMPLES {
-            let u = s as f64 / DEVIATION_SAMPLES as f64;
-            crate::bezier::bernstein_horner_any(half, n, d, u, 1.0, &mut value);
-            worst = worst.max(crate::bezier::norm(&value));
+    let mut worst = Worst::default();
+    if let Some(table) = deviation_table(n) {
+        // One dot product with a stored row of Bernstein values per sample
+        // and coordinate (no per-call basis work; dimension 2 unrolled).
+        for half in halves.chunks_exact(len) {
+            for row in table.chunks_exact(n + 1) {
+                if d == 2 {
+                    let (mut x, mut y) = (0.0, 0.0);
+                    for (b, p) in row.iter().zip(half.chunks_exact(2)) {
+                        x += b * p[0];
+                        y += b * p[1];
+                    }
+                    worst.note(&[x, y]);
+                } else {
+                    let mut value = [0.0; DEVIATION_MAX_DIM];
+                    let value = &mut value[..d.min(DEVIATION_MAX_DIM)];
+                    if d > DEVIATION_MAX_DIM {
+                        let mut long = vec![0.0; d];
+                        dot_rows(row, half, &mut long);
+                        worst.note(&long);
+                    } else {
+                        dot_rows(row, half, value);
+                        worst.note(value);
+                    }
+                }
+            }
+        }
+    } else {
+        let mut value = vec![0.0; d];
+        // One Horner evaluation per sample above the tabulated degrees.
+        for half in halves.chunks_exact(len) {
+            for s in 0..=DEVIATION_SAMPLES {
+                let u = s as f64 / DEVIATION_SAMPLES as f64;
+                crate::bezier::bernstein_horner_any(half, n, d, u, 1.0, &mut value);
+                worst.note(&value);
+            }
         }
     }
+    let worst = worst.value();
     Ok(2.0 * worst)
+}
+
+/// Degrees up to which [`max_deviation`] reads the Bernstein values at its
+/// samples from a table computed once per degree (`(DEVIATION_SAMPLES + 1)
+/// (n + 1)` values, 68 kB at degree 32); above, it evaluates by Horner.
+pub const DEVIATION_TABLE_DEGREE: usize = 32;
+
+/// Dimensions up to which the deviation's sample values live on the stack.
+const DEVIATION_MAX_DIM: usize = 4;
+
+/// `B_i^n(s / DEVIATION_SAMPLES)`, row `s = 0..=DEVIATION_SAMPLES`, column
+/// `i = 0..=n`, by the product form `C(n,i) u^i (1 - u)^(n-i)` with exact
+/// binomials and exact `u`, `1 - u` (relative error at most `(n + 1) eps`
+/// per entry); `None` above [`DEVIATION_TABLE_DEGREE`].
+fn deviation_table(n: usize) -> Option<&'static [f64]> {
+    static TABLES: [OnceLock<Vec<f64>>; DEVIATION_TABLE_DEGREE + 1] =
+        [const { OnceLock::new() }; DEVIATION_TABLE_DEGREE + 1];
+    let slot = TABLES.get(n)?;
+    Some(slot.get_or_init(|| {
+        let mut table = Vec::with_capacity((DEVIATION_SAMPLES + 1) * (n + 1));
+        for s in 0..=DEVIATION_SAMPLES {
+            let u = s as f64 / DEVIATION_SAMPLES as f64;
+            let v = 1.0 - u;
+            for i in 0..=n {
+                let mut b = crate::basis::binomial(n, i);
+                for _ in 0..i {
+                    b *= u;
+                }
+                for _ in i..n {
+                    b *= v;
+                }
+                table.push(b);
+            }
+        }
+        table
+    }))
+}
+
+/// `out[c] = sum_i row[i] points[i][c]` for row-major `points` of
+/// dimension `out.len()`.
+fn dot_rows(row: &[f64], points: &[f64], out: &mut [f64]) {
+    let d = out.len();
+    out.fill(0.0);
+    for (b, p) in row.iter().zip(points.chunks_exact(d)) {
+        for (o, x) in out.iter_mut().zip(p) {
+            *o += b * x;
+        }
+    }
+}
+
+/// The largest Euclidean norm among the sampled values: the largest
+/// square while squares are normal (one square root at the end), the
+/// overflow-safe [`crate::bezier::norm`] otherwise.
+#[derive(Default)]
+struct Worst {
+    square: f64,
+    other: f64,
+}
+
+impl Worst {
+    #[inline]
+    fn note(&mut self, value: &[f64]) {
+        let square = value.iter().map(|x| x * x).sum::<f64>();
+        if square.is_normal() {
+            self.square = self.square.max(square);
+        } else {
+            self.other = self.other.max(crate::bezier::norm(value));
+        }
+    }
+
+    fn value(&self) -> f64 {
+        self.square.sqrt().max(self.other)
+    }
 }
