@@ -56,6 +56,8 @@
 //! actual sensitivity; measured against an exact rational reference in
 //! test `merge_exact`.
 
+use std::sync::OnceLock;
+
 use nalgebra::{DMatrix, DVector};
 
 use crate::basis::binomial;
@@ -148,6 +150,21 @@ pub(crate) fn gauss_legendre_unit(count: usize) -> (Vec<f64>, Vec<f64>) {
     (nodes, weights)
 }
 
+/// Node counts whose Gauss-Legendre rule is computed once and kept
+/// ([`gauss_legendre_stored`]).
+const STORED_RULES: usize = 64;
+
+/// [`gauss_legendre_unit`]`(count)`, computed once per count up to
+/// [`STORED_RULES`] (the same values; computed on each call above).
+fn gauss_legendre_stored(count: usize) -> std::borrow::Cow<'static, (Vec<f64>, Vec<f64>)> {
+    static RULES: [OnceLock<(Vec<f64>, Vec<f64>)>; STORED_RULES + 1] =
+        [const { OnceLock::new() }; STORED_RULES + 1];
+    match RULES.get(count) {
+        Some(slot) => std::borrow::Cow::Borrowed(slot.get_or_init(|| gauss_legendre_unit(count))),
+        None => std::borrow::Cow::Owned(gauss_legendre_unit(count)),
+    }
+}
+
 /// All Bernstein values `B_i^m(t)`, `i = 0..m`, into `out` (product form
 /// with exact binomials).
 fn bernstein_row(m: usize, t: f64, out: &mut [f64]) {
@@ -219,7 +236,8 @@ fn metric_samples(
             let m = points - 1;
             let count = problem.pieces.len();
             let dim = problem.dim;
-            let (nodes, weights) = gauss_legendre_unit(points);
+            let rule = gauss_legendre_stored(points);
+            let (nodes, weights) = (&rule.0, &rule.1);
             let mut samples = DMatrix::zeros(count * points, points);
             let mut target = DMatrix::zeros(count * points, dim);
             // sqrt(w_k) sum_i B_i(u_k) |P_i|: the size the target's
@@ -230,7 +248,7 @@ fn metric_samples(
             let mut value = vec![0.0; dim];
             for (j, piece) in problem.pieces.iter().enumerate() {
                 let (t0, t1) = (breakpoints[j], breakpoints[j + 1]);
-                for (k, (&u, &w)) in nodes.iter().zip(&weights).enumerate() {
+                for (k, (&u, &w)) in nodes.iter().zip(weights.iter()).enumerate() {
                     let root = w.sqrt();
                     bernstein_row(m, t0 + (t1 - t0) * u, &mut row);
                     for i in 0..points {
@@ -287,9 +305,10 @@ fn sample_slopes(
             }
         }
         MergeMetric::Integral => {
-            let (nodes, weights) = gauss_legendre_unit(points);
+            let rule = gauss_legendre_stored(points);
+            let (nodes, weights) = (&rule.0, &rule.1);
             let mut value = vec![0.0; dim];
-            for (k, (&u, &w)) in nodes.iter().zip(&weights).enumerate() {
+            for (k, (&u, &w)) in nodes.iter().zip(weights.iter()).enumerate() {
                 let root = w.sqrt();
                 hodograph.eval_into(mu * u, &mut value);
                 for c in 0..dim {
@@ -396,8 +415,13 @@ pub(super) fn orthogonal_solution(
         Some(null_space(&basis, points))
     };
     let free = points - basis.len();
-    let particular_abs = particular.abs();
-    let reduced_target = &target - &samples * &particular;
+    // Without kept rows the particular solution is zero: no products.
+    let particular_abs = (!basis.is_empty()).then(|| particular.abs());
+    let reduced_target = if basis.is_empty() {
+        target.clone()
+    } else {
+        &target - &samples * &particular
+    };
     let merged;
     let mut factor = None;
     if free == 0 {
@@ -485,9 +509,13 @@ pub(super) fn orthogonal_solution(
     let mut estimate = (m as f64 + 2.0) * eps * x.amax() / result_scale;
     let mut reduced_gain = 0.0;
     if let Some((t, y, a_abs, Some(q), correction)) = &factor {
-        let sz = match &z {
-            Some(z) => &s * z,
-            None => s.clone(),
+        // The discrete metric samples the pieces themselves (M = S), so
+        // the pieces' map S Z is A = Q T and K0 = S Z T^-1 is the thin Q
+        // (no triangular solve); otherwise K0 is solved for.
+        let pieces_map = match (metric, &z) {
+            (MergeMetric::Discrete, _) => PiecesMap::ThinQ,
+            (MergeMetric::Integral, Some(z)) => PiecesMap::Map(&s * z),
+            (MergeMetric::Integral, None) => PiecesMap::Map(s.clone()),
         };
         let zr = match &z {
             Some(z) => z.clone(),
@@ -502,14 +530,17 @@ pub(super) fn orthogonal_solution(
             y,
             a_abs,
             target: &reduced_target,
-            target_size: &(&target_abs + samples.abs() * particular_abs),
+            target_size: &match particular_abs {
+                None => target_abs,
+                Some(particular_abs) => &target_abs + samples.abs() * particular_abs,
+            },
             residual: &residual,
             m,
             correction,
         };
-        let (pieces_bound, pieces_gain) = first_order_bound(&shared, &sz, true)
+        let (pieces_bound, pieces_gain) = first_order_bound(&shared, pieces_map, true)
             .ok_or_else(|| ill_conditioned_factor(accuracy))?;
-        let (merged_bound, _) = first_order_bound(&shared, &zr, false)
+        let (merged_bound, _) = first_order_bound(&shared, PiecesMap::Map(zr), false)
             .ok_or_else(|| ill_conditioned_factor(accuracy))?;
         estimate += pieces_bound.max(MERGED_WEIGHT * merged_bound) / result_scale;
         // ||S Z A^+||_F ||M||_F: how much a move of the particular solution
@@ -588,12 +619,21 @@ struct Shared<'s> {
     correction: &'s DMatrix<f64>,
 }
 
+/// The map of [`first_order_bound`]: a matrix (`S Z` for the pieces of
+/// the integral metric, `Z` for `R`), or the pieces of the discrete metric,
+/// whose map `S Z` is `A` itself, so that `K0 = A T^-1` is the thin `Q` of
+/// the factor.
+enum PiecesMap {
+    Map(DMatrix<f64>),
+    ThinQ,
+}
+
 /// The first-order bound (module documentation) of the largest change of
 /// `map y` (`map` = `S Z` for the pieces, `Z` for `R`), absolute, and
 /// `||map A^+||_F`.
 fn first_order_bound(
     shared: &Shared<'_>,
-    map: &DMatrix<f64>,
+    map: PiecesMap,
     with_normwise: bool,
 ) -> Option<(f64, f64)> {
     let Shared {
@@ -612,11 +652,18 @@ fn first_order_bound(
     // carries a relative rounding of at most gamma.
     let gamma = ESTIMATE_MARGIN * (m as f64 + 2.0) * eps;
     // K0^T = T^-T map^T; K1 = K0 Q^T = map A^+; K2 = map T^-1 T^-T.
-    let k0t = t.transpose().solve_lower_triangular(&map.transpose())?;
+    let (k0t, mapped_correction) = match &map {
+        PiecesMap::Map(map) => (
+            t.transpose().solve_lower_triangular(&map.transpose())?,
+            map * correction,
+        ),
+        // map = A = Q T: K0 = Q, and map times the correction is Q T c.
+        PiecesMap::ThinQ => (q.transpose(), q * (t * correction)),
+    };
     let k2t = t.solve_upper_triangular(&k0t)?;
     // What the solve's own rounding leaves after refinement: the last
     // correction mapped, with a margin (a-posteriori).
-    let measured = REFINEMENT_MARGIN * (map * correction).amax();
+    let measured = REFINEMENT_MARGIN * mapped_correction.amax();
     // Householder QR's own backward error is normwise (column by column),
     // not componentwise, and refinement in working precision does not
     // remove all of it (measured: test merge_exact, degree 20, mu ~0.1,

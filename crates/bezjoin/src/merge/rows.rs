@@ -259,8 +259,13 @@ pub(super) fn continuity_row(
     let (wl, wr) = (wl / norm, wr / norm);
     on_left.fill(0.0);
     on_right.fill(0.0);
+    // C(r, k) by the exact integer recurrence C(r, k+1) = C(r, k) (r - k) /
+    // (k + 1) (exact in f64 while below 2^53, as `binomial`).
+    let mut c = 1.0f64;
     for k in 0..=r {
-        let c = binomial(r, k);
+        if k > 0 {
+            c = (c * (r + 1 - k) as f64 / k as f64).round();
+        }
         // Left: i = m - k, sign (-1)^k; right: i = k, sign (-1)^(r-k).
         on_left[m - k] = if k % 2 == 0 { wl * c } else { -wl * c };
         on_right[k] = if (r - k) % 2 == 0 { -wr * c } else { wr * c };

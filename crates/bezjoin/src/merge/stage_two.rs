@@ -216,27 +216,25 @@ pub(crate) fn max_deviation(
     }
     let mut worst = Worst::default();
     if let Some(table) = deviation_table(n) {
-        // One dot product with a stored row of Bernstein values per sample
-        // and coordinate (no per-call basis work; dimension 2 unrolled).
+        // Per piece: the sample values accumulated coefficient by
+        // coefficient over all samples at once (the table is stored
+        // coefficient-major, so the inner loop runs over contiguous
+        // samples); each sample's sum is still taken in the order i = 0..n.
         for half in halves.chunks_exact(len) {
-            for row in table.chunks_exact(n + 1) {
-                if d == 2 {
-                    let (mut x, mut y) = (0.0, 0.0);
-                    for (b, p) in row.iter().zip(half.chunks_exact(2)) {
-                        x += b * p[0];
-                        y += b * p[1];
-                    }
-                    worst.note(&[x, y]);
-                } else {
-                    let mut value = [0.0; DEVIATION_MAX_DIM];
-                    let value = &mut value[..d.min(DEVIATION_MAX_DIM)];
-                    if d > DEVIATION_MAX_DIM {
-                        let mut long = vec![0.0; d];
-                        dot_rows(row, half, &mut long);
-                        worst.note(&long);
-                    } else {
-                        dot_rows(row, half, value);
-                        worst.note(value);
+            match d {
+                2 => deviation_fixed::<2>(table, half, &mut worst),
+                3 => deviation_fixed::<3>(table, half, &mut worst),
+                _ => {
+                    let mut value = vec![0.0; d];
+                    for s in 0..=DEVIATION_SAMPLES {
+                        value.fill(0.0);
+                        for (i, p) in half.chunks_exact(d).enumerate() {
+                            let b = table[i * (DEVIATION_SAMPLES + 1) + s];
+                            for (o, x) in value.iter_mut().zip(p) {
+                                *o += b * x;
+                            }
+                        }
+                        worst.note(&value);
                     }
                 }
             }
@@ -261,11 +259,8 @@ pub(crate) fn max_deviation(
 /// (n + 1)` values, 68 kB at degree 32); above, it evaluates by Horner.
 pub const DEVIATION_TABLE_DEGREE: usize = 32;
 
-/// Dimensions up to which the deviation's sample values live on the stack.
-const DEVIATION_MAX_DIM: usize = 4;
-
-/// `B_i^n(s / DEVIATION_SAMPLES)`, row `s = 0..=DEVIATION_SAMPLES`, column
-/// `i = 0..=n`, by the product form `C(n,i) u^i (1 - u)^(n-i)` with exact
+/// `B_i^n(s / DEVIATION_SAMPLES)`, coefficient-major (entry `i
+/// (DEVIATION_SAMPLES + 1) + s`, `i = 0..=n`, `s = 0..=DEVIATION_SAMPLES`), by the product form `C(n,i) u^i (1 - u)^(n-i)` with exact
 /// binomials and exact `u`, `1 - u` (relative error at most `(n + 1) eps`
 /// per entry); `None` above [`DEVIATION_TABLE_DEGREE`].
 fn deviation_table(n: usize) -> Option<&'static [f64]> {
@@ -274,10 +269,10 @@ fn deviation_table(n: usize) -> Option<&'static [f64]> {
     let slot = TABLES.get(n)?;
     Some(slot.get_or_init(|| {
         let mut table = Vec::with_capacity((DEVIATION_SAMPLES + 1) * (n + 1));
-        for s in 0..=DEVIATION_SAMPLES {
-            let u = s as f64 / DEVIATION_SAMPLES as f64;
-            let v = 1.0 - u;
-            for i in 0..=n {
+        for i in 0..=n {
+            for s in 0..=DEVIATION_SAMPLES {
+                let u = s as f64 / DEVIATION_SAMPLES as f64;
+                let v = 1.0 - u;
                 let mut b = crate::basis::binomial(n, i);
                 for _ in 0..i {
                     b *= u;
@@ -292,15 +287,21 @@ fn deviation_table(n: usize) -> Option<&'static [f64]> {
     }))
 }
 
-/// `out[c] = sum_i row[i] points[i][c]` for row-major `points` of
-/// dimension `out.len()`.
-fn dot_rows(row: &[f64], points: &[f64], out: &mut [f64]) {
-    let d = out.len();
-    out.fill(0.0);
-    for (b, p) in row.iter().zip(points.chunks_exact(d)) {
-        for (o, x) in out.iter_mut().zip(p) {
-            *o += b * x;
+/// The sample values of one (half) difference curve of dimension `D`,
+/// `sum_i B_i(u_s) half_i` for every sample `s`, noted in `worst`.
+fn deviation_fixed<const D: usize>(table: &[f64], half: &[f64], worst: &mut Worst) {
+    const SAMPLES: usize = DEVIATION_SAMPLES + 1;
+    let mut values = [[0.0; SAMPLES]; D];
+    for (column, p) in table.chunks_exact(SAMPLES).zip(half.chunks_exact(D)) {
+        for (values, &x) in values.iter_mut().zip(p) {
+            for (v, &b) in values.iter_mut().zip(column) {
+                *v += b * x;
+            }
         }
+    }
+    for s in 0..SAMPLES {
+        let value: [f64; D] = std::array::from_fn(|c| values[c][s]);
+        worst.note(&value);
     }
 }
 
