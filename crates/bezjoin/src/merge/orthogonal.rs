@@ -660,10 +660,21 @@ fn first_order_bound(
         // map = A = Q T: K0 = Q, and map times the correction is Q T c.
         PiecesMap::ThinQ => (q.transpose(), q * (t * correction)),
     };
-    let k2t = t.solve_upper_triangular(&k0t)?;
     // What the solve's own rounding leaves after refinement: the last
     // correction mapped, with a margin (a-posteriori).
     let measured = REFINEMENT_MARGIN * mapped_correction.amax();
+    let k1 = (q * &k0t).transpose().abs();
+    if !with_normwise {
+        // R's guard: the values term only (what the measured weight was
+        // calibrated on, merge back with zero residual); no K2.
+        let mut worst = 0.0f64;
+        for c in 0..y.ncols() {
+            let through_values = target_size.column(c) + a_abs * y.column(c).abs();
+            worst = worst.max(gamma * (&k1 * through_values).amax());
+        }
+        return Some((worst + measured, k0t.norm()));
+    }
+    let k2t = t.solve_upper_triangular(&k0t)?;
     // Householder QR's own backward error is normwise (column by column),
     // not componentwise, and refinement in working precision does not
     // remove all of it (measured: test merge_exact, degree 20, mu ~0.1,
@@ -674,25 +685,15 @@ fn first_order_bound(
         * ((a_abs.nrows() * a_abs.ncols()) as f64).sqrt()
         * (k0t.norm() * (target.norm() + a_norm * y.norm())
             + k2t.norm() * a_norm * residual.norm());
-    let k1 = (q * &k0t).transpose().abs();
     let k2 = k2t.transpose().abs();
     let mut worst = 0.0f64;
     for c in 0..y.ncols() {
         let through_values = target_size.column(c) + a_abs * y.column(c).abs();
         let through_residual = a_abs.tr_mul(&residual.column(c).abs());
-        let bound = if with_normwise {
-            &k1 * through_values + &k2 * through_residual
-        } else {
-            // R's guard: the values term only (what the measured weight
-            // was calibrated on, merge back with zero residual).
-            &k1 * through_values
-        };
+        let bound = &k1 * through_values + &k2 * through_residual;
         worst = worst.max(gamma * bound.amax());
     }
-    Some((
-        worst + measured + if with_normwise { normwise } else { 0.0 },
-        k0t.norm(),
-    ))
+    Some((worst + measured + normwise, k0t.norm()))
 }
 
 fn ill_conditioned_factor(accuracy: f64) -> BezjoinError {

@@ -71,10 +71,30 @@ fn check_restrictions(
         .max(f64::MIN_POSITIVE);
     let mut worst = 0.0f64;
     let mut restrictions = Vec::with_capacity(pieces.len());
+    // Two pieces: both restrictions are the edges of one triangle at mu.
+    let mut both = None;
+    if let &[a, mu, b] = breakpoints
+        && a == 0.0
+        && b == 1.0
+    {
+        let (left, right) = merged.split_unchecked(mu);
+        if left
+            .points()
+            .iter()
+            .chain(right.points())
+            .all(|v| v.is_finite())
+        {
+            both = Some([left, right]);
+        }
+    }
+    let mut both = both.map(|pair| pair.into_iter());
     for (j, p) in pieces.iter().enumerate() {
         // segment (blossoms) is a second computation of what stage 1's
         // de Casteljau split gave.
-        let back = restriction(&merged, breakpoints[j], breakpoints[j + 1])?;
+        let back = match both.as_mut().and_then(Iterator::next) {
+            Some(back) => back,
+            None => restriction(&merged, breakpoints[j], breakpoints[j + 1])?,
+        };
         let diff = (back.control_matrix() - p).amax();
         worst = worst.max(diff / scale);
         restrictions.push(back);
@@ -299,9 +319,31 @@ fn deviation_fixed<const D: usize>(table: &[f64], half: &[f64], worst: &mut Wors
             }
         }
     }
+    // The largest square while squares are normal (a plain compare); a
+    // zero square changes nothing; any other sample (subnormal, overflow,
+    // NaN) sends the piece through `Worst::note` sample by sample.
+    let mut largest = 0.0f64;
+    let mut other = false;
     for s in 0..SAMPLES {
-        let value: [f64; D] = std::array::from_fn(|c| values[c][s]);
-        worst.note(&value);
+        let mut square = 0.0;
+        for values in &values {
+            square += values[s] * values[s];
+        }
+        if square.is_normal() {
+            if square > largest {
+                largest = square;
+            }
+        } else if square != 0.0 {
+            other = true;
+        }
+    }
+    if other {
+        for s in 0..SAMPLES {
+            let value: [f64; D] = std::array::from_fn(|c| values[c][s]);
+            worst.note(&value);
+        }
+    } else {
+        worst.square = worst.square.max(largest);
     }
 }
 
