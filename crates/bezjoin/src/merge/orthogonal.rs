@@ -517,10 +517,7 @@ pub(super) fn orthogonal_solution(
             (MergeMetric::Integral, Some(z)) => PiecesMap::Map(&s * z),
             (MergeMetric::Integral, None) => PiecesMap::Map(s.clone()),
         };
-        let zr = match &z {
-            Some(z) => z.clone(),
-            None => DMatrix::identity(points, points),
-        };
+
         // The pieces (through S Z) and R itself (through Z): R's control
         // points are less well determined than the pieces' (S has small
         // singular values at high degree), and R is an answer too.
@@ -538,10 +535,24 @@ pub(super) fn orthogonal_solution(
             m,
             correction,
         };
-        let (pieces_bound, pieces_gain) = first_order_bound(&shared, pieces_map, true)
+        let (pieces_bound, pieces_gain, pieces_k2t) = first_order_bound(&shared, pieces_map, true)
             .ok_or_else(|| ill_conditioned_factor(accuracy))?;
-        let (merged_bound, _) = first_order_bound(&shared, PiecesMap::Map(zr), false)
-            .ok_or_else(|| ill_conditioned_factor(accuracy))?;
+        let merged_bound = match (pieces_k2t, &z) {
+            // Discrete metric, no kept rows: R's map is the identity and
+            // its K1 = T^-1 Q^T is the pieces' K2^T, already solved.
+            (Some(k2t), None) => {
+                values_bound(&shared, &k2t.abs(), REFINEMENT_MARGIN * correction.amax())
+            }
+            _ => {
+                let zr = match &z {
+                    Some(z) => z.clone(),
+                    None => DMatrix::identity(points, points),
+                };
+                first_order_bound(&shared, PiecesMap::Map(zr), false)
+                    .ok_or_else(|| ill_conditioned_factor(accuracy))?
+                    .0
+            }
+        };
         estimate += pieces_bound.max(MERGED_WEIGHT * merged_bound) / result_scale;
         // ||S Z A^+||_F ||M||_F: how much a move of the particular solution
         // (the kept rows' rounding, below) reaches the pieces through the
@@ -630,12 +641,13 @@ enum PiecesMap {
 
 /// The first-order bound (module documentation) of the largest change of
 /// `map y` (`map` = `S Z` for the pieces, `Z` for `R`), absolute, and
-/// `||map A^+||_F`.
+/// `||map A^+||_F`; for [`PiecesMap::ThinQ`] also `K2^T = T^-1 Q^T`, which
+/// is `A^+`, i.e. `R`'s `K1` when `Z = I`.
 fn first_order_bound(
     shared: &Shared<'_>,
     map: PiecesMap,
     with_normwise: bool,
-) -> Option<(f64, f64)> {
+) -> Option<(f64, f64, Option<DMatrix<f64>>)> {
     let Shared {
         t,
         q,
@@ -667,12 +679,7 @@ fn first_order_bound(
     if !with_normwise {
         // R's guard: the values term only (what the measured weight was
         // calibrated on, merge back with zero residual); no K2.
-        let mut worst = 0.0f64;
-        for c in 0..y.ncols() {
-            let through_values = target_size.column(c) + a_abs * y.column(c).abs();
-            worst = worst.max(gamma * (&k1 * through_values).amax());
-        }
-        return Some((worst + measured, k0t.norm()));
+        return Some((values_bound(shared, &k1, measured), k0t.norm(), None));
     }
     let k2t = t.solve_upper_triangular(&k0t)?;
     // Householder QR's own backward error is normwise (column by column),
@@ -693,7 +700,21 @@ fn first_order_bound(
         let bound = &k1 * through_values + &k2 * through_residual;
         worst = worst.max(gamma * bound.amax());
     }
-    Some((worst + measured + normwise, k0t.norm()))
+    let k2t = matches!(map, PiecesMap::ThinQ).then_some(k2t);
+    Some((worst + measured + normwise, k0t.norm(), k2t))
+}
+
+/// The values term of [`first_order_bound`] alone, `max_c gamma |K1|
+/// (|t_c| + |A| |y_c|)`, plus the `measured` refinement term: `R`'s guard,
+/// from `|K1|` (`|map A^+|`, absolute values taken).
+fn values_bound(shared: &Shared<'_>, k1: &DMatrix<f64>, measured: f64) -> f64 {
+    let gamma = ESTIMATE_MARGIN * (shared.m as f64 + 2.0) * f64::EPSILON;
+    let mut worst = 0.0f64;
+    for c in 0..shared.y.ncols() {
+        let through_values = shared.target_size.column(c) + shared.a_abs * shared.y.column(c).abs();
+        worst = worst.max(gamma * (k1 * through_values).amax());
+    }
+    worst + measured
 }
 
 fn ill_conditioned_factor(accuracy: f64) -> BezjoinError {

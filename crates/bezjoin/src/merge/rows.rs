@@ -403,3 +403,42 @@ pub(super) fn extend_orthonormal<'r>(
     }
     (kept, dependent)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The closed-form continuity row against the definition: the `r`-th
+    /// derivatives of the Bernstein basis at 1 and 0 (general basis code),
+    /// weighted by the lengths and normalised.
+    #[test]
+    fn continuity_row_is_the_normalised_derivative_condition() {
+        for m in [0, 1, 2, 3, 7, 15, 24] {
+            let at_one = bezier_basis_derivatives(m, 1.0, m);
+            let at_zero = bezier_basis_derivatives(m, 0.0, m);
+            for (left, right) in [(0.5, 0.5), (0.3, 0.7), (0.9, 0.1), (0.01, 0.99)] {
+                let longer = f64::max(left, right);
+                let (mut on_left, mut on_right) = (vec![0.0; m + 1], vec![0.0; m + 1]);
+                for r in 0..=m {
+                    continuity_row(m, r, left, right, &mut on_left, &mut on_right);
+                    let wl = (right / longer).powi(r as i32);
+                    let wr = (left / longer).powi(r as i32);
+                    let reference: Vec<f64> = (0..=m)
+                        .map(|i| wl * at_one[(r, i)])
+                        .chain((0..=m).map(|i| -wr * at_zero[(r, i)]))
+                        .collect();
+                    let norm = reference.iter().map(|v| v * v).sum::<f64>().sqrt();
+                    for (k, (ours, exact)) in
+                        on_left.iter().chain(&on_right).zip(&reference).enumerate()
+                    {
+                        let exact = exact / norm;
+                        assert!(
+                            (ours - exact).abs() <= 1e-13,
+                            "m {m} r {r} lengths ({left}, {right}) entry {k}: {ours} vs {exact}"
+                        );
+                    }
+                }
+            }
+        }
+    }
+}
