@@ -324,6 +324,8 @@ fn deviation_table(n: usize) -> Option<&'static [f64]> {
 
 /// The sample values of one (half) difference curve of dimension `D`,
 /// `sum_i B_i(u_s) half_i` for every sample `s`, noted in `worst`.
+// The samples are read across the coordinate rows (`values[c][s]`).
+#[allow(clippy::needless_range_loop)]
 fn deviation_fixed<const D: usize>(table: &[f64], half: &[f64], worst: &mut Worst) {
     const SAMPLES: usize = DEVIATION_SAMPLES + 1;
     let mut values = [[0.0; SAMPLES]; D];
