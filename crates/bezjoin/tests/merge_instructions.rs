@@ -5,7 +5,11 @@
 //! curve split at 0.4 instead (a pair every degree answers: the default
 //! pair is refused at degree 31, so it counts only the refusal).
 //! `MERGE_KIND=bspline` merges the same pair as one-span B-splines with
-//! `merge_bsplines` (the B-spline / Bezier ratio of issue 20). Run the difference of two repeat counts under
+//! `merge_bsplines` (the B-spline / Bezier ratio of issue 20).
+//! `MERGE_POINTS=file` reads the pair from a file instead (two lines of
+//! planar control points `x0 y0 x1 y1 ...`, the degree of `MERGE_CASE` then
+//! ignored: e.g. the random pairs of `bindings/python/bench/degree_growth.py`),
+//! and `MERGE_MU` replaces the given `mu = 0.4`. Run the difference of two repeat counts under
 //! `valgrind --tool=callgrind` for the per-merge count:
 //! `MERGE_CASE=15,discrete,given MERGE_REPEATS=10 cargo test --release -p
 //! bezjoin-core --test merge_instructions -- --ignored`.
@@ -40,11 +44,36 @@ fn merge_work() {
         "integral" => MergeMetric::Integral,
         _ => MergeMetric::Discrete,
     };
+    let given: f64 = std::env::var("MERGE_MU")
+        .ok()
+        .and_then(|m| m.parse().ok())
+        .unwrap_or(0.4);
     let split = match parts[2] {
         "optimal" => Breakpoints::Optimal,
-        _ => Breakpoints::Given(vec![0.4]),
+        _ => Breakpoints::Given(vec![given]),
     };
-    let (p, q) = if std::env::var("MERGE_PAIR").is_ok_and(|v| v == "back") {
+    let from_file = std::env::var("MERGE_POINTS")
+        .ok()
+        .filter(|path| !path.is_empty())
+        .map(|path| {
+            let text = std::fs::read_to_string(path).unwrap();
+            let curves: Vec<BezierCurve> = text
+                .lines()
+                .take(2)
+                .map(|line| {
+                    let values: Vec<f64> = line
+                        .split_whitespace()
+                        .map(|v| v.parse().unwrap())
+                        .collect();
+                    BezierCurve::new(2, values.len() / 2 - 1, values).unwrap()
+                })
+                .collect();
+            (curves[0].clone(), curves[1].clone())
+        });
+    let degree = from_file.as_ref().map_or(degree, |(p, _)| p.degree());
+    let (p, q) = if let Some(pair) = from_file {
+        pair
+    } else if std::env::var("MERGE_PAIR").is_ok_and(|v| v == "back") {
         let (whole, _) = pair(degree);
         whole.split_at(0.4).unwrap()
     } else {

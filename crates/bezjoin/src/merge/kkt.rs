@@ -36,8 +36,8 @@ pub(super) fn kkt_solution(
     // before it. Any larger remainder, however small, keeps the row: the
     // ill-conditioning is then the estimate's business.
     let mut basis: Vec<(DVector<f64>, DVector<f64>)> = {
-        let mut at = DMatrix::zeros(unknowns, problem.continuity.len());
-        for (c, row) in problem.continuity.iter().enumerate() {
+        let mut at = DMatrix::zeros(unknowns, problem.continuity().len());
+        for (c, row) in problem.continuity().iter().enumerate() {
             at.set_column(c, &row.coefficients);
         }
         let q = at.qr().q();
@@ -90,7 +90,7 @@ pub(super) fn kkt_solution(
         StageOneCheck::Full => solution.error_estimate().max(
             DATA_ROUNDING_MARGIN
                 * f64::EPSILON
-                * row_matrix_condition(&problem.continuity, &kept, unknowns)
+                * row_matrix_condition(problem.continuity(), &kept, unknowns)
                 * match metric {
                     // W = I: Z^T W Z = Z^T Z = I for the orthonormal Z.
                     MergeMetric::Discrete => 1.0,

@@ -116,7 +116,7 @@ pub use bspline::{
 pub use stage_one::{
     CONSISTENCY_TOLERANCE, CONTRADICTION_MARGIN, DEVIATION_SAMPLES, RANK_TOLERANCE,
 };
-use stage_one::{PieceInput, StageOne, StageOneCheck, solve_stage_one};
+use stage_one::{PieceInput, StageOne, StageOneCheck, solve_stage_one, solve_stage_one_slope};
 use stage_two::{max_deviation, stage_two};
 
 /// The default `accuracy` of a merge: the largest accepted relative error
@@ -287,13 +287,13 @@ pub fn merge(p: &BezierCurve, q: &BezierCurve, options: &MergeOptions) -> Result
                 });
             };
             check_open_range("mu", mu, 0.0, 1.0)?;
-            (mu, problem.solve(mu, StageOneCheck::Full)?)
+            (mu, problem.solve_given(mu)?)
         }
-        Breakpoints::Uniform => (0.5, problem.solve(0.5, StageOneCheck::Full)?),
+        Breakpoints::Uniform => (0.5, problem.solve_given(0.5)?),
         Breakpoints::PolygonLength => {
             let mu =
                 polygon_breakpoints(&[p.polygon_length(), q.polygon_length()], &["P", "Q"])?[1];
-            (mu, problem.solve(mu, StageOneCheck::Full)?)
+            (mu, problem.solve_given(mu)?)
         }
         Breakpoints::Optimal => {
             let mu = problem.optimal_mu(StageOneCheck::Trial)?;
@@ -344,9 +344,7 @@ pub fn merge_metric_at(
 ) -> Result<f64> {
     let problem = PairProblem::new(p, q, options)?;
     check_open_range("mu", mu, 0.0, 1.0)?;
-    problem
-        .solve(mu, StageOneCheck::Full)
-        .map(|s| s.metric_value)
+    problem.solve_given(mu).map(|s| s.metric_value)
 }
 
 /// Two curves at the working degree with their constraints: what stage 1
@@ -394,6 +392,20 @@ impl<'a> PairProblem<'a> {
             fix_ends: options.fix_ends,
             accuracy: options.accuracy,
         })
+    }
+
+    /// The fully checked solve at a given `mu`, without the slope (which
+    /// only the search of the optimal `mu` reads).
+    fn solve_given(&self, mu: f64) -> Result<StageOne> {
+        solve_stage_one_slope(
+            &self.pieces,
+            &[0.0, mu, 1.0],
+            self.metric,
+            self.fix_ends,
+            self.accuracy,
+            StageOneCheck::Full,
+            false,
+        )
     }
 
     fn solve(&self, mu: f64, check: StageOneCheck) -> Result<StageOne> {

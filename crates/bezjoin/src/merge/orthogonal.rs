@@ -56,6 +56,8 @@
 //! actual sensitivity; measured against an exact rational reference in
 //! test `merge_exact`.
 
+use std::sync::OnceLock;
+
 use nalgebra::{DMatrix, DVector};
 
 use crate::basis::binomial;
@@ -148,6 +150,21 @@ pub(crate) fn gauss_legendre_unit(count: usize) -> (Vec<f64>, Vec<f64>) {
     (nodes, weights)
 }
 
+/// Node counts whose Gauss-Legendre rule is computed once and kept
+/// ([`gauss_legendre_stored`]).
+const STORED_RULES: usize = 64;
+
+/// [`gauss_legendre_unit`]`(count)`, computed once per count up to
+/// [`STORED_RULES`] (the same values; computed on each call above).
+fn gauss_legendre_stored(count: usize) -> std::borrow::Cow<'static, (Vec<f64>, Vec<f64>)> {
+    static RULES: [OnceLock<(Vec<f64>, Vec<f64>)>; STORED_RULES + 1] =
+        [const { OnceLock::new() }; STORED_RULES + 1];
+    match RULES.get(count) {
+        Some(slot) => std::borrow::Cow::Borrowed(slot.get_or_init(|| gauss_legendre_unit(count))),
+        None => std::borrow::Cow::Owned(gauss_legendre_unit(count)),
+    }
+}
+
 /// All Bernstein values `B_i^m(t)`, `i = 0..m`, into `out` (product form
 /// with exact binomials).
 fn bernstein_row(m: usize, t: f64, out: &mut [f64]) {
@@ -219,7 +236,8 @@ fn metric_samples(
             let m = points - 1;
             let count = problem.pieces.len();
             let dim = problem.dim;
-            let (nodes, weights) = gauss_legendre_unit(points);
+            let rule = gauss_legendre_stored(points);
+            let (nodes, weights) = (&rule.0, &rule.1);
             let mut samples = DMatrix::zeros(count * points, points);
             let mut target = DMatrix::zeros(count * points, dim);
             // sqrt(w_k) sum_i B_i(u_k) |P_i|: the size the target's
@@ -230,7 +248,7 @@ fn metric_samples(
             let mut value = vec![0.0; dim];
             for (j, piece) in problem.pieces.iter().enumerate() {
                 let (t0, t1) = (breakpoints[j], breakpoints[j + 1]);
-                for (k, (&u, &w)) in nodes.iter().zip(&weights).enumerate() {
+                for (k, (&u, &w)) in nodes.iter().zip(weights.iter()).enumerate() {
                     let root = w.sqrt();
                     bernstein_row(m, t0 + (t1 - t0) * u, &mut row);
                     for i in 0..points {
@@ -287,9 +305,10 @@ fn sample_slopes(
             }
         }
         MergeMetric::Integral => {
-            let (nodes, weights) = gauss_legendre_unit(points);
+            let rule = gauss_legendre_stored(points);
+            let (nodes, weights) = (&rule.0, &rule.1);
             let mut value = vec![0.0; dim];
-            for (k, (&u, &w)) in nodes.iter().zip(&weights).enumerate() {
+            for (k, (&u, &w)) in nodes.iter().zip(weights.iter()).enumerate() {
                 let root = w.sqrt();
                 hodograph.eval_into(mu * u, &mut value);
                 for c in 0..dim {
@@ -396,8 +415,13 @@ pub(super) fn orthogonal_solution(
         Some(null_space(&basis, points))
     };
     let free = points - basis.len();
-    let particular_abs = particular.abs();
-    let reduced_target = &target - &samples * &particular;
+    // Without kept rows the particular solution is zero: no products.
+    let particular_abs = (!basis.is_empty()).then(|| particular.abs());
+    let reduced_target = if basis.is_empty() {
+        target.clone()
+    } else {
+        &target - &samples * &particular
+    };
     let merged;
     let mut factor = None;
     if free == 0 {
@@ -485,14 +509,15 @@ pub(super) fn orthogonal_solution(
     let mut estimate = (m as f64 + 2.0) * eps * x.amax() / result_scale;
     let mut reduced_gain = 0.0;
     if let Some((t, y, a_abs, Some(q), correction)) = &factor {
-        let sz = match &z {
-            Some(z) => &s * z,
-            None => s.clone(),
+        // The discrete metric samples the pieces themselves (M = S), so
+        // the pieces' map S Z is A = Q T and K0 = S Z T^-1 is the thin Q
+        // (no triangular solve); otherwise K0 is solved for.
+        let pieces_map = match (metric, &z) {
+            (MergeMetric::Discrete, _) => PiecesMap::ThinQ,
+            (MergeMetric::Integral, Some(z)) => PiecesMap::Map(&s * z),
+            (MergeMetric::Integral, None) => PiecesMap::Map(s.clone()),
         };
-        let zr = match &z {
-            Some(z) => z.clone(),
-            None => DMatrix::identity(points, points),
-        };
+
         // The pieces (through S Z) and R itself (through Z): R's control
         // points are less well determined than the pieces' (S has small
         // singular values at high degree), and R is an answer too.
@@ -502,15 +527,32 @@ pub(super) fn orthogonal_solution(
             y,
             a_abs,
             target: &reduced_target,
-            target_size: &(&target_abs + samples.abs() * particular_abs),
+            target_size: &match particular_abs {
+                None => target_abs,
+                Some(particular_abs) => &target_abs + samples.abs() * particular_abs,
+            },
             residual: &residual,
             m,
             correction,
         };
-        let (pieces_bound, pieces_gain) = first_order_bound(&shared, &sz, true)
+        let (pieces_bound, pieces_gain, pieces_k2t) = first_order_bound(&shared, pieces_map, true)
             .ok_or_else(|| ill_conditioned_factor(accuracy))?;
-        let (merged_bound, _) = first_order_bound(&shared, &zr, false)
-            .ok_or_else(|| ill_conditioned_factor(accuracy))?;
+        let merged_bound = match (pieces_k2t, &z) {
+            // Discrete metric, no kept rows: R's map is the identity and
+            // its K1 = T^-1 Q^T is the pieces' K2^T, already solved.
+            (Some(k2t), None) => {
+                values_bound(&shared, &k2t.abs(), REFINEMENT_MARGIN * correction.amax())
+            }
+            _ => {
+                let zr = match &z {
+                    Some(z) => z.clone(),
+                    None => DMatrix::identity(points, points),
+                };
+                first_order_bound(&shared, PiecesMap::Map(zr), false)
+                    .ok_or_else(|| ill_conditioned_factor(accuracy))?
+                    .0
+            }
+        };
         estimate += pieces_bound.max(MERGED_WEIGHT * merged_bound) / result_scale;
         // ||S Z A^+||_F ||M||_F: how much a move of the particular solution
         // (the kept rows' rounding, below) reaches the pieces through the
@@ -588,14 +630,24 @@ struct Shared<'s> {
     correction: &'s DMatrix<f64>,
 }
 
+/// The map of [`first_order_bound`]: a matrix (`S Z` for the pieces of
+/// the integral metric, `Z` for `R`), or the pieces of the discrete metric,
+/// whose map `S Z` is `A` itself, so that `K0 = A T^-1` is the thin `Q` of
+/// the factor.
+enum PiecesMap {
+    Map(DMatrix<f64>),
+    ThinQ,
+}
+
 /// The first-order bound (module documentation) of the largest change of
 /// `map y` (`map` = `S Z` for the pieces, `Z` for `R`), absolute, and
-/// `||map A^+||_F`.
+/// `||map A^+||_F`; for [`PiecesMap::ThinQ`] also `K2^T = T^-1 Q^T`, which
+/// is `A^+`, i.e. `R`'s `K1` when `Z = I`.
 fn first_order_bound(
     shared: &Shared<'_>,
-    map: &DMatrix<f64>,
+    map: PiecesMap,
     with_normwise: bool,
-) -> Option<(f64, f64)> {
+) -> Option<(f64, f64, Option<DMatrix<f64>>)> {
     let Shared {
         t,
         q,
@@ -612,11 +664,24 @@ fn first_order_bound(
     // carries a relative rounding of at most gamma.
     let gamma = ESTIMATE_MARGIN * (m as f64 + 2.0) * eps;
     // K0^T = T^-T map^T; K1 = K0 Q^T = map A^+; K2 = map T^-1 T^-T.
-    let k0t = t.transpose().solve_lower_triangular(&map.transpose())?;
-    let k2t = t.solve_upper_triangular(&k0t)?;
+    let (k0t, mapped_correction) = match &map {
+        PiecesMap::Map(map) => (
+            t.transpose().solve_lower_triangular(&map.transpose())?,
+            map * correction,
+        ),
+        // map = A = Q T: K0 = Q, and map times the correction is Q T c.
+        PiecesMap::ThinQ => (q.transpose(), q * (t * correction)),
+    };
     // What the solve's own rounding leaves after refinement: the last
     // correction mapped, with a margin (a-posteriori).
-    let measured = REFINEMENT_MARGIN * (map * correction).amax();
+    let measured = REFINEMENT_MARGIN * mapped_correction.amax();
+    let k1 = (q * &k0t).transpose().abs();
+    if !with_normwise {
+        // R's guard: the values term only (what the measured weight was
+        // calibrated on, merge back with zero residual); no K2.
+        return Some((values_bound(shared, &k1, measured), k0t.norm(), None));
+    }
+    let k2t = t.solve_upper_triangular(&k0t)?;
     // Householder QR's own backward error is normwise (column by column),
     // not componentwise, and refinement in working precision does not
     // remove all of it (measured: test merge_exact, degree 20, mu ~0.1,
@@ -627,25 +692,29 @@ fn first_order_bound(
         * ((a_abs.nrows() * a_abs.ncols()) as f64).sqrt()
         * (k0t.norm() * (target.norm() + a_norm * y.norm())
             + k2t.norm() * a_norm * residual.norm());
-    let k1 = (q * &k0t).transpose().abs();
     let k2 = k2t.transpose().abs();
     let mut worst = 0.0f64;
     for c in 0..y.ncols() {
         let through_values = target_size.column(c) + a_abs * y.column(c).abs();
         let through_residual = a_abs.tr_mul(&residual.column(c).abs());
-        let bound = if with_normwise {
-            &k1 * through_values + &k2 * through_residual
-        } else {
-            // R's guard: the values term only (what the measured weight
-            // was calibrated on, merge back with zero residual).
-            &k1 * through_values
-        };
+        let bound = &k1 * through_values + &k2 * through_residual;
         worst = worst.max(gamma * bound.amax());
     }
-    Some((
-        worst + measured + if with_normwise { normwise } else { 0.0 },
-        k0t.norm(),
-    ))
+    let k2t = matches!(map, PiecesMap::ThinQ).then_some(k2t);
+    Some((worst + measured + normwise, k0t.norm(), k2t))
+}
+
+/// The values term of [`first_order_bound`] alone, `max_c gamma |K1|
+/// (|t_c| + |A| |y_c|)`, plus the `measured` refinement term: `R`'s guard,
+/// from `|K1|` (`|map A^+|`, absolute values taken).
+fn values_bound(shared: &Shared<'_>, k1: &DMatrix<f64>, measured: f64) -> f64 {
+    let gamma = ESTIMATE_MARGIN * (shared.m as f64 + 2.0) * f64::EPSILON;
+    let mut worst = 0.0f64;
+    for c in 0..shared.y.ncols() {
+        let through_values = shared.target_size.column(c) + shared.a_abs * shared.y.column(c).abs();
+        worst = worst.max(gamma * (k1 * through_values).amax());
+    }
+    worst + measured
 }
 
 fn ill_conditioned_factor(accuracy: f64) -> BezjoinError {

@@ -2,9 +2,11 @@
 //! points as linear conditions on the perturbations, and the bookkeeping of
 //! dependent rows (consistent, contradictory or undecided).
 
+use std::cell::OnceCell;
+
 use nalgebra::{DMatrix, DVector};
 
-use crate::basis::bezier_basis_derivatives;
+use crate::basis::{bezier_basis_derivatives, binomial};
 use crate::error::{BezjoinError, Result};
 
 use super::stage_one::{CONTRADICTION_MARGIN, PieceInput};
@@ -37,7 +39,12 @@ pub(super) struct Problem<'p, 'a> {
     pub(super) x0: DMatrix<f64>,
     /// Coordinate scale of the input.
     pub(super) scale: f64,
-    pub(super) continuity: Vec<Row>,
+    /// The piece lengths `h_j` (the continuity rows' weights).
+    lengths: Vec<f64>,
+    /// The continuity rows as [`Row`]s, built on first use (the KKT
+    /// reference and fallback; the orthogonal path needs none and checks
+    /// (3) by [`Problem::continuity_residual`]).
+    continuity: OnceCell<Vec<Row>>,
     pub(super) constraints: Vec<Row>,
 }
 
@@ -54,34 +61,6 @@ impl<'p, 'a> Problem<'p, 'a> {
                 .copy_from(&p.curve.control_matrix());
         }
         let scale = x0.amax().max(f64::MIN_POSITIVE);
-
-        // Continuity rows (3): independent by construction (row r of join j
-        // brings in control point r of piece j + 1 for the first time).
-        let at_one = bezier_basis_derivatives(m, 1.0, m);
-        let at_zero = bezier_basis_derivatives(m, 0.0, m);
-        let mut continuity = Vec::new();
-        for j in 0..count - 1 {
-            let (left, right) = (lengths[j], lengths[j + 1]);
-            let longer = left.max(right);
-            for r in 0..=m {
-                let mut a = DVector::zeros(unknowns);
-                let wl = (right / longer).powi(r as i32);
-                let wr = (left / longer).powi(r as i32);
-                for i in 0..=m {
-                    a[j * points_per_piece + i] = wl * at_one[(r, i)];
-                    a[(j + 1) * points_per_piece + i] = -wr * at_zero[(r, i)];
-                }
-                continuity.push(normalised(Row {
-                    coefficients: a,
-                    rhs: DVector::zeros(dim),
-                    label: format!(
-                        "continuity of order {r} between {} and {}",
-                        pieces[j].name,
-                        pieces[j + 1].name
-                    ),
-                }));
-            }
-        }
 
         // Constraint rows, in a fixed order; right-hand sides are exactly
         // zero (the constrained quantities keep their values). "Keep piece j
@@ -130,9 +109,87 @@ impl<'p, 'a> Problem<'p, 'a> {
             dim,
             x0,
             scale,
-            continuity,
+            lengths: lengths.to_vec(),
+            continuity: OnceCell::new(),
             constraints,
         }
+    }
+
+    /// The continuity rows (3), unit length, join after join, order `r =
+    /// 0..m` ([`continuity_row`]); independent by construction (row `r` of
+    /// join `j` brings in control point `r` of piece `j + 1` for the first
+    /// time).
+    pub(super) fn continuity(&self) -> &[Row] {
+        self.continuity.get_or_init(|| {
+            let points = self.points_per_piece;
+            let m = points - 1;
+            let count = self.pieces.len();
+            let mut rows = Vec::with_capacity((count - 1) * points);
+            let (mut left, mut right) = (vec![0.0; points], vec![0.0; points]);
+            for j in 0..count - 1 {
+                for r in 0..=m {
+                    continuity_row(
+                        m,
+                        r,
+                        self.lengths[j],
+                        self.lengths[j + 1],
+                        &mut left,
+                        &mut right,
+                    );
+                    let mut a = DVector::zeros(self.unknowns);
+                    a.rows_mut(j * points, points).copy_from_slice(&left);
+                    a.rows_mut((j + 1) * points, points).copy_from_slice(&right);
+                    rows.push(Row {
+                        coefficients: a,
+                        rhs: DVector::zeros(self.dim),
+                        label: format!(
+                            "continuity of order {r} between {} and {}",
+                            self.pieces[j].name,
+                            self.pieces[j + 1].name
+                        ),
+                    });
+                }
+            }
+            rows
+        })
+    }
+
+    /// `max_(j, r, c) |a_(j,r) . x_c|` (NaN terms passed over): the residual of the continuity
+    /// rows (3) ([`continuity_row`], unit length) at the stacked control
+    /// points `x` of all pieces, every coordinate. Only the `r + 1`
+    /// nonzero entries of each half of a row are visited: `O(m^2 dim)` per
+    /// join, no row is stored.
+    pub(super) fn continuity_residual(&self, x: &DMatrix<f64>) -> f64 {
+        let points = self.points_per_piece;
+        let m = points - 1;
+        let (mut left, mut right) = (vec![0.0; points], vec![0.0; points]);
+        let mut worst = 0.0f64;
+        for j in 0..self.pieces.len() - 1 {
+            for r in 0..=m {
+                continuity_row(
+                    m,
+                    r,
+                    self.lengths[j],
+                    self.lengths[j + 1],
+                    &mut left,
+                    &mut right,
+                );
+                for c in 0..self.dim {
+                    let column = x.column(c);
+                    let mut sum = 0.0;
+                    for i in m - r..=m {
+                        sum += left[i] * column[j * points + i];
+                    }
+                    for i in 0..=r {
+                        sum += right[i] * column[(j + 1) * points + i];
+                    }
+                    // f64::max passes over a NaN, as the row-wise amax did
+                    // (non-finite pieces are refused later, as such).
+                    worst = worst.max(sum.abs());
+                }
+            }
+        }
+        worst
     }
 
     /// Conditions given beyond continuity (a kept piece counts `m + 1`).
@@ -174,6 +231,44 @@ impl<'p, 'a> Problem<'p, 'a> {
             self.points_per_piece,
             self.given()
         )
+    }
+}
+
+/// The continuity row of order `r` between a piece of length `left` and
+/// the next of length `right` (eq. (3) scaled by the longer length to the
+/// power `r`), on the two pieces' control points, unit 2-norm, into
+/// `on_left` and `on_right` (`m + 1` each). In closed form: with `B^(r)`
+/// the `r`-th derivatives of the degree-`m` Bernstein basis,
+/// `B_i^(r)(1) = m!/(m-r)! (-1)^(m-i) C(r, m-i)` and `B_i^(r)(0) = m!/(m-r)!
+/// (-1)^(r-i) C(r, i)`, so the row is `(wl B^(r)(1), -wr B^(r)(0))` with
+/// `wl = (right / longer)^r`, `wr = (left / longer)^r`; the common factor
+/// `m!/(m-r)!` cancels in the normalisation and the norm is `sqrt((wl^2 +
+/// wr^2) C(2r, r))` (`sum_k C(r,k)^2 = C(2r, r)`).
+pub(super) fn continuity_row(
+    m: usize,
+    r: usize,
+    left: f64,
+    right: f64,
+    on_left: &mut [f64],
+    on_right: &mut [f64],
+) {
+    let longer = left.max(right);
+    let wl = (right / longer).powi(r as i32);
+    let wr = (left / longer).powi(r as i32);
+    let norm = ((wl * wl + wr * wr) * binomial(2 * r, r)).sqrt();
+    let (wl, wr) = (wl / norm, wr / norm);
+    on_left.fill(0.0);
+    on_right.fill(0.0);
+    // C(r, k) by the exact integer recurrence C(r, k+1) = C(r, k) (r - k) /
+    // (k + 1) (exact in f64 while below 2^53, as `binomial`).
+    let mut c = 1.0f64;
+    for k in 0..=r {
+        if k > 0 {
+            c = (c * (r + 1 - k) as f64 / k as f64).round();
+        }
+        // Left: i = m - k, sign (-1)^k; right: i = k, sign (-1)^(r-k).
+        on_left[m - k] = if k % 2 == 0 { wl * c } else { -wl * c };
+        on_right[k] = if (r - k) % 2 == 0 { -wr * c } else { wr * c };
     }
 }
 
@@ -307,4 +402,43 @@ pub(super) fn extend_orthonormal<'r>(
         }
     }
     (kept, dependent)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The closed-form continuity row against the definition: the `r`-th
+    /// derivatives of the Bernstein basis at 1 and 0 (general basis code),
+    /// weighted by the lengths and normalised.
+    #[test]
+    fn continuity_row_is_the_normalised_derivative_condition() {
+        for m in [0, 1, 2, 3, 7, 15, 24] {
+            let at_one = bezier_basis_derivatives(m, 1.0, m);
+            let at_zero = bezier_basis_derivatives(m, 0.0, m);
+            for (left, right) in [(0.5, 0.5), (0.3, 0.7), (0.9, 0.1), (0.01, 0.99)] {
+                let longer = f64::max(left, right);
+                let (mut on_left, mut on_right) = (vec![0.0; m + 1], vec![0.0; m + 1]);
+                for r in 0..=m {
+                    continuity_row(m, r, left, right, &mut on_left, &mut on_right);
+                    let wl = (right / longer).powi(r as i32);
+                    let wr = (left / longer).powi(r as i32);
+                    let reference: Vec<f64> = (0..=m)
+                        .map(|i| wl * at_one[(r, i)])
+                        .chain((0..=m).map(|i| -wr * at_zero[(r, i)]))
+                        .collect();
+                    let norm = reference.iter().map(|v| v * v).sum::<f64>().sqrt();
+                    for (k, (ours, exact)) in
+                        on_left.iter().chain(&on_right).zip(&reference).enumerate()
+                    {
+                        let exact = exact / norm;
+                        assert!(
+                            (ours - exact).abs() <= 1e-13,
+                            "m {m} r {r} lengths ({left}, {right}) entry {k}: {ours} vs {exact}"
+                        );
+                    }
+                }
+            }
+        }
+    }
 }

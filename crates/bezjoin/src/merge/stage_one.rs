@@ -135,6 +135,21 @@ pub(crate) fn solve_stage_one(
     accuracy: f64,
     check: StageOneCheck,
 ) -> Result<StageOne> {
+    solve_stage_one_slope(pieces, breakpoints, metric, fix_ends, accuracy, check, true)
+}
+
+/// [`solve_stage_one`], with the slope `d metric / d mu` computed only when
+/// `slope` is set (a merge at a given `mu` needs none; the same answer and
+/// checks otherwise, `StageOne::slope` is then `None`).
+pub(crate) fn solve_stage_one_slope(
+    pieces: &[PieceInput<'_>],
+    breakpoints: &[f64],
+    metric: MergeMetric,
+    fix_ends: bool,
+    accuracy: f64,
+    check: StageOneCheck,
+    slope: bool,
+) -> Result<StageOne> {
     let count = pieces.len();
     debug_assert!(count >= 2 && breakpoints.len() == count + 1);
     let lengths: Vec<f64> = breakpoints.windows(2).map(|w| w[1] - w[0]).collect();
@@ -144,7 +159,7 @@ pub(crate) fn solve_stage_one(
     let (x, estimate) = if pieces.iter().any(|p| p.keep) {
         kept_solution(&problem, breakpoints, &lengths, accuracy)?
     } else {
-        let want_slope = count == 2 && pieces.iter().all(|p| p.points.is_empty());
+        let want_slope = slope && count == 2 && pieces.iter().all(|p| p.points.is_empty());
         match orthogonal_solution(
             &problem,
             breakpoints,
@@ -177,12 +192,7 @@ pub(crate) fn solve_stage_one(
     // The continuity conditions (3) themselves, on the original rows (unit
     // length), relative to the coordinate scale of the input and result.
     let result_scale = x.amax().max(problem.scale);
-    let continuity_residual = problem
-        .continuity
-        .iter()
-        .map(|row| (x.transpose() * &row.coefficients).amax())
-        .fold(0.0f64, f64::max)
-        / result_scale;
+    let continuity_residual = problem.continuity_residual(&x) / result_scale;
     if continuity_residual.is_nan() || continuity_residual > accuracy {
         return Err(BezjoinError::IllConditioned {
             what: "merge stage 1 (residual of the continuity conditions (3))".into(),

@@ -1,6 +1,8 @@
 //! Stage 2: the single curve `R` from the stage-1 pieces, checked by
 //! restricting it back to every piece, and the measured deviation.
 
+use std::sync::OnceLock;
+
 use nalgebra::DMatrix;
 
 use crate::bezier::BezierCurve;
@@ -69,10 +71,30 @@ fn check_restrictions(
         .max(f64::MIN_POSITIVE);
     let mut worst = 0.0f64;
     let mut restrictions = Vec::with_capacity(pieces.len());
+    // Two pieces: both restrictions are the edges of one triangle at mu.
+    let mut both = None;
+    if let &[a, mu, b] = breakpoints
+        && a == 0.0
+        && b == 1.0
+    {
+        let (left, right) = merged.split_unchecked(mu);
+        if left
+            .points()
+            .iter()
+            .chain(right.points())
+            .all(|v| v.is_finite())
+        {
+            both = Some([left, right]);
+        }
+    }
+    let mut both = both.map(|pair| pair.into_iter());
     for (j, p) in pieces.iter().enumerate() {
         // segment (blossoms) is a second computation of what stage 1's
         // de Casteljau split gave.
-        let back = merged.segment(breakpoints[j], breakpoints[j + 1])?;
+        let back = match both.as_mut().and_then(Iterator::next) {
+            Some(back) => back,
+            None => restriction(&merged, breakpoints[j], breakpoints[j + 1])?,
+        };
         let diff = (back.control_matrix() - p).amax();
         worst = worst.max(diff / scale);
         restrictions.push(back);
@@ -90,20 +112,58 @@ fn check_restrictions(
     Ok((merged, worst, restrictions))
 }
 
+/// `R` on `[a, b]`: control point `i` is the blossom `R[a^(n-i), b^i]`, as
+/// [`BezierCurve::segment`] computes it (`i` de Casteljau steps at `b`,
+/// then `n - i` at `a`). On an end piece (`a = 0` or `b = 1`) the steps at
+/// `0` and `1` only select points (`1 p + 0 q = p`, `0 p + 1 q = q`
+/// exactly for finite values), so the blossoms are the edges of one de
+/// Casteljau triangle at the other end, the same values in `O(n^2)`
+/// instead of `O(n^3)`; a non-finite result is recomputed by `segment`
+/// for its error.
+fn restriction(merged: &BezierCurve, a: f64, b: f64) -> Result<BezierCurve> {
+    let back = if a == 0.0 {
+        merged.split_unchecked(b).0
+    } else if b == 1.0 {
+        merged.split_unchecked(a).1
+    } else {
+        return merged.segment(a, b);
+    };
+    if back.points().iter().all(|v| v.is_finite()) {
+        Ok(back)
+    } else {
+        merged.segment(a, b)
+    }
+}
+
 /// Restriction matrices: row block `j` maps `R`'s control points to those of
 /// `R` on `[t_j, t_{j+1}]` (exact segments of the unit coefficient vectors).
+///
+/// All unit vectors at once, as one curve of dimension `degree + 1` whose
+/// control point `k` is `e_k` (de Casteljau works coordinate by
+/// coordinate, so column `k` is the segment of `e_k` alone, the same
+/// values), restricted by [`restriction`]: `O(n^3)` for the end pieces
+/// instead of `O(n^4)` for `n + 1` separate blossomed segments.
 pub(super) fn restriction_matrix(degree: usize, breakpoints: &[f64]) -> DMatrix<f64> {
     let count = breakpoints.len() - 1;
     let points = degree + 1;
-    let mut s = DMatrix::zeros(count * points, points);
+    let mut identity = vec![0.0; points * points];
     for k in 0..points {
-        let mut unit = vec![0.0; points];
-        unit[k] = 1.0;
-        let basis_curve = BezierCurve::from_parts(1, degree, unit);
-        for j in 0..count {
-            let seg = basis_curve.segment_unchecked(breakpoints[j], breakpoints[j + 1]);
-            for i in 0..points {
-                s[(j * points + i, k)] = seg.points()[i];
+        identity[k * points + k] = 1.0;
+    }
+    let basis_curve = BezierCurve::from_parts(points, degree, identity);
+    let mut s = DMatrix::zeros(count * points, points);
+    for j in 0..count {
+        let (a, b) = (breakpoints[j], breakpoints[j + 1]);
+        let seg = if a == 0.0 {
+            basis_curve.split_unchecked(b).0
+        } else if b == 1.0 {
+            basis_curve.split_unchecked(a).1
+        } else {
+            basis_curve.segment_unchecked(a, b)
+        };
+        for i in 0..points {
+            for (k, &v) in seg.point(i).iter().enumerate() {
+                s[(j * points + i, k)] = v;
             }
         }
     }
@@ -145,10 +205,15 @@ pub(super) fn refine(merged: &mut BezierCurve, pieces: &[DMatrix<f64>], breakpoi
 /// arithmetic). The difference `R(t_j + h_j u) - C_j(u)` is then one Bezier
 /// curve of the working degree, `restrictions[j]` minus `C_j` elevated to
 /// it (convex combinations, exact in exact arithmetic), evaluated once per
-/// sample instead of evaluating `R` and `C_j` separately (by the
-/// Bernstein-Horner scheme of [`BezierCurve::eval_into`]): the same sampled
-/// quantity, changed by rounding only (a few `n eps` of the coordinate
-/// scale; tests/merge_accuracy.rs compares it with the two-evaluation form).
+/// sample instead of evaluating `R` and `C_j` separately: as
+/// `sum_i B_i^n(u) D_i` with the Bernstein values at the samples read from
+/// a table computed once per degree (up to [`DEVIATION_TABLE_DEGREE`]; by
+/// the Bernstein-Horner scheme of [`BezierCurve::eval_into`] above). Both
+/// are stable: the table's entries carry `(n + 1) eps` relative, the sum of
+/// nonnegative weights another `(n + 1) eps` of `max |D_i|`, so this is the
+/// same sampled quantity, changed by rounding only (a few `n eps` of the
+/// coordinate scale; tests/merge_accuracy.rs compares it with the
+/// two-evaluation form).
 ///
 /// The differences are taken of the halved points (exact, a power of two)
 /// and the distance doubled at the end, so that points near the top of the
@@ -184,17 +249,242 @@ pub(crate) fn max_deviation(
                 .map(|(r, c)| 0.5 * r - 0.5 * c),
         );
     }
-    let mut value = vec![0.0; d];
-    let mut worst = 0.0f64;
-    // One Horner evaluation per sample: a table of the basis values at the
-    // samples, shared by the pieces, measured slower (the unrolled Horner
-    // of dimensions 2 and 3 beats a general dot product).
-    for half in halves.chunks_exact(len) {
-        for s in 0..=DEVIATION_SAMPLES {
-            let u = s as f64 / DEVIATION_SAMPLES as f64;
-            crate::bezier::bernstein_horner_any(half, n, d, u, 1.0, &mut value);
-            worst = worst.max(crate::bezier::norm(&value));
+    let mut worst = Worst::default();
+    if let Some(table) = deviation_table(n) {
+        // Per piece: the sample values accumulated coefficient by
+        // coefficient over all samples at once (the table is stored
+        // coefficient-major, so the inner loop runs over contiguous
+        // samples); each sample's sum is still taken in the order i = 0..n.
+        for half in halves.chunks_exact(len) {
+            match d {
+                2 => deviation_fixed::<2>(table, half, &mut worst),
+                3 => deviation_fixed::<3>(table, half, &mut worst),
+                _ => {
+                    let mut value = vec![0.0; d];
+                    for s in 0..=DEVIATION_SAMPLES {
+                        value.fill(0.0);
+                        for (i, p) in half.chunks_exact(d).enumerate() {
+                            let b = table[i * (DEVIATION_SAMPLES + 1) + s];
+                            for (o, x) in value.iter_mut().zip(p) {
+                                *o += b * x;
+                            }
+                        }
+                        worst.note(&value);
+                    }
+                }
+            }
+        }
+    } else {
+        let mut value = vec![0.0; d];
+        // One Horner evaluation per sample above the tabulated degrees.
+        for half in halves.chunks_exact(len) {
+            for s in 0..=DEVIATION_SAMPLES {
+                let u = s as f64 / DEVIATION_SAMPLES as f64;
+                crate::bezier::bernstein_horner_any(half, n, d, u, 1.0, &mut value);
+                worst.note(&value);
+            }
         }
     }
+    let worst = worst.value();
     Ok(2.0 * worst)
+}
+
+/// Degrees up to which [`max_deviation`] reads the Bernstein values at its
+/// samples from a table computed once per degree (`(DEVIATION_SAMPLES + 1)
+/// (n + 1)` values, 68 kB at degree 32); above, it evaluates by Horner.
+pub const DEVIATION_TABLE_DEGREE: usize = 32;
+
+/// `B_i^n(s / DEVIATION_SAMPLES)`, coefficient-major (entry `i
+/// (DEVIATION_SAMPLES + 1) + s`, `i = 0..=n`, `s = 0..=DEVIATION_SAMPLES`), by the product form `C(n,i) u^i (1 - u)^(n-i)` with exact
+/// binomials and exact `u`, `1 - u` (relative error at most `(n + 1) eps`
+/// per entry); `None` above [`DEVIATION_TABLE_DEGREE`].
+fn deviation_table(n: usize) -> Option<&'static [f64]> {
+    static TABLES: [OnceLock<Vec<f64>>; DEVIATION_TABLE_DEGREE + 1] =
+        [const { OnceLock::new() }; DEVIATION_TABLE_DEGREE + 1];
+    let slot = TABLES.get(n)?;
+    Some(slot.get_or_init(|| {
+        let mut table = Vec::with_capacity((DEVIATION_SAMPLES + 1) * (n + 1));
+        for i in 0..=n {
+            for s in 0..=DEVIATION_SAMPLES {
+                let u = s as f64 / DEVIATION_SAMPLES as f64;
+                let v = 1.0 - u;
+                let mut b = crate::basis::binomial(n, i);
+                for _ in 0..i {
+                    b *= u;
+                }
+                for _ in i..n {
+                    b *= v;
+                }
+                table.push(b);
+            }
+        }
+        table
+    }))
+}
+
+/// The sample values of one (half) difference curve of dimension `D`,
+/// `sum_i B_i(u_s) half_i` for every sample `s`, noted in `worst`.
+// The samples are read across the coordinate rows (`values[c][s]`).
+#[allow(clippy::needless_range_loop)]
+fn deviation_fixed<const D: usize>(table: &[f64], half: &[f64], worst: &mut Worst) {
+    const SAMPLES: usize = DEVIATION_SAMPLES + 1;
+    let mut values = [[0.0; SAMPLES]; D];
+    for (column, p) in table.chunks_exact(SAMPLES).zip(half.chunks_exact(D)) {
+        for (values, &x) in values.iter_mut().zip(p) {
+            for (v, &b) in values.iter_mut().zip(column) {
+                *v += b * x;
+            }
+        }
+    }
+    // The largest square while squares are normal (a plain compare); a
+    // zero square changes nothing; any other sample (subnormal, overflow,
+    // NaN) sends the piece through `Worst::note` sample by sample.
+    let mut largest = 0.0f64;
+    let mut other = false;
+    for s in 0..SAMPLES {
+        let mut square = 0.0;
+        for values in &values {
+            square += values[s] * values[s];
+        }
+        if square.is_normal() {
+            if square > largest {
+                largest = square;
+            }
+        } else if square != 0.0 {
+            other = true;
+        }
+    }
+    if other {
+        for s in 0..SAMPLES {
+            let value: [f64; D] = std::array::from_fn(|c| values[c][s]);
+            worst.note(&value);
+        }
+    } else {
+        worst.square = worst.square.max(largest);
+    }
+}
+
+/// The largest Euclidean norm among the sampled values: the largest
+/// square while squares are normal (one square root at the end), the
+/// overflow-safe [`crate::bezier::norm`] otherwise.
+#[derive(Default)]
+struct Worst {
+    square: f64,
+    other: f64,
+}
+
+impl Worst {
+    #[inline]
+    fn note(&mut self, value: &[f64]) {
+        let square = value.iter().map(|x| x * x).sum::<f64>();
+        if square.is_normal() {
+            self.square = self.square.max(square);
+        } else {
+            self.other = self.other.max(crate::bezier::norm(value));
+        }
+    }
+
+    fn value(&self) -> f64 {
+        self.square.sqrt().max(self.other)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn curve(state: &mut u64, dim: usize, degree: usize) -> BezierCurve {
+        let points = (0..(degree + 1) * dim)
+            .map(|_| {
+                *state = state
+                    .wrapping_mul(6_364_136_223_846_793_005)
+                    .wrapping_add(1_442_695_040_888_963_407);
+                (*state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+            })
+            .collect();
+        BezierCurve::new(dim, degree, points).unwrap()
+    }
+
+    /// The restriction matrix applied to `R` against `R`'s blossomed
+    /// segments (`BezierCurve::segment`) on every piece: end pieces (two
+    /// pieces) and middle pieces (chains of three and four).
+    #[test]
+    fn restriction_matrix_gives_the_blossomed_segments() {
+        let mut state = 11;
+        for degree in [1, 2, 3, 6, 15, 31] {
+            let r = curve(&mut state, 1, degree);
+            for breakpoints in [
+                vec![0.0, 0.4, 1.0],
+                vec![0.0, 0.1, 0.75, 1.0],
+                vec![0.0, 0.3, 0.5, 0.6, 1.0],
+            ] {
+                let s = restriction_matrix(degree, &breakpoints);
+                let mapped = &s * DMatrix::from_column_slice(degree + 1, 1, r.points());
+                for j in 0..breakpoints.len() - 1 {
+                    let segment = r.segment(breakpoints[j], breakpoints[j + 1]).unwrap();
+                    for i in 0..=degree {
+                        let gap = (mapped[(j * (degree + 1) + i, 0)] - segment.points()[i]).abs();
+                        assert!(
+                            gap <= 1e-12,
+                            "degree {degree} {breakpoints:?} piece {j} point {i}: gap {gap:e}"
+                        );
+                    }
+                }
+            }
+        }
+    }
+
+    /// `max_deviation` (difference curves, tabulated basis, the unrolled
+    /// dimensions 2 and 3, the general path, Horner above the table)
+    /// against the two-evaluation definition `max_s |R(t_j + h_j u_s) -
+    /// C_j(u_s)|`, within `16 (n + 1) eps` of the largest coordinate.
+    #[test]
+    fn max_deviation_is_the_two_evaluation_maximum() {
+        let mut state = 5;
+        for dim in [1, 2, 3, 4] {
+            for degree in [
+                1,
+                3,
+                8,
+                20,
+                DEVIATION_TABLE_DEGREE,
+                DEVIATION_TABLE_DEGREE + 3,
+            ] {
+                let r = curve(&mut state, dim, degree);
+                let breakpoints = [0.0, 0.35, 1.0];
+                let restrictions: Vec<BezierCurve> = (0..2)
+                    .map(|j| r.segment(breakpoints[j], breakpoints[j + 1]).unwrap())
+                    .collect();
+                // Originals: the pieces moved, one of lower degree.
+                let p = curve(&mut state, dim, degree);
+                let q = curve(&mut state, dim, degree.saturating_sub(1).max(1));
+                let ours = max_deviation(&restrictions, &[&p, &q]).unwrap();
+                let mut reference = 0.0f64;
+                let (mut a, mut b) = (vec![0.0; dim], vec![0.0; dim]);
+                for (j, c) in [&p, &q].into_iter().enumerate() {
+                    let (t0, t1) = (breakpoints[j], breakpoints[j + 1]);
+                    for s in 0..=DEVIATION_SAMPLES {
+                        let u = s as f64 / DEVIATION_SAMPLES as f64;
+                        r.eval_into(t0 + (t1 - t0) * u, &mut a);
+                        c.eval_into(u, &mut b);
+                        let d = a
+                            .iter()
+                            .zip(&b)
+                            .map(|(x, y)| (x - y) * (x - y))
+                            .sum::<f64>();
+                        reference = reference.max(d.sqrt());
+                    }
+                }
+                let scale = [&r, &p, &q]
+                    .iter()
+                    .map(|c| c.points().iter().fold(0.0f64, |m, v| m.max(v.abs())))
+                    .fold(0.0f64, f64::max);
+                let bound = 16.0 * (degree + 1) as f64 * f64::EPSILON * scale;
+                assert!(
+                    (ours - reference).abs() <= bound,
+                    "dim {dim} degree {degree}: {ours:e} vs {reference:e} (bound {bound:e})"
+                );
+            }
+        }
+    }
 }
