@@ -69,7 +69,10 @@ use crate::bezier::BezierCurve;
 use crate::curve::Curve;
 use crate::error::{BezjoinError, Result, check_open_range, check_positive};
 use crate::linalg::solve_checked;
+use crate::minimize::minimize_with_slope;
 use crate::nurbs::NurbsCurve;
+
+use super::bspline_slope::{knot_rates, piece_rates};
 
 use super::rows::{
     Dependent, Row, WorstUndecided, classify, extend_orthonormal, normalised, summarise,
@@ -78,8 +81,10 @@ use super::stage_one::{
     CONSISTENCY_TOLERANCE, DEVIATION_SAMPLES, RANK_TOLERANCE, bernstein_gram_matrix,
 };
 use super::{
-    Breakpoints, ChainMergeOptions, ChainMergeReport, KeepPoint, MergeMetric, MergeOptions,
-    MergeReport, chain_breakpoints, chain_keep_points, optimal_mu, polygon_breakpoints,
+    Breakpoints, ChainMergeOptions, ChainMergeReport, KeepPoint, MU_SEARCH_MAX_STEPS,
+    MU_SEARCH_MIN, MU_SEARCH_SAMPLES, MU_SEARCH_SLOPE_SAMPLES, MU_SEARCH_TOLERANCE, MergeMetric,
+    MergeOptions, MergeReport, chain_breakpoints, chain_keep_points, optimal_mu,
+    polygon_breakpoints,
 };
 
 /// The result of [`merge_bsplines`].
@@ -130,7 +135,8 @@ pub fn merge_bsplines(
     options: &MergeOptions,
 ) -> Result<BSplineMerge> {
     let problem = pair_problem(p, q, options)?;
-    let mu = match &options.split {
+    let given = |mu: f64| problem.solve(&[0.0, mu, 1.0]).map(|solved| (mu, solved));
+    let (mu, solved) = match &options.split {
         Breakpoints::Given(inner) => {
             let &[mu] = inner.as_slice() else {
                 return Err(BezjoinError::LengthMismatch {
@@ -140,18 +146,14 @@ pub fn merge_bsplines(
                 });
             };
             check_open_range("mu", mu, 0.0, 1.0)?;
-            mu
+            given(mu)?
         }
-        Breakpoints::Uniform => 0.5,
+        Breakpoints::Uniform => given(0.5)?,
         Breakpoints::PolygonLength => {
-            polygon_breakpoints(&[p.polygon_length(), q.polygon_length()], &["P", "Q"])?[1]
+            given(polygon_breakpoints(&[p.polygon_length(), q.polygon_length()], &["P", "Q"])?[1])?
         }
-        Breakpoints::Optimal => {
-            optimal_mu(|mu| problem.stage_one(&[0.0, mu, 1.0]).map(|s| s.metric_value))?
-        }
+        Breakpoints::Optimal => problem.optimal()?,
     };
-    let breakpoints = [0.0, mu, 1.0];
-    let solved = problem.solve(&breakpoints)?;
     let mut pieces = solved.pieces.into_iter();
     let p_hat = pieces.next().expect("two pieces");
     let q_hat = pieces.next().expect("two pieces");
@@ -180,7 +182,9 @@ pub fn merge_bsplines_metric_at(
 ) -> Result<f64> {
     check_open_range("mu", mu, 0.0, 1.0)?;
     let problem = pair_problem(p, q, options)?;
-    Ok(problem.stage_one(&[0.0, mu, 1.0])?.metric_value)
+    Ok(problem
+        .stage_one(&[0.0, mu, 1.0], Check::Full)?
+        .metric_value)
 }
 
 /// The validated problem of a pair merge (names `p`, `q`, `p_points`,
@@ -305,6 +309,24 @@ struct SplineProblem<'a> {
     accuracy: f64,
     /// Largest absolute pole coordinate of the inputs.
     scale: f64,
+    /// For two pieces, `d tau / d mu` of every knot of `R`
+    /// ([`knot_rates`]), for the slope of the metric.
+    rates: Option<Vec<f64>>,
+}
+
+/// How much a stage-1 solve checks.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Check {
+    /// Every check, the KKT solve's condition estimate included: every
+    /// answer a caller receives.
+    Full,
+    /// A trial of the optimal-`mu` search on slopes: the KKT system is
+    /// solved by LU with one refinement step and no condition estimate
+    /// (error estimate 0, no refusal for conditioning), and the slope
+    /// `d metric / d mu` is computed. The winner is solved again with
+    /// `Full`; if that, or any trial, fails, the value search with `Full`
+    /// at every trial decides ([`SplineProblem::optimal`]).
+    Trial,
 }
 
 /// Stage 1 at given breakpoints.
@@ -316,6 +338,8 @@ struct StageOne {
     pieces: Vec<DMatrix<f64>>,
     metric_value: f64,
     error_estimate: f64,
+    /// `d metric / d mu` (trials of the slope search only).
+    slope: Option<f64>,
 }
 
 /// A finished merge.
@@ -444,6 +468,10 @@ impl<'a> SplineProblem<'a> {
             .iter()
             .map(|p| p.poles.amax())
             .fold(f64::MIN_POSITIVE, f64::max);
+        let rates = match pieces.as_slice() {
+            [first, second] => Some(knot_rates(degree, &first.curve, &second.curve)),
+            _ => None,
+        };
         Ok(Self {
             pieces,
             degree,
@@ -451,7 +479,82 @@ impl<'a> SplineProblem<'a> {
             fix_ends: settings.fix_ends,
             accuracy: settings.accuracy,
             scale,
+            rates,
         })
+    }
+
+    /// Whether [`Breakpoints::Optimal`] searches on slopes: two pieces and
+    /// constraint rows that do not depend on `mu` (no kept curve, no keep
+    /// points), so that the envelope theorem gives the slope
+    /// (module `bspline_slope`).
+    fn slope_search_applies(&self) -> bool {
+        self.rates.is_some() && self.pieces.iter().all(|p| !p.keep && p.points.is_empty())
+    }
+
+    /// The optimal `mu` and the fully checked merge there. Where the slope
+    /// search applies: [`minimize_with_slope`] on lean trials
+    /// ([`Check::Trial`]) over `[MU_SEARCH_MIN, 1 - MU_SEARCH_MIN]`,
+    /// [`MU_SEARCH_SLOPE_SAMPLES`] plus one sample per pole of `R` beyond
+    /// the first (for Bezier inputs the Bezier search's count, at most
+    /// [`MU_SEARCH_SAMPLES`] + 1), then the winner solved with every check.
+    /// When a trial fails or the winner's full check refuses it, and
+    /// always otherwise: the value search of the Bezier merge
+    /// ([`optimal_mu`], every trial fully checked).
+    fn optimal(&self) -> Result<(f64, Solved)> {
+        if self.slope_search_applies() {
+            if let Some(mu) = self.optimal_mu_on_slopes() {
+                match self.solve(&[0.0, mu, 1.0]) {
+                    Err(BezjoinError::IllConditioned { .. }) => {}
+                    solved => return Ok((mu, solved?)),
+                }
+            }
+        }
+        let mu = self.optimal_mu_on_values()?;
+        Ok((mu, self.solve(&[0.0, mu, 1.0])?))
+    }
+
+    /// The slope search of [`Self::optimal`]; `None` when a trial failed
+    /// or none gave a finite value.
+    fn optimal_mu_on_slopes(&self) -> Option<f64> {
+        let poles = self.merged_pole_count();
+        let samples = (MU_SEARCH_SLOPE_SAMPLES + poles - 1).min(MU_SEARCH_SAMPLES + 1);
+        let mut failed = false;
+        let minimum = minimize_with_slope(
+            |mu| match self.stage_one(&[0.0, mu, 1.0], Check::Trial) {
+                Ok(StageOne {
+                    metric_value,
+                    slope: Some(slope),
+                    ..
+                }) => Some((metric_value, slope)),
+                _ => {
+                    failed = true;
+                    None
+                }
+            },
+            MU_SEARCH_MIN,
+            1.0 - MU_SEARCH_MIN,
+            samples,
+            MU_SEARCH_TOLERANCE,
+            MU_SEARCH_MAX_STEPS,
+        );
+        if failed {
+            return None;
+        }
+        minimum.map(|m| m.x)
+    }
+
+    /// The value search: every trial fully checked.
+    fn optimal_mu_on_values(&self) -> Result<f64> {
+        optimal_mu(|mu| {
+            self.stage_one(&[0.0, mu, 1.0], Check::Full)
+                .map(|s| s.metric_value)
+        })
+    }
+
+    /// The number of poles of `R`: `sum_j n_j - (N - 1)(p + 1)`.
+    fn merged_pole_count(&self) -> usize {
+        let total: usize = self.pieces.iter().map(|p| p.curve.point_count()).sum();
+        total - (self.pieces.len() - 1) * (self.degree + 1)
     }
 
     /// `R`'s knot vector for the breakpoints: every piece's interior knots
@@ -553,7 +656,7 @@ impl<'a> SplineProblem<'a> {
 
     /// Stage 1: `R`'s poles minimising the metric under the constraints,
     /// checked.
-    fn stage_one(&self, breakpoints: &[f64]) -> Result<StageOne> {
+    fn stage_one(&self, breakpoints: &[f64], check: Check) -> Result<StageOne> {
         let p = self.degree;
         let d = self.dim;
         let knots = self.merged_knots(breakpoints)?;
@@ -599,9 +702,19 @@ impl<'a> SplineProblem<'a> {
             }
             rhs.row_mut(unknowns + k).copy_from(&row_rhs.transpose());
         }
-        let solution = solve_checked(&kkt, &rhs, "the B-spline merge KKT system")?;
-        let estimate = solution.error_estimate();
-        let poles = solution.x.rows(0, unknowns).into_owned();
+        let what = "the B-spline merge KKT system";
+        let (solution, estimate) = match check {
+            Check::Full => {
+                let solution = solve_checked(&kkt, &rhs, what)?;
+                let estimate = solution.error_estimate();
+                (Some(solution), estimate)
+            }
+            Check::Trial => (None, 0.0),
+        };
+        let poles = match &solution {
+            Some(solution) => solution.x.rows(0, unknowns).into_owned(),
+            None => solve_lean(&kkt, &rhs, what)?.rows(0, unknowns).into_owned(),
+        };
 
         let result_scale = poles.amax().max(self.scale);
         let tolerance = CONSISTENCY_TOLERANCE.max(self.accuracy) * result_scale;
@@ -632,7 +745,9 @@ impl<'a> SplineProblem<'a> {
                 Dependent::Consistent => {}
             }
         }
-        if estimate > self.accuracy {
+        if let Some(solution) = &solution
+            && estimate > self.accuracy
+        {
             return Err(BezjoinError::IllConditioned {
                 what: format!(
                     "B-spline merge stage 1 (KKT system of size {size}, condition estimate {:e})",
@@ -646,25 +761,46 @@ impl<'a> SplineProblem<'a> {
 
         let mut metric_value = 0.0;
         let mut pieces = Vec::with_capacity(self.pieces.len());
+        let mut weighted_changes = Vec::with_capacity(self.pieces.len());
         for (piece, a) in self.pieces.iter().zip(&restrictions) {
             let hat = a * &poles;
             let change = &hat - &piece.poles;
-            metric_value += (change.transpose() * &piece.weight * &change).trace();
+            let weighted = &piece.weight * &change;
+            metric_value += change.dot(&weighted);
+            weighted_changes.push(weighted);
             pieces.push(hat);
         }
+        // The envelope theorem's slope (module `bspline_slope`):
+        // 2 sum_j (A_j r - c_j)^T W_j (dA_j/dmu) r.
+        let slope = match (&self.rates, check) {
+            (Some(rates), Check::Trial) if self.slope_search_applies() => {
+                let (left, right) = piece_rates(
+                    p,
+                    &knots,
+                    rates,
+                    &poles,
+                    breakpoints[1],
+                    self.pieces[0].poles.nrows(),
+                    self.pieces[1].poles.nrows(),
+                );
+                Some(2.0 * (weighted_changes[0].dot(&left) + weighted_changes[1].dot(&right)))
+            }
+            _ => None,
+        };
         Ok(StageOne {
             knots,
             poles,
             pieces,
             metric_value,
             error_estimate: estimate,
+            slope,
         })
     }
 
     /// Stage 1, then `R` and its pieces as curves, the split check and the
     /// measured deviation.
     fn solve(&self, breakpoints: &[f64]) -> Result<Solved> {
-        let one = self.stage_one(breakpoints)?;
+        let one = self.stage_one(breakpoints, Check::Full)?;
         let (p, d) = (self.degree, self.dim);
         let merged = NurbsCurve::new(d, p, row_major(&one.poles), None, one.knots.clone())?;
         let result_scale = one.poles.amax().max(self.scale);
@@ -729,6 +865,24 @@ impl<'a> SplineProblem<'a> {
             split_check_error,
         })
     }
+}
+
+/// The KKT solve of a trial ([`Check::Trial`]): LU with one step of
+/// iterative refinement, no condition estimate; `Singular` when a pivot
+/// vanishes or the solution is not finite.
+fn solve_lean(kkt: &DMatrix<f64>, rhs: &DMatrix<f64>, what: &str) -> Result<DMatrix<f64>> {
+    let singular = || BezjoinError::Singular { what: what.into() };
+    let lu = kkt.clone().lu();
+    let mut x = lu.solve(rhs).ok_or_else(singular)?;
+    if let Some(step) = lu.solve(&(rhs - kkt * &x))
+        && step.iter().all(|v| v.is_finite())
+    {
+        x += step;
+    }
+    if x.iter().any(|v| !v.is_finite()) {
+        return Err(singular());
+    }
+    Ok(x)
 }
 
 /// Evaluation of a polynomial B-spline at increasing parameters through
@@ -852,4 +1006,103 @@ pub fn merge_curve_chain(curves: &[Curve], options: &ChainMergeOptions) -> Resul
         pieces: m.pieces.into_iter().map(Curve::from).collect(),
         report: m.report,
     })
+}
+
+#[cfg(test)]
+mod slope_tests {
+    use super::*;
+
+    /// Uniform in `[0, 1)` (LCG, deterministic).
+    fn uniform(state: &mut u64) -> f64 {
+        *state = state
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        (*state >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    /// A clamped 2D B-spline of degree `p` with `spans` spans of random
+    /// lengths on a random domain, an interior knot doubled now and then.
+    fn bspline(state: &mut u64, p: usize, spans: usize) -> NurbsCurve {
+        let a = uniform(state) * 4.0 - 2.0;
+        let mut knots = vec![a; p + 1];
+        let mut x = a;
+        for _ in 1..spans {
+            x += 0.2 + uniform(state);
+            let m = if p > 1 && uniform(state) < 0.3 { 2 } else { 1 };
+            knots.extend(std::iter::repeat_n(x, m));
+        }
+        x += 0.2 + uniform(state);
+        knots.extend(std::iter::repeat_n(x, p + 1));
+        let n = knots.len() - p - 1;
+        let poles = (0..2 * n).map(|_| uniform(state) * 4.0 - 2.0).collect();
+        NurbsCurve::new(2, p, poles, None, knots).unwrap()
+    }
+
+    /// The closed-form slope (envelope theorem with the knot motion,
+    /// module `bspline_slope`) against a central difference of the metric:
+    /// one-span and multi-span inputs of different span counts, both
+    /// metrics, with and without fix ends.
+    #[test]
+    fn slope_is_the_derivative_of_the_metric() {
+        let mut state = 11;
+        for degree in [1, 2, 3, 7, 15] {
+            for (p_spans, q_spans) in [(1, 1), (3, 1), (2, 4)] {
+                let (p, q) = (
+                    bspline(&mut state, degree, p_spans),
+                    bspline(&mut state, degree, q_spans),
+                );
+                for metric in [MergeMetric::Discrete, MergeMetric::Integral] {
+                    for fix_ends in [false, true] {
+                        let options = MergeOptions {
+                            metric,
+                            fix_ends,
+                            ..MergeOptions::default()
+                        };
+                        let problem = pair_problem(&p, &q, &options).unwrap();
+                        assert!(problem.slope_search_applies());
+                        let at =
+                            |mu: f64| problem.stage_one(&[0.0, mu, 1.0], Check::Trial).unwrap();
+                        for mu in [0.1, 0.37, 0.5, 0.8] {
+                            let h = 1e-5;
+                            let difference =
+                                (at(mu + h).metric_value - at(mu - h).metric_value) / (2.0 * h);
+                            let slope = at(mu).slope.unwrap();
+                            assert!(
+                                (slope - difference).abs() <= 1e-5 * (1.0 + difference.abs()),
+                                "degree {degree} spans {p_spans}/{q_spans} {metric:?} fix ends \
+                                 {fix_ends} mu {mu}: slope {slope} vs {difference}"
+                            );
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    /// A lean trial gives the fully checked solve's metric (the same
+    /// minimiser), and only trials carry a slope.
+    #[test]
+    fn lean_trials_give_the_checked_metric() {
+        let mut state = 29;
+        for degree in [2, 5, 9] {
+            let (p, q) = (
+                bspline(&mut state, degree, 2),
+                bspline(&mut state, degree, 3),
+            );
+            for metric in [MergeMetric::Discrete, MergeMetric::Integral] {
+                let options = MergeOptions {
+                    metric,
+                    ..MergeOptions::default()
+                };
+                let problem = pair_problem(&p, &q, &options).unwrap();
+                for mu in [0.2, 0.6] {
+                    let lean = problem.stage_one(&[0.0, mu, 1.0], Check::Trial).unwrap();
+                    let full = problem.stage_one(&[0.0, mu, 1.0], Check::Full).unwrap();
+                    assert!(full.slope.is_none() && lean.slope.is_some());
+                    let gap = (lean.metric_value - full.metric_value).abs();
+                    assert!(gap <= 1e-12 * full.metric_value.max(1.0), "gap {gap:e}");
+                }
+            }
+        }
+    }
 }
