@@ -72,7 +72,7 @@ use crate::linalg::solve_checked;
 use crate::minimize::minimize_with_slope;
 use crate::nurbs::NurbsCurve;
 
-use super::bspline_slope::{knot_rates, piece_rates};
+use super::bspline_slope::{knot_rates, pair_split};
 
 use super::rows::{
     Dependent, Row, WorstUndecided, classify, extend_orthonormal, normalised, summarise,
@@ -661,20 +661,44 @@ impl<'a> SplineProblem<'a> {
         let d = self.dim;
         let knots = self.merged_knots(breakpoints)?;
         let unknowns = knots.len() - p - 1;
-        let identity = identity_curve(p, &knots)?;
-        let mut restrictions = Vec::with_capacity(self.pieces.len());
-        for (j, piece) in self.pieces.iter().enumerate() {
-            let segment = identity.segment(breakpoints[j], breakpoints[j + 1])?;
-            let a = pole_matrix(&segment);
-            debug_assert_eq!(a.nrows(), piece.poles.nrows());
-            restrictions.push(a);
-        }
+        // The restriction matrices A_j: for two pieces from the local
+        // split block (Boehm's insertion of mu, module `bspline_slope`),
+        // for chains by knot insertion on the curve whose poles are the
+        // unit vectors.
+        let split = if self.pieces.len() == 2 {
+            let span = self.pieces[0].poles.nrows() - 1;
+            let rates = match check {
+                Check::Trial if self.slope_search_applies() => self.rates.as_deref(),
+                _ => None,
+            };
+            Some(pair_split(p, &knots, rates, breakpoints[1], span))
+        } else {
+            None
+        };
+        let restrictions: Vec<DMatrix<f64>> = match &split {
+            Some(split) => split.restrictions(p, unknowns).into(),
+            None => {
+                let identity = identity_curve(p, &knots)?;
+                let mut restrictions = Vec::with_capacity(self.pieces.len());
+                for j in 0..self.pieces.len() {
+                    let segment = identity.segment(breakpoints[j], breakpoints[j + 1])?;
+                    restrictions.push(pole_matrix(&segment));
+                }
+                restrictions
+            }
+        };
         let mut hessian = DMatrix::zeros(unknowns, unknowns);
         let mut gradient = DMatrix::zeros(unknowns, d);
         for (piece, a) in self.pieces.iter().zip(&restrictions) {
+            debug_assert_eq!(a.nrows(), piece.poles.nrows());
+            // A_j is zero outside the poles of R that its interval sees.
+            let (first, width) = nonzero_columns(a);
+            let a = a.columns(first, width);
             let wa = &piece.weight * a;
-            hessian += a.transpose() * &wa;
-            gradient += wa.transpose() * &piece.poles;
+            let mut block = hessian.view_mut((first, first), (width, width));
+            block += a.transpose() * &wa;
+            let mut rows = gradient.rows_mut(first, width);
+            rows += wa.transpose() * &piece.poles;
         }
         // Entries of order one for the solve (the solution is unchanged).
         let norm = hessian.amax();
@@ -772,17 +796,9 @@ impl<'a> SplineProblem<'a> {
         }
         // The envelope theorem's slope (module `bspline_slope`):
         // 2 sum_j (A_j r - c_j)^T W_j (dA_j/dmu) r.
-        let slope = match (&self.rates, check) {
-            (Some(rates), Check::Trial) if self.slope_search_applies() => {
-                let (left, right) = piece_rates(
-                    p,
-                    &knots,
-                    rates,
-                    &poles,
-                    breakpoints[1],
-                    self.pieces[0].poles.nrows(),
-                    self.pieces[1].poles.nrows(),
-                );
+        let slope = match (&split, check) {
+            (Some(split), Check::Trial) if self.slope_search_applies() => {
+                let (left, right) = split.piece_rates(p, &poles);
                 Some(2.0 * (weighted_changes[0].dot(&left) + weighted_changes[1].dot(&right)))
             }
             _ => None,
@@ -865,6 +881,17 @@ impl<'a> SplineProblem<'a> {
             split_check_error,
         })
     }
+}
+
+/// The first column of `a` with a non-zero entry and the number of columns
+/// up to its last one (`(0, 0)` for a zero matrix).
+fn nonzero_columns(a: &DMatrix<f64>) -> (usize, usize) {
+    let used = |c: &usize| a.column(*c).iter().any(|&v| v != 0.0);
+    let Some(first) = (0..a.ncols()).find(used) else {
+        return (0, 0);
+    };
+    let last = (0..a.ncols()).rev().find(used).expect("a used column");
+    (first, last + 1 - first)
 }
 
 /// The KKT solve of a trial ([`Check::Trial`]): LU with one step of
@@ -1073,6 +1100,42 @@ mod slope_tests {
                                  {fix_ends} mu {mu}: slope {slope} vs {difference}"
                             );
                         }
+                    }
+                }
+            }
+        }
+    }
+
+    /// The restriction matrices from the local split block against knot
+    /// insertion on the curve whose poles are the unit vectors (the
+    /// library's `segment`, an independent computation).
+    #[test]
+    fn split_block_restrictions_are_the_segments() {
+        let mut state = 7;
+        for degree in [1, 2, 3, 6, 11] {
+            for (p_spans, q_spans) in [(1, 1), (4, 2), (1, 3)] {
+                let (p, q) = (
+                    bspline(&mut state, degree, p_spans),
+                    bspline(&mut state, degree, q_spans),
+                );
+                let options = MergeOptions::default();
+                let problem = pair_problem(&p, &q, &options).unwrap();
+                for mu in [0.05, 0.3, 0.5, 0.93] {
+                    let breakpoints = [0.0, mu, 1.0];
+                    let knots = problem.merged_knots(&breakpoints).unwrap();
+                    let unknowns = knots.len() - degree - 1;
+                    let span = problem.pieces[0].poles.nrows() - 1;
+                    let split = pair_split(degree, &knots, None, mu, span);
+                    let identity = identity_curve(degree, &knots).unwrap();
+                    for (j, a) in split.restrictions(degree, unknowns).iter().enumerate() {
+                        let segment = identity.segment(breakpoints[j], breakpoints[j + 1]);
+                        let reference = pole_matrix(&segment.unwrap());
+                        assert_eq!(a.shape(), reference.shape());
+                        let gap = (a - &reference).amax();
+                        assert!(
+                            gap <= 1e-13,
+                            "degree {degree} spans {p_spans}/{q_spans} mu {mu} piece {j}: {gap:e}"
+                        );
                     }
                 }
             }

@@ -39,7 +39,6 @@
 
 use nalgebra::DMatrix;
 
-use crate::basis::{KnotSide, find_span};
 use crate::nurbs::NurbsCurve;
 
 /// `d tau / d mu` for every knot of `R` (the order of
@@ -60,67 +59,119 @@ pub(super) fn knot_rates(degree: usize, p: &NurbsCurve, q: &NurbsCurve) -> Vec<f
     rates
 }
 
-/// `(dA_P/dmu) r` and `(dA_Q/dmu) r`: the derivatives of `R`'s pieces on
-/// `[0, mu]` (the first `left_count` poles) and `[mu, 1]` (the last
-/// `right_count`) with respect to `mu` at fixed poles `r` (`n_R x dim`),
-/// `R` on `knots` moving at `rates` (the module's method). `mu` must lie
-/// strictly between two knots of `R` (no knot of `R` is at the join).
-pub(super) fn piece_rates(
+/// `R` split at `mu` (inserted `p` times by Boehm's algorithm) as a linear
+/// map on `R`'s poles, with its derivative in `mu` at fixed poles. `mu`
+/// lies in the span `tau_k <= mu < tau_{k+1}` (`k = n_P - 1`, no knot of
+/// `R` at the join); the insertions change only the poles `k - p..=k`, so
+/// the split poles are `r_i` for `i < k - p`, `block` times `r_{k-p..=k}`
+/// for the `2p + 1` rows `k - p..=k + p`, and `r_{i-p}` after: `O(p^3)`
+/// work however many poles `R` has. `P^` is split rows `0..=k`, `Q^` rows
+/// `k..`.
+pub(super) struct PairSplit {
+    /// `k`: the span of `R` holding `mu`, the index of the split pole `R(mu)`.
+    pub span: usize,
+    /// `(2p + 1) x (p + 1)`.
+    pub block: DMatrix<f64>,
+    /// `d block / d mu` with the knots moving at their rates (zero when
+    /// no rates were given).
+    pub block_rate: DMatrix<f64>,
+}
+
+/// [`PairSplit`] of `R` (degree `p`, `knots`, each moving at `rates` if
+/// given) at `mu`, which lies in the span `span`.
+pub(super) fn pair_split(
     degree: usize,
     knots: &[f64],
-    rates: &[f64],
-    poles: &DMatrix<f64>,
+    rates: Option<&[f64]>,
     mu: f64,
-    left_count: usize,
-    right_count: usize,
-) -> (DMatrix<f64>, DMatrix<f64>) {
+    span: usize,
+) -> PairSplit {
     let p = degree;
-    let d = poles.ncols();
-    debug_assert_eq!(knots.len(), rates.len());
-    debug_assert_eq!(knots.len(), poles.nrows() + p + 1);
-    let mut knots = knots.to_vec();
-    let mut rates = rates.to_vec();
-    // Row-major poles and their rates (zero: r is fixed).
-    let mut h: Vec<f64> = (0..poles.nrows())
-        .flat_map(|i| (0..d).map(move |c| (i, c)))
-        .map(|(i, c)| poles[(i, c)])
-        .collect();
-    let mut dh = vec![0.0; h.len()];
-    let mut out = Vec::with_capacity(h.len() + p * d);
-    let mut dout = Vec::with_capacity(h.len() + p * d);
-    for _ in 0..p {
-        let k = find_span(&knots, p, mu, KnotSide::Right);
-        out.clear();
-        dout.clear();
-        out.extend_from_slice(&h[..(k + 1 - p) * d]);
-        dout.extend_from_slice(&dh[..(k + 1 - p) * d]);
-        for i in (k + 1 - p)..=k {
-            let numerator = mu - knots[i];
-            let denominator = knots[i + p] - knots[i];
+    let k = span;
+    debug_assert!(k >= p && knots[k] <= mu && mu < knots[k + 1]);
+    // The local curve: poles k-p..=k (unit vectors), knots k-p..=k+p+1.
+    let mut local: Vec<f64> = knots[k - p..=k + p + 1].to_vec();
+    let mut local_rates: Vec<f64> = match rates {
+        Some(rates) => rates[k - p..=k + p + 1].to_vec(),
+        None => vec![0.0; 2 * p + 2],
+    };
+    let width = p + 1;
+    let mut h = DMatrix::<f64>::identity(2 * p + 1, width);
+    let mut dh = DMatrix::<f64>::zeros(2 * p + 1, width);
+    // Insertion j (0-based) has j + p + 1 poles before it; mu is in local
+    // span p + j. New poles i = j + 1..=p + j (old indices) from i and i - 1,
+    // computed from the top down so that each reads unchanged rows; the
+    // old pole p + j moves to p + j + 1.
+    for j in 0..p {
+        let top = p + j;
+        for c in 0..width {
+            h[(top + 1, c)] = h[(top, c)];
+            dh[(top + 1, c)] = dh[(top, c)];
+        }
+        for i in (j + 1..=top).rev() {
+            let numerator = mu - local[i];
+            let denominator = local[i + p] - local[i];
             let alpha = numerator / denominator;
-            let numerator_rate = 1.0 - rates[i];
-            let denominator_rate = rates[i + p] - rates[i];
+            let numerator_rate = 1.0 - local_rates[i];
+            let denominator_rate = local_rates[i + p] - local_rates[i];
             let alpha_rate = (numerator_rate * denominator - numerator * denominator_rate)
                 / (denominator * denominator);
-            for c in 0..d {
-                let (now, before) = (h[i * d + c], h[(i - 1) * d + c]);
-                let (now_rate, before_rate) = (dh[i * d + c], dh[(i - 1) * d + c]);
-                out.push(alpha * now + (1.0 - alpha) * before);
-                dout.push(
-                    alpha_rate * (now - before) + alpha * now_rate + (1.0 - alpha) * before_rate,
-                );
+            for c in 0..width {
+                let (now, before) = (h[(i, c)], h[(i - 1, c)]);
+                let (now_rate, before_rate) = (dh[(i, c)], dh[(i - 1, c)]);
+                h[(i, c)] = alpha * now + (1.0 - alpha) * before;
+                dh[(i, c)] =
+                    alpha_rate * (now - before) + alpha * now_rate + (1.0 - alpha) * before_rate;
             }
         }
-        out.extend_from_slice(&h[k * d..]);
-        dout.extend_from_slice(&dh[k * d..]);
-        std::mem::swap(&mut h, &mut out);
-        std::mem::swap(&mut dh, &mut dout);
-        knots.insert(k + 1, mu);
-        rates.insert(k + 1, 1.0);
+        local.insert(top + 1, mu);
+        local_rates.insert(top + 1, 1.0);
     }
-    let total = h.len() / d;
-    debug_assert_eq!(total + 1, left_count + right_count);
-    let left = DMatrix::from_row_slice(left_count, d, &dh[..left_count * d]);
-    let right = DMatrix::from_row_slice(right_count, d, &dh[(total - right_count) * d..]);
-    (left, right)
+    PairSplit {
+        span: k,
+        block: h,
+        block_rate: dh,
+    }
+}
+
+impl PairSplit {
+    /// `A_P` (`(k + 1) x n_R`) and `A_Q` (`n_Q x n_R`): the restriction
+    /// matrices of the two pieces.
+    pub(super) fn restrictions(&self, degree: usize, unknowns: usize) -> [DMatrix<f64>; 2] {
+        let (p, k) = (degree, self.span);
+        let rows = unknowns + p;
+        let right_count = rows - k;
+        let mut left = DMatrix::zeros(k + 1, unknowns);
+        let mut right = DMatrix::zeros(right_count, unknowns);
+        for i in 0..k - p {
+            left[(i, i)] = 1.0;
+        }
+        for b in 0..=p {
+            for c in 0..=p {
+                left[(k - p + b, k - p + c)] = self.block[(b, c)];
+                right[(b, k - p + c)] = self.block[(p + b, c)];
+            }
+        }
+        for i in p + 1..right_count {
+            right[(i, k + i - p)] = 1.0;
+        }
+        [left, right]
+    }
+
+    /// `(dA_P/dmu) r` and `(dA_Q/dmu) r` at fixed poles `r` (`n_R x dim`).
+    pub(super) fn piece_rates(
+        &self,
+        degree: usize,
+        poles: &DMatrix<f64>,
+    ) -> (DMatrix<f64>, DMatrix<f64>) {
+        let (p, k) = (degree, self.span);
+        let d = poles.ncols();
+        let local = self.block_rate.clone() * poles.rows(k - p, p + 1);
+        let right_count = poles.nrows() + p - k;
+        let mut left = DMatrix::zeros(k + 1, d);
+        let mut right = DMatrix::zeros(right_count, d);
+        left.rows_mut(k - p, p + 1).copy_from(&local.rows(0, p + 1));
+        right.rows_mut(0, p + 1).copy_from(&local.rows(p, p + 1));
+        (left, right)
+    }
 }
