@@ -327,6 +327,21 @@ enum Check {
     /// `Full`; if that, or any trial, fails, the value search with `Full`
     /// at every trial decides ([`SplineProblem::optimal`]).
     Trial,
+    /// Every check of `Full`, and the slope: the trials of the second
+    /// slope search, after the lean search's winner was refused.
+    CheckedTrial,
+}
+
+impl Check {
+    /// The KKT solve's condition estimate and the refusal on it.
+    fn is_full(self) -> bool {
+        self != Check::Trial
+    }
+
+    /// `d metric / d mu` wanted (when the slope search applies).
+    fn wants_slope(self) -> bool {
+        self != Check::Full
+    }
 }
 
 /// Stage 1 at given breakpoints.
@@ -491,43 +506,55 @@ impl<'a> SplineProblem<'a> {
         self.rates.is_some() && self.pieces.iter().all(|p| !p.keep && p.points.is_empty())
     }
 
-    /// The optimal `mu` and the fully checked merge there. Where the slope
-    /// search applies: [`minimize_with_slope`] on lean trials
+    /// The optimal `mu` and the fully checked merge there, the Bezier
+    /// merge's search carried over (`PairProblem::optimal_mu`). Where the
+    /// slope search applies: [`minimize_with_slope`] on lean trials
     /// ([`Check::Trial`]) over `[MU_SEARCH_MIN, 1 - MU_SEARCH_MIN]`,
     /// [`MU_SEARCH_SLOPE_SAMPLES`] plus one sample per pole of `R` beyond
-    /// the first (for Bezier inputs the Bezier search's count, at most
-    /// [`MU_SEARCH_SAMPLES`] + 1), then the winner solved with every check.
-    /// When a trial fails or the winner's full check refuses it, and
-    /// always otherwise: the value search of the Bezier merge
-    /// ([`optimal_mu`], every trial fully checked).
+    /// the first (for Bezier inputs the Bezier search's count), at most
+    /// [`MU_SEARCH_SAMPLES`] + 1, then the winner solved with every check.
+    /// When that check refuses the winner: the slope search again with
+    /// every check at every trial ([`Check::CheckedTrial`]; a refused
+    /// trial counts as no value, its intervals searched on values). When a
+    /// lean trial fails, and always where the slope search does not apply:
+    /// the value search ([`optimal_mu`], every trial fully checked).
     fn optimal(&self) -> Result<(f64, Solved)> {
         if self.slope_search_applies() {
-            if let Some(mu) = self.optimal_mu_on_slopes() {
-                match self.solve(&[0.0, mu, 1.0]) {
-                    Err(BezjoinError::IllConditioned { .. }) => {}
+            match self.optimal_mu_on_slopes(Check::Trial) {
+                Ok(mu) => match self.solve(&[0.0, mu, 1.0]) {
+                    Err(BezjoinError::IllConditioned { .. }) => {
+                        let mu = self.optimal_mu_on_slopes(Check::CheckedTrial)?;
+                        return Ok((mu, self.solve(&[0.0, mu, 1.0])?));
+                    }
                     solved => return Ok((mu, solved?)),
-                }
+                },
+                // A lean trial failed: the value search decides.
+                Err(_) => {}
             }
         }
         let mu = self.optimal_mu_on_values()?;
         Ok((mu, self.solve(&[0.0, mu, 1.0])?))
     }
 
-    /// The slope search of [`Self::optimal`]; `None` when a trial failed
-    /// or none gave a finite value.
-    fn optimal_mu_on_slopes(&self) -> Option<f64> {
+    /// The slope search of [`Self::optimal`] with trials checked as
+    /// `check` says. With [`Check::Trial`], any failed trial is an error
+    /// (the value search takes over); with [`Check::CheckedTrial`], failed
+    /// trials count as no value and the first one's error is returned when
+    /// no trial gave a value.
+    fn optimal_mu_on_slopes(&self, check: Check) -> Result<f64> {
         let poles = self.merged_pole_count();
         let samples = (MU_SEARCH_SLOPE_SAMPLES + poles - 1).min(MU_SEARCH_SAMPLES + 1);
-        let mut failed = false;
+        let mut first_error = None;
         let minimum = minimize_with_slope(
-            |mu| match self.stage_one(&[0.0, mu, 1.0], Check::Trial) {
+            |mu| match self.stage_one(&[0.0, mu, 1.0], check) {
                 Ok(StageOne {
                     metric_value,
                     slope: Some(slope),
                     ..
                 }) => Some((metric_value, slope)),
-                _ => {
-                    failed = true;
+                Ok(_) => None,
+                Err(e) => {
+                    first_error.get_or_insert(e);
                     None
                 }
             },
@@ -537,10 +564,15 @@ impl<'a> SplineProblem<'a> {
             MU_SEARCH_TOLERANCE,
             MU_SEARCH_MAX_STEPS,
         );
-        if failed {
-            return None;
+        let no_value = || BezjoinError::NonFiniteScalar {
+            name: "merge metric at every sampled mu".into(),
+            value: f64::INFINITY,
+        };
+        match (minimum, first_error) {
+            (_, Some(e)) if check == Check::Trial => Err(e),
+            (Some(m), _) => Ok(m.x),
+            (None, e) => Err(e.unwrap_or_else(no_value)),
         }
-        minimum.map(|m| m.x)
     }
 
     /// The value search: every trial fully checked.
@@ -667,9 +699,9 @@ impl<'a> SplineProblem<'a> {
         // unit vectors.
         let split = if self.pieces.len() == 2 {
             let span = self.pieces[0].poles.nrows() - 1;
-            let rates = match check {
-                Check::Trial if self.slope_search_applies() => self.rates.as_deref(),
-                _ => None,
+            let rates = match check.wants_slope() && self.slope_search_applies() {
+                true => self.rates.as_deref(),
+                false => None,
             };
             Some(pair_split(p, &knots, rates, breakpoints[1], span))
         } else {
@@ -727,13 +759,12 @@ impl<'a> SplineProblem<'a> {
             rhs.row_mut(unknowns + k).copy_from(&row_rhs.transpose());
         }
         let what = "the B-spline merge KKT system";
-        let (solution, estimate) = match check {
-            Check::Full => {
-                let solution = solve_checked(&kkt, &rhs, what)?;
-                let estimate = solution.error_estimate();
-                (Some(solution), estimate)
-            }
-            Check::Trial => (None, 0.0),
+        let (solution, estimate) = if check.is_full() {
+            let solution = solve_checked(&kkt, &rhs, what)?;
+            let estimate = solution.error_estimate();
+            (Some(solution), estimate)
+        } else {
+            (None, 0.0)
         };
         let poles = match &solution {
             Some(solution) => solution.x.rows(0, unknowns).into_owned(),
@@ -796,8 +827,8 @@ impl<'a> SplineProblem<'a> {
         }
         // The envelope theorem's slope (module `bspline_slope`):
         // 2 sum_j (A_j r - c_j)^T W_j (dA_j/dmu) r.
-        let slope = match (&split, check) {
-            (Some(split), Check::Trial) if self.slope_search_applies() => {
+        let slope = match &split {
+            Some(split) if check.wants_slope() && self.slope_search_applies() => {
                 let (left, right) = split.piece_rates(p, &poles);
                 Some(2.0 * (weighted_changes[0].dot(&left) + weighted_changes[1].dot(&right)))
             }
@@ -1140,6 +1171,69 @@ mod slope_tests {
                 }
             }
         }
+    }
+
+    /// The lean search can pick a `mu` whose full check fails; the merge
+    /// must then return the fully checked slope search's answer (which
+    /// passes every check), never the lean one. Tight accuracies and high
+    /// degrees give both situations.
+    #[test]
+    fn optimal_mu_falls_back_to_the_fully_checked_search() {
+        let mut state = 5;
+        let (mut fallbacks, mut quick_kept) = (0, 0);
+        for (degree, spans, accuracy) in
+            [(12, 1, 1e-6), (14, 1, 1e-11), (9, 3, 1e-12), (5, 2, 1e-13)]
+        {
+            for _ in 0..3 {
+                let (p, q) = (
+                    bspline(&mut state, degree, spans),
+                    bspline(&mut state, degree, spans),
+                );
+                let options = MergeOptions {
+                    accuracy,
+                    ..MergeOptions::default()
+                        .with_metric(MergeMetric::Integral)
+                        .with_split(Breakpoints::Optimal)
+                };
+                let problem = pair_problem(&p, &q, &options).unwrap();
+                let Ok(quick) = problem.optimal_mu_on_slopes(Check::Trial) else {
+                    continue;
+                };
+                let result = merge_bsplines(&p, &q, &options);
+                match problem.solve(&[0.0, quick, 1.0]) {
+                    Ok(full) => {
+                        quick_kept += 1;
+                        let m = result.unwrap();
+                        assert_eq!(m.report.mu, quick);
+                        assert_eq!(m.report.metric_value, full.metric_value);
+                    }
+                    Err(BezjoinError::IllConditioned { .. }) => {
+                        fallbacks += 1;
+                        let checked = problem.optimal_mu_on_slopes(Check::CheckedTrial);
+                        match (result, checked) {
+                            (Ok(m), Ok(mu)) => {
+                                assert_eq!(m.report.mu, mu);
+                                assert_ne!(m.report.mu, quick);
+                                assert!(problem.solve(&[0.0, mu, 1.0]).is_ok());
+                            }
+                            (Err(e), Err(f)) => assert_eq!(e, f),
+                            (Err(e), Ok(mu)) => {
+                                // The winner of the checked search passed
+                                // stage 1 but not the split check.
+                                assert_eq!(Err(e), problem.solve(&[0.0, mu, 1.0]).map(|_| ()));
+                            }
+                            (r, c) => panic!("merge {r:?} vs fully checked search {c:?}"),
+                        }
+                    }
+                    Err(e) => panic!("unexpected {e}"),
+                }
+            }
+        }
+        eprintln!("{fallbacks} fallbacks, {quick_kept} quick answers kept");
+        assert!(
+            fallbacks > 0 && quick_kept > 0,
+            "{fallbacks} fallbacks, {quick_kept} quick answers kept: the test no longer covers both paths"
+        );
     }
 
     /// A lean trial gives the fully checked solve's metric (the same
