@@ -296,8 +296,24 @@ struct Piece<'a> {
     points: Vec<(usize, &'a KeepPoint)>,
     /// Poles, `n_j x dim`.
     poles: DMatrix<f64>,
-    /// `W_j` of the metric.
-    weight: DMatrix<f64>,
+    /// `W_j` of the metric; `None` for the identity ([`MergeMetric::Discrete`]).
+    weight: Option<DMatrix<f64>>,
+}
+
+impl Piece<'_> {
+    /// `W_j m`.
+    fn weighted<S>(
+        &self,
+        m: &nalgebra::Matrix<f64, nalgebra::Dyn, nalgebra::Dyn, S>,
+    ) -> DMatrix<f64>
+    where
+        S: nalgebra::Storage<f64, nalgebra::Dyn, nalgebra::Dyn>,
+    {
+        match &self.weight {
+            Some(w) => w * m,
+            None => m.clone_owned(),
+        }
+    }
 }
 
 /// Validated curves and settings: what a solve at any breakpoints needs.
@@ -460,10 +476,8 @@ impl<'a> SplineProblem<'a> {
             }
             let curve = c.clamped().elevate_degree(degree)?;
             let weight = match settings.metric {
-                MergeMetric::Discrete => {
-                    DMatrix::identity(curve.point_count(), curve.point_count())
-                }
-                MergeMetric::Integral => normalised_gram(&curve)?,
+                MergeMetric::Discrete => None,
+                MergeMetric::Integral => Some(normalised_gram(&curve)?),
             };
             pieces.push(Piece {
                 poles: pole_matrix(&curve),
@@ -726,7 +740,7 @@ impl<'a> SplineProblem<'a> {
             // A_j is zero outside the poles of R that its interval sees.
             let (first, width) = nonzero_columns(a);
             let a = a.columns(first, width);
-            let wa = &piece.weight * a;
+            let wa = piece.weighted(&a);
             let mut block = hessian.view_mut((first, first), (width, width));
             block += a.transpose() * &wa;
             let mut rows = gradient.rows_mut(first, width);
@@ -820,7 +834,7 @@ impl<'a> SplineProblem<'a> {
         for (piece, a) in self.pieces.iter().zip(&restrictions) {
             let hat = a * &poles;
             let change = &hat - &piece.poles;
-            let weighted = &piece.weight * &change;
+            let weighted = piece.weighted(&change);
             metric_value += change.dot(&weighted);
             weighted_changes.push(weighted);
             pieces.push(hat);

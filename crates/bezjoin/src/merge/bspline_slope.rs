@@ -93,44 +93,62 @@ pub(super) fn pair_split(
     let mut local: Vec<f64> = knots[k - p..=k + p + 1].to_vec();
     let mut local_rates: Vec<f64> = match rates {
         Some(rates) => rates[k - p..=k + p + 1].to_vec(),
-        None => vec![0.0; 2 * p + 2],
+        None => Vec::new(),
     };
     let width = p + 1;
-    let mut h = DMatrix::<f64>::identity(2 * p + 1, width);
-    let mut dh = DMatrix::<f64>::zeros(2 * p + 1, width);
+    let with_rates = rates.is_some();
+    // Row-major: row i of the local poles is h[i * width..(i + 1) * width].
+    let mut h = vec![0.0; (2 * p + 1) * width];
+    for i in 0..width {
+        h[i * width + i] = 1.0;
+    }
+    let mut dh = vec![0.0; if with_rates { h.len() } else { 0 }];
     // Insertion j (0-based) has j + p + 1 poles before it; mu is in local
     // span p + j. New poles i = j + 1..=p + j (old indices) from i and i - 1,
     // computed from the top down so that each reads unchanged rows; the
     // old pole p + j moves to p + j + 1.
     for j in 0..p {
         let top = p + j;
-        for c in 0..width {
-            h[(top + 1, c)] = h[(top, c)];
-            dh[(top + 1, c)] = dh[(top, c)];
+        h.copy_within(top * width..(top + 1) * width, (top + 1) * width);
+        if with_rates {
+            dh.copy_within(top * width..(top + 1) * width, (top + 1) * width);
         }
         for i in (j + 1..=top).rev() {
             let numerator = mu - local[i];
             let denominator = local[i + p] - local[i];
             let alpha = numerator / denominator;
-            let numerator_rate = 1.0 - local_rates[i];
-            let denominator_rate = local_rates[i + p] - local_rates[i];
-            let alpha_rate = (numerator_rate * denominator - numerator * denominator_rate)
-                / (denominator * denominator);
+            let (before, now) = h[(i - 1) * width..(i + 1) * width].split_at_mut(width);
+            if with_rates {
+                let numerator_rate = 1.0 - local_rates[i];
+                let denominator_rate = local_rates[i + p] - local_rates[i];
+                let alpha_rate = (numerator_rate * denominator - numerator * denominator_rate)
+                    / (denominator * denominator);
+                let (before_rate, now_rate) =
+                    dh[(i - 1) * width..(i + 1) * width].split_at_mut(width);
+                for c in 0..width {
+                    now_rate[c] = alpha_rate * (now[c] - before[c])
+                        + alpha * now_rate[c]
+                        + (1.0 - alpha) * before_rate[c];
+                }
+            }
             for c in 0..width {
-                let (now, before) = (h[(i, c)], h[(i - 1, c)]);
-                let (now_rate, before_rate) = (dh[(i, c)], dh[(i - 1, c)]);
-                h[(i, c)] = alpha * now + (1.0 - alpha) * before;
-                dh[(i, c)] =
-                    alpha_rate * (now - before) + alpha * now_rate + (1.0 - alpha) * before_rate;
+                now[c] = alpha * now[c] + (1.0 - alpha) * before[c];
             }
         }
         local.insert(top + 1, mu);
-        local_rates.insert(top + 1, 1.0);
+        if with_rates {
+            local_rates.insert(top + 1, 1.0);
+        }
     }
+    let rows = 2 * p + 1;
     PairSplit {
         span: k,
-        block: h,
-        block_rate: dh,
+        block: DMatrix::from_row_slice(rows, width, &h),
+        block_rate: if with_rates {
+            DMatrix::from_row_slice(rows, width, &dh)
+        } else {
+            DMatrix::zeros(rows, width)
+        },
     }
 }
 
