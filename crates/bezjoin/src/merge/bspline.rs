@@ -755,82 +755,87 @@ impl<'a> SplineProblem<'a> {
         hessian /= norm;
         gradient /= norm;
 
-        // Orthonormal basis of the constraint rows (two Gram-Schmidt
-        // passes); a row with a remainder at the rounding level depends on
-        // those before it and is checked at the solution instead.
-        let rank_tolerance = RANK_TOLERANCE * (unknowns as f64).sqrt();
-        let mut basis: Vec<(DVector<f64>, DVector<f64>)> = Vec::new();
-        let rows = self.rows(&restrictions, unknowns)?;
-        let (kept, dependent) = extend_orthonormal(&mut basis, &rows, rank_tolerance, unknowns);
-        let independent: Vec<&str> = kept.iter().map(|r| r.label.as_str()).collect();
-        let size = unknowns + basis.len();
-        let mut kkt = DMatrix::zeros(size, size);
-        let mut rhs = DMatrix::zeros(size, d);
-        kkt.view_mut((0, 0), (unknowns, unknowns))
-            .copy_from(&hessian);
-        rhs.rows_mut(0, unknowns).copy_from(&gradient);
-        for (k, (coefficients, row_rhs)) in basis.iter().enumerate() {
-            for i in 0..unknowns {
-                kkt[(unknowns + k, i)] = coefficients[i];
-                kkt[(i, unknowns + k)] = coefficients[i];
-            }
-            rhs.row_mut(unknowns + k).copy_from(&row_rhs.transpose());
-        }
-        let what = "the B-spline merge KKT system";
-        let (solution, estimate) = if check.is_full() {
-            let solution = solve_checked(&kkt, &rhs, what)?;
-            let estimate = solution.error_estimate();
-            (Some(solution), estimate)
+        let (poles, estimate) = if check == Check::Trial && self.slope_search_applies() {
+            (self.lean_poles(&hessian, &gradient)?, 0.0)
         } else {
-            (None, 0.0)
-        };
-        let poles = match &solution {
-            Some(solution) => solution.x.rows(0, unknowns).into_owned(),
-            None => solve_lean(&kkt, &rhs, what)?.rows(0, unknowns).into_owned(),
-        };
-
-        let result_scale = poles.amax().max(self.scale);
-        let tolerance = CONSISTENCY_TOLERANCE.max(self.accuracy) * result_scale;
-        let root = (unknowns as f64).sqrt();
-        let explained = root * (estimate + unknowns as f64 * f64::EPSILON) * result_scale;
-        let mut undecided = WorstUndecided::default();
-        for row in &dependent {
-            let residual = (poles.transpose() * &row.coefficients - &row.rhs).amax();
-            match classify(residual, tolerance, explained) {
-                Dependent::Contradictory => {
-                    return Err(BezjoinError::Inconsistent {
-                        reason: format!(
-                            "{} contradicts the constraints before it{} (it depends linearly \
-                             on them but would need a change of {residual:e}, coordinate \
-                             scale {result_scale:e}); R has {unknowns} poles per coordinate \
-                             (knots of degree {p}), {} independent conditions were given",
-                            row.label,
-                            if independent.is_empty() {
-                                String::new()
-                            } else {
-                                format!(" ({})", summarise(&independent))
-                            },
-                            basis.len()
-                        ),
-                    });
+            // Orthonormal basis of the constraint rows (two Gram-Schmidt
+            // passes); a row with a remainder at the rounding level depends on
+            // those before it and is checked at the solution instead.
+            let rank_tolerance = RANK_TOLERANCE * (unknowns as f64).sqrt();
+            let mut basis: Vec<(DVector<f64>, DVector<f64>)> = Vec::new();
+            let rows = self.rows(&restrictions, unknowns)?;
+            let (kept, dependent) = extend_orthonormal(&mut basis, &rows, rank_tolerance, unknowns);
+            let independent: Vec<&str> = kept.iter().map(|r| r.label.as_str()).collect();
+            let size = unknowns + basis.len();
+            let mut kkt = DMatrix::zeros(size, size);
+            let mut rhs = DMatrix::zeros(size, d);
+            kkt.view_mut((0, 0), (unknowns, unknowns))
+                .copy_from(&hessian);
+            rhs.rows_mut(0, unknowns).copy_from(&gradient);
+            for (k, (coefficients, row_rhs)) in basis.iter().enumerate() {
+                for i in 0..unknowns {
+                    kkt[(unknowns + k, i)] = coefficients[i];
+                    kkt[(i, unknowns + k)] = coefficients[i];
                 }
-                Dependent::Undecided => undecided.note(residual, &row.label),
-                Dependent::Consistent => {}
+                rhs.row_mut(unknowns + k).copy_from(&row_rhs.transpose());
             }
-        }
-        if let Some(solution) = &solution
-            && estimate > self.accuracy
-        {
-            return Err(BezjoinError::IllConditioned {
-                what: format!(
-                    "B-spline merge stage 1 (KKT system of size {size}, condition estimate {:e})",
-                    solution.condition
-                ),
-                estimate,
-                limit: self.accuracy,
-            });
-        }
-        undecided.into_result(result_scale, self.accuracy)?;
+            let what = "the B-spline merge KKT system";
+            let (solution, estimate) = if check.is_full() {
+                let solution = solve_checked(&kkt, &rhs, what)?;
+                let estimate = solution.error_estimate();
+                (Some(solution), estimate)
+            } else {
+                (None, 0.0)
+            };
+            let poles = match &solution {
+                Some(solution) => solution.x.rows(0, unknowns).into_owned(),
+                None => solve_lean(&kkt, &rhs, what)?.rows(0, unknowns).into_owned(),
+            };
+
+            let result_scale = poles.amax().max(self.scale);
+            let tolerance = CONSISTENCY_TOLERANCE.max(self.accuracy) * result_scale;
+            let root = (unknowns as f64).sqrt();
+            let explained = root * (estimate + unknowns as f64 * f64::EPSILON) * result_scale;
+            let mut undecided = WorstUndecided::default();
+            for row in &dependent {
+                let residual = (poles.transpose() * &row.coefficients - &row.rhs).amax();
+                match classify(residual, tolerance, explained) {
+                    Dependent::Contradictory => {
+                        return Err(BezjoinError::Inconsistent {
+                            reason: format!(
+                                "{} contradicts the constraints before it{} (it depends linearly \
+                                 on them but would need a change of {residual:e}, coordinate \
+                                 scale {result_scale:e}); R has {unknowns} poles per coordinate \
+                                 (knots of degree {p}), {} independent conditions were given",
+                                row.label,
+                                if independent.is_empty() {
+                                    String::new()
+                                } else {
+                                    format!(" ({})", summarise(&independent))
+                                },
+                                basis.len()
+                            ),
+                        });
+                    }
+                    Dependent::Undecided => undecided.note(residual, &row.label),
+                    Dependent::Consistent => {}
+                }
+            }
+            if let Some(solution) = &solution
+                && estimate > self.accuracy
+            {
+                return Err(BezjoinError::IllConditioned {
+                    what: format!(
+                        "B-spline merge stage 1 (KKT system of size {size}, condition estimate {:e})",
+                        solution.condition
+                    ),
+                    estimate,
+                    limit: self.accuracy,
+                });
+            }
+            undecided.into_result(result_scale, self.accuracy)?;
+            (poles, estimate)
+        };
 
         let mut metric_value = 0.0;
         let mut pieces = Vec::with_capacity(self.pieces.len());
@@ -860,6 +865,50 @@ impl<'a> SplineProblem<'a> {
             error_estimate: estimate,
             slope,
         })
+    }
+
+    /// The poles of a lean trial ([`Check::Trial`], only where the slope
+    /// search applies): the only constraints are fix ends, unit rows on
+    /// `R`'s first and last pole, so those poles are set and eliminated;
+    /// the Hessian of the others is symmetric positive definite (the
+    /// stacked `A_j` have full column rank), solved by Cholesky with one
+    /// refinement step. The same minimiser as the KKT system of
+    /// [`Check::Full`]; `Singular` when the factorisation fails or the
+    /// solution is not finite (the trial fails, the value search decides).
+    fn lean_poles(&self, hessian: &DMatrix<f64>, gradient: &DMatrix<f64>) -> Result<DMatrix<f64>> {
+        let n = hessian.nrows();
+        let mut poles = DMatrix::zeros(n, self.dim);
+        let (first, count) = if self.fix_ends {
+            let last = &self.pieces[self.pieces.len() - 1].poles;
+            poles.row_mut(0).copy_from(&self.pieces[0].poles.row(0));
+            poles.row_mut(n - 1).copy_from(&last.row(last.nrows() - 1));
+            (1, n.saturating_sub(2))
+        } else {
+            (0, n)
+        };
+        if count == 0 {
+            return Ok(poles);
+        }
+        let h = hessian.view((first, first), (count, count)).into_owned();
+        let mut rhs = gradient.rows(first, count).into_owned();
+        if self.fix_ends {
+            rhs -= hessian.view((first, 0), (count, 1)) * poles.row(0);
+            rhs -= hessian.view((first, n - 1), (count, 1)) * poles.row(n - 1);
+        }
+        let singular = || BezjoinError::Singular {
+            what: "the B-spline merge normal equations (lean trial)".into(),
+        };
+        let factor = h.clone().cholesky().ok_or_else(singular)?;
+        let mut x = factor.solve(&rhs);
+        let step = factor.solve(&(&rhs - &h * &x));
+        if step.iter().all(|v| v.is_finite()) {
+            x += step;
+        }
+        if x.iter().any(|v| !v.is_finite()) {
+            return Err(singular());
+        }
+        poles.rows_mut(first, count).copy_from(&x);
+        Ok(poles)
     }
 
     /// Stage 1, then `R` and its pieces as curves, the split check and the
@@ -1199,7 +1248,7 @@ mod slope_tests {
     /// just below the error estimate at the lean winner (refused there, so
     /// the fallback runs and answers where the estimate is smaller).
     #[test]
-    fn optimal_mu_falls_back_to_the_fully_checked_search() {
+    fn optimal_mu_falls_back_to_the_value_search() {
         let mut state = 5;
         let (mut fallbacks, mut quick_kept) = (0, 0);
         for (degree, spans) in [(3, 1), (6, 2), (9, 1), (4, 3)] {
@@ -1256,8 +1305,9 @@ mod slope_tests {
         );
     }
 
-    /// A lean trial gives the fully checked solve's metric (the same
-    /// minimiser), and only trials carry a slope.
+    /// A lean trial (fix ends eliminated, Cholesky) gives the fully
+    /// checked KKT solve's poles and metric (the same minimiser), and only
+    /// trials carry a slope.
     #[test]
     fn lean_trials_give_the_checked_metric() {
         let mut state = 29;
@@ -1266,9 +1316,15 @@ mod slope_tests {
                 bspline(&mut state, degree, 2),
                 bspline(&mut state, degree, 3),
             );
-            for metric in [MergeMetric::Discrete, MergeMetric::Integral] {
+            for (metric, fix_ends) in [
+                (MergeMetric::Discrete, false),
+                (MergeMetric::Discrete, true),
+                (MergeMetric::Integral, false),
+                (MergeMetric::Integral, true),
+            ] {
                 let options = MergeOptions {
                     metric,
+                    fix_ends,
                     ..MergeOptions::default()
                 };
                 let problem = pair_problem(&p, &q, &options).unwrap();
@@ -1278,6 +1334,12 @@ mod slope_tests {
                     assert!(full.slope.is_none() && lean.slope.is_some());
                     let gap = (lean.metric_value - full.metric_value).abs();
                     assert!(gap <= 1e-12 * full.metric_value.max(1.0), "gap {gap:e}");
+                    let scale = full.poles.amax().max(1.0);
+                    let pole_gap = (&lean.poles - &full.poles).amax();
+                    assert!(
+                        pole_gap <= 1e-9 * scale,
+                        "degree {degree} {metric:?} fix ends {fix_ends} mu {mu}: poles {pole_gap:e}"
+                    );
                 }
             }
         }
