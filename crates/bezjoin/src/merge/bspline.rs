@@ -725,26 +725,43 @@ impl<'a> SplineProblem<'a> {
         } else {
             None
         };
-        let restrictions: Vec<DMatrix<f64>> = match &split {
+        // Each A_j as (first column, its columns from there on): A_j is
+        // zero outside the poles of R that its interval sees.
+        let compact: Vec<(usize, DMatrix<f64>)> = match &split {
             Some(split) => split.restrictions(p, unknowns).into(),
             None => {
                 let identity = identity_curve(p, &knots)?;
                 let mut restrictions = Vec::with_capacity(self.pieces.len());
                 for j in 0..self.pieces.len() {
                     let segment = identity.segment(breakpoints[j], breakpoints[j + 1])?;
-                    restrictions.push(pole_matrix(&segment));
+                    let a = pole_matrix(&segment);
+                    let (first, width) = nonzero_columns(&a);
+                    restrictions.push((first, a.columns(first, width).into_owned()));
                 }
                 restrictions
             }
         };
+        // The full-width A_j, which only the rows of kept curves and keep
+        // points read.
+        let restrictions: Vec<DMatrix<f64>> =
+            if self.pieces.iter().any(|p| p.keep || !p.points.is_empty()) {
+                compact
+                    .iter()
+                    .map(|(first, a)| {
+                        let mut full = DMatrix::zeros(a.nrows(), unknowns);
+                        full.columns_mut(*first, a.ncols()).copy_from(a);
+                        full
+                    })
+                    .collect()
+            } else {
+                Vec::new()
+            };
         let mut hessian = DMatrix::zeros(unknowns, unknowns);
         let mut gradient = DMatrix::zeros(unknowns, d);
-        for (piece, a) in self.pieces.iter().zip(&restrictions) {
+        for (piece, (first, a)) in self.pieces.iter().zip(&compact) {
             debug_assert_eq!(a.nrows(), piece.poles.nrows());
-            // A_j is zero outside the poles of R that its interval sees.
-            let (first, width) = nonzero_columns(a);
-            let a = a.columns(first, width);
-            let wa = piece.weighted(&a);
+            let (first, width) = (*first, a.ncols());
+            let wa = piece.weighted(a);
             let mut block = hessian.view_mut((first, first), (width, width));
             block += a.transpose() * &wa;
             let mut rows = gradient.rows_mut(first, width);
@@ -840,8 +857,8 @@ impl<'a> SplineProblem<'a> {
         let mut metric_value = 0.0;
         let mut pieces = Vec::with_capacity(self.pieces.len());
         let mut weighted_changes = Vec::with_capacity(self.pieces.len());
-        for (piece, a) in self.pieces.iter().zip(&restrictions) {
-            let hat = a * &poles;
+        for (piece, (first, a)) in self.pieces.iter().zip(&compact) {
+            let hat = a * poles.rows(*first, a.ncols());
             let change = &hat - &piece.poles;
             let weighted = piece.weighted(&change);
             metric_value += change.dot(&weighted);
@@ -1225,7 +1242,11 @@ mod slope_tests {
                     let span = problem.pieces[0].poles.nrows() - 1;
                     let split = pair_split(degree, &knots, None, mu, span);
                     let identity = identity_curve(degree, &knots).unwrap();
-                    for (j, a) in split.restrictions(degree, unknowns).iter().enumerate() {
+                    for (j, (first, compact)) in
+                        split.restrictions(degree, unknowns).iter().enumerate()
+                    {
+                        let mut a = DMatrix::zeros(compact.nrows(), unknowns);
+                        a.columns_mut(*first, compact.ncols()).copy_from(compact);
                         let segment = identity.segment(breakpoints[j], breakpoints[j + 1]);
                         let reference = pole_matrix(&segment.unwrap());
                         assert_eq!(a.shape(), reference.shape());

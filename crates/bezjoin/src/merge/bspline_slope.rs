@@ -103,6 +103,11 @@ pub(super) fn pair_split(
         h[i * width + i] = 1.0;
     }
     let mut dh = vec![0.0; if with_rates { h.len() } else { 0 }];
+    // Row i is zero outside the columns lo[i]..=hi[i] (a new row combines
+    // two neighbours, lo[i-1] <= lo[i] and hi[i-1] <= hi[i]): about half
+    // of the block, which is what the loops visit.
+    let mut lo: Vec<usize> = (0..2 * p + 1).collect();
+    let mut hi = lo.clone();
     // Insertion j (0-based) has j + p + 1 poles before it; mu is in local
     // span p + j. New poles i = j + 1..=p + j (old indices) from i and i - 1,
     // computed from the top down so that each reads unchanged rows; the
@@ -113,7 +118,10 @@ pub(super) fn pair_split(
         if with_rates {
             dh.copy_within(top * width..(top + 1) * width, (top + 1) * width);
         }
+        (lo[top + 1], hi[top + 1]) = (lo[top], hi[top]);
         for i in (j + 1..=top).rev() {
+            let columns = lo[i - 1]..=hi[i];
+            lo[i] = lo[i - 1];
             let numerator = mu - local[i];
             let denominator = local[i + p] - local[i];
             let alpha = numerator / denominator;
@@ -125,13 +133,13 @@ pub(super) fn pair_split(
                     / (denominator * denominator);
                 let (before_rate, now_rate) =
                     dh[(i - 1) * width..(i + 1) * width].split_at_mut(width);
-                for c in 0..width {
+                for c in columns.clone() {
                     now_rate[c] = alpha_rate * (now[c] - before[c])
                         + alpha * now_rate[c]
                         + (1.0 - alpha) * before_rate[c];
                 }
             }
-            for c in 0..width {
+            for c in columns {
                 now[c] = alpha * now[c] + (1.0 - alpha) * before[c];
             }
         }
@@ -153,27 +161,34 @@ pub(super) fn pair_split(
 }
 
 impl PairSplit {
-    /// `A_P` (`(k + 1) x n_R`) and `A_Q` (`n_Q x n_R`): the restriction
-    /// matrices of the two pieces.
-    pub(super) fn restrictions(&self, degree: usize, unknowns: usize) -> [DMatrix<f64>; 2] {
+    /// `A_P` (`(k + 1) x n_R`) and `A_Q` (`n_Q x n_R`), the restriction
+    /// matrices of the two pieces, as (first column, the columns from
+    /// there on that can be non-zero): `A_P` uses poles `0..=k`, `A_Q`
+    /// poles `k - p..`.
+    pub(super) fn restrictions(
+        &self,
+        degree: usize,
+        unknowns: usize,
+    ) -> [(usize, DMatrix<f64>); 2] {
         let (p, k) = (degree, self.span);
         let rows = unknowns + p;
         let right_count = rows - k;
-        let mut left = DMatrix::zeros(k + 1, unknowns);
-        let mut right = DMatrix::zeros(right_count, unknowns);
+        let offset = k - p;
+        let mut left = DMatrix::zeros(k + 1, k + 1);
+        let mut right = DMatrix::zeros(right_count, unknowns - offset);
         for i in 0..k - p {
             left[(i, i)] = 1.0;
         }
         for b in 0..=p {
             for c in 0..=p {
                 left[(k - p + b, k - p + c)] = self.block[(b, c)];
-                right[(b, k - p + c)] = self.block[(p + b, c)];
+                right[(b, c)] = self.block[(p + b, c)];
             }
         }
         for i in p + 1..right_count {
-            right[(i, k + i - p)] = 1.0;
+            right[(i, k + i - p - offset)] = 1.0;
         }
-        [left, right]
+        [(0, left), (offset, right)]
     }
 
     /// `(dA_P/dmu) r` and `(dA_Q/dmu) r` at fixed poles `r` (`n_R x dim`).
