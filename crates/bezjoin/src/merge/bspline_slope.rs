@@ -120,7 +120,7 @@ pub(super) fn pair_split(
         }
         (lo[top + 1], hi[top + 1]) = (lo[top], hi[top]);
         for i in (j + 1..=top).rev() {
-            let columns = lo[i - 1]..=hi[i];
+            let columns = lo[i - 1]..hi[i] + 1;
             lo[i] = lo[i - 1];
             let numerator = mu - local[i];
             let denominator = local[i + p] - local[i];
@@ -133,14 +133,18 @@ pub(super) fn pair_split(
                     / (denominator * denominator);
                 let (before_rate, now_rate) =
                     dh[(i - 1) * width..(i + 1) * width].split_at_mut(width);
-                for c in columns.clone() {
-                    now_rate[c] = alpha_rate * (now[c] - before[c])
-                        + alpha * now_rate[c]
-                        + (1.0 - alpha) * before_rate[c];
+                for (((rate, &before_rate), &now), &before) in now_rate[columns.clone()]
+                    .iter_mut()
+                    .zip(&before_rate[columns.clone()])
+                    .zip(&now[columns.clone()])
+                    .zip(&before[columns.clone()])
+                {
+                    *rate =
+                        alpha_rate * (now - before) + alpha * *rate + (1.0 - alpha) * before_rate;
                 }
             }
-            for c in columns {
-                now[c] = alpha * now[c] + (1.0 - alpha) * before[c];
+            for (value, &before) in now[columns.clone()].iter_mut().zip(&before[columns]) {
+                *value = alpha * *value + (1.0 - alpha) * before;
             }
         }
         local.insert(top + 1, mu);
