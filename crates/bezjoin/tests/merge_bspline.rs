@@ -733,3 +733,71 @@ fn reported_deviation_is_the_two_evaluation_sample_maximum() {
     assert!(checked >= 24, "only {checked} merges answered");
     println!("largest |new - old| / bound: {worst_ratio:.2e}");
 }
+
+/// The optimal `mu` of the B-spline merge is the global minimum of the
+/// metric: no value of a dense scan (334 steps over `(0, 1)`, ten times the
+/// search's densest grid, refined by 61 points over three scan steps
+/// around the best, inside the search range `[1e-3, 1 - 1e-3]`) lies below
+/// the answer's metric. Fixed seed; one-span and multi-span inputs (span
+/// counts differ between `P` and `Q`, interior knots sometimes doubled),
+/// degrees 1..9, both metrics, free ends and fix ends (the search on
+/// slopes) and a keep point (the search on values).
+#[test]
+fn optimal_mu_is_the_minimum_of_a_dense_scan() {
+    let mut rng = Random(41);
+    for (degree, p_spans, q_spans) in [(1, 3, 2), (2, 1, 1), (3, 2, 3), (5, 1, 2), (9, 2, 1)] {
+        for metric in [MergeMetric::Discrete, MergeMetric::Integral] {
+            for constraint in 0..3 {
+                let p = random_bspline(&mut rng, 2, degree, p_spans);
+                let q = random_bspline(&mut rng, 2, degree, q_spans);
+                let (a, b) = p.domain();
+                let mut o = MergeOptions::default()
+                    .with_metric(metric)
+                    .with_split(Breakpoints::Optimal);
+                o.fix_ends = constraint == 1;
+                if constraint == 2 {
+                    o.p_points = vec![KeepPoint {
+                        param: a + 0.5 * (b - a),
+                        max_order: 0,
+                    }];
+                }
+                let label = format!(
+                    "degree {degree} spans {p_spans}/{q_spans} {metric:?} constraint {constraint}"
+                );
+                let m = match merge_bsplines(&p, &q, &o) {
+                    Ok(m) => m,
+                    Err(e) => panic!("{label}: {e}"),
+                };
+                let best = m.report.metric_value;
+                // A mu where the solve is refused (IllConditioned) is no
+                // answer, as in the search.
+                let scan = |mu: f64| match merge_bsplines_metric_at(&p, &q, &o, mu) {
+                    Ok(v) => v,
+                    Err(BezjoinError::IllConditioned { .. }) => f64::INFINITY,
+                    Err(e) => panic!("{label}: {e}"),
+                };
+                let (mut scan_mu, mut scan_best) = (0.0, f64::INFINITY);
+                const STEPS: usize = 334;
+                let step = 1.0 / STEPS as f64;
+                for k in 1..STEPS {
+                    let mu = k as f64 * step;
+                    let v = scan(mu);
+                    if v < scan_best {
+                        (scan_mu, scan_best) = (mu, v);
+                    }
+                }
+                for k in -30..=30 {
+                    let mu = scan_mu + k as f64 * step / 20.0;
+                    if (1e-3..=1.0 - 1e-3).contains(&mu) {
+                        scan_best = scan_best.min(scan(mu));
+                    }
+                }
+                assert!(
+                    best <= scan_best * (1.0 + 1e-9) + 1e-300,
+                    "{label}: optimal mu {} gives {best}, the scan {scan_best} near {scan_mu}",
+                    m.report.mu
+                );
+            }
+        }
+    }
+}

@@ -56,6 +56,18 @@
 //!   relative to the coordinate scale, else `IllConditioned`.
 //! * A kept curve is returned bit for bit as its piece (after clamping and
 //!   elevation, which are exact).
+//! * The optimal `mu` ([`Breakpoints::Optimal`]) is searched as the Bezier
+//!   merge searches it: without kept curves and keep points on the metric
+//!   and its closed-form slope (envelope theorem with the motion of `R`'s
+//!   knots, module `bspline_slope`), the trials solved lean (no condition
+//!   estimate), the winner solved with every check; a refused winner
+//!   repeats the slope search with every check at every trial, a failed
+//!   lean trial hands over to the value search (every trial fully
+//!   checked), which also serves kept curves and keep points. The answer
+//!   is always a fully checked solve.
+//! * The restriction matrices of a pair come from Boehm's insertion of `mu`
+//!   on the `p + 1` poles it changes (`O(p^3)`); the split check above
+//!   recomputes the pieces from `R` by the library's knot insertion.
 //! * The report's `max_deviation` is measured: [`DEVIATION_SAMPLES`]` + 1`
 //!   evenly spaced parameters of each input curve, `R` at the mapped
 //!   parameter against the input (clamped and elevated: the same curve),
@@ -69,7 +81,10 @@ use crate::bezier::BezierCurve;
 use crate::curve::Curve;
 use crate::error::{BezjoinError, Result, check_open_range, check_positive};
 use crate::linalg::solve_checked;
+use crate::minimize::minimize_with_slope;
 use crate::nurbs::NurbsCurve;
+
+use super::bspline_slope::{knot_rates, pair_split};
 
 use super::rows::{
     Dependent, Row, WorstUndecided, classify, extend_orthonormal, normalised, summarise,
@@ -78,8 +93,10 @@ use super::stage_one::{
     CONSISTENCY_TOLERANCE, DEVIATION_SAMPLES, RANK_TOLERANCE, bernstein_gram_matrix,
 };
 use super::{
-    Breakpoints, ChainMergeOptions, ChainMergeReport, KeepPoint, MergeMetric, MergeOptions,
-    MergeReport, chain_breakpoints, chain_keep_points, optimal_mu, polygon_breakpoints,
+    Breakpoints, ChainMergeOptions, ChainMergeReport, KeepPoint, MU_SEARCH_MAX_STEPS,
+    MU_SEARCH_MIN, MU_SEARCH_SAMPLES, MU_SEARCH_SLOPE_SAMPLES, MU_SEARCH_TOLERANCE, MergeMetric,
+    MergeOptions, MergeReport, chain_breakpoints, chain_keep_points, optimal_mu,
+    polygon_breakpoints,
 };
 
 /// The result of [`merge_bsplines`].
@@ -130,7 +147,8 @@ pub fn merge_bsplines(
     options: &MergeOptions,
 ) -> Result<BSplineMerge> {
     let problem = pair_problem(p, q, options)?;
-    let mu = match &options.split {
+    let given = |mu: f64| problem.solve(&[0.0, mu, 1.0]).map(|solved| (mu, solved));
+    let (mu, solved) = match &options.split {
         Breakpoints::Given(inner) => {
             let &[mu] = inner.as_slice() else {
                 return Err(BezjoinError::LengthMismatch {
@@ -140,18 +158,14 @@ pub fn merge_bsplines(
                 });
             };
             check_open_range("mu", mu, 0.0, 1.0)?;
-            mu
+            given(mu)?
         }
-        Breakpoints::Uniform => 0.5,
+        Breakpoints::Uniform => given(0.5)?,
         Breakpoints::PolygonLength => {
-            polygon_breakpoints(&[p.polygon_length(), q.polygon_length()], &["P", "Q"])?[1]
+            given(polygon_breakpoints(&[p.polygon_length(), q.polygon_length()], &["P", "Q"])?[1])?
         }
-        Breakpoints::Optimal => {
-            optimal_mu(|mu| problem.stage_one(&[0.0, mu, 1.0]).map(|s| s.metric_value))?
-        }
+        Breakpoints::Optimal => problem.optimal()?,
     };
-    let breakpoints = [0.0, mu, 1.0];
-    let solved = problem.solve(&breakpoints)?;
     let mut pieces = solved.pieces.into_iter();
     let p_hat = pieces.next().expect("two pieces");
     let q_hat = pieces.next().expect("two pieces");
@@ -180,7 +194,9 @@ pub fn merge_bsplines_metric_at(
 ) -> Result<f64> {
     check_open_range("mu", mu, 0.0, 1.0)?;
     let problem = pair_problem(p, q, options)?;
-    Ok(problem.stage_one(&[0.0, mu, 1.0])?.metric_value)
+    Ok(problem
+        .stage_one(&[0.0, mu, 1.0], Check::Full)?
+        .metric_value)
 }
 
 /// The validated problem of a pair merge (names `p`, `q`, `p_points`,
@@ -292,8 +308,24 @@ struct Piece<'a> {
     points: Vec<(usize, &'a KeepPoint)>,
     /// Poles, `n_j x dim`.
     poles: DMatrix<f64>,
-    /// `W_j` of the metric.
-    weight: DMatrix<f64>,
+    /// `W_j` of the metric; `None` for the identity ([`MergeMetric::Discrete`]).
+    weight: Option<DMatrix<f64>>,
+}
+
+impl Piece<'_> {
+    /// `W_j m`.
+    fn weighted<S>(
+        &self,
+        m: &nalgebra::Matrix<f64, nalgebra::Dyn, nalgebra::Dyn, S>,
+    ) -> DMatrix<f64>
+    where
+        S: nalgebra::Storage<f64, nalgebra::Dyn, nalgebra::Dyn>,
+    {
+        match &self.weight {
+            Some(w) => w * m,
+            None => m.clone_owned(),
+        }
+    }
 }
 
 /// Validated curves and settings: what a solve at any breakpoints needs.
@@ -305,6 +337,36 @@ struct SplineProblem<'a> {
     accuracy: f64,
     /// Largest absolute pole coordinate of the inputs.
     scale: f64,
+    /// For two pieces, `d tau / d mu` of every knot of `R`
+    /// ([`knot_rates`]), for the slope of the metric.
+    rates: Option<Vec<f64>>,
+}
+
+/// How much a stage-1 solve checks.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Check {
+    /// Every check, the KKT solve's condition estimate included: every
+    /// answer a caller receives.
+    Full,
+    /// A trial of the optimal-`mu` search on slopes: the KKT system is
+    /// solved by LU with one refinement step and no condition estimate
+    /// (error estimate 0, no refusal for conditioning), and the slope
+    /// `d metric / d mu` is computed. The winner is solved again with
+    /// `Full`; if that, or any trial, fails, the value search with `Full`
+    /// at every trial decides ([`SplineProblem::optimal`]).
+    Trial,
+}
+
+impl Check {
+    /// The KKT solve's condition estimate and the refusal on it.
+    fn is_full(self) -> bool {
+        self == Check::Full
+    }
+
+    /// `d metric / d mu` wanted (when the slope search applies).
+    fn wants_slope(self) -> bool {
+        self == Check::Trial
+    }
 }
 
 /// Stage 1 at given breakpoints.
@@ -316,6 +378,8 @@ struct StageOne {
     pieces: Vec<DMatrix<f64>>,
     metric_value: f64,
     error_estimate: f64,
+    /// `d metric / d mu` (trials of the slope search only).
+    slope: Option<f64>,
 }
 
 /// A finished merge.
@@ -421,10 +485,8 @@ impl<'a> SplineProblem<'a> {
             }
             let curve = c.clamped().elevate_degree(degree)?;
             let weight = match settings.metric {
-                MergeMetric::Discrete => {
-                    DMatrix::identity(curve.point_count(), curve.point_count())
-                }
-                MergeMetric::Integral => normalised_gram(&curve)?,
+                MergeMetric::Discrete => None,
+                MergeMetric::Integral => Some(normalised_gram(&curve)?),
             };
             pieces.push(Piece {
                 poles: pole_matrix(&curve),
@@ -444,6 +506,10 @@ impl<'a> SplineProblem<'a> {
             .iter()
             .map(|p| p.poles.amax())
             .fold(f64::MIN_POSITIVE, f64::max);
+        let rates = match pieces.as_slice() {
+            [first, second] => Some(knot_rates(degree, &first.curve, &second.curve)),
+            _ => None,
+        };
         Ok(Self {
             pieces,
             degree,
@@ -451,7 +517,94 @@ impl<'a> SplineProblem<'a> {
             fix_ends: settings.fix_ends,
             accuracy: settings.accuracy,
             scale,
+            rates,
         })
+    }
+
+    /// Whether [`Breakpoints::Optimal`] searches on slopes: two pieces and
+    /// constraint rows that do not depend on `mu` (no kept curve, no keep
+    /// points), so that the envelope theorem gives the slope
+    /// (module `bspline_slope`).
+    fn slope_search_applies(&self) -> bool {
+        self.rates.is_some() && self.pieces.iter().all(|p| !p.keep && p.points.is_empty())
+    }
+
+    /// The optimal `mu` and the fully checked merge there, the Bezier
+    /// merge's search carried over (`PairProblem::optimal_mu`). Where the
+    /// slope search applies: [`minimize_with_slope`] on lean trials
+    /// ([`Check::Trial`]) over `[MU_SEARCH_MIN, 1 - MU_SEARCH_MIN]`,
+    /// [`MU_SEARCH_SLOPE_SAMPLES`] plus one sample per pole of `R` beyond
+    /// the first (for Bezier inputs the Bezier search's count), at most
+    /// [`MU_SEARCH_SAMPLES`] + 1, then the winner solved with every check.
+    /// When that check refuses the winner or a lean trial fails, and
+    /// always where the slope search does not apply: the value search
+    /// ([`optimal_mu`], every trial fully checked, refused trials counting
+    /// as infinitely bad), whose answer is then exactly the one before the
+    /// slope search existed. (The slope search with every check at every
+    /// trial, the Bezier merge's fallback, was measured: at degree 31,
+    /// where the KKT estimate refuses the metric's own minimum, it needs
+    /// three times the trials of the value search.)
+    fn optimal(&self) -> Result<(f64, Solved)> {
+        if self.slope_search_applies()
+            && let Ok(mu) = self.optimal_mu_on_slopes()
+        {
+            match self.solve(&[0.0, mu, 1.0]) {
+                Err(BezjoinError::IllConditioned { .. }) => {}
+                solved => return Ok((mu, solved?)),
+            }
+        }
+        let mu = self.optimal_mu_on_values()?;
+        Ok((mu, self.solve(&[0.0, mu, 1.0])?))
+    }
+
+    /// The slope search of [`Self::optimal`] on lean trials; the first
+    /// failed trial's error when any failed (the value search takes over).
+    fn optimal_mu_on_slopes(&self) -> Result<f64> {
+        let poles = self.merged_pole_count();
+        let samples = (MU_SEARCH_SLOPE_SAMPLES + poles - 1).min(MU_SEARCH_SAMPLES + 1);
+        let mut first_error = None;
+        let minimum = minimize_with_slope(
+            |mu| match self.stage_one(&[0.0, mu, 1.0], Check::Trial) {
+                Ok(StageOne {
+                    metric_value,
+                    slope: Some(slope),
+                    ..
+                }) => Some((metric_value, slope)),
+                Ok(_) => None,
+                Err(e) => {
+                    first_error.get_or_insert(e);
+                    None
+                }
+            },
+            MU_SEARCH_MIN,
+            1.0 - MU_SEARCH_MIN,
+            samples,
+            MU_SEARCH_TOLERANCE,
+            MU_SEARCH_MAX_STEPS,
+        );
+        let no_value = || BezjoinError::NonFiniteScalar {
+            name: "merge metric at every sampled mu".into(),
+            value: f64::INFINITY,
+        };
+        match (minimum, first_error) {
+            (_, Some(e)) => Err(e),
+            (Some(m), None) => Ok(m.x),
+            (None, None) => Err(no_value()),
+        }
+    }
+
+    /// The value search: every trial fully checked.
+    fn optimal_mu_on_values(&self) -> Result<f64> {
+        optimal_mu(|mu| {
+            self.stage_one(&[0.0, mu, 1.0], Check::Full)
+                .map(|s| s.metric_value)
+        })
+    }
+
+    /// The number of poles of `R`: `sum_j n_j - (N - 1)(p + 1)`.
+    fn merged_pole_count(&self) -> usize {
+        let total: usize = self.pieces.iter().map(|p| p.curve.point_count()).sum();
+        total - (self.pieces.len() - 1) * (self.degree + 1)
     }
 
     /// `R`'s knot vector for the breakpoints: every piece's interior knots
@@ -553,118 +706,232 @@ impl<'a> SplineProblem<'a> {
 
     /// Stage 1: `R`'s poles minimising the metric under the constraints,
     /// checked.
-    fn stage_one(&self, breakpoints: &[f64]) -> Result<StageOne> {
+    fn stage_one(&self, breakpoints: &[f64], check: Check) -> Result<StageOne> {
         let p = self.degree;
         let d = self.dim;
         let knots = self.merged_knots(breakpoints)?;
         let unknowns = knots.len() - p - 1;
-        let identity = identity_curve(p, &knots)?;
-        let mut restrictions = Vec::with_capacity(self.pieces.len());
-        for (j, piece) in self.pieces.iter().enumerate() {
-            let segment = identity.segment(breakpoints[j], breakpoints[j + 1])?;
-            let a = pole_matrix(&segment);
-            debug_assert_eq!(a.nrows(), piece.poles.nrows());
-            restrictions.push(a);
-        }
+        // The restriction matrices A_j: for two pieces from the local
+        // split block (Boehm's insertion of mu, module `bspline_slope`),
+        // for chains by knot insertion on the curve whose poles are the
+        // unit vectors.
+        let split = if self.pieces.len() == 2 {
+            let span = self.pieces[0].poles.nrows() - 1;
+            let rates = match check.wants_slope() && self.slope_search_applies() {
+                true => self.rates.as_deref(),
+                false => None,
+            };
+            Some(pair_split(p, &knots, rates, breakpoints[1], span))
+        } else {
+            None
+        };
+        // Each A_j as (first column, its columns from there on): A_j is
+        // zero outside the poles of R that its interval sees.
+        let compact: Vec<(usize, DMatrix<f64>)> = match &split {
+            Some(split) => split.restrictions(p, unknowns).into(),
+            None => {
+                let identity = identity_curve(p, &knots)?;
+                let mut restrictions = Vec::with_capacity(self.pieces.len());
+                for j in 0..self.pieces.len() {
+                    let segment = identity.segment(breakpoints[j], breakpoints[j + 1])?;
+                    let a = pole_matrix(&segment);
+                    let (first, width) = nonzero_columns(&a);
+                    restrictions.push((first, a.columns(first, width).into_owned()));
+                }
+                restrictions
+            }
+        };
+        // The full-width A_j, which only the rows of kept curves and keep
+        // points read.
+        let restrictions: Vec<DMatrix<f64>> =
+            if self.pieces.iter().any(|p| p.keep || !p.points.is_empty()) {
+                compact
+                    .iter()
+                    .map(|(first, a)| {
+                        let mut full = DMatrix::zeros(a.nrows(), unknowns);
+                        full.columns_mut(*first, a.ncols()).copy_from(a);
+                        full
+                    })
+                    .collect()
+            } else {
+                Vec::new()
+            };
         let mut hessian = DMatrix::zeros(unknowns, unknowns);
         let mut gradient = DMatrix::zeros(unknowns, d);
-        for (piece, a) in self.pieces.iter().zip(&restrictions) {
-            let wa = &piece.weight * a;
-            hessian += a.transpose() * &wa;
-            gradient += wa.transpose() * &piece.poles;
+        for (piece, (first, a)) in self.pieces.iter().zip(&compact) {
+            debug_assert_eq!(a.nrows(), piece.poles.nrows());
+            let (first, width) = (*first, a.ncols());
+            let wa = piece.weighted(a);
+            let mut block = hessian.view_mut((first, first), (width, width));
+            block += a.transpose() * &wa;
+            let mut rows = gradient.rows_mut(first, width);
+            rows += wa.transpose() * &piece.poles;
         }
         // Entries of order one for the solve (the solution is unchanged).
         let norm = hessian.amax();
         hessian /= norm;
         gradient /= norm;
 
-        // Orthonormal basis of the constraint rows (two Gram-Schmidt
-        // passes); a row with a remainder at the rounding level depends on
-        // those before it and is checked at the solution instead.
-        let rank_tolerance = RANK_TOLERANCE * (unknowns as f64).sqrt();
-        let mut basis: Vec<(DVector<f64>, DVector<f64>)> = Vec::new();
-        let rows = self.rows(&restrictions, unknowns)?;
-        let (kept, dependent) = extend_orthonormal(&mut basis, &rows, rank_tolerance, unknowns);
-        let independent: Vec<&str> = kept.iter().map(|r| r.label.as_str()).collect();
-        let size = unknowns + basis.len();
-        let mut kkt = DMatrix::zeros(size, size);
-        let mut rhs = DMatrix::zeros(size, d);
-        kkt.view_mut((0, 0), (unknowns, unknowns))
-            .copy_from(&hessian);
-        rhs.rows_mut(0, unknowns).copy_from(&gradient);
-        for (k, (coefficients, row_rhs)) in basis.iter().enumerate() {
-            for i in 0..unknowns {
-                kkt[(unknowns + k, i)] = coefficients[i];
-                kkt[(i, unknowns + k)] = coefficients[i];
-            }
-            rhs.row_mut(unknowns + k).copy_from(&row_rhs.transpose());
-        }
-        let solution = solve_checked(&kkt, &rhs, "the B-spline merge KKT system")?;
-        let estimate = solution.error_estimate();
-        let poles = solution.x.rows(0, unknowns).into_owned();
-
-        let result_scale = poles.amax().max(self.scale);
-        let tolerance = CONSISTENCY_TOLERANCE.max(self.accuracy) * result_scale;
-        let root = (unknowns as f64).sqrt();
-        let explained = root * (estimate + unknowns as f64 * f64::EPSILON) * result_scale;
-        let mut undecided = WorstUndecided::default();
-        for row in &dependent {
-            let residual = (poles.transpose() * &row.coefficients - &row.rhs).amax();
-            match classify(residual, tolerance, explained) {
-                Dependent::Contradictory => {
-                    return Err(BezjoinError::Inconsistent {
-                        reason: format!(
-                            "{} contradicts the constraints before it{} (it depends linearly \
-                             on them but would need a change of {residual:e}, coordinate \
-                             scale {result_scale:e}); R has {unknowns} poles per coordinate \
-                             (knots of degree {p}), {} independent conditions were given",
-                            row.label,
-                            if independent.is_empty() {
-                                String::new()
-                            } else {
-                                format!(" ({})", summarise(&independent))
-                            },
-                            basis.len()
-                        ),
-                    });
+        let (poles, estimate) = if check == Check::Trial && self.slope_search_applies() {
+            (self.lean_poles(&hessian, &gradient)?, 0.0)
+        } else {
+            // Orthonormal basis of the constraint rows (two Gram-Schmidt
+            // passes); a row with a remainder at the rounding level depends on
+            // those before it and is checked at the solution instead.
+            let rank_tolerance = RANK_TOLERANCE * (unknowns as f64).sqrt();
+            let mut basis: Vec<(DVector<f64>, DVector<f64>)> = Vec::new();
+            let rows = self.rows(&restrictions, unknowns)?;
+            let (kept, dependent) = extend_orthonormal(&mut basis, &rows, rank_tolerance, unknowns);
+            let independent: Vec<&str> = kept.iter().map(|r| r.label.as_str()).collect();
+            let size = unknowns + basis.len();
+            let mut kkt = DMatrix::zeros(size, size);
+            let mut rhs = DMatrix::zeros(size, d);
+            kkt.view_mut((0, 0), (unknowns, unknowns))
+                .copy_from(&hessian);
+            rhs.rows_mut(0, unknowns).copy_from(&gradient);
+            for (k, (coefficients, row_rhs)) in basis.iter().enumerate() {
+                for i in 0..unknowns {
+                    kkt[(unknowns + k, i)] = coefficients[i];
+                    kkt[(i, unknowns + k)] = coefficients[i];
                 }
-                Dependent::Undecided => undecided.note(residual, &row.label),
-                Dependent::Consistent => {}
+                rhs.row_mut(unknowns + k).copy_from(&row_rhs.transpose());
             }
-        }
-        if estimate > self.accuracy {
-            return Err(BezjoinError::IllConditioned {
-                what: format!(
-                    "B-spline merge stage 1 (KKT system of size {size}, condition estimate {:e})",
-                    solution.condition
-                ),
-                estimate,
-                limit: self.accuracy,
-            });
-        }
-        undecided.into_result(result_scale, self.accuracy)?;
+            let what = "the B-spline merge KKT system";
+            let (solution, estimate) = if check.is_full() {
+                let solution = solve_checked(&kkt, &rhs, what)?;
+                let estimate = solution.error_estimate();
+                (Some(solution), estimate)
+            } else {
+                (None, 0.0)
+            };
+            let poles = match &solution {
+                Some(solution) => solution.x.rows(0, unknowns).into_owned(),
+                None => solve_lean(&kkt, &rhs, what)?.rows(0, unknowns).into_owned(),
+            };
+
+            let result_scale = poles.amax().max(self.scale);
+            let tolerance = CONSISTENCY_TOLERANCE.max(self.accuracy) * result_scale;
+            let root = (unknowns as f64).sqrt();
+            let explained = root * (estimate + unknowns as f64 * f64::EPSILON) * result_scale;
+            let mut undecided = WorstUndecided::default();
+            for row in &dependent {
+                let residual = (poles.transpose() * &row.coefficients - &row.rhs).amax();
+                match classify(residual, tolerance, explained) {
+                    Dependent::Contradictory => {
+                        return Err(BezjoinError::Inconsistent {
+                            reason: format!(
+                                "{} contradicts the constraints before it{} (it depends linearly \
+                                 on them but would need a change of {residual:e}, coordinate \
+                                 scale {result_scale:e}); R has {unknowns} poles per coordinate \
+                                 (knots of degree {p}), {} independent conditions were given",
+                                row.label,
+                                if independent.is_empty() {
+                                    String::new()
+                                } else {
+                                    format!(" ({})", summarise(&independent))
+                                },
+                                basis.len()
+                            ),
+                        });
+                    }
+                    Dependent::Undecided => undecided.note(residual, &row.label),
+                    Dependent::Consistent => {}
+                }
+            }
+            if let Some(solution) = &solution
+                && estimate > self.accuracy
+            {
+                return Err(BezjoinError::IllConditioned {
+                    what: format!(
+                        "B-spline merge stage 1 (KKT system of size {size}, condition estimate {:e})",
+                        solution.condition
+                    ),
+                    estimate,
+                    limit: self.accuracy,
+                });
+            }
+            undecided.into_result(result_scale, self.accuracy)?;
+            (poles, estimate)
+        };
 
         let mut metric_value = 0.0;
         let mut pieces = Vec::with_capacity(self.pieces.len());
-        for (piece, a) in self.pieces.iter().zip(&restrictions) {
-            let hat = a * &poles;
+        let mut weighted_changes = Vec::with_capacity(self.pieces.len());
+        for (piece, (first, a)) in self.pieces.iter().zip(&compact) {
+            let hat = a * poles.rows(*first, a.ncols());
             let change = &hat - &piece.poles;
-            metric_value += (change.transpose() * &piece.weight * &change).trace();
+            let weighted = piece.weighted(&change);
+            metric_value += change.dot(&weighted);
+            weighted_changes.push(weighted);
             pieces.push(hat);
         }
+        // The envelope theorem's slope (module `bspline_slope`):
+        // 2 sum_j (A_j r - c_j)^T W_j (dA_j/dmu) r.
+        let slope = match &split {
+            Some(split) if check.wants_slope() && self.slope_search_applies() => {
+                let (left, right) = split.piece_rates(p, &poles);
+                Some(2.0 * (weighted_changes[0].dot(&left) + weighted_changes[1].dot(&right)))
+            }
+            _ => None,
+        };
         Ok(StageOne {
             knots,
             poles,
             pieces,
             metric_value,
             error_estimate: estimate,
+            slope,
         })
+    }
+
+    /// The poles of a lean trial ([`Check::Trial`], only where the slope
+    /// search applies): the only constraints are fix ends, unit rows on
+    /// `R`'s first and last pole, so those poles are set and eliminated;
+    /// the Hessian of the others is symmetric positive definite (the
+    /// stacked `A_j` have full column rank), solved by Cholesky with one
+    /// refinement step. The same minimiser as the KKT system of
+    /// [`Check::Full`]; `Singular` when the factorisation fails or the
+    /// solution is not finite (the trial fails, the value search decides).
+    fn lean_poles(&self, hessian: &DMatrix<f64>, gradient: &DMatrix<f64>) -> Result<DMatrix<f64>> {
+        let n = hessian.nrows();
+        let mut poles = DMatrix::zeros(n, self.dim);
+        let (first, count) = if self.fix_ends {
+            let last = &self.pieces[self.pieces.len() - 1].poles;
+            poles.row_mut(0).copy_from(&self.pieces[0].poles.row(0));
+            poles.row_mut(n - 1).copy_from(&last.row(last.nrows() - 1));
+            (1, n.saturating_sub(2))
+        } else {
+            (0, n)
+        };
+        if count == 0 {
+            return Ok(poles);
+        }
+        let h = hessian.view((first, first), (count, count)).into_owned();
+        let mut rhs = gradient.rows(first, count).into_owned();
+        if self.fix_ends {
+            rhs -= hessian.view((first, 0), (count, 1)) * poles.row(0);
+            rhs -= hessian.view((first, n - 1), (count, 1)) * poles.row(n - 1);
+        }
+        let singular = || BezjoinError::Singular {
+            what: "the B-spline merge normal equations (lean trial)".into(),
+        };
+        let factor = h.clone().cholesky().ok_or_else(singular)?;
+        let mut x = factor.solve(&rhs);
+        let step = factor.solve(&(&rhs - &h * &x));
+        if step.iter().all(|v| v.is_finite()) {
+            x += step;
+        }
+        if x.iter().any(|v| !v.is_finite()) {
+            return Err(singular());
+        }
+        poles.rows_mut(first, count).copy_from(&x);
+        Ok(poles)
     }
 
     /// Stage 1, then `R` and its pieces as curves, the split check and the
     /// measured deviation.
     fn solve(&self, breakpoints: &[f64]) -> Result<Solved> {
-        let one = self.stage_one(breakpoints)?;
+        let one = self.stage_one(breakpoints, Check::Full)?;
         let (p, d) = (self.degree, self.dim);
         let merged = NurbsCurve::new(d, p, row_major(&one.poles), None, one.knots.clone())?;
         let result_scale = one.poles.amax().max(self.scale);
@@ -729,6 +996,35 @@ impl<'a> SplineProblem<'a> {
             split_check_error,
         })
     }
+}
+
+/// The first column of `a` with a non-zero entry and the number of columns
+/// up to its last one (`(0, 0)` for a zero matrix).
+fn nonzero_columns(a: &DMatrix<f64>) -> (usize, usize) {
+    let used = |c: &usize| a.column(*c).iter().any(|&v| v != 0.0);
+    let Some(first) = (0..a.ncols()).find(used) else {
+        return (0, 0);
+    };
+    let last = (0..a.ncols()).rev().find(used).expect("a used column");
+    (first, last + 1 - first)
+}
+
+/// The KKT solve of a trial ([`Check::Trial`]): LU with one step of
+/// iterative refinement, no condition estimate; `Singular` when a pivot
+/// vanishes or the solution is not finite.
+fn solve_lean(kkt: &DMatrix<f64>, rhs: &DMatrix<f64>, what: &str) -> Result<DMatrix<f64>> {
+    let singular = || BezjoinError::Singular { what: what.into() };
+    let lu = kkt.clone().lu();
+    let mut x = lu.solve(rhs).ok_or_else(singular)?;
+    if let Some(step) = lu.solve(&(rhs - kkt * &x))
+        && step.iter().all(|v| v.is_finite())
+    {
+        x += step;
+    }
+    if x.iter().any(|v| !v.is_finite()) {
+        return Err(singular());
+    }
+    Ok(x)
 }
 
 /// Evaluation of a polynomial B-spline at increasing parameters through
@@ -852,4 +1148,221 @@ pub fn merge_curve_chain(curves: &[Curve], options: &ChainMergeOptions) -> Resul
         pieces: m.pieces.into_iter().map(Curve::from).collect(),
         report: m.report,
     })
+}
+
+#[cfg(test)]
+mod slope_tests {
+    use super::*;
+
+    /// Uniform in `[0, 1)` (LCG, deterministic).
+    fn uniform(state: &mut u64) -> f64 {
+        *state = state
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        (*state >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    /// A clamped 2D B-spline of degree `p` with `spans` spans of random
+    /// lengths on a random domain, an interior knot doubled now and then.
+    fn bspline(state: &mut u64, p: usize, spans: usize) -> NurbsCurve {
+        let a = uniform(state) * 4.0 - 2.0;
+        let mut knots = vec![a; p + 1];
+        let mut x = a;
+        for _ in 1..spans {
+            x += 0.2 + uniform(state);
+            let m = if p > 1 && uniform(state) < 0.3 { 2 } else { 1 };
+            knots.extend(std::iter::repeat_n(x, m));
+        }
+        x += 0.2 + uniform(state);
+        knots.extend(std::iter::repeat_n(x, p + 1));
+        let n = knots.len() - p - 1;
+        let poles = (0..2 * n).map(|_| uniform(state) * 4.0 - 2.0).collect();
+        NurbsCurve::new(2, p, poles, None, knots).unwrap()
+    }
+
+    /// The closed-form slope (envelope theorem with the knot motion,
+    /// module `bspline_slope`) against a central difference of the metric:
+    /// one-span and multi-span inputs of different span counts, both
+    /// metrics, with and without fix ends.
+    #[test]
+    fn slope_is_the_derivative_of_the_metric() {
+        let mut state = 11;
+        for degree in [1, 2, 3, 7, 15] {
+            for (p_spans, q_spans) in [(1, 1), (3, 1), (2, 4)] {
+                let (p, q) = (
+                    bspline(&mut state, degree, p_spans),
+                    bspline(&mut state, degree, q_spans),
+                );
+                for metric in [MergeMetric::Discrete, MergeMetric::Integral] {
+                    for fix_ends in [false, true] {
+                        let options = MergeOptions {
+                            metric,
+                            fix_ends,
+                            ..MergeOptions::default()
+                        };
+                        let problem = pair_problem(&p, &q, &options).unwrap();
+                        assert!(problem.slope_search_applies());
+                        let at =
+                            |mu: f64| problem.stage_one(&[0.0, mu, 1.0], Check::Trial).unwrap();
+                        for mu in [0.1, 0.37, 0.5, 0.8] {
+                            let h = 1e-5;
+                            let difference =
+                                (at(mu + h).metric_value - at(mu - h).metric_value) / (2.0 * h);
+                            let slope = at(mu).slope.unwrap();
+                            assert!(
+                                (slope - difference).abs() <= 1e-5 * (1.0 + difference.abs()),
+                                "degree {degree} spans {p_spans}/{q_spans} {metric:?} fix ends \
+                                 {fix_ends} mu {mu}: slope {slope} vs {difference}"
+                            );
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    /// The restriction matrices from the local split block against knot
+    /// insertion on the curve whose poles are the unit vectors (the
+    /// library's `segment`, an independent computation).
+    #[test]
+    fn split_block_restrictions_are_the_segments() {
+        let mut state = 7;
+        for degree in [1, 2, 3, 6, 11] {
+            for (p_spans, q_spans) in [(1, 1), (4, 2), (1, 3)] {
+                let (p, q) = (
+                    bspline(&mut state, degree, p_spans),
+                    bspline(&mut state, degree, q_spans),
+                );
+                let options = MergeOptions::default();
+                let problem = pair_problem(&p, &q, &options).unwrap();
+                for mu in [0.05, 0.3, 0.5, 0.93] {
+                    let breakpoints = [0.0, mu, 1.0];
+                    let knots = problem.merged_knots(&breakpoints).unwrap();
+                    let unknowns = knots.len() - degree - 1;
+                    let span = problem.pieces[0].poles.nrows() - 1;
+                    let split = pair_split(degree, &knots, None, mu, span);
+                    let identity = identity_curve(degree, &knots).unwrap();
+                    for (j, (first, compact)) in
+                        split.restrictions(degree, unknowns).iter().enumerate()
+                    {
+                        let mut a = DMatrix::zeros(compact.nrows(), unknowns);
+                        a.columns_mut(*first, compact.ncols()).copy_from(compact);
+                        let segment = identity.segment(breakpoints[j], breakpoints[j + 1]);
+                        let reference = pole_matrix(&segment.unwrap());
+                        assert_eq!(a.shape(), reference.shape());
+                        let gap = (a - &reference).amax();
+                        assert!(
+                            gap <= 1e-13,
+                            "degree {degree} spans {p_spans}/{q_spans} mu {mu} piece {j}: {gap:e}"
+                        );
+                    }
+                }
+            }
+        }
+    }
+
+    /// The lean search can pick a `mu` whose full check fails; the merge
+    /// must then return the value search's answer (every trial fully
+    /// checked; the answer before the slope search existed), never the
+    /// lean one. Each pair is merged with
+    /// the default accuracy (the lean winner kept) and with an accuracy
+    /// just below the error estimate at the lean winner (refused there, so
+    /// the fallback runs and answers where the estimate is smaller).
+    #[test]
+    fn optimal_mu_falls_back_to_the_value_search() {
+        let mut state = 5;
+        let (mut fallbacks, mut quick_kept) = (0, 0);
+        for (degree, spans) in [(3, 1), (6, 2), (9, 1), (4, 3)] {
+            for metric in [MergeMetric::Discrete, MergeMetric::Integral] {
+                let (p, q) = (
+                    bspline(&mut state, degree, spans),
+                    bspline(&mut state, degree, spans),
+                );
+                let loose = MergeOptions::default()
+                    .with_metric(metric)
+                    .with_split(Breakpoints::Optimal);
+                let problem = pair_problem(&p, &q, &loose).unwrap();
+                let quick = problem.optimal_mu_on_slopes().unwrap();
+                let at_quick = problem
+                    .stage_one(&[0.0, quick, 1.0], Check::Full)
+                    .unwrap()
+                    .error_estimate;
+                for accuracy in [loose.accuracy, 0.9 * at_quick] {
+                    let options = MergeOptions {
+                        accuracy,
+                        ..loose.clone()
+                    };
+                    let problem = pair_problem(&p, &q, &options).unwrap();
+                    assert_eq!(problem.optimal_mu_on_slopes(), Ok(quick));
+                    let result = merge_bsplines(&p, &q, &options);
+                    match problem.solve(&[0.0, quick, 1.0]) {
+                        Ok(full) => {
+                            quick_kept += 1;
+                            let m = result.unwrap();
+                            assert_eq!(m.report.mu, quick);
+                            assert_eq!(m.report.metric_value, full.metric_value);
+                        }
+                        Err(BezjoinError::IllConditioned { .. }) => {
+                            let checked = problem.optimal_mu_on_values();
+                            let (Ok(m), Ok(mu)) = (result, checked) else {
+                                continue;
+                            };
+                            fallbacks += 1;
+                            assert_eq!(m.report.mu, mu);
+                            assert_ne!(m.report.mu, quick);
+                            assert!(m.report.solve_error_estimate <= accuracy);
+                            assert!(problem.solve(&[0.0, mu, 1.0]).is_ok());
+                        }
+                        Err(e) => panic!("unexpected {e}"),
+                    }
+                }
+            }
+        }
+        eprintln!("{fallbacks} answered fallbacks, {quick_kept} quick answers kept");
+        assert!(
+            fallbacks > 0 && quick_kept > 0,
+            "{fallbacks} answered fallbacks, {quick_kept} quick answers kept: the test no \
+             longer covers both paths"
+        );
+    }
+
+    /// A lean trial (fix ends eliminated, Cholesky) gives the fully
+    /// checked KKT solve's poles and metric (the same minimiser), and only
+    /// trials carry a slope.
+    #[test]
+    fn lean_trials_give_the_checked_metric() {
+        let mut state = 29;
+        for degree in [2, 5, 9] {
+            let (p, q) = (
+                bspline(&mut state, degree, 2),
+                bspline(&mut state, degree, 3),
+            );
+            for (metric, fix_ends) in [
+                (MergeMetric::Discrete, false),
+                (MergeMetric::Discrete, true),
+                (MergeMetric::Integral, false),
+                (MergeMetric::Integral, true),
+            ] {
+                let options = MergeOptions {
+                    metric,
+                    fix_ends,
+                    ..MergeOptions::default()
+                };
+                let problem = pair_problem(&p, &q, &options).unwrap();
+                for mu in [0.2, 0.6] {
+                    let lean = problem.stage_one(&[0.0, mu, 1.0], Check::Trial).unwrap();
+                    let full = problem.stage_one(&[0.0, mu, 1.0], Check::Full).unwrap();
+                    assert!(full.slope.is_none() && lean.slope.is_some());
+                    let gap = (lean.metric_value - full.metric_value).abs();
+                    assert!(gap <= 1e-12 * full.metric_value.max(1.0), "gap {gap:e}");
+                    let scale = full.poles.amax().max(1.0);
+                    let pole_gap = (&lean.poles - &full.poles).amax();
+                    assert!(
+                        pole_gap <= 1e-9 * scale,
+                        "degree {degree} {metric:?} fix ends {fix_ends} mu {mu}: poles {pole_gap:e}"
+                    );
+                }
+            }
+        }
+    }
 }

@@ -95,6 +95,7 @@
 //! * [`merge_chain`]: `N >= 2` consecutive curves into one, see there.
 
 mod bspline;
+mod bspline_slope;
 mod kept;
 mod kkt;
 mod orthogonal;
