@@ -1188,6 +1188,10 @@ const CHEBYSHEV_MAX_DIM: usize = 8;
 const CHEBYSHEV_ESTIMATE_SHARE: f64 = 0.25;
 const CHEBYSHEV_RESIDUAL_SHARE: f64 = 0.5;
 
+/// Share of the residual tolerance that the terms left out of the Newton
+/// iteration's series may take ([`newton_terms`]).
+const CHEBYSHEV_NEWTON_TAIL_SHARE: f64 = 0.125;
+
 /// First try of the bracket: this factor times `length / |P'(start)|`.
 const CHEBYSHEV_FIRST_WIDTH: f64 = 1.25;
 
@@ -1391,10 +1395,42 @@ impl ChebyshevSpeed {
     #[inline(always)]
     fn at(&self, t: f64) -> f64 {
         match self.dim {
-            2 => self.at_in::<2>(t),
-            3 => self.at_in::<3>(t),
+            2 => self.at_exact::<2>(t),
+            3 => self.at_exact::<3>(t),
             _ => self.at_in::<CHEBYSHEV_MAX_DIM>(t),
         }
+    }
+
+    /// [`Self::at`] for `D == dim`: the rows of `weighted` are read in place
+    /// as `[f64; D]` (no copies, one bounds check). The same operations in
+    /// the same order as [`Self::at_in`], so the same value to the bit.
+    #[inline(always)]
+    fn at_exact<const D: usize>(&self, t: f64) -> f64 {
+        let m = self.degree;
+        let (rows, _) = self.weighted[..(m + 1) * D].as_chunks::<D>();
+        let s = 1.0 - t;
+        let (r, factor) = if t <= 0.5 { (t / s, s) } else { (s / t, t) };
+        let mut acc;
+        if t <= 0.5 {
+            acc = rows[m];
+            for p in rows[..m].iter().rev() {
+                for c in 0..D {
+                    acc[c] = acc[c] * r + p[c];
+                }
+            }
+        } else {
+            acc = rows[0];
+            for p in &rows[1..] {
+                for c in 0..D {
+                    acc[c] = acc[c] * r + p[c];
+                }
+            }
+        }
+        let mut power = 1.0;
+        for _ in 0..m {
+            power *= factor;
+        }
+        norm(&acc) * power
     }
 
     /// [`Self::at`] in `D >= dim` coordinates (the unused ones stay 0).
@@ -1577,7 +1613,8 @@ fn invert_level(
         alternating += if k % 2 == 0 { -ck } else { *ck };
     }
     c[0] = -alternating;
-    let (a, c) = (&a[..=n], &c[..=n + 1]);
+    let a_full = a;
+    let c = &c[..=n + 1];
     let half = 0.5 * span.abs();
     let total = half * clenshaw(c, 1.0);
     if !total.is_finite() {
@@ -1590,10 +1627,20 @@ fn invert_level(
     let (mut lo, mut hi) = (-1.0f64, 1.0f64);
     let mut x = -1.0 + 2.0 * (target / total);
     let residual_tolerance = CHEBYSHEV_RESIDUAL_SHARE * accuracy;
+    // The iteration runs on the series cut after `c_kept`: the terms left
+    // out change the length by at most `tail` anywhere on the bracket
+    // (`|T_k| <= 1`), so a truncated residual within `residual_tolerance -
+    // tail` is one of the whole series within `residual_tolerance`. (The
+    // answer is checked below on the whole series all the same.)
+    let (kept, tail) = newton_terms(c, half, CHEBYSHEV_NEWTON_TAIL_SHARE * residual_tolerance);
+    let newton_tolerance = residual_tolerance - tail;
+    // `a[n + 1] = 0`: the slope's series is cut at the same index.
+    let (c_kept, a_kept) = (&c[..=kept], &a_full[..=kept]);
     let mut converged = false;
     for _ in 0..PANEL_NEWTON_STEPS {
-        let g = half * clenshaw(c, x) - target;
-        if g.abs() <= residual_tolerance {
+        let (length_at, speed_at) = clenshaw_pair(c_kept, a_kept, x);
+        let g = half * length_at - target;
+        if g.abs() <= newton_tolerance {
             converged = true;
             break;
         }
@@ -1602,7 +1649,7 @@ fn invert_level(
         } else {
             lo = x;
         }
-        let slope = half * clenshaw(a, x);
+        let slope = half * speed_at;
         let newton = x - g / slope;
         let next = if slope > 0.0 && newton > lo && newton < hi {
             newton
@@ -1631,6 +1678,42 @@ fn invert_level(
     let certified = estimate <= (CHEBYSHEV_ESTIMATE_SHARE * accuracy).max(floor)
         && (value - target).abs() <= residual_tolerance;
     Some(certified.then_some(t))
+}
+
+/// The Newton iteration of [`invert_level`] runs on `c[..=kept]`:
+/// `(kept, tail)`, `kept` the smallest index with `tail = half * sum_(k >
+/// kept) |c_k| <= budget` (`kept = c.len() - 1`, `tail = 0` when no term can
+/// be left out).
+fn newton_terms(c: &[f64], half: f64, budget: f64) -> (usize, f64) {
+    let mut kept = c.len() - 1;
+    let mut tail = 0.0f64;
+    while kept > 1 {
+        let next = tail + half * c[kept].abs();
+        if !(next <= budget) {
+            break;
+        }
+        tail = next;
+        kept -= 1;
+    }
+    (kept, tail)
+}
+
+/// `(sum_k c[k] T_k(x), sum_k a[k] T_k(x))` (`c`, `a` of the same length)
+/// by two Clenshaw recurrences in one loop: each the same operations in the
+/// same order as [`clenshaw`], so the same values to the bit.
+fn clenshaw_pair(c: &[f64], a: &[f64], x: f64) -> (f64, f64) {
+    let a = &a[..c.len()];
+    let (mut b1, mut b2) = (0.0, 0.0);
+    let (mut d1, mut d2) = (0.0, 0.0);
+    for (&ck, &ak) in c[1..].iter().zip(&a[1..]).rev() {
+        let b0 = 2.0 * x * b1 - b2 + ck;
+        b2 = b1;
+        b1 = b0;
+        let d0 = 2.0 * x * d1 - d2 + ak;
+        d2 = d1;
+        d1 = d0;
+    }
+    (x * b1 - b2 + c[0], x * d1 - d2 + a[0])
 }
 
 /// `sum_k coefficients[k] T_k(x)` by Clenshaw's recurrence.

@@ -299,7 +299,22 @@ impl CurvePair<'_> {
 
     /// Gauss-Newton with Levenberg damping on `|P(u) - Q(v)|^2` in the
     /// product of the domains.
-    fn polish(&self, mut u: f64, mut v: f64) -> (f64, f64, f64) {
+    fn polish(&self, u: f64, v: f64) -> (f64, f64, f64) {
+        let (u, v, f, _) = self.polish_with_tangents(u, v, &mut []);
+        (u, v, f)
+    }
+
+    /// [`Self::polish`], also handing out the tangents `P'(u)`, `Q'(v)` at
+    /// the returned `(u, v)` when its last step computed them there (the
+    /// convergence test is taken with them): then `tangents` (of length `2
+    /// dim`, else left alone) holds `P'(u)` then `Q'(v)`, the values
+    /// [`Track::tangent_into`] gives there, and the flag is `true`.
+    fn polish_with_tangents(
+        &self,
+        mut u: f64,
+        mut v: f64,
+        tangents: &mut [f64],
+    ) -> (f64, f64, f64, bool) {
         let d = self.p.dim();
         let (u_lo, u_hi) = self.p.domain();
         let (v_lo, v_hi) = self.q.domain();
@@ -327,12 +342,15 @@ impl CurvePair<'_> {
             * (u_hi - u_lo)
                 .max(v_hi - v_lo)
                 .max(u_hi.abs().max(v_hi.abs()).max(u_lo.abs().max(v_lo.abs())));
+        // Whether `a`, `b` are the tangents at the current `(u, v)`.
+        let mut current = false;
         for _ in 0..60 {
             if f == 0.0 {
                 break;
             }
             self.p.tangent_into(u, a);
             self.q.tangent_into(v, b);
+            current = true;
             let aa = dot(a, a);
             let bb = dot(b, b);
             let ab = dot(a, b);
@@ -370,6 +388,7 @@ impl CurvePair<'_> {
                 let nf = norm(trial);
                 if nf < f {
                     moved = (nu - u).abs().max((nv - v).abs());
+                    current &= nu == u && nv == v;
                     u = nu;
                     v = nv;
                     std::mem::swap(&mut r, &mut trial);
@@ -387,9 +406,13 @@ impl CurvePair<'_> {
         // arithmetic, or a non-finite seed) is no point of either curve: no
         // hit, whatever the gap's comparisons would say.
         if !(u.is_finite() && v.is_finite() && f.is_finite()) {
-            return (u, v, f64::INFINITY);
+            return (u, v, f64::INFINITY, false);
         }
-        (u, v, f)
+        if current && tangents.len() == 2 * d {
+            tangents[..d].copy_from_slice(a);
+            tangents[d..].copy_from_slice(b);
+        }
+        (u, v, f, current)
     }
 }
 
@@ -563,6 +586,10 @@ struct Candidate {
     u: f64,
     v: f64,
     distance: f64,
+    /// `P'(u)` and `Q'(v)` of a planar hit when already computed (by
+    /// [`Track::tangent_into`], so [`Search::classify`] takes them as they
+    /// are).
+    tangents: Option<[f64; 4]>,
 }
 
 struct Search<'a> {
@@ -827,7 +854,12 @@ impl<'a> Search<'a> {
                 v = self.pair.q.domain().0;
             }
             if d <= self.tolerance {
-                self.candidates.push(Candidate { u, v, distance: d });
+                self.candidates.push(Candidate {
+                    u,
+                    v,
+                    distance: d,
+                    tangents: None,
+                });
             }
         }
     }
@@ -952,8 +984,16 @@ impl<'a> Search<'a> {
             &mut heap
         };
         let (a, b) = scratch.split_at_mut(d);
-        self.pair.p.tangent_into(c.u, a);
-        self.pair.q.tangent_into(c.v, b);
+        match c.tangents {
+            Some(known) if d == 2 => {
+                a.copy_from_slice(&known[..2]);
+                b.copy_from_slice(&known[2..]);
+            }
+            _ => {
+                self.pair.p.tangent_into(c.u, a);
+                self.pair.q.tangent_into(c.v, b);
+            }
+        }
         let (a, b) = (&*a, &*b);
         let na = norm(a);
         let nb = norm(b);
