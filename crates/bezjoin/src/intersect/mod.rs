@@ -601,8 +601,8 @@ struct Search<'a> {
     /// are relative to them.
     units: (f64, f64),
     /// The curves' Bezier spans (computed once).
-    p_pieces: Vec<Piece>,
-    q_pieces: Vec<Piece>,
+    p_pieces: Vec<Piece<'a>>,
+    q_pieces: Vec<Piece<'a>>,
     overlaps: Vec<Overlap>,
     candidates: Vec<Candidate>,
 }
@@ -642,7 +642,7 @@ impl<'a> Search<'a> {
         };
         let (p_breaks, q_breaks) = (pair.p.breaks(), pair.q.breaks());
         for &u in p_breaks.iter() {
-            pair.p.eval_into(u, x);
+            pair.p.break_point_into(u, x);
             if near(q_pieces, x) {
                 let (v, d) = project_on(&pair.q, x, None, q_pieces);
                 if d <= tol {
@@ -651,7 +651,7 @@ impl<'a> Search<'a> {
             }
         }
         for &v in q_breaks.iter() {
-            pair.q.eval_into(v, x);
+            pair.q.break_point_into(v, x);
             if near(p_pieces, x) {
                 let (u, d) = project_on(&pair.p, x, None, p_pieces);
                 if d <= tol {
@@ -745,10 +745,10 @@ impl<'a> Search<'a> {
         }
         let mut examined = 0usize;
         let margin = self.tolerance;
-        let halves = |piece: &Piece| {
+        fn halves<'p>(piece: &Piece<'p>) -> (Rc<Piece<'p>>, Rc<Piece<'p>>) {
             let (h0, h1) = piece.split();
             (Rc::new(h0), Rc::new(h1))
-        };
+        }
         while let Some((a, b, depth)) = stack.pop() {
             examined += 1;
             if examined > self.options.max_box_pairs {

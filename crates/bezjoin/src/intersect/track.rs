@@ -77,6 +77,19 @@ impl<'a> Track<'a> {
         }
     }
 
+    /// [`Self::eval_into`] at a parameter of [`Self::breaks`]: a Bezier
+    /// curve's ends are its first and last control points, exactly (no
+    /// evaluation).
+    pub(super) fn break_point_into(&self, u: f64, out: &mut [f64]) {
+        match self {
+            Track::Bezier { curve, .. } if u == 0.0 => out.copy_from_slice(curve.point(0)),
+            Track::Bezier { curve, .. } if u == 1.0 => {
+                out.copy_from_slice(curve.point(curve.degree()))
+            }
+            _ => self.eval_into(u, out),
+        }
+    }
+
     pub(super) fn eval(&self, u: f64) -> Vec<f64> {
         let mut out = vec![0.0; self.dim()];
         self.eval_into(u, &mut out);
@@ -134,10 +147,13 @@ impl<'a> Track<'a> {
         }
     }
 
-    /// The curve as Bezier pieces over its domain.
-    pub(super) fn pieces(&self) -> Vec<Piece> {
+    /// The curve as Bezier pieces over its domain (a Bezier curve's one
+    /// piece borrows the curve: no copy).
+    pub(super) fn pieces(&self) -> Vec<Piece<'a>> {
         match self {
-            Track::Bezier { curve, .. } => vec![Piece::new((*curve).clone(), false, 0.0, 1.0)],
+            Track::Bezier { curve, .. } => {
+                vec![Piece::new(Cow::Borrowed(*curve), false, 0.0, 1.0)]
+            }
             Track::Nurbs(n) => n
                 .bezier_spans()
                 .into_iter()
@@ -147,12 +163,12 @@ impl<'a> Track<'a> {
                         let h = span.homogeneous_points();
                         let curve = BezierCurve::new(span.dim() + 1, span.degree(), h)
                             .expect("a span's homogeneous poles are a valid Bezier curve");
-                        Piece::new(curve, true, lo, hi)
+                        Piece::new(Cow::Owned(curve), true, lo, hi)
                     } else {
                         let curve =
                             BezierCurve::new(span.dim(), span.degree(), span.points().to_vec())
                                 .expect("a span's poles are a valid Bezier curve");
-                        Piece::new(curve, false, lo, hi)
+                        Piece::new(Cow::Owned(curve), false, lo, hi)
                     }
                 })
                 .collect(),
@@ -161,10 +177,11 @@ impl<'a> Track<'a> {
 }
 
 /// A piece `curve = original|[lo, hi]` (homogeneous when `rational`) with
-/// its Cartesian control points and their bounding box.
+/// its Cartesian control points and their bounding box; a whole Bezier
+/// curve is borrowed, a span or a half owned.
 #[derive(Clone)]
-pub(super) struct Piece {
-    curve: BezierCurve,
+pub(super) struct Piece<'a> {
+    curve: Cow<'a, BezierCurve>,
     /// Cartesian control points of a rational piece, row-major (a
     /// polynomial piece's are the curve's own: no copy).
     projected: Option<Vec<f64>>,
@@ -203,8 +220,8 @@ impl Bounds {
     }
 }
 
-impl Piece {
-    fn new(curve: BezierCurve, rational: bool, lo: f64, hi: f64) -> Self {
+impl<'a> Piece<'a> {
+    fn new(curve: Cow<'a, BezierCurve>, rational: bool, lo: f64, hi: f64) -> Self {
         let dim = if rational {
             curve.dim() - 1
         } else {
@@ -230,9 +247,14 @@ impl Piece {
             .unwrap_or(curve.points())
             .chunks_exact(dim)
         {
-            for c in 0..dim {
-                b[c] = b[c].min(row[c]);
-                b[dim + c] = b[dim + c].max(row[c]);
+            // Comparisons (a NaN is skipped, as by `f64::min` / `max`).
+            for (c, &x) in row.iter().enumerate() {
+                if x < b[c] {
+                    b[c] = x;
+                }
+                if x > b[dim + c] {
+                    b[dim + c] = x;
+                }
             }
         }
         Self {
@@ -265,12 +287,12 @@ impl Piece {
         &points[i * self.dim..(i + 1) * self.dim]
     }
 
-    pub(super) fn split(&self) -> (Piece, Piece) {
+    pub(super) fn split(&self) -> (Piece<'a>, Piece<'a>) {
         let (a, b) = self.curve.split_unchecked(0.5);
         let mid = 0.5 * (self.lo + self.hi);
         (
-            Piece::new(a, self.projected.is_some(), self.lo, mid),
-            Piece::new(b, self.projected.is_some(), mid, self.hi),
+            Piece::new(Cow::Owned(a), self.projected.is_some(), self.lo, mid),
+            Piece::new(Cow::Owned(b), self.projected.is_some(), mid, self.hi),
         )
     }
 
