@@ -288,15 +288,6 @@ struct CurvePair<'a> {
 }
 
 impl CurvePair<'_> {
-    /// `P(u) - Q(v)` into `out` (`work` is scratch of length `dim`).
-    fn gap_into(&self, u: f64, v: f64, out: &mut [f64], work: &mut [f64]) {
-        self.p.eval_into(u, out);
-        self.q.eval_into(v, work);
-        for (o, w) in out.iter_mut().zip(work.iter()) {
-            *o -= w;
-        }
-    }
-
     /// Gauss-Newton with Levenberg damping on `|P(u) - Q(v)|^2` in the
     /// product of the domains.
     fn polish(&self, u: f64, v: f64) -> (f64, f64, f64) {
@@ -304,11 +295,30 @@ impl CurvePair<'_> {
         (u, v, f)
     }
 
+    /// `P(u) - Q(v)` into `gap` and the tangents `P'(u)`, `Q'(v)` into `a`,
+    /// `b`, each curve in one pass ([`Track::point_and_tangent_into`];
+    /// `work` is scratch of length `dim`).
+    fn gap_and_tangents_into(
+        &self,
+        u: f64,
+        v: f64,
+        gap: &mut [f64],
+        a: &mut [f64],
+        b: &mut [f64],
+        work: &mut [f64],
+    ) {
+        self.p.point_and_tangent_into(u, gap, a);
+        self.q.point_and_tangent_into(v, work, b);
+        for (o, w) in gap.iter_mut().zip(work.iter()) {
+            *o -= w;
+        }
+    }
+
     /// [`Self::polish`], also handing out the tangents `P'(u)`, `Q'(v)` at
-    /// the returned `(u, v)` when its last step computed them there (the
-    /// convergence test is taken with them): then `tangents` (of length `2
-    /// dim`, else left alone) holds `P'(u)` then `Q'(v)`, the values
-    /// [`Track::tangent_into`] gives there, and the flag is `true`.
+    /// the returned `(u, v)` (computed with each point: every accepted step
+    /// brings the tangents at its end): `tangents`, of length `2 dim` (else
+    /// left alone), holds `P'(u)` then `Q'(v)`. The flag is `false` when
+    /// the result is no point (a non-finite parameter or gap).
     fn polish_with_tangents(
         &self,
         mut u: f64,
@@ -318,23 +328,26 @@ impl CurvePair<'_> {
         let d = self.p.dim();
         let (u_lo, u_hi) = self.p.domain();
         let (v_lo, v_hi) = self.q.domain();
-        // Five vectors of length `d`: on the stack for small dimensions.
-        let mut stack = [0.0f64; 5 * POLISH_STACK_DIM];
+        // Seven vectors of length `d`: on the stack for small dimensions.
+        let mut stack = [0.0f64; 7 * POLISH_STACK_DIM];
         let mut heap = Vec::new();
         let scratch: &mut [f64] = if d <= POLISH_STACK_DIM {
-            &mut stack[..5 * d]
+            &mut stack[..7 * d]
         } else {
-            heap.resize(5 * d, 0.0);
+            heap.resize(7 * d, 0.0);
             &mut heap
         };
         let (r, rest) = scratch.split_at_mut(d);
         let (trial, rest) = rest.split_at_mut(d);
         let (work, rest) = rest.split_at_mut(d);
-        let (a, b) = rest.split_at_mut(d);
-        let (mut r, mut trial, work, a, b) = (r, trial, work, a, b);
+        let (a, rest) = rest.split_at_mut(d);
+        let (b, rest) = rest.split_at_mut(d);
+        let (trial_a, trial_b) = rest.split_at_mut(d);
+        let (mut r, mut trial, work) = (r, trial, work);
+        let (mut a, mut b, mut trial_a, mut trial_b) = (a, b, trial_a, trial_b);
         u = u.clamp(u_lo, u_hi);
         v = v.clamp(v_lo, v_hi);
-        self.gap_into(u, v, r, work);
+        self.gap_and_tangents_into(u, v, r, a, b, work);
         let mut f = norm(r);
         // Steps below this are at the rounding level of the parameters.
         let resolution = 4.0
@@ -342,20 +355,16 @@ impl CurvePair<'_> {
             * (u_hi - u_lo)
                 .max(v_hi - v_lo)
                 .max(u_hi.abs().max(v_hi.abs()).max(u_lo.abs().max(v_lo.abs())));
-        // Whether `a`, `b` are the tangents at the current `(u, v)`.
-        let mut current = false;
         for _ in 0..60 {
             if f == 0.0 {
                 break;
             }
-            self.p.tangent_into(u, a);
-            self.q.tangent_into(v, b);
-            current = true;
-            let aa = dot(a, a);
-            let bb = dot(b, b);
-            let ab = dot(a, b);
-            let ar = dot(a, r);
-            let br = dot(b, r);
+            let (a_ref, b_ref) = (&*a, &*b);
+            let aa = dot(a_ref, a_ref);
+            let bb = dot(b_ref, b_ref);
+            let ab = dot(a_ref, b_ref);
+            let ar = dot(a_ref, r);
+            let br = dot(b_ref, r);
             // Normal equations of J = [a, -b]: [aa, -ab; -ab, bb] d = [-ar, br].
             let damping = 1e-15 * (aa + bb) + f64::MIN_POSITIVE;
             let (mut du, mut dv) = solve2(aa + damping, -ab, bb + damping, -ar, br);
@@ -384,14 +393,15 @@ impl CurvePair<'_> {
             for _ in 0..16 {
                 let nu = (u + step * du).clamp(u_lo, u_hi);
                 let nv = (v + step * dv).clamp(v_lo, v_hi);
-                self.gap_into(nu, nv, trial, work);
+                self.gap_and_tangents_into(nu, nv, trial, trial_a, trial_b, work);
                 let nf = norm(trial);
                 if nf < f {
                     moved = (nu - u).abs().max((nv - v).abs());
-                    current &= nu == u && nv == v;
                     u = nu;
                     v = nv;
                     std::mem::swap(&mut r, &mut trial);
+                    std::mem::swap(&mut a, &mut trial_a);
+                    std::mem::swap(&mut b, &mut trial_b);
                     f = nf;
                     break;
                 }
@@ -408,11 +418,11 @@ impl CurvePair<'_> {
         if !(u.is_finite() && v.is_finite() && f.is_finite()) {
             return (u, v, f64::INFINITY, false);
         }
-        if current && tangents.len() == 2 * d {
+        if tangents.len() == 2 * d {
             tangents[..d].copy_from_slice(a);
             tangents[d..].copy_from_slice(b);
         }
-        (u, v, f, current)
+        (u, v, f, true)
     }
 }
 
