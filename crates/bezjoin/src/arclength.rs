@@ -1363,12 +1363,19 @@ impl ChebyshevSpeed {
         if !(high.is_finite() && low >= SPEED_MARGIN * high && low > 0.0) {
             return None;
         }
+        // `C(m, i)` by `C(m, i + 1) = C(m, i) (m - i) / (i + 1)` up to
+        // `m = 50`: exact integers there (every product `C(m, i + 1) (i +
+        // 1)` is below `2^53`), so the values of `binomial`; above, `binomial`.
         let mut weighted = [0.0; CHEBYSHEV_MAX_POINTS];
+        let mut w = 1.0f64;
         for i in 0..=m {
-            let w = binomial(m, i);
+            if m > 50 {
+                w = binomial(m, i);
+            }
             for c in 0..d {
                 weighted[i * d + c] = w * h[i * d + c];
             }
+            w = w * (m - i) as f64 / (i + 1) as f64;
         }
         if weighted[..n * d].iter().any(|x| !x.is_finite()) {
             return None;
@@ -1616,7 +1623,8 @@ fn invert_level(
     let a_full = a;
     let c = &c[..=n + 1];
     let half = 0.5 * span.abs();
-    let total = half * clenshaw(c, 1.0);
+    // `T_k(1) = 1`: the length of the whole bracket is the coefficients' sum.
+    let total = half * c.iter().sum::<f64>();
     if !total.is_finite() {
         return Some(None);
     }

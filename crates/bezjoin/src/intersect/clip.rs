@@ -267,19 +267,26 @@ fn clip<const N: usize>(a: &Poly<N>, b: &Poly<N>, margin: f64) -> Option<(f64, f
             t1 = t;
         }
     };
+    // The abscissae `i / n`, each divided once.
     let nf = n as f64;
+    let mut ts = [0.0; N];
+    for (i, t) in ts.iter_mut().enumerate().take(n + 1) {
+        *t = i as f64 / nf;
+    }
     for i in 0..=n {
-        let ti = i as f64 / nf;
-        if e[i] >= lo && e[i] <= hi {
+        let (ti, ei) = (ts[i], e[i]);
+        if ei >= lo && ei <= hi {
             take(ti);
         }
         for j in i + 1..=n {
-            let tj = j as f64 / nf;
-            for level in [lo, hi] {
-                if (e[i] - level) * (e[j] - level) < 0.0 {
-                    let w = (level - e[i]) / (e[j] - e[i]);
-                    take(ti + w * (tj - ti));
-                }
+            let (tj, ej) = (ts[j], e[j]);
+            if (ei - lo) * (ej - lo) < 0.0 {
+                let w = (lo - ei) / (ej - ei);
+                take(ti + w * (tj - ti));
+            }
+            if (ei - hi) * (ej - hi) < 0.0 {
+                let w = (hi - ei) / (ej - ei);
+                take(ti + w * (tj - ti));
             }
         }
     }
