@@ -1440,6 +1440,73 @@ impl ChebyshevSpeed {
         norm(&acc) * power
     }
 
+    /// The speed at the grid nodes `i = first, first + step, ..` below
+    /// [`CHEBYSHEV_MAX_N`], `t = start + (nodes[i] + 1) span / 2`, into
+    /// `samples[i]`; `false` at the first value that is not finite. The
+    /// plane and space up to hodograph degree 4 take [`Self::at_fixed`]
+    /// (chosen once for all the nodes), the rest [`Self::at`]; the values
+    /// are the same to the bit.
+    fn sample(
+        &self,
+        nodes: &[f64; CHEBYSHEV_MAX_N + 1],
+        start: f64,
+        span: f64,
+        first: usize,
+        step: usize,
+        samples: &mut [f64; CHEBYSHEV_MAX_N + 1],
+    ) -> bool {
+        let run = |speed: &dyn Fn(f64) -> f64, samples: &mut [f64; CHEBYSHEV_MAX_N + 1]| {
+            let mut i = first;
+            while i < CHEBYSHEV_MAX_N {
+                let f = speed(start + 0.5 * (nodes[i] + 1.0) * span);
+                if !f.is_finite() {
+                    return false;
+                }
+                samples[i] = f;
+                i += step;
+            }
+            true
+        };
+        match (self.dim, self.degree) {
+            (2, 1) => self.sample_fixed::<2, 1>(nodes, start, span, first, step, samples),
+            (2, 2) => self.sample_fixed::<2, 2>(nodes, start, span, first, step, samples),
+            (2, 3) => self.sample_fixed::<2, 3>(nodes, start, span, first, step, samples),
+            (2, 4) => self.sample_fixed::<2, 4>(nodes, start, span, first, step, samples),
+            (3, 1) => self.sample_fixed::<3, 1>(nodes, start, span, first, step, samples),
+            (3, 2) => self.sample_fixed::<3, 2>(nodes, start, span, first, step, samples),
+            (3, 3) => self.sample_fixed::<3, 3>(nodes, start, span, first, step, samples),
+            (3, 4) => self.sample_fixed::<3, 4>(nodes, start, span, first, step, samples),
+            _ => run(&|t| self.at(t), samples),
+        }
+    }
+
+    /// [`Self::sample`] for dimension `D` and hodograph degree `M`: the
+    /// rows copied once into a local array, the loops of
+    /// [`Self::at_exact`] unrolled.
+    fn sample_fixed<const D: usize, const M: usize>(
+        &self,
+        nodes: &[f64; CHEBYSHEV_MAX_N + 1],
+        start: f64,
+        span: f64,
+        first: usize,
+        step: usize,
+        samples: &mut [f64; CHEBYSHEV_MAX_N + 1],
+    ) -> bool {
+        let mut rows = [[0.0f64; D]; 5];
+        let (weighted, _) = self.weighted[..(M + 1) * D].as_chunks::<D>();
+        rows[..=M].copy_from_slice(weighted);
+        let mut i = first;
+        while i < CHEBYSHEV_MAX_N {
+            let f = at_fixed::<D, M>(&rows, start + 0.5 * (nodes[i] + 1.0) * span);
+            if !f.is_finite() {
+                return false;
+            }
+            samples[i] = f;
+            i += step;
+        }
+        true
+    }
+
     /// [`Self::at`] in `D >= dim` coordinates (the unused ones stay 0).
     #[inline(always)]
     fn at_in<const D: usize>(&self, t: f64) -> f64 {
@@ -1551,15 +1618,8 @@ impl ChebyshevSpeed {
             // x = cos(pi j / N) in [-1, 1] is t = start + (x + 1) span / 2:
             // x = -1 at `start` (the last sample, already taken), x = 1 at
             // `far`.
-            let mut i = first_new;
-            while i < CHEBYSHEV_MAX_N {
-                let t = start + 0.5 * (tables.nodes[i] + 1.0) * span;
-                let f = self.at(t);
-                if !f.is_finite() {
-                    return Some(None);
-                }
-                samples[i] = f;
-                i += new;
+            if !self.sample(&tables.nodes, start, span, first_new, new, samples) {
+                return Some(None);
             }
             // Coefficients of p_n = sum_k a_k T_k (two zeros past the end
             // for the antiderivative's recurrence).
@@ -1579,6 +1639,36 @@ impl ChebyshevSpeed {
         }
         Some(None)
     }
+}
+
+/// [`ChebyshevSpeed::at_exact`] for `D` coordinates and hodograph degree
+/// `M` (`rows[..=M]` its weighted rows): the same operations in the same
+/// order, so the same value to the bit.
+#[inline(always)]
+fn at_fixed<const D: usize, const M: usize>(rows: &[[f64; D]; 5], t: f64) -> f64 {
+    let s = 1.0 - t;
+    let (r, factor) = if t <= 0.5 { (t / s, s) } else { (s / t, t) };
+    let mut acc;
+    if t <= 0.5 {
+        acc = rows[M];
+        for k in (0..M).rev() {
+            for c in 0..D {
+                acc[c] = acc[c] * r + rows[k][c];
+            }
+        }
+    } else {
+        acc = rows[0];
+        for row in &rows[1..=M] {
+            for c in 0..D {
+                acc[c] = acc[c] * r + row[c];
+            }
+        }
+    }
+    let mut power = 1.0;
+    for _ in 0..M {
+        power *= factor;
+    }
+    norm(&acc) * power
 }
 
 /// `sum_k |a_k - b_k|` of the Chebyshev inversion's check, `b` the
@@ -2204,5 +2294,55 @@ mod chebyshev_tests {
         assert!(speed.param_at_length(1.0, 0.1, 1e-12).is_none());
         // Below the parameter resolution: no certified answer here.
         assert!(speed.param_at_length(0.5, 1e-300, 1e-310).is_none());
+    }
+
+    /// The node sampling with the dimension and degree fixed at compile
+    /// time (`sample_fixed`, 2D and 3D up to hodograph degree 4) gives the
+    /// speed of `at` and of the general `at_in` to the bit, at every node
+    /// of both levels of brackets on either side of `t = 1/2`, on
+    /// fixed-seed gentle curves of degrees 2 to 6 (the last two take the
+    /// general loop, as a check of the dispatch).
+    #[test]
+    fn fixed_sampling_is_the_general_speed_to_the_bit() {
+        let mut state = 26u64;
+        let mut next = || {
+            state = state
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let tables = chebyshev_tables();
+        let mut checked = 0;
+        for case in 0..60 {
+            let degree = 2 + case % 5;
+            let dim = 2 + (case / 5) % 2;
+            // Along x with small sideways wiggles: the speed stays away from 0.
+            let points: Vec<f64> = (0..=degree)
+                .flat_map(|i| {
+                    let mut row = vec![i as f64 + 0.2 * next()];
+                    row.extend((1..dim).map(|_| 0.3 * next() - 0.15));
+                    row
+                })
+                .collect();
+            let curve = BezierCurve::new(dim, degree, points).unwrap();
+            let speed = ChebyshevSpeed::new(&curve).expect("a gentle curve qualifies");
+            for (start, span) in [(0.05, 0.3), (0.6, 0.35), (0.7, -0.5), (0.2, 0.6)] {
+                for (first, step) in [(0, 2), (1, 2), (0, 1)] {
+                    let mut samples = [f64::NAN; CHEBYSHEV_MAX_N + 1];
+                    assert!(speed.sample(&tables.nodes, start, span, first, step, &mut samples));
+                    let mut i = first;
+                    while i < CHEBYSHEV_MAX_N {
+                        let t = start + 0.5 * (tables.nodes[i] + 1.0) * span;
+                        let what = format!("case {case}, degree {degree}, dim {dim}, t {t}");
+                        assert_eq!(samples[i].to_bits(), speed.at(t).to_bits(), "{what}");
+                        let general = speed.at_in::<CHEBYSHEV_MAX_DIM>(t);
+                        assert_eq!(samples[i].to_bits(), general.to_bits(), "{what}");
+                        checked += 1;
+                        i += step;
+                    }
+                }
+            }
+        }
+        assert!(checked > 10_000, "{checked}");
     }
 }
