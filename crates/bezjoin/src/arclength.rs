@@ -2345,4 +2345,41 @@ mod chebyshev_tests {
         }
         assert!(checked > 10_000, "{checked}");
     }
+
+    /// The Newton iteration's fused recurrences are the two plain Clenshaw
+    /// sums to the bit, and the terms `newton_terms` leaves out sum to at
+    /// most its budget while the next one would not fit (fixed-seed
+    /// coefficients decaying like `10^-k`, with the budget at several
+    /// levels).
+    #[test]
+    fn fused_clenshaw_and_the_newton_terms() {
+        let mut state = 7u64;
+        let mut next = || {
+            state = state
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for case in 0..50 {
+            let len = 3 + case % 24;
+            let c: Vec<f64> = (0..len)
+                .map(|k| (next() - 0.5) * 10f64.powi(-(k as i32)))
+                .collect();
+            let a: Vec<f64> = (0..len).map(|_| next() - 0.5).collect();
+            let x = 2.0 * next() - 1.0;
+            let (g, p) = clenshaw_pair(&c, &a, x);
+            assert_eq!(g.to_bits(), clenshaw(&c, x).to_bits(), "case {case}");
+            assert_eq!(p.to_bits(), clenshaw(&a, x).to_bits(), "case {case}");
+            let half = 0.25 + next();
+            for budget in [0.0, 1e-15, 1e-9, 1e-3, 1.0] {
+                let (kept, tail) = newton_terms(&c, half, budget);
+                let left_out: f64 = c[kept + 1..].iter().map(|x| half * x.abs()).sum();
+                assert!((tail - left_out).abs() <= 1e-15 * left_out, "case {case}");
+                assert!(tail <= budget, "case {case}, budget {budget}");
+                if kept > 1 {
+                    assert!(tail + half * c[kept].abs() > budget, "case {case}");
+                }
+            }
+        }
+    }
 }
