@@ -72,8 +72,13 @@ impl<const N: usize> Poly<N> {
             return None;
         }
         let mut points = [[0.0; 2]; N];
-        let (rows, _) = piece.points().as_chunks::<2>();
-        points[..=n].copy_from_slice(&rows[..=n]);
+        for (point, row) in points
+            .iter_mut()
+            .zip(piece.points().chunks_exact(2))
+            .take(n + 1)
+        {
+            point.copy_from_slice(row);
+        }
         Some(Poly { n, points })
     }
 
@@ -101,8 +106,9 @@ impl<const N: usize> Poly<N> {
         let p = &mut self.points;
         for r in 1..=n {
             for i in (r..=n).rev() {
-                for c in 0..2 {
-                    p[i][c] = p[i - 1][c] + t * (p[i][c] - p[i - 1][c]);
+                let prev = p[i - 1];
+                for (x, y) in p[i].iter_mut().zip(prev) {
+                    *x = y + t * (*x - y);
                 }
             }
         }
@@ -115,8 +121,9 @@ impl<const N: usize> Poly<N> {
         let p = &mut self.points;
         for r in 1..=n {
             for i in 0..=n - r {
-                for c in 0..2 {
-                    p[i][c] += s * (p[i + 1][c] - p[i][c]);
+                let next = p[i + 1];
+                for (x, y) in p[i].iter_mut().zip(next) {
+                    *x += s * (y - *x);
                 }
             }
         }

@@ -441,14 +441,16 @@ fn point_and_tangent_fixed<const D: usize, const CAP: usize>(
     tangent: &mut [f64],
 ) {
     let n = n.min(CAP - 1);
-    let (rows, _) = points.as_chunks::<D>();
     let mut w = [[0.0f64; D]; CAP];
-    w[..=n].copy_from_slice(&rows[..=n]);
+    for (row, p) in w.iter_mut().zip(points.chunks_exact(D)).take(n + 1) {
+        row.copy_from_slice(p);
+    }
     let s = 1.0 - t;
     for level in 1..n {
         for i in 0..=n - level {
-            for c in 0..D {
-                w[i][c] = s * w[i][c] + t * w[i + 1][c];
+            let next = w[i + 1];
+            for (x, y) in w[i].iter_mut().zip(next) {
+                *x = s * *x + t * y;
             }
         }
     }
