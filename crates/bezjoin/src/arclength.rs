@@ -1188,6 +1188,10 @@ const CHEBYSHEV_MAX_DIM: usize = 8;
 const CHEBYSHEV_ESTIMATE_SHARE: f64 = 0.25;
 const CHEBYSHEV_RESIDUAL_SHARE: f64 = 0.5;
 
+/// Share of the residual tolerance that the terms left out of the Newton
+/// iteration's series may take ([`newton_terms`]).
+const CHEBYSHEV_NEWTON_TAIL_SHARE: f64 = 0.125;
+
 /// First try of the bracket: this factor times `length / |P'(start)|`.
 const CHEBYSHEV_FIRST_WIDTH: f64 = 1.25;
 
@@ -1359,12 +1363,19 @@ impl ChebyshevSpeed {
         if !(high.is_finite() && low >= SPEED_MARGIN * high && low > 0.0) {
             return None;
         }
+        // `C(m, i)` by `C(m, i + 1) = C(m, i) (m - i) / (i + 1)` up to
+        // `m = 50`: exact integers there (every product `C(m, i + 1) (i +
+        // 1)` is below `2^53`), so the values of `binomial`; above, `binomial`.
         let mut weighted = [0.0; CHEBYSHEV_MAX_POINTS];
+        let mut w = 1.0f64;
         for i in 0..=m {
-            let w = binomial(m, i);
+            if m > 50 {
+                w = binomial(m, i);
+            }
             for c in 0..d {
                 weighted[i * d + c] = w * h[i * d + c];
             }
+            w = w * (m - i) as f64 / (i + 1) as f64;
         }
         if weighted[..n * d].iter().any(|x| !x.is_finite()) {
             return None;
@@ -1391,10 +1402,115 @@ impl ChebyshevSpeed {
     #[inline(always)]
     fn at(&self, t: f64) -> f64 {
         match self.dim {
-            2 => self.at_in::<2>(t),
-            3 => self.at_in::<3>(t),
+            2 => self.at_exact::<2>(t),
+            3 => self.at_exact::<3>(t),
             _ => self.at_in::<CHEBYSHEV_MAX_DIM>(t),
         }
+    }
+
+    /// [`Self::at`] for `D == dim`: the rows of `weighted` are read in place
+    /// in chunks of `D` (no copies into padded rows). The same operations
+    /// in the same order as [`Self::at_in`], so the same value to the bit.
+    #[inline(always)]
+    fn at_exact<const D: usize>(&self, t: f64) -> f64 {
+        let m = self.degree;
+        let rows = self.weighted[..(m + 1) * D].chunks_exact(D);
+        let s = 1.0 - t;
+        let (r, factor) = if t <= 0.5 { (t / s, s) } else { (s / t, t) };
+        let mut acc = [0.0; D];
+        let step = |acc: &mut [f64; D], p: &[f64]| {
+            for (a, x) in acc.iter_mut().zip(p) {
+                *a = *a * r + x;
+            }
+        };
+        if t <= 0.5 {
+            acc.copy_from_slice(&self.weighted[m * D..(m + 1) * D]);
+            for p in rows.take(m).rev() {
+                step(&mut acc, p);
+            }
+        } else {
+            acc.copy_from_slice(&self.weighted[..D]);
+            for p in rows.skip(1) {
+                step(&mut acc, p);
+            }
+        }
+        let mut power = 1.0;
+        for _ in 0..m {
+            power *= factor;
+        }
+        norm(&acc) * power
+    }
+
+    /// The speed at the grid nodes `i = first, first + step, ..` below
+    /// [`CHEBYSHEV_MAX_N`], `t = start + (nodes[i] + 1) span / 2`, into
+    /// `samples[i]`; `false` at the first value that is not finite. The
+    /// plane and space up to hodograph degree 4 take [`Self::at_fixed`]
+    /// (chosen once for all the nodes), the rest [`Self::at`]; the values
+    /// are the same to the bit.
+    fn sample(
+        &self,
+        nodes: &[f64; CHEBYSHEV_MAX_N + 1],
+        start: f64,
+        span: f64,
+        first: usize,
+        step: usize,
+        samples: &mut [f64; CHEBYSHEV_MAX_N + 1],
+    ) -> bool {
+        let run = |speed: &dyn Fn(f64) -> f64, samples: &mut [f64; CHEBYSHEV_MAX_N + 1]| {
+            let mut i = first;
+            while i < CHEBYSHEV_MAX_N {
+                let f = speed(start + 0.5 * (nodes[i] + 1.0) * span);
+                if !f.is_finite() {
+                    return false;
+                }
+                samples[i] = f;
+                i += step;
+            }
+            true
+        };
+        match (self.dim, self.degree) {
+            (2, 1) => self.sample_fixed::<2, 1>(nodes, start, span, first, step, samples),
+            (2, 2) => self.sample_fixed::<2, 2>(nodes, start, span, first, step, samples),
+            (2, 3) => self.sample_fixed::<2, 3>(nodes, start, span, first, step, samples),
+            (2, 4) => self.sample_fixed::<2, 4>(nodes, start, span, first, step, samples),
+            (3, 1) => self.sample_fixed::<3, 1>(nodes, start, span, first, step, samples),
+            (3, 2) => self.sample_fixed::<3, 2>(nodes, start, span, first, step, samples),
+            (3, 3) => self.sample_fixed::<3, 3>(nodes, start, span, first, step, samples),
+            (3, 4) => self.sample_fixed::<3, 4>(nodes, start, span, first, step, samples),
+            _ => run(&|t| self.at(t), samples),
+        }
+    }
+
+    /// [`Self::sample`] for dimension `D` and hodograph degree `M`: the
+    /// rows copied once into a local array, the loops of
+    /// [`Self::at_exact`] unrolled.
+    fn sample_fixed<const D: usize, const M: usize>(
+        &self,
+        nodes: &[f64; CHEBYSHEV_MAX_N + 1],
+        start: f64,
+        span: f64,
+        first: usize,
+        step: usize,
+        samples: &mut [f64; CHEBYSHEV_MAX_N + 1],
+    ) -> bool {
+        let mut rows = [[0.0f64; D]; 5];
+        for (row, w) in rows
+            .iter_mut()
+            .zip(self.weighted.chunks_exact(D))
+            .take(M + 1)
+        {
+            row.copy_from_slice(w);
+        }
+        let mut i = first;
+        while i < CHEBYSHEV_MAX_N {
+            let f = at_fixed::<D, M>(&rows, start + 0.5 * (nodes[i] + 1.0) * span);
+            if !f.is_finite() {
+                return false;
+            }
+            samples[i] = f;
+            i += step;
+        }
+        true
     }
 
     /// [`Self::at`] in `D >= dim` coordinates (the unused ones stay 0).
@@ -1508,15 +1624,8 @@ impl ChebyshevSpeed {
             // x = cos(pi j / N) in [-1, 1] is t = start + (x + 1) span / 2:
             // x = -1 at `start` (the last sample, already taken), x = 1 at
             // `far`.
-            let mut i = first_new;
-            while i < CHEBYSHEV_MAX_N {
-                let t = start + 0.5 * (tables.nodes[i] + 1.0) * span;
-                let f = self.at(t);
-                if !f.is_finite() {
-                    return Some(None);
-                }
-                samples[i] = f;
-                i += new;
+            if !self.sample(&tables.nodes, start, span, first_new, new, samples) {
+                return Some(None);
             }
             // Coefficients of p_n = sum_k a_k T_k (two zeros past the end
             // for the antiderivative's recurrence).
@@ -1536,6 +1645,36 @@ impl ChebyshevSpeed {
         }
         Some(None)
     }
+}
+
+/// [`ChebyshevSpeed::at_exact`] for `D` coordinates and hodograph degree
+/// `M` (`rows[..=M]` its weighted rows): the same operations in the same
+/// order, so the same value to the bit.
+#[inline(always)]
+fn at_fixed<const D: usize, const M: usize>(rows: &[[f64; D]; 5], t: f64) -> f64 {
+    let s = 1.0 - t;
+    let (r, factor) = if t <= 0.5 { (t / s, s) } else { (s / t, t) };
+    let mut acc;
+    if t <= 0.5 {
+        acc = rows[M];
+        for k in (0..M).rev() {
+            for c in 0..D {
+                acc[c] = acc[c] * r + rows[k][c];
+            }
+        }
+    } else {
+        acc = rows[0];
+        for row in &rows[1..=M] {
+            for c in 0..D {
+                acc[c] = acc[c] * r + row[c];
+            }
+        }
+    }
+    let mut power = 1.0;
+    for _ in 0..M {
+        power *= factor;
+    }
+    norm(&acc) * power
 }
 
 /// `sum_k |a_k - b_k|` of the Chebyshev inversion's check, `b` the
@@ -1577,9 +1716,11 @@ fn invert_level(
         alternating += if k % 2 == 0 { -ck } else { *ck };
     }
     c[0] = -alternating;
-    let (a, c) = (&a[..=n], &c[..=n + 1]);
+    let a_full = a;
+    let c = &c[..=n + 1];
     let half = 0.5 * span.abs();
-    let total = half * clenshaw(c, 1.0);
+    // `T_k(1) = 1`: the length of the whole bracket is the coefficients' sum.
+    let total = half * c.iter().sum::<f64>();
     if !total.is_finite() {
         return Some(None);
     }
@@ -1590,10 +1731,20 @@ fn invert_level(
     let (mut lo, mut hi) = (-1.0f64, 1.0f64);
     let mut x = -1.0 + 2.0 * (target / total);
     let residual_tolerance = CHEBYSHEV_RESIDUAL_SHARE * accuracy;
+    // The iteration runs on the series cut after `c_kept`: the terms left
+    // out change the length by at most `tail` anywhere on the bracket
+    // (`|T_k| <= 1`), so a truncated residual within `residual_tolerance -
+    // tail` is one of the whole series within `residual_tolerance`. (The
+    // answer is checked below on the whole series all the same.)
+    let (kept, tail) = newton_terms(c, half, CHEBYSHEV_NEWTON_TAIL_SHARE * residual_tolerance);
+    let newton_tolerance = residual_tolerance - tail;
+    // `a[n + 1] = 0`: the slope's series is cut at the same index.
+    let (c_kept, a_kept) = (&c[..=kept], &a_full[..=kept]);
     let mut converged = false;
     for _ in 0..PANEL_NEWTON_STEPS {
-        let g = half * clenshaw(c, x) - target;
-        if g.abs() <= residual_tolerance {
+        let (length_at, speed_at) = clenshaw_pair(c_kept, a_kept, x);
+        let g = half * length_at - target;
+        if g.abs() <= newton_tolerance {
             converged = true;
             break;
         }
@@ -1602,7 +1753,7 @@ fn invert_level(
         } else {
             lo = x;
         }
-        let slope = half * clenshaw(a, x);
+        let slope = half * speed_at;
         let newton = x - g / slope;
         let next = if slope > 0.0 && newton > lo && newton < hi {
             newton
@@ -1631,6 +1782,42 @@ fn invert_level(
     let certified = estimate <= (CHEBYSHEV_ESTIMATE_SHARE * accuracy).max(floor)
         && (value - target).abs() <= residual_tolerance;
     Some(certified.then_some(t))
+}
+
+/// The Newton iteration of [`invert_level`] runs on `c[..=kept]`:
+/// `(kept, tail)`, `kept` the smallest index with `tail = half * sum_(k >
+/// kept) |c_k| <= budget` (`kept = c.len() - 1`, `tail = 0` when no term can
+/// be left out).
+fn newton_terms(c: &[f64], half: f64, budget: f64) -> (usize, f64) {
+    let mut kept = c.len() - 1;
+    let mut tail = 0.0f64;
+    while kept > 1 {
+        let next = tail + half * c[kept].abs();
+        if next > budget || next.is_nan() {
+            break;
+        }
+        tail = next;
+        kept -= 1;
+    }
+    (kept, tail)
+}
+
+/// `(sum_k c[k] T_k(x), sum_k a[k] T_k(x))` (`c`, `a` of the same length)
+/// by two Clenshaw recurrences in one loop: each the same operations in the
+/// same order as [`clenshaw`], so the same values to the bit.
+fn clenshaw_pair(c: &[f64], a: &[f64], x: f64) -> (f64, f64) {
+    let a = &a[..c.len()];
+    let (mut b1, mut b2) = (0.0, 0.0);
+    let (mut d1, mut d2) = (0.0, 0.0);
+    for (&ck, &ak) in c[1..].iter().zip(&a[1..]).rev() {
+        let b0 = 2.0 * x * b1 - b2 + ck;
+        b2 = b1;
+        b1 = b0;
+        let d0 = 2.0 * x * d1 - d2 + ak;
+        d2 = d1;
+        d1 = d0;
+    }
+    (x * b1 - b2 + c[0], x * d1 - d2 + a[0])
 }
 
 /// `sum_k coefficients[k] T_k(x)` by Clenshaw's recurrence.
@@ -2113,5 +2300,90 @@ mod chebyshev_tests {
         assert!(speed.param_at_length(1.0, 0.1, 1e-12).is_none());
         // Below the parameter resolution: no certified answer here.
         assert!(speed.param_at_length(0.5, 1e-300, 1e-310).is_none());
+    }
+
+    /// The node sampling with the dimension and degree fixed at compile
+    /// time (`sample_fixed`, 2D and 3D up to hodograph degree 4) gives the
+    /// speed of `at` and of the general `at_in` to the bit, at every node
+    /// of both levels of brackets on either side of `t = 1/2`, on
+    /// fixed-seed gentle curves of degrees 2 to 6 (the last two take the
+    /// general loop, as a check of the dispatch).
+    #[test]
+    fn fixed_sampling_is_the_general_speed_to_the_bit() {
+        let mut state = 26u64;
+        let mut next = || {
+            state = state
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let tables = chebyshev_tables();
+        let mut checked = 0;
+        for case in 0..60 {
+            let degree = 2 + case % 5;
+            let dim = 2 + (case / 5) % 2;
+            // Along x with small sideways wiggles: the speed stays away from 0.
+            let points: Vec<f64> = (0..=degree)
+                .flat_map(|i| {
+                    let mut row = vec![i as f64 + 0.2 * next()];
+                    row.extend((1..dim).map(|_| 0.3 * next() - 0.15));
+                    row
+                })
+                .collect();
+            let curve = BezierCurve::new(dim, degree, points).unwrap();
+            let speed = ChebyshevSpeed::new(&curve).expect("a gentle curve qualifies");
+            for (start, span) in [(0.05, 0.3), (0.6, 0.35), (0.7, -0.5), (0.2, 0.6)] {
+                for (first, step) in [(0, 2), (1, 2), (0, 1)] {
+                    let mut samples = [f64::NAN; CHEBYSHEV_MAX_N + 1];
+                    assert!(speed.sample(&tables.nodes, start, span, first, step, &mut samples));
+                    let mut i = first;
+                    while i < CHEBYSHEV_MAX_N {
+                        let t = start + 0.5 * (tables.nodes[i] + 1.0) * span;
+                        let what = format!("case {case}, degree {degree}, dim {dim}, t {t}");
+                        assert_eq!(samples[i].to_bits(), speed.at(t).to_bits(), "{what}");
+                        let general = speed.at_in::<CHEBYSHEV_MAX_DIM>(t);
+                        assert_eq!(samples[i].to_bits(), general.to_bits(), "{what}");
+                        checked += 1;
+                        i += step;
+                    }
+                }
+            }
+        }
+        assert!(checked > 10_000, "{checked}");
+    }
+
+    /// The Newton iteration's fused recurrences are the two plain Clenshaw
+    /// sums to the bit, and the terms `newton_terms` leaves out sum to at
+    /// most its budget while the next one would not fit (fixed-seed
+    /// coefficients decaying like `10^-k`, with the budget at several
+    /// levels).
+    #[test]
+    fn fused_clenshaw_and_the_newton_terms() {
+        let mut state = 7u64;
+        let mut next = || {
+            state = state
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for case in 0..50 {
+            let len = 3 + case % 24;
+            let c: Vec<f64> = (0..len).map(|k| (next() - 0.5) * 10f64.powi(-k)).collect();
+            let a: Vec<f64> = (0..len).map(|_| next() - 0.5).collect();
+            let x = 2.0 * next() - 1.0;
+            let (g, p) = clenshaw_pair(&c, &a, x);
+            assert_eq!(g.to_bits(), clenshaw(&c, x).to_bits(), "case {case}");
+            assert_eq!(p.to_bits(), clenshaw(&a, x).to_bits(), "case {case}");
+            let half = 0.25 + next();
+            for budget in [0.0, 1e-15, 1e-9, 1e-3, 1.0] {
+                let (kept, tail) = newton_terms(&c, half, budget);
+                let left_out: f64 = c[kept + 1..].iter().map(|x| half * x.abs()).sum();
+                assert!((tail - left_out).abs() <= 1e-15 * left_out, "case {case}");
+                assert!(tail <= budget, "case {case}, budget {budget}");
+                if kept > 1 {
+                    assert!(tail + half * c[kept].abs() > budget, "case {case}");
+                }
+            }
+        }
     }
 }

@@ -49,51 +49,66 @@ const MAX_PAIRS: usize = 512;
 /// A round that keeps more than this share of both ranges halves a piece.
 const SPLIT_RATIO: f64 = 0.8;
 
-/// A planar polynomial Bezier piece, `MAX_DEGREE + 1` points at most,
-/// row-major `x, y`.
+/// Capacity (control points) of the buffers for pieces up to degree 3,
+/// the common case: a quarter of the general buffers, so a piece is copied
+/// and scanned in 64 bytes rather than 256.
+const SMALL: usize = 4;
+/// Capacity of the general buffers (`MAX_DEGREE + 1` control points).
+const LARGE: usize = MAX_DEGREE + 1;
+
+/// A planar polynomial Bezier piece of degree `n < N`, its control points
+/// `[x, y]` in a buffer of capacity `N` ([`SMALL`] or [`LARGE`]; the
+/// arithmetic does not depend on `N`).
 #[derive(Clone, Copy)]
-struct Poly {
+struct Poly<const N: usize> {
     n: usize,
-    points: [f64; 2 * (MAX_DEGREE + 1)],
+    points: [[f64; 2]; N],
 }
 
-impl Poly {
-    fn from_piece(piece: &Piece) -> Option<Poly> {
+impl<const N: usize> Poly<N> {
+    fn from_piece(piece: &Piece) -> Option<Poly<N>> {
         let n = piece.degree();
-        if piece.is_rational() || n == 0 || n > MAX_DEGREE {
+        if piece.is_rational() || n == 0 || n >= N {
             return None;
         }
-        let mut points = [0.0; 2 * (MAX_DEGREE + 1)];
-        points[..2 * (n + 1)].copy_from_slice(piece.points());
+        let mut points = [[0.0; 2]; N];
+        for (point, row) in points
+            .iter_mut()
+            .zip(piece.points().chunks_exact(2))
+            .take(n + 1)
+        {
+            point.copy_from_slice(row);
+        }
         Some(Poly { n, points })
     }
 
     fn x(&self, i: usize) -> f64 {
-        self.points[2 * i]
+        self.points[i][0]
     }
 
     fn y(&self, i: usize) -> f64 {
-        self.points[2 * i + 1]
+        self.points[i][1]
     }
 
     fn point(&self, i: usize) -> &[f64] {
-        &self.points[2 * i..2 * i + 2]
+        &self.points[i]
     }
 
     fn used(&self) -> &[f64] {
-        &self.points[..2 * (self.n + 1)]
+        self.points[..=self.n].as_flattened()
     }
 
     /// `self` becomes the piece on `[0, t]` (de Casteljau in place: after
     /// step `r`, point `i >= r` holds level `r`'s point `i - r`, so point
     /// `r` is final; the same operations as the textbook triangle).
     fn keep_left(&mut self, t: f64) {
-        let n = self.n;
+        let n = self.n.min(N - 1);
         let p = &mut self.points;
         for r in 1..=n {
             for i in (r..=n).rev() {
-                for c in 0..2 {
-                    p[2 * i + c] = p[2 * (i - 1) + c] + t * (p[2 * i + c] - p[2 * (i - 1) + c]);
+                let prev = p[i - 1];
+                for (x, y) in p[i].iter_mut().zip(prev) {
+                    *x = y + t * (*x - y);
                 }
             }
         }
@@ -102,19 +117,20 @@ impl Poly {
     /// `self` becomes the piece on `[s, 1]` (de Casteljau in place: after
     /// step `r`, point `n - r` is final).
     fn keep_right(&mut self, s: f64) {
-        let n = self.n;
+        let n = self.n.min(N - 1);
         let p = &mut self.points;
         for r in 1..=n {
             for i in 0..=n - r {
-                for c in 0..2 {
-                    p[2 * i + c] += s * (p[2 * (i + 1) + c] - p[2 * i + c]);
+                let next = p[i + 1];
+                for (x, y) in p[i].iter_mut().zip(next) {
+                    *x += s * (y - *x);
                 }
             }
         }
     }
 
     /// The piece on `[s, t]`, `0 <= s < t <= 1`.
-    fn segment(&self, s: f64, t: f64) -> Poly {
+    fn segment(&self, s: f64, t: f64) -> Poly<N> {
         let mut out = *self;
         if t < 1.0 {
             out.keep_left(t);
@@ -131,7 +147,7 @@ impl Poly {
     /// chord)`. Squares that are not normal numbers (overflow, underflow,
     /// a degenerate chord) take the general [`is_flat`].
     fn is_flat(&self, absolute: f64, relative_chord: f64) -> bool {
-        let n = self.n;
+        let n = self.n.min(N - 1);
         let (ax, ay) = (self.x(0), self.y(0));
         let (dx, dy) = (self.x(n) - ax, self.y(n) - ay);
         let len2 = dx * dx + dy * dy;
@@ -162,7 +178,9 @@ impl Poly {
         true
     }
 
-    /// Bounding box of the control points: `(min x, min y, max x, max y)`.
+    /// Bounding box of the control points: `(min x, min y, max x, max y)`
+    /// (by comparisons: a NaN coordinate leaves the box as `f64::min` and
+    /// `f64::max` would, ignored).
     fn bounds(&self) -> [f64; 4] {
         let mut b = [
             f64::INFINITY,
@@ -170,11 +188,20 @@ impl Poly {
             f64::NEG_INFINITY,
             f64::NEG_INFINITY,
         ];
-        for i in 0..=self.n {
-            b[0] = b[0].min(self.x(i));
-            b[1] = b[1].min(self.y(i));
-            b[2] = b[2].max(self.x(i));
-            b[3] = b[3].max(self.y(i));
+        for p in &self.points[..=self.n.min(N - 1)] {
+            let (x, y) = (p[0], p[1]);
+            if x < b[0] {
+                b[0] = x;
+            }
+            if y < b[1] {
+                b[1] = y;
+            }
+            if x > b[2] {
+                b[2] = x;
+            }
+            if y > b[3] {
+                b[3] = y;
+            }
         }
         b
     }
@@ -185,7 +212,7 @@ impl Poly {
     }
 }
 
-fn boxes_meet(a: &Poly, b: &Poly, margin: f64) -> bool {
+fn boxes_meet<const N: usize>(a: &Poly<N>, b: &Poly<N>, margin: f64) -> bool {
     let (p, q) = (a.bounds(), b.bounds());
     p[0] <= q[2] + margin && q[0] <= p[2] + margin && p[1] <= q[3] + margin && q[1] <= p[3] + margin
 }
@@ -194,8 +221,8 @@ fn boxes_meet(a: &Poly, b: &Poly, margin: f64) -> bool {
 /// `a` is within `margin` of `b` (module documentation), `None` when there
 /// is none; `Some((0, 1))` when `b`'s chord is degenerate (no line to clip
 /// against).
-fn clip(a: &Poly, b: &Poly, margin: f64) -> Option<(f64, f64)> {
-    let m = b.n;
+fn clip<const N: usize>(a: &Poly<N>, b: &Poly<N>, margin: f64) -> Option<(f64, f64)> {
+    let m = b.n.min(N - 1);
     let (dx, dy) = (b.x(m) - b.x(0), b.y(m) - b.y(0));
     // The normal `(-dy, dx)` is first taken unnormalised: every signed
     // distance and the margin are scaled by `len` alike (one square root,
@@ -209,8 +236,8 @@ fn clip(a: &Poly, b: &Poly, margin: f64) -> Option<(f64, f64)> {
     if !(len > 0.0 && len.is_finite()) {
         return Some((0.0, 1.0));
     }
-    let n = a.n;
-    let mut e = [0.0; MAX_DEGREE + 1];
+    let n = a.n.min(N - 1);
+    let mut e = [0.0; N];
     let mut scale = 1.0;
     let (lo, hi) = loop {
         let (nx, ny) = (-dy * scale, dx * scale);
@@ -224,8 +251,8 @@ fn clip(a: &Poly, b: &Poly, margin: f64) -> Option<(f64, f64)> {
         let widened = margin * len * scale;
         let (lo, hi) = (dmin - widened, dmax + widened);
         let mut finite = lo.is_finite() && hi.is_finite();
-        for (i, e) in e.iter_mut().enumerate().take(n + 1) {
-            *e = nx * a.x(i) + ny * a.y(i) + c;
+        for (e, p) in e.iter_mut().zip(&a.points).take(n + 1) {
+            *e = nx * p[0] + ny * p[1] + c;
             finite &= e.is_finite();
         }
         if finite || scale != 1.0 {
@@ -247,19 +274,26 @@ fn clip(a: &Poly, b: &Poly, margin: f64) -> Option<(f64, f64)> {
             t1 = t;
         }
     };
+    // The abscissae `i / n`, each divided once.
     let nf = n as f64;
+    let mut ts = [0.0; N];
+    for (i, t) in ts.iter_mut().enumerate().take(n + 1) {
+        *t = i as f64 / nf;
+    }
     for i in 0..=n {
-        let ti = i as f64 / nf;
-        if e[i] >= lo && e[i] <= hi {
+        let (ti, ei) = (ts[i], e[i]);
+        if ei >= lo && ei <= hi {
             take(ti);
         }
         for j in i + 1..=n {
-            let tj = j as f64 / nf;
-            for level in [lo, hi] {
-                if (e[i] - level) * (e[j] - level) < 0.0 {
-                    let w = (level - e[i]) / (e[j] - e[i]);
-                    take(ti + w * (tj - ti));
-                }
+            let (tj, ej) = (ts[j], e[j]);
+            if (ei - lo) * (ej - lo) < 0.0 {
+                let w = (lo - ei) / (ej - ei);
+                take(ti + w * (tj - ti));
+            }
+            if (ei - hi) * (ej - hi) < 0.0 {
+                let w = (hi - ei) / (ej - ei);
+                take(ti + w * (tj - ti));
             }
         }
     }
@@ -302,11 +336,23 @@ impl Search<'_> {
                 if !super::track::boxes_meet(a, b, self.tolerance) {
                     continue;
                 }
-                let (Some(pa), Some(pb)) = (Poly::from_piece(a), Poly::from_piece(b)) else {
-                    done = false;
-                    break 'spans;
+                let (u_span, v_span) = ((a.lo, a.hi), (b.lo, b.hi));
+                let clipped = if a.degree() < SMALL && b.degree() < SMALL {
+                    match (Poly::<SMALL>::from_piece(a), Poly::<SMALL>::from_piece(b)) {
+                        (Some(pa), Some(pb)) => {
+                            self.clip_spans(&pa, u_span, &pb, v_span, &mut rounds)
+                        }
+                        _ => false,
+                    }
+                } else {
+                    match (Poly::<LARGE>::from_piece(a), Poly::<LARGE>::from_piece(b)) {
+                        (Some(pa), Some(pb)) => {
+                            self.clip_spans(&pa, u_span, &pb, v_span, &mut rounds)
+                        }
+                        _ => false,
+                    }
                 };
-                if !self.clip_spans(&pa, (a.lo, a.hi), &pb, (b.lo, b.hi), &mut rounds) {
+                if !clipped {
                     done = false;
                     break 'spans;
                 }
@@ -319,11 +365,11 @@ impl Search<'_> {
 
     /// Clipping on one pair of spans (`pa` on `[u_lo, u_hi]` of P, `pb` on
     /// `[v_lo, v_hi]` of Q); `false` to give up.
-    fn clip_spans(
+    fn clip_spans<const N: usize>(
         &mut self,
-        pa: &Poly,
+        pa: &Poly<N>,
         u_span: (f64, f64),
-        pb: &Poly,
+        pb: &Poly<N>,
         v_span: (f64, f64),
         rounds: &mut usize,
     ) -> bool {
@@ -429,7 +475,13 @@ impl Search<'_> {
     /// the whole curves, into the candidates when within the tolerance;
     /// `false` (give up) for nearly parallel chords, a polished hit outside
     /// the leaf's box, or a hit that is not surely transversal.
-    fn clip_leaf(&mut self, a: &Poly, u_box: (f64, f64), b: &Poly, v_box: (f64, f64)) -> bool {
+    fn clip_leaf<const N: usize>(
+        &mut self,
+        a: &Poly<N>,
+        u_box: (f64, f64),
+        b: &Poly<N>,
+        v_box: (f64, f64),
+    ) -> bool {
         let Some((s, t)) = chord_crossing(a.point(0), a.point(a.n), b.point(0), b.point(b.n))
         else {
             return false;
@@ -439,7 +491,8 @@ impl Search<'_> {
         }
         let u = u_box.0 + s * (u_box.1 - u_box.0);
         let v = v_box.0 + t * (v_box.1 - v_box.0);
-        let (u, v, d) = self.pair.polish(u, v);
+        let mut tangents = [0.0; 4];
+        let (u, v, d, known) = self.pair.polish_with_tangents(u, v, &mut tangents);
         if d > self.tolerance {
             return true;
         }
@@ -454,16 +507,23 @@ impl Search<'_> {
         {
             return false;
         }
-        let mut ta = [0.0; 2];
-        let mut tb = [0.0; 2];
-        self.pair.p.tangent_into(u, &mut ta);
-        self.pair.q.tangent_into(v, &mut tb);
+        if !known {
+            let (ta, tb) = tangents.split_at_mut(2);
+            self.pair.p.tangent_into(u, ta);
+            self.pair.q.tangent_into(v, tb);
+        }
+        let (ta, tb) = (&tangents[..2], &tangents[2..]);
         let cross = ta[0] * tb[1] - ta[1] * tb[0];
         let sizes = ta[0].hypot(ta[1]) * tb[0].hypot(tb[1]);
         if cross.abs().partial_cmp(&(SURELY_TRANSVERSAL_SINE * sizes)) != Some(Ordering::Greater) {
             return false;
         }
-        self.candidates.push(Candidate { u, v, distance: d });
+        self.candidates.push(Candidate {
+            u,
+            v,
+            distance: d,
+            tangents: Some(tangents),
+        });
         true
     }
 }

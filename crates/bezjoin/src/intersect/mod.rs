@@ -288,38 +288,66 @@ struct CurvePair<'a> {
 }
 
 impl CurvePair<'_> {
-    /// `P(u) - Q(v)` into `out` (`work` is scratch of length `dim`).
-    fn gap_into(&self, u: f64, v: f64, out: &mut [f64], work: &mut [f64]) {
-        self.p.eval_into(u, out);
-        self.q.eval_into(v, work);
-        for (o, w) in out.iter_mut().zip(work.iter()) {
+    /// Gauss-Newton with Levenberg damping on `|P(u) - Q(v)|^2` in the
+    /// product of the domains.
+    fn polish(&self, u: f64, v: f64) -> (f64, f64, f64) {
+        let (u, v, f, _) = self.polish_with_tangents(u, v, &mut []);
+        (u, v, f)
+    }
+
+    /// `P(u) - Q(v)` into `gap` and the tangents `P'(u)`, `Q'(v)` into `a`,
+    /// `b`, each curve in one pass ([`Track::point_and_tangent_into`];
+    /// `work` is scratch of length `dim`).
+    fn gap_and_tangents_into(
+        &self,
+        u: f64,
+        v: f64,
+        gap: &mut [f64],
+        a: &mut [f64],
+        b: &mut [f64],
+        work: &mut [f64],
+    ) {
+        self.p.point_and_tangent_into(u, gap, a);
+        self.q.point_and_tangent_into(v, work, b);
+        for (o, w) in gap.iter_mut().zip(work.iter()) {
             *o -= w;
         }
     }
 
-    /// Gauss-Newton with Levenberg damping on `|P(u) - Q(v)|^2` in the
-    /// product of the domains.
-    fn polish(&self, mut u: f64, mut v: f64) -> (f64, f64, f64) {
+    /// [`Self::polish`], also handing out the tangents `P'(u)`, `Q'(v)` at
+    /// the returned `(u, v)` (computed with each point: every accepted step
+    /// brings the tangents at its end): `tangents`, of length `2 dim` (else
+    /// left alone), holds `P'(u)` then `Q'(v)`. The flag is `false` when
+    /// the result is no point (a non-finite parameter or gap).
+    fn polish_with_tangents(
+        &self,
+        mut u: f64,
+        mut v: f64,
+        tangents: &mut [f64],
+    ) -> (f64, f64, f64, bool) {
         let d = self.p.dim();
         let (u_lo, u_hi) = self.p.domain();
         let (v_lo, v_hi) = self.q.domain();
-        // Five vectors of length `d`: on the stack for small dimensions.
-        let mut stack = [0.0f64; 5 * POLISH_STACK_DIM];
+        // Seven vectors of length `d`: on the stack for small dimensions.
+        let mut stack = [0.0f64; 7 * POLISH_STACK_DIM];
         let mut heap = Vec::new();
         let scratch: &mut [f64] = if d <= POLISH_STACK_DIM {
-            &mut stack[..5 * d]
+            &mut stack[..7 * d]
         } else {
-            heap.resize(5 * d, 0.0);
+            heap.resize(7 * d, 0.0);
             &mut heap
         };
         let (r, rest) = scratch.split_at_mut(d);
         let (trial, rest) = rest.split_at_mut(d);
         let (work, rest) = rest.split_at_mut(d);
-        let (a, b) = rest.split_at_mut(d);
-        let (mut r, mut trial, work, a, b) = (r, trial, work, a, b);
+        let (a, rest) = rest.split_at_mut(d);
+        let (b, rest) = rest.split_at_mut(d);
+        let (trial_a, trial_b) = rest.split_at_mut(d);
+        let (mut r, mut trial, work) = (r, trial, work);
+        let (mut a, mut b, mut trial_a, mut trial_b) = (a, b, trial_a, trial_b);
         u = u.clamp(u_lo, u_hi);
         v = v.clamp(v_lo, v_hi);
-        self.gap_into(u, v, r, work);
+        self.gap_and_tangents_into(u, v, r, a, b, work);
         let mut f = norm(r);
         // Steps below this are at the rounding level of the parameters.
         let resolution = 4.0
@@ -331,13 +359,12 @@ impl CurvePair<'_> {
             if f == 0.0 {
                 break;
             }
-            self.p.tangent_into(u, a);
-            self.q.tangent_into(v, b);
-            let aa = dot(a, a);
-            let bb = dot(b, b);
-            let ab = dot(a, b);
-            let ar = dot(a, r);
-            let br = dot(b, r);
+            let (a_ref, b_ref) = (&*a, &*b);
+            let aa = dot(a_ref, a_ref);
+            let bb = dot(b_ref, b_ref);
+            let ab = dot(a_ref, b_ref);
+            let ar = dot(a_ref, r);
+            let br = dot(b_ref, r);
             // Normal equations of J = [a, -b]: [aa, -ab; -ab, bb] d = [-ar, br].
             let damping = 1e-15 * (aa + bb) + f64::MIN_POSITIVE;
             let (mut du, mut dv) = solve2(aa + damping, -ab, bb + damping, -ar, br);
@@ -366,13 +393,15 @@ impl CurvePair<'_> {
             for _ in 0..16 {
                 let nu = (u + step * du).clamp(u_lo, u_hi);
                 let nv = (v + step * dv).clamp(v_lo, v_hi);
-                self.gap_into(nu, nv, trial, work);
+                self.gap_and_tangents_into(nu, nv, trial, trial_a, trial_b, work);
                 let nf = norm(trial);
                 if nf < f {
                     moved = (nu - u).abs().max((nv - v).abs());
                     u = nu;
                     v = nv;
                     std::mem::swap(&mut r, &mut trial);
+                    std::mem::swap(&mut a, &mut trial_a);
+                    std::mem::swap(&mut b, &mut trial_b);
                     f = nf;
                     break;
                 }
@@ -387,9 +416,13 @@ impl CurvePair<'_> {
         // arithmetic, or a non-finite seed) is no point of either curve: no
         // hit, whatever the gap's comparisons would say.
         if !(u.is_finite() && v.is_finite() && f.is_finite()) {
-            return (u, v, f64::INFINITY);
+            return (u, v, f64::INFINITY, false);
         }
-        (u, v, f)
+        if tangents.len() == 2 * d {
+            tangents[..d].copy_from_slice(a);
+            tangents[d..].copy_from_slice(b);
+        }
+        (u, v, f, true)
     }
 }
 
@@ -563,6 +596,10 @@ struct Candidate {
     u: f64,
     v: f64,
     distance: f64,
+    /// `P'(u)` and `Q'(v)` of a planar hit when already computed (by
+    /// [`Track::tangent_into`], so [`Search::classify`] takes them as they
+    /// are).
+    tangents: Option<[f64; 4]>,
 }
 
 struct Search<'a> {
@@ -574,8 +611,8 @@ struct Search<'a> {
     /// are relative to them.
     units: (f64, f64),
     /// The curves' Bezier spans (computed once).
-    p_pieces: Vec<Piece>,
-    q_pieces: Vec<Piece>,
+    p_pieces: Vec<Piece<'a>>,
+    q_pieces: Vec<Piece<'a>>,
     overlaps: Vec<Overlap>,
     candidates: Vec<Candidate>,
 }
@@ -615,7 +652,7 @@ impl<'a> Search<'a> {
         };
         let (p_breaks, q_breaks) = (pair.p.breaks(), pair.q.breaks());
         for &u in p_breaks.iter() {
-            pair.p.eval_into(u, x);
+            pair.p.break_point_into(u, x);
             if near(q_pieces, x) {
                 let (v, d) = project_on(&pair.q, x, None, q_pieces);
                 if d <= tol {
@@ -624,7 +661,7 @@ impl<'a> Search<'a> {
             }
         }
         for &v in q_breaks.iter() {
-            pair.q.eval_into(v, x);
+            pair.q.break_point_into(v, x);
             if near(p_pieces, x) {
                 let (u, d) = project_on(&pair.p, x, None, p_pieces);
                 if d <= tol {
@@ -718,10 +755,10 @@ impl<'a> Search<'a> {
         }
         let mut examined = 0usize;
         let margin = self.tolerance;
-        let halves = |piece: &Piece| {
+        fn halves<'p>(piece: &Piece<'p>) -> (Rc<Piece<'p>>, Rc<Piece<'p>>) {
             let (h0, h1) = piece.split();
             (Rc::new(h0), Rc::new(h1))
-        };
+        }
         while let Some((a, b, depth)) = stack.pop() {
             examined += 1;
             if examined > self.options.max_box_pairs {
@@ -827,7 +864,12 @@ impl<'a> Search<'a> {
                 v = self.pair.q.domain().0;
             }
             if d <= self.tolerance {
-                self.candidates.push(Candidate { u, v, distance: d });
+                self.candidates.push(Candidate {
+                    u,
+                    v,
+                    distance: d,
+                    tangents: None,
+                });
             }
         }
     }
@@ -952,8 +994,16 @@ impl<'a> Search<'a> {
             &mut heap
         };
         let (a, b) = scratch.split_at_mut(d);
-        self.pair.p.tangent_into(c.u, a);
-        self.pair.q.tangent_into(c.v, b);
+        match c.tangents {
+            Some(known) if d == 2 => {
+                a.copy_from_slice(&known[..2]);
+                b.copy_from_slice(&known[2..]);
+            }
+            _ => {
+                self.pair.p.tangent_into(c.u, a);
+                self.pair.q.tangent_into(c.v, b);
+            }
+        }
         let (a, b) = (&*a, &*b);
         let na = norm(a);
         let nb = norm(b);

@@ -14,10 +14,12 @@ use crate::nurbs::NurbsCurve;
 
 /// One curve of the pair.
 pub(super) enum Track<'a> {
-    /// A Bezier curve with its hodograph.
+    /// A Bezier curve, with its hodograph when the caller had it at hand
+    /// (else tangents come from de Casteljau's scheme, no hodograph is
+    /// built).
     Bezier {
         curve: &'a BezierCurve,
-        hodograph: Cow<'a, BezierCurve>,
+        hodograph: Option<&'a BezierCurve>,
     },
     /// A NURBS curve (evaluated by A2.3/A4.2).
     Nurbs(&'a NurbsCurve),
@@ -28,7 +30,7 @@ impl<'a> Track<'a> {
         match curve {
             CurveRef::Bezier(curve) => Track::Bezier {
                 curve,
-                hodograph: Cow::Owned(curve.hodograph()),
+                hodograph: None,
             },
             CurveRef::Nurbs(n) => Track::Nurbs(n),
         }
@@ -38,7 +40,7 @@ impl<'a> Track<'a> {
     pub(crate) fn bezier(curve: &'a BezierCurve, hodograph: &'a BezierCurve) -> Self {
         Track::Bezier {
             curve,
-            hodograph: Cow::Borrowed(hodograph),
+            hodograph: Some(hodograph),
         }
     }
 
@@ -77,16 +79,56 @@ impl<'a> Track<'a> {
         }
     }
 
+    /// [`Self::eval_into`] at a parameter of [`Self::breaks`]: a Bezier
+    /// curve's ends are its first and last control points, exactly (no
+    /// evaluation).
+    pub(super) fn break_point_into(&self, u: f64, out: &mut [f64]) {
+        match self {
+            Track::Bezier { curve, .. } if u == 0.0 => out.copy_from_slice(curve.point(0)),
+            Track::Bezier { curve, .. } if u == 1.0 => {
+                out.copy_from_slice(curve.point(curve.degree()))
+            }
+            _ => self.eval_into(u, out),
+        }
+    }
+
     pub(super) fn eval(&self, u: f64) -> Vec<f64> {
         let mut out = vec![0.0; self.dim()];
         self.eval_into(u, &mut out);
         out
     }
 
+    /// The point and the first derivative at `u` into `point` and
+    /// `tangent` in one pass (a Bezier curve by de Casteljau's scheme,
+    /// [`point_and_tangent`]; a NURBS curve by A2.3/A4.2).
+    pub(super) fn point_and_tangent_into(&self, u: f64, point: &mut [f64], tangent: &mut [f64]) {
+        match self {
+            Track::Bezier { curve, .. } => point_and_tangent(curve, u, point, tangent),
+            Track::Nurbs(n) => n.point_and_tangent(u, point, Some(tangent)),
+        }
+    }
+
     /// The first derivative at `u` into `out`.
     pub(super) fn tangent_into(&self, u: f64, out: &mut [f64]) {
         match self {
-            Track::Bezier { hodograph, .. } => hodograph.eval_into(u, out),
+            Track::Bezier {
+                hodograph: Some(hodograph),
+                ..
+            } => hodograph.eval_into(u, out),
+            Track::Bezier {
+                curve,
+                hodograph: None,
+            } => {
+                let mut point = [0.0f64; 16];
+                let mut heap = Vec::new();
+                let point: &mut [f64] = if curve.dim() <= point.len() {
+                    &mut point[..curve.dim()]
+                } else {
+                    heap.resize(curve.dim(), 0.0);
+                    &mut heap
+                };
+                point_and_tangent(curve, u, point, out);
+            }
             Track::Nurbs(n) => {
                 let mut point = [0.0f64; 16];
                 let mut heap = Vec::new();
@@ -134,10 +176,13 @@ impl<'a> Track<'a> {
         }
     }
 
-    /// The curve as Bezier pieces over its domain.
-    pub(super) fn pieces(&self) -> Vec<Piece> {
+    /// The curve as Bezier pieces over its domain (a Bezier curve's one
+    /// piece borrows the curve: no copy).
+    pub(super) fn pieces(&self) -> Vec<Piece<'a>> {
         match self {
-            Track::Bezier { curve, .. } => vec![Piece::new((*curve).clone(), false, 0.0, 1.0)],
+            Track::Bezier { curve, .. } => {
+                vec![Piece::new(Cow::Borrowed(*curve), false, 0.0, 1.0)]
+            }
             Track::Nurbs(n) => n
                 .bezier_spans()
                 .into_iter()
@@ -147,12 +192,12 @@ impl<'a> Track<'a> {
                         let h = span.homogeneous_points();
                         let curve = BezierCurve::new(span.dim() + 1, span.degree(), h)
                             .expect("a span's homogeneous poles are a valid Bezier curve");
-                        Piece::new(curve, true, lo, hi)
+                        Piece::new(Cow::Owned(curve), true, lo, hi)
                     } else {
                         let curve =
                             BezierCurve::new(span.dim(), span.degree(), span.points().to_vec())
                                 .expect("a span's poles are a valid Bezier curve");
-                        Piece::new(curve, false, lo, hi)
+                        Piece::new(Cow::Owned(curve), false, lo, hi)
                     }
                 })
                 .collect(),
@@ -161,10 +206,11 @@ impl<'a> Track<'a> {
 }
 
 /// A piece `curve = original|[lo, hi]` (homogeneous when `rational`) with
-/// its Cartesian control points and their bounding box.
+/// its Cartesian control points and their bounding box; a whole Bezier
+/// curve is borrowed, a span or a half owned.
 #[derive(Clone)]
-pub(super) struct Piece {
-    curve: BezierCurve,
+pub(super) struct Piece<'a> {
+    curve: Cow<'a, BezierCurve>,
     /// Cartesian control points of a rational piece, row-major (a
     /// polynomial piece's are the curve's own: no copy).
     projected: Option<Vec<f64>>,
@@ -203,8 +249,8 @@ impl Bounds {
     }
 }
 
-impl Piece {
-    fn new(curve: BezierCurve, rational: bool, lo: f64, hi: f64) -> Self {
+impl<'a> Piece<'a> {
+    fn new(curve: Cow<'a, BezierCurve>, rational: bool, lo: f64, hi: f64) -> Self {
         let dim = if rational {
             curve.dim() - 1
         } else {
@@ -230,9 +276,14 @@ impl Piece {
             .unwrap_or(curve.points())
             .chunks_exact(dim)
         {
-            for c in 0..dim {
-                b[c] = b[c].min(row[c]);
-                b[dim + c] = b[dim + c].max(row[c]);
+            // Comparisons (a NaN is skipped, as by `f64::min` / `max`).
+            for (c, &x) in row.iter().enumerate() {
+                if x < b[c] {
+                    b[c] = x;
+                }
+                if x > b[dim + c] {
+                    b[dim + c] = x;
+                }
             }
         }
         Self {
@@ -265,12 +316,12 @@ impl Piece {
         &points[i * self.dim..(i + 1) * self.dim]
     }
 
-    pub(super) fn split(&self) -> (Piece, Piece) {
+    pub(super) fn split(&self) -> (Piece<'a>, Piece<'a>) {
         let (a, b) = self.curve.split_unchecked(0.5);
         let mid = 0.5 * (self.lo + self.hi);
         (
-            Piece::new(a, self.projected.is_some(), self.lo, mid),
-            Piece::new(b, self.projected.is_some(), mid, self.hi),
+            Piece::new(Cow::Owned(a), self.projected.is_some(), self.lo, mid),
+            Piece::new(Cow::Owned(b), self.projected.is_some(), mid, self.hi),
         )
     }
 
@@ -320,6 +371,95 @@ impl Piece {
     /// The Cartesian control points, row-major.
     pub(super) fn points(&self) -> &[f64] {
         self.projected.as_deref().unwrap_or(self.curve.points())
+    }
+}
+
+/// Control-point coordinates up to which [`point_and_tangent`] works on the
+/// stack.
+const DE_CASTELJAU_STACK: usize = 64;
+
+/// `P(t)` into `point` and `P'(t)` into `tangent`, `t` in `[0, 1]`, by de
+/// Casteljau's scheme: the levels `(1 - t) b_i + t b_(i+1)` down to two
+/// points `b_0`, `b_1` (the control points of the two halves' common
+/// edge), then `P(t) = (1 - t) b_0 + t b_1` and `P'(t) = n (b_1 - b_0)`.
+/// Convex combinations only (the most stable evaluation, exact at `t = 0`
+/// and `t = 1`); on the stack up to [`DE_CASTELJAU_STACK`] coordinates.
+pub(super) fn point_and_tangent(
+    curve: &BezierCurve,
+    t: f64,
+    point: &mut [f64],
+    tangent: &mut [f64],
+) {
+    let (n, d) = (curve.degree(), curve.dim());
+    let points = curve.points();
+    // The plane and space up to degree 7: the dimension and the buffer's
+    // size known at compile time (the same operations as below).
+    match (d, n) {
+        (2, 1..=3) => return point_and_tangent_fixed::<2, 4>(points, n, t, point, tangent),
+        (2, 4..=7) => return point_and_tangent_fixed::<2, 8>(points, n, t, point, tangent),
+        (3, 1..=3) => return point_and_tangent_fixed::<3, 4>(points, n, t, point, tangent),
+        (3, 4..=7) => return point_and_tangent_fixed::<3, 8>(points, n, t, point, tangent),
+        _ => {}
+    }
+    if n == 0 {
+        point.copy_from_slice(&points[..d]);
+        tangent.fill(0.0);
+        return;
+    }
+    let mut stack = [0.0f64; DE_CASTELJAU_STACK];
+    let mut heap = Vec::new();
+    let work: &mut [f64] = if points.len() <= DE_CASTELJAU_STACK {
+        &mut stack[..points.len()]
+    } else {
+        heap.extend_from_slice(points);
+        &mut heap
+    };
+    if points.len() <= DE_CASTELJAU_STACK {
+        work.copy_from_slice(points);
+    }
+    let s = 1.0 - t;
+    for level in 1..n {
+        for i in 0..(n - level + 1) * d {
+            work[i] = s * work[i] + t * work[i + d];
+        }
+    }
+    let nf = n as f64;
+    for c in 0..d {
+        let (b0, b1) = (work[c], work[d + c]);
+        point[c] = s * b0 + t * b1;
+        tangent[c] = nf * (b1 - b0);
+    }
+}
+
+/// [`point_and_tangent`] for `D` coordinates and degree `1 <= n < CAP`.
+#[inline(always)]
+fn point_and_tangent_fixed<const D: usize, const CAP: usize>(
+    points: &[f64],
+    n: usize,
+    t: f64,
+    point: &mut [f64],
+    tangent: &mut [f64],
+) {
+    let n = n.min(CAP - 1);
+    let mut w = [[0.0f64; D]; CAP];
+    for (row, p) in w.iter_mut().zip(points.chunks_exact(D)).take(n + 1) {
+        row.copy_from_slice(p);
+    }
+    let s = 1.0 - t;
+    for level in 1..n {
+        for i in 0..=n - level {
+            let next = w[i + 1];
+            for (x, y) in w[i].iter_mut().zip(next) {
+                *x = s * *x + t * y;
+            }
+        }
+    }
+    let nf = n as f64;
+    let (point, tangent) = (&mut point[..D], &mut tangent[..D]);
+    for c in 0..D {
+        let (b0, b1) = (w[0][c], w[1][c]);
+        point[c] = s * b0 + t * b1;
+        tangent[c] = nf * (b1 - b0);
     }
 }
 
@@ -388,4 +528,59 @@ fn deviation_from_chord(points: &[f64], n: usize, dim: usize) -> f64 {
 pub(super) fn boxes_meet(a: &Piece, b: &Piece, margin: f64) -> bool {
     let (a_min, a_max, b_min, b_max) = (a.min(), a.max(), b.min(), b.max());
     (0..a_min.len()).all(|c| a_min[c] <= b_max[c] + margin && b_min[c] <= a_max[c] + margin)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{Track, point_and_tangent};
+    use crate::bezier::BezierCurve;
+    use crate::curve::CurveRef;
+
+    /// The one-pass point and tangent are the curve's value (Horner,
+    /// `BezierCurve::eval`) and its hodograph's value, to rounding, on
+    /// fixed-seed random curves of degrees 0 to 12 in dimensions 1 to 4
+    /// (the fixed-size paths of the plane and space up to degree 7, and
+    /// the general path), at random parameters and at both ends (where
+    /// the point is the end control point exactly); a track without a
+    /// hodograph gives the same tangent.
+    #[test]
+    fn point_and_tangent_match_the_value_and_the_hodograph() {
+        let mut state = 26u64;
+        let mut next = || {
+            state = state
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for case in 0..400 {
+            let degree = case % 13;
+            let dim = 1 + (case / 13) % 4;
+            let points: Vec<f64> = (0..dim * (degree + 1))
+                .map(|_| 20.0 * next() - 10.0)
+                .collect();
+            let curve = BezierCurve::new(dim, degree, points).unwrap();
+            let hodograph = curve.hodograph();
+            let track = Track::new(CurveRef::Bezier(&curve));
+            let scale = curve.coordinate_scale().max(1.0) * (1u64 << degree) as f64;
+            for t in [0.0, 1.0, next(), next(), next()] {
+                let (mut point, mut tangent) = (vec![0.0; dim], vec![0.0; dim]);
+                point_and_tangent(&curve, t, &mut point, &mut tangent);
+                let value = curve.eval(t);
+                let slope = hodograph.eval(t);
+                for c in 0..dim {
+                    let what = format!("case {case}, degree {degree}, dim {dim}, t {t}");
+                    assert!((point[c] - value[c]).abs() <= 1e-14 * scale, "{what}");
+                    let tol = 1e-14 * scale * (degree.max(1) as f64);
+                    assert!((tangent[c] - slope[c]).abs() <= tol, "{what}");
+                }
+                if t == 0.0 || t == 1.0 {
+                    let end = if t == 0.0 { 0 } else { degree };
+                    assert_eq!(point, curve.point(end), "case {case}");
+                }
+                let mut again = vec![0.0; dim];
+                track.tangent_into(t, &mut again);
+                assert_eq!(again, tangent, "case {case}");
+            }
+        }
+    }
 }
