@@ -136,6 +136,7 @@ impl std::fmt::Debug for SpanCache {
 impl NurbsCurve {
     /// Whether the curve is one clamped span: its poles are the Bezier
     /// control points of the domain.
+    #[inline(always)]
     fn is_bezier_span(&self) -> bool {
         let p = self.degree;
         let k = &self.knots;
