@@ -305,7 +305,13 @@ fn bezier_jet<const D: usize>(
     out: &mut [f64],
 ) {
     let len = b - a;
-    let t = (u - a) / len;
+    // On [0, 1] (a Bezier curve as a NURBS handle) t is u itself: the same
+    // value as the division, without its latency.
+    let t = if a == 0.0 && len == 1.0 {
+        u
+    } else {
+        (u - a) / len
+    };
     if max_order == 0 {
         bernstein_horner_any(points, p, D, t, 1.0, out);
     } else {
@@ -362,20 +368,36 @@ fn table_jet_degree<const H: usize, const P: usize>(
     top: usize,
     t: f64,
 ) -> [[f64; H]; 4] {
-    table_jet_rows::<H>(block, P, top, t)
+    table_jet_sides::<H>(block, P, top, t)
 }
 
 /// [`table_jet_rows`] at a degree `8..=SPAN_FAST_MAX_DEGREE`.
 #[inline(never)]
 fn table_jet_any<const H: usize>(block: &[f64], p: usize, top: usize, t: f64) -> [[f64; H]; 4] {
-    table_jet_rows::<H>(block, p, top, t)
+    table_jet_sides::<H>(block, p, top, t)
 }
 
+/// The direction of the Horner sums chosen once per call (one branch on
+/// `t`, which a caller sweeping parameters makes unpredictable, instead of
+/// one per order).
 #[inline(always)]
-fn table_jet_rows<const H: usize>(block: &[f64], p: usize, top: usize, t: f64) -> [[f64; H]; 4] {
+fn table_jet_sides<const H: usize>(block: &[f64], p: usize, top: usize, t: f64) -> [[f64; H]; 4] {
+    if t > 0.5 {
+        table_jet_rows::<H, true>(block, p, top, t)
+    } else {
+        table_jet_rows::<H, false>(block, p, top, 1.0 - t)
+    }
+}
+
+/// The rows at `x = t` (`FORWARD`, `t > 1/2`) or `x = 1 - t`.
+#[inline(always)]
+fn table_jet_rows<const H: usize, const FORWARD: bool>(
+    block: &[f64],
+    p: usize,
+    top: usize,
+    x: f64,
+) -> [[f64; H]; 4] {
     debug_assert!(top <= TABLE_MAX_ORDER && top <= p);
-    let forward = t > 0.5;
-    let x = if forward { t } else { 1.0 - t };
     let ratio = (1.0 - x) / x;
     // x^(p - top), then times x per order downwards.
     let mut power = 1.0;
@@ -398,7 +420,7 @@ fn table_jet_rows<const H: usize>(block: &[f64], p: usize, top: usize, t: f64) -
         let rows = &block[offset..offset + (m + 1) * H];
         offset += (m + 1) * H;
         let mut sum = [0.0f64; H];
-        if forward {
+        if FORWARD {
             sum.copy_from_slice(&rows[..H]);
             for q in rows[H..].chunks_exact(H) {
                 for c in 0..H {
