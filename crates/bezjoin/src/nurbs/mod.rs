@@ -947,15 +947,16 @@ impl NurbsCurve {
     /// [`eval_derivatives_checked`](Self::eval_derivatives_checked) into
     /// `out` (`(max_order + 1) * dim` values, row `k` the `k`-th derivative,
     /// from the right at a knot), without allocating up to degree 15 with
-    /// `(max_order + 1) * (dim + 1) <= 128`: the same values to the bit.
-    /// The route: in dimensions 2 and 3 up to degree 15, the values of a
-    /// curve of several spans by A2.2 (the bits of row 0 of
-    /// [`eval_derivatives`](Self::eval_derivatives)), everything else (any
-    /// order of a one-span curve, derivatives of every curve) through the
-    /// curve's Bezier spans (`nurbs/eval.rs`: the bits of the Bezier curve
-    /// for a polynomial one-span curve on `[0, 1]`, otherwise the basis
-    /// route's values up to rounding, tested), the basis route (A2.3/A4.2)
-    /// in other dimensions and degrees. `name` is
+    /// `(max_order + 1) * (dim + 1) <= 128`: the same values to the bit as
+    /// `eval_derivatives_checked`. The route: in dimensions 2 and 3 up to
+    /// degree 15, the values of a curve of several spans by A2.2 (the bits
+    /// of row 0 of [`eval_derivatives`](Self::eval_derivatives)); a
+    /// polynomial one-span curve and the derivatives (orders up to 3 below
+    /// the degree) of every curve through the curve's Bezier spans
+    /// (`nurbs/eval.rs`: the bits of the Bezier curve for a polynomial
+    /// one-span curve on `[0, 1]`, otherwise the values of
+    /// `eval_derivatives` up to rounding, tested); the basis route
+    /// (A2.3/A4.2) for everything else. `name` is
     /// called only to build an error message (a caller evaluating many
     /// parameters formats their names only when one fails). On an error
     /// from the parameter nothing is written; on an overflowing derivative
