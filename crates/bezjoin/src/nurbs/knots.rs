@@ -171,6 +171,7 @@ impl NurbsCurve {
             knots,
             points,
             weights,
+            span_cache: Default::default(),
         };
         // `first + last - k` need not give `first`/`last` back bit for bit.
         let p = self.degree;

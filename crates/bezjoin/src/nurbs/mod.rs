@@ -24,6 +24,7 @@
 //! judged by the derivatives of one curve, not by a formula of ours.
 
 mod conic;
+mod eval;
 mod knots;
 mod length;
 mod spans;
@@ -51,6 +52,9 @@ pub struct NurbsCurve {
     knots: Vec<f64>,
     points: Vec<f64>,
     weights: Option<Vec<f64>>,
+    /// The Bezier spans for evaluation, built on first use
+    /// (`eval.rs`; not part of the curve's value).
+    span_cache: eval::SpanCache,
 }
 
 /// The name the chain code and older callers know the type by: a
@@ -242,6 +246,7 @@ impl NurbsCurve {
             knots,
             points: poles,
             weights,
+            span_cache: Default::default(),
         })
     }
 
@@ -277,6 +282,7 @@ impl NurbsCurve {
             knots,
             points,
             weights: unit_weights_dropped(weights),
+            span_cache: Default::default(),
         }
     }
 
@@ -546,6 +552,7 @@ impl NurbsCurve {
             knots,
             points,
             weights: rational.then_some(weights),
+            span_cache: Default::default(),
         }
     }
 
@@ -940,8 +947,16 @@ impl NurbsCurve {
     /// [`eval_derivatives_checked`](Self::eval_derivatives_checked) into
     /// `out` (`(max_order + 1) * dim` values, row `k` the `k`-th derivative,
     /// from the right at a knot), without allocating up to degree 15 with
-    /// `(max_order + 1) * (dim + 1) <= 128` (the stack buffers of
-    /// `eval_derivatives_into`): the same values to the bit. `name` is
+    /// `(max_order + 1) * (dim + 1) <= 128`: the same values to the bit as
+    /// `eval_derivatives_checked`. The route: in dimensions 2 and 3 up to
+    /// degree 15, the values of a curve of several spans by A2.2 (the bits
+    /// of row 0 of [`eval_derivatives`](Self::eval_derivatives)); a
+    /// polynomial one-span curve and the derivatives (orders up to 3 below
+    /// the degree) of every curve through the curve's Bezier spans
+    /// (`nurbs/eval.rs`: the bits of the Bezier curve for a polynomial
+    /// one-span curve on `[0, 1]`, otherwise the values of
+    /// `eval_derivatives` up to rounding, tested); the basis route
+    /// (A2.3/A4.2) for everything else. `name` is
     /// called only to build an error message (a caller evaluating many
     /// parameters formats their names only when one fails). On an error
     /// from the parameter nothing is written; on an overflowing derivative
@@ -962,9 +977,13 @@ impl NurbsCurve {
             // Not finite or outside: the message of `check_parameter`.
             self.check_parameter(&name(), u)?;
         }
-        if !(max_order == 0 && self.value_fast_into(u, out)) {
-            self.eval_derivatives_into(u, max_order, KnotSide::Right, out, None);
+        // Through the Bezier spans (`eval.rs`) where that applies and stays
+        // finite (coordinates near the top of the f64 range can overflow its
+        // sums), otherwise the basis route.
+        if self.eval_fast_into(u, max_order, out) && out.iter().all(|x| x.is_finite()) {
+            return Ok(());
         }
+        self.eval_derivatives_into(u, max_order, KnotSide::Right, out, None);
         if let Some(i) = out.iter().position(|x| !x.is_finite()) {
             let name = name();
             return Err(BezjoinError::NonFiniteScalar {
