@@ -101,6 +101,7 @@ mod orthogonal;
 mod rows;
 mod stage_one;
 mod stage_two;
+mod trial;
 
 use crate::bezier::BezierCurve;
 use crate::error::{
@@ -418,15 +419,30 @@ impl<'a> PairProblem<'a> {
         }
         let mut first_error = None;
         let mut without_slope = false;
+        // The quick search's trials: the lean solver (value and slope only,
+        // everything independent of mu prepared once); the fully checked
+        // search, and any mu the lean solver cannot factor, go through
+        // stage 1.
+        let mut lean = match check {
+            StageOneCheck::Trial => {
+                trial::TrialSolver::new(&self.pieces, self.metric, self.fix_ends)
+            }
+            StageOneCheck::Full => None,
+        };
         let minimum = minimize_with_slope(
-            |mu| match self.solve(mu, check) {
-                Ok(s) => {
-                    without_slope |= s.slope.is_none();
-                    Some((s.metric_value, s.slope.unwrap_or(f64::NAN)))
+            |mu| {
+                if let Some(found) = lean.as_mut().and_then(|t| t.evaluate(mu)) {
+                    return Some(found);
                 }
-                Err(e) => {
-                    first_error.get_or_insert(e);
-                    None
+                match self.solve(mu, check) {
+                    Ok(s) => {
+                        without_slope |= s.slope.is_none();
+                        Some((s.metric_value, s.slope.unwrap_or(f64::NAN)))
+                    }
+                    Err(e) => {
+                        first_error.get_or_insert(e);
+                        None
+                    }
                 }
             },
             MU_SEARCH_MIN,
