@@ -669,4 +669,32 @@ mod tests {
         assert!(m.evaluations <= 33 + 25);
         assert!((0.0..=1.0).contains(&m.x));
     }
+
+    /// The slope search finds the global minimum of a function with many
+    /// local minima of nearly equal depth (against a dense scan) and
+    /// spends few evaluations per minimum (the grid plus at most
+    /// `per_minimum` per interval holding one).
+    #[test]
+    fn slope_search_finds_the_global_minimum_with_few_evaluations() {
+        // f = sin(k x) + c (x - x0)^2: minima every 2 pi / k, their depths
+        // differ by the parabola only.
+        for (k, c, x0) in [(40.0, 0.05, 0.61), (23.0, 0.01, 0.2), (71.0, 0.3, 0.93)] {
+            let f = |x: f64| (k * x).sin() + c * (x - x0) * (x - x0);
+            let df = |x: f64| k * (k * x).cos() + 2.0 * c * (x - x0);
+            let grid = 4 * (k as usize) / 6 + 9;
+            let m =
+                minimize_with_slope(|x| Some((f(x), df(x))), 0.0, 1.0, grid, 1e-10, 100).unwrap();
+            let scan = (0..=200_000)
+                .map(|i| f(i as f64 / 200_000.0))
+                .fold(f64::INFINITY, f64::min);
+            assert!(m.value <= scan + 1e-12, "k {k}: {} vs scan {scan}", m.value);
+            let minima = (k / std::f64::consts::TAU).ceil() as usize + 1;
+            let refinement = m.evaluations - grid;
+            eprintln!("k {k}: {refinement} refinement evaluations for {minima} minima");
+            assert!(
+                refinement <= 3 * minima + 6,
+                "k {k}: {refinement} refinement evaluations for {minima} minima"
+            );
+        }
+    }
 }

@@ -434,30 +434,3 @@ mod tests {
         }
     }
 }
-#[cfg(test)]
-mod trace {
-    use super::super::*;
-    #[test]
-    fn trace_bench_pair() {
-        for degree in [7usize, 15] {
-            let make = |offset: usize, shift: f64| {
-                let pts: Vec<f64> = (0..(degree + 1) * 2)
-                    .map(|i| {
-                        ((i * 7919 + offset) % 97) as f64 / 9.7
-                            + if i % 2 == 0 { shift } else { 0.0 }
-                    })
-                    .collect();
-                BezierCurve::new(2, degree, pts).unwrap()
-            };
-            let (p, q) = (make(0, 0.0), make(31, 10.0));
-            for metric in [MergeMetric::Discrete, MergeMetric::Integral] {
-                eprintln!("=== {degree} {metric:?}");
-                let o = MergeOptions::default()
-                    .with_metric(metric)
-                    .with_split(Breakpoints::Optimal);
-                let m = merge(&p, &q, &o).unwrap();
-                eprintln!("mu {}", m.report.mu);
-            }
-        }
-    }
-}
