@@ -98,6 +98,7 @@ mod bspline;
 mod kept;
 mod kkt;
 mod orthogonal;
+mod refine;
 mod rows;
 mod stage_one;
 mod stage_two;
