@@ -553,7 +553,7 @@ pub(super) fn orthogonal_solution(
     // The integral metric beyond the double solve's reach: refined in
     // double-double (module `refine`), with its own a-posteriori estimate.
     if metric == MergeMetric::Integral
-        && !(estimate <= accuracy)
+        && (estimate.is_nan() || estimate > accuracy)
         && count == 2
         && dependent.is_empty()
     {

@@ -35,6 +35,8 @@
 //! double path's bound it does not weigh `R`'s control points down: they
 //! are measured, as the pieces are.
 
+#![allow(clippy::needless_range_loop)] // index-heavy numeric kernels
+
 use nalgebra::DMatrix;
 
 use super::orthogonal::gauss_legendre_unit;
