@@ -503,8 +503,14 @@ mod tests {
         Q::from_float(x).unwrap()
     }
 
+    /// `C(n, k)` exactly (the doubles' binomials round above `2^53`, from
+    /// `C(57, 28)` on: the Gram matrix needs `C(2m, i + j)`).
     fn binomial_q(n: usize, k: usize) -> Q {
-        Q::from_integer(BigInt::from(binomial(n, k) as u64))
+        let mut c = BigInt::one();
+        for i in 0..k {
+            c = c * BigInt::from(n - i) / BigInt::from(i + 1);
+        }
+        Q::from_integer(c)
     }
 
     /// The exact minimiser `r` of the integral metric (exact Gram matrix,
