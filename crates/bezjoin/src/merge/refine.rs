@@ -688,7 +688,7 @@ mod tests {
                         refined.estimate
                     );
                     assert!(
-                        refined.estimate <= 1e-9,
+                        refined.estimate <= super::super::DEFAULT_MERGE_ACCURACY,
                         "degree {degree}: estimate {:e}",
                         refined.estimate
                     );
