@@ -592,6 +592,26 @@ pub(super) fn orthogonal_solution(
         &e,
         (tolerance, explained, result_scale),
     )?;
+    // The integral metric beyond the double solve's reach: refined in
+    // double-double (module `refine`), with its own a-posteriori estimate.
+    if metric == MergeMetric::Integral
+        && (estimate.is_nan() || estimate > accuracy)
+        && count == 2
+        && dependent.is_empty()
+    {
+        let fix_ends = !problem.constraints.is_empty();
+        if let Some(r) = super::refine::refine_integral(problem, breakpoints[1], fix_ends) {
+            if r.estimate <= accuracy {
+                return Ok(Orthogonal {
+                    merged: r.merged,
+                    x: r.x,
+                    estimate: r.estimate,
+                    metric_value: r.metric_value,
+                    slope,
+                });
+            }
+        }
+    }
     if estimate.is_nan() || estimate > accuracy {
         return Err(BezjoinError::IllConditioned {
             what: format!(

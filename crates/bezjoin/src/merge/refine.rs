@@ -1,0 +1,699 @@
+//! Extra-precise iterative refinement of the integral (L2) metric's least
+//! squares, for the high degrees where the double solve alone cannot be
+//! trusted (two pieces, no kept curve, no keep points; fix ends allowed).
+//!
+//! The problem is the orthogonal stage 1's (module `orthogonal`):
+//! `min_r ||A r - t||`, `A` the rows `sqrt(w_k) B^m(t_jk)` at the Gauss-
+//! Legendre nodes of both pieces, `t` the rows `sqrt(w_k) C_j(u_k)`. Its
+//! Bernstein sample matrix has a condition near `sqrt(cond(Gram))` (about
+//! `1e9` at degree 31), and a least-squares solve in doubles loses `kappa^2
+//! eps` times the residual: the double answer's first-order estimate
+//! exceeds `1e-8` from about degree 25 for random pairs, and so does its
+//! true error (`docs/accuracy.md`, Merge).
+//!
+//! Here `A` and `t` are formed in double-double arithmetic (nodes and
+//! weights by Newton's method on the Legendre polynomial in double-double,
+//! Bernstein values and the input curves evaluated in double-double), so
+//! the problem itself carries a relative rounding of about `(m + 2) 2^-104`
+//! per entry instead of `(m + 2) eps`. The least-squares solution is
+//! refined on the augmented system `[I A; A^T 0] [s; r] = [t; 0]` (Bjorck
+//! 1967): both residuals `f = t - s - A r` and `g = -A^T s` in double-
+//! double, the correction solved through the double Householder QR of
+//! `A`'s leading parts (`A = Q [T; 0]`: `h = T^-T g`, `[f1; f2] = Q^T f`,
+//! `dr = T^-1 (f1 - h)`, `ds = Q [h; f2]`), which converges with ratio
+//! about `kappa eps` (measured, and required to be below
+//! [`CONTRACTION_LIMIT`]).
+//!
+//! **Estimate** (a posteriori): one more correction `dr` is computed from
+//! the final residuals and not applied; to first order it is the remaining
+//! error of `r` (the correction's own relative error is `~kappa eps`). The
+//! reported estimate is [`REFINED_MARGIN`] times the larger of `|dr|`
+//! and `|S dr|` (the pieces), plus the double-double problem's own
+//! rounding through `||T^-1||` and `||T^-1||^2` (normwise, a margin of
+//! [`DD_MARGIN`]), plus the rounding of the pieces' de Casteljau split
+//! and of `r` to doubles, all relative to the coordinate scale. Unlike the
+//! double path's bound it does not weigh `R`'s control points down: they
+//! are measured, as the pieces are.
+
+#![allow(clippy::needless_range_loop)] // index-heavy numeric kernels
+
+use nalgebra::DMatrix;
+
+use super::orthogonal::gauss_legendre_unit;
+use super::rows::Problem;
+use crate::basis::binomial;
+use crate::bezier::BezierCurve;
+use crate::compensated::{two_product, two_sum};
+
+/// The refined answer's estimate is this times the next (unapplied)
+/// correction, mapped to `R` and to the pieces.
+pub const REFINED_MARGIN: f64 = 8.0;
+
+/// Margin of the double-double rounding term of the estimate.
+pub const DD_MARGIN: f64 = 16.0;
+
+/// Refinement steps at most.
+pub const REFINE_STEPS: usize = 8;
+
+/// Every correction after the first must be at most this fraction of the
+/// one before (else the refinement does not converge fast enough for its
+/// last correction to measure the error, and nothing is returned).
+pub const CONTRACTION_LIMIT: f64 = 0.25;
+
+/// What the refinement returns.
+pub(super) struct Refined {
+    pub(super) merged: DMatrix<f64>,
+    pub(super) x: DMatrix<f64>,
+    pub(super) metric_value: f64,
+    pub(super) estimate: f64,
+}
+
+#[derive(Clone, Copy, Debug)]
+struct Dd(f64, f64);
+
+impl Dd {
+    fn from(v: f64) -> Self {
+        Dd(v, 0.0)
+    }
+    fn add(self, o: Dd) -> Dd {
+        let (s, e) = two_sum(self.0, o.0);
+        let e = e + self.1 + o.1;
+        let (h, l) = two_sum(s, e);
+        Dd(h, l)
+    }
+    fn neg(self) -> Dd {
+        Dd(-self.0, -self.1)
+    }
+    fn sub(self, o: Dd) -> Dd {
+        self.add(o.neg())
+    }
+    fn mul(self, o: Dd) -> Dd {
+        let (p, e) = two_product(self.0, o.0);
+        let e = e + (self.0 * o.1 + self.1 * o.0);
+        let (h, l) = two_sum(p, e);
+        Dd(h, l)
+    }
+    fn mul_f(self, o: f64) -> Dd {
+        self.mul(Dd::from(o))
+    }
+    fn div(self, o: Dd) -> Dd {
+        let q1 = self.0 / o.0;
+        let r = self.sub(o.mul_f(q1));
+        let q2 = r.0 / o.0;
+        let r = r.sub(o.mul_f(q2));
+        let q3 = r.0 / o.0;
+        Dd::from(q1).add(Dd::from(q2)).add(Dd::from(q3))
+    }
+    fn sqrt(self) -> Dd {
+        let x = self.0.sqrt();
+        // One Newton step: x + (a - x^2) / (2 x).
+        let r = self.sub(Dd::from(x).mul_f(x));
+        Dd::from(x).add(Dd::from(r.0 / (2.0 * x)))
+    }
+}
+
+/// Gauss-Legendre nodes and weights on `[0, 1]` in double-double: the
+/// double ones refined by two Newton steps on `P_count` in double-double.
+fn gauss_legendre_dd(count: usize) -> (Vec<Dd>, Vec<Dd>) {
+    let (nodes, _) = gauss_legendre_unit(count);
+    let n = count as f64;
+    let mut out_nodes = vec![Dd::from(0.0); count];
+    let mut out_weights = vec![Dd::from(0.0); count];
+    for (k, &u) in nodes.iter().enumerate() {
+        // x in [-1, 1].
+        let mut x = Dd::from(2.0 * u - 1.0);
+        let mut derivative = Dd::from(1.0);
+        for _ in 0..3 {
+            let (mut p0, mut p1) = (Dd::from(1.0), x);
+            for j in 2..=count {
+                let jf = j as f64;
+                let p2 = x
+                    .mul(p1)
+                    .mul_f(2.0 * jf - 1.0)
+                    .sub(p0.mul_f(jf - 1.0))
+                    .div(Dd::from(jf));
+                p0 = p1;
+                p1 = p2;
+            }
+            let (p, p_prev) = if count == 1 {
+                (x, Dd::from(1.0))
+            } else {
+                (p1, p0)
+            };
+            // P' = n (x P - P_prev) / (x^2 - 1).
+            derivative = x
+                .mul(p)
+                .sub(p_prev)
+                .mul_f(n)
+                .div(x.mul(x).sub(Dd::from(1.0)));
+            x = x.sub(p.div(derivative));
+        }
+        let one_minus = Dd::from(1.0).sub(x.mul(x));
+        let w = Dd::from(2.0).div(one_minus.mul(derivative).mul(derivative));
+        out_nodes[k] = x.add(Dd::from(1.0)).mul_f(0.5);
+        out_weights[k] = w.mul_f(0.5);
+    }
+    (out_nodes, out_weights)
+}
+
+/// `B_i^m(t)`, `i = 0..m`, in double-double.
+fn bernstein_dd(m: usize, t: Dd, out: &mut [Dd]) {
+    let s = Dd::from(1.0).sub(t);
+    let mut tp = Dd::from(1.0);
+    for (i, o) in out.iter_mut().enumerate().take(m + 1) {
+        *o = tp.mul_f(binomial(m, i));
+        tp = tp.mul(t);
+    }
+    let mut sp = Dd::from(1.0);
+    for i in (0..=m).rev() {
+        out[i] = out[i].mul(sp);
+        sp = sp.mul(s);
+    }
+}
+
+/// The refined solution of the integral metric's least squares (see the
+/// module), or `None` when the case is not covered or the refinement does
+/// not contract. `fix_ends`: `r_0 = P_0`, `r_m = Q_m`.
+pub(super) fn refine_integral(
+    problem: &Problem<'_, '_>,
+    mu: f64,
+    fix_ends: bool,
+) -> Option<Refined> {
+    let pieces = problem.pieces;
+    if pieces.len() != 2 || pieces.iter().any(|p| p.keep || !p.points.is_empty()) {
+        return None;
+    }
+    let points = problem.points_per_piece;
+    let m = points - 1;
+    if fix_ends && m < 2 {
+        return None;
+    }
+    let dim = problem.dim;
+    let rows = 2 * points;
+    let (nodes, weights) = gauss_legendre_dd(points);
+    // A (rows x points) and t (rows x dim) in double-double.
+    let mut a = vec![Dd::from(0.0); rows * points];
+    let mut t = vec![Dd::from(0.0); rows * dim];
+    let mut row = vec![Dd::from(0.0); points];
+    let mu_dd = Dd::from(mu);
+    let rest = Dd::from(1.0).sub(mu_dd);
+    for k in 0..points {
+        let root = weights[k].sqrt();
+        for j in 0..2 {
+            let at = if j == 0 {
+                mu_dd.mul(nodes[k])
+            } else {
+                mu_dd.add(rest.mul(nodes[k]))
+            };
+            bernstein_dd(m, at, &mut row);
+            for i in 0..points {
+                a[(j * points + k) * points + i] = root.mul(row[i]);
+            }
+            bernstein_dd(m, nodes[k], &mut row);
+            let curve = &pieces[j].curve;
+            for c in 0..dim {
+                let mut v = Dd::from(0.0);
+                for i in 0..points {
+                    v = v.add(row[i].mul_f(curve.point(i)[c]));
+                }
+                t[(j * points + k) * dim + c] = root.mul(v);
+            }
+        }
+    }
+    // Free columns and the fixed ones moved to the target.
+    let free: Vec<usize> = if fix_ends {
+        (1..m).collect()
+    } else {
+        (0..points).collect()
+    };
+    let mut r = DMatrix::zeros(points, dim);
+    if fix_ends {
+        for c in 0..dim {
+            r[(0, c)] = pieces[0].curve.point(0)[c];
+            r[(m, c)] = pieces[1].curve.point(m)[c];
+        }
+    }
+    let cols = free.len();
+    // The double factor of A's leading parts (free columns).
+    let mut factor = vec![0.0; rows * cols];
+    for (jc, &col) in free.iter().enumerate() {
+        for i in 0..rows {
+            factor[jc * rows + i] = a[i * points + col].0;
+        }
+    }
+    let qr = Householder::new(factor, rows, cols)?;
+    // Norms for the double-double rounding term.
+    let a_norm = a.iter().map(|v| v.0 * v.0).sum::<f64>().sqrt();
+    let t_inverse_norm = qr.inverse_frobenius()?;
+
+    let mut s = vec![0.0; rows * dim];
+    let residuals = |r: &DMatrix<f64>, s: &[f64]| {
+        // f = t - s - A r, g = -A^T s (double-double, rounded).
+        let mut f = vec![0.0; rows * dim];
+        let mut g = vec![0.0; cols * dim];
+        for c in 0..dim {
+            for i in 0..rows {
+                let mut v = t[i * dim + c].sub(Dd::from(s[c * rows + i]));
+                for k in 0..points {
+                    v = v.sub(a[i * points + k].mul_f(r[(k, c)]));
+                }
+                f[c * rows + i] = v.0 + v.1;
+            }
+            for (jc, &col) in free.iter().enumerate() {
+                let mut v = Dd::from(0.0);
+                for i in 0..rows {
+                    v = v.sub(a[i * points + col].mul_f(s[c * rows + i]));
+                }
+                g[c * cols + jc] = v.0 + v.1;
+            }
+        }
+        (f, g)
+    };
+    let mut previous = f64::INFINITY;
+    let mut first = true;
+    let mut last = f64::INFINITY;
+    let mut correction = DMatrix::zeros(points, dim);
+    for step in 0..=REFINE_STEPS {
+        let (f, g) = residuals(&r, &s);
+        let (dr, ds) = qr.augmented_correction(&f, &g, dim);
+        correction.fill(0.0);
+        for c in 0..dim {
+            for (jc, &col) in free.iter().enumerate() {
+                correction[(col, c)] = dr[c * cols + jc];
+            }
+        }
+        let size = correction.amax();
+        if !size.is_finite() {
+            return None;
+        }
+        last = size;
+        // Converged: the correction is below the doubles' resolution of r.
+        let resolution = 2.0 * f64::EPSILON * r.amax();
+        if step == REFINE_STEPS || (!first && size <= resolution) {
+            break;
+        }
+        if !first && size > CONTRACTION_LIMIT * previous && size > resolution {
+            return None;
+        }
+        r += &correction;
+        for (v, d) in s.iter_mut().zip(&ds) {
+            *v += d;
+        }
+        previous = size;
+        first = false;
+    }
+    let _ = last;
+    // The pieces and the mapped last (unapplied) correction.
+    let curve = BezierCurve::from_matrix(&r).ok()?;
+    let (left, right) = curve.split_unchecked(mu);
+    let mut x = DMatrix::zeros(rows, dim);
+    x.rows_mut(0, points).copy_from(&left.control_matrix());
+    x.rows_mut(points, points)
+        .copy_from(&right.control_matrix());
+    let dcurve = BezierCurve::from_matrix(&correction).ok()?;
+    let (dl, dr) = dcurve.split_unchecked(mu);
+    let mapped = dl
+        .control_matrix()
+        .amax()
+        .max(dr.control_matrix().amax())
+        .max(correction.amax());
+    let result_scale = x.amax().max(problem.scale);
+    let eps = f64::EPSILON;
+    let dd_eps = eps * eps;
+    let (f, _) = residuals(&r, &vec![0.0; rows * dim]);
+    let residual_norm = f.iter().map(|v| v * v).sum::<f64>().sqrt();
+    let t_norm = t.iter().map(|v| v.0 * v.0).sum::<f64>().sqrt();
+    let dd_term = DD_MARGIN
+        * (m as f64 + 2.0)
+        * dd_eps
+        * (t_inverse_norm * (t_norm + a_norm * r.norm() + residual_norm)
+            + t_inverse_norm * t_inverse_norm * a_norm * residual_norm);
+    let estimate = (REFINED_MARGIN * mapped + dd_term) / result_scale
+        + (m as f64 + 2.0) * eps * x.amax().max(r.amax()) / result_scale;
+    Some(Refined {
+        merged: r,
+        x,
+        metric_value: residual_norm * residual_norm,
+        estimate,
+    })
+}
+
+/// A double Householder QR `A = Q [T; 0]` (`rows x cols`, column-major).
+struct Householder {
+    a: Vec<f64>,
+    diagonal: Vec<f64>,
+    betas: Vec<f64>,
+    rows: usize,
+    cols: usize,
+}
+
+impl Householder {
+    fn new(mut a: Vec<f64>, rows: usize, cols: usize) -> Option<Self> {
+        let mut diagonal = vec![0.0; cols];
+        let mut betas = vec![0.0; cols];
+        for k in 0..cols {
+            let norm = a[k * rows + k..(k + 1) * rows]
+                .iter()
+                .map(|v| v * v)
+                .sum::<f64>()
+                .sqrt();
+            if !(norm > 0.0 && norm.is_finite()) {
+                return None;
+            }
+            let akk = a[k * rows + k];
+            let alpha = if akk > 0.0 { -norm } else { norm };
+            a[k * rows + k] = akk - alpha;
+            betas[k] = 1.0 / (norm * (norm + akk.abs()));
+            diagonal[k] = alpha;
+            for j in k + 1..cols {
+                let s = betas[k]
+                    * (k..rows)
+                        .map(|i| a[k * rows + i] * a[j * rows + i])
+                        .sum::<f64>();
+                for i in k..rows {
+                    a[j * rows + i] -= s * a[k * rows + i];
+                }
+            }
+        }
+        Some(Self {
+            a,
+            diagonal,
+            betas,
+            rows,
+            cols,
+        })
+    }
+
+    fn reflect(&self, k: usize, x: &mut [f64]) {
+        let rows = self.rows;
+        let s = self.betas[k] * (k..rows).map(|i| self.a[k * rows + i] * x[i]).sum::<f64>();
+        for i in k..rows {
+            x[i] -= s * self.a[k * rows + i];
+        }
+    }
+
+    /// `x <- Q^T x`.
+    fn q_transpose(&self, x: &mut [f64]) {
+        for k in 0..self.cols {
+            self.reflect(k, x);
+        }
+    }
+
+    /// `x <- Q x`.
+    fn q(&self, x: &mut [f64]) {
+        for k in (0..self.cols).rev() {
+            self.reflect(k, x);
+        }
+    }
+
+    fn t(&self, i: usize, j: usize) -> f64 {
+        if i == j {
+            self.diagonal[i]
+        } else {
+            self.a[j * self.rows + i]
+        }
+    }
+
+    /// `y <- T^-1 y`.
+    fn solve_t(&self, y: &mut [f64]) {
+        for i in (0..self.cols).rev() {
+            let mut sum = y[i];
+            for j in i + 1..self.cols {
+                sum -= self.t(i, j) * y[j];
+            }
+            y[i] = sum / self.diagonal[i];
+        }
+    }
+
+    /// `y <- T^-T y`.
+    fn solve_t_transpose(&self, y: &mut [f64]) {
+        for i in 0..self.cols {
+            let mut sum = y[i];
+            for j in 0..i {
+                sum -= self.t(j, i) * y[j];
+            }
+            y[i] = sum / self.diagonal[i];
+        }
+    }
+
+    /// `||T^-1||_F`.
+    fn inverse_frobenius(&self) -> Option<f64> {
+        let mut total = 0.0;
+        let mut e = vec![0.0; self.cols];
+        for k in 0..self.cols {
+            e.fill(0.0);
+            e[k] = 1.0;
+            self.solve_t(&mut e);
+            total += e.iter().map(|v| v * v).sum::<f64>();
+        }
+        let norm = total.sqrt();
+        norm.is_finite().then_some(norm)
+    }
+
+    /// The augmented system's correction for residuals `f` (`rows` per
+    /// coordinate) and `g` (`cols` per coordinate): `(dr, ds)`.
+    fn augmented_correction(&self, f: &[f64], g: &[f64], dim: usize) -> (Vec<f64>, Vec<f64>) {
+        let (rows, cols) = (self.rows, self.cols);
+        let mut dr = vec![0.0; cols * dim];
+        let mut ds = vec![0.0; rows * dim];
+        for c in 0..dim {
+            let mut h = g[c * cols..(c + 1) * cols].to_vec();
+            self.solve_t_transpose(&mut h);
+            let mut qf = f[c * rows..(c + 1) * rows].to_vec();
+            self.q_transpose(&mut qf);
+            let y = &mut dr[c * cols..(c + 1) * cols];
+            for i in 0..cols {
+                y[i] = qf[i] - h[i];
+            }
+            self.solve_t(y);
+            let z = &mut ds[c * rows..(c + 1) * rows];
+            z[..cols].copy_from_slice(&h);
+            z[cols..].copy_from_slice(&qf[cols..]);
+            self.q(z);
+        }
+        (dr, ds)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::stage_one::StageOneCheck;
+    use super::super::{MergeMetric, MergeOptions, PairProblem};
+    use super::*;
+
+    fn curve(state: &mut u64, degree: usize) -> BezierCurve {
+        let points = (0..(degree + 1) * 2)
+            .map(|_| {
+                *state = state
+                    .wrapping_mul(6_364_136_223_846_793_005)
+                    .wrapping_add(1_442_695_040_888_963_407);
+                (*state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+            })
+            .collect();
+        BezierCurve::new(2, degree, points).unwrap()
+    }
+
+    use num_bigint::BigInt;
+    use num_rational::BigRational;
+    use num_traits::{One, ToPrimitive, Zero};
+
+    type Q = BigRational;
+
+    fn exact(x: f64) -> Q {
+        Q::from_float(x).unwrap()
+    }
+
+    /// `C(n, k)` exactly (the doubles' binomials round above `2^53`, from
+    /// `C(57, 28)` on: the Gram matrix needs `C(2m, i + j)`).
+    fn binomial_q(n: usize, k: usize) -> Q {
+        let mut c = BigInt::one();
+        for i in 0..k {
+            c = c * BigInt::from(n - i) / BigInt::from(i + 1);
+        }
+        Q::from_integer(c)
+    }
+
+    /// The exact minimiser `r` of the integral metric (exact Gram matrix,
+    /// exact restrictions at a dyadic `mu`), by the normal equations in
+    /// rationals; fix ends: `r_0 = P_0`, `r_m = Q_m`.
+    fn exact_r(p: &BezierCurve, q: &BezierCurve, mu: f64, fix_ends: bool) -> Vec<Vec<Q>> {
+        let m = p.degree();
+        let n = m + 1;
+        let muq = exact(mu);
+        let rest = Q::one() - &muq;
+        let power = |b: &Q, e: usize| (0..e).fold(Q::one(), |acc, _| acc * b);
+        let bern =
+            |deg: usize, i: usize| binomial_q(deg, i) * power(&muq, i) * power(&rest, deg - i);
+        let mut left = vec![vec![Q::zero(); n]; n];
+        let mut right = vec![vec![Q::zero(); n]; n];
+        for i in 0..n {
+            for k in 0..=i {
+                left[i][k] = bern(i, k);
+            }
+            for k in i..n {
+                right[i][k] = bern(m - i, k - i);
+            }
+        }
+        let gram = |i: usize, j: usize| {
+            binomial_q(m, i) * binomial_q(m, j)
+                / (Q::from_integer(BigInt::from(2 * m + 1)) * binomial_q(2 * m, i + j))
+        };
+        let g: Vec<Vec<Q>> = (0..n)
+            .map(|i| (0..n).map(|j| gram(i, j)).collect())
+            .collect();
+        // N = sum S^T G S, b = sum S^T G x0 (two coordinates).
+        let mut normal = vec![vec![Q::zero(); n]; n];
+        let mut rhs = vec![vec![Q::zero(); 2]; n];
+        for (s, curve) in [(&left, p), (&right, q)] {
+            let gs: Vec<Vec<Q>> = (0..n)
+                .map(|i| {
+                    (0..n)
+                        .map(|k| (0..n).fold(Q::zero(), |acc, j| acc + &g[i][j] * &s[j][k]))
+                        .collect()
+                })
+                .collect();
+            for a in 0..n {
+                for b in 0..n {
+                    normal[a][b] += (0..n).fold(Q::zero(), |acc, i| acc + &s[i][a] * &gs[i][b]);
+                }
+                for c in 0..2 {
+                    rhs[a][c] += (0..n).fold(Q::zero(), |acc, i| {
+                        acc + &s[i][a]
+                            * (0..n).fold(Q::zero(), |acc2, j| {
+                                acc2 + &g[i][j] * exact(curve.point(j)[c])
+                            })
+                    });
+                }
+            }
+        }
+        let mut r = vec![vec![Q::zero(); 2]; n];
+        let free: Vec<usize> = if fix_ends {
+            (1..m).collect()
+        } else {
+            (0..n).collect()
+        };
+        if fix_ends {
+            for c in 0..2 {
+                r[0][c] = exact(p.point(0)[c]);
+                r[m][c] = exact(q.point(m)[c]);
+            }
+        }
+        // Reduced system on the free unknowns.
+        let mut a: Vec<Vec<Q>> = free
+            .iter()
+            .map(|&i| free.iter().map(|&j| normal[i][j].clone()).collect())
+            .collect();
+        let mut b: Vec<Vec<Q>> = free
+            .iter()
+            .map(|&i| {
+                (0..2)
+                    .map(|c| {
+                        let mut v = rhs[i][c].clone();
+                        if fix_ends {
+                            v -= &normal[i][0] * &r[0][c] + &normal[i][m] * &r[m][c];
+                        }
+                        v
+                    })
+                    .collect()
+            })
+            .collect();
+        let k = free.len();
+        for col in 0..k {
+            let pivot = (col..k).find(|&i| !a[i][col].is_zero()).unwrap();
+            a.swap(col, pivot);
+            b.swap(col, pivot);
+            for i in 0..k {
+                if i != col && !a[i][col].is_zero() {
+                    let factor = &a[i][col] / &a[col][col];
+                    for j in col..k {
+                        let v = &factor * &a[col][j];
+                        a[i][j] -= v;
+                    }
+                    for c in 0..2 {
+                        let v = &factor * &b[col][c];
+                        b[i][c] -= v;
+                    }
+                }
+            }
+        }
+        for (row, &i) in free.iter().enumerate() {
+            for c in 0..2 {
+                r[i][c] = &b[row][c] / &a[row][row];
+            }
+        }
+        r
+    }
+
+    /// The refined least squares against the exact-rational minimiser:
+    /// `R` and the pieces within the estimate, and the estimate itself far
+    /// below the double path's at the degrees where that one refuses.
+    #[test]
+    fn refined_solution_is_within_its_estimate_of_the_exact_minimiser() {
+        refined_against_exact(&[6, 12], &[77.0 / 256.0, 0.5]);
+    }
+
+    /// The table of docs/accuracy.md (Merge, session 26): `cargo test
+    /// --release -p bezjoin-core --lib refined_sweep -- --ignored --nocapture`.
+    #[test]
+    #[ignore]
+    fn refined_sweep() {
+        // REFINED_DEGREES="31" restricts the sweep (the exact solve is slow).
+        let degrees: Vec<usize> = match std::env::var("REFINED_DEGREES") {
+            Ok(list) => list.split(',').map(|d| d.trim().parse().unwrap()).collect(),
+            Err(_) => vec![16, 20, 24, 27, 31],
+        };
+        refined_against_exact(&degrees, &[13.0 / 128.0, 77.0 / 256.0, 0.5]);
+    }
+
+    fn refined_against_exact(degrees: &[usize], mus: &[f64]) {
+        let mut state = 21;
+        for &degree in degrees {
+            let (p, q) = (curve(&mut state, degree), curve(&mut state, degree));
+            for fix_ends in [false, true] {
+                let options = MergeOptions {
+                    metric: MergeMetric::Integral,
+                    fix_ends,
+                    ..MergeOptions::default()
+                };
+                let problem = PairProblem::new(&p, &q, &options).unwrap();
+                for &mu in mus {
+                    let rows = Problem::new(&problem.pieces, &[mu, 1.0 - mu], fix_ends);
+                    let refined = refine_integral(&rows, mu, fix_ends).unwrap();
+                    let reference = exact_r(&p, &q, mu, fix_ends);
+                    let scale = refined.x.amax().max(rows.scale);
+                    let mut worst = 0.0f64;
+                    for i in 0..=degree {
+                        for c in 0..2 {
+                            let gap = (exact(refined.merged[(i, c)]) - &reference[i][c])
+                                .to_f64()
+                                .unwrap();
+                            worst = worst.max(gap.abs());
+                        }
+                    }
+                    let true_error = worst / scale;
+                    // What the merge says at this mu (with the refinement).
+                    let merged = problem.solve(mu, StageOneCheck::Full);
+                    println!(
+                        "| {degree} | {mu} | {} | {true_error:.1e} | {:.1e} | {} |",
+                        if fix_ends { "fix ends" } else { "none" },
+                        refined.estimate,
+                        match merged {
+                            Ok(s) => format!("answered, estimate {:.1e}", s.error_estimate),
+                            Err(e) => e.to_string(),
+                        }
+                    );
+                    assert!(
+                        refined.estimate >= true_error,
+                        "degree {degree} ends {fix_ends} mu {mu}: estimate {:e} below the true error {true_error:e}",
+                        refined.estimate
+                    );
+                    assert!(
+                        refined.estimate <= super::super::DEFAULT_MERGE_ACCURACY,
+                        "degree {degree}: estimate {:e}",
+                        refined.estimate
+                    );
+                }
+            }
+        }
+    }
+}
