@@ -21,7 +21,7 @@
 
 use super::{
     CONNECT_RESIDUAL_LIMIT, Connection, END_BAND_NORMS, FALLING_FACTORIALS, SIGNED_BINOMIALS,
-    power, residual_and_bound, unit_roundoff,
+    finite_or_infinite, power, residual_and_bound_unguarded, unit_roundoff,
 };
 use crate::basis::KnotSide;
 use crate::bezier::BezierCurve;
@@ -92,11 +92,20 @@ fn connect_small<P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
     if kp + kq + 1 >= MAX_POINTS {
         return None;
     }
-    Some(match p.dim() {
-        1 => connect_fixed::<1, P, Q>(p, q, args, shapes),
-        2 => connect_fixed::<2, P, Q>(p, q, args, shapes),
-        3 => connect_fixed::<3, P, Q>(p, q, args, shapes),
-        4 => connect_fixed::<4, P, Q>(p, q, args, shapes),
+    // Arrays of 8, 12 or 16 rows when they suffice: zeroing the full 32 rows
+    // of every array costs more than a small problem's substitution.
+    let count = kp + kq + 2;
+    Some(match (p.dim(), count) {
+        (1, _) => connect_fixed::<1, MAX_POINTS, P, Q>(p, q, args, shapes),
+        (2, ..=8) => connect_fixed::<2, 8, P, Q>(p, q, args, shapes),
+        (2, ..=12) => connect_fixed::<2, 12, P, Q>(p, q, args, shapes),
+        (2, ..=16) => connect_fixed::<2, 16, P, Q>(p, q, args, shapes),
+        (2, _) => connect_fixed::<2, MAX_POINTS, P, Q>(p, q, args, shapes),
+        (3, ..=8) => connect_fixed::<3, 8, P, Q>(p, q, args, shapes),
+        (3, ..=12) => connect_fixed::<3, 12, P, Q>(p, q, args, shapes),
+        (3, ..=16) => connect_fixed::<3, 16, P, Q>(p, q, args, shapes),
+        (3, _) => connect_fixed::<3, MAX_POINTS, P, Q>(p, q, args, shapes),
+        (4, _) => connect_fixed::<4, MAX_POINTS, P, Q>(p, q, args, shapes),
         _ => return None,
     })
 }
@@ -133,14 +142,15 @@ fn bell_targets_in_place<const D: usize>(rows: &mut [[f64; D]], errors: &mut [f6
 }
 
 /// [`connect_ends`] in dimension `D` (`p.dim() == q.dim() == D`), result
-/// degree `n = kp + kq + 1 < MAX_POINTS`; `args` is
+/// degree `n = kp + kq + 1 < CAP <= MAX_POINTS` (`CAP`: the rows of the
+/// fixed arrays); `args` is
 /// `(u0, v0, kp, kq, alpha, beta)`.
 ///
 /// Row `r` of the system: `r <= kp` the P end (row `r` of `D(0)`),
 /// `r = kp + 1 + k` the Q end (row `k` of `D(1)`), as in
 /// [`super::condition_rows`]. Both ends' bands are `n!/(n-k)! (-1)^(k-j)
 /// C(k, j)` ([`super::end_band`]), formed from the tables.
-fn connect_fixed<const D: usize, P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
+fn connect_fixed<const D: usize, const CAP: usize, P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
     p: &P,
     q: &Q,
     (u0, v0, kp, kq, alpha, beta): (f64, f64, usize, usize, f64, f64),
@@ -150,8 +160,8 @@ fn connect_fixed<const D: usize, P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
     let count = n + 1;
     // The jets straight into the target rows: P arrives at u0 (from the
     // left of a knot), Q leaves v0.
-    let mut targets = [[0.0f64; D]; MAX_POINTS];
-    let mut target_errors = [0.0f64; MAX_POINTS];
+    let mut targets = [[0.0f64; D]; CAP];
+    let mut target_errors = [0.0f64; CAP];
     {
         let (p_rows, q_rows) = targets[..count].split_at_mut(kp + 1);
         let (p_errors, q_errors) = target_errors[..count].split_at_mut(kp + 1);
@@ -164,7 +174,7 @@ fn connect_fixed<const D: usize, P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
     }
     // Targets and their bounds in place: T_k = s^k X^(k),
     // e_k = s^k err_k + (k + 1) u |T_k|.
-    let mut target_norms = [0.0f64; MAX_POINTS];
+    let mut target_norms = [0.0f64; CAP];
     for (first, order, scale) in [(0, kp, alpha), (kp + 1, kq, beta)] {
         let mut factor = 1.0f64;
         for k in 0..=order {
@@ -195,12 +205,12 @@ fn connect_fixed<const D: usize, P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
     }
     let gamma = 2.0 * (2 * n + 4) as f64 * unit_roundoff();
     let falling = &FALLING_FACTORIALS[n];
-    let mut points = [[0.0f64; D]; MAX_POINTS];
+    let mut points = [[0.0f64; D]; CAP];
     let mut max_residual = 0.0f64;
     let mut error_estimate = 0.0f64;
-    let mut difference_squares = [0.0f64; MAX_POINTS];
-    let mut abs_squares = [0.0f64; MAX_POINTS];
-    let mut denominators = [0.0f64; MAX_POINTS];
+    let mut difference_squares = [0.0f64; CAP];
+    let mut abs_squares = [0.0f64; CAP];
+    let mut denominators = [0.0f64; CAP];
     // Row by row: the band once, the unknown it determines, its residual.
     // P end: row k of D(0) touches R_0..R_k only (lower triangular); Q end:
     // row k of D(1) touches R_(n-k)..R_n only (anti-triangular). The two
@@ -285,14 +295,21 @@ fn connect_fixed<const D: usize, P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
     // The residuals and their bounds in a pass of their own: the square
     // roots and divisions of different rows are independent there (the
     // substitution above is a chain), the same operations per row.
+    // The formulas first (branch-free, so the rows' square roots and
+    // divisions go side by side), then the guard and the maxima.
+    let mut residuals = [0.0f64; CAP];
+    let mut bounds = [0.0f64; CAP];
     for r in 0..count {
-        let (residual, bound) = residual_and_bound(
+        (residuals[r], bounds[r]) = residual_and_bound_unguarded(
             difference_squares[r],
             abs_squares[r],
             gamma,
             target_errors[r],
             denominators[r],
         );
+    }
+    for r in 0..count {
+        let (residual, bound) = finite_or_infinite((residuals[r], bounds[r]));
         max_residual = max_residual.max(residual);
         error_estimate = error_estimate.max(bound);
     }

@@ -1300,8 +1300,34 @@ pub(super) fn residual_and_bound(
     target_error: f64,
     denominator: f64,
 ) -> (f64, f64) {
+    finite_or_infinite(residual_and_bound_unguarded(
+        difference_square,
+        abs_square,
+        gamma,
+        target_error,
+        denominator,
+    ))
+}
+
+/// The two formulas of [`residual_and_bound`] without its guard (no
+/// branch: the end path runs them over all rows side by side).
+#[inline(always)]
+pub(super) fn residual_and_bound_unguarded(
+    difference_square: f64,
+    abs_square: f64,
+    gamma: f64,
+    target_error: f64,
+    denominator: f64,
+) -> (f64, f64) {
     let residual = difference_square.sqrt() / denominator;
     let bound = residual + (gamma * abs_square.sqrt() + target_error) / denominator;
+    (residual, bound)
+}
+
+/// The guard of [`residual_and_bound`]: both infinite when either is not
+/// finite.
+#[inline(always)]
+pub(super) fn finite_or_infinite((residual, bound): (f64, f64)) -> (f64, f64) {
     if residual.is_finite() && bound.is_finite() {
         (residual, bound)
     } else {
