@@ -19,3 +19,12 @@ impl Values {
         2.0 * self.unit() - 1.0
     }
 }
+
+/// A planar Bezier curve of `degree` whose coordinates are the generator's
+/// next `signed` values (the state carried in `state`), for the merge tests.
+pub(crate) fn planar_curve(state: &mut u64, degree: usize) -> crate::bezier::BezierCurve {
+    let mut values = Values(*state);
+    let points = (0..(degree + 1) * 2).map(|_| values.signed()).collect();
+    *state = values.0;
+    crate::bezier::BezierCurve::new(2, degree, points).unwrap()
+}

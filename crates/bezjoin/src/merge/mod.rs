@@ -866,18 +866,7 @@ fn optimal_mu(mut metric: impl FnMut(f64) -> Result<f64>) -> Result<f64> {
 mod tests {
     use super::*;
 
-    /// Deterministic pseudo-random curves (LCG).
-    fn curve(state: &mut u64, degree: usize) -> BezierCurve {
-        let points = (0..(degree + 1) * 2)
-            .map(|_| {
-                *state = state
-                    .wrapping_mul(6_364_136_223_846_793_005)
-                    .wrapping_add(1_442_695_040_888_963_407);
-                (*state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-            })
-            .collect();
-        BezierCurve::new(2, degree, points).unwrap()
-    }
+    use crate::test_values::planar_curve as curve;
 
     /// The quick search (trials without the rounding term of the estimate)
     /// can pick a `mu` whose full check fails; `merge` must then fall back to
@@ -949,17 +938,7 @@ mod tests {
 mod slope_tests {
     use super::*;
 
-    fn curve(state: &mut u64, degree: usize) -> BezierCurve {
-        let points = (0..(degree + 1) * 2)
-            .map(|_| {
-                *state = state
-                    .wrapping_mul(6_364_136_223_846_793_005)
-                    .wrapping_add(1_442_695_040_888_963_407);
-                (*state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-            })
-            .collect();
-        BezierCurve::new(2, degree, points).unwrap()
-    }
+    use crate::test_values::planar_curve as curve;
 
     /// The closed-form slope (envelope theorem) against a central
     /// difference of the metric, both metrics, with and without fix ends.
@@ -998,17 +977,7 @@ mod reference_tests {
     use super::rows::Problem;
     use super::*;
 
-    fn curve(state: &mut u64, degree: usize) -> BezierCurve {
-        let points = (0..(degree + 1) * 2)
-            .map(|_| {
-                *state = state
-                    .wrapping_mul(6_364_136_223_846_793_005)
-                    .wrapping_add(1_442_695_040_888_963_407);
-                (*state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-            })
-            .collect();
-        BezierCurve::new(2, degree, points).unwrap()
-    }
+    use crate::test_values::planar_curve as curve;
 
     /// The orthogonal stage 1 against the paper's Lagrange-multiplier (KKT)
     /// formulation on the pieces, kept as the reference: same pieces.

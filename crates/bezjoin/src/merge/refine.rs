@@ -481,17 +481,7 @@ mod tests {
     use super::super::{MergeMetric, MergeOptions, PairProblem};
     use super::*;
 
-    fn curve(state: &mut u64, degree: usize) -> BezierCurve {
-        let points = (0..(degree + 1) * 2)
-            .map(|_| {
-                *state = state
-                    .wrapping_mul(6_364_136_223_846_793_005)
-                    .wrapping_add(1_442_695_040_888_963_407);
-                (*state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-            })
-            .collect();
-        BezierCurve::new(2, degree, points).unwrap()
-    }
+    use crate::test_values::planar_curve as curve;
 
     use num_bigint::BigInt;
     use num_rational::BigRational;

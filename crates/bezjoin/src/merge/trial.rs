@@ -379,19 +379,8 @@ mod tests {
     use super::super::stage_one::StageOneCheck;
     use super::super::{MergeOptions, PairProblem};
     use super::*;
-    use crate::bezier::BezierCurve;
 
-    fn curve(state: &mut u64, degree: usize) -> BezierCurve {
-        let points = (0..(degree + 1) * 2)
-            .map(|_| {
-                *state = state
-                    .wrapping_mul(6_364_136_223_846_793_005)
-                    .wrapping_add(1_442_695_040_888_963_407);
-                (*state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-            })
-            .collect();
-        BezierCurve::new(2, degree, points).unwrap()
-    }
+    use crate::test_values::planar_curve as curve;
 
     /// The lean trial against stage 1's orthogonal path (nalgebra QR, two
     /// refinement steps, the slope from `orthogonal::sample_slopes`): the
