@@ -1456,18 +1456,6 @@ impl ChebyshevSpeed {
         step: usize,
         samples: &mut [f64; CHEBYSHEV_MAX_N + 1],
     ) -> bool {
-        let run = |speed: &dyn Fn(f64) -> f64, samples: &mut [f64; CHEBYSHEV_MAX_N + 1]| {
-            let mut i = first;
-            while i < CHEBYSHEV_MAX_N {
-                let f = speed(start + 0.5 * (nodes[i] + 1.0) * span);
-                if !f.is_finite() {
-                    return false;
-                }
-                samples[i] = f;
-                i += step;
-            }
-            true
-        };
         match (self.dim, self.degree) {
             (2, 1) => self.sample_fixed::<2, 1>(nodes, start, span, first, step, samples),
             (2, 2) => self.sample_fixed::<2, 2>(nodes, start, span, first, step, samples),
@@ -1477,7 +1465,7 @@ impl ChebyshevSpeed {
             (3, 2) => self.sample_fixed::<3, 2>(nodes, start, span, first, step, samples),
             (3, 3) => self.sample_fixed::<3, 3>(nodes, start, span, first, step, samples),
             (3, 4) => self.sample_fixed::<3, 4>(nodes, start, span, first, step, samples),
-            _ => run(&|t| self.at(t), samples),
+            _ => sample_nodes((nodes, start, span, first, step), samples, |t| self.at(t)),
         }
     }
 
@@ -1501,16 +1489,9 @@ impl ChebyshevSpeed {
         {
             row.copy_from_slice(w);
         }
-        let mut i = first;
-        while i < CHEBYSHEV_MAX_N {
-            let f = at_fixed::<D, M>(&rows, start + 0.5 * (nodes[i] + 1.0) * span);
-            if !f.is_finite() {
-                return false;
-            }
-            samples[i] = f;
-            i += step;
-        }
-        true
+        sample_nodes((nodes, start, span, first, step), samples, |t| {
+            at_fixed::<D, M>(&rows, t)
+        })
     }
 
     /// [`Self::at`] in `D >= dim` coordinates (the unused ones stay 0).
@@ -1645,6 +1626,28 @@ impl ChebyshevSpeed {
         }
         Some(None)
     }
+}
+
+/// `speed` at the nodes `first, first + step, ...` below
+/// [`CHEBYSHEV_MAX_N`] (`t = start + (nodes[i] + 1) span / 2`) into
+/// `samples[i]`; `false` at the first value that is not finite. The loop
+/// of both sampling routes of [`ChebyshevSpeed::sample`].
+#[inline(always)]
+fn sample_nodes(
+    (nodes, start, span, first, step): (&[f64; CHEBYSHEV_MAX_N + 1], f64, f64, usize, usize),
+    samples: &mut [f64; CHEBYSHEV_MAX_N + 1],
+    speed: impl Fn(f64) -> f64,
+) -> bool {
+    let mut i = first;
+    while i < CHEBYSHEV_MAX_N {
+        let f = speed(start + 0.5 * (nodes[i] + 1.0) * span);
+        if !f.is_finite() {
+            return false;
+        }
+        samples[i] = f;
+        i += step;
+    }
+    true
 }
 
 /// [`ChebyshevSpeed::at_exact`] for `D` coordinates and hodograph degree
@@ -2359,13 +2362,8 @@ mod chebyshev_tests {
     /// levels).
     #[test]
     fn fused_clenshaw_and_the_newton_terms() {
-        let mut state = 7u64;
-        let mut next = || {
-            state = state
-                .wrapping_mul(6_364_136_223_846_793_005)
-                .wrapping_add(1_442_695_040_888_963_407);
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut values = crate::test_values::Values(7);
+        let mut next = || values.unit();
         for case in 0..50 {
             let len = 3 + case % 24;
             let c: Vec<f64> = (0..len).map(|k| (next() - 0.5) * 10f64.powi(-k)).collect();

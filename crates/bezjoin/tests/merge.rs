@@ -1237,23 +1237,7 @@ fn optimal_mu_is_the_minimum_of_a_dense_scan() {
                     Err(BezjoinError::IllConditioned { .. }) => f64::INFINITY,
                     Err(e) => panic!("{e}"),
                 };
-                let (mut scan_mu, mut scan_best) = (0.0, f64::INFINITY);
-                const STEPS: usize = 334;
-                let step = 1.0 / STEPS as f64;
-                for k in 1..STEPS {
-                    let mu = k as f64 * step;
-                    let v = scan(mu);
-                    if v < scan_best {
-                        (scan_mu, scan_best) = (mu, v);
-                    }
-                }
-                for k in -30..=30 {
-                    let mu = scan_mu + k as f64 * step / 20.0;
-                    // The search range.
-                    if (1e-3..=1.0 - 1e-3).contains(&mu) {
-                        scan_best = scan_best.min(scan(mu));
-                    }
-                }
+                let (scan_mu, scan_best) = common::dense_scan_minimum(scan);
                 assert!(
                     best <= scan_best * (1.0 + 1e-9) + 1e-300,
                     "n {n} {metric:?} constraint {constraint}: optimal mu {} gives {best}, \

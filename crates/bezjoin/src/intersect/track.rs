@@ -545,13 +545,8 @@ mod tests {
     /// hodograph gives the same tangent.
     #[test]
     fn point_and_tangent_match_the_value_and_the_hodograph() {
-        let mut state = 26u64;
-        let mut next = || {
-            state = state
-                .wrapping_mul(6_364_136_223_846_793_005)
-                .wrapping_add(1_442_695_040_888_963_407);
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut values = crate::test_values::Values(26);
+        let mut next = || values.unit();
         for case in 0..400 {
             let degree = case % 13;
             let dim = 1 + (case / 13) % 4;
