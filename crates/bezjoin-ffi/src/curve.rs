@@ -464,11 +464,7 @@ pub unsafe extern "C" fn bzj_curve_eval_many(
         // buffer, one block per parameter.
         let blocks = ts.iter().zip(buf.chunks_exact_mut(block));
         match curve {
-            Curve::Bezier(c) if max_order == 0 => {
-                for (&t, value) in blocks {
-                    c.eval_into(t, value);
-                }
-            }
+            Curve::Bezier(c) if max_order == 0 => c.eval_many_into(ts, buf),
             Curve::Bezier(c) => {
                 for (&t, rows) in blocks {
                     c.eval_derivatives_into(t, max_order, rows);

@@ -7,15 +7,56 @@
 use std::cell::{Cell, RefCell};
 use std::ffi::{CStr, CString, c_char};
 use std::panic::{AssertUnwindSafe, catch_unwind};
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 use crate::status::{BzjStatus, FfiResult};
 
 thread_local! {
-    static LAST_ERROR: RefCell<CString> = RefCell::new(CString::default());
+    static LAST_ERROR: RefCell<Message> = RefCell::new(Message::default());
     /// Whether `LAST_ERROR` may hold a message. Constant-initialised and
-    /// without a destructor: the success path of every call reads it with
-    /// one thread-local load, no lazy initialisation, no borrow.
+    /// without a destructor: one thread-local load, no lazy initialisation,
+    /// no borrow.
     static HAS_MESSAGE: Cell<bool> = const { Cell::new(false) };
+}
+
+/// How many threads may hold a message (each thread counts itself once,
+/// from its first stored message until the message is cleared or the
+/// thread exits). While it is 0 -- the normal state of a program whose
+/// calls succeed -- a success has nothing to clear in any thread, so it
+/// returns without touching thread-local storage (a `__tls_get_addr` call
+/// from a shared library). Sound with relaxed ordering: a thread that holds
+/// a message has itself added 1 before, and only the adding thread takes
+/// its 1 away, so that thread's own loads never read 0.
+static THREADS_WITH_MESSAGE: AtomicUsize = AtomicUsize::new(0);
+
+/// A thread's last error message, and whether the thread is counted in
+/// [`THREADS_WITH_MESSAGE`].
+#[derive(Default)]
+struct Message {
+    text: CString,
+    counted: bool,
+}
+
+impl Message {
+    fn set(&mut self, text: CString) {
+        let has = !text.as_bytes().is_empty();
+        if has && !self.counted {
+            THREADS_WITH_MESSAGE.fetch_add(1, Ordering::Relaxed);
+        } else if !has && self.counted {
+            THREADS_WITH_MESSAGE.fetch_sub(1, Ordering::Relaxed);
+        }
+        self.counted = has;
+        self.text = text;
+    }
+}
+
+impl Drop for Message {
+    /// At thread exit: the thread no longer holds a message.
+    fn drop(&mut self) {
+        if self.counted {
+            THREADS_WITH_MESSAGE.fetch_sub(1, Ordering::Relaxed);
+        }
+    }
 }
 
 /// Returned by [`bzj_last_error`] when the thread's message cannot be read
@@ -25,19 +66,33 @@ static NO_MESSAGE: &CStr = c"";
 /// Store the calling thread's message. Never panics: while the thread-local
 /// is being destroyed (a call from another thread-local's destructor at
 /// thread exit) the message is dropped, and the status still returned.
+#[inline]
 fn set_last_error(message: &str) {
+    // A success while no thread holds a message: nothing to clear, and no
+    // thread-local access (the hot path of evaluation calls).
+    if message.is_empty() && THREADS_WITH_MESSAGE.load(Ordering::Relaxed) == 0 {
+        return;
+    }
+    store_last_error(message);
+}
+
+/// [`set_last_error`] past its shortcut. A function of its own, never
+/// inlined: otherwise the compiler computes the thread-local addresses
+/// (a `__tls_get_addr` call) before the shortcut's test.
+#[inline(never)]
+fn store_last_error(message: &str) {
     // A success after a success: nothing to store (no allocation, and no
-    // access to the message storage, on the hot path of evaluation calls).
+    // access to the message storage).
     if message.is_empty() && !HAS_MESSAGE.try_with(Cell::get).unwrap_or(true) {
         return;
     }
     let _ = LAST_ERROR.try_with(|e| {
-        if message.is_empty() && e.try_borrow().is_ok_and(|m| m.as_bytes().is_empty()) {
+        if message.is_empty() && e.try_borrow().is_ok_and(|m| m.text.as_bytes().is_empty()) {
             return;
         }
         let text = CString::new(message.replace('\0', " ")).unwrap_or_default();
         if let Ok(mut slot) = e.try_borrow_mut() {
-            *slot = text;
+            slot.set(text);
             let _ = HAS_MESSAGE.try_with(|has| has.set(!message.is_empty()));
         }
     });
@@ -106,7 +161,10 @@ pub extern "C" fn bzj_version() -> *const c_char {
 pub extern "C" fn bzj_last_error() -> *const c_char {
     no_unwind(NO_MESSAGE.as_ptr(), || {
         LAST_ERROR
-            .try_with(|e| e.try_borrow().map_or(NO_MESSAGE.as_ptr(), |m| m.as_ptr()))
+            .try_with(|e| {
+                e.try_borrow()
+                    .map_or(NO_MESSAGE.as_ptr(), |m| m.text.as_ptr())
+            })
             .unwrap_or(NO_MESSAGE.as_ptr())
     })
 }
@@ -149,6 +207,43 @@ mod guard_tests {
     fn version_is_a_static_string() {
         assert_eq!(text(bzj_version()), env!("CARGO_PKG_VERSION"));
         assert_eq!(bzj_version(), bzj_version());
+    }
+
+    /// A success clears the calling thread's message and no other: with
+    /// one thread holding a message, another thread's failure then success
+    /// leaves that thread's message empty (the shortcut of
+    /// `set_last_error` must see the count) and the first thread's intact;
+    /// then the first thread's success clears its own.
+    #[test]
+    fn a_success_clears_this_threads_message_only() {
+        use std::sync::{Arc, Barrier};
+        let held = Arc::new(Barrier::new(2));
+        let checked = Arc::new(Barrier::new(2));
+        let holder = {
+            let (held, checked) = (held.clone(), checked.clone());
+            std::thread::spawn(move || {
+                let s = guard(|| Err(FfiError::NullPointer("first".into())));
+                assert_eq!(s, BzjStatus::BZJ_ERR_NULL_POINTER);
+                held.wait();
+                checked.wait();
+                assert_eq!(last_error(), "first is a null pointer");
+                assert_eq!(guard(|| Ok(())), BzjStatus::BZJ_OK);
+                assert_eq!(last_error(), "");
+            })
+        };
+        let other = std::thread::spawn(move || {
+            held.wait();
+            for _ in 0..3 {
+                let s = guard(|| Err(FfiError::NullPointer("second".into())));
+                assert_eq!(s, BzjStatus::BZJ_ERR_NULL_POINTER);
+                assert_eq!(last_error(), "second is a null pointer");
+                assert_eq!(guard(|| Ok(())), BzjStatus::BZJ_OK);
+                assert_eq!(last_error(), "");
+            }
+            checked.wait();
+        });
+        other.join().expect("the other thread's checks hold");
+        holder.join().expect("the holder's checks hold");
     }
 
     /// Calls made from another thread-local's destructor at thread exit,

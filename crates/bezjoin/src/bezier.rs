@@ -223,6 +223,28 @@ impl BezierCurve {
         bernstein_horner_any(&self.points, self.degree, self.dim, t, 1.0, out);
     }
 
+    /// `P(t_j)` for every parameter of `ts`, written parameter-major into
+    /// `out` (`ts.len() * dim` values): the bits of [`Self::eval_into`] at
+    /// each parameter. In dimensions 2 and 3 up to degree 8 the parameters
+    /// go four at a time through one batch kernel (the same operations per
+    /// parameter, packed), otherwise one [`Self::eval_into`] each.
+    ///
+    /// # Panics
+    /// If `out.len() != ts.len() * dim`.
+    pub fn eval_many_into(&self, ts: &[f64], out: &mut [f64]) {
+        assert_eq!(out.len(), ts.len() * self.dim);
+        let done = match self.dim {
+            2 => eval_many_by_degree::<2>(&self.points, self.degree, ts, out),
+            3 => eval_many_by_degree::<3>(&self.points, self.degree, ts, out),
+            _ => false,
+        };
+        if !done {
+            for (&t, value) in ts.iter().zip(out.chunks_exact_mut(self.dim)) {
+                self.eval_into(t, value);
+            }
+        }
+    }
+
     /// `P(t)`.
     pub fn eval(&self, t: f64) -> Vec<f64> {
         let mut out = vec![0.0; self.dim];
@@ -727,6 +749,106 @@ fn bernstein_horner_degree<const D: usize, const N: usize>(
     out: &mut [f64; D],
 ) {
     bernstein_horner_fixed(points, N, t, scale, out);
+}
+
+/// `P(t_j)` for every parameter of `ts` into `out` (`ts.len() * D`,
+/// parameter-major) for the `N + 1` points of dimension `D`: the operations
+/// of [`bernstein_horner_degree`] (scale 1) on four parameters at a time,
+/// lanes innermost so that the compiler packs them (the division, the
+/// power and the Horner steps; each lane's direction is a select of the
+/// point it reads), hence the same bits as one evaluation per parameter. A
+/// lane whose value is not finite is evaluated again by the one-parameter
+/// path, whose fallbacks decide.
+#[inline(never)]
+fn eval_many_horner<const D: usize, const N: usize>(points: &[f64], ts: &[f64], out: &mut [f64]) {
+    const L: usize = 4;
+    let points = &points[..(N + 1) * D];
+    let row = &BINOMIALS[N * (N + 1) / 2..][..=N];
+    let mut t_chunks = ts.chunks_exact(L);
+    let mut out_chunks = out.chunks_exact_mut(L * D);
+    for (tc, oc) in (&mut t_chunks).zip(&mut out_chunks) {
+        let mut ratio = [0.0f64; L];
+        let mut factor = [0.0f64; L];
+        let mut forward = [false; L];
+        for l in 0..L {
+            let t = tc[l];
+            let s = 1.0 - t;
+            forward[l] = t > 0.5;
+            let (numerator, base) = if forward[l] { (s, t) } else { (t, s) };
+            ratio[l] = numerator / base;
+            // `factor * scale` of the one-parameter path, scale 1: exact.
+            factor[l] = power(base, N);
+        }
+        let mut sum = [[0.0f64; L]; D];
+        for c in 0..D {
+            for l in 0..L {
+                sum[c][l] = if forward[l] {
+                    points[c]
+                } else {
+                    points[N * D + c]
+                };
+            }
+        }
+        for j in 1..=N {
+            let coef = row[j];
+            let ahead = &points[j * D..][..D];
+            let behind = &points[(N - j) * D..][..D];
+            for c in 0..D {
+                for l in 0..L {
+                    let p = if forward[l] { ahead[c] } else { behind[c] };
+                    sum[c][l] = sum[c][l] * ratio[l] + coef * p;
+                }
+            }
+        }
+        let mut finite = true;
+        for l in 0..L {
+            for c in 0..D {
+                let v = sum[c][l] * factor[l];
+                oc[l * D + c] = v;
+                finite &= v.is_finite();
+            }
+        }
+        if !finite {
+            for (l, &t) in tc.iter().enumerate() {
+                let value: &mut [f64; D] = (&mut oc[l * D..(l + 1) * D]).try_into().unwrap();
+                if value.iter().any(|v| !v.is_finite()) {
+                    bernstein_horner_degree::<D, N>(points, t, 1.0, value);
+                }
+            }
+        }
+    }
+    for (&t, value) in t_chunks
+        .remainder()
+        .iter()
+        .zip(out_chunks.into_remainder().chunks_exact_mut(D))
+    {
+        let value: &mut [f64; D] = value.try_into().unwrap();
+        bernstein_horner_degree::<D, N>(points, t, 1.0, value);
+    }
+}
+
+/// [`eval_many_horner`] with the degree a constant (up to 8, as
+/// [`bernstein_horner_small_degree`]); `false` above, where the caller
+/// evaluates parameter by parameter.
+fn eval_many_by_degree<const D: usize>(
+    points: &[f64],
+    n: usize,
+    ts: &[f64],
+    out: &mut [f64],
+) -> bool {
+    match n {
+        0 => eval_many_horner::<D, 0>(points, ts, out),
+        1 => eval_many_horner::<D, 1>(points, ts, out),
+        2 => eval_many_horner::<D, 2>(points, ts, out),
+        3 => eval_many_horner::<D, 3>(points, ts, out),
+        4 => eval_many_horner::<D, 4>(points, ts, out),
+        5 => eval_many_horner::<D, 5>(points, ts, out),
+        6 => eval_many_horner::<D, 6>(points, ts, out),
+        7 => eval_many_horner::<D, 7>(points, ts, out),
+        8 => eval_many_horner::<D, 8>(points, ts, out),
+        _ => return false,
+    }
+    true
 }
 
 /// [`bernstein_horner`] for `D` coordinates known at compile time and
@@ -1242,6 +1364,40 @@ mod fixed_dimension_evaluation_tests {
                                 same_bits(&fast, &general),
                                 "dim {dim}, n {n}, |P| {magnitude}, t {t}, scale {scale}: \
                                  {fast:?} vs {general:?}"
+                            );
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    /// `eval_many_into` gives the bits of `eval_into` at every parameter:
+    /// every length up to a few batches (the remainder path), both
+    /// dimensions of the batch kernel and others, degrees with and without
+    /// it, NaN and overflowing lanes among finite ones.
+    #[test]
+    fn eval_many_is_eval_at_each_parameter_to_the_bit() {
+        let mut values = Values(22);
+        for dim in [1usize, 2, 3, 4] {
+            for n in [0usize, 1, 2, 3, 5, 8, 9, 15] {
+                for magnitude in [1.0, 1e300] {
+                    let points: Vec<f64> = (0..(n + 1) * dim)
+                        .map(|_| magnitude * values.signed())
+                        .collect();
+                    let curve = BezierCurve::new(dim, n, points).unwrap();
+                    let mut ts = parameters(&mut values);
+                    ts.extend([1e3, -1e3, 0.25, f64::NAN, 0.75]);
+                    for len in 0..ts.len() {
+                        let ts = &ts[..len];
+                        let mut many = vec![0.0; len * dim];
+                        curve.eval_many_into(ts, &mut many);
+                        for (j, &t) in ts.iter().enumerate() {
+                            let mut one = vec![0.0; dim];
+                            curve.eval_into(t, &mut one);
+                            assert!(
+                                same_bits(&many[j * dim..(j + 1) * dim], &one),
+                                "dim {dim}, n {n}, |P| {magnitude}, len {len}, t[{j}] = {t}"
                             );
                         }
                     }
