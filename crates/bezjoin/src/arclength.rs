@@ -1209,12 +1209,37 @@ const CHEBYSHEV_COLUMNS_1: usize = CHEBYSHEV_LEVELS[1] / 2 + 1;
 /// `a_k = E + O`, `a_(n-k) = E - O` from the even- and odd-column parts of
 /// one row's product ([`fold_apply`]).
 struct ChebyshevTables {
-    coarse: [[f64; CHEBYSHEV_COLUMNS_0]; CHEBYSHEV_COLUMNS_0],
-    fine: [[f64; CHEBYSHEV_COLUMNS_1]; CHEBYSHEV_COLUMNS_1],
+    coarse: FoldedMatrix<CHEBYSHEV_COLUMNS_0, CHEBYSHEV_PAIRS_0>,
+    fine: FoldedMatrix<CHEBYSHEV_COLUMNS_1, CHEBYSHEV_PAIRS_1>,
     /// `cos(pi j / N)`, `j = 0..=N`, `N` = [`CHEBYSHEV_MAX_N`]: the finer
     /// level's nodes on `[-1, 1]`; the coarser level's node `j` is node
     /// `2 j` (the same number, so its samples are the finer level's).
     nodes: [f64; CHEBYSHEV_MAX_N + 1],
+}
+
+/// Row pairs of the two levels' folded matrices (`(C + 1) / 2`, the last
+/// pair padded with a zero row when `C` is odd).
+const CHEBYSHEV_PAIRS_0: usize = CHEBYSHEV_COLUMNS_0.div_ceil(2);
+const CHEBYSHEV_PAIRS_1: usize = CHEBYSHEV_COLUMNS_1.div_ceil(2);
+
+/// A folded matrix of [`ChebyshevTables`] stored by columns, rows in
+/// pairs: `columns[j][i] = [M[2 i][j], M[2 i + 1][j]]` (an even row, which
+/// multiplies the even folding, beside an odd row, which multiplies the
+/// odd one), so [`fold_apply`] runs down a column on two rows at once.
+struct FoldedMatrix<const C: usize, const P: usize> {
+    columns: [[[f64; 2]; P]; C],
+}
+
+impl<const C: usize, const P: usize> FoldedMatrix<C, P> {
+    fn from_rows(rows: &[[f64; C]; C]) -> Self {
+        let mut columns = [[[0.0; 2]; P]; C];
+        for (k, row) in rows.iter().enumerate() {
+            for (j, &entry) in row.iter().enumerate() {
+                columns[j][k / 2][k % 2] = entry;
+            }
+        }
+        FoldedMatrix { columns }
+    }
 }
 
 /// Rows `0..=n/2` of the matrix of [`ChebyshevTables`] for `n = 2 (C -
@@ -1249,8 +1274,8 @@ fn chebyshev_tables() -> &'static ChebyshevTables {
         }
         nodes[CHEBYSHEV_MAX_N / 2] = 0.0;
         ChebyshevTables {
-            coarse: folded_matrix(),
-            fine: folded_matrix(),
+            coarse: FoldedMatrix::from_rows(&folded_matrix()),
+            fine: FoldedMatrix::from_rows(&folded_matrix()),
             nodes,
         }
     })
@@ -1260,39 +1285,44 @@ fn chebyshev_tables() -> &'static ChebyshevTables {
 /// the samples `f_0..=f_n` (`samples(j)`, `n = 2 (C - 1)`), by the twice
 /// folded `matrix` of [`ChebyshevTables`]: `(n/2 + 1)^2` products instead
 /// of `(n + 1)^2`.
-fn fold_apply<const C: usize>(
-    matrix: &[[f64; C]; C],
+///
+/// Row `k`'s product `sum_j M[k][j] F_j` is summed in four partial sums,
+/// by `j mod 4` (`j = 0, 4, ..`, `1, 5, ..`, `2, 6, ..`, `3, 7, ..`, each
+/// in increasing `j`); `E` is the first plus the third, `O` the second plus
+/// the fourth. The partial sums of all rows are carried together, one
+/// column at a time and two rows per step (an even and an odd row, whose
+/// foldings are the two lanes of `[F_even_j, F_odd_j]`), so the loop has
+/// no branch and the compiler pairs the lanes.
+fn fold_apply<const C: usize, const P: usize>(
+    matrix: &FoldedMatrix<C, P>,
     samples: impl Fn(usize) -> f64,
     out: &mut [f64],
 ) {
     let n = 2 * (C - 1);
-    let mut even = [0.0; C];
-    let mut odd = [0.0; C];
-    for j in 0..C {
+    let mut folded = [[0.0; 2]; C];
+    for (j, pair) in folded.iter_mut().enumerate() {
         let (f, g) = (samples(j), samples(n - j));
-        even[j] = f + g;
-        odd[j] = f - g;
+        *pair = [f + g, f - g];
     }
-    for (k, row) in matrix.iter().enumerate() {
-        let folded = if k % 2 == 0 { &even } else { &odd };
-        let (mut e, mut o) = ([0.0; 2], [0.0; 2]);
-        let mut j = 0;
-        while j + 3 < C {
-            e[0] += row[j] * folded[j];
-            o[0] += row[j + 1] * folded[j + 1];
-            e[1] += row[j + 2] * folded[j + 2];
-            o[1] += row[j + 3] * folded[j + 3];
+    let mut partial = [[[0.0f64; 2]; P]; 4];
+    for class in 0..4 {
+        let sums = &mut partial[class];
+        let mut j = class;
+        while j < C {
+            let column = &matrix.columns[j];
+            let v = folded[j];
+            for (sum, entry) in sums.iter_mut().zip(column) {
+                sum[0] += entry[0] * v[0];
+                sum[1] += entry[1] * v[1];
+            }
             j += 4;
         }
-        while j < C {
-            if j % 2 == 0 {
-                e[0] += row[j] * folded[j];
-            } else {
-                o[0] += row[j] * folded[j];
-            }
-            j += 1;
-        }
-        let (e, o) = (e[0] + e[1], o[0] + o[1]);
+    }
+    let out = &mut out[..=n];
+    for k in 0..C {
+        let (i, lane) = (k / 2, k % 2);
+        let e = partial[0][i][lane] + partial[2][i][lane];
+        let o = partial[1][i][lane] + partial[3][i][lane];
         out[k] = e + o;
         if 2 * k < n {
             out[n - k] = e - o;
@@ -1617,7 +1647,12 @@ impl ChebyshevSpeed {
             } else {
                 fold_apply(&tables.fine, sample, &mut a);
             }
-            match invert_level(&a, n, start, far, target, accuracy, self.noise_per_unit) {
+            let inverted = if level == 0 {
+                invert_level::<{ CHEBYSHEV_LEVELS[0] }>(&a, start, far, target, accuracy, self)
+            } else {
+                invert_level::<{ CHEBYSHEV_LEVELS[1] }>(&a, start, far, target, accuracy, self)
+            };
+            match inverted {
                 // Too short a bracket, or an answer: done with this bracket.
                 None => return None,
                 Some(Some(t)) => return Some(Some(t)),
@@ -1695,16 +1730,18 @@ fn coarse_difference(a: &[f64], n: usize) -> f64 {
 /// -1` at `start`), `a[n + 1] = a[n + 2] = 0`. `None` when
 /// the interpolant's length on the bracket is shorter than `target`,
 /// `Some(None)` when the answer is not certified.
-#[allow(clippy::too_many_arguments)]
-fn invert_level(
+/// `n` is fixed at compile time (`N`), so the loops over the coefficients
+/// have constant bounds.
+fn invert_level<const N: usize>(
     a: &[f64; CHEBYSHEV_MAX_N + 3],
-    n: usize,
     start: f64,
     far: f64,
     target: f64,
     accuracy: f64,
-    noise_per_unit: f64,
+    speed: &ChebyshevSpeed,
 ) -> Option<Option<f64>> {
+    let n = N;
+    let noise_per_unit = speed.noise_per_unit;
     let span = far - start;
     let difference = coarse_difference(a, n);
     // The antiderivative G = sum_k c_k T_k with G(-1) = 0, degree n + 1.
@@ -2284,6 +2321,73 @@ mod chebyshev_tests {
                 (identity - explicit).abs() <= 1e-12,
                 "n {n}: {identity:e} vs {explicit:e}"
             );
+        }
+    }
+
+    /// The column-wise `fold_apply` gives the coefficients of the row-wise
+    /// product it replaced to the bit: for each row `k` the four partial
+    /// sums by `j mod 4` in increasing `j`, `E` and `O` from them, `a_k = E +
+    /// O`, `a_(n-k) = E - O` (the session-26 loop, kept here as the
+    /// reference), on fixed-seed samples of mixed signs and magnitudes at
+    /// both levels.
+    #[test]
+    fn column_wise_fold_is_the_row_wise_product_to_the_bit() {
+        fn row_wise<const C: usize>(rows: &[[f64; C]; C], f: &[f64], out: &mut [f64]) {
+            let n = 2 * (C - 1);
+            let (mut even, mut odd) = ([0.0; C], [0.0; C]);
+            for j in 0..C {
+                even[j] = f[j] + f[n - j];
+                odd[j] = f[j] - f[n - j];
+            }
+            for (k, row) in rows.iter().enumerate() {
+                let folded = if k % 2 == 0 { &even } else { &odd };
+                let (mut e, mut o) = ([0.0; 2], [0.0; 2]);
+                let mut j = 0;
+                while j + 3 < C {
+                    e[0] += row[j] * folded[j];
+                    o[0] += row[j + 1] * folded[j + 1];
+                    e[1] += row[j + 2] * folded[j + 2];
+                    o[1] += row[j + 3] * folded[j + 3];
+                    j += 4;
+                }
+                while j < C {
+                    if j % 2 == 0 {
+                        e[0] += row[j] * folded[j];
+                    } else {
+                        o[0] += row[j] * folded[j];
+                    }
+                    j += 1;
+                }
+                let (e, o) = (e[0] + e[1], o[0] + o[1]);
+                out[k] = e + o;
+                if 2 * k < n {
+                    out[n - k] = e - o;
+                }
+            }
+        }
+        let mut values = crate::test_values::Values(27);
+        let tables = chebyshev_tables();
+        let coarse_rows = folded_matrix::<CHEBYSHEV_COLUMNS_0>();
+        let fine_rows = folded_matrix::<CHEBYSHEV_COLUMNS_1>();
+        for case in 0..200 {
+            let f: Vec<f64> = (0..=CHEBYSHEV_MAX_N)
+                .map(|_| (values.unit() - 0.3) * 10f64.powi((case % 7) as i32 - 3))
+                .collect();
+            for (level, &n) in CHEBYSHEV_LEVELS.iter().enumerate() {
+                let step = CHEBYSHEV_MAX_N / n;
+                let g: Vec<f64> = (0..=n).map(|j| f[j * step]).collect();
+                let (mut a, mut b) = ([f64::NAN; CHEBYSHEV_MAX_N + 3], [f64::NAN; CHEBYSHEV_MAX_N + 3]);
+                if level == 0 {
+                    fold_apply(&tables.coarse, |j| g[j], &mut a);
+                    row_wise(&coarse_rows, &g, &mut b);
+                } else {
+                    fold_apply(&tables.fine, |j| g[j], &mut a);
+                    row_wise(&fine_rows, &g, &mut b);
+                }
+                for k in 0..=n {
+                    assert_eq!(a[k].to_bits(), b[k].to_bits(), "case {case}, n {n}, k {k}");
+                }
+            }
         }
     }
 
