@@ -1215,6 +1215,8 @@ struct ChebyshevTables {
     /// level's nodes on `[-1, 1]`; the coarser level's node `j` is node
     /// `2 j` (the same number, so its samples are the finer level's).
     nodes: [f64; CHEBYSHEV_MAX_N + 1],
+    /// `2 k` as a float, `k = 0..=N + 1` (the antiderivative's divisors).
+    doubled: [f64; CHEBYSHEV_MAX_N + 2],
 }
 
 /// Row pairs of the two levels' folded matrices (`(C + 1) / 2`, the last
@@ -1277,6 +1279,7 @@ fn chebyshev_tables() -> &'static ChebyshevTables {
             coarse: FoldedMatrix::from_rows(&folded_matrix()),
             fine: FoldedMatrix::from_rows(&folded_matrix()),
             nodes,
+            doubled: std::array::from_fn(|k| (2 * k) as f64),
         }
     })
 }
@@ -1355,16 +1358,27 @@ impl ChebyshevSpeed {
     /// than the stack buffer, non-finite points, or a speed not provably
     /// bounded away from zero.
     fn new(curve: &BezierCurve) -> Option<Self> {
-        let n = curve.degree();
-        let d = curve.dim();
+        // Cubics in the plane and in space with the sizes as constants
+        // (the loops unrolled); the same operations as the general case.
+        match (curve.degree(), curve.dim()) {
+            (3, 2) => Self::new_sized(curve, 3, 2),
+            (3, 3) => Self::new_sized(curve, 3, 3),
+            (n, d) => Self::new_sized(curve, n, d),
+        }
+    }
+
+    /// [`Self::new`] for degree `n` and dimension `d` of `curve`.
+    #[inline(always)]
+    fn new_sized(curve: &BezierCurve, n: usize, d: usize) -> Option<Self> {
         if n == 0 || d > CHEBYSHEV_MAX_DIM || n * d > CHEBYSHEV_MAX_POINTS {
             return None;
         }
+        let points = &curve.points()[..(n + 1) * d];
         let m = n - 1;
         let mut hodograph = [0.0; CHEBYSHEV_MAX_POINTS];
         for i in 0..n {
             for c in 0..d {
-                hodograph[i * d + c] = n as f64 * (curve.point(i + 1)[c] - curve.point(i)[c]);
+                hodograph[i * d + c] = n as f64 * (points[(i + 1) * d + c] - points[i * d + c]);
             }
         }
         let h = &hodograph[..n * d];
@@ -1747,8 +1761,11 @@ fn invert_level<const N: usize>(
     // The antiderivative G = sum_k c_k T_k with G(-1) = 0, degree n + 1.
     let mut c = [0.0; CHEBYSHEV_MAX_N + 2];
     c[1] = a[0] - 0.5 * a[2];
+    // `(2 k) as f64` from a table (the same exact integers): the loop
+    // has no conversions and pairs its divisions.
+    let divisors = &chebyshev_tables().doubled;
     for k in 2..=n + 1 {
-        c[k] = (a[k - 1] - a[k + 1]) / (2 * k) as f64;
+        c[k] = (a[k - 1] - a[k + 1]) / divisors[k];
     }
     let mut alternating = 0.0;
     for (k, ck) in c[1..=n + 1].iter().enumerate() {
