@@ -102,7 +102,16 @@ impl<const N: usize> Poly<N> {
     /// step `r`, point `i >= r` holds level `r`'s point `i - r`, so point
     /// `r` is final; the same operations as the textbook triangle).
     fn keep_left(&mut self, t: f64) {
-        let n = self.n.min(N - 1);
+        match self.n.min(N - 1) {
+            3 => self.keep_left_n(3, t),
+            n => self.keep_left_n(n, t),
+        }
+    }
+
+    /// [`Self::keep_left`] of degree `n` (inlined: a constant `n`, the
+    /// cubic's, unrolls it).
+    #[inline(always)]
+    fn keep_left_n(&mut self, n: usize, t: f64) {
         let p = &mut self.points;
         for r in 1..=n {
             for i in (r..=n).rev() {
@@ -117,7 +126,15 @@ impl<const N: usize> Poly<N> {
     /// `self` becomes the piece on `[s, 1]` (de Casteljau in place: after
     /// step `r`, point `n - r` is final).
     fn keep_right(&mut self, s: f64) {
-        let n = self.n.min(N - 1);
+        match self.n.min(N - 1) {
+            3 => self.keep_right_n(3, s),
+            n => self.keep_right_n(n, s),
+        }
+    }
+
+    /// [`Self::keep_right`] of degree `n` (see [`Self::keep_left_n`]).
+    #[inline(always)]
+    fn keep_right_n(&mut self, n: usize, s: f64) {
         let p = &mut self.points;
         for r in 1..=n {
             for i in 0..=n - r {
@@ -147,7 +164,15 @@ impl<const N: usize> Poly<N> {
     /// chord)`. Squares that are not normal numbers (overflow, underflow,
     /// a degenerate chord) take the general [`is_flat`].
     fn is_flat(&self, absolute: f64, relative_chord: f64) -> bool {
-        let n = self.n.min(N - 1);
+        match self.n.min(N - 1) {
+            3 => self.is_flat_n(3, absolute, relative_chord),
+            n => self.is_flat_n(n, absolute, relative_chord),
+        }
+    }
+
+    /// [`Self::is_flat`] of degree `n` (see [`Self::keep_left_n`]).
+    #[inline(always)]
+    fn is_flat_n(&self, n: usize, absolute: f64, relative_chord: f64) -> bool {
         let (ax, ay) = (self.x(0), self.y(0));
         let (dx, dy) = (self.x(n) - ax, self.y(n) - ay);
         let len2 = dx * dx + dy * dy;
@@ -182,13 +207,22 @@ impl<const N: usize> Poly<N> {
     /// (by comparisons: a NaN coordinate leaves the box as `f64::min` and
     /// `f64::max` would, ignored).
     fn bounds(&self) -> [f64; 4] {
+        match self.n.min(N - 1) {
+            3 => self.bounds_n(3),
+            n => self.bounds_n(n),
+        }
+    }
+
+    /// [`Self::bounds`] of degree `n` (see [`Self::keep_left_n`]).
+    #[inline(always)]
+    fn bounds_n(&self, n: usize) -> [f64; 4] {
         let mut b = [
             f64::INFINITY,
             f64::INFINITY,
             f64::NEG_INFINITY,
             f64::NEG_INFINITY,
         ];
-        for p in &self.points[..=self.n.min(N - 1)] {
+        for p in &self.points[..=n] {
             let (x, y) = (p[0], p[1]);
             if x < b[0] {
                 b[0] = x;
@@ -222,7 +256,22 @@ fn boxes_meet<const N: usize>(a: &Poly<N>, b: &Poly<N>, margin: f64) -> bool {
 /// is none; `Some((0, 1))` when `b`'s chord is degenerate (no line to clip
 /// against).
 fn clip<const N: usize>(a: &Poly<N>, b: &Poly<N>, margin: f64) -> Option<(f64, f64)> {
-    let m = b.n.min(N - 1);
+    match (a.n.min(N - 1), b.n.min(N - 1)) {
+        (3, 3) => clip_n(a, 3, b, 3, margin),
+        (n, m) => clip_n(a, n, b, m, margin),
+    }
+}
+
+/// [`clip`] for `a` of degree `n` and `b` of degree `m` (inlined: the
+/// cubics' constant degrees unroll it).
+#[inline(always)]
+fn clip_n<const N: usize>(
+    a: &Poly<N>,
+    n: usize,
+    b: &Poly<N>,
+    m: usize,
+    margin: f64,
+) -> Option<(f64, f64)> {
     let (dx, dy) = (b.x(m) - b.x(0), b.y(m) - b.y(0));
     // The normal `(-dy, dx)` is first taken unnormalised: every signed
     // distance and the margin are scaled by `len` alike (one square root,
@@ -236,7 +285,6 @@ fn clip<const N: usize>(a: &Poly<N>, b: &Poly<N>, margin: f64) -> Option<(f64, f
     if !(len > 0.0 && len.is_finite()) {
         return Some((0.0, 1.0));
     }
-    let n = a.n.min(N - 1);
     let mut e = [0.0; N];
     let mut scale = 1.0;
     let (lo, hi) = loop {
@@ -328,11 +376,11 @@ impl Search<'_> {
 
     fn clip_all(&mut self) -> bool {
         let mut rounds = 0usize;
-        let p_pieces = std::mem::take(&mut self.p_pieces);
-        let q_pieces = std::mem::take(&mut self.q_pieces);
-        let mut done = true;
-        'spans: for a in &p_pieces {
-            for b in &q_pieces {
+        for i in 0..self.p_pieces.len() {
+            for j in 0..self.q_pieces.len() {
+                // The pieces are read (copied into the clipping buffers)
+                // before the search borrows `self` mutably.
+                let (a, b) = (&self.p_pieces[i], &self.q_pieces[j]);
                 if !super::track::boxes_meet(a, b, self.tolerance) {
                     continue;
                 }
@@ -353,14 +401,11 @@ impl Search<'_> {
                     }
                 };
                 if !clipped {
-                    done = false;
-                    break 'spans;
+                    return false;
                 }
             }
         }
-        self.p_pieces = p_pieces;
-        self.q_pieces = q_pieces;
-        done
+        true
     }
 
     /// Clipping on one pair of spans (`pa` on `[u_lo, u_hi]` of P, `pb` on

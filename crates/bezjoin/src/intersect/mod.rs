@@ -87,7 +87,7 @@ use crate::bezier::{BezierCurve, distance, norm};
 use crate::curve::CurveRef;
 use crate::error::{BezjoinError, Result, check_finite_scalar};
 use std::rc::Rc;
-use track::{Piece, Track, boxes_meet};
+use track::{Piece, Pieces, Track, boxes_meet};
 
 /// Dimensions up to which polishing keeps its vectors on the stack.
 const POLISH_STACK_DIM: usize = 8;
@@ -611,8 +611,8 @@ struct Search<'a> {
     /// are relative to them.
     units: (f64, f64),
     /// The curves' Bezier spans (computed once).
-    p_pieces: Vec<Piece<'a>>,
-    q_pieces: Vec<Piece<'a>>,
+    p_pieces: Pieces<'a>,
+    q_pieces: Pieces<'a>,
     overlaps: Vec<Overlap>,
     candidates: Vec<Candidate>,
 }

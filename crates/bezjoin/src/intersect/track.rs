@@ -178,12 +178,12 @@ impl<'a> Track<'a> {
 
     /// The curve as Bezier pieces over its domain (a Bezier curve's one
     /// piece borrows the curve: no copy).
-    pub(super) fn pieces(&self) -> Vec<Piece<'a>> {
+    pub(super) fn pieces(&self) -> Pieces<'a> {
         match self {
             Track::Bezier { curve, .. } => {
-                vec![Piece::new(Cow::Borrowed(*curve), false, 0.0, 1.0)]
+                Pieces::One([Piece::new(Cow::Borrowed(*curve), false, 0.0, 1.0)])
             }
-            Track::Nurbs(n) => n
+            Track::Nurbs(n) => Pieces::Many(n
                 .bezier_spans()
                 .into_iter()
                 .map(|span| {
@@ -200,7 +200,25 @@ impl<'a> Track<'a> {
                         Piece::new(Cow::Owned(curve), false, lo, hi)
                     }
                 })
-                .collect(),
+                .collect()),
+        }
+    }
+}
+
+/// The pieces of a [`Track`]: a Bezier curve's one piece inline (no
+/// allocation), a NURBS curve's spans in a vector. Used as a slice.
+pub(super) enum Pieces<'a> {
+    One([Piece<'a>; 1]),
+    Many(Vec<Piece<'a>>),
+}
+
+impl<'a> std::ops::Deref for Pieces<'a> {
+    type Target = [Piece<'a>];
+
+    fn deref(&self) -> &[Piece<'a>] {
+        match self {
+            Pieces::One(one) => one,
+            Pieces::Many(many) => many,
         }
     }
 }
@@ -256,6 +274,18 @@ impl<'a> Piece<'a> {
         } else {
             curve.dim()
         };
+        // The plane with the dimension as a constant (the box loops
+        // unrolled); the same comparisons as the general case.
+        if dim == 2 {
+            Self::new_sized(curve, rational, 2, lo, hi)
+        } else {
+            Self::new_sized(curve, rational, dim, lo, hi)
+        }
+    }
+
+    /// [`Self::new`] for Cartesian dimension `dim`.
+    #[inline(always)]
+    fn new_sized(curve: Cow<'a, BezierCurve>, rational: bool, dim: usize, lo: f64, hi: f64) -> Self {
         let projected: Option<Vec<f64>> = rational.then(|| {
             curve
                 .points()
