@@ -321,11 +321,28 @@ impl CurvePair<'_> {
     /// the result is no point (a non-finite parameter or gap).
     fn polish_with_tangents(
         &self,
+        u: f64,
+        v: f64,
+        tangents: &mut [f64],
+    ) -> (f64, f64, f64, bool) {
+        // The plane with the dimension as a constant (the vectors' splits
+        // and dot products unrolled); the same operations as the general
+        // case.
+        match self.p.dim() {
+            2 => self.polish_sized(2, u, v, tangents),
+            d => self.polish_sized(d, u, v, tangents),
+        }
+    }
+
+    /// [`Self::polish_with_tangents`] in dimension `d` (the curves').
+    #[inline(always)]
+    fn polish_sized(
+        &self,
+        d: usize,
         mut u: f64,
         mut v: f64,
         tangents: &mut [f64],
     ) -> (f64, f64, f64, bool) {
-        let d = self.p.dim();
         let (u_lo, u_hi) = self.p.domain();
         let (v_lo, v_hi) = self.q.domain();
         // Seven vectors of length `d`: on the stack for small dimensions.

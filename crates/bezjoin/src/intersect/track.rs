@@ -425,6 +425,9 @@ pub(super) fn point_and_tangent(
     // The plane and space up to degree 7: the dimension and the buffer's
     // size known at compile time (the same operations as below).
     match (d, n) {
+        // Cubics with the degree as a constant as well (loops unrolled).
+        (2, 3) => return point_and_tangent_fixed::<2, 4>(points, 3, t, point, tangent),
+        (3, 3) => return point_and_tangent_fixed::<3, 4>(points, 3, t, point, tangent),
         (2, 1..=3) => return point_and_tangent_fixed::<2, 4>(points, n, t, point, tangent),
         (2, 4..=7) => return point_and_tangent_fixed::<2, 8>(points, n, t, point, tangent),
         (3, 1..=3) => return point_and_tangent_fixed::<3, 4>(points, n, t, point, tangent),
