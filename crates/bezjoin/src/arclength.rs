@@ -618,10 +618,14 @@ impl<'a> ArcLengthInverse<'a> {
             return Ok(start);
         }
         let curve = self.curve;
-        if let Some(speed) = self
-            .chebyshev
-            .get_or_insert_with(|| ChebyshevSpeed::new(curve))
-        {
+        if self.chebyshev.is_none() {
+            // Built in place in its slot (no copy of the buffer).
+            let slot = self.chebyshev.insert(Some(ChebyshevSpeed::zeroed()));
+            if !slot.as_mut().is_some_and(|speed| speed.fill(curve)) {
+                *slot = None;
+            }
+        }
+        if let Some(Some(speed)) = &self.chebyshev {
             if let Some(t) = speed.param_at_length(start, length, accuracy) {
                 return Ok(t);
             }
@@ -1357,33 +1361,57 @@ impl ChebyshevSpeed {
     /// `None` when the curve does not qualify: degree 0, a hodograph larger
     /// than the stack buffer, non-finite points, or a speed not provably
     /// bounded away from zero.
+    #[cfg(test)]
     fn new(curve: &BezierCurve) -> Option<Self> {
-        // Cubics in the plane and in space with the sizes as constants
-        // (the loops unrolled); the same operations as the general case.
-        match (curve.degree(), curve.dim()) {
-            (3, 2) => Self::new_sized(curve, 3, 2),
-            (3, 3) => Self::new_sized(curve, 3, 3),
-            (n, d) => Self::new_sized(curve, n, d),
+        let mut speed = Self::zeroed();
+        speed.fill(curve).then_some(speed)
+    }
+
+    /// No curve yet: every field zero (the rows past the hodograph's stay
+    /// zero after [`Self::fill`]).
+    fn zeroed() -> Self {
+        ChebyshevSpeed {
+            weighted: [0.0; CHEBYSHEV_MAX_POINTS],
+            degree: 0,
+            dim: 0,
+            low: 0.0,
+            high: 0.0,
+            noise_per_unit: 0.0,
         }
     }
 
-    /// [`Self::new`] for degree `n` and dimension `d` of `curve`.
+    /// [`Self::new`] written into a zeroed `self` in place (no copy of the
+    /// buffer): `false` when the curve does not qualify (`self` then means
+    /// nothing).
+    fn fill(&mut self, curve: &BezierCurve) -> bool {
+        // Cubics in the plane and in space with the sizes as constants
+        // (the loops unrolled); the same operations as the general case.
+        match (curve.degree(), curve.dim()) {
+            (3, 2) => self.fill_sized(curve, 3, 2),
+            (3, 3) => self.fill_sized(curve, 3, 3),
+            (n, d) => self.fill_sized(curve, n, d),
+        }
+    }
+
+    /// [`Self::fill`] for degree `n` and dimension `d` of `curve`. The
+    /// hodograph `H_i` is formed in `weighted` and scaled there by `C(m,
+    /// i)` once it has passed the checks.
     #[inline(always)]
-    fn new_sized(curve: &BezierCurve, n: usize, d: usize) -> Option<Self> {
+    fn fill_sized(&mut self, curve: &BezierCurve, n: usize, d: usize) -> bool {
         if n == 0 || d > CHEBYSHEV_MAX_DIM || n * d > CHEBYSHEV_MAX_POINTS {
-            return None;
+            return false;
         }
         let points = &curve.points()[..(n + 1) * d];
         let m = n - 1;
-        let mut hodograph = [0.0; CHEBYSHEV_MAX_POINTS];
+        let weighted = &mut self.weighted[..n * d];
         for i in 0..n {
             for c in 0..d {
-                hodograph[i * d + c] = n as f64 * (points[(i + 1) * d + c] - points[i * d + c]);
+                weighted[i * d + c] = n as f64 * (points[(i + 1) * d + c] - points[i * d + c]);
             }
         }
-        let h = &hodograph[..n * d];
+        let h = &*weighted;
         if h.iter().any(|x| !x.is_finite()) {
-            return None;
+            return false;
         }
         // The bound of `speed_bounded_away_from_zero`, with its margin.
         let mut mean = [0.0; CHEBYSHEV_MAX_DIM];
@@ -1394,7 +1422,7 @@ impl ChebyshevSpeed {
         }
         let mean_norm = norm(&mean[..d]);
         if !(mean_norm > 0.0 && mean_norm.is_finite()) {
-            return None;
+            return false;
         }
         let mut low = f64::INFINITY;
         let mut high = 0.0f64;
@@ -1405,38 +1433,34 @@ impl ChebyshevSpeed {
             high = high.max(norm(p));
         }
         if !(high.is_finite() && low >= SPEED_MARGIN * high && low > 0.0) {
-            return None;
+            return false;
         }
+        let scale = h
+            .iter()
+            .fold(0.0f64, |s, x| s.max(x.abs()))
+            .max(f64::MIN_POSITIVE);
         // `C(m, i)` by `C(m, i + 1) = C(m, i) (m - i) / (i + 1)` up to
         // `m = 50`: exact integers there (every product `C(m, i + 1) (i +
         // 1)` is below `2^53`), so the values of `binomial`; above, `binomial`.
-        let mut weighted = [0.0; CHEBYSHEV_MAX_POINTS];
         let mut w = 1.0f64;
         for i in 0..=m {
             if m > 50 {
                 w = binomial(m, i);
             }
             for c in 0..d {
-                weighted[i * d + c] = w * h[i * d + c];
+                weighted[i * d + c] *= w;
             }
             w = w * (m - i) as f64 / (i + 1) as f64;
         }
-        if weighted[..n * d].iter().any(|x| !x.is_finite()) {
-            return None;
+        if weighted.iter().any(|x| !x.is_finite()) {
+            return false;
         }
-        let scale = h
-            .iter()
-            .fold(0.0f64, |s, x| s.max(x.abs()))
-            .max(f64::MIN_POSITIVE);
-        let noise_per_unit = 4.0 * n as f64 * f64::EPSILON * scale * (d as f64).sqrt();
-        Some(ChebyshevSpeed {
-            weighted,
-            degree: m,
-            dim: d,
-            low,
-            high,
-            noise_per_unit,
-        })
+        self.degree = m;
+        self.dim = d;
+        self.low = low;
+        self.high = high;
+        self.noise_per_unit = 4.0 * n as f64 * f64::EPSILON * scale * (d as f64).sqrt();
+        true
     }
 
     /// `|P'(t)|` for `t` in `[0, 1]`: Bernstein-Horner in `t / (1 - t)` or
