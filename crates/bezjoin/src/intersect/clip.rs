@@ -742,4 +742,87 @@ mod tests {
         let c = curve(&[[0.0, 1.0], [1.0, 0.0]]);
         assert!(compare(&line, &c, "lines"));
     }
+
+    /// The cubic steps with the degree as a constant (`keep_left`,
+    /// `keep_right`, `is_flat`, `bounds`, `clip` on degree 3) are the
+    /// general loops run with the degree unknown at compile time, to the
+    /// bit; and the planar polish with the dimension as a constant is the
+    /// general one with the dimension unknown (same parameters, distance,
+    /// flag and tangents), on fixed-seed random cubics.
+    #[test]
+    fn constant_size_paths_are_the_general_ones_to_the_bit() {
+        use super::super::CurvePair;
+        use super::super::track::Track;
+        use super::{Poly, SMALL, clip, clip_n};
+        use std::hint::black_box;
+        let bits = |p: &Poly<SMALL>| -> Vec<u64> {
+            p.points.iter().flatten().map(|x| x.to_bits()).collect()
+        };
+        let pair_bits = |r: Option<(f64, f64)>| r.map(|(a, b)| (a.to_bits(), b.to_bits()));
+        let mut rng = Lcg(27);
+        let (mut flat, mut curved, mut clipped) = (0, 0, 0);
+        for case in 0..400 {
+            let mut poly = || {
+                let mut points = [[0.0; 2]; SMALL];
+                for p in points.iter_mut() {
+                    *p = [rng.range(-1.0, 1.0), rng.range(-1.0, 1.0)];
+                }
+                Poly::<SMALL> { n: 3, points }
+            };
+            let (a, b) = (poly(), poly());
+            // A near-straight copy of `b`, so that `is_flat` answers both ways.
+            let mut c = b;
+            for (i, p) in c.points.iter_mut().enumerate() {
+                let w = i as f64 / 3.0;
+                p[0] = b.points[0][0] + w * (b.points[3][0] - b.points[0][0]) + 1e-3 * p[0];
+                p[1] = b.points[0][1] + w * (b.points[3][1] - b.points[0][1]) + 1e-3 * p[1];
+            }
+            let three = black_box(3);
+            let (s, t) = (rng.range(0.0, 0.5), rng.range(0.5, 1.0));
+            for p in [a, b, c] {
+                let (mut x, mut y) = (p, p);
+                x.keep_left(t);
+                y.keep_left_n(three, t);
+                assert_eq!(bits(&x), bits(&y), "case {case}: keep_left");
+                let (mut x, mut y) = (p, p);
+                x.keep_right(s);
+                y.keep_right_n(three, s);
+                assert_eq!(bits(&x), bits(&y), "case {case}: keep_right");
+                let absolute = rng.range(0.0, 2e-3);
+                let f = p.is_flat(absolute, 1e-2);
+                assert_eq!(f, p.is_flat_n(three, absolute, 1e-2), "case {case}: is_flat");
+                if f { flat += 1 } else { curved += 1 }
+                let (x, y) = (p.bounds(), p.bounds_n(three));
+                assert_eq!(x.map(f64::to_bits), y.map(f64::to_bits), "case {case}: bounds");
+            }
+            for (p, q) in [(&a, &b), (&b, &a), (&a, &c), (&c, &a)] {
+                let margin = rng.range(0.0, 1e-2);
+                let x = clip(p, q, margin);
+                assert_eq!(
+                    pair_bits(x),
+                    pair_bits(clip_n(p, three, q, three, margin)),
+                    "case {case}: clip"
+                );
+                if x.is_some_and(|(lo, hi)| lo > 0.0 || hi < 1.0) {
+                    clipped += 1;
+                }
+            }
+            let (pc, qc) = (random_bezier(&mut rng, 3), random_bezier(&mut rng, 3));
+            let curves = CurvePair {
+                p: Track::new(CurveRef::from(&pc)),
+                q: Track::new(CurveRef::from(&qc)),
+            };
+            let (u, v) = (rng.next(), rng.next());
+            let (mut ta, mut tb) = ([0.0; 4], [0.0; 4]);
+            let x = curves.polish_with_tangents(u, v, &mut ta);
+            let y = curves.polish_sized(black_box(2), u, v, &mut tb);
+            assert_eq!(
+                (x.0.to_bits(), x.1.to_bits(), x.2.to_bits(), x.3),
+                (y.0.to_bits(), y.1.to_bits(), y.2.to_bits(), y.3),
+                "case {case}: polish"
+            );
+            assert_eq!(ta.map(f64::to_bits), tb.map(f64::to_bits), "case {case}: tangents");
+        }
+        assert!(flat > 100 && curved > 100 && clipped > 100, "{flat} {curved} {clipped}");
+    }
 }
