@@ -2417,7 +2417,10 @@ mod chebyshev_tests {
             for (level, &n) in CHEBYSHEV_LEVELS.iter().enumerate() {
                 let step = CHEBYSHEV_MAX_N / n;
                 let g: Vec<f64> = (0..=n).map(|j| f[j * step]).collect();
-                let (mut a, mut b) = ([f64::NAN; CHEBYSHEV_MAX_N + 3], [f64::NAN; CHEBYSHEV_MAX_N + 3]);
+                let (mut a, mut b) = (
+                    [f64::NAN; CHEBYSHEV_MAX_N + 3],
+                    [f64::NAN; CHEBYSHEV_MAX_N + 3],
+                );
                 if level == 0 {
                     fold_apply(&tables.coarse, |j| g[j], &mut a);
                     row_wise(&coarse_rows, &g, &mut b);

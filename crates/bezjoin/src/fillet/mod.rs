@@ -415,9 +415,7 @@ impl SetbackInverse<'_> {
 impl<'a> SetbackInverses<'a> {
     pub(crate) fn new(p: CurveRef<'a>, q: CurveRef<'a>, crossing: &Intersection) -> Self {
         let side = |c: CurveRef<'a>, start: f64| match c {
-            CurveRef::Bezier(b) => {
-                SetbackInverse::Bezier(ArcLengthInverse::new(b, start))
-            }
+            CurveRef::Bezier(b) => SetbackInverse::Bezier(ArcLengthInverse::new(b, start)),
             CurveRef::Nurbs(curve) => SetbackInverse::Nurbs { curve, start },
         };
         SetbackInverses {

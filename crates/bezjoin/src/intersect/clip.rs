@@ -790,10 +790,22 @@ mod tests {
                 assert_eq!(bits(&x), bits(&y), "case {case}: keep_right");
                 let absolute = rng.range(0.0, 2e-3);
                 let f = p.is_flat(absolute, 1e-2);
-                assert_eq!(f, p.is_flat_n(three, absolute, 1e-2), "case {case}: is_flat");
-                if f { flat += 1 } else { curved += 1 }
+                assert_eq!(
+                    f,
+                    p.is_flat_n(three, absolute, 1e-2),
+                    "case {case}: is_flat"
+                );
+                if f {
+                    flat += 1
+                } else {
+                    curved += 1
+                }
                 let (x, y) = (p.bounds(), p.bounds_n(three));
-                assert_eq!(x.map(f64::to_bits), y.map(f64::to_bits), "case {case}: bounds");
+                assert_eq!(
+                    x.map(f64::to_bits),
+                    y.map(f64::to_bits),
+                    "case {case}: bounds"
+                );
             }
             for (p, q) in [(&a, &b), (&b, &a), (&a, &c), (&c, &a)] {
                 let margin = rng.range(0.0, 1e-2);
@@ -821,8 +833,15 @@ mod tests {
                 (y.0.to_bits(), y.1.to_bits(), y.2.to_bits(), y.3),
                 "case {case}: polish"
             );
-            assert_eq!(ta.map(f64::to_bits), tb.map(f64::to_bits), "case {case}: tangents");
+            assert_eq!(
+                ta.map(f64::to_bits),
+                tb.map(f64::to_bits),
+                "case {case}: tangents"
+            );
         }
-        assert!(flat > 100 && curved > 100 && clipped > 100, "{flat} {curved} {clipped}");
+        assert!(
+            flat > 100 && curved > 100 && clipped > 100,
+            "{flat} {curved} {clipped}"
+        );
     }
 }

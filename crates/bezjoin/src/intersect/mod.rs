@@ -319,12 +319,7 @@ impl CurvePair<'_> {
     /// brings the tangents at its end): `tangents`, of length `2 dim` (else
     /// left alone), holds `P'(u)` then `Q'(v)`. The flag is `false` when
     /// the result is no point (a non-finite parameter or gap).
-    fn polish_with_tangents(
-        &self,
-        u: f64,
-        v: f64,
-        tangents: &mut [f64],
-    ) -> (f64, f64, f64, bool) {
+    fn polish_with_tangents(&self, u: f64, v: f64, tangents: &mut [f64]) -> (f64, f64, f64, bool) {
         // The plane with the dimension as a constant (the vectors' splits
         // and dot products unrolled); the same operations as the general
         // case.

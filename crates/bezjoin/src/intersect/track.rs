@@ -183,24 +183,25 @@ impl<'a> Track<'a> {
             Track::Bezier { curve, .. } => {
                 Pieces::One([Piece::new(Cow::Borrowed(*curve), false, 0.0, 1.0)])
             }
-            Track::Nurbs(n) => Pieces::Many(n
-                .bezier_spans()
-                .into_iter()
-                .map(|span| {
-                    let (lo, hi) = span.domain();
-                    if span.weights().is_some() {
-                        let h = span.homogeneous_points();
-                        let curve = BezierCurve::new(span.dim() + 1, span.degree(), h)
-                            .expect("a span's homogeneous poles are a valid Bezier curve");
-                        Piece::new(Cow::Owned(curve), true, lo, hi)
-                    } else {
-                        let curve =
-                            BezierCurve::new(span.dim(), span.degree(), span.points().to_vec())
-                                .expect("a span's poles are a valid Bezier curve");
-                        Piece::new(Cow::Owned(curve), false, lo, hi)
-                    }
-                })
-                .collect()),
+            Track::Nurbs(n) => Pieces::Many(
+                n.bezier_spans()
+                    .into_iter()
+                    .map(|span| {
+                        let (lo, hi) = span.domain();
+                        if span.weights().is_some() {
+                            let h = span.homogeneous_points();
+                            let curve = BezierCurve::new(span.dim() + 1, span.degree(), h)
+                                .expect("a span's homogeneous poles are a valid Bezier curve");
+                            Piece::new(Cow::Owned(curve), true, lo, hi)
+                        } else {
+                            let curve =
+                                BezierCurve::new(span.dim(), span.degree(), span.points().to_vec())
+                                    .expect("a span's poles are a valid Bezier curve");
+                            Piece::new(Cow::Owned(curve), false, lo, hi)
+                        }
+                    })
+                    .collect(),
+            ),
         }
     }
 }
@@ -285,7 +286,13 @@ impl<'a> Piece<'a> {
 
     /// [`Self::new`] for Cartesian dimension `dim`.
     #[inline(always)]
-    fn new_sized(curve: Cow<'a, BezierCurve>, rational: bool, dim: usize, lo: f64, hi: f64) -> Self {
+    fn new_sized(
+        curve: Cow<'a, BezierCurve>,
+        rational: bool,
+        dim: usize,
+        lo: f64,
+        hi: f64,
+    ) -> Self {
         let projected: Option<Vec<f64>> = rational.then(|| {
             curve
                 .points()
@@ -634,8 +641,16 @@ mod tests {
             } else {
                 point_and_tangent_fixed::<3, 4>(&points, black_box(3), t, &mut q, &mut e);
             }
-            assert_eq!(p.map(f64::to_bits), q.map(f64::to_bits), "case {case}: point");
-            assert_eq!(d.map(f64::to_bits), e.map(f64::to_bits), "case {case}: tangent");
+            assert_eq!(
+                p.map(f64::to_bits),
+                q.map(f64::to_bits),
+                "case {case}: point"
+            );
+            assert_eq!(
+                d.map(f64::to_bits),
+                e.map(f64::to_bits),
+                "case {case}: tangent"
+            );
         }
     }
 }
