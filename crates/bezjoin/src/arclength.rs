@@ -1312,8 +1312,7 @@ fn fold_apply<const C: usize, const P: usize>(
         *pair = [f + g, f - g];
     }
     let mut partial = [[[0.0f64; 2]; P]; 4];
-    for class in 0..4 {
-        let sums = &mut partial[class];
+    for (class, sums) in partial.iter_mut().enumerate() {
         let mut j = class;
         while j < C {
             let column = &matrix.columns[j];
@@ -2412,7 +2411,7 @@ mod chebyshev_tests {
         let fine_rows = folded_matrix::<CHEBYSHEV_COLUMNS_1>();
         for case in 0..200 {
             let f: Vec<f64> = (0..=CHEBYSHEV_MAX_N)
-                .map(|_| (values.unit() - 0.3) * 10f64.powi((case % 7) as i32 - 3))
+                .map(|_| (values.unit() - 0.3) * 10f64.powi(case % 7 - 3))
                 .collect();
             for (level, &n) in CHEBYSHEV_LEVELS.iter().enumerate() {
                 let step = CHEBYSHEV_MAX_N / n;
