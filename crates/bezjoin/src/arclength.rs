@@ -618,10 +618,14 @@ impl<'a> ArcLengthInverse<'a> {
             return Ok(start);
         }
         let curve = self.curve;
-        if let Some(speed) = self
-            .chebyshev
-            .get_or_insert_with(|| ChebyshevSpeed::new(curve))
-        {
+        if self.chebyshev.is_none() {
+            // Built in place in its slot (no copy of the buffer).
+            let slot = self.chebyshev.insert(Some(ChebyshevSpeed::zeroed()));
+            if !slot.as_mut().is_some_and(|speed| speed.fill(curve)) {
+                *slot = None;
+            }
+        }
+        if let Some(Some(speed)) = &self.chebyshev {
             if let Some(t) = speed.param_at_length(start, length, accuracy) {
                 return Ok(t);
             }
@@ -1209,12 +1213,39 @@ const CHEBYSHEV_COLUMNS_1: usize = CHEBYSHEV_LEVELS[1] / 2 + 1;
 /// `a_k = E + O`, `a_(n-k) = E - O` from the even- and odd-column parts of
 /// one row's product ([`fold_apply`]).
 struct ChebyshevTables {
-    coarse: [[f64; CHEBYSHEV_COLUMNS_0]; CHEBYSHEV_COLUMNS_0],
-    fine: [[f64; CHEBYSHEV_COLUMNS_1]; CHEBYSHEV_COLUMNS_1],
+    coarse: FoldedMatrix<CHEBYSHEV_COLUMNS_0, CHEBYSHEV_PAIRS_0>,
+    fine: FoldedMatrix<CHEBYSHEV_COLUMNS_1, CHEBYSHEV_PAIRS_1>,
     /// `cos(pi j / N)`, `j = 0..=N`, `N` = [`CHEBYSHEV_MAX_N`]: the finer
     /// level's nodes on `[-1, 1]`; the coarser level's node `j` is node
     /// `2 j` (the same number, so its samples are the finer level's).
     nodes: [f64; CHEBYSHEV_MAX_N + 1],
+    /// `2 k` as a float, `k = 0..=N + 1` (the antiderivative's divisors).
+    doubled: [f64; CHEBYSHEV_MAX_N + 2],
+}
+
+/// Row pairs of the two levels' folded matrices (`(C + 1) / 2`, the last
+/// pair padded with a zero row when `C` is odd).
+const CHEBYSHEV_PAIRS_0: usize = CHEBYSHEV_COLUMNS_0.div_ceil(2);
+const CHEBYSHEV_PAIRS_1: usize = CHEBYSHEV_COLUMNS_1.div_ceil(2);
+
+/// A folded matrix of [`ChebyshevTables`] stored by columns, rows in
+/// pairs: `columns[j][i] = [M[2 i][j], M[2 i + 1][j]]` (an even row, which
+/// multiplies the even folding, beside an odd row, which multiplies the
+/// odd one), so [`fold_apply`] runs down a column on two rows at once.
+struct FoldedMatrix<const C: usize, const P: usize> {
+    columns: [[[f64; 2]; P]; C],
+}
+
+impl<const C: usize, const P: usize> FoldedMatrix<C, P> {
+    fn from_rows(rows: &[[f64; C]; C]) -> Self {
+        let mut columns = [[[0.0; 2]; P]; C];
+        for (k, row) in rows.iter().enumerate() {
+            for (j, &entry) in row.iter().enumerate() {
+                columns[j][k / 2][k % 2] = entry;
+            }
+        }
+        FoldedMatrix { columns }
+    }
 }
 
 /// Rows `0..=n/2` of the matrix of [`ChebyshevTables`] for `n = 2 (C -
@@ -1249,9 +1280,10 @@ fn chebyshev_tables() -> &'static ChebyshevTables {
         }
         nodes[CHEBYSHEV_MAX_N / 2] = 0.0;
         ChebyshevTables {
-            coarse: folded_matrix(),
-            fine: folded_matrix(),
+            coarse: FoldedMatrix::from_rows(&folded_matrix()),
+            fine: FoldedMatrix::from_rows(&folded_matrix()),
             nodes,
+            doubled: std::array::from_fn(|k| (2 * k) as f64),
         }
     })
 }
@@ -1260,39 +1292,43 @@ fn chebyshev_tables() -> &'static ChebyshevTables {
 /// the samples `f_0..=f_n` (`samples(j)`, `n = 2 (C - 1)`), by the twice
 /// folded `matrix` of [`ChebyshevTables`]: `(n/2 + 1)^2` products instead
 /// of `(n + 1)^2`.
-fn fold_apply<const C: usize>(
-    matrix: &[[f64; C]; C],
+///
+/// Row `k`'s product `sum_j M[k][j] F_j` is summed in four partial sums,
+/// by `j mod 4` (`j = 0, 4, ..`, `1, 5, ..`, `2, 6, ..`, `3, 7, ..`, each
+/// in increasing `j`); `E` is the first plus the third, `O` the second plus
+/// the fourth. The partial sums of all rows are carried together, one
+/// column at a time and two rows per step (an even and an odd row, whose
+/// foldings are the two lanes of `[F_even_j, F_odd_j]`), so the loop has
+/// no branch and the compiler pairs the lanes.
+fn fold_apply<const C: usize, const P: usize>(
+    matrix: &FoldedMatrix<C, P>,
     samples: impl Fn(usize) -> f64,
     out: &mut [f64],
 ) {
     let n = 2 * (C - 1);
-    let mut even = [0.0; C];
-    let mut odd = [0.0; C];
-    for j in 0..C {
+    let mut folded = [[0.0; 2]; C];
+    for (j, pair) in folded.iter_mut().enumerate() {
         let (f, g) = (samples(j), samples(n - j));
-        even[j] = f + g;
-        odd[j] = f - g;
+        *pair = [f + g, f - g];
     }
-    for (k, row) in matrix.iter().enumerate() {
-        let folded = if k % 2 == 0 { &even } else { &odd };
-        let (mut e, mut o) = ([0.0; 2], [0.0; 2]);
-        let mut j = 0;
-        while j + 3 < C {
-            e[0] += row[j] * folded[j];
-            o[0] += row[j + 1] * folded[j + 1];
-            e[1] += row[j + 2] * folded[j + 2];
-            o[1] += row[j + 3] * folded[j + 3];
+    let mut partial = [[[0.0f64; 2]; P]; 4];
+    for (class, sums) in partial.iter_mut().enumerate() {
+        let mut j = class;
+        while j < C {
+            let column = &matrix.columns[j];
+            let v = folded[j];
+            for (sum, entry) in sums.iter_mut().zip(column) {
+                sum[0] += entry[0] * v[0];
+                sum[1] += entry[1] * v[1];
+            }
             j += 4;
         }
-        while j < C {
-            if j % 2 == 0 {
-                e[0] += row[j] * folded[j];
-            } else {
-                o[0] += row[j] * folded[j];
-            }
-            j += 1;
-        }
-        let (e, o) = (e[0] + e[1], o[0] + o[1]);
+    }
+    let out = &mut out[..=n];
+    for k in 0..C {
+        let (i, lane) = (k / 2, k % 2);
+        let e = partial[0][i][lane] + partial[2][i][lane];
+        let o = partial[1][i][lane] + partial[3][i][lane];
         out[k] = e + o;
         if 2 * k < n {
             out[n - k] = e - o;
@@ -1324,22 +1360,57 @@ impl ChebyshevSpeed {
     /// `None` when the curve does not qualify: degree 0, a hodograph larger
     /// than the stack buffer, non-finite points, or a speed not provably
     /// bounded away from zero.
+    #[cfg(test)]
     fn new(curve: &BezierCurve) -> Option<Self> {
-        let n = curve.degree();
-        let d = curve.dim();
-        if n == 0 || d > CHEBYSHEV_MAX_DIM || n * d > CHEBYSHEV_MAX_POINTS {
-            return None;
+        let mut speed = Self::zeroed();
+        speed.fill(curve).then_some(speed)
+    }
+
+    /// No curve yet: every field zero (the rows past the hodograph's stay
+    /// zero after [`Self::fill`]).
+    fn zeroed() -> Self {
+        ChebyshevSpeed {
+            weighted: [0.0; CHEBYSHEV_MAX_POINTS],
+            degree: 0,
+            dim: 0,
+            low: 0.0,
+            high: 0.0,
+            noise_per_unit: 0.0,
         }
+    }
+
+    /// [`Self::new`] written into a zeroed `self` in place (no copy of the
+    /// buffer): `false` when the curve does not qualify (`self` then means
+    /// nothing).
+    fn fill(&mut self, curve: &BezierCurve) -> bool {
+        // Cubics in the plane and in space with the sizes as constants
+        // (the loops unrolled); the same operations as the general case.
+        match (curve.degree(), curve.dim()) {
+            (3, 2) => self.fill_sized(curve, 3, 2),
+            (3, 3) => self.fill_sized(curve, 3, 3),
+            (n, d) => self.fill_sized(curve, n, d),
+        }
+    }
+
+    /// [`Self::fill`] for degree `n` and dimension `d` of `curve`. The
+    /// hodograph `H_i` is formed in `weighted` and scaled there by `C(m,
+    /// i)` once it has passed the checks.
+    #[inline(always)]
+    fn fill_sized(&mut self, curve: &BezierCurve, n: usize, d: usize) -> bool {
+        if n == 0 || d > CHEBYSHEV_MAX_DIM || n * d > CHEBYSHEV_MAX_POINTS {
+            return false;
+        }
+        let points = &curve.points()[..(n + 1) * d];
         let m = n - 1;
-        let mut hodograph = [0.0; CHEBYSHEV_MAX_POINTS];
+        let weighted = &mut self.weighted[..n * d];
         for i in 0..n {
             for c in 0..d {
-                hodograph[i * d + c] = n as f64 * (curve.point(i + 1)[c] - curve.point(i)[c]);
+                weighted[i * d + c] = n as f64 * (points[(i + 1) * d + c] - points[i * d + c]);
             }
         }
-        let h = &hodograph[..n * d];
+        let h = &*weighted;
         if h.iter().any(|x| !x.is_finite()) {
-            return None;
+            return false;
         }
         // The bound of `speed_bounded_away_from_zero`, with its margin.
         let mut mean = [0.0; CHEBYSHEV_MAX_DIM];
@@ -1350,7 +1421,7 @@ impl ChebyshevSpeed {
         }
         let mean_norm = norm(&mean[..d]);
         if !(mean_norm > 0.0 && mean_norm.is_finite()) {
-            return None;
+            return false;
         }
         let mut low = f64::INFINITY;
         let mut high = 0.0f64;
@@ -1361,38 +1432,34 @@ impl ChebyshevSpeed {
             high = high.max(norm(p));
         }
         if !(high.is_finite() && low >= SPEED_MARGIN * high && low > 0.0) {
-            return None;
+            return false;
         }
+        let scale = h
+            .iter()
+            .fold(0.0f64, |s, x| s.max(x.abs()))
+            .max(f64::MIN_POSITIVE);
         // `C(m, i)` by `C(m, i + 1) = C(m, i) (m - i) / (i + 1)` up to
         // `m = 50`: exact integers there (every product `C(m, i + 1) (i +
         // 1)` is below `2^53`), so the values of `binomial`; above, `binomial`.
-        let mut weighted = [0.0; CHEBYSHEV_MAX_POINTS];
         let mut w = 1.0f64;
         for i in 0..=m {
             if m > 50 {
                 w = binomial(m, i);
             }
             for c in 0..d {
-                weighted[i * d + c] = w * h[i * d + c];
+                weighted[i * d + c] *= w;
             }
             w = w * (m - i) as f64 / (i + 1) as f64;
         }
-        if weighted[..n * d].iter().any(|x| !x.is_finite()) {
-            return None;
+        if weighted.iter().any(|x| !x.is_finite()) {
+            return false;
         }
-        let scale = h
-            .iter()
-            .fold(0.0f64, |s, x| s.max(x.abs()))
-            .max(f64::MIN_POSITIVE);
-        let noise_per_unit = 4.0 * n as f64 * f64::EPSILON * scale * (d as f64).sqrt();
-        Some(ChebyshevSpeed {
-            weighted,
-            degree: m,
-            dim: d,
-            low,
-            high,
-            noise_per_unit,
-        })
+        self.degree = m;
+        self.dim = d;
+        self.low = low;
+        self.high = high;
+        self.noise_per_unit = 4.0 * n as f64 * f64::EPSILON * scale * (d as f64).sqrt();
+        true
     }
 
     /// `|P'(t)|` for `t` in `[0, 1]`: Bernstein-Horner in `t / (1 - t)` or
@@ -1617,7 +1684,12 @@ impl ChebyshevSpeed {
             } else {
                 fold_apply(&tables.fine, sample, &mut a);
             }
-            match invert_level(&a, n, start, far, target, accuracy, self.noise_per_unit) {
+            let inverted = if level == 0 {
+                invert_level::<{ CHEBYSHEV_LEVELS[0] }>(&a, start, far, target, accuracy, self)
+            } else {
+                invert_level::<{ CHEBYSHEV_LEVELS[1] }>(&a, start, far, target, accuracy, self)
+            };
+            match inverted {
                 // Too short a bracket, or an answer: done with this bracket.
                 None => return None,
                 Some(Some(t)) => return Some(Some(t)),
@@ -1695,23 +1767,28 @@ fn coarse_difference(a: &[f64], n: usize) -> f64 {
 /// -1` at `start`), `a[n + 1] = a[n + 2] = 0`. `None` when
 /// the interpolant's length on the bracket is shorter than `target`,
 /// `Some(None)` when the answer is not certified.
-#[allow(clippy::too_many_arguments)]
-fn invert_level(
+/// `n` is fixed at compile time (`N`), so the loops over the coefficients
+/// have constant bounds.
+fn invert_level<const N: usize>(
     a: &[f64; CHEBYSHEV_MAX_N + 3],
-    n: usize,
     start: f64,
     far: f64,
     target: f64,
     accuracy: f64,
-    noise_per_unit: f64,
+    speed: &ChebyshevSpeed,
 ) -> Option<Option<f64>> {
+    let n = N;
+    let noise_per_unit = speed.noise_per_unit;
     let span = far - start;
     let difference = coarse_difference(a, n);
     // The antiderivative G = sum_k c_k T_k with G(-1) = 0, degree n + 1.
     let mut c = [0.0; CHEBYSHEV_MAX_N + 2];
     c[1] = a[0] - 0.5 * a[2];
+    // `(2 k) as f64` from a table (the same exact integers): the loop
+    // has no conversions and pairs its divisions.
+    let divisors = &chebyshev_tables().doubled;
     for k in 2..=n + 1 {
-        c[k] = (a[k - 1] - a[k + 1]) / (2 * k) as f64;
+        c[k] = (a[k - 1] - a[k + 1]) / divisors[k];
     }
     let mut alternating = 0.0;
     for (k, ck) in c[1..=n + 1].iter().enumerate() {
@@ -2284,6 +2361,76 @@ mod chebyshev_tests {
                 (identity - explicit).abs() <= 1e-12,
                 "n {n}: {identity:e} vs {explicit:e}"
             );
+        }
+    }
+
+    /// The column-wise `fold_apply` gives the coefficients of the row-wise
+    /// product it replaced to the bit: for each row `k` the four partial
+    /// sums by `j mod 4` in increasing `j`, `E` and `O` from them, `a_k = E +
+    /// O`, `a_(n-k) = E - O` (the session-26 loop, kept here as the
+    /// reference), on fixed-seed samples of mixed signs and magnitudes at
+    /// both levels.
+    #[test]
+    fn column_wise_fold_is_the_row_wise_product_to_the_bit() {
+        fn row_wise<const C: usize>(rows: &[[f64; C]; C], f: &[f64], out: &mut [f64]) {
+            let n = 2 * (C - 1);
+            let (mut even, mut odd) = ([0.0; C], [0.0; C]);
+            for j in 0..C {
+                even[j] = f[j] + f[n - j];
+                odd[j] = f[j] - f[n - j];
+            }
+            for (k, row) in rows.iter().enumerate() {
+                let folded = if k % 2 == 0 { &even } else { &odd };
+                let (mut e, mut o) = ([0.0; 2], [0.0; 2]);
+                let mut j = 0;
+                while j + 3 < C {
+                    e[0] += row[j] * folded[j];
+                    o[0] += row[j + 1] * folded[j + 1];
+                    e[1] += row[j + 2] * folded[j + 2];
+                    o[1] += row[j + 3] * folded[j + 3];
+                    j += 4;
+                }
+                while j < C {
+                    if j % 2 == 0 {
+                        e[0] += row[j] * folded[j];
+                    } else {
+                        o[0] += row[j] * folded[j];
+                    }
+                    j += 1;
+                }
+                let (e, o) = (e[0] + e[1], o[0] + o[1]);
+                out[k] = e + o;
+                if 2 * k < n {
+                    out[n - k] = e - o;
+                }
+            }
+        }
+        let mut values = crate::test_values::Values(27);
+        let tables = chebyshev_tables();
+        let coarse_rows = folded_matrix::<CHEBYSHEV_COLUMNS_0>();
+        let fine_rows = folded_matrix::<CHEBYSHEV_COLUMNS_1>();
+        for case in 0..200 {
+            let f: Vec<f64> = (0..=CHEBYSHEV_MAX_N)
+                .map(|_| (values.unit() - 0.3) * 10f64.powi(case % 7 - 3))
+                .collect();
+            for (level, &n) in CHEBYSHEV_LEVELS.iter().enumerate() {
+                let step = CHEBYSHEV_MAX_N / n;
+                let g: Vec<f64> = (0..=n).map(|j| f[j * step]).collect();
+                let (mut a, mut b) = (
+                    [f64::NAN; CHEBYSHEV_MAX_N + 3],
+                    [f64::NAN; CHEBYSHEV_MAX_N + 3],
+                );
+                if level == 0 {
+                    fold_apply(&tables.coarse, |j| g[j], &mut a);
+                    row_wise(&coarse_rows, &g, &mut b);
+                } else {
+                    fold_apply(&tables.fine, |j| g[j], &mut a);
+                    row_wise(&fine_rows, &g, &mut b);
+                }
+                for k in 0..=n {
+                    assert_eq!(a[k].to_bits(), b[k].to_bits(), "case {case}, n {n}, k {k}");
+                }
+            }
         }
     }
 

@@ -71,7 +71,7 @@ pub use radius::{
 };
 
 use crate::arclength::ArcLengthInverse;
-use crate::bezier::{BezierCurve, de_casteljau_step};
+use crate::bezier::BezierCurve;
 use crate::connect::{ConnectOptions, Connection, ShapeScale, connect};
 use crate::curve::{Curve, CurveRef};
 use crate::error::{BezjoinError, Result, check_finite_scalar, check_positive};
@@ -392,8 +392,12 @@ pub(crate) struct SetbackInverses<'a> {
 /// One side's inversion: a Bezier curve keeps its quadrature
 /// ([`ArcLengthInverse`]); a NURBS curve inverts span by span
 /// ([`NurbsCurve::param_at_length`]) each time.
+///
+/// The Bezier variant is kept inline (no allocation per fillet): a
+/// `SetbackInverses` lives on the stack of one fillet call.
+#[allow(clippy::large_enum_variant)]
 enum SetbackInverse<'a> {
-    Bezier(Box<ArcLengthInverse<'a>>),
+    Bezier(ArcLengthInverse<'a>),
     Nurbs { curve: &'a NurbsCurve, start: f64 },
 }
 
@@ -411,9 +415,7 @@ impl SetbackInverse<'_> {
 impl<'a> SetbackInverses<'a> {
     pub(crate) fn new(p: CurveRef<'a>, q: CurveRef<'a>, crossing: &Intersection) -> Self {
         let side = |c: CurveRef<'a>, start: f64| match c {
-            CurveRef::Bezier(b) => {
-                SetbackInverse::Bezier(Box::new(ArcLengthInverse::new(b, start)))
-            }
+            CurveRef::Bezier(b) => SetbackInverse::Bezier(ArcLengthInverse::new(b, start)),
             CurveRef::Nurbs(curve) => SetbackInverse::Nurbs { curve, start },
         };
         SetbackInverses {
@@ -533,6 +535,26 @@ pub(crate) fn assemble(
 pub(crate) fn bezier_trim(curve: &BezierCurve, t: f64, left: bool) -> Option<BezierCurve> {
     let (n, d) = (curve.degree(), curve.dim());
     let mut points = curve.points().to_vec();
+    // The common sizes with the degree and dimension as constants (the
+    // loops unrolled, no bounds checks); the same operations in the same
+    // order as the general case.
+    match (n, d) {
+        (3, 2) => trim_in_place(&mut points, 3, 2, t, left),
+        (2, 2) => trim_in_place(&mut points, 2, 2, t, left),
+        (3, 3) => trim_in_place(&mut points, 3, 3, t, left),
+        (n, d) => trim_in_place(&mut points, n, d, t, left),
+    }
+    points
+        .iter()
+        .all(|x| x.is_finite())
+        .then(|| BezierCurve::from_parts(d, n, points))
+}
+
+/// The de Casteljau pass of [`bezier_trim`] on `points` (`n + 1` rows of
+/// `d`), inlined so that constant `n`, `d` unroll it.
+#[inline(always)]
+fn trim_in_place(points: &mut [f64], n: usize, d: usize, t: f64, left: bool) {
+    let points = &mut points[..(n + 1) * d];
     if left {
         // After step `r`, point `i >= r` holds level `r`'s point `i - r`:
         // point `r` is final (the left piece's point `r`).
@@ -544,15 +566,16 @@ pub(crate) fn bezier_trim(curve: &BezierCurve, t: f64, left: bool) -> Option<Bez
             }
         }
     } else {
-        // After step `r`, point `n - r` is final (the right piece's).
+        // After step `r`, point `n - r` is final (the right piece's): the
+        // step of `bezier::de_casteljau_step` on the first `n + 2 - r` points.
         for r in 1..=n {
-            de_casteljau_step(&mut points, n + 2 - r, d, t);
+            for i in 0..=n - r {
+                for c in 0..d {
+                    points[i * d + c] = (1.0 - t) * points[i * d + c] + t * points[(i + 1) * d + c];
+                }
+            }
         }
     }
-    points
-        .iter()
-        .all(|x| x.is_finite())
-        .then(|| BezierCurve::from_parts(d, n, points))
 }
 
 #[cfg(test)]

@@ -102,7 +102,16 @@ impl<const N: usize> Poly<N> {
     /// step `r`, point `i >= r` holds level `r`'s point `i - r`, so point
     /// `r` is final; the same operations as the textbook triangle).
     fn keep_left(&mut self, t: f64) {
-        let n = self.n.min(N - 1);
+        match self.n.min(N - 1) {
+            3 => self.keep_left_n(3, t),
+            n => self.keep_left_n(n, t),
+        }
+    }
+
+    /// [`Self::keep_left`] of degree `n` (inlined: a constant `n`, the
+    /// cubic's, unrolls it).
+    #[inline(always)]
+    fn keep_left_n(&mut self, n: usize, t: f64) {
         let p = &mut self.points;
         for r in 1..=n {
             for i in (r..=n).rev() {
@@ -117,7 +126,15 @@ impl<const N: usize> Poly<N> {
     /// `self` becomes the piece on `[s, 1]` (de Casteljau in place: after
     /// step `r`, point `n - r` is final).
     fn keep_right(&mut self, s: f64) {
-        let n = self.n.min(N - 1);
+        match self.n.min(N - 1) {
+            3 => self.keep_right_n(3, s),
+            n => self.keep_right_n(n, s),
+        }
+    }
+
+    /// [`Self::keep_right`] of degree `n` (see [`Self::keep_left_n`]).
+    #[inline(always)]
+    fn keep_right_n(&mut self, n: usize, s: f64) {
         let p = &mut self.points;
         for r in 1..=n {
             for i in 0..=n - r {
@@ -147,7 +164,15 @@ impl<const N: usize> Poly<N> {
     /// chord)`. Squares that are not normal numbers (overflow, underflow,
     /// a degenerate chord) take the general [`is_flat`].
     fn is_flat(&self, absolute: f64, relative_chord: f64) -> bool {
-        let n = self.n.min(N - 1);
+        match self.n.min(N - 1) {
+            3 => self.is_flat_n(3, absolute, relative_chord),
+            n => self.is_flat_n(n, absolute, relative_chord),
+        }
+    }
+
+    /// [`Self::is_flat`] of degree `n` (see [`Self::keep_left_n`]).
+    #[inline(always)]
+    fn is_flat_n(&self, n: usize, absolute: f64, relative_chord: f64) -> bool {
         let (ax, ay) = (self.x(0), self.y(0));
         let (dx, dy) = (self.x(n) - ax, self.y(n) - ay);
         let len2 = dx * dx + dy * dy;
@@ -182,13 +207,22 @@ impl<const N: usize> Poly<N> {
     /// (by comparisons: a NaN coordinate leaves the box as `f64::min` and
     /// `f64::max` would, ignored).
     fn bounds(&self) -> [f64; 4] {
+        match self.n.min(N - 1) {
+            3 => self.bounds_n(3),
+            n => self.bounds_n(n),
+        }
+    }
+
+    /// [`Self::bounds`] of degree `n` (see [`Self::keep_left_n`]).
+    #[inline(always)]
+    fn bounds_n(&self, n: usize) -> [f64; 4] {
         let mut b = [
             f64::INFINITY,
             f64::INFINITY,
             f64::NEG_INFINITY,
             f64::NEG_INFINITY,
         ];
-        for p in &self.points[..=self.n.min(N - 1)] {
+        for p in &self.points[..=n] {
             let (x, y) = (p[0], p[1]);
             if x < b[0] {
                 b[0] = x;
@@ -222,7 +256,22 @@ fn boxes_meet<const N: usize>(a: &Poly<N>, b: &Poly<N>, margin: f64) -> bool {
 /// is none; `Some((0, 1))` when `b`'s chord is degenerate (no line to clip
 /// against).
 fn clip<const N: usize>(a: &Poly<N>, b: &Poly<N>, margin: f64) -> Option<(f64, f64)> {
-    let m = b.n.min(N - 1);
+    match (a.n.min(N - 1), b.n.min(N - 1)) {
+        (3, 3) => clip_n(a, 3, b, 3, margin),
+        (n, m) => clip_n(a, n, b, m, margin),
+    }
+}
+
+/// [`clip`] for `a` of degree `n` and `b` of degree `m` (inlined: the
+/// cubics' constant degrees unroll it).
+#[inline(always)]
+fn clip_n<const N: usize>(
+    a: &Poly<N>,
+    n: usize,
+    b: &Poly<N>,
+    m: usize,
+    margin: f64,
+) -> Option<(f64, f64)> {
     let (dx, dy) = (b.x(m) - b.x(0), b.y(m) - b.y(0));
     // The normal `(-dy, dx)` is first taken unnormalised: every signed
     // distance and the margin are scaled by `len` alike (one square root,
@@ -236,7 +285,6 @@ fn clip<const N: usize>(a: &Poly<N>, b: &Poly<N>, margin: f64) -> Option<(f64, f
     if !(len > 0.0 && len.is_finite()) {
         return Some((0.0, 1.0));
     }
-    let n = a.n.min(N - 1);
     let mut e = [0.0; N];
     let mut scale = 1.0;
     let (lo, hi) = loop {
@@ -328,11 +376,11 @@ impl Search<'_> {
 
     fn clip_all(&mut self) -> bool {
         let mut rounds = 0usize;
-        let p_pieces = std::mem::take(&mut self.p_pieces);
-        let q_pieces = std::mem::take(&mut self.q_pieces);
-        let mut done = true;
-        'spans: for a in &p_pieces {
-            for b in &q_pieces {
+        for i in 0..self.p_pieces.len() {
+            for j in 0..self.q_pieces.len() {
+                // The pieces are read (copied into the clipping buffers)
+                // before the search borrows `self` mutably.
+                let (a, b) = (&self.p_pieces[i], &self.q_pieces[j]);
                 if !super::track::boxes_meet(a, b, self.tolerance) {
                     continue;
                 }
@@ -353,14 +401,11 @@ impl Search<'_> {
                     }
                 };
                 if !clipped {
-                    done = false;
-                    break 'spans;
+                    return false;
                 }
             }
         }
-        self.p_pieces = p_pieces;
-        self.q_pieces = q_pieces;
-        done
+        true
     }
 
     /// Clipping on one pair of spans (`pa` on `[u_lo, u_hi]` of P, `pb` on
@@ -696,5 +741,107 @@ mod tests {
         // A transversal crossing is the fast path's.
         let c = curve(&[[0.0, 1.0], [1.0, 0.0]]);
         assert!(compare(&line, &c, "lines"));
+    }
+
+    /// The cubic steps with the degree as a constant (`keep_left`,
+    /// `keep_right`, `is_flat`, `bounds`, `clip` on degree 3) are the
+    /// general loops run with the degree unknown at compile time, to the
+    /// bit; and the planar polish with the dimension as a constant is the
+    /// general one with the dimension unknown (same parameters, distance,
+    /// flag and tangents), on fixed-seed random cubics.
+    #[test]
+    fn constant_size_paths_are_the_general_ones_to_the_bit() {
+        use super::super::CurvePair;
+        use super::super::track::Track;
+        use super::{Poly, SMALL, clip, clip_n};
+        use std::hint::black_box;
+        let bits = |p: &Poly<SMALL>| -> Vec<u64> {
+            p.points.iter().flatten().map(|x| x.to_bits()).collect()
+        };
+        let pair_bits = |r: Option<(f64, f64)>| r.map(|(a, b)| (a.to_bits(), b.to_bits()));
+        let mut rng = Lcg(27);
+        let (mut flat, mut curved, mut clipped) = (0, 0, 0);
+        for case in 0..400 {
+            let mut poly = || {
+                let mut points = [[0.0; 2]; SMALL];
+                for p in points.iter_mut() {
+                    *p = [rng.range(-1.0, 1.0), rng.range(-1.0, 1.0)];
+                }
+                Poly::<SMALL> { n: 3, points }
+            };
+            let (a, b) = (poly(), poly());
+            // A near-straight copy of `b`, so that `is_flat` answers both ways.
+            let mut c = b;
+            for (i, p) in c.points.iter_mut().enumerate() {
+                let w = i as f64 / 3.0;
+                p[0] = b.points[0][0] + w * (b.points[3][0] - b.points[0][0]) + 1e-3 * p[0];
+                p[1] = b.points[0][1] + w * (b.points[3][1] - b.points[0][1]) + 1e-3 * p[1];
+            }
+            let three = black_box(3);
+            let (s, t) = (rng.range(0.0, 0.5), rng.range(0.5, 1.0));
+            for p in [a, b, c] {
+                let (mut x, mut y) = (p, p);
+                x.keep_left(t);
+                y.keep_left_n(three, t);
+                assert_eq!(bits(&x), bits(&y), "case {case}: keep_left");
+                let (mut x, mut y) = (p, p);
+                x.keep_right(s);
+                y.keep_right_n(three, s);
+                assert_eq!(bits(&x), bits(&y), "case {case}: keep_right");
+                let absolute = rng.range(0.0, 2e-3);
+                let f = p.is_flat(absolute, 1e-2);
+                assert_eq!(
+                    f,
+                    p.is_flat_n(three, absolute, 1e-2),
+                    "case {case}: is_flat"
+                );
+                if f {
+                    flat += 1
+                } else {
+                    curved += 1
+                }
+                let (x, y) = (p.bounds(), p.bounds_n(three));
+                assert_eq!(
+                    x.map(f64::to_bits),
+                    y.map(f64::to_bits),
+                    "case {case}: bounds"
+                );
+            }
+            for (p, q) in [(&a, &b), (&b, &a), (&a, &c), (&c, &a)] {
+                let margin = rng.range(0.0, 1e-2);
+                let x = clip(p, q, margin);
+                assert_eq!(
+                    pair_bits(x),
+                    pair_bits(clip_n(p, three, q, three, margin)),
+                    "case {case}: clip"
+                );
+                if x.is_some_and(|(lo, hi)| lo > 0.0 || hi < 1.0) {
+                    clipped += 1;
+                }
+            }
+            let (pc, qc) = (random_bezier(&mut rng, 3), random_bezier(&mut rng, 3));
+            let curves = CurvePair {
+                p: Track::new(CurveRef::from(&pc)),
+                q: Track::new(CurveRef::from(&qc)),
+            };
+            let (u, v) = (rng.next(), rng.next());
+            let (mut ta, mut tb) = ([0.0; 4], [0.0; 4]);
+            let x = curves.polish_with_tangents(u, v, &mut ta);
+            let y = curves.polish_sized(black_box(2), u, v, &mut tb);
+            assert_eq!(
+                (x.0.to_bits(), x.1.to_bits(), x.2.to_bits(), x.3),
+                (y.0.to_bits(), y.1.to_bits(), y.2.to_bits(), y.3),
+                "case {case}: polish"
+            );
+            assert_eq!(
+                ta.map(f64::to_bits),
+                tb.map(f64::to_bits),
+                "case {case}: tangents"
+            );
+        }
+        assert!(
+            flat > 100 && curved > 100 && clipped > 100,
+            "{flat} {curved} {clipped}"
+        );
     }
 }

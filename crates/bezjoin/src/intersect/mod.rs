@@ -87,7 +87,7 @@ use crate::bezier::{BezierCurve, distance, norm};
 use crate::curve::CurveRef;
 use crate::error::{BezjoinError, Result, check_finite_scalar};
 use std::rc::Rc;
-use track::{Piece, Track, boxes_meet};
+use track::{Piece, Pieces, Track, boxes_meet};
 
 /// Dimensions up to which polishing keeps its vectors on the stack.
 const POLISH_STACK_DIM: usize = 8;
@@ -319,13 +319,25 @@ impl CurvePair<'_> {
     /// brings the tangents at its end): `tangents`, of length `2 dim` (else
     /// left alone), holds `P'(u)` then `Q'(v)`. The flag is `false` when
     /// the result is no point (a non-finite parameter or gap).
-    fn polish_with_tangents(
+    fn polish_with_tangents(&self, u: f64, v: f64, tangents: &mut [f64]) -> (f64, f64, f64, bool) {
+        // The plane with the dimension as a constant (the vectors' splits
+        // and dot products unrolled); the same operations as the general
+        // case.
+        match self.p.dim() {
+            2 => self.polish_sized(2, u, v, tangents),
+            d => self.polish_sized(d, u, v, tangents),
+        }
+    }
+
+    /// [`Self::polish_with_tangents`] in dimension `d` (the curves').
+    #[inline(always)]
+    fn polish_sized(
         &self,
+        d: usize,
         mut u: f64,
         mut v: f64,
         tangents: &mut [f64],
     ) -> (f64, f64, f64, bool) {
-        let d = self.p.dim();
         let (u_lo, u_hi) = self.p.domain();
         let (v_lo, v_hi) = self.q.domain();
         // Seven vectors of length `d`: on the stack for small dimensions.
@@ -611,8 +623,8 @@ struct Search<'a> {
     /// are relative to them.
     units: (f64, f64),
     /// The curves' Bezier spans (computed once).
-    p_pieces: Vec<Piece<'a>>,
-    q_pieces: Vec<Piece<'a>>,
+    p_pieces: Pieces<'a>,
+    q_pieces: Pieces<'a>,
     overlaps: Vec<Overlap>,
     candidates: Vec<Candidate>,
 }

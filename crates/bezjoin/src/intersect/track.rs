@@ -178,29 +178,48 @@ impl<'a> Track<'a> {
 
     /// The curve as Bezier pieces over its domain (a Bezier curve's one
     /// piece borrows the curve: no copy).
-    pub(super) fn pieces(&self) -> Vec<Piece<'a>> {
+    pub(super) fn pieces(&self) -> Pieces<'a> {
         match self {
             Track::Bezier { curve, .. } => {
-                vec![Piece::new(Cow::Borrowed(*curve), false, 0.0, 1.0)]
+                Pieces::One([Piece::new(Cow::Borrowed(*curve), false, 0.0, 1.0)])
             }
-            Track::Nurbs(n) => n
-                .bezier_spans()
-                .into_iter()
-                .map(|span| {
-                    let (lo, hi) = span.domain();
-                    if span.weights().is_some() {
-                        let h = span.homogeneous_points();
-                        let curve = BezierCurve::new(span.dim() + 1, span.degree(), h)
-                            .expect("a span's homogeneous poles are a valid Bezier curve");
-                        Piece::new(Cow::Owned(curve), true, lo, hi)
-                    } else {
-                        let curve =
-                            BezierCurve::new(span.dim(), span.degree(), span.points().to_vec())
-                                .expect("a span's poles are a valid Bezier curve");
-                        Piece::new(Cow::Owned(curve), false, lo, hi)
-                    }
-                })
-                .collect(),
+            Track::Nurbs(n) => Pieces::Many(
+                n.bezier_spans()
+                    .into_iter()
+                    .map(|span| {
+                        let (lo, hi) = span.domain();
+                        if span.weights().is_some() {
+                            let h = span.homogeneous_points();
+                            let curve = BezierCurve::new(span.dim() + 1, span.degree(), h)
+                                .expect("a span's homogeneous poles are a valid Bezier curve");
+                            Piece::new(Cow::Owned(curve), true, lo, hi)
+                        } else {
+                            let curve =
+                                BezierCurve::new(span.dim(), span.degree(), span.points().to_vec())
+                                    .expect("a span's poles are a valid Bezier curve");
+                            Piece::new(Cow::Owned(curve), false, lo, hi)
+                        }
+                    })
+                    .collect(),
+            ),
+        }
+    }
+}
+
+/// The pieces of a [`Track`]: a Bezier curve's one piece inline (no
+/// allocation), a NURBS curve's spans in a vector. Used as a slice.
+pub(super) enum Pieces<'a> {
+    One([Piece<'a>; 1]),
+    Many(Vec<Piece<'a>>),
+}
+
+impl<'a> std::ops::Deref for Pieces<'a> {
+    type Target = [Piece<'a>];
+
+    fn deref(&self) -> &[Piece<'a>] {
+        match self {
+            Pieces::One(one) => one,
+            Pieces::Many(many) => many,
         }
     }
 }
@@ -256,6 +275,24 @@ impl<'a> Piece<'a> {
         } else {
             curve.dim()
         };
+        // The plane with the dimension as a constant (the box loops
+        // unrolled); the same comparisons as the general case.
+        if dim == 2 {
+            Self::new_sized(curve, rational, 2, lo, hi)
+        } else {
+            Self::new_sized(curve, rational, dim, lo, hi)
+        }
+    }
+
+    /// [`Self::new`] for Cartesian dimension `dim`.
+    #[inline(always)]
+    fn new_sized(
+        curve: Cow<'a, BezierCurve>,
+        rational: bool,
+        dim: usize,
+        lo: f64,
+        hi: f64,
+    ) -> Self {
         let projected: Option<Vec<f64>> = rational.then(|| {
             curve
                 .points()
@@ -395,6 +432,9 @@ pub(super) fn point_and_tangent(
     // The plane and space up to degree 7: the dimension and the buffer's
     // size known at compile time (the same operations as below).
     match (d, n) {
+        // Cubics with the degree as a constant as well (loops unrolled).
+        (2, 3) => return point_and_tangent_fixed::<2, 4>(points, 3, t, point, tangent),
+        (3, 3) => return point_and_tangent_fixed::<3, 4>(points, 3, t, point, tangent),
         (2, 1..=3) => return point_and_tangent_fixed::<2, 4>(points, n, t, point, tangent),
         (2, 4..=7) => return point_and_tangent_fixed::<2, 8>(points, n, t, point, tangent),
         (3, 1..=3) => return point_and_tangent_fixed::<3, 4>(points, n, t, point, tangent),
@@ -576,6 +616,41 @@ mod tests {
                 track.tangent_into(t, &mut again);
                 assert_eq!(again, tangent, "case {case}");
             }
+        }
+    }
+
+    /// The cubic's point and tangent with the degree as a constant (the
+    /// dispatch of `point_and_tangent` in 2D and 3D) are the fixed-buffer
+    /// loop run with the degree unknown at compile time, to the bit, on
+    /// fixed-seed random cubics at random parameters.
+    #[test]
+    fn cubic_point_and_tangent_are_the_general_loop_to_the_bit() {
+        use super::point_and_tangent_fixed;
+        use std::hint::black_box;
+        let mut values = crate::test_values::Values(27);
+        for case in 0..400 {
+            let dim = 2 + case % 2;
+            let points: Vec<f64> = (0..4 * dim).map(|_| 4.0 * values.unit() - 2.0).collect();
+            let curve = BezierCurve::new(dim, 3, points.clone()).unwrap();
+            let t = values.unit();
+            let (mut p, mut d) = ([0.0; 3], [0.0; 3]);
+            let (mut q, mut e) = ([0.0; 3], [0.0; 3]);
+            point_and_tangent(&curve, t, &mut p[..dim], &mut d[..dim]);
+            if dim == 2 {
+                point_and_tangent_fixed::<2, 4>(&points, black_box(3), t, &mut q, &mut e);
+            } else {
+                point_and_tangent_fixed::<3, 4>(&points, black_box(3), t, &mut q, &mut e);
+            }
+            assert_eq!(
+                p.map(f64::to_bits),
+                q.map(f64::to_bits),
+                "case {case}: point"
+            );
+            assert_eq!(
+                d.map(f64::to_bits),
+                e.map(f64::to_bits),
+                "case {case}: tangent"
+            );
         }
     }
 }
