@@ -252,9 +252,9 @@ pub(crate) fn max_deviation(
     let mut worst = Worst::default();
     if let Some(table) = deviation_table(n) {
         // Per piece: the sample values accumulated coefficient by
-        // coefficient over all samples at once (the table is stored
-        // coefficient-major, so the inner loop runs over contiguous
-        // samples); each sample's sum is still taken in the order i = 0..n.
+        // coefficient, a few contiguous samples at a time (the table is
+        // stored coefficient-major); each sample's sum is still taken in
+        // the order i = 0..n.
         for half in halves.chunks_exact(len) {
             match d {
                 2 => deviation_fixed::<2>(table, half, &mut worst),
@@ -264,7 +264,7 @@ pub(crate) fn max_deviation(
                     for s in 0..=DEVIATION_SAMPLES {
                         value.fill(0.0);
                         for (i, p) in half.chunks_exact(d).enumerate() {
-                            let b = table[i * (DEVIATION_SAMPLES + 1) + s];
+                            let b = table[i * TABLE_ROW + s];
                             for (o, x) in value.iter_mut().zip(p) {
                                 *o += b * x;
                             }
@@ -290,22 +290,35 @@ pub(crate) fn max_deviation(
 }
 
 /// Degrees up to which [`max_deviation`] reads the Bernstein values at its
-/// samples from a table computed once per degree (`(DEVIATION_SAMPLES + 1)
-/// (n + 1)` values, 68 kB at degree 32); above, it evaluates by Horner.
+/// samples from a table computed once per degree ([`TABLE_ROW`]` (n + 1)`
+/// values, 70 kB at degree 32); above, it evaluates by Horner.
 pub const DEVIATION_TABLE_DEGREE: usize = 32;
 
-/// `B_i^n(s / DEVIATION_SAMPLES)`, coefficient-major (entry `i
-/// (DEVIATION_SAMPLES + 1) + s`, `i = 0..=n`, `s = 0..=DEVIATION_SAMPLES`), by the product form `C(n,i) u^i (1 - u)^(n-i)` with exact
-/// binomials and exact `u`, `1 - u` (relative error at most `(n + 1) eps`
-/// per entry); `None` above [`DEVIATION_TABLE_DEGREE`].
+/// Samples per piece of [`max_deviation`].
+const SAMPLES: usize = DEVIATION_SAMPLES + 1;
+
+/// Samples evaluated together by [`deviation_fixed`] (their partial sums
+/// stay in registers while the coefficients are visited).
+const LANES: usize = 4;
+
+/// Length of one coefficient's row of the deviation table: the samples,
+/// padded with zeros to a multiple of [`LANES`] (a padded sample's value
+/// is exactly zero, which changes no maximum).
+const TABLE_ROW: usize = SAMPLES.div_ceil(LANES) * LANES;
+
+/// `B_i^n(s / DEVIATION_SAMPLES)`, coefficient-major (entry `i TABLE_ROW +
+/// s`, `i = 0..=n`, `s = 0..=DEVIATION_SAMPLES`, zero for `s` above), by
+/// the product form `C(n,i) u^i (1 - u)^(n-i)` with exact binomials and
+/// exact `u`, `1 - u` (relative error at most `(n + 1) eps` per entry);
+/// `None` above [`DEVIATION_TABLE_DEGREE`].
 fn deviation_table(n: usize) -> Option<&'static [f64]> {
     static TABLES: [OnceLock<Vec<f64>>; DEVIATION_TABLE_DEGREE + 1] =
         [const { OnceLock::new() }; DEVIATION_TABLE_DEGREE + 1];
     let slot = TABLES.get(n)?;
     Some(slot.get_or_init(|| {
-        let mut table = Vec::with_capacity((DEVIATION_SAMPLES + 1) * (n + 1));
+        let mut table = vec![0.0; TABLE_ROW * (n + 1)];
         for i in 0..=n {
-            for s in 0..=DEVIATION_SAMPLES {
+            for s in 0..SAMPLES {
                 let u = s as f64 / DEVIATION_SAMPLES as f64;
                 let v = 1.0 - u;
                 let mut b = crate::basis::binomial(n, i);
@@ -315,7 +328,7 @@ fn deviation_table(n: usize) -> Option<&'static [f64]> {
                 for _ in i..n {
                     b *= v;
                 }
-                table.push(b);
+                table[i * TABLE_ROW + s] = b;
             }
         }
         table
@@ -323,41 +336,52 @@ fn deviation_table(n: usize) -> Option<&'static [f64]> {
 }
 
 /// The sample values of one (half) difference curve of dimension `D`,
-/// `sum_i B_i(u_s) half_i` for every sample `s`, noted in `worst`.
-// The samples are read across the coordinate rows (`values[c][s]`).
+/// `sum_i B_i(u_s) half_i` for every sample `s` (each sum from `0.0` in
+/// the order `i = 0..n`), noted in `worst`. [`LANES`] samples at a time,
+/// their sums kept in registers over all coefficients (no array of all
+/// sample values).
+// The lanes are read across the coordinate rows (`acc[c][k]`).
 #[allow(clippy::needless_range_loop)]
 fn deviation_fixed<const D: usize>(table: &[f64], half: &[f64], worst: &mut Worst) {
-    const SAMPLES: usize = DEVIATION_SAMPLES + 1;
-    let mut values = [[0.0; SAMPLES]; D];
-    for (column, p) in table.chunks_exact(SAMPLES).zip(half.chunks_exact(D)) {
-        for (values, &x) in values.iter_mut().zip(p) {
-            for (v, &b) in values.iter_mut().zip(column) {
-                *v += b * x;
+    let values = |s0: usize| {
+        let mut acc = [[0.0f64; LANES]; D];
+        for (row, p) in table.chunks_exact(TABLE_ROW).zip(half.chunks_exact(D)) {
+            let b: &[f64; LANES] = row[s0..s0 + LANES].try_into().expect("LANES entries");
+            for c in 0..D {
+                let x = p[c];
+                for k in 0..LANES {
+                    acc[c][k] += b[k] * x;
+                }
             }
         }
-    }
+        acc
+    };
     // The largest square while squares are normal (a plain compare); a
     // zero square changes nothing; any other sample (subnormal, overflow,
     // NaN) sends the piece through `Worst::note` sample by sample.
     let mut largest = 0.0f64;
     let mut other = false;
-    for s in 0..SAMPLES {
-        let mut square = 0.0;
-        for values in &values {
-            square += values[s] * values[s];
-        }
-        if square.is_normal() {
+    for s0 in (0..TABLE_ROW).step_by(LANES) {
+        let acc = values(s0);
+        for k in 0..LANES {
+            let mut square = 0.0;
+            for c in 0..D {
+                square += acc[c][k] * acc[c][k];
+            }
             if square > largest {
                 largest = square;
             }
-        } else if square != 0.0 {
-            other = true;
+            // Not normal and not zero (NaN fails both comparisons).
+            other |= !((square >= f64::MIN_POSITIVE && square <= f64::MAX) || square == 0.0);
         }
     }
     if other {
-        for s in 0..SAMPLES {
-            let value: [f64; D] = std::array::from_fn(|c| values[c][s]);
-            worst.note(&value);
+        for s0 in (0..TABLE_ROW).step_by(LANES) {
+            let acc = values(s0);
+            for k in 0..LANES {
+                let value: [f64; D] = std::array::from_fn(|c| acc[c][k]);
+                worst.note(&value);
+            }
         }
     } else {
         worst.square = worst.square.max(largest);
