@@ -123,13 +123,6 @@ impl Factor {
         }
     }
 
-    /// `x <- Q x` (one column of length `rows`).
-    pub(super) fn apply_q(&self, x: &mut [f64]) {
-        for k in (0..self.cols).rev() {
-            reflect(self.reflector(k), &mut x[k..], self.beta[k]);
-        }
-    }
-
     /// `T`'s column `j` above the diagonal (`j` entries).
     pub(super) fn t_column(&self, j: usize) -> &[f64] {
         &self.packed[j * self.rows..j * self.rows + j]
@@ -148,13 +141,6 @@ impl Factor {
             for (yi, &t) in y[..j].iter_mut().zip(self.t_column(j)) {
                 *yi -= t * yj;
             }
-        }
-    }
-
-    /// `y <- T^-T y` (the first `cols` entries).
-    pub(super) fn solve_tt(&self, y: &mut [f64]) {
-        for i in 0..self.cols {
-            y[i] = (y[i] - dot(self.t_column(i), &y[..i])) / self.diagonal[i];
         }
     }
 
@@ -223,7 +209,7 @@ mod tests {
     }
 
     /// The defining properties of the factor: `Q T = A`, `Q^T Q = I`,
-    /// `T` upper triangular; `Q`, `Q^T`, `T^-1`, `T^-T` applied from it
+    /// `T` upper triangular; `Q^T`, `T`, `T^-1` applied from it
     /// are those matrices; the least-squares solution satisfies the normal
     /// equations `A^T (A y - b) = 0`.
     #[test]
@@ -243,9 +229,6 @@ mod tests {
             let x = matrix(&mut state, rows, 1);
             let mut qt = x.as_slice().to_vec();
             f.apply_qt(&mut qt);
-            let mut back = qt.clone();
-            f.apply_q(&mut back);
-            assert!((DMatrix::from_column_slice(rows, 1, &back) - &x).amax() <= tol);
             let head = DMatrix::from_column_slice(cols, 1, &qt[..cols]);
             assert!((head - q.transpose() * &x).amax() <= tol, "{rows}x{cols}: Q^T x");
             let mut y = x.as_slice()[..cols].to_vec();
@@ -254,11 +237,6 @@ mod tests {
             let xv = DMatrix::from_column_slice(cols, 1, &x.as_slice()[..cols]);
             let scale = 1.0 + yv.amax() * t.amax();
             assert!((&t * &yv - &xv).amax() <= tol * scale, "{rows}x{cols}: T^-1");
-            let mut z = x.as_slice()[..cols].to_vec();
-            f.solve_tt(&mut z);
-            let zv = DMatrix::from_column_slice(cols, 1, &z);
-            let scale = 1.0 + zv.amax() * t.amax();
-            assert!((t.transpose() * &zv - &xv).amax() <= tol * scale, "{rows}x{cols}: T^-T");
             let mut w = xv.as_slice().to_vec();
             f.mul_t(&mut w);
             assert!((DMatrix::from_column_slice(cols, 1, &w) - &t * &xv).amax() <= tol * t.amax());

@@ -359,27 +359,11 @@ fn null_space(basis: &[(DVector<f64>, DVector<f64>)], n: usize) -> DMatrix<f64> 
     DMatrix::from_columns(&columns)
 }
 
-/// Stage 1 by the orthogonal path. `full`: every check and the error
-/// estimate (every answer a caller receives); otherwise a trial of the
-/// `mu` search (value and slope only, no refusal for conditioning).
-/// `want_slope`: two pieces and rows independent of `mu` (no keep points).
-pub(super) fn orthogonal_solution(
-    problem: &Problem<'_, '_>,
-    breakpoints: &[f64],
-    metric: MergeMetric,
-    accuracy: f64,
-    full: bool,
-    want_slope: bool,
-) -> Result<Orthogonal> {
-    let points = problem.points_per_piece;
-    let m = points - 1;
-    let count = problem.pieces.len();
+/// The constraint rows on `r`: `(G S) r = G x0 + rhs`, scaled to unit
+/// length.
+fn constraint_rows_on_r(problem: &Problem<'_, '_>, s: &DMatrix<f64>) -> Vec<Row> {
     let x0 = &problem.x0;
-    let s = restrictions(m, breakpoints);
-    let (samples, target, target_abs) = metric_samples(problem, breakpoints, metric, &s);
-
-    // The constraint rows on r: (G S) r = G x0 + rhs.
-    let rows_r: Vec<Row> = problem
+    problem
         .constraints
         .iter()
         .map(|row| {
@@ -400,25 +384,127 @@ pub(super) fn orthogonal_solution(
                 }
             }
         })
-        .collect();
-    let mut basis: Vec<(DVector<f64>, DVector<f64>)> = Vec::new();
-    let rank_tolerance = RANK_TOLERANCE * (problem.unknowns as f64).sqrt();
-    let (kept, dependent) = extend_orthonormal(&mut basis, &rows_r, rank_tolerance, points);
+        .collect()
+}
 
-    // Particular solution and null space of the kept rows.
-    let mut particular = DMatrix::zeros(points, problem.dim);
-    for (b, rhs) in &basis {
-        particular.ger(1.0, b, rhs, 1.0);
+/// The feasible set `{r_p + Z y}` of the constraint rows on `r`.
+struct Feasible<'r> {
+    /// Rows kept (independent) and dependent (checked at the answer).
+    kept: Vec<&'r Row>,
+    dependent: Vec<&'r Row>,
+    /// The particular solution `r_p` (`(m + 1) x dim`).
+    particular: DMatrix<f64>,
+    /// The orthonormal null-space basis `Z` (`None`: no kept rows).
+    free: usize,
+    z: Option<DMatrix<f64>>,
+    /// The number of kept rows and their condition number (`None`: none).
+    kept_condition: Option<(usize, f64)>,
+}
+
+impl<'r> Feasible<'r> {
+    /// Any rows: Gram-Schmidt (two passes), the particular solution from
+    /// the orthonormal rows, the greedy null-space completion, the kept
+    /// rows' condition from their singular values.
+    fn general(rows_r: &'r [Row], problem: &Problem<'_, '_>, points: usize) -> Self {
+        let mut basis: Vec<(DVector<f64>, DVector<f64>)> = Vec::new();
+        let rank_tolerance = RANK_TOLERANCE * (problem.unknowns as f64).sqrt();
+        let (kept, dependent) = extend_orthonormal(&mut basis, rows_r, rank_tolerance, points);
+        let mut particular = DMatrix::zeros(points, problem.dim);
+        for (b, rhs) in &basis {
+            particular.ger(1.0, b, rhs, 1.0);
+        }
+        let z = if basis.is_empty() {
+            None
+        } else {
+            Some(null_space(&basis, points))
+        };
+        let kept_condition = (!kept.is_empty()).then(|| {
+            let g = DMatrix::from_fn(kept.len(), points, |k, i| kept[k].coefficients[i]);
+            let singular = g.singular_values();
+            (
+                kept.len(),
+                singular.max() / singular.min().max(f64::MIN_POSITIVE),
+            )
+        });
+        Self {
+            kept,
+            dependent,
+            particular,
+            free: points - basis.len(),
+            z,
+            kept_condition,
+        }
     }
-    let z = if basis.is_empty() {
-        None
+
+    /// Two pieces whose only constraints are the fixed ends (degree `m >=
+    /// 1`): the rows on `r` are exactly `e_0` and `e_m` (the first row of
+    /// `S_L` and the last of `S_R` are unit rows), with right-hand sides
+    /// `P_0` and `Q_m`, so Gram-Schmidt keeps both unchanged, the
+    /// particular solution is `r_0 = P_0`, `r_m = Q_m` (zero elsewhere),
+    /// the greedy null-space completion is `e_1, ..., e_(m-1)` in that
+    /// order (every other unit vector has remainder 1, the first wins), and
+    /// the kept rows are orthonormal (condition 1): what [`Feasible::general`]
+    /// computes, in closed form, without building the rows.
+    fn fixed_ends(x0: &DMatrix<f64>, dim: usize, m: usize) -> Self {
+        let points = m + 1;
+        let mut particular = DMatrix::zeros(points, dim);
+        particular.row_mut(0).copy_from(&x0.row(0));
+        particular.row_mut(m).copy_from(&x0.row(2 * points - 1));
+        let z = DMatrix::from_fn(points, m - 1, |i, k| if i == k + 1 { 1.0 } else { 0.0 });
+        Self {
+            kept: Vec::new(),
+            dependent: Vec::new(),
+            particular,
+            free: m - 1,
+            z: Some(z),
+            kept_condition: Some((2, 1.0)),
+        }
+    }
+}
+
+/// Stage 1 by the orthogonal path. `full`: every check and the error
+/// estimate (every answer a caller receives); otherwise a trial of the
+/// `mu` search (value and slope only, no refusal for conditioning).
+/// `want_slope`: two pieces and rows independent of `mu` (no keep points).
+pub(super) fn orthogonal_solution(
+    problem: &Problem<'_, '_>,
+    breakpoints: &[f64],
+    metric: MergeMetric,
+    accuracy: f64,
+    full: bool,
+    want_slope: bool,
+) -> Result<Orthogonal> {
+    let points = problem.points_per_piece;
+    let m = points - 1;
+    let count = problem.pieces.len();
+    let x0 = &problem.x0;
+    let s = restrictions(m, breakpoints);
+    let (samples, target, target_abs) = metric_samples(problem, breakpoints, metric, &s);
+
+    let ends_only = count == 2
+        && m >= 1
+        && problem.constraints.len() == 2
+        && problem.pieces.iter().all(|p| p.points.is_empty());
+    let rows_r: Vec<Row>;
+    let feasible = if ends_only {
+        rows_r = Vec::new();
+        Feasible::fixed_ends(x0, problem.dim, m)
     } else {
-        Some(null_space(&basis, points))
+        rows_r = constraint_rows_on_r(problem, &s);
+        Feasible::general(&rows_r, problem, points)
     };
-    let free = points - basis.len();
+    let Feasible {
+        kept,
+        dependent,
+        particular,
+        z,
+        free,
+        kept_condition,
+    } = feasible;
+    let kept_count = kept_condition.map_or(0, |(count, _)| count);
     // Without kept rows the particular solution is zero: no products.
-    let particular_abs = (!basis.is_empty()).then(|| particular.abs());
-    let reduced_target = if basis.is_empty() {
+    let particular_abs = z.is_some().then(|| particular.abs());
+    let reduced_target = if z.is_none() {
         target.clone()
     } else {
         &target - &samples * &particular
@@ -560,20 +646,21 @@ pub(super) fn orthogonal_solution(
         // least-squares problem.
         reduced_gain = pieces_gain * samples.norm();
     }
-    if !kept.is_empty() {
+    if let Some((_, condition)) = kept_condition {
         // The kept rows carry their entries' rounding: the feasible set
         // moves by up to cond(rows) eps relative, which the pieces feel
         // through S directly and through the reduced least-squares problem
         // (the optimum moves along with the particular solution).
-        let g = DMatrix::from_fn(kept.len(), points, |k, i| kept[k].coefficients[i]);
-        let singular = g.singular_values();
-        let condition = singular.max() / singular.min().max(f64::MIN_POSITIVE);
         estimate += ESTIMATE_MARGIN * eps * condition * (s.norm() + reduced_gain) * merged.norm()
             / result_scale;
     }
 
     // Dependent rows, checked at the answer (as the KKT path).
-    let e = &x - x0;
+    let e = if dependent.is_empty() {
+        DMatrix::zeros(0, 0)
+    } else {
+        &x - x0
+    };
     let tolerance = CONSISTENCY_TOLERANCE.max(accuracy) * result_scale;
     let unknowns = problem.unknowns;
     let root = (unknowns as f64).sqrt();
@@ -618,7 +705,7 @@ pub(super) fn orthogonal_solution(
             what: format!(
                 "merge stage 1 (least squares for R of degree {m}, {} conditions kept, \
                  first-order error estimate of the pieces)",
-                kept.len()
+                kept_count
             ),
             estimate,
             limit: accuracy,
@@ -880,5 +967,50 @@ fn ill_conditioned_factor(accuracy: f64) -> BezjoinError {
         what: "merge stage 1 (the least-squares factor is singular or overflows)".into(),
         estimate: f64::INFINITY,
         limit: accuracy,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::stage_one::PieceInput;
+    use super::*;
+
+    use crate::test_values::planar_curve as curve;
+
+    /// The closed-form feasible set of fixed ends on two pieces is what
+    /// the general construction (rows on `r`, Gram-Schmidt, greedy null
+    /// space, singular values) gives for the same rows: the same
+    /// particular solution and null-space basis bit for bit, both rows
+    /// kept, none dependent, the same condition, at every degree and `mu`.
+    #[test]
+    fn fixed_ends_feasible_set_is_the_general_one() {
+        let mut state = 17;
+        for degree in [1, 2, 3, 4, 7, 15, 24, 31] {
+            let pieces: Vec<PieceInput<'_>> = ["P", "Q"]
+                .iter()
+                .map(|name| PieceInput {
+                    curve: curve(&mut state, degree),
+                    name: (*name).into(),
+                    points_name: "points".into(),
+                    keep: false,
+                    points: Vec::new(),
+                })
+                .collect();
+            for mu in [1e-3, 0.3, 0.5, 0.77] {
+                let problem = Problem::new(&pieces, &[mu, 1.0 - mu], true);
+                let s = restrictions(degree, &[0.0, mu, 1.0]);
+                let rows_r = constraint_rows_on_r(&problem, &s);
+                let general = Feasible::general(&rows_r, &problem, degree + 1);
+                let closed = Feasible::fixed_ends(&problem.x0, problem.dim, degree);
+                let context = format!("degree {degree} mu {mu}");
+                assert_eq!(general.kept.len(), 2, "{context}");
+                assert!(general.dependent.is_empty(), "{context}");
+                assert_eq!(closed.free, general.free, "{context}");
+                assert_eq!(closed.particular, general.particular, "{context}");
+                assert_eq!(closed.z, general.z, "{context}");
+                let (count, condition) = general.kept_condition.unwrap();
+                assert_eq!(Some((count, condition)), closed.kept_condition, "{context}");
+            }
+        }
     }
 }
