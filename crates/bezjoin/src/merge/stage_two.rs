@@ -95,7 +95,17 @@ fn check_restrictions(
             Some(back) => back,
             None => restriction(&merged, breakpoints[j], breakpoints[j + 1])?,
         };
-        let diff = (back.control_matrix() - p).amax();
+        // max |back_ic - p_ic| as nalgebra's `amax` of the difference
+        // matrix (first entry's magnitude, then f64::max), without forming
+        // it: `back` is row-major, `p` column-major.
+        let d = back.dim();
+        let mut diff = f64::NAN;
+        for (i, point) in back.points().chunks_exact(d).enumerate() {
+            for (c, &v) in point.iter().enumerate() {
+                let gap = (v - p[(i, c)]).abs();
+                diff = if i == 0 && c == 0 { gap } else { diff.max(gap) };
+            }
+        }
         worst = worst.max(diff / scale);
         restrictions.push(back);
     }
@@ -356,11 +366,17 @@ fn deviation_fixed<const D: usize>(table: &[f64], half: &[f64], worst: &mut Wors
         }
         acc
     };
-    // The largest square while squares are normal (a plain compare); a
-    // zero square changes nothing; any other sample (subnormal, overflow,
-    // NaN) sends the piece through `Worst::note` sample by sample.
+    // The largest square (a plain compare) and the sum of all squares. A
+    // NaN or infinite square makes the sum non-finite; a subnormal or
+    // underflowed square (its value below sqrt(MIN_POSITIVE), so it
+    // matters only when every square is that small) shows as a largest
+    // square below 2 MIN_POSITIVE. Either sends the piece through
+    // `Worst::note` sample by sample, whose norm does not square (before,
+    // squares that underflowed to zero were passed over, so a piece of
+    // such tiny differences reported 0); otherwise the largest square is
+    // exactly what `note` would keep.
     let mut largest = 0.0f64;
-    let mut other = false;
+    let mut total = 0.0f64;
     for s0 in (0..TABLE_ROW).step_by(LANES) {
         let acc = values(s0);
         for k in 0..LANES {
@@ -371,10 +387,10 @@ fn deviation_fixed<const D: usize>(table: &[f64], half: &[f64], worst: &mut Wors
             if square > largest {
                 largest = square;
             }
-            // Not normal and not zero (NaN fails both comparisons).
-            other |= !((square >= f64::MIN_POSITIVE && square <= f64::MAX) || square == 0.0);
+            total += square;
         }
     }
+    let other = !(total <= f64::MAX) || largest < 2.0 * f64::MIN_POSITIVE;
     if other {
         for s0 in (0..TABLE_ROW).step_by(LANES) {
             let acc = values(s0);
@@ -507,6 +523,46 @@ mod tests {
                 assert!(
                     (ours - reference).abs() <= bound,
                     "dim {dim} degree {degree}: {ours:e} vs {reference:e} (bound {bound:e})"
+                );
+            }
+        }
+    }
+
+    /// Differences so small that their squares are subnormal or zero, and
+    /// so large that they overflow: the sampled maximum is still the
+    /// largest distance (computed without squaring), in the unrolled
+    /// dimensions 2 and 3 and the general path, against the
+    /// two-evaluation definition with an overflow-safe norm.
+    #[test]
+    fn max_deviation_survives_tiny_and_huge_differences() {
+        let mut state = 23;
+        for scale in [1e-170, 1e-158, 1e-152, 1e150, 1e160] {
+            for dim in [2, 3, 4] {
+                let degree = 3;
+                let unit = curve(&mut state, dim, degree);
+                let r = BezierCurve::new(
+                    dim,
+                    degree,
+                    unit.points().iter().map(|v| v * scale).collect(),
+                )
+                .unwrap();
+                let breakpoints = [0.0, 0.5, 1.0];
+                let restrictions: Vec<BezierCurve> = (0..2)
+                    .map(|j| r.segment(breakpoints[j], breakpoints[j + 1]).unwrap())
+                    .collect();
+                let zero = BezierCurve::new(dim, degree, vec![0.0; (degree + 1) * dim]).unwrap();
+                let ours = max_deviation(&restrictions, &[&zero, &zero]).unwrap();
+                let mut reference = 0.0f64;
+                let mut a = vec![0.0; dim];
+                for back in &restrictions {
+                    for s in 0..=DEVIATION_SAMPLES {
+                        back.eval_into(s as f64 / DEVIATION_SAMPLES as f64, &mut a);
+                        reference = reference.max(crate::bezier::norm(&a));
+                    }
+                }
+                assert!(
+                    reference > 0.0 && (ours - reference).abs() <= 1e-12 * reference,
+                    "scale {scale:e} dim {dim}: {ours:e} vs {reference:e}"
                 );
             }
         }
