@@ -34,7 +34,7 @@ pub(super) struct Factor {
 pub(super) fn dot(a: &[f64], b: &[f64]) -> f64 {
     let n = a.len().min(b.len());
     let (a, b) = (&a[..n], &b[..n]);
-    let mut s = [0.0f64; 4];
+    let (mut s0, mut s1, mut s2, mut s3) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
     let (ca, cb) = (a.chunks_exact(4), b.chunks_exact(4));
     let tail: f64 = ca
         .remainder()
@@ -43,11 +43,14 @@ pub(super) fn dot(a: &[f64], b: &[f64]) -> f64 {
         .map(|(x, y)| x * y)
         .sum();
     for (x, y) in ca.zip(cb) {
-        for k in 0..4 {
-            s[k] += x[k] * y[k];
-        }
+        let x: &[f64; 4] = x.try_into().expect("4 entries");
+        let y: &[f64; 4] = y.try_into().expect("4 entries");
+        s0 += x[0] * y[0];
+        s1 += x[1] * y[1];
+        s2 += x[2] * y[2];
+        s3 += x[3] * y[3];
     }
-    ((s[0] + s[1]) + (s[2] + s[3])) + tail
+    ((s0 + s2) + (s1 + s3)) + tail
 }
 
 /// `x -= beta (v^T x) v`.

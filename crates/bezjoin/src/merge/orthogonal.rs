@@ -886,16 +886,28 @@ fn first_order_bound(
         }
     };
     // |K1| = |K0 Q^T| (out x rows): column i is sum_k Q[i][k] K0[:, k].
+    // For the thin Q (K0 = Q) it is symmetric: the entries on and below
+    // the diagonal are summed, those above copied from them.
+    let symmetric = map.is_none();
     let mut k1 = Vec::with_capacity(out * rows);
     for i in 0..rows {
         let start = k1.len();
+        let from = if symmetric { i } else { 0 };
+        k1.extend(std::iter::repeat_n(0.0, from));
         let q0 = q[i];
-        k1.extend(k0[..out].iter().map(|&e| e * q0));
-        let column = &mut k1[start..];
+        k1.extend(k0[from..out].iter().map(|&e| e * q0));
+        let column = &mut k1[start + from..];
         for k in 1..free {
             let qik = q[k * rows + i];
-            for (e, &x) in column.iter_mut().zip(&k0[k * out..(k + 1) * out]) {
+            for (e, &x) in column.iter_mut().zip(&k0[k * out + from..(k + 1) * out]) {
                 *e += x * qik;
+            }
+        }
+    }
+    if symmetric {
+        for i in 0..rows {
+            for o in 0..i {
+                k1[i * out + o] = k1[o * out + i];
             }
         }
     }
