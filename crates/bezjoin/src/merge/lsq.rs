@@ -151,8 +151,8 @@ impl Factor {
     pub(super) fn mul_t(&self, x: &mut [f64]) {
         for i in 0..self.cols {
             let mut sum = self.diagonal[i] * x[i];
-            for j in i + 1..self.cols {
-                sum += self.t(i, j) * x[j];
+            for (j, &xj) in x.iter().enumerate().take(self.cols).skip(i + 1) {
+                sum += self.t(i, j) * xj;
             }
             x[i] = sum;
         }
@@ -233,13 +233,19 @@ mod tests {
             let mut qt = x.as_slice().to_vec();
             f.apply_qt(&mut qt);
             let head = DMatrix::from_column_slice(cols, 1, &qt[..cols]);
-            assert!((head - q.transpose() * &x).amax() <= tol, "{rows}x{cols}: Q^T x");
+            assert!(
+                (head - q.transpose() * &x).amax() <= tol,
+                "{rows}x{cols}: Q^T x"
+            );
             let mut y = x.as_slice()[..cols].to_vec();
             f.solve_t(&mut y);
             let yv = DMatrix::from_column_slice(cols, 1, &y);
             let xv = DMatrix::from_column_slice(cols, 1, &x.as_slice()[..cols]);
             let scale = 1.0 + yv.amax() * t.amax();
-            assert!((&t * &yv - &xv).amax() <= tol * scale, "{rows}x{cols}: T^-1");
+            assert!(
+                (&t * &yv - &xv).amax() <= tol * scale,
+                "{rows}x{cols}: T^-1"
+            );
             let mut w = xv.as_slice().to_vec();
             f.mul_t(&mut w);
             assert!((DMatrix::from_column_slice(cols, 1, &w) - &t * &xv).amax() <= tol * t.amax());
@@ -249,7 +255,10 @@ mod tests {
             let ls = DMatrix::from_column_slice(cols, 1, &ls);
             let normal = a.transpose() * (&a * &ls - &x);
             let scale = 1.0 + ls.amax() * a.amax() * (rows as f64);
-            assert!(normal.amax() <= tol * scale, "{rows}x{cols}: normal equations");
+            assert!(
+                normal.amax() <= tol * scale,
+                "{rows}x{cols}: normal equations"
+            );
         }
         // A zero column has no factor.
         assert!(Factor::new(&[1.0, 2.0, 0.0, 0.0], 2, 2).is_none());

@@ -811,7 +811,10 @@ fn times_t_inverse_transposed(qr: &Factor, k: &mut [f64], out: usize) {
         let column = &mut head[c * out..];
         for j in c + 1..free {
             let t = qr.t_column(j)[c];
-            for (e, &x) in column.iter_mut().zip(&tail[(j - c - 1) * out..(j - c) * out]) {
+            for (e, &x) in column
+                .iter_mut()
+                .zip(&tail[(j - c - 1) * out..(j - c) * out])
+            {
                 *e -= t * x;
             }
         }

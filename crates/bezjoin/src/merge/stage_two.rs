@@ -390,7 +390,7 @@ fn deviation_fixed<const D: usize>(table: &[f64], half: &[f64], worst: &mut Wors
             total += square;
         }
     }
-    let other = !(total <= f64::MAX) || largest < 2.0 * f64::MIN_POSITIVE;
+    let other = !total.is_finite() || largest < 2.0 * f64::MIN_POSITIVE;
     if other {
         for s0 in (0..TABLE_ROW).step_by(LANES) {
             let acc = values(s0);
