@@ -4,6 +4,10 @@
 //! `MERGE_REPEATS` merges. `MERGE_PAIR=back` merges the two pieces of one
 //! curve split at 0.4 instead (a pair every degree answers: the default
 //! pair is refused at degree 31, so it counts only the refusal).
+//! `MERGE_PAIR=demo` merges the C++ demo's row "merge two cubics,
+//! discrete, mu = 1/2" (`cpp-demo/demo.cpp`, `check_merge`): its two 3D
+//! cubics, fix ends, `mu = 1/2` (the degree and split of `MERGE_CASE`
+//! ignored, its metric used).
 //! `MERGE_KIND=bspline` merges the same pair as one-span B-splines with
 //! `merge_bsplines` (the B-spline / Bezier ratio of issue 20).
 //! `MERGE_POINTS=file` reads the pair from a file instead (two lines of
@@ -70,8 +74,20 @@ fn merge_work() {
                 .collect();
             (curves[0].clone(), curves[1].clone())
         });
-    let degree = from_file.as_ref().map_or(degree, |(p, _)| p.degree());
-    let (p, q) = if let Some(pair) = from_file {
+    let demo = std::env::var("MERGE_PAIR").is_ok_and(|v| v == "demo");
+    let degree = if demo {
+        3
+    } else {
+        from_file.as_ref().map_or(degree, |(p, _)| p.degree())
+    };
+    let (p, q) = if demo {
+        let p = [0.0, 0.0, 0.0, 0.4, 0.5, 0.1, 0.9, 0.7, 0.2, 1.4, 0.75, 0.2];
+        let q = [1.4, 0.75, 0.2, 1.9, 0.8, 0.2, 2.4, 0.5, 0.1, 2.8, 0.0, 0.0];
+        (
+            BezierCurve::new(3, 3, p.to_vec()).unwrap(),
+            BezierCurve::new(3, 3, q.to_vec()).unwrap(),
+        )
+    } else if let Some(pair) = from_file {
         pair
     } else if std::env::var("MERGE_PAIR").is_ok_and(|v| v == "back") {
         let (whole, _) = pair(degree);
@@ -79,12 +95,21 @@ fn merge_work() {
     } else {
         pair(degree)
     };
-    let options = MergeOptions::default()
-        .with_metric(metric)
-        .with_split(split);
+    let options = if demo {
+        MergeOptions {
+            fix_ends: true,
+            ..MergeOptions::default()
+                .with_metric(metric)
+                .with_split(Breakpoints::Uniform)
+        }
+    } else {
+        MergeOptions::default()
+            .with_metric(metric)
+            .with_split(split)
+    };
     let one_span = |c: &BezierCurve| {
         let knots = [vec![0.0; degree + 1], vec![1.0; degree + 1]].concat();
-        NurbsCurve::new(2, degree, c.points().to_vec(), None, knots).unwrap()
+        NurbsCurve::new(c.dim(), degree, c.points().to_vec(), None, knots).unwrap()
     };
     let bspline = std::env::var("MERGE_KIND").is_ok_and(|v| v == "bspline");
     let (ps, qs) = (one_span(&p), one_span(&q));

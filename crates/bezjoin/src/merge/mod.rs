@@ -98,6 +98,7 @@ mod bspline;
 mod bspline_slope;
 mod kept;
 mod kkt;
+mod lsq;
 mod orthogonal;
 mod refine;
 mod rows;

@@ -65,6 +65,7 @@ use crate::bezier::BezierCurve;
 use crate::error::{BezjoinError, Result};
 
 use super::MergeMetric;
+use super::lsq::{self, Factor};
 use super::rows::{Problem, Row, check_dependent_rows, extend_orthonormal};
 use super::stage_one::{CONSISTENCY_TOLERANCE, RANK_TOLERANCE};
 use super::stage_two::restriction_matrix;
@@ -358,27 +359,11 @@ fn null_space(basis: &[(DVector<f64>, DVector<f64>)], n: usize) -> DMatrix<f64> 
     DMatrix::from_columns(&columns)
 }
 
-/// Stage 1 by the orthogonal path. `full`: every check and the error
-/// estimate (every answer a caller receives); otherwise a trial of the
-/// `mu` search (value and slope only, no refusal for conditioning).
-/// `want_slope`: two pieces and rows independent of `mu` (no keep points).
-pub(super) fn orthogonal_solution(
-    problem: &Problem<'_, '_>,
-    breakpoints: &[f64],
-    metric: MergeMetric,
-    accuracy: f64,
-    full: bool,
-    want_slope: bool,
-) -> Result<Orthogonal> {
-    let points = problem.points_per_piece;
-    let m = points - 1;
-    let count = problem.pieces.len();
+/// The constraint rows on `r`: `(G S) r = G x0 + rhs`, scaled to unit
+/// length.
+fn constraint_rows_on_r(problem: &Problem<'_, '_>, s: &DMatrix<f64>) -> Vec<Row> {
     let x0 = &problem.x0;
-    let s = restrictions(m, breakpoints);
-    let (samples, target, target_abs) = metric_samples(problem, breakpoints, metric, &s);
-
-    // The constraint rows on r: (G S) r = G x0 + rhs.
-    let rows_r: Vec<Row> = problem
+    problem
         .constraints
         .iter()
         .map(|row| {
@@ -399,25 +384,127 @@ pub(super) fn orthogonal_solution(
                 }
             }
         })
-        .collect();
-    let mut basis: Vec<(DVector<f64>, DVector<f64>)> = Vec::new();
-    let rank_tolerance = RANK_TOLERANCE * (problem.unknowns as f64).sqrt();
-    let (kept, dependent) = extend_orthonormal(&mut basis, &rows_r, rank_tolerance, points);
+        .collect()
+}
 
-    // Particular solution and null space of the kept rows.
-    let mut particular = DMatrix::zeros(points, problem.dim);
-    for (b, rhs) in &basis {
-        particular.ger(1.0, b, rhs, 1.0);
+/// The feasible set `{r_p + Z y}` of the constraint rows on `r`.
+struct Feasible<'r> {
+    /// Rows kept (independent) and dependent (checked at the answer).
+    kept: Vec<&'r Row>,
+    dependent: Vec<&'r Row>,
+    /// The particular solution `r_p` (`(m + 1) x dim`).
+    particular: DMatrix<f64>,
+    /// The orthonormal null-space basis `Z` (`None`: no kept rows).
+    free: usize,
+    z: Option<DMatrix<f64>>,
+    /// The number of kept rows and their condition number (`None`: none).
+    kept_condition: Option<(usize, f64)>,
+}
+
+impl<'r> Feasible<'r> {
+    /// Any rows: Gram-Schmidt (two passes), the particular solution from
+    /// the orthonormal rows, the greedy null-space completion, the kept
+    /// rows' condition from their singular values.
+    fn general(rows_r: &'r [Row], problem: &Problem<'_, '_>, points: usize) -> Self {
+        let mut basis: Vec<(DVector<f64>, DVector<f64>)> = Vec::new();
+        let rank_tolerance = RANK_TOLERANCE * (problem.unknowns as f64).sqrt();
+        let (kept, dependent) = extend_orthonormal(&mut basis, rows_r, rank_tolerance, points);
+        let mut particular = DMatrix::zeros(points, problem.dim);
+        for (b, rhs) in &basis {
+            particular.ger(1.0, b, rhs, 1.0);
+        }
+        let z = if basis.is_empty() {
+            None
+        } else {
+            Some(null_space(&basis, points))
+        };
+        let kept_condition = (!kept.is_empty()).then(|| {
+            let g = DMatrix::from_fn(kept.len(), points, |k, i| kept[k].coefficients[i]);
+            let singular = g.singular_values();
+            (
+                kept.len(),
+                singular.max() / singular.min().max(f64::MIN_POSITIVE),
+            )
+        });
+        Self {
+            kept,
+            dependent,
+            particular,
+            free: points - basis.len(),
+            z,
+            kept_condition,
+        }
     }
-    let z = if basis.is_empty() {
-        None
+
+    /// Two pieces whose only constraints are the fixed ends (degree `m >=
+    /// 1`): the rows on `r` are exactly `e_0` and `e_m` (the first row of
+    /// `S_L` and the last of `S_R` are unit rows), with right-hand sides
+    /// `P_0` and `Q_m`, so Gram-Schmidt keeps both unchanged, the
+    /// particular solution is `r_0 = P_0`, `r_m = Q_m` (zero elsewhere),
+    /// the greedy null-space completion is `e_1, ..., e_(m-1)` in that
+    /// order (every other unit vector has remainder 1, the first wins), and
+    /// the kept rows are orthonormal (condition 1): what [`Feasible::general`]
+    /// computes, in closed form, without building the rows.
+    fn fixed_ends(x0: &DMatrix<f64>, dim: usize, m: usize) -> Self {
+        let points = m + 1;
+        let mut particular = DMatrix::zeros(points, dim);
+        particular.row_mut(0).copy_from(&x0.row(0));
+        particular.row_mut(m).copy_from(&x0.row(2 * points - 1));
+        let z = DMatrix::from_fn(points, m - 1, |i, k| if i == k + 1 { 1.0 } else { 0.0 });
+        Self {
+            kept: Vec::new(),
+            dependent: Vec::new(),
+            particular,
+            free: m - 1,
+            z: Some(z),
+            kept_condition: Some((2, 1.0)),
+        }
+    }
+}
+
+/// Stage 1 by the orthogonal path. `full`: every check and the error
+/// estimate (every answer a caller receives); otherwise a trial of the
+/// `mu` search (value and slope only, no refusal for conditioning).
+/// `want_slope`: two pieces and rows independent of `mu` (no keep points).
+pub(super) fn orthogonal_solution(
+    problem: &Problem<'_, '_>,
+    breakpoints: &[f64],
+    metric: MergeMetric,
+    accuracy: f64,
+    full: bool,
+    want_slope: bool,
+) -> Result<Orthogonal> {
+    let points = problem.points_per_piece;
+    let m = points - 1;
+    let count = problem.pieces.len();
+    let x0 = &problem.x0;
+    let s = restrictions(m, breakpoints);
+    let (samples, target, target_abs) = metric_samples(problem, breakpoints, metric, &s);
+
+    let ends_only = count == 2
+        && m >= 1
+        && problem.constraints.len() == 2
+        && problem.pieces.iter().all(|p| p.points.is_empty());
+    let rows_r: Vec<Row>;
+    let feasible = if ends_only {
+        rows_r = Vec::new();
+        Feasible::fixed_ends(x0, problem.dim, m)
     } else {
-        Some(null_space(&basis, points))
+        rows_r = constraint_rows_on_r(problem, &s);
+        Feasible::general(&rows_r, problem, points)
     };
-    let free = points - basis.len();
+    let Feasible {
+        kept,
+        dependent,
+        particular,
+        z,
+        free,
+        kept_condition,
+    } = feasible;
+    let kept_count = kept_condition.map_or(0, |(count, _)| count);
     // Without kept rows the particular solution is zero: no products.
-    let particular_abs = (!basis.is_empty()).then(|| particular.abs());
-    let reduced_target = if basis.is_empty() {
+    let particular_abs = z.is_some().then(|| particular.abs());
+    let reduced_target = if z.is_none() {
         target.clone()
     } else {
         &target - &samples * &particular
@@ -431,42 +518,40 @@ pub(super) fn orthogonal_solution(
             Some(z) => &samples * z,
             None => samples.clone(),
         };
+        let rows = a.nrows();
+        let dim = problem.dim;
         let a_abs = a.abs();
-        let qr = a.clone().qr();
-        let t = qr.r();
-        let least_squares = |rhs: &DMatrix<f64>| {
-            let mut qt = rhs.clone();
-            qr.q_tr_mul(&mut qt);
-            t.solve_upper_triangular(&qt.rows(0, free).into_owned())
-        };
-        let Some(mut y) = least_squares(&reduced_target) else {
+        // Householder QR with the reflectors kept (module `lsq`): Q^T is
+        // applied from them, no Q is formed for the solve.
+        let Some(qr) = Factor::new(a.as_slice(), rows, free) else {
             return Err(ill_conditioned_factor(accuracy));
         };
+        let mut work = vec![0.0; rows];
+        let mut y = DMatrix::zeros(free, dim);
+        qr.least_squares(reduced_target.as_slice(), y.as_mut_slice(), &mut work);
         // Two steps of refinement in working precision (the correction
         // from the residual through the same factor): they make the answer
         // componentwise backward stable, and the last correction measures
         // what the solve's rounding leaves (the estimate's a-posteriori
         // part).
-        let mut correction = DMatrix::zeros(free, problem.dim);
+        let mut correction = DMatrix::zeros(free, dim);
+        let mut step = DMatrix::zeros(free, dim);
+        let mut remainder = DMatrix::zeros(rows, dim);
         for _ in 0..REFINEMENT_STEPS {
-            let Some(step) = least_squares(&(&reduced_target - &a * &y)) else {
-                break;
-            };
+            remainder.copy_from(&reduced_target);
+            remainder.gemm(-1.0, &a, &y, 1.0);
+            qr.least_squares(remainder.as_slice(), step.as_mut_slice(), &mut work);
             if step.iter().any(|v| !v.is_finite()) {
                 break;
             }
             y += &step;
-            correction = step;
+            correction.copy_from(&step);
         }
         merged = match &z {
             Some(z) => &particular + z * &y,
             None => y.clone(),
         };
-        let q = if full { Some(qr.q()) } else { None };
-        factor = Some((t, y, a_abs, q, correction));
-    }
-    if merged.iter().any(|v| !v.is_finite()) {
-        return Err(ill_conditioned_factor(accuracy));
+        factor = Some((qr, y, a_abs, correction));
     }
     let residual = &target - &samples * &merged;
     let metric_value = residual.norm_squared();
@@ -508,47 +593,49 @@ pub(super) fn orthogonal_solution(
     let eps = f64::EPSILON;
     let mut estimate = (m as f64 + 2.0) * eps * x.amax() / result_scale;
     let mut reduced_gain = 0.0;
-    if let Some((t, y, a_abs, Some(q), correction)) = &factor {
+    if let Some((qr, y, a_abs, correction)) = &factor {
         // The discrete metric samples the pieces themselves (M = S), so
         // the pieces' map S Z is A = Q T and K0 = S Z T^-1 is the thin Q
         // (no triangular solve); otherwise K0 is solved for.
         let pieces_map = match (metric, &z) {
-            (MergeMetric::Discrete, _) => PiecesMap::ThinQ,
-            (MergeMetric::Integral, Some(z)) => PiecesMap::Map(&s * z),
-            (MergeMetric::Integral, None) => PiecesMap::Map(s.clone()),
+            (MergeMetric::Discrete, _) => None,
+            (MergeMetric::Integral, Some(z)) => Some(&s * z),
+            (MergeMetric::Integral, None) => Some(s.clone()),
         };
 
         // The pieces (through S Z) and R itself (through Z): R's control
         // points are less well determined than the pieces' (S has small
         // singular values at high degree), and R is an answer too.
-        let shared = Shared {
-            t,
-            q,
+        let target_size = match particular_abs {
+            None => target_abs,
+            Some(particular_abs) => &target_abs + samples.abs() * particular_abs,
+        };
+        let shared = Shared::new(
+            qr,
             y,
             a_abs,
-            target: &reduced_target,
-            target_size: &match particular_abs {
-                None => target_abs,
-                Some(particular_abs) => &target_abs + samples.abs() * particular_abs,
-            },
-            residual: &residual,
+            &reduced_target,
+            &target_size,
+            &residual,
             m,
             correction,
-        };
-        let (pieces_bound, pieces_gain, pieces_k2t) = first_order_bound(&shared, pieces_map, true)
-            .ok_or_else(|| ill_conditioned_factor(accuracy))?;
+        );
+        let (pieces_bound, pieces_gain, pieces_k2t) =
+            first_order_bound(&shared, pieces_map.as_ref(), true)
+                .ok_or_else(|| ill_conditioned_factor(accuracy))?;
         let merged_bound = match (pieces_k2t, &z) {
             // Discrete metric, no kept rows: R's map is the identity and
-            // its K1 = T^-1 Q^T is the pieces' K2^T, already solved.
-            (Some(k2t), None) => {
-                values_bound(&shared, &k2t.abs(), REFINEMENT_MARGIN * correction.amax())
+            // its K1 = T^-1 Q^T is the pieces' K2^T, already solved (and
+            // its absolute values taken).
+            (Some(k2), None) => {
+                values_bound_transposed(&shared, &k2, REFINEMENT_MARGIN * correction.amax())
             }
             _ => {
                 let zr = match &z {
                     Some(z) => z.clone(),
                     None => DMatrix::identity(points, points),
                 };
-                first_order_bound(&shared, PiecesMap::Map(zr), false)
+                first_order_bound(&shared, Some(&zr), false)
                     .ok_or_else(|| ill_conditioned_factor(accuracy))?
                     .0
             }
@@ -559,20 +646,21 @@ pub(super) fn orthogonal_solution(
         // least-squares problem.
         reduced_gain = pieces_gain * samples.norm();
     }
-    if !kept.is_empty() {
+    if let Some((_, condition)) = kept_condition {
         // The kept rows carry their entries' rounding: the feasible set
         // moves by up to cond(rows) eps relative, which the pieces feel
         // through S directly and through the reduced least-squares problem
         // (the optimum moves along with the particular solution).
-        let g = DMatrix::from_fn(kept.len(), points, |k, i| kept[k].coefficients[i]);
-        let singular = g.singular_values();
-        let condition = singular.max() / singular.min().max(f64::MIN_POSITIVE);
         estimate += ESTIMATE_MARGIN * eps * condition * (s.norm() + reduced_gain) * merged.norm()
             / result_scale;
     }
 
     // Dependent rows, checked at the answer (as the KKT path).
-    let e = &x - x0;
+    let e = if dependent.is_empty() {
+        DMatrix::zeros(0, 0)
+    } else {
+        &x - x0
+    };
     let tolerance = CONSISTENCY_TOLERANCE.max(accuracy) * result_scale;
     let unknowns = problem.unknowns;
     let root = (unknowns as f64).sqrt();
@@ -617,7 +705,7 @@ pub(super) fn orthogonal_solution(
             what: format!(
                 "merge stage 1 (least squares for R of degree {m}, {} conditions kept, \
                  first-order error estimate of the pieces)",
-                kept.len()
+                kept_count
             ),
             estimate,
             limit: accuracy,
@@ -633,108 +721,260 @@ pub(super) fn orthogonal_solution(
     })
 }
 
-/// What the first-order bound needs of the least-squares solve.
+/// What the first-order bound needs of the least-squares solve, on flat
+/// column-major buffers.
 struct Shared<'s> {
-    /// `A = Q T`, `T` upper triangular (`free x free`), `Q` thin.
-    t: &'s DMatrix<f64>,
-    q: &'s DMatrix<f64>,
+    /// `A = Q T` (reflectors kept), `T` upper triangular (`free x free`).
+    qr: &'s Factor,
+    /// The thin `Q`, `rows x free`, formed once from the reflectors.
+    q: Vec<f64>,
     y: &'s DMatrix<f64>,
     a_abs: &'s DMatrix<f64>,
     target: &'s DMatrix<f64>,
-    /// What the reduced target's rounding is relative to: `|b|` as
-    /// evaluated (`sum |B| |P|`) plus `|M| |r_p|`.
-    target_size: &'s DMatrix<f64>,
     residual: &'s DMatrix<f64>,
     m: usize,
     /// The last refinement correction of `y`.
     correction: &'s DMatrix<f64>,
+    /// Per coordinate `c`: `|t_c| + |A| |y_c|`, where `|t_c|` is what the
+    /// reduced target's rounding is relative to (`|b|` as evaluated, `sum
+    /// |B| |P|`, plus `|M| |r_p|`); `rows x dim`.
+    through_values: DMatrix<f64>,
+    /// Per coordinate: `|A|^T |res_c|`, `free x dim`.
+    through_residual: DMatrix<f64>,
 }
 
-/// The map of [`first_order_bound`]: a matrix (`S Z` for the pieces of
-/// the integral metric, `Z` for `R`), or the pieces of the discrete metric,
-/// whose map `S Z` is `A` itself, so that `K0 = A T^-1` is the thin `Q` of
-/// the factor.
-enum PiecesMap {
-    Map(DMatrix<f64>),
-    ThinQ,
+impl<'s> Shared<'s> {
+    #[allow(clippy::too_many_arguments)]
+    fn new(
+        qr: &'s Factor,
+        y: &'s DMatrix<f64>,
+        a_abs: &'s DMatrix<f64>,
+        target: &'s DMatrix<f64>,
+        target_size: &DMatrix<f64>,
+        residual: &'s DMatrix<f64>,
+        m: usize,
+        correction: &'s DMatrix<f64>,
+    ) -> Self {
+        let through_values = target_size + a_abs * y.abs();
+        let through_residual = a_abs.tr_mul(&residual.abs());
+        Self {
+            qr,
+            q: qr.thin_q(),
+            y,
+            a_abs,
+            target,
+            residual,
+            m,
+            correction,
+            through_values,
+            through_residual,
+        }
+    }
+}
+
+/// `max_c amax(K v_c)` for a column-major `out x inner` matrix `k` and the
+/// columns `v_c` of `v` (`inner x dim`).
+fn largest_product(k: &[f64], out: usize, v: &DMatrix<f64>) -> f64 {
+    let mut worst = 0.0f64;
+    let mut acc = vec![0.0; out];
+    for column in v.column_iter() {
+        acc.fill(0.0);
+        for (kc, &x) in k.chunks_exact(out).zip(column.iter()) {
+            for (a, &e) in acc.iter_mut().zip(kc) {
+                *a += e * x;
+            }
+        }
+        worst = worst.max(lsq::amax(&acc));
+    }
+    worst
+}
+
+/// `max_c amax(K^T v_c)` for a column-major `inner x out` matrix `k`
+/// (`out` columns of length `inner`) and the columns `v_c` of `v`.
+fn largest_transposed_product(k: &[f64], inner: usize, v: &DMatrix<f64>) -> f64 {
+    let mut worst = 0.0f64;
+    for column in v.column_iter() {
+        for kc in k.chunks_exact(inner) {
+            worst = worst.max(lsq::dot(kc, column.as_slice()).abs());
+        }
+    }
+    worst
+}
+
+/// `K T^-T` in place for a column-major `out x free` matrix `k`
+/// (column operations, from the last column).
+fn times_t_inverse_transposed(qr: &Factor, k: &mut [f64], out: usize) {
+    let free = qr.cols();
+    for c in (0..free).rev() {
+        // K[:, c] = (K[:, c] - sum_(j > c) T[c][j] K[:, j]) / T[c][c].
+        let (head, tail) = k.split_at_mut((c + 1) * out);
+        let column = &mut head[c * out..];
+        for j in c + 1..free {
+            let t = qr.t_column(j)[c];
+            for (e, &x) in column
+                .iter_mut()
+                .zip(&tail[(j - c - 1) * out..(j - c) * out])
+            {
+                *e -= t * x;
+            }
+        }
+        let d = qr.diagonal()[c];
+        column.iter_mut().for_each(|e| *e /= d);
+    }
 }
 
 /// The first-order bound (module documentation) of the largest change of
-/// `map y` (`map` = `S Z` for the pieces, `Z` for `R`), absolute, and
-/// `||map A^+||_F`; for [`PiecesMap::ThinQ`] also `K2^T = T^-1 Q^T`, which
-/// is `A^+`, i.e. `R`'s `K1` when `Z = I`.
+/// `map y` (`map` = `S Z` for the pieces, `Z` for `R`; `None`: the pieces
+/// of the discrete metric, whose map `S Z` is `A` itself, so that `K0 =
+/// map T^-1` is the thin `Q` of the factor), absolute, and
+/// `||K0||_F = ||map A^+||_F`; for `None` also `K2 = Q T^-T`
+/// (column-major `rows x free`), whose transpose `T^-1 Q^T` is `A^+`,
+/// i.e. `R`'s `K1` when `Z = I`.
+///
+/// All by column operations on column-major buffers: `K0 = map T^-1`,
+/// `K1 = K0 Q^T` (outer products of columns), `K2 = K0 T^-T`.
 fn first_order_bound(
     shared: &Shared<'_>,
-    map: PiecesMap,
+    map: Option<&DMatrix<f64>>,
     with_normwise: bool,
-) -> Option<(f64, f64, Option<DMatrix<f64>>)> {
-    let Shared {
-        t,
-        q,
-        y,
-        a_abs,
-        target,
-        target_size,
-        residual,
-        m,
-        correction,
-    } = *shared;
+) -> Option<(f64, f64, Option<Vec<f64>>)> {
+    let qr = shared.qr;
+    let (rows, free) = (qr.rows(), qr.cols());
+    let q = &shared.q;
+    let dim = shared.y.ncols();
     let eps = f64::EPSILON;
     // Componentwise (Skeel-style): every entry of A and of the target
     // carries a relative rounding of at most gamma.
-    let gamma = ESTIMATE_MARGIN * (m as f64 + 2.0) * eps;
-    // K0^T = T^-T map^T; K1 = K0 Q^T = map A^+; K2 = map T^-1 T^-T.
-    let (k0t, mapped_correction) = match &map {
-        PiecesMap::Map(map) => (
-            t.transpose().solve_lower_triangular(&map.transpose())?,
-            map * correction,
-        ),
-        // map = A = Q T: K0 = Q, and map times the correction is Q T c.
-        PiecesMap::ThinQ => (q.transpose(), q * (t * correction)),
+    let gamma = ESTIMATE_MARGIN * (shared.m as f64 + 2.0) * eps;
+    let out = map.map_or(rows, |map| map.nrows());
+    // K0 (out x free) and the last correction mapped, max |map c|.
+    let (k0, mapped_correction) = match map {
+        None => {
+            // map = A = Q T: map c = Q (T c).
+            let mut worst = 0.0f64;
+            let mut w = vec![0.0; free];
+            let mut acc = vec![0.0; rows];
+            for c in 0..dim {
+                w.copy_from_slice(shared.correction.column(c).as_slice());
+                qr.mul_t(&mut w);
+                acc.fill(0.0);
+                for (qk, &wk) in q.chunks_exact(rows).zip(&w) {
+                    for (a, &e) in acc.iter_mut().zip(qk) {
+                        *a += e * wk;
+                    }
+                }
+                worst = worst.max(lsq::amax(&acc));
+            }
+            (std::borrow::Cow::Borrowed(q.as_slice()), worst)
+        }
+        Some(map) => {
+            // K0 = map T^-1: K0[:, k] = (map[:, k] - sum_(j < k) T[j][k]
+            // K0[:, j]) / T[k][k].
+            let mut k0 = map.as_slice().to_vec();
+            for k in 0..free {
+                let (done, rest) = k0.split_at_mut(k * out);
+                let column = &mut rest[..out];
+                for (j, &t) in qr.t_column(k).iter().enumerate() {
+                    for (e, &x) in column.iter_mut().zip(&done[j * out..(j + 1) * out]) {
+                        *e -= t * x;
+                    }
+                }
+                let d = qr.diagonal()[k];
+                column.iter_mut().for_each(|e| *e /= d);
+            }
+            (
+                std::borrow::Cow::Owned(k0),
+                (map * shared.correction).amax(),
+            )
+        }
     };
+    // |K1| = |K0 Q^T| (out x rows): column i is sum_k Q[i][k] K0[:, k].
+    // For the thin Q (K0 = Q) it is symmetric: the entries on and below
+    // the diagonal are summed, those above copied from them.
+    let symmetric = map.is_none();
+    let mut k1 = Vec::with_capacity(out * rows);
+    for i in 0..rows {
+        let start = k1.len();
+        let from = if symmetric { i } else { 0 };
+        k1.extend(std::iter::repeat_n(0.0, from));
+        let q0 = q[i];
+        k1.extend(k0[from..out].iter().map(|&e| e * q0));
+        let column = &mut k1[start + from..];
+        for k in 1..free {
+            let qik = q[k * rows + i];
+            for (e, &x) in column.iter_mut().zip(&k0[k * out + from..(k + 1) * out]) {
+                *e += x * qik;
+            }
+        }
+    }
+    if symmetric {
+        for i in 0..rows {
+            for o in 0..i {
+                k1[i * out + o] = k1[o * out + i];
+            }
+        }
+    }
+    k1.iter_mut().for_each(|v| *v = v.abs());
+    let k0_norm = lsq::norm(&k0);
     // What the solve's own rounding leaves after refinement: the last
     // correction mapped, with a margin (a-posteriori).
-    let measured = REFINEMENT_MARGIN * mapped_correction.amax();
-    let k1 = (q * &k0t).transpose().abs();
+    let measured = REFINEMENT_MARGIN * mapped_correction;
     if !with_normwise {
         // R's guard: the values term only (what the measured weight was
         // calibrated on, merge back with zero residual); no K2.
-        return Some((values_bound(shared, &k1, measured), k0t.norm(), None));
+        return Some((values_bound(shared, &k1, measured), k0_norm, None));
     }
-    let k2t = t.solve_upper_triangular(&k0t)?;
+    // K2 = K0 T^-T (out x free).
+    let mut k2 = k0.into_owned();
+    times_t_inverse_transposed(qr, &mut k2, out);
     // Householder QR's own backward error is normwise (column by column),
     // not componentwise, and refinement in working precision does not
     // remove all of it (measured: test merge_exact, degree 20, mu ~0.1,
     // integral metric): its first-order effect with Frobenius norms.
-    let a_norm = a_abs.norm();
+    let a_norm = shared.a_abs.norm();
     let normwise = QR_MARGIN
         * eps
-        * ((a_abs.nrows() * a_abs.ncols()) as f64).sqrt()
-        * (k0t.norm() * (target.norm() + a_norm * y.norm())
-            + k2t.norm() * a_norm * residual.norm());
-    let k2 = k2t.transpose().abs();
+        * ((rows * free) as f64).sqrt()
+        * (k0_norm * (shared.target.norm() + a_norm * shared.y.norm())
+            + lsq::norm(&k2) * a_norm * shared.residual.norm());
+    k2.iter_mut().for_each(|v| *v = v.abs());
     let mut worst = 0.0f64;
-    for c in 0..y.ncols() {
-        let through_values = target_size.column(c) + a_abs * y.column(c).abs();
-        let through_residual = a_abs.tr_mul(&residual.column(c).abs());
-        let bound = &k1 * through_values + &k2 * through_residual;
-        worst = worst.max(gamma * bound.amax());
+    let mut acc = vec![0.0; out];
+    for c in 0..dim {
+        acc.fill(0.0);
+        let tv = shared.through_values.column(c);
+        for (kc, &x) in k1.chunks_exact(out).zip(tv.iter()) {
+            for (a, &e) in acc.iter_mut().zip(kc) {
+                *a += e * x;
+            }
+        }
+        let tr = shared.through_residual.column(c);
+        for (kc, &x) in k2.chunks_exact(out).zip(tr.iter()) {
+            for (a, &e) in acc.iter_mut().zip(kc) {
+                *a += e * x;
+            }
+        }
+        worst = worst.max(gamma * lsq::amax(&acc));
     }
-    let k2t = matches!(map, PiecesMap::ThinQ).then_some(k2t);
-    Some((worst + measured + normwise, k0t.norm(), k2t))
+    let k2 = map.is_none().then_some(k2);
+    Some((worst + measured + normwise, k0_norm, k2))
 }
 
 /// The values term of [`first_order_bound`] alone, `max_c gamma |K1|
 /// (|t_c| + |A| |y_c|)`, plus the `measured` refinement term: `R`'s guard,
-/// from `|K1|` (`|map A^+|`, absolute values taken).
-fn values_bound(shared: &Shared<'_>, k1: &DMatrix<f64>, measured: f64) -> f64 {
+/// from `|K1|` (`|map A^+|`, absolute values taken; column-major, `rows`
+/// columns).
+fn values_bound(shared: &Shared<'_>, k1: &[f64], measured: f64) -> f64 {
     let gamma = ESTIMATE_MARGIN * (shared.m as f64 + 2.0) * f64::EPSILON;
-    let mut worst = 0.0f64;
-    for c in 0..shared.y.ncols() {
-        let through_values = shared.target_size.column(c) + shared.a_abs * shared.y.column(c).abs();
-        worst = worst.max(gamma * (k1 * through_values).amax());
-    }
-    worst + measured
+    let out = k1.len() / shared.qr.rows();
+    gamma * largest_product(k1, out, &shared.through_values) + measured
+}
+
+/// [`values_bound`] with `|K1|` given by its transpose (column-major
+/// `rows x out`): `R`'s guard from the pieces' `|K2| = |A^+|^T`.
+fn values_bound_transposed(shared: &Shared<'_>, k1t: &[f64], measured: f64) -> f64 {
+    let gamma = ESTIMATE_MARGIN * (shared.m as f64 + 2.0) * f64::EPSILON;
+    gamma * largest_transposed_product(k1t, shared.qr.rows(), &shared.through_values) + measured
 }
 
 fn ill_conditioned_factor(accuracy: f64) -> BezjoinError {
@@ -742,5 +982,50 @@ fn ill_conditioned_factor(accuracy: f64) -> BezjoinError {
         what: "merge stage 1 (the least-squares factor is singular or overflows)".into(),
         estimate: f64::INFINITY,
         limit: accuracy,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::stage_one::PieceInput;
+    use super::*;
+
+    use crate::test_values::planar_curve as curve;
+
+    /// The closed-form feasible set of fixed ends on two pieces is what
+    /// the general construction (rows on `r`, Gram-Schmidt, greedy null
+    /// space, singular values) gives for the same rows: the same
+    /// particular solution and null-space basis bit for bit, both rows
+    /// kept, none dependent, the same condition, at every degree and `mu`.
+    #[test]
+    fn fixed_ends_feasible_set_is_the_general_one() {
+        let mut state = 17;
+        for degree in [1, 2, 3, 4, 7, 15, 24, 31] {
+            let pieces: Vec<PieceInput<'_>> = ["P", "Q"]
+                .iter()
+                .map(|name| PieceInput {
+                    curve: curve(&mut state, degree),
+                    name: (*name).into(),
+                    points_name: "points".into(),
+                    keep: false,
+                    points: Vec::new(),
+                })
+                .collect();
+            for mu in [1e-3, 0.3, 0.5, 0.77] {
+                let problem = Problem::new(&pieces, &[mu, 1.0 - mu], true);
+                let s = restrictions(degree, &[0.0, mu, 1.0]);
+                let rows_r = constraint_rows_on_r(&problem, &s);
+                let general = Feasible::general(&rows_r, &problem, degree + 1);
+                let closed = Feasible::fixed_ends(&problem.x0, problem.dim, degree);
+                let context = format!("degree {degree} mu {mu}");
+                assert_eq!(general.kept.len(), 2, "{context}");
+                assert!(general.dependent.is_empty(), "{context}");
+                assert_eq!(closed.free, general.free, "{context}");
+                assert_eq!(closed.particular, general.particular, "{context}");
+                assert_eq!(closed.z, general.z, "{context}");
+                let (count, condition) = general.kept_condition.unwrap();
+                assert_eq!(Some((count, condition)), closed.kept_condition, "{context}");
+            }
+        }
     }
 }

@@ -260,11 +260,20 @@ pub(super) fn continuity_row(
     on_left.fill(0.0);
     on_right.fill(0.0);
     // C(r, k) by the exact integer recurrence C(r, k+1) = C(r, k) (r - k) /
-    // (k + 1) (exact in f64 while below 2^53, as `binomial`).
+    // (k + 1) (exact in f64 while below 2^53, as `binomial`). Up to
+    // INTEGER_ORDERS in integers (every product below 2^53, so the same
+    // values as the rounded f64 recurrence, without a rounding call).
+    const INTEGER_ORDERS: usize = 50;
     let mut c = 1.0f64;
+    let mut exact = 1u64;
     for k in 0..=r {
         if k > 0 {
-            c = (c * (r + 1 - k) as f64 / k as f64).round();
+            if r <= INTEGER_ORDERS {
+                exact = exact * (r + 1 - k) as u64 / k as u64;
+                c = exact as f64;
+            } else {
+                c = (c * (r + 1 - k) as f64 / k as f64).round();
+            }
         }
         // Left: i = m - k, sign (-1)^k; right: i = k, sign (-1)^(r-k).
         on_left[m - k] = if k % 2 == 0 { wl * c } else { -wl * c };

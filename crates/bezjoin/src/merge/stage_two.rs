@@ -95,7 +95,17 @@ fn check_restrictions(
             Some(back) => back,
             None => restriction(&merged, breakpoints[j], breakpoints[j + 1])?,
         };
-        let diff = (back.control_matrix() - p).amax();
+        // max |back_ic - p_ic| as nalgebra's `amax` of the difference
+        // matrix (first entry's magnitude, then f64::max), without forming
+        // it: `back` is row-major, `p` column-major.
+        let d = back.dim();
+        let mut diff = f64::NAN;
+        for (i, point) in back.points().chunks_exact(d).enumerate() {
+            for (c, &v) in point.iter().enumerate() {
+                let gap = (v - p[(i, c)]).abs();
+                diff = if i == 0 && c == 0 { gap } else { diff.max(gap) };
+            }
+        }
         worst = worst.max(diff / scale);
         restrictions.push(back);
     }
@@ -252,9 +262,9 @@ pub(crate) fn max_deviation(
     let mut worst = Worst::default();
     if let Some(table) = deviation_table(n) {
         // Per piece: the sample values accumulated coefficient by
-        // coefficient over all samples at once (the table is stored
-        // coefficient-major, so the inner loop runs over contiguous
-        // samples); each sample's sum is still taken in the order i = 0..n.
+        // coefficient, a few contiguous samples at a time (the table is
+        // stored coefficient-major); each sample's sum is still taken in
+        // the order i = 0..n.
         for half in halves.chunks_exact(len) {
             match d {
                 2 => deviation_fixed::<2>(table, half, &mut worst),
@@ -264,7 +274,7 @@ pub(crate) fn max_deviation(
                     for s in 0..=DEVIATION_SAMPLES {
                         value.fill(0.0);
                         for (i, p) in half.chunks_exact(d).enumerate() {
-                            let b = table[i * (DEVIATION_SAMPLES + 1) + s];
+                            let b = table[i * TABLE_ROW + s];
                             for (o, x) in value.iter_mut().zip(p) {
                                 *o += b * x;
                             }
@@ -290,22 +300,35 @@ pub(crate) fn max_deviation(
 }
 
 /// Degrees up to which [`max_deviation`] reads the Bernstein values at its
-/// samples from a table computed once per degree (`(DEVIATION_SAMPLES + 1)
-/// (n + 1)` values, 68 kB at degree 32); above, it evaluates by Horner.
+/// samples from a table computed once per degree ([`TABLE_ROW`]` (n + 1)`
+/// values, 70 kB at degree 32); above, it evaluates by Horner.
 pub const DEVIATION_TABLE_DEGREE: usize = 32;
 
-/// `B_i^n(s / DEVIATION_SAMPLES)`, coefficient-major (entry `i
-/// (DEVIATION_SAMPLES + 1) + s`, `i = 0..=n`, `s = 0..=DEVIATION_SAMPLES`), by the product form `C(n,i) u^i (1 - u)^(n-i)` with exact
-/// binomials and exact `u`, `1 - u` (relative error at most `(n + 1) eps`
-/// per entry); `None` above [`DEVIATION_TABLE_DEGREE`].
+/// Samples per piece of [`max_deviation`].
+const SAMPLES: usize = DEVIATION_SAMPLES + 1;
+
+/// Samples evaluated together by [`deviation_fixed`] (their partial sums
+/// stay in registers while the coefficients are visited).
+const LANES: usize = 4;
+
+/// Length of one coefficient's row of the deviation table: the samples,
+/// padded with zeros to a multiple of [`LANES`] (a padded sample's value
+/// is exactly zero, which changes no maximum).
+const TABLE_ROW: usize = SAMPLES.div_ceil(LANES) * LANES;
+
+/// `B_i^n(s / DEVIATION_SAMPLES)`, coefficient-major (entry `i TABLE_ROW +
+/// s`, `i = 0..=n`, `s = 0..=DEVIATION_SAMPLES`, zero for `s` above), by
+/// the product form `C(n,i) u^i (1 - u)^(n-i)` with exact binomials and
+/// exact `u`, `1 - u` (relative error at most `(n + 1) eps` per entry);
+/// `None` above [`DEVIATION_TABLE_DEGREE`].
 fn deviation_table(n: usize) -> Option<&'static [f64]> {
     static TABLES: [OnceLock<Vec<f64>>; DEVIATION_TABLE_DEGREE + 1] =
         [const { OnceLock::new() }; DEVIATION_TABLE_DEGREE + 1];
     let slot = TABLES.get(n)?;
     Some(slot.get_or_init(|| {
-        let mut table = Vec::with_capacity((DEVIATION_SAMPLES + 1) * (n + 1));
+        let mut table = vec![0.0; TABLE_ROW * (n + 1)];
         for i in 0..=n {
-            for s in 0..=DEVIATION_SAMPLES {
+            for s in 0..SAMPLES {
                 let u = s as f64 / DEVIATION_SAMPLES as f64;
                 let v = 1.0 - u;
                 let mut b = crate::basis::binomial(n, i);
@@ -315,7 +338,7 @@ fn deviation_table(n: usize) -> Option<&'static [f64]> {
                 for _ in i..n {
                     b *= v;
                 }
-                table.push(b);
+                table[i * TABLE_ROW + s] = b;
             }
         }
         table
@@ -323,41 +346,58 @@ fn deviation_table(n: usize) -> Option<&'static [f64]> {
 }
 
 /// The sample values of one (half) difference curve of dimension `D`,
-/// `sum_i B_i(u_s) half_i` for every sample `s`, noted in `worst`.
-// The samples are read across the coordinate rows (`values[c][s]`).
+/// `sum_i B_i(u_s) half_i` for every sample `s` (each sum from `0.0` in
+/// the order `i = 0..n`), noted in `worst`. [`LANES`] samples at a time,
+/// their sums kept in registers over all coefficients (no array of all
+/// sample values).
+// The lanes are read across the coordinate rows (`acc[c][k]`).
 #[allow(clippy::needless_range_loop)]
 fn deviation_fixed<const D: usize>(table: &[f64], half: &[f64], worst: &mut Worst) {
-    const SAMPLES: usize = DEVIATION_SAMPLES + 1;
-    let mut values = [[0.0; SAMPLES]; D];
-    for (column, p) in table.chunks_exact(SAMPLES).zip(half.chunks_exact(D)) {
-        for (values, &x) in values.iter_mut().zip(p) {
-            for (v, &b) in values.iter_mut().zip(column) {
-                *v += b * x;
+    let values = |s0: usize| {
+        let mut acc = [[0.0f64; LANES]; D];
+        for (row, p) in table.chunks_exact(TABLE_ROW).zip(half.chunks_exact(D)) {
+            let b: &[f64; LANES] = row[s0..s0 + LANES].try_into().expect("LANES entries");
+            for c in 0..D {
+                let x = p[c];
+                for k in 0..LANES {
+                    acc[c][k] += b[k] * x;
+                }
             }
         }
-    }
-    // The largest square while squares are normal (a plain compare); a
-    // zero square changes nothing; any other sample (subnormal, overflow,
-    // NaN) sends the piece through `Worst::note` sample by sample.
+        acc
+    };
+    // The largest square (a plain compare) and the sum of all squares. A
+    // NaN or infinite square makes the sum non-finite; a subnormal or
+    // underflowed square (its value below sqrt(MIN_POSITIVE), so it
+    // matters only when every square is that small) shows as a largest
+    // square below 2 MIN_POSITIVE. Either sends the piece through
+    // `Worst::note` sample by sample, whose norm does not square (before,
+    // squares that underflowed to zero were passed over, so a piece of
+    // such tiny differences reported 0); otherwise the largest square is
+    // exactly what `note` would keep.
     let mut largest = 0.0f64;
-    let mut other = false;
-    for s in 0..SAMPLES {
-        let mut square = 0.0;
-        for values in &values {
-            square += values[s] * values[s];
-        }
-        if square.is_normal() {
+    let mut total = 0.0f64;
+    for s0 in (0..TABLE_ROW).step_by(LANES) {
+        let acc = values(s0);
+        for k in 0..LANES {
+            let mut square = 0.0;
+            for c in 0..D {
+                square += acc[c][k] * acc[c][k];
+            }
             if square > largest {
                 largest = square;
             }
-        } else if square != 0.0 {
-            other = true;
+            total += square;
         }
     }
+    let other = !total.is_finite() || largest < 2.0 * f64::MIN_POSITIVE;
     if other {
-        for s in 0..SAMPLES {
-            let value: [f64; D] = std::array::from_fn(|c| values[c][s]);
-            worst.note(&value);
+        for s0 in (0..TABLE_ROW).step_by(LANES) {
+            let acc = values(s0);
+            for k in 0..LANES {
+                let value: [f64; D] = std::array::from_fn(|c| acc[c][k]);
+                worst.note(&value);
+            }
         }
     } else {
         worst.square = worst.square.max(largest);
@@ -483,6 +523,46 @@ mod tests {
                 assert!(
                     (ours - reference).abs() <= bound,
                     "dim {dim} degree {degree}: {ours:e} vs {reference:e} (bound {bound:e})"
+                );
+            }
+        }
+    }
+
+    /// Differences so small that their squares are subnormal or zero, and
+    /// so large that they overflow: the sampled maximum is still the
+    /// largest distance (computed without squaring), in the unrolled
+    /// dimensions 2 and 3 and the general path, against the
+    /// two-evaluation definition with an overflow-safe norm.
+    #[test]
+    fn max_deviation_survives_tiny_and_huge_differences() {
+        let mut state = 23;
+        for scale in [1e-170, 1e-158, 1e-152, 1e150, 1e160] {
+            for dim in [2, 3, 4] {
+                let degree = 3;
+                let unit = curve(&mut state, dim, degree);
+                let r = BezierCurve::new(
+                    dim,
+                    degree,
+                    unit.points().iter().map(|v| v * scale).collect(),
+                )
+                .unwrap();
+                let breakpoints = [0.0, 0.5, 1.0];
+                let restrictions: Vec<BezierCurve> = (0..2)
+                    .map(|j| r.segment(breakpoints[j], breakpoints[j + 1]).unwrap())
+                    .collect();
+                let zero = BezierCurve::new(dim, degree, vec![0.0; (degree + 1) * dim]).unwrap();
+                let ours = max_deviation(&restrictions, &[&zero, &zero]).unwrap();
+                let mut reference = 0.0f64;
+                let mut a = vec![0.0; dim];
+                for back in &restrictions {
+                    for s in 0..=DEVIATION_SAMPLES {
+                        back.eval_into(s as f64 / DEVIATION_SAMPLES as f64, &mut a);
+                        reference = reference.max(crate::bezier::norm(&a));
+                    }
+                }
+                assert!(
+                    reference > 0.0 && (ours - reference).abs() <= 1e-12 * reference,
+                    "scale {scale:e} dim {dim}: {ours:e} vs {reference:e}"
                 );
             }
         }

@@ -1,0 +1,266 @@
+//! Householder QR of the orthogonal stage 1's least-squares matrix on flat
+//! column-major buffers, with the reflectors kept: `Q^T` and `Q` are
+//! applied from them, the thin `Q` is formed from them only when the error
+//! estimate needs its entries, and the triangular solves with `T` and
+//! `T^T` run in place. One factor per solve, no temporaries per product.
+//!
+//! The factor is the textbook one (Golub & Van Loan, Algorithm 5.2.1):
+//! column `k` is reflected onto `alpha_k e_k` with `alpha_k = -sign(a_kk)
+//! ||a_k..||`, the reflector `v_k = a_k.. - alpha_k e_1` is stored in place
+//! below and on the diagonal, `H_k = I - beta_k v_k v_k^T` with `beta_k =
+//! 1 / (||a_k..|| (||a_k..|| + |a_kk|))`, and `A = Q T`, `Q = H_0 H_1 ...`,
+//! `T` upper triangular with diagonal `alpha`. Only the signs of `T`'s rows
+//! (and `Q`'s columns) may differ from another Householder QR; every
+//! quantity the merge uses (`T^-1 Q^T`, `Q Q^T`, the least-squares
+//! solution, Frobenius norms) is independent of them.
+
+/// `A = Q T` of a `rows x cols` matrix (`rows >= cols`), reflectors kept.
+pub(super) struct Factor {
+    rows: usize,
+    cols: usize,
+    /// Column-major `rows x cols`: `v_k` in column `k` from row `k` down,
+    /// `T`'s strict upper part above the diagonal.
+    packed: Vec<f64>,
+    /// `T`'s diagonal, `alpha_k`.
+    diagonal: Vec<f64>,
+    /// `beta_k`.
+    beta: Vec<f64>,
+}
+
+/// `sum_i a_i b_i` over the common length, in four interleaved partial
+/// sums (so that the compiler can keep them in vector registers), added
+/// pairwise at the end.
+#[inline]
+pub(super) fn dot(a: &[f64], b: &[f64]) -> f64 {
+    let n = a.len().min(b.len());
+    let (a, b) = (&a[..n], &b[..n]);
+    let (mut s0, mut s1, mut s2, mut s3) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
+    let (ca, cb) = (a.chunks_exact(4), b.chunks_exact(4));
+    let tail: f64 = ca
+        .remainder()
+        .iter()
+        .zip(cb.remainder())
+        .map(|(x, y)| x * y)
+        .sum();
+    for (x, y) in ca.zip(cb) {
+        let x: &[f64; 4] = x.try_into().expect("4 entries");
+        let y: &[f64; 4] = y.try_into().expect("4 entries");
+        s0 += x[0] * y[0];
+        s1 += x[1] * y[1];
+        s2 += x[2] * y[2];
+        s3 += x[3] * y[3];
+    }
+    ((s0 + s2) + (s1 + s3)) + tail
+}
+
+/// `x -= beta (v^T x) v`.
+#[inline]
+fn reflect(v: &[f64], x: &mut [f64], beta: f64) {
+    let s = beta * dot(v, x);
+    for (xi, vi) in x.iter_mut().zip(v) {
+        *xi -= s * vi;
+    }
+}
+
+impl Factor {
+    /// The factor of `a` (column-major `rows x cols`); `None` when a column
+    /// is (numerically) zero below the diagonal or not finite, i.e. `T`
+    /// would have a zero or non-finite pivot.
+    pub(super) fn new(a: &[f64], rows: usize, cols: usize) -> Option<Self> {
+        debug_assert!(rows >= cols && a.len() == rows * cols);
+        let mut packed = a.to_vec();
+        let mut diagonal = vec![0.0; cols];
+        let mut beta = vec![0.0; cols];
+        for k in 0..cols {
+            let column = &packed[k * rows..(k + 1) * rows];
+            let norm = dot(&column[k..], &column[k..]).sqrt();
+            if !(norm > 0.0 && norm.is_finite()) {
+                return None;
+            }
+            let akk = column[k];
+            let alpha = if akk > 0.0 { -norm } else { norm };
+            packed[k * rows + k] = akk - alpha;
+            beta[k] = 1.0 / (norm * (norm + akk.abs()));
+            diagonal[k] = alpha;
+            let (before, after) = packed.split_at_mut((k + 1) * rows);
+            let v = &before[k * rows + k..(k + 1) * rows];
+            for j in 0..cols - k - 1 {
+                reflect(v, &mut after[j * rows + k..(j + 1) * rows], beta[k]);
+            }
+        }
+        Some(Self {
+            rows,
+            cols,
+            packed,
+            diagonal,
+            beta,
+        })
+    }
+
+    pub(super) fn rows(&self) -> usize {
+        self.rows
+    }
+
+    pub(super) fn cols(&self) -> usize {
+        self.cols
+    }
+
+    /// `T[i][j]`, `i <= j`.
+    #[inline]
+    fn t(&self, i: usize, j: usize) -> f64 {
+        if i == j {
+            self.diagonal[i]
+        } else {
+            self.packed[j * self.rows + i]
+        }
+    }
+
+    fn reflector(&self, k: usize) -> &[f64] {
+        &self.packed[k * self.rows + k..(k + 1) * self.rows]
+    }
+
+    /// `x <- Q^T x` (one column of length `rows`).
+    pub(super) fn apply_qt(&self, x: &mut [f64]) {
+        for k in 0..self.cols {
+            reflect(self.reflector(k), &mut x[k..], self.beta[k]);
+        }
+    }
+
+    /// `T`'s column `j` above the diagonal (`j` entries).
+    pub(super) fn t_column(&self, j: usize) -> &[f64] {
+        &self.packed[j * self.rows..j * self.rows + j]
+    }
+
+    /// `T`'s diagonal.
+    pub(super) fn diagonal(&self) -> &[f64] {
+        &self.diagonal
+    }
+
+    /// `y <- T^-1 y` (the first `cols` entries), column by column.
+    pub(super) fn solve_t(&self, y: &mut [f64]) {
+        for j in (0..self.cols).rev() {
+            let yj = y[j] / self.diagonal[j];
+            y[j] = yj;
+            for (yi, &t) in y[..j].iter_mut().zip(self.t_column(j)) {
+                *yi -= t * yj;
+            }
+        }
+    }
+
+    /// `x <- T x` (the first `cols` entries).
+    pub(super) fn mul_t(&self, x: &mut [f64]) {
+        for i in 0..self.cols {
+            let mut sum = self.diagonal[i] * x[i];
+            for (j, &xj) in x.iter().enumerate().take(self.cols).skip(i + 1) {
+                sum += self.t(i, j) * xj;
+            }
+            x[i] = sum;
+        }
+    }
+
+    /// The least-squares solution of `min ||A y - b||` for every column of
+    /// `b` (column-major `rows x dim`) into `y` (`cols x dim`), with
+    /// `work` (`rows`) as scratch.
+    pub(super) fn least_squares(&self, b: &[f64], y: &mut [f64], work: &mut [f64]) {
+        let (rows, cols) = (self.rows, self.cols);
+        for (column, out) in b.chunks_exact(rows).zip(y.chunks_exact_mut(cols)) {
+            work.copy_from_slice(column);
+            self.apply_qt(work);
+            self.solve_t(work);
+            out.copy_from_slice(&work[..cols]);
+        }
+    }
+
+    /// The thin `Q` (column-major `rows x cols`), from the reflectors.
+    pub(super) fn thin_q(&self) -> Vec<f64> {
+        let (rows, cols) = (self.rows, self.cols);
+        let mut q = vec![0.0; rows * cols];
+        for (k, column) in q.chunks_exact_mut(rows).enumerate() {
+            column[k] = 1.0;
+            // Q e_k = H_0 ... H_(cols-1) e_k: H_j for j > k acts on rows
+            // j.. only, where e_k is zero, so H_k is the first to apply.
+            for j in (0..=k).rev() {
+                reflect(self.reflector(j), &mut column[j..], self.beta[j]);
+            }
+        }
+        q
+    }
+}
+
+/// `max |x_i|` (NaN passed over, as nalgebra's `amax`).
+pub(super) fn amax(x: &[f64]) -> f64 {
+    x.iter().fold(0.0f64, |m, v| m.max(v.abs()))
+}
+
+/// The Frobenius (2-) norm `sqrt(sum x_i^2)`.
+pub(super) fn norm(x: &[f64]) -> f64 {
+    dot(x, x).sqrt()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nalgebra::DMatrix;
+
+    fn matrix(state: &mut u64, rows: usize, cols: usize) -> DMatrix<f64> {
+        DMatrix::from_fn(rows, cols, |_, _| {
+            *state = state
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            (*state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        })
+    }
+
+    /// The defining properties of the factor: `Q T = A`, `Q^T Q = I`,
+    /// `T` upper triangular; `Q^T`, `T`, `T^-1` applied from it
+    /// are those matrices; the least-squares solution satisfies the normal
+    /// equations `A^T (A y - b) = 0`.
+    #[test]
+    fn factor_is_a_qr_and_its_applications_are_the_matrices() {
+        let mut state = 7;
+        for (rows, cols) in [(1, 1), (4, 2), (8, 4), (8, 2), (32, 16), (20, 20), (64, 31)] {
+            let a = matrix(&mut state, rows, cols);
+            let f = Factor::new(a.as_slice(), rows, cols).unwrap();
+            let q = DMatrix::from_column_slice(rows, cols, &f.thin_q());
+            let t = DMatrix::from_fn(cols, cols, |i, j| if i <= j { f.t(i, j) } else { 0.0 });
+            let tol = 64.0 * (rows as f64) * f64::EPSILON;
+            assert!((&q * &t - &a).amax() <= tol, "{rows}x{cols}: QT != A");
+            assert!(
+                (q.transpose() * &q - DMatrix::identity(cols, cols)).amax() <= tol,
+                "{rows}x{cols}: Q not orthonormal"
+            );
+            let x = matrix(&mut state, rows, 1);
+            let mut qt = x.as_slice().to_vec();
+            f.apply_qt(&mut qt);
+            let head = DMatrix::from_column_slice(cols, 1, &qt[..cols]);
+            assert!(
+                (head - q.transpose() * &x).amax() <= tol,
+                "{rows}x{cols}: Q^T x"
+            );
+            let mut y = x.as_slice()[..cols].to_vec();
+            f.solve_t(&mut y);
+            let yv = DMatrix::from_column_slice(cols, 1, &y);
+            let xv = DMatrix::from_column_slice(cols, 1, &x.as_slice()[..cols]);
+            let scale = 1.0 + yv.amax() * t.amax();
+            assert!(
+                (&t * &yv - &xv).amax() <= tol * scale,
+                "{rows}x{cols}: T^-1"
+            );
+            let mut w = xv.as_slice().to_vec();
+            f.mul_t(&mut w);
+            assert!((DMatrix::from_column_slice(cols, 1, &w) - &t * &xv).amax() <= tol * t.amax());
+            let mut ls = vec![0.0; cols];
+            let mut work = vec![0.0; rows];
+            f.least_squares(x.as_slice(), &mut ls, &mut work);
+            let ls = DMatrix::from_column_slice(cols, 1, &ls);
+            let normal = a.transpose() * (&a * &ls - &x);
+            let scale = 1.0 + ls.amax() * a.amax() * (rows as f64);
+            assert!(
+                normal.amax() <= tol * scale,
+                "{rows}x{cols}: normal equations"
+            );
+        }
+        // A zero column has no factor.
+        assert!(Factor::new(&[1.0, 2.0, 0.0, 0.0], 2, 2).is_none());
+    }
+}
