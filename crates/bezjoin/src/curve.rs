@@ -250,14 +250,20 @@ impl CurveJet for NurbsCurve {
         NurbsCurve::coordinate_scale(self)
     }
 
+    /// [`jet_into`](CurveJet::jet_into) into a matrix and a vector.
     fn jet(&self, u: f64, order: usize, side: KnotSide) -> (DMatrix<f64>, Vec<f64>) {
-        let (values, bound) = self.eval_derivatives_with_bound(u, order, side);
-        (
-            DMatrix::from_row_slice(order + 1, NurbsCurve::dim(self), &values),
-            bound,
-        )
+        let dim = NurbsCurve::dim(self);
+        let mut values = vec![0.0; (order + 1) * dim];
+        let mut bound = vec![0.0; order + 1];
+        self.jet_into(u, order, side, &mut values, &mut bound);
+        (DMatrix::from_row_slice(order + 1, dim, &values), bound)
     }
 
+    /// A clamped one-span polynomial curve (a Bezier curve as a NURBS
+    /// handle): the Bezier curve's de Casteljau jet of its poles, scaled to
+    /// the domain ([`NurbsCurve::bezier_span_jet_into`]; on `[0, 1]` the
+    /// jet of the Bezier curve itself). Any other curve: A2.3
+    /// (the rows and bounds of `NurbsCurve::eval_derivatives_into`).
     fn jet_into(
         &self,
         u: f64,
@@ -266,8 +272,10 @@ impl CurveJet for NurbsCurve {
         values: &mut [f64],
         errors: &mut [f64],
     ) {
-        // `eval_derivatives_with_bound` without its two allocations: the
-        // same zero-filled rows and bounds, the same evaluation.
+        if self.bezier_span_jet_into(u, order, values, errors) {
+            return;
+        }
+        // The A2.3 rows and bounds into zero-filled caller storage.
         values.fill(0.0);
         errors.fill(0.0);
         self.eval_derivatives_into(u, order, side, values, Some(errors));

@@ -641,10 +641,11 @@ impl NurbsCurve {
         out
     }
 
-    /// [`eval_derivatives_side`](Self::eval_derivatives_side) with a bound
-    /// on the rounding error of each row (`max_order + 1` values, absolute):
-    /// `gamma * (sum |N^(k)_j| |w_j P_j| + sum_i C(k,i) |w^(i)| |C^(k-i)|) / w`
-    /// with `gamma = 2 (p + k + 2) eps`.
+    /// [`eval_derivatives_side`](Self::eval_derivatives_side) with the
+    /// rounding bound of each row of
+    /// [`eval_derivatives_into`](Self::eval_derivatives_into), as vectors
+    /// (the tests' reference for the basis route).
+    #[cfg(test)]
     pub(crate) fn eval_derivatives_with_bound(
         &self,
         u: f64,
@@ -659,8 +660,10 @@ impl NurbsCurve {
 
     /// Value and derivatives `0..=max_order` at `u` into `out`
     /// (`(max_order + 1) * dim` values, row `k` the `k`-th derivative), from
-    /// the span on `side` of a knot; with `bound`, also the rounding bound of
-    /// each row as in [`eval_derivatives_with_bound`](Self::eval_derivatives_with_bound).
+    /// the span on `side` of a knot; with `bound`, also a bound on the
+    /// rounding error of each row (`max_order + 1` values, absolute):
+    /// `gamma * (sum |N^(k)_j| |w_j P_j| + sum_i C(k,i) |w^(i)| |C^(k-i)|) / w`
+    /// with `gamma = 2 (p + k + 2) eps`.
     ///
     /// A2.3 gives the basis derivatives of the span, the homogeneous curve
     /// `A = sum N_j w_j P_j`, `w = sum N_j w_j` and their derivatives are
