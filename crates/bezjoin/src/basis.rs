@@ -133,6 +133,24 @@ pub(crate) fn basis_derivatives_into(
     ders: &mut [f64],
     scratch: &mut [f64],
 ) {
+    basis_derivatives_inline(knot, degree, span, t, max_order, layout, ders, scratch);
+}
+
+/// The body of [`basis_derivatives_into`], inlined into callers that know
+/// the degree at compile time (the NURBS jets of small fixed degrees), so
+/// that its loops are unrolled there: the same operations in the same order.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+pub(crate) fn basis_derivatives_inline(
+    knot: impl Fn(usize) -> f64,
+    degree: usize,
+    span: usize,
+    t: f64,
+    max_order: usize,
+    layout: BasisLayout,
+    ders: &mut [f64],
+    scratch: &mut [f64],
+) {
     let p = degree;
     let p1 = p + 1;
     let n = max_order.min(p);

@@ -617,7 +617,7 @@ fn quotient_rule<const D: usize, const H: usize>(jet: &[[f64; H]; 4], top: usize
 mod tests {
     use super::*;
 
-    use crate::basis::KnotSide;
+    use crate::basis::{KnotSide, basis_scratch_len};
     use crate::bezier::BezierCurve;
     use crate::test_values::Values;
 
@@ -837,6 +837,80 @@ mod tests {
         decline(NurbsCurve::from_bezier(
             &BezierCurve::new(2, 16, high).unwrap(),
         ));
+    }
+
+    /// The jets of dimensions 2 and 3 at degrees 1 to 5
+    /// (`eval_rows_fixed`, the degree and dimension constants) are the
+    /// general body's (`eval_rows` on heap buffers) to the bit, values and
+    /// bounds: polynomial and rational curves of 1 to 3 spans, clamped and
+    /// with free end knots, every order up to 7, at random parameters and at
+    /// every knot from both sides.
+    #[test]
+    fn fixed_degree_rows_are_the_general_rows_to_the_bit() {
+        let mut values = Values(31);
+        let mut cases = 0;
+        for dim in 2..=3 {
+            for p in 1..=5 {
+                for spans in 1..=3 {
+                    for rational in [false, true] {
+                        for clamped in [true, false] {
+                            if !clamped && spans == 1 {
+                                continue;
+                            }
+                            let c = curve(&mut values, dim, p, spans, rational, clamped);
+                            let (a, b) = c.domain();
+                            let mut us: Vec<f64> =
+                                (0..4).map(|_| a + (b - a) * values.unit()).collect();
+                            us.extend(c.knots.iter().copied().filter(|&k| (a..=b).contains(&k)));
+                            for &u in &us {
+                                for side in [KnotSide::Left, KnotSide::Right] {
+                                    for order in 0..=7 {
+                                        let rows = order + 1;
+                                        let n = order.min(p);
+                                        let mut fast = vec![f64::NAN; rows * dim];
+                                        let mut fast_bound = vec![f64::NAN; rows];
+                                        c.eval_derivatives_into(
+                                            u,
+                                            order,
+                                            side,
+                                            &mut fast,
+                                            Some(&mut fast_bound),
+                                        );
+                                        let mut general = vec![f64::NAN; rows * dim];
+                                        let mut general_bound = vec![f64::NAN; rows];
+                                        let mut basis = vec![0.0; (n + 1) * (p + 1)];
+                                        let mut work = vec![0.0; basis_scratch_len(p)];
+                                        let mut jets = vec![0.0; 3 * rows];
+                                        c.eval_rows(
+                                            u,
+                                            n,
+                                            side,
+                                            &mut general,
+                                            Some(&mut general_bound),
+                                            &mut basis,
+                                            &mut work,
+                                            &mut jets,
+                                        );
+                                        let same = |x: &[f64], y: &[f64]| {
+                                            x.iter().zip(y).all(|(a, b)| a.to_bits() == b.to_bits())
+                                        };
+                                        assert!(
+                                            same(&fast, &general)
+                                                && same(&fast_bound, &general_bound),
+                                            "dim {dim} p {p} spans {spans} rational {rational} clamped {clamped} \
+                                             u {u} {side:?} order {order}: {fast:?} {fast_bound:?} vs \
+                                             {general:?} {general_bound:?}"
+                                        );
+                                        cases += 1;
+                                    }
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        assert!(cases > 5000, "{cases} cases");
     }
 
     /// A Bezier curve as a one-span NURBS (`from_bezier`, domain `[0, 1]`)

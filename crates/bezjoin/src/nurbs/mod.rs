@@ -32,7 +32,7 @@ mod spans;
 pub use conic::{AXIS_TOLERANCE, ellipse_arc};
 pub use length::MAX_RATIONAL_EVALUATIONS;
 
-use crate::basis::{BasisLayout, KnotSide, basis_derivatives_into, basis_scratch_len, find_span};
+use crate::basis::{BasisLayout, KnotSide, basis_derivatives_inline, basis_scratch_len, find_span};
 use crate::bezier::{BezierCurve, MAX_DEGREE};
 use crate::curve::CurveRef;
 use crate::error::{BezjoinError, Result, check_finite, check_finite_scalar};
@@ -687,6 +687,23 @@ impl NurbsCurve {
         // more than a small curve's whole evaluation), the heap beyond 15.
         let (basis_len, work_len, jets_len) = ((n + 1) * m, basis_scratch_len(p), 3 * rows);
         let fits = |b: usize, w: usize, j: usize| basis_len <= b && work_len <= w && jets_len <= j;
+        // Dimensions 2 and 3 at degrees 1 to 5 with at most 8 rows: the
+        // same body with the degree and dimension constants.
+        if rows <= 8 && (1..=5).contains(&p) && (self.dim == 2 || self.dim == 3) {
+            match (self.dim, p) {
+                (3, 1) => self.eval_rows_fixed::<3, 1, 4, 12>(u, n, side, out, bound),
+                (3, 2) => self.eval_rows_fixed::<3, 2, 9, 21>(u, n, side, out, bound),
+                (3, 3) => self.eval_rows_fixed::<3, 3, 16, 32>(u, n, side, out, bound),
+                (3, 4) => self.eval_rows_fixed::<3, 4, 25, 45>(u, n, side, out, bound),
+                (3, _) => self.eval_rows_fixed::<3, 5, 36, 60>(u, n, side, out, bound),
+                (_, 1) => self.eval_rows_fixed::<2, 1, 4, 12>(u, n, side, out, bound),
+                (_, 2) => self.eval_rows_fixed::<2, 2, 9, 21>(u, n, side, out, bound),
+                (_, 3) => self.eval_rows_fixed::<2, 3, 16, 32>(u, n, side, out, bound),
+                (_, 4) => self.eval_rows_fixed::<2, 4, 25, 45>(u, n, side, out, bound),
+                (_, _) => self.eval_rows_fixed::<2, 5, 36, 60>(u, n, side, out, bound),
+            }
+            return;
+        }
         if fits(16, basis_scratch_len(3), 48) {
             let (mut b, mut w, mut j) = ([0.0; 16], [0.0; basis_scratch_len(3)], [0.0; 48]);
             self.eval_rows(u, n, side, out, bound, &mut b, &mut w, &mut j);
@@ -815,6 +832,24 @@ impl NurbsCurve {
         }
     }
 
+    /// [`eval_rows`](Self::eval_rows) with the dimension `D`, the degree
+    /// `P` and the buffer sizes `B = (P + 1)^2`, `W = basis_scratch_len(P)`
+    /// compile-time constants, at most 8 rows: the same operations in the
+    /// same order (test `fixed_degree_rows_are_the_general_rows_to_the_bit`).
+    #[inline(never)]
+    fn eval_rows_fixed<const D: usize, const P: usize, const B: usize, const W: usize>(
+        &self,
+        u: f64,
+        n: usize,
+        side: KnotSide,
+        out: &mut [f64],
+        bound: Option<&mut [f64]>,
+    ) {
+        debug_assert!(self.dim == D && self.degree == P && out.len() <= 8 * D);
+        let (mut b, mut w, mut j) = ([0.0; B], [0.0; W], [0.0; 24]);
+        self.eval_rows_with(P, D, u, n, side, out, bound, &mut b, &mut w, &mut j);
+    }
+
     /// The body of [`eval_derivatives_into`](Self::eval_derivatives_into)
     /// on buffers of at least `(n + 1) (p + 1)` (basis), `basis_scratch_len(p)`
     /// (work) and `3 (rows)` (jets) values, `n = min(max_order, p)`, where
@@ -826,18 +861,47 @@ impl NurbsCurve {
         n: usize,
         side: KnotSide,
         out: &mut [f64],
+        bound: Option<&mut [f64]>,
+        basis: &mut [f64],
+        work: &mut [f64],
+        jets: &mut [f64],
+    ) {
+        self.eval_rows_with(
+            self.degree,
+            self.dim,
+            u,
+            n,
+            side,
+            out,
+            bound,
+            basis,
+            work,
+            jets,
+        );
+    }
+
+    /// [`eval_rows`](Self::eval_rows) with `p == self.degree` and
+    /// `d == self.dim` given (constants where the caller knows them).
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn eval_rows_with(
+        &self,
+        p: usize,
+        d: usize,
+        u: f64,
+        n: usize,
+        side: KnotSide,
+        out: &mut [f64],
         mut bound: Option<&mut [f64]>,
         basis: &mut [f64],
         work: &mut [f64],
         jets: &mut [f64],
     ) {
-        let p = self.degree;
-        let d = self.dim;
         let m = p + 1;
         let rows = out.len() / d;
         let span = find_span(&self.knots, p, u, side);
         let knots = &self.knots;
-        basis_derivatives_into(
+        basis_derivatives_inline(
             |i| knots[i],
             p,
             span,
