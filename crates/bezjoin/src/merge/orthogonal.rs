@@ -56,6 +56,7 @@
 //! actual sensitivity; measured against an exact rational reference in
 //! test `merge_exact`.
 
+use std::borrow::Cow;
 use std::sync::OnceLock;
 
 use nalgebra::{DMatrix, DVector};
@@ -223,15 +224,20 @@ fn restrictions(m: usize, breakpoints: &[f64]) -> DMatrix<f64> {
     s
 }
 
-/// The metric's sample matrix `M` and target `b` (see the module).
-fn metric_samples(
-    problem: &Problem<'_, '_>,
+/// The metric's sample matrix `M` and target `b` (see the module; the
+/// discrete metric's are `S` and `x0` themselves, borrowed).
+fn metric_samples<'s>(
+    problem: &'s Problem<'_, '_>,
     breakpoints: &[f64],
     metric: MergeMetric,
-    s: &DMatrix<f64>,
-) -> (DMatrix<f64>, DMatrix<f64>, DMatrix<f64>) {
+    s: &'s DMatrix<f64>,
+) -> (Cow<'s, DMatrix<f64>>, Cow<'s, DMatrix<f64>>, DMatrix<f64>) {
     match metric {
-        MergeMetric::Discrete => (s.clone(), problem.x0.clone(), problem.x0.abs()),
+        MergeMetric::Discrete => (
+            Cow::Borrowed(s),
+            Cow::Borrowed(&problem.x0),
+            problem.x0.abs(),
+        ),
         MergeMetric::Integral => {
             let points = problem.points_per_piece;
             let m = points - 1;
@@ -266,7 +272,7 @@ fn metric_samples(
                     }
                 }
             }
-            (samples, target, target_abs)
+            (Cow::Owned(samples), Cow::Owned(target), target_abs)
         }
     }
 }
@@ -364,7 +370,7 @@ fn null_space(basis: &[(DVector<f64>, DVector<f64>)], n: usize) -> DMatrix<f64> 
 fn constraint_rows_on_r(problem: &Problem<'_, '_>, s: &DMatrix<f64>) -> Vec<Row> {
     let x0 = &problem.x0;
     problem
-        .constraints
+        .constraints()
         .iter()
         .map(|row| {
             let coefficients = s.tr_mul(&row.coefficients);
@@ -483,7 +489,7 @@ pub(super) fn orthogonal_solution(
 
     let ends_only = count == 2
         && m >= 1
-        && problem.constraints.len() == 2
+        && problem.constraint_count() == 2
         && problem.pieces.iter().all(|p| p.points.is_empty());
     let rows_r: Vec<Row>;
     let feasible = if ends_only {
@@ -505,19 +511,22 @@ pub(super) fn orthogonal_solution(
     // Without kept rows the particular solution is zero: no products.
     let particular_abs = z.is_some().then(|| particular.abs());
     let reduced_target = if z.is_none() {
-        target.clone()
+        Cow::Borrowed(&*target)
     } else {
-        &target - &samples * &particular
+        Cow::Owned(&*target - &*samples * &particular)
     };
+    let samples: &DMatrix<f64> = &samples;
+    let target: &DMatrix<f64> = &target;
     let merged;
     let mut factor = None;
     if free == 0 {
         merged = particular;
     } else {
-        let a = match &z {
-            Some(z) => &samples * z,
-            None => samples.clone(),
+        let a: Cow<'_, DMatrix<f64>> = match &z {
+            Some(z) => Cow::Owned(samples * z),
+            None => Cow::Borrowed(samples),
         };
+        let a: &DMatrix<f64> = &a;
         let rows = a.nrows();
         let dim = problem.dim;
         let a_abs = a.abs();
@@ -539,7 +548,7 @@ pub(super) fn orthogonal_solution(
         let mut remainder = DMatrix::zeros(rows, dim);
         for _ in 0..REFINEMENT_STEPS {
             remainder.copy_from(&reduced_target);
-            remainder.gemm(-1.0, &a, &y, 1.0);
+            remainder.gemm(-1.0, a, &y, 1.0);
             qr.least_squares(remainder.as_slice(), step.as_mut_slice(), &mut work);
             if step.iter().any(|v| !v.is_finite()) {
                 break;
@@ -553,17 +562,29 @@ pub(super) fn orthogonal_solution(
         };
         factor = Some((qr, y, a_abs, correction));
     }
-    let residual = &target - &samples * &merged;
+    let residual = target - samples * &merged;
     let metric_value = residual.norm_squared();
 
     // The pieces: R split at the breakpoints (de Casteljau).
     let curve = BezierCurve::from_matrix(&merged)?;
     let mut x = DMatrix::zeros(count * points, problem.dim);
     if count == 2 {
-        let (left, right) = curve.split_unchecked(breakpoints[1]);
-        x.rows_mut(0, points).copy_from(&left.control_matrix());
-        x.rows_mut(points, points)
-            .copy_from(&right.control_matrix());
+        // `curve.split_unchecked(mu)` coordinate by coordinate, in place in
+        // x's columns (the same de Casteljau steps, `(1 - t) a + t b`): the
+        // right half's storage is the triangle's working row, whose entry
+        // `m - level` is final after `level` steps.
+        let t = breakpoints[1];
+        for (c, column) in x.as_mut_slice().chunks_exact_mut(2 * points).enumerate() {
+            let (left, right) = column.split_at_mut(points);
+            right.copy_from_slice(merged.column(c).as_slice());
+            left[0] = right[0];
+            for (level, out) in left.iter_mut().enumerate().skip(1) {
+                for i in 0..=m - level {
+                    right[i] = (1.0 - t) * right[i] + t * right[i + 1];
+                }
+                *out = right[0];
+            }
+        }
     } else {
         for j in 0..count {
             let piece = curve.segment_unchecked(breakpoints[j], breakpoints[j + 1]);
@@ -671,7 +692,7 @@ pub(super) fn orthogonal_solution(
             .iter()
             .position(|r| std::ptr::eq(r, *row_r))
             .expect("a row of rows_r");
-        &problem.constraints[index]
+        &problem.constraints()[index]
     });
     let undecided = check_dependent_rows(
         problem,
@@ -687,7 +708,7 @@ pub(super) fn orthogonal_solution(
         && count == 2
         && dependent.is_empty()
     {
-        let fix_ends = !problem.constraints.is_empty();
+        let fix_ends = problem.constraint_count() > 0;
         if let Some(r) = super::refine::refine_integral(problem, breakpoints[1], fix_ends) {
             if r.estimate <= accuracy {
                 return Ok(Orthogonal {
@@ -1004,15 +1025,16 @@ mod tests {
             let pieces: Vec<PieceInput<'_>> = ["P", "Q"]
                 .iter()
                 .map(|name| PieceInput {
-                    curve: curve(&mut state, degree),
-                    name: (*name).into(),
-                    points_name: "points".into(),
+                    curve: std::borrow::Cow::Owned(curve(&mut state, degree)),
+                    name,
+                    points_name: "points",
                     keep: false,
                     points: Vec::new(),
                 })
                 .collect();
             for mu in [1e-3, 0.3, 0.5, 0.77] {
-                let problem = Problem::new(&pieces, &[mu, 1.0 - mu], true);
+                let lengths = [mu, 1.0 - mu];
+                let problem = Problem::new(&pieces, &lengths, true);
                 let s = restrictions(degree, &[0.0, mu, 1.0]);
                 let rows_r = constraint_rows_on_r(&problem, &s);
                 let general = Feasible::general(&rows_r, &problem, degree + 1);
