@@ -641,8 +641,9 @@ pub(super) fn orthogonal_solution(
             m,
             correction,
         );
+        let mut scratch = Scratch::default();
         let (pieces_bound, pieces_gain, pieces_k2t) =
-            first_order_bound(&shared, pieces_map.as_ref(), true)
+            first_order_bound(&shared, pieces_map.as_ref(), true, &mut scratch)
                 .ok_or_else(|| ill_conditioned_factor(accuracy))?;
         let merged_bound = match (pieces_k2t, &z) {
             // Discrete metric, no kept rows: R's map is the identity and
@@ -653,10 +654,10 @@ pub(super) fn orthogonal_solution(
             }
             _ => {
                 let zr = match &z {
-                    Some(z) => z.clone(),
-                    None => DMatrix::identity(points, points),
+                    Some(z) => Cow::Borrowed(z),
+                    None => Cow::Owned(DMatrix::identity(points, points)),
                 };
-                first_order_bound(&shared, Some(&zr), false)
+                first_order_bound(&shared, Some(&zr), false, &mut scratch)
                     .ok_or_else(|| ill_conditioned_factor(accuracy))?
                     .0
             }
@@ -793,11 +794,21 @@ impl<'s> Shared<'s> {
     }
 }
 
+/// Buffers of [`first_order_bound`], kept between its calls for the
+/// pieces and for `R` (the same values, fewer allocations).
+#[derive(Default)]
+struct Scratch {
+    small: Vec<f64>,
+    acc: Vec<f64>,
+    k1: Vec<f64>,
+}
+
 /// `max_c amax(K v_c)` for a column-major `out x inner` matrix `k` and the
 /// columns `v_c` of `v` (`inner x dim`).
-fn largest_product(k: &[f64], out: usize, v: &DMatrix<f64>) -> f64 {
+fn largest_product(k: &[f64], out: usize, v: &DMatrix<f64>, acc: &mut Vec<f64>) -> f64 {
     let mut worst = 0.0f64;
-    let mut acc = vec![0.0; out];
+    acc.clear();
+    acc.resize(out, 0.0);
     for column in v.column_iter() {
         acc.fill(0.0);
         for (kc, &x) in k.chunks_exact(out).zip(column.iter()) {
@@ -805,7 +816,7 @@ fn largest_product(k: &[f64], out: usize, v: &DMatrix<f64>) -> f64 {
                 *a += e * x;
             }
         }
-        worst = worst.max(lsq::amax(&acc));
+        worst = worst.max(lsq::amax(acc));
     }
     worst
 }
@@ -858,7 +869,13 @@ fn first_order_bound(
     shared: &Shared<'_>,
     map: Option<&DMatrix<f64>>,
     with_normwise: bool,
+    scratch: &mut Scratch,
 ) -> Option<(f64, f64, Option<Vec<f64>>)> {
+    let Scratch {
+        small: w,
+        acc,
+        k1: k1_buffer,
+    } = scratch;
     let qr = shared.qr;
     let (rows, free) = (qr.rows(), qr.cols());
     let q = &shared.q;
@@ -873,18 +890,20 @@ fn first_order_bound(
         None => {
             // map = A = Q T: map c = Q (T c).
             let mut worst = 0.0f64;
-            let mut w = vec![0.0; free];
-            let mut acc = vec![0.0; rows];
+            w.clear();
+            w.resize(free, 0.0);
+            acc.clear();
+            acc.resize(rows, 0.0);
             for c in 0..dim {
                 w.copy_from_slice(shared.correction.column(c).as_slice());
-                qr.mul_t(&mut w);
+                qr.mul_t(w);
                 acc.fill(0.0);
-                for (qk, &wk) in q.chunks_exact(rows).zip(&w) {
+                for (qk, &wk) in q.chunks_exact(rows).zip(w.iter()) {
                     for (a, &e) in acc.iter_mut().zip(qk) {
                         *a += e * wk;
                     }
                 }
-                worst = worst.max(lsq::amax(&acc));
+                worst = worst.max(lsq::amax(acc));
             }
             (std::borrow::Cow::Borrowed(q.as_slice()), worst)
         }
@@ -913,7 +932,9 @@ fn first_order_bound(
     // For the thin Q (K0 = Q) it is symmetric: the entries on and below
     // the diagonal are summed, those above copied from them.
     let symmetric = map.is_none();
-    let mut k1 = Vec::with_capacity(out * rows);
+    let mut k1 = std::mem::take(k1_buffer);
+    k1.clear();
+    k1.reserve(out * rows);
     for i in 0..rows {
         let start = k1.len();
         let from = if symmetric { i } else { 0 };
@@ -943,7 +964,9 @@ fn first_order_bound(
     if !with_normwise {
         // R's guard: the values term only (what the measured weight was
         // calibrated on, merge back with zero residual); no K2.
-        return Some((values_bound(shared, &k1, measured), k0_norm, None));
+        let bound = values_bound(shared, &k1, measured, acc);
+        *k1_buffer = k1;
+        return Some((bound, k0_norm, None));
     }
     // K2 = K0 T^-T (out x free).
     let mut k2 = k0.into_owned();
@@ -960,7 +983,8 @@ fn first_order_bound(
             + lsq::norm(&k2) * a_norm * shared.residual.norm());
     k2.iter_mut().for_each(|v| *v = v.abs());
     let mut worst = 0.0f64;
-    let mut acc = vec![0.0; out];
+    acc.clear();
+    acc.resize(out, 0.0);
     for c in 0..dim {
         acc.fill(0.0);
         let tv = shared.through_values.column(c);
@@ -975,8 +999,9 @@ fn first_order_bound(
                 *a += e * x;
             }
         }
-        worst = worst.max(gamma * lsq::amax(&acc));
+        worst = worst.max(gamma * lsq::amax(acc));
     }
+    *k1_buffer = k1;
     let k2 = map.is_none().then_some(k2);
     Some((worst + measured + normwise, k0_norm, k2))
 }
@@ -985,10 +1010,10 @@ fn first_order_bound(
 /// (|t_c| + |A| |y_c|)`, plus the `measured` refinement term: `R`'s guard,
 /// from `|K1|` (`|map A^+|`, absolute values taken; column-major, `rows`
 /// columns).
-fn values_bound(shared: &Shared<'_>, k1: &[f64], measured: f64) -> f64 {
+fn values_bound(shared: &Shared<'_>, k1: &[f64], measured: f64, acc: &mut Vec<f64>) -> f64 {
     let gamma = ESTIMATE_MARGIN * (shared.m as f64 + 2.0) * f64::EPSILON;
     let out = k1.len() / shared.qr.rows();
-    gamma * largest_product(k1, out, &shared.through_values) + measured
+    gamma * largest_product(k1, out, &shared.through_values, acc) + measured
 }
 
 /// [`values_bound`] with `|K1|` given by its transpose (column-major
