@@ -109,7 +109,7 @@ pub(super) fn kept_solution(
         .filter(|&j| pieces[j].keep)
         .map(|j| format!("keep {} unchanged", pieces[j].name))
         .collect();
-    for row in &problem.constraints {
+    for row in problem.constraints() {
         let residual = (e.transpose() * &row.coefficients - &row.rhs).amax();
         match classify(residual, tolerance, explained_at(&row.coefficients)) {
             Dependent::Contradictory => {

@@ -51,7 +51,7 @@ pub(super) fn kkt_solution(
     };
     let rank_tolerance = RANK_TOLERANCE * (unknowns as f64).sqrt();
     let (kept, dependent) =
-        extend_orthonormal(&mut basis, &problem.constraints, rank_tolerance, unknowns);
+        extend_orthonormal(&mut basis, problem.constraints(), rank_tolerance, unknowns);
 
     // KKT system [W B^T; B 0] [e; lambda] = [0; c] with the orthonormal rows B.
     let weight = match metric {

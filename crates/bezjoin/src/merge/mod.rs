@@ -362,7 +362,7 @@ struct PairProblem<'a> {
 
 impl<'a> PairProblem<'a> {
     /// Validates the pair and the options other than the split.
-    fn new(p: &BezierCurve, q: &BezierCurve, options: &'a MergeOptions) -> Result<Self> {
+    fn new(p: &'a BezierCurve, q: &'a BezierCurve, options: &'a MergeOptions) -> Result<Self> {
         if q.dim() != p.dim() {
             return Err(BezjoinError::DimensionMismatch {
                 name: "q".into(),
@@ -762,9 +762,9 @@ fn working_degree(curves: &[&BezierCurve], requested: Option<usize>) -> Result<u
 }
 
 fn piece_input<'a>(
-    curve: &BezierCurve,
-    name: &str,
-    points_name: &str,
+    curve: &'a BezierCurve,
+    name: &'a str,
+    points_name: &'a str,
     keep: bool,
     points: Vec<(usize, &'a KeepPoint)>,
     degree: usize,
@@ -780,10 +780,16 @@ fn piece_input<'a>(
             });
         }
     }
+    // At the working degree already: borrowed, not copied.
+    let curve = if curve.degree() == degree {
+        std::borrow::Cow::Borrowed(curve)
+    } else {
+        std::borrow::Cow::Owned(curve.elevate_degree(degree)?)
+    };
     Ok(PieceInput {
-        curve: curve.elevate_degree(degree)?,
-        name: name.into(),
-        points_name: points_name.into(),
+        curve,
+        name,
+        points_name,
         keep,
         points,
     })
@@ -1005,7 +1011,8 @@ mod reference_tests {
                     let pair = PairProblem::new(&p, &q, &options).unwrap();
                     for mu in [0.2, 0.5, 0.7] {
                         let ours = pair.solve(mu, StageOneCheck::Full).unwrap();
-                        let problem = Problem::new(&pair.pieces, &[mu, 1.0 - mu], fix_ends);
+                        let lengths = [mu, 1.0 - mu];
+                        let problem = Problem::new(&pair.pieces, &lengths, fix_ends);
                         let (x, _) =
                             kkt::kkt_solution(&problem, metric, 1.0, StageOneCheck::Full).unwrap();
                         let scale = x.amax().max(1.0);

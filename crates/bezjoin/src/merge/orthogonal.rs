@@ -56,6 +56,7 @@
 //! actual sensitivity; measured against an exact rational reference in
 //! test `merge_exact`.
 
+use std::borrow::Cow;
 use std::sync::OnceLock;
 
 use nalgebra::{DMatrix, DVector};
@@ -223,15 +224,20 @@ fn restrictions(m: usize, breakpoints: &[f64]) -> DMatrix<f64> {
     s
 }
 
-/// The metric's sample matrix `M` and target `b` (see the module).
-fn metric_samples(
-    problem: &Problem<'_, '_>,
+/// The metric's sample matrix `M` and target `b` (see the module; the
+/// discrete metric's are `S` and `x0` themselves, borrowed).
+fn metric_samples<'s>(
+    problem: &'s Problem<'_, '_>,
     breakpoints: &[f64],
     metric: MergeMetric,
-    s: &DMatrix<f64>,
-) -> (DMatrix<f64>, DMatrix<f64>, DMatrix<f64>) {
+    s: &'s DMatrix<f64>,
+) -> (Cow<'s, DMatrix<f64>>, Cow<'s, DMatrix<f64>>, DMatrix<f64>) {
     match metric {
-        MergeMetric::Discrete => (s.clone(), problem.x0.clone(), problem.x0.abs()),
+        MergeMetric::Discrete => (
+            Cow::Borrowed(s),
+            Cow::Borrowed(&problem.x0),
+            problem.x0.abs(),
+        ),
         MergeMetric::Integral => {
             let points = problem.points_per_piece;
             let m = points - 1;
@@ -266,7 +272,7 @@ fn metric_samples(
                     }
                 }
             }
-            (samples, target, target_abs)
+            (Cow::Owned(samples), Cow::Owned(target), target_abs)
         }
     }
 }
@@ -364,7 +370,7 @@ fn null_space(basis: &[(DVector<f64>, DVector<f64>)], n: usize) -> DMatrix<f64> 
 fn constraint_rows_on_r(problem: &Problem<'_, '_>, s: &DMatrix<f64>) -> Vec<Row> {
     let x0 = &problem.x0;
     problem
-        .constraints
+        .constraints()
         .iter()
         .map(|row| {
             let coefficients = s.tr_mul(&row.coefficients);
@@ -483,7 +489,7 @@ pub(super) fn orthogonal_solution(
 
     let ends_only = count == 2
         && m >= 1
-        && problem.constraints.len() == 2
+        && problem.constraint_count() == 2
         && problem.pieces.iter().all(|p| p.points.is_empty());
     let rows_r: Vec<Row>;
     let feasible = if ends_only {
@@ -505,19 +511,22 @@ pub(super) fn orthogonal_solution(
     // Without kept rows the particular solution is zero: no products.
     let particular_abs = z.is_some().then(|| particular.abs());
     let reduced_target = if z.is_none() {
-        target.clone()
+        Cow::Borrowed(&*target)
     } else {
-        &target - &samples * &particular
+        Cow::Owned(&*target - &*samples * &particular)
     };
+    let samples: &DMatrix<f64> = &samples;
+    let target: &DMatrix<f64> = &target;
     let merged;
     let mut factor = None;
     if free == 0 {
         merged = particular;
     } else {
-        let a = match &z {
-            Some(z) => &samples * z,
-            None => samples.clone(),
+        let a: Cow<'_, DMatrix<f64>> = match &z {
+            Some(z) => Cow::Owned(samples * z),
+            None => Cow::Borrowed(samples),
         };
+        let a: &DMatrix<f64> = &a;
         let rows = a.nrows();
         let dim = problem.dim;
         let a_abs = a.abs();
@@ -539,7 +548,7 @@ pub(super) fn orthogonal_solution(
         let mut remainder = DMatrix::zeros(rows, dim);
         for _ in 0..REFINEMENT_STEPS {
             remainder.copy_from(&reduced_target);
-            remainder.gemm(-1.0, &a, &y, 1.0);
+            remainder.gemm(-1.0, a, &y, 1.0);
             qr.least_squares(remainder.as_slice(), step.as_mut_slice(), &mut work);
             if step.iter().any(|v| !v.is_finite()) {
                 break;
@@ -553,17 +562,29 @@ pub(super) fn orthogonal_solution(
         };
         factor = Some((qr, y, a_abs, correction));
     }
-    let residual = &target - &samples * &merged;
+    let residual = target - samples * &merged;
     let metric_value = residual.norm_squared();
 
     // The pieces: R split at the breakpoints (de Casteljau).
     let curve = BezierCurve::from_matrix(&merged)?;
     let mut x = DMatrix::zeros(count * points, problem.dim);
     if count == 2 {
-        let (left, right) = curve.split_unchecked(breakpoints[1]);
-        x.rows_mut(0, points).copy_from(&left.control_matrix());
-        x.rows_mut(points, points)
-            .copy_from(&right.control_matrix());
+        // `curve.split_unchecked(mu)` coordinate by coordinate, in place in
+        // x's columns (the same de Casteljau steps, `(1 - t) a + t b`): the
+        // right half's storage is the triangle's working row, whose entry
+        // `m - level` is final after `level` steps.
+        let t = breakpoints[1];
+        for (c, column) in x.as_mut_slice().chunks_exact_mut(2 * points).enumerate() {
+            let (left, right) = column.split_at_mut(points);
+            right.copy_from_slice(merged.column(c).as_slice());
+            left[0] = right[0];
+            for (level, out) in left.iter_mut().enumerate().skip(1) {
+                for i in 0..=m - level {
+                    right[i] = (1.0 - t) * right[i] + t * right[i + 1];
+                }
+                *out = right[0];
+            }
+        }
     } else {
         for j in 0..count {
             let piece = curve.segment_unchecked(breakpoints[j], breakpoints[j + 1]);
@@ -620,8 +641,9 @@ pub(super) fn orthogonal_solution(
             m,
             correction,
         );
+        let mut scratch = Scratch::default();
         let (pieces_bound, pieces_gain, pieces_k2t) =
-            first_order_bound(&shared, pieces_map.as_ref(), true)
+            first_order_bound(&shared, pieces_map.as_ref(), true, &mut scratch)
                 .ok_or_else(|| ill_conditioned_factor(accuracy))?;
         let merged_bound = match (pieces_k2t, &z) {
             // Discrete metric, no kept rows: R's map is the identity and
@@ -632,10 +654,10 @@ pub(super) fn orthogonal_solution(
             }
             _ => {
                 let zr = match &z {
-                    Some(z) => z.clone(),
-                    None => DMatrix::identity(points, points),
+                    Some(z) => Cow::Borrowed(z),
+                    None => Cow::Owned(DMatrix::identity(points, points)),
                 };
-                first_order_bound(&shared, Some(&zr), false)
+                first_order_bound(&shared, Some(&zr), false, &mut scratch)
                     .ok_or_else(|| ill_conditioned_factor(accuracy))?
                     .0
             }
@@ -671,7 +693,7 @@ pub(super) fn orthogonal_solution(
             .iter()
             .position(|r| std::ptr::eq(r, *row_r))
             .expect("a row of rows_r");
-        &problem.constraints[index]
+        &problem.constraints()[index]
     });
     let undecided = check_dependent_rows(
         problem,
@@ -687,7 +709,7 @@ pub(super) fn orthogonal_solution(
         && count == 2
         && dependent.is_empty()
     {
-        let fix_ends = !problem.constraints.is_empty();
+        let fix_ends = problem.constraint_count() > 0;
         if let Some(r) = super::refine::refine_integral(problem, breakpoints[1], fix_ends) {
             if r.estimate <= accuracy {
                 return Ok(Orthogonal {
@@ -772,11 +794,21 @@ impl<'s> Shared<'s> {
     }
 }
 
+/// Buffers of [`first_order_bound`], kept between its calls for the
+/// pieces and for `R` (the same values, fewer allocations).
+#[derive(Default)]
+struct Scratch {
+    small: Vec<f64>,
+    acc: Vec<f64>,
+    k1: Vec<f64>,
+}
+
 /// `max_c amax(K v_c)` for a column-major `out x inner` matrix `k` and the
 /// columns `v_c` of `v` (`inner x dim`).
-fn largest_product(k: &[f64], out: usize, v: &DMatrix<f64>) -> f64 {
+fn largest_product(k: &[f64], out: usize, v: &DMatrix<f64>, acc: &mut Vec<f64>) -> f64 {
     let mut worst = 0.0f64;
-    let mut acc = vec![0.0; out];
+    acc.clear();
+    acc.resize(out, 0.0);
     for column in v.column_iter() {
         acc.fill(0.0);
         for (kc, &x) in k.chunks_exact(out).zip(column.iter()) {
@@ -784,7 +816,7 @@ fn largest_product(k: &[f64], out: usize, v: &DMatrix<f64>) -> f64 {
                 *a += e * x;
             }
         }
-        worst = worst.max(lsq::amax(&acc));
+        worst = worst.max(lsq::amax(acc));
     }
     worst
 }
@@ -837,7 +869,13 @@ fn first_order_bound(
     shared: &Shared<'_>,
     map: Option<&DMatrix<f64>>,
     with_normwise: bool,
+    scratch: &mut Scratch,
 ) -> Option<(f64, f64, Option<Vec<f64>>)> {
+    let Scratch {
+        small: w,
+        acc,
+        k1: k1_buffer,
+    } = scratch;
     let qr = shared.qr;
     let (rows, free) = (qr.rows(), qr.cols());
     let q = &shared.q;
@@ -852,18 +890,20 @@ fn first_order_bound(
         None => {
             // map = A = Q T: map c = Q (T c).
             let mut worst = 0.0f64;
-            let mut w = vec![0.0; free];
-            let mut acc = vec![0.0; rows];
+            w.clear();
+            w.resize(free, 0.0);
+            acc.clear();
+            acc.resize(rows, 0.0);
             for c in 0..dim {
                 w.copy_from_slice(shared.correction.column(c).as_slice());
-                qr.mul_t(&mut w);
+                qr.mul_t(w);
                 acc.fill(0.0);
-                for (qk, &wk) in q.chunks_exact(rows).zip(&w) {
+                for (qk, &wk) in q.chunks_exact(rows).zip(w.iter()) {
                     for (a, &e) in acc.iter_mut().zip(qk) {
                         *a += e * wk;
                     }
                 }
-                worst = worst.max(lsq::amax(&acc));
+                worst = worst.max(lsq::amax(acc));
             }
             (std::borrow::Cow::Borrowed(q.as_slice()), worst)
         }
@@ -892,7 +932,9 @@ fn first_order_bound(
     // For the thin Q (K0 = Q) it is symmetric: the entries on and below
     // the diagonal are summed, those above copied from them.
     let symmetric = map.is_none();
-    let mut k1 = Vec::with_capacity(out * rows);
+    let mut k1 = std::mem::take(k1_buffer);
+    k1.clear();
+    k1.reserve(out * rows);
     for i in 0..rows {
         let start = k1.len();
         let from = if symmetric { i } else { 0 };
@@ -922,7 +964,9 @@ fn first_order_bound(
     if !with_normwise {
         // R's guard: the values term only (what the measured weight was
         // calibrated on, merge back with zero residual); no K2.
-        return Some((values_bound(shared, &k1, measured), k0_norm, None));
+        let bound = values_bound(shared, &k1, measured, acc);
+        *k1_buffer = k1;
+        return Some((bound, k0_norm, None));
     }
     // K2 = K0 T^-T (out x free).
     let mut k2 = k0.into_owned();
@@ -939,7 +983,8 @@ fn first_order_bound(
             + lsq::norm(&k2) * a_norm * shared.residual.norm());
     k2.iter_mut().for_each(|v| *v = v.abs());
     let mut worst = 0.0f64;
-    let mut acc = vec![0.0; out];
+    acc.clear();
+    acc.resize(out, 0.0);
     for c in 0..dim {
         acc.fill(0.0);
         let tv = shared.through_values.column(c);
@@ -954,8 +999,9 @@ fn first_order_bound(
                 *a += e * x;
             }
         }
-        worst = worst.max(gamma * lsq::amax(&acc));
+        worst = worst.max(gamma * lsq::amax(acc));
     }
+    *k1_buffer = k1;
     let k2 = map.is_none().then_some(k2);
     Some((worst + measured + normwise, k0_norm, k2))
 }
@@ -964,10 +1010,10 @@ fn first_order_bound(
 /// (|t_c| + |A| |y_c|)`, plus the `measured` refinement term: `R`'s guard,
 /// from `|K1|` (`|map A^+|`, absolute values taken; column-major, `rows`
 /// columns).
-fn values_bound(shared: &Shared<'_>, k1: &[f64], measured: f64) -> f64 {
+fn values_bound(shared: &Shared<'_>, k1: &[f64], measured: f64, acc: &mut Vec<f64>) -> f64 {
     let gamma = ESTIMATE_MARGIN * (shared.m as f64 + 2.0) * f64::EPSILON;
     let out = k1.len() / shared.qr.rows();
-    gamma * largest_product(k1, out, &shared.through_values) + measured
+    gamma * largest_product(k1, out, &shared.through_values, acc) + measured
 }
 
 /// [`values_bound`] with `|K1|` given by its transpose (column-major
@@ -1004,15 +1050,16 @@ mod tests {
             let pieces: Vec<PieceInput<'_>> = ["P", "Q"]
                 .iter()
                 .map(|name| PieceInput {
-                    curve: curve(&mut state, degree),
-                    name: (*name).into(),
-                    points_name: "points".into(),
+                    curve: std::borrow::Cow::Owned(curve(&mut state, degree)),
+                    name,
+                    points_name: "points",
                     keep: false,
                     points: Vec::new(),
                 })
                 .collect();
             for mu in [1e-3, 0.3, 0.5, 0.77] {
-                let problem = Problem::new(&pieces, &[mu, 1.0 - mu], true);
+                let lengths = [mu, 1.0 - mu];
+                let problem = Problem::new(&pieces, &lengths, true);
                 let s = restrictions(degree, &[0.0, mu, 1.0]);
                 let rows_r = constraint_rows_on_r(&problem, &s);
                 let general = Feasible::general(&rows_r, &problem, degree + 1);

@@ -647,7 +647,8 @@ mod tests {
                 };
                 let problem = PairProblem::new(&p, &q, &options).unwrap();
                 for &mu in mus {
-                    let rows = Problem::new(&problem.pieces, &[mu, 1.0 - mu], fix_ends);
+                    let lengths = [mu, 1.0 - mu];
+                    let rows = Problem::new(&problem.pieces, &lengths, fix_ends);
                     let refined = refine_integral(&rows, mu, fix_ends).unwrap();
                     let reference = exact_r(&p, &q, mu, fix_ends);
                     let scale = refined.x.amax().max(rows.scale);

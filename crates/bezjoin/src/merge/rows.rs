@@ -40,16 +40,21 @@ pub(super) struct Problem<'p, 'a> {
     /// Coordinate scale of the input.
     pub(super) scale: f64,
     /// The piece lengths `h_j` (the continuity rows' weights).
-    lengths: Vec<f64>,
+    lengths: &'p [f64],
     /// The continuity rows as [`Row`]s, built on first use (the KKT
     /// reference and fallback; the orthogonal path needs none and checks
     /// (3) by [`Problem::continuity_residual`]).
     continuity: OnceCell<Vec<Row>>,
-    pub(super) constraints: Vec<Row>,
+    fix_ends: bool,
+    /// The number of constraint rows ([`Problem::constraints`]).
+    constraint_count: usize,
+    /// The constraint rows with their labels, built on first use (the
+    /// closed form of fixed ends on two pieces needs none).
+    constraints: OnceCell<Vec<Row>>,
 }
 
 impl<'p, 'a> Problem<'p, 'a> {
-    pub(super) fn new(pieces: &'p [PieceInput<'a>], lengths: &[f64], fix_ends: bool) -> Self {
+    pub(super) fn new(pieces: &'p [PieceInput<'a>], lengths: &'p [f64], fix_ends: bool) -> Self {
         let count = pieces.len();
         let m = pieces[0].curve.degree();
         let dim = pieces[0].curve.dim();
@@ -57,51 +62,20 @@ impl<'p, 'a> Problem<'p, 'a> {
         let unknowns = count * points_per_piece;
         let mut x0 = DMatrix::zeros(unknowns, dim);
         for (j, p) in pieces.iter().enumerate() {
-            x0.rows_mut(j * points_per_piece, points_per_piece)
-                .copy_from(&p.curve.control_matrix());
-        }
-        let scale = x0.amax().max(f64::MIN_POSITIVE);
-
-        // Constraint rows, in a fixed order; right-hand sides are exactly
-        // zero (the constrained quantities keep their values). "Keep piece j
-        // unchanged" is not among them: see `solve_stage_one`.
-        let mut constraints = Vec::new();
-        let unit = |index: usize| {
-            let mut a = DVector::zeros(unknowns);
-            a[index] = 1.0;
-            a
-        };
-        if fix_ends {
-            constraints.push(Row {
-                coefficients: unit(0),
-                rhs: DVector::zeros(dim),
-                label: format!("fix ends (first point of {})", pieces[0].name),
-            });
-            constraints.push(Row {
-                coefficients: unit(unknowns - 1),
-                rhs: DVector::zeros(dim),
-                label: format!("fix ends (last point of {})", pieces[count - 1].name),
-            });
-        }
-        for (j, p) in pieces.iter().enumerate() {
-            for &(k, kp) in &p.points {
-                let d = bezier_basis_derivatives(m, kp.param, kp.max_order);
-                for s in 0..=kp.max_order {
-                    let mut a = DVector::zeros(unknowns);
-                    for i in 0..=m {
-                        a[j * points_per_piece + i] = d[(s, i)];
-                    }
-                    constraints.push(normalised(Row {
-                        coefficients: a,
-                        rhs: DVector::zeros(dim),
-                        label: format!(
-                            "{}[{k}] (derivative {s} of {} at {})",
-                            p.points_name, p.name, kp.param
-                        ),
-                    }));
+            let rows = x0.as_mut_slice();
+            // Column-major x0 from the row-major control points.
+            for (i, point) in p.curve.points().chunks_exact(dim).enumerate() {
+                for (c, &v) in point.iter().enumerate() {
+                    rows[c * unknowns + j * points_per_piece + i] = v;
                 }
             }
         }
+        let scale = x0.amax().max(f64::MIN_POSITIVE);
+        let constraint_count = 2 * usize::from(fix_ends)
+            + pieces
+                .iter()
+                .flat_map(|p| p.points.iter().map(|(_, kp)| kp.max_order + 1))
+                .sum::<usize>();
         Self {
             pieces,
             points_per_piece,
@@ -109,10 +83,70 @@ impl<'p, 'a> Problem<'p, 'a> {
             dim,
             x0,
             scale,
-            lengths: lengths.to_vec(),
+            lengths,
             continuity: OnceCell::new(),
-            constraints,
+            fix_ends,
+            constraint_count,
+            constraints: OnceCell::new(),
         }
+    }
+
+    /// The number of constraint rows, without building them.
+    pub(super) fn constraint_count(&self) -> usize {
+        self.constraint_count
+    }
+
+    /// The constraint rows (fix ends, then the keep points piece after
+    /// piece), in a fixed order; right-hand sides are exactly zero (the
+    /// constrained quantities keep their values). "Keep piece j unchanged"
+    /// is not among them: see `solve_stage_one`.
+    pub(super) fn constraints(&self) -> &[Row] {
+        self.constraints.get_or_init(|| {
+            let pieces = self.pieces;
+            let count = pieces.len();
+            let (unknowns, dim) = (self.unknowns, self.dim);
+            let points_per_piece = self.points_per_piece;
+            let m = points_per_piece - 1;
+            let mut constraints = Vec::with_capacity(self.constraint_count);
+            let unit = |index: usize| {
+                let mut a = DVector::zeros(unknowns);
+                a[index] = 1.0;
+                a
+            };
+            if self.fix_ends {
+                constraints.push(Row {
+                    coefficients: unit(0),
+                    rhs: DVector::zeros(dim),
+                    label: format!("fix ends (first point of {})", pieces[0].name),
+                });
+                constraints.push(Row {
+                    coefficients: unit(unknowns - 1),
+                    rhs: DVector::zeros(dim),
+                    label: format!("fix ends (last point of {})", pieces[count - 1].name),
+                });
+            }
+            for (j, p) in pieces.iter().enumerate() {
+                for &(k, kp) in &p.points {
+                    let d = bezier_basis_derivatives(m, kp.param, kp.max_order);
+                    for s in 0..=kp.max_order {
+                        let mut a = DVector::zeros(unknowns);
+                        for i in 0..=m {
+                            a[j * points_per_piece + i] = d[(s, i)];
+                        }
+                        constraints.push(normalised(Row {
+                            coefficients: a,
+                            rhs: DVector::zeros(dim),
+                            label: format!(
+                                "{}[{k}] (derivative {s} of {} at {})",
+                                p.points_name, p.name, kp.param
+                            ),
+                        }));
+                    }
+                }
+            }
+            debug_assert_eq!(constraints.len(), self.constraint_count);
+            constraints
+        })
     }
 
     /// The continuity rows (3), unit length, join after join, order `r =
@@ -162,18 +196,20 @@ impl<'p, 'a> Problem<'p, 'a> {
     pub(super) fn continuity_residual(&self, x: &DMatrix<f64>) -> f64 {
         let points = self.points_per_piece;
         let m = points - 1;
-        let (mut left, mut right) = (vec![0.0; points], vec![0.0; points]);
+        // The two halves of a row: on the stack up to degree 63.
+        let mut on_stack = [[0.0f64; 64]; 2];
+        let mut on_heap;
+        let (left, right): (&mut [f64], &mut [f64]) = if points <= 64 {
+            let [left, right] = &mut on_stack;
+            (&mut left[..points], &mut right[..points])
+        } else {
+            on_heap = (vec![0.0; points], vec![0.0; points]);
+            (&mut on_heap.0, &mut on_heap.1)
+        };
         let mut worst = 0.0f64;
         for j in 0..self.pieces.len() - 1 {
             for r in 0..=m {
-                continuity_row(
-                    m,
-                    r,
-                    self.lengths[j],
-                    self.lengths[j + 1],
-                    &mut left,
-                    &mut right,
-                );
+                continuity_row(m, r, self.lengths[j], self.lengths[j + 1], left, right);
                 for c in 0..self.dim {
                     let column = x.column(c);
                     let mut sum = 0.0;
@@ -195,7 +231,7 @@ impl<'p, 'a> Problem<'p, 'a> {
     /// Conditions given beyond continuity (a kept piece counts `m + 1`).
     pub(super) fn given(&self) -> usize {
         self.pieces.iter().filter(|p| p.keep).count() * self.points_per_piece
-            + self.constraints.len()
+            + self.constraint_count
     }
 
     /// The `Inconsistent` error for the dependent constraint `row`, missed

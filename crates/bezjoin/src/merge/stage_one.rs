@@ -62,11 +62,12 @@ pub const DATA_ROUNDING_MARGIN: f64 = 4.0;
 
 /// One input piece with its constraints, already at the working degree.
 pub(crate) struct PieceInput<'a> {
-    pub curve: BezierCurve,
+    /// The caller's curve, or its elevation to the working degree.
+    pub curve: std::borrow::Cow<'a, BezierCurve>,
     /// "P", "Q", "curves[2]" ...
-    pub name: String,
+    pub name: &'a str,
     /// Name of its keep-point list ("p_points", "keep_points" ...).
-    pub points_name: String,
+    pub points_name: &'a str,
     pub keep: bool,
     /// (index in the caller's list, keep point)
     pub points: Vec<(usize, &'a KeepPoint)>,
@@ -187,8 +188,6 @@ pub(crate) fn solve_stage_one_slope(
             Err(other) => return Err(other),
         }
     };
-    let e = &x - &problem.x0;
-
     // The continuity conditions (3) themselves, on the original rows (unit
     // length), relative to the coordinate scale of the input and result.
     let result_scale = x.amax().max(problem.scale);
@@ -209,6 +208,12 @@ pub(crate) fn solve_stage_one_slope(
         (Some(_), _) => DMatrix::zeros(0, 0),
         (None, MergeMetric::Discrete) => DMatrix::identity(points_per_piece, points_per_piece),
         (None, MergeMetric::Integral) => bernstein_gram_matrix(m),
+    };
+    // The changes, for the metric of the kept and KKT paths only.
+    let e = if found.is_none() {
+        &x - &problem.x0
+    } else {
+        DMatrix::zeros(0, 0)
     };
     let mut new_pieces = Vec::with_capacity(count);
     for j in 0..count {

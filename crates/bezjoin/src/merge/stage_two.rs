@@ -267,8 +267,16 @@ pub(crate) fn max_deviation(
         // the order i = 0..n.
         for half in halves.chunks_exact(len) {
             match d {
-                2 => deviation_fixed::<2>(table, half, &mut worst),
-                3 => deviation_fixed::<3>(table, half, &mut worst),
+                2 => {
+                    if !deviation_screened::<2>(n, table, half, &mut worst) {
+                        deviation_fixed::<2>(table, half, &mut worst);
+                    }
+                }
+                3 => {
+                    if !deviation_screened::<3>(n, table, half, &mut worst) {
+                        deviation_fixed::<3>(table, half, &mut worst);
+                    }
+                }
                 _ => {
                     let mut value = vec![0.0; d];
                     for s in 0..=DEVIATION_SAMPLES {
@@ -404,6 +412,248 @@ fn deviation_fixed<const D: usize>(table: &[f64], half: &[f64], worst: &mut Wors
     }
 }
 
+/// Degrees up to which [`deviation_screened`] runs (above, the
+/// subdivisions of its degree-`2n` polynomial cost more than
+/// [`deviation_fixed`]'s sums).
+const SCREENED_DEGREE: usize = 5;
+
+/// Halvings from `[0, 1]` to one sample spacing: `2^SAMPLE_LEVELS =
+/// DEVIATION_SAMPLES`, so every sample is an end of a dyadic interval.
+const SAMPLE_LEVELS: u32 = DEVIATION_SAMPLES.trailing_zeros();
+const _: () = assert!(1 << SAMPLE_LEVELS == DEVIATION_SAMPLES);
+
+/// Halvings [`deviation_screened`] may run before it declines (a curve
+/// whose distance is nearly the same at many samples).
+const SCREEN_BUDGET: usize = 96;
+
+/// `C(n,i) C(n,j) / C(2n,i+j)`, entry `i (n + 1) + j`: the product of two
+/// degree-`n` Bernstein polynomials in the degree-`2n` basis, `B_i^n B_j^n =
+/// w_ij B_(i+j)^(2n)`; exact binomials.
+fn product_weights(n: usize) -> Option<&'static [f64]> {
+    static WEIGHTS: [OnceLock<Vec<f64>>; SCREENED_DEGREE + 1] =
+        [const { OnceLock::new() }; SCREENED_DEGREE + 1];
+    let slot = WEIGHTS.get(n)?;
+    Some(slot.get_or_init(|| {
+        use crate::basis::binomial;
+        let mut w = vec![0.0; (n + 1) * (n + 1)];
+        for i in 0..=n {
+            for j in 0..=n {
+                w[i * (n + 1) + j] = binomial(n, i) * binomial(n, j) / binomial(2 * n, i + j);
+            }
+        }
+        w
+    }))
+}
+
+/// One dyadic interval of the squared-norm polynomial: its Bernstein
+/// coefficients there, its level (`0` is `[0, 1]`) and first sample.
+#[derive(Clone, Copy)]
+struct Span<const K: usize> {
+    coefficients: [f64; K],
+    /// The largest coefficient (an upper bound of the polynomial here).
+    upper: f64,
+    level: u32,
+    first: usize,
+}
+
+/// `maxsd`: the larger of two finite values.
+#[inline(always)]
+fn larger(a: f64, b: f64) -> f64 {
+    if a > b { a } else { b }
+}
+
+impl<const K: usize> Span<K> {
+    fn new(coefficients: [f64; K], level: u32, first: usize) -> Self {
+        let mut upper = coefficients[0];
+        for &v in &coefficients[1..] {
+            upper = larger(v, upper);
+        }
+        Self {
+            coefficients,
+            upper,
+            level,
+            first,
+        }
+    }
+}
+
+/// [`deviation_fixed`]'s result, bit for bit, from far fewer operations:
+/// the squared norm `|D(u)|^2` of the (half) difference curve is one
+/// scalar polynomial of degree `2n`, with Bernstein coefficients `E_k =
+/// sum_(i+j=k) w_ij D_i . D_j` ([`product_weights`]). Branch and bound on
+/// it locates the samples that can hold the largest square: an interval's
+/// coefficients bound the polynomial there from above (convex hull), its
+/// end coefficients are its values at the ends, and halving an interval
+/// (de Casteljau at `1/2`) down to one sample spacing puts a sample at
+/// every end; an interval whose largest coefficient is below the best
+/// known value by more than the rounding bound `T` is dropped. The samples
+/// within `T` of the best value are then evaluated as [`deviation_fixed`]
+/// evaluates them (the same sums in the same order), and the largest of
+/// those squares is [`deviation_fixed`]'s largest square.
+///
+/// Why the same: with `K = max_i |D_i|^2` (so `|E_k| <= K`, the weights of
+/// one `k` summing to 1), the computed coefficients are within `(n + D +
+/// 4) eps K` of the exact ones, each halving adds `2n eps K` at most, so
+/// every computed bound and value is within `(17n + D + 4) eps K` of the
+/// exact one; [`deviation_fixed`]'s squares are within `(4n + D + 5) eps
+/// K` of `|D(u_s)|^2`. The sample of the largest square therefore survives
+/// every comparison with the margin `(42n + 4D + 18) eps K`; `T` is four
+/// times that (plus `1e-300` for subnormal products). Declines (returns
+/// `false`, nothing noted) at degree 0 and above [`SCREENED_DEGREE`], after
+/// [`SCREEN_BUDGET`] halvings or more than 16 candidate samples, and when
+/// `K` is not finite, above `f64::MAX / 1024` (so [`deviation_fixed`]'s
+/// sum of squares is finite) or below `2^-900` (subnormal rounding), or
+/// the best value is within `T + 4 MIN_POSITIVE` of zero: whenever
+/// [`deviation_fixed`] might take its non-squaring path.
+// The lanes are read across the coordinate rows (`acc[c]`).
+#[allow(clippy::needless_range_loop)]
+fn deviation_screened<const D: usize>(
+    n: usize,
+    table: &[f64],
+    half: &[f64],
+    worst: &mut Worst,
+) -> bool {
+    // One instance per degree `2n = K - 1` (fixed-size loops).
+    match n {
+        1 => screen::<D, 3>(table, half, worst),
+        2 => screen::<D, 5>(table, half, worst),
+        3 => screen::<D, 7>(table, half, worst),
+        4 => screen::<D, 9>(table, half, worst),
+        5 => screen::<D, 11>(table, half, worst),
+        _ => false,
+    }
+}
+
+/// [`deviation_screened`] for the degree `2n = K - 1`.
+#[allow(clippy::needless_range_loop)]
+fn screen<const D: usize, const K: usize>(table: &[f64], half: &[f64], worst: &mut Worst) -> bool {
+    let n = (K - 1) / 2;
+    let Some(weights) = product_weights(n) else {
+        return false;
+    };
+    let points = n + 1;
+    let degree = 2 * n;
+    let largest_coefficient = half
+        .chunks_exact(D)
+        .map(|p| p.iter().map(|x| x * x).sum::<f64>())
+        .fold(0.0f64, |m, v| if v > m { v } else { m });
+    if !(largest_coefficient.is_finite()
+        && largest_coefficient <= f64::MAX / 1024.0
+        && largest_coefficient >= 2f64.powi(-900))
+    {
+        return false;
+    }
+    let mut square_coefficients = [0.0f64; K];
+    for (i, pi) in half.chunks_exact(D).enumerate() {
+        for (j, pj) in half.chunks_exact(D).enumerate() {
+            let mut dot = 0.0;
+            for c in 0..D {
+                dot += pi[c] * pj[c];
+            }
+            square_coefficients[i + j] += weights[i * points + j] * dot;
+        }
+    }
+    let whole = Span::new(square_coefficients, 0, 0);
+    let eps = f64::EPSILON;
+    let bound = 4.0 * (42 * n + 4 * D + 18) as f64 * eps * largest_coefficient + 1e-300;
+    let mut best = larger(whole.coefficients[0], whole.coefficients[degree]);
+    // Candidate samples with their polynomial values (superset of those
+    // within `bound` of the final best).
+    const CANDIDATES: usize = 16;
+    let mut candidates = [(0.0f64, 0usize); CANDIDATES];
+    let mut count = 0;
+    let mut stack = [whole; SAMPLE_LEVELS as usize + 2];
+    let mut depth = 1;
+    let mut halvings = 0;
+    while depth > 0 {
+        depth -= 1;
+        let span = stack[depth];
+        if span.upper < best - bound {
+            continue;
+        }
+        if span.level == SAMPLE_LEVELS {
+            // One sample spacing: its ends are samples `first`, `first + 1`.
+            for (value, sample) in [
+                (span.coefficients[0], span.first),
+                (span.coefficients[degree], span.first + 1),
+            ] {
+                if value < best - bound || candidates[..count].iter().any(|c| c.1 == sample) {
+                    continue;
+                }
+                if count == CANDIDATES {
+                    let mut write = 0;
+                    for read in 0..CANDIDATES {
+                        if candidates[read].0 >= best - bound {
+                            candidates[write] = candidates[read];
+                            write += 1;
+                        }
+                    }
+                    if write == CANDIDATES {
+                        return false;
+                    }
+                    count = write;
+                }
+                candidates[count] = (value, sample);
+                count += 1;
+            }
+            continue;
+        }
+        halvings += 1;
+        if halvings > SCREEN_BUDGET {
+            return false;
+        }
+        // de Casteljau at 1/2: the left half's coefficients are the
+        // triangle's first entries, the right half's its last.
+        let mut c = span.coefficients;
+        let mut l = span.coefficients;
+        for r in 1..K {
+            for k in 0..K - r {
+                c[k] = 0.5 * (c[k] + c[k + 1]);
+            }
+            l[r] = c[0];
+        }
+        best = larger(c[0], best);
+        let level = span.level + 1;
+        let left = Span::new(l, level, span.first);
+        let right = Span::new(c, level, span.first + (1 << (SAMPLE_LEVELS - level)));
+        // The half with the larger bound is searched first.
+        if left.upper > right.upper {
+            stack[depth] = right;
+            stack[depth + 1] = left;
+        } else {
+            stack[depth] = left;
+            stack[depth + 1] = right;
+        }
+        depth += 2;
+    }
+    if !(best.is_finite() && best - bound >= 4.0 * f64::MIN_POSITIVE) {
+        return false;
+    }
+    let mut largest = 0.0f64;
+    for &(value, s) in &candidates[..count] {
+        if value < best - bound {
+            continue;
+        }
+        // Sample s as deviation_fixed sums it (its lane).
+        let mut acc = [0.0f64; D];
+        for (row, p) in table.chunks_exact(TABLE_ROW).zip(half.chunks_exact(D)) {
+            let b = row[s];
+            for c in 0..D {
+                acc[c] += b * p[c];
+            }
+        }
+        let mut square = 0.0;
+        for c in 0..D {
+            square += acc[c] * acc[c];
+        }
+        if square > largest {
+            largest = square;
+        }
+    }
+    worst.square = worst.square.max(largest);
+    true
+}
+
 /// The largest Euclidean norm among the sampled values: the largest
 /// square while squares are normal (one square root at the end), the
 /// overflow-safe [`crate::bezier::norm`] otherwise.
@@ -526,6 +776,68 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// The screened maximum (squared-norm polynomial, then the samples near
+    /// its top evaluated as `deviation_fixed` evaluates them) is
+    /// `deviation_fixed`'s largest square bit for bit: random difference
+    /// curves, near-constant ones (every sample ties up to rounding), tiny
+    /// ones and ones at the edges of the accepted range, every screened
+    /// degree, dimensions 2 and 3.
+    #[test]
+    fn screened_deviation_is_the_fixed_one_bit_for_bit() {
+        fn both<const D: usize>(n: usize, half: &[f64]) -> Option<(f64, f64)> {
+            let table = deviation_table(n).unwrap();
+            let mut screened = Worst::default();
+            if !deviation_screened::<D>(n, table, half, &mut screened) {
+                return None;
+            }
+            let mut fixed = Worst::default();
+            deviation_fixed::<D>(table, half, &mut fixed);
+            assert_eq!(fixed.other, 0.0);
+            Some((screened.square, fixed.square))
+        }
+        let mut state = 41;
+        let mut screened_count = 0;
+        for n in 0..=SCREENED_DEGREE {
+            for dim in [2, 3] {
+                for kind in 0..5 {
+                    let c = curve(&mut state, dim, n);
+                    let half: Vec<f64> = match kind {
+                        0 => c.points().to_vec(),
+                        // Every coefficient the same point: |D| constant.
+                        1 => c.points()[..dim].repeat(n + 1),
+                        // The same plus a perturbation at the rounding level.
+                        2 => c.points()[..dim]
+                            .repeat(n + 1)
+                            .iter()
+                            .zip(c.points())
+                            .map(|(a, b)| a + 1e-15 * b)
+                            .collect(),
+                        3 => c.points().iter().map(|v| v * 1e-250).collect(),
+                        _ => c.points().iter().map(|v| v * 1e150).collect(),
+                    };
+                    let result = if dim == 2 {
+                        both::<2>(n, &half)
+                    } else {
+                        both::<3>(n, &half)
+                    };
+                    if let Some((screened, fixed)) = result {
+                        screened_count += 1;
+                        assert_eq!(
+                            screened.to_bits(),
+                            fixed.to_bits(),
+                            "degree {n} dim {dim} kind {kind}: {screened:e} vs {fixed:e}"
+                        );
+                    }
+                }
+            }
+        }
+        // Everything but the tiny kind (below 2^-900) is screened.
+        assert!(
+            screened_count >= 2 * 2 * SCREENED_DEGREE,
+            "{screened_count}"
+        );
     }
 
     /// Differences so small that their squares are subnormal or zero, and
