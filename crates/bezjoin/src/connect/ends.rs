@@ -201,8 +201,9 @@ fn connect_fixed<const D: usize, const CAP: usize, P: CurveJet + ?Sized, Q: Curv
         data_scale,
         gamma,
     };
-    let (p_residual, p_bound) = solve_end_by_rows::<D, false>(&end(0, kp + 1), &mut points);
-    let (q_residual, q_bound) = solve_end_by_rows::<D, true>(&end(kp + 1, kq + 1), &mut points);
+    let (p_points, q_points) = points[..count].split_at_mut(kp + 1);
+    let (p_residual, p_bound) = solve_end_by_rows::<D, false>(&end(0, kp + 1), p_points);
+    let (q_residual, q_bound) = solve_end_by_rows::<D, true>(&end(kp + 1, kq + 1), q_points);
     // The maxima over all rows (f64::max of non-negative, non-NaN values:
     // the order of the rows does not matter).
     let max_residual = 0.0f64.max(p_residual).max(q_residual);
@@ -323,7 +324,8 @@ fn solve_end_by_rows<const D: usize, const AT_ONE: bool>(
 /// and the residual sums share the pass over the known points. Then every
 /// row's residual and bound ([`residual_and_bound_unguarded`], branch-free,
 /// the rows side by side), the guard and the maxima. Returns the end's
-/// worst residual and bound.
+/// worst residual and bound. `points` is the end's part of `R`:
+/// `R_0..R_(rows-1)` (P) or `R_(n+1-rows)..R_n` (Q).
 ///
 /// The inner loops run over all `rows` slots with a test `s < k` (P) or
 /// `s <= k` (Q) instead of bounds that depend on `k`: with `rows` a
@@ -335,11 +337,16 @@ fn solve_end<const D: usize, const AT_ONE: bool, const ROWS: usize>(
     end: &EndRows<'_, D>,
     points: &mut [[f64; D]],
 ) -> (f64, f64) {
+    debug_assert_eq!(points.len(), rows);
     let n = end.n;
     let falling = &FALLING_FACTORIALS[n];
     let norms = &END_BAND_NORMS[n];
     let mut difference_squares = [0.0f64; ROWS];
     let mut abs_squares = [0.0f64; ROWS];
+    // The end's unknowns in the order they are solved: `R_k` (P end) or
+    // `R_(n-k)` (Q end) at `local[k]`, copied out at the end (a local array
+    // indexed by constants stays in registers).
+    let mut local = [[0.0f64; D]; ROWS];
     for k in 0..rows {
         let f = falling[k];
         let signed = &SIGNED_BINOMIALS[k];
@@ -352,7 +359,7 @@ fn solve_end<const D: usize, const AT_ONE: bool, const ROWS: usize>(
             for s in 1..rows {
                 if s <= k {
                     let b = f * signed[s];
-                    let point = points[n - k + s];
+                    let point = local[k - s];
                     for c in 0..D {
                         sum[c] -= b * point[c];
                     }
@@ -365,11 +372,11 @@ fn solve_end<const D: usize, const AT_ONE: bool, const ROWS: usize>(
                 value[c] += new_band * x[c];
                 abs_value[c] += new_band.abs() * x[c].abs();
             }
-            points[n - k] = x;
+            local[k] = x;
             for s in 1..rows {
                 if s <= k {
                     let b = f * signed[s];
-                    let point = points[n - k + s];
+                    let point = local[k - s];
                     for c in 0..D {
                         value[c] += b * point[c];
                         abs_value[c] += b.abs() * point[c].abs();
@@ -380,7 +387,7 @@ fn solve_end<const D: usize, const AT_ONE: bool, const ROWS: usize>(
             for s in 0..rows {
                 if s < k {
                     let b = f * signed[s];
-                    let point = points[s];
+                    let point = local[s];
                     for c in 0..D {
                         sum[c] -= b * point[c];
                         value[c] += b * point[c];
@@ -395,7 +402,7 @@ fn solve_end<const D: usize, const AT_ONE: bool, const ROWS: usize>(
                 value[c] += new_band * x[c];
                 abs_value[c] += new_band.abs() * x[c].abs();
             }
-            points[k] = x;
+            local[k] = x;
         }
         let mut difference_square = 0.0;
         let mut abs_square = 0.0;
@@ -406,6 +413,10 @@ fn solve_end<const D: usize, const AT_ONE: bool, const ROWS: usize>(
         }
         difference_squares[k] = difference_square;
         abs_squares[k] = abs_square;
+    }
+    for (k, x) in local[..rows].iter().enumerate() {
+        // `points` holds `R_0..R_(rows-1)` (P) or `R_(n+1-rows)..R_n` (Q).
+        points[if AT_ONE { rows - 1 - k } else { k }] = *x;
     }
     // The residuals and their bounds in a pass of their own: the square
     // roots and divisions of different rows are independent there (the
