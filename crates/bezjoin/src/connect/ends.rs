@@ -117,10 +117,30 @@ fn connect_small<P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
 /// The operations and their order are those of `geometric_targets` (sums
 /// from `+0.0`, `i` ascending), so the targets are the same bit for bit.
 fn bell_targets_in_place<const D: usize>(rows: &mut [[f64; D]], errors: &mut [f64], shape: &[f64]) {
-    let k = rows.len() - 1;
-    if k == 0 {
-        return;
+    // The order a constant for each geometric order (1 to 6), so that the
+    // loops of [`bell_targets_order`] have constant bounds and unroll.
+    match rows.len() - 1 {
+        0 => {}
+        1 => bell_targets_order::<D>(1, rows, errors, shape),
+        2 => bell_targets_order::<D>(2, rows, errors, shape),
+        3 => bell_targets_order::<D>(3, rows, errors, shape),
+        4 => bell_targets_order::<D>(4, rows, errors, shape),
+        5 => bell_targets_order::<D>(5, rows, errors, shape),
+        k => bell_targets_order::<D>(k, rows, errors, shape),
     }
+}
+
+/// [`bell_targets_in_place`] for order `k = rows.len() - 1 >= 1`: the inner
+/// loop runs over `1..=k` with a test `i <= j` (instead of the bound `j`),
+/// so that with `k` a constant every bound is; the terms that pass the test
+/// are those of the triangular loop, in the same order.
+#[inline(always)]
+fn bell_targets_order<const D: usize>(
+    k: usize,
+    rows: &mut [[f64; D]],
+    errors: &mut [f64],
+    shape: &[f64],
+) {
     let bell = crate::geometric::partial_bell_small(shape, k);
     let mut norms = [0.0f64; crate::geometric::MAX_GEOMETRIC_ORDER + 1];
     for (norm, row) in norms.iter_mut().zip(rows.iter()) {
@@ -129,12 +149,14 @@ fn bell_targets_in_place<const D: usize>(rows: &mut [[f64; D]], errors: &mut [f6
     for j in (1..=k).rev() {
         let mut target = [0.0f64; D];
         let mut bound = 0.0;
-        for i in 1..=j {
-            let coefficient = bell[j][i];
-            for c in 0..D {
-                target[c] += coefficient * rows[i][c];
+        for i in 1..=k {
+            if i <= j {
+                let coefficient = bell[j][i];
+                for c in 0..D {
+                    target[c] += coefficient * rows[i][c];
+                }
+                bound += coefficient.abs() * (errors[i] + 4.0 * f64::EPSILON * norms[i]);
             }
-            bound += coefficient.abs() * (errors[i] + 4.0 * f64::EPSILON * norms[i]);
         }
         rows[j] = target;
         errors[j] = bound;
