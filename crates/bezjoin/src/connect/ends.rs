@@ -117,10 +117,30 @@ fn connect_small<P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
 /// The operations and their order are those of `geometric_targets` (sums
 /// from `+0.0`, `i` ascending), so the targets are the same bit for bit.
 fn bell_targets_in_place<const D: usize>(rows: &mut [[f64; D]], errors: &mut [f64], shape: &[f64]) {
-    let k = rows.len() - 1;
-    if k == 0 {
-        return;
+    // The order a constant for each geometric order (1 to 6), so that the
+    // loops of [`bell_targets_order`] have constant bounds and unroll.
+    match rows.len() - 1 {
+        0 => {}
+        1 => bell_targets_order::<D>(1, rows, errors, shape),
+        2 => bell_targets_order::<D>(2, rows, errors, shape),
+        3 => bell_targets_order::<D>(3, rows, errors, shape),
+        4 => bell_targets_order::<D>(4, rows, errors, shape),
+        5 => bell_targets_order::<D>(5, rows, errors, shape),
+        k => bell_targets_order::<D>(k, rows, errors, shape),
     }
+}
+
+/// [`bell_targets_in_place`] for order `k = rows.len() - 1 >= 1`: the inner
+/// loop runs over `1..=k` with a test `i <= j` (instead of the bound `j`),
+/// so that with `k` a constant every bound is; the terms that pass the test
+/// are those of the triangular loop, in the same order.
+#[inline(always)]
+fn bell_targets_order<const D: usize>(
+    k: usize,
+    rows: &mut [[f64; D]],
+    errors: &mut [f64],
+    shape: &[f64],
+) {
     let bell = crate::geometric::partial_bell_small(shape, k);
     let mut norms = [0.0f64; crate::geometric::MAX_GEOMETRIC_ORDER + 1];
     for (norm, row) in norms.iter_mut().zip(rows.iter()) {
@@ -129,12 +149,14 @@ fn bell_targets_in_place<const D: usize>(rows: &mut [[f64; D]], errors: &mut [f6
     for j in (1..=k).rev() {
         let mut target = [0.0f64; D];
         let mut bound = 0.0;
-        for i in 1..=j {
-            let coefficient = bell[j][i];
-            for c in 0..D {
-                target[c] += coefficient * rows[i][c];
+        for i in 1..=k {
+            if i <= j {
+                let coefficient = bell[j][i];
+                for c in 0..D {
+                    target[c] += coefficient * rows[i][c];
+                }
+                bound += coefficient.abs() * (errors[i] + 4.0 * f64::EPSILON * norms[i]);
             }
-            bound += coefficient.abs() * (errors[i] + 4.0 * f64::EPSILON * norms[i]);
         }
         rows[j] = target;
         errors[j] = bound;
@@ -172,147 +194,42 @@ fn connect_fixed<const D: usize, const CAP: usize, P: CurveJet + ?Sized, Q: Curv
             bell_targets_in_place(q_rows, q_errors, q_shape);
         }
     }
-    // Targets and their bounds in place: T_k = s^k X^(k),
-    // e_k = s^k err_k + (k + 1) u |T_k|.
+    // Targets and their bounds in place, their norms, and the data scale
+    // of `check_residuals` ([`scale_targets`]).
     let mut target_norms = [0.0f64; CAP];
-    for (first, order, scale) in [(0, kp, alpha), (kp + 1, kq, beta)] {
-        let mut factor = 1.0f64;
-        for k in 0..=order {
-            let r = first + k;
-            let mut square = 0.0;
-            for v in &mut targets[r] {
-                *v *= factor;
-                square += *v * *v;
-            }
-            let norm = square.sqrt();
-            target_norms[r] = norm;
-            target_errors[r] =
-                power(scale, k) * target_errors[r] + (k + 1) as f64 * unit_roundoff() * norm;
-            factor *= scale;
-        }
-    }
-    // The order of the derivative of row r.
-    let order_of = |r: usize| if r <= kp { r } else { r - kp - 1 };
-    // The 1-norms of the rows (the table of `end_band_norm`, the sums the
-    // general path forms) and the data scale of `check_residuals`.
-    let norms = &END_BAND_NORMS[n];
     let mut data_scale = p.coordinate_scale().max(q.coordinate_scale());
-    for r in 0..count {
-        let v = target_norms[r] / norms[order_of(r)];
-        if v.is_finite() {
-            data_scale = data_scale.max(v);
-        }
-    }
-    let gamma = 2.0 * (2 * n + 4) as f64 * unit_roundoff();
-    let falling = &FALLING_FACTORIALS[n];
-    let mut points = [[0.0f64; D]; CAP];
-    let mut max_residual = 0.0f64;
-    let mut error_estimate = 0.0f64;
-    let mut difference_squares = [0.0f64; CAP];
-    let mut abs_squares = [0.0f64; CAP];
-    let mut denominators = [0.0f64; CAP];
-    // Row by row: the band once, the unknown it determines, its residual.
-    // P end: row k of D(0) touches R_0..R_k only (lower triangular); Q end:
-    // row k of D(1) touches R_(n-k)..R_n only (anti-triangular). The two
-    // sets of unknowns are disjoint (n - kq = kp + 1), so a row's residual
-    // is final as soon as its own unknown is solved. One pass over the
-    // known points of the band feeds both the substitution sum
-    // `T - sum b_i R_i` and the residual's `sum b_i R_i`, `sum |b_i| |R_i|`
-    // (each accumulator in the general path's order), then the new point
-    // adds its terms.
-    for r in 0..count {
-        let (k, new, known) = if r <= kp {
-            // Row k of D(0): unknown R_k, known R_0..R_(k-1) at band 0..k.
-            (r, r, 0)
-        } else {
-            // Row k of D(1): unknown R_(n-k) at band 0, known R_(n-k+1)..R_n.
-            let k = r - kp - 1;
-            (k, n - k, n - k + 1)
-        };
-        let f = falling[k];
-        let signed = &SIGNED_BINOMIALS[k];
-        let target = targets[r];
-        // Band slots of the known points and of the new one.
-        let (known_slots, new_slot) = if r <= kp { (0..k, k) } else { (1..k + 1, 0) };
-        let mut sum = target;
-        let mut value = [0.0f64; D];
-        let mut abs_value = [0.0f64; D];
-        let new_band = f * signed[new_slot];
-        // D(0): the known points come before the new one in the residual's
-        // order (columns ascending); D(1): after it.
-        if r > kp {
-            // The new point's residual terms come first; solve it first.
-            for (slot, point) in known_slots.clone().zip(&points[known..=n]) {
-                let b = f * signed[slot];
-                for c in 0..D {
-                    sum[c] -= b * point[c];
-                }
-            }
-            for c in 0..D {
-                points[new][c] = sum[c] / new_band;
-            }
-            let x = points[new];
-            for c in 0..D {
-                value[c] += new_band * x[c];
-                abs_value[c] += new_band.abs() * x[c].abs();
-            }
-            for (slot, point) in known_slots.zip(&points[known..=n]) {
-                let b = f * signed[slot];
-                for c in 0..D {
-                    value[c] += b * point[c];
-                    abs_value[c] += b.abs() * point[c].abs();
-                }
-            }
-        } else {
-            for (slot, point) in known_slots.zip(&points[..k]) {
-                let b = f * signed[slot];
-                for c in 0..D {
-                    sum[c] -= b * point[c];
-                    value[c] += b * point[c];
-                    abs_value[c] += b.abs() * point[c].abs();
-                }
-            }
-            for c in 0..D {
-                points[new][c] = sum[c] / new_band;
-            }
-            let x = points[new];
-            for c in 0..D {
-                value[c] += new_band * x[c];
-                abs_value[c] += new_band.abs() * x[c].abs();
-            }
-        }
-        let mut difference_square = 0.0;
-        let mut abs_square = 0.0;
-        for c in 0..D {
-            let difference = value[c] - target[c];
-            difference_square += difference * difference;
-            abs_square += abs_value[c] * abs_value[c];
-        }
-        difference_squares[r] = difference_square;
-        abs_squares[r] = abs_square;
-        denominators[r] = target_norms[r].max(data_scale * norms[k]);
-    }
-    // The residuals and their bounds in a pass of their own: the square
-    // roots and divisions of different rows are independent there (the
-    // substitution above is a chain), the same operations per row.
-    // The formulas first (branch-free, so the rows' square roots and
-    // divisions go side by side), then the guard and the maxima.
-    let mut residuals = [0.0f64; CAP];
-    let mut bounds = [0.0f64; CAP];
-    for r in 0..count {
-        (residuals[r], bounds[r]) = residual_and_bound_unguarded(
-            difference_squares[r],
-            abs_squares[r],
-            gamma,
-            target_errors[r],
-            denominators[r],
+    for (first, rows, scale) in [(0, kp + 1, alpha), (kp + 1, kq + 1, beta)] {
+        let range = first..first + rows;
+        scale_targets(
+            n,
+            scale,
+            &mut targets[range.clone()],
+            &mut target_errors[range.clone()],
+            &mut target_norms[range],
+            &mut data_scale,
         );
     }
-    for r in 0..count {
-        let (residual, bound) = finite_or_infinite((residuals[r], bounds[r]));
-        max_residual = max_residual.max(residual);
-        error_estimate = error_estimate.max(bound);
-    }
+    let gamma = 2.0 * (2 * n + 4) as f64 * unit_roundoff();
+    let mut points = [[0.0f64; D]; CAP];
+    // P end: row k of D(0) touches R_0..R_k only (lower triangular); Q end:
+    // row k of D(1) touches R_(n-k)..R_n only (anti-triangular). The two
+    // sets of unknowns are disjoint (n - kq = kp + 1), so each end is
+    // solved and checked on its own ([`solve_end`]).
+    let end = |first: usize, rows: usize| EndRows {
+        n,
+        targets: &targets[first..first + rows],
+        target_norms: &target_norms[first..first + rows],
+        target_errors: &target_errors[first..first + rows],
+        data_scale,
+        gamma,
+    };
+    let (p_points, q_points) = points[..count].split_at_mut(kp + 1);
+    let (p_residual, p_bound) = solve_end_by_rows::<D, false>(&end(0, kp + 1), p_points);
+    let (q_residual, q_bound) = solve_end_by_rows::<D, true>(&end(kp + 1, kq + 1), q_points);
+    // The maxima over all rows (f64::max of non-negative, non-NaN values:
+    // the order of the rows does not matter).
+    let max_residual = 0.0f64.max(p_residual).max(q_residual);
+    let error_estimate = 0.0f64.max(p_bound).max(q_bound);
     let flat = points[..count].as_flattened().to_vec();
     let trusted = error_estimate.is_finite() && error_estimate <= CONNECT_RESIDUAL_LIMIT;
     if !trusted || flat.iter().any(|v| !v.is_finite()) {
@@ -330,4 +247,220 @@ fn connect_fixed<const D: usize, const CAP: usize, P: CurveJet + ?Sized, Q: Curv
         error_estimate,
         constraint_condition: 1.0,
     })
+}
+
+/// One end's targets and their bounds in place (`k = 0..rows.len()`):
+/// `T_k = s^k X^(k)`, `e_k = s^k err_k + (k + 1) u |T_k|` (`s^k` as
+/// [`power`] forms it, the factor of `X^(k)` by repeated products), the
+/// norms `|T_k|` into `norms`, and `data_scale` raised to every finite
+/// `|T_k| / ||D_k||_1` (the 1-norms of the rows from the table of
+/// `end_band_norm`, the sums the general path forms; `f64::max` over
+/// non-NaN values, so the order of the rows does not matter).
+///
+/// With `s = 1` (the paper's scale) the products by `s^k` and by the
+/// factor are skipped: they are exact (`1 x = x` for every `x`, and
+/// `power(1, k) = 1`), so the values are the same bit for bit.
+fn scale_targets<const D: usize>(
+    n: usize,
+    scale: f64,
+    rows: &mut [[f64; D]],
+    errors: &mut [f64],
+    norms: &mut [f64],
+    data_scale: &mut f64,
+) {
+    let band_norms = &END_BAND_NORMS[n];
+    let unit = scale == 1.0;
+    let mut factor = 1.0f64;
+    for (k, ((row, error), norm)) in rows
+        .iter_mut()
+        .zip(errors.iter_mut())
+        .zip(norms.iter_mut())
+        .enumerate()
+    {
+        let mut square = 0.0;
+        for v in row.iter_mut() {
+            if !unit {
+                *v *= factor;
+            }
+            square += *v * *v;
+        }
+        *norm = square.sqrt();
+        let scaled_error = if unit {
+            *error
+        } else {
+            power(scale, k) * *error
+        };
+        *error = scaled_error + (k + 1) as f64 * unit_roundoff() * *norm;
+        factor *= scale;
+        let v = *norm / band_norms[k];
+        if v.is_finite() {
+            *data_scale = data_scale.max(v);
+        }
+    }
+}
+
+/// One end's condition rows for [`solve_end`]: the targets `T_k`, their
+/// norms and rounding bounds (`k = 0..rows`), and what the residual check
+/// needs of the whole system.
+struct EndRows<'a, const D: usize> {
+    /// The degree of `R`.
+    n: usize,
+    targets: &'a [[f64; D]],
+    target_norms: &'a [f64],
+    target_errors: &'a [f64],
+    /// The data scale `S` of the residual check.
+    data_scale: f64,
+    /// The rounding factor of `D_k R`, `2 (2 n + 4) u`.
+    gamma: f64,
+}
+
+/// [`solve_end`] with the number of rows a constant for orders up to 7
+/// (`rows` 1 to 8: every loop of the substitution with constant bounds,
+/// unrolled), the same code with a run-time count above.
+fn solve_end_by_rows<const D: usize, const AT_ONE: bool>(
+    end: &EndRows<'_, D>,
+    points: &mut [[f64; D]],
+) -> (f64, f64) {
+    match end.targets.len() {
+        1 => solve_end::<D, AT_ONE, 1>(1, end, points),
+        2 => solve_end::<D, AT_ONE, 2>(2, end, points),
+        3 => solve_end::<D, AT_ONE, 3>(3, end, points),
+        4 => solve_end::<D, AT_ONE, 4>(4, end, points),
+        5 => solve_end::<D, AT_ONE, 5>(5, end, points),
+        6 => solve_end::<D, AT_ONE, 6>(6, end, points),
+        7 => solve_end::<D, AT_ONE, 7>(7, end, points),
+        8 => solve_end::<D, AT_ONE, 8>(8, end, points),
+        rows => solve_end::<D, AT_ONE, MAX_POINTS>(rows, end, points),
+    }
+}
+
+/// The rows `k = 0..rows` (`rows <= ROWS`, the size of the scratch
+/// arrays) of one end: `D(0)` (`AT_ONE = false`, unknown
+/// `R_k`, known `R_0..R_(k-1)` at band slots `0..k`) or `D(1)` (unknown
+/// `R_(n-k)` at slot 0, known `R_(n-k+1)..R_n` at slots `1..=k`), with the
+/// band `n!/(n-k)! (-1)^(k-s) C(k, s)` ([`super::end_band`]) from the
+/// tables. Row by row: the unknown by substitution, then the row's
+/// residual sums `sum b_s R_s` and `sum |b_s| |R_s|` (each accumulator in
+/// the general path's order: columns ascending, so at the P end the known
+/// points first, at the Q end the new one first); the substitution sum
+/// and the residual sums share the pass over the known points. Then every
+/// row's residual and bound ([`residual_and_bound_unguarded`], branch-free,
+/// the rows side by side), the guard and the maxima. Returns the end's
+/// worst residual and bound. `points` is the end's part of `R`:
+/// `R_0..R_(rows-1)` (P) or `R_(n+1-rows)..R_n` (Q).
+///
+/// The inner loops run over all `rows` slots with a test `s < k` (P) or
+/// `s <= k` (Q) instead of bounds that depend on `k`: with `rows` a
+/// constant every loop has constant bounds and unrolls; the operations on
+/// the slots that pass the test are those of the triangular loops.
+#[inline(always)]
+fn solve_end<const D: usize, const AT_ONE: bool, const ROWS: usize>(
+    rows: usize,
+    end: &EndRows<'_, D>,
+    points: &mut [[f64; D]],
+) -> (f64, f64) {
+    debug_assert_eq!(points.len(), rows);
+    let n = end.n;
+    let falling = &FALLING_FACTORIALS[n];
+    let norms = &END_BAND_NORMS[n];
+    let mut difference_squares = [0.0f64; ROWS];
+    let mut abs_squares = [0.0f64; ROWS];
+    // The end's unknowns in the order they are solved: `R_k` (P end) or
+    // `R_(n-k)` (Q end) at `local[k]`, copied out at the end (a local array
+    // indexed by constants stays in registers).
+    let mut local = [[0.0f64; D]; ROWS];
+    for k in 0..rows {
+        let f = falling[k];
+        let signed = &SIGNED_BINOMIALS[k];
+        let target = end.targets[k];
+        let mut sum = target;
+        let mut value = [0.0f64; D];
+        let mut abs_value = [0.0f64; D];
+        if AT_ONE {
+            // The new point's residual terms come first; solve it first.
+            for s in 1..rows {
+                if s <= k {
+                    let b = f * signed[s];
+                    let point = local[k - s];
+                    for c in 0..D {
+                        sum[c] -= b * point[c];
+                    }
+                }
+            }
+            let new_band = f * signed[0];
+            let mut x = [0.0f64; D];
+            for c in 0..D {
+                x[c] = sum[c] / new_band;
+                value[c] += new_band * x[c];
+                abs_value[c] += new_band.abs() * x[c].abs();
+            }
+            local[k] = x;
+            for s in 1..rows {
+                if s <= k {
+                    let b = f * signed[s];
+                    let point = local[k - s];
+                    for c in 0..D {
+                        value[c] += b * point[c];
+                        abs_value[c] += b.abs() * point[c].abs();
+                    }
+                }
+            }
+        } else {
+            for s in 0..rows {
+                if s < k {
+                    let b = f * signed[s];
+                    let point = local[s];
+                    for c in 0..D {
+                        sum[c] -= b * point[c];
+                        value[c] += b * point[c];
+                        abs_value[c] += b.abs() * point[c].abs();
+                    }
+                }
+            }
+            let new_band = f * signed[k];
+            let mut x = [0.0f64; D];
+            for c in 0..D {
+                x[c] = sum[c] / new_band;
+                value[c] += new_band * x[c];
+                abs_value[c] += new_band.abs() * x[c].abs();
+            }
+            local[k] = x;
+        }
+        let mut difference_square = 0.0;
+        let mut abs_square = 0.0;
+        for c in 0..D {
+            let difference = value[c] - target[c];
+            difference_square += difference * difference;
+            abs_square += abs_value[c] * abs_value[c];
+        }
+        difference_squares[k] = difference_square;
+        abs_squares[k] = abs_square;
+    }
+    for (k, x) in local[..rows].iter().enumerate() {
+        // `points` holds `R_0..R_(rows-1)` (P) or `R_(n+1-rows)..R_n` (Q).
+        points[if AT_ONE { rows - 1 - k } else { k }] = *x;
+    }
+    // The residuals and their bounds in a pass of their own: the square
+    // roots and divisions of different rows are independent there (the
+    // substitution above is a chain), the same operations per row.
+    let mut residuals = [0.0f64; ROWS];
+    let mut bounds = [0.0f64; ROWS];
+    for k in 0..rows {
+        let denominator = end.target_norms[k].max(end.data_scale * norms[k]);
+        (residuals[k], bounds[k]) = residual_and_bound_unguarded(
+            difference_squares[k],
+            abs_squares[k],
+            end.gamma,
+            end.target_errors[k],
+            denominator,
+        );
+    }
+    let mut max_residual = 0.0f64;
+    let mut max_bound = 0.0f64;
+    for k in 0..rows {
+        let (residual, bound) = finite_or_infinite((residuals[k], bounds[k]));
+        max_residual = max_residual.max(residual);
+        max_bound = max_bound.max(bound);
+    }
+    (max_residual, max_bound)
 }

@@ -570,6 +570,72 @@ pub(crate) fn derivatives_with_error_into(
         de_casteljau_jet_into(points, dim, n, t, order, values, errors);
         return;
     }
+    if n < END_TABLE_SIZE {
+        match dim {
+            1 => return end_jet_small::<1>(points, n, t == 1.0, values, errors),
+            2 => return end_jet_small::<2>(points, n, t == 1.0, values, errors),
+            3 => return end_jet_small::<3>(points, n, t == 1.0, values, errors),
+            4 => return end_jet_small::<4>(points, n, t == 1.0, values, errors),
+            _ => {}
+        }
+    }
+    end_jet_slices(points, dim, n, t == 1.0, order, values, errors);
+}
+
+/// The end branch of [`derivatives_with_error_into`] (`n > 0`, `t = 0` or,
+/// with `at_one`, `t = 1`) in dimension `D <= 4` and degree
+/// `n <` [`END_TABLE_SIZE`]: row `k` is `sum_s b_s P_(first + s)` with the
+/// band `b_s = n!/(n-k)! (-1)^(k-s) C(k, s)` of [`end_band`] (the same table
+/// products), the accumulators in `[f64; D]` rows. The same operations in
+/// the same order as [`end_jet_slices`], so the same values and bounds bit
+/// for bit (unit test `small_end_jets_equal_the_slice_end_jets`), without
+/// the scratch buffer and its zeroing. The orders are `0..errors.len()`.
+fn end_jet_small<const D: usize>(
+    points: &[f64],
+    n: usize,
+    at_one: bool,
+    values: &mut [f64],
+    errors: &mut [f64],
+) {
+    let falling_row = &FALLING_FACTORIALS[n];
+    for (k, (value_row, error)) in values
+        .chunks_exact_mut(D)
+        .zip(errors.iter_mut())
+        .enumerate()
+    {
+        let mut value = [0.0f64; D];
+        let mut abs_row = [0.0f64; D];
+        if k <= n {
+            let falling = falling_row[k];
+            let first = if at_one { n - k } else { 0 };
+            let band_points = points[first * D..(first + k + 1) * D].chunks_exact(D);
+            for (&c, point) in SIGNED_BINOMIALS[k][..=k].iter().zip(band_points) {
+                let b = falling * c;
+                for c in 0..D {
+                    value[c] += b * point[c];
+                    abs_row[c] += b.abs() * point[c].abs();
+                }
+            }
+        }
+        value_row.copy_from_slice(&value);
+        let gamma = 2.0 * (n + k + 2) as f64 * unit_roundoff();
+        let norm = abs_row.iter().map(|v| v * v).sum::<f64>().sqrt();
+        *error = gamma * norm;
+    }
+}
+
+/// The end branch of [`derivatives_with_error_into`] in any dimension and
+/// degree, on scratch slices.
+fn end_jet_slices(
+    points: &[f64],
+    dim: usize,
+    n: usize,
+    at_one: bool,
+    order: usize,
+    values: &mut [f64],
+    errors: &mut [f64],
+) {
+    let t = if at_one { 1.0 } else { 0.0 };
     values.fill(0.0);
     with_scratch(n + 1 + dim, |buffer| {
         let (basis, abs_row) = buffer.split_at_mut(n + 1);
@@ -633,16 +699,19 @@ pub(crate) fn de_casteljau_jet_into(
     values[(m + 1) * dim..].fill(0.0);
     errors[m + 1..].fill(0.0);
     match dim {
-        1 => de_casteljau_jet_small::<1, SMALL_JET_POINTS>(points, n, t, m, values, errors),
+        1 => de_casteljau_jet_small::<1, SMALL_JET_POINTS, false>(points, n, t, m, values, errors),
         2 => de_casteljau_jet_by_degree::<2>(points, n, t, m, values, errors),
         3 => de_casteljau_jet_by_degree::<3>(points, n, t, m, values, errors),
-        _ => de_casteljau_jet_small::<4, SMALL_JET_POINTS>(points, n, t, m, values, errors),
+        _ => de_casteljau_jet_small::<4, SMALL_JET_POINTS, false>(points, n, t, m, values, errors),
     }
 }
 
 /// [`de_casteljau_jet_small`] with the degree a compile-time constant for
 /// degrees 1 to 7 in dimension `D` (2 and 3, the plane and space): the
-/// triangle's loops unrolled and sized exactly, the same operations.
+/// triangle's loops unrolled and sized exactly, the same operations. The
+/// full jet (`m = n`, every order up to the degree: the connect's usual
+/// case `kp >= deg P`) has the order a constant too, so that every loop of
+/// the triangle and of the differences has constant bounds.
 fn de_casteljau_jet_by_degree<const D: usize>(
     points: &[f64],
     n: usize,
@@ -651,15 +720,24 @@ fn de_casteljau_jet_by_degree<const D: usize>(
     values: &mut [f64],
     errors: &mut [f64],
 ) {
+    macro_rules! by_order {
+        ($n:literal) => {
+            if m == $n {
+                de_casteljau_jet_small::<D, { $n + 1 }, true>(points, $n, t, $n, values, errors)
+            } else {
+                de_casteljau_jet_small::<D, { $n + 1 }, true>(points, $n, t, m, values, errors)
+            }
+        };
+    }
     match n {
-        1 => de_casteljau_jet_small::<D, 2>(points, 1, t, m, values, errors),
-        2 => de_casteljau_jet_small::<D, 3>(points, 2, t, m, values, errors),
-        3 => de_casteljau_jet_small::<D, 4>(points, 3, t, m, values, errors),
-        4 => de_casteljau_jet_small::<D, 5>(points, 4, t, m, values, errors),
-        5 => de_casteljau_jet_small::<D, 6>(points, 5, t, m, values, errors),
-        6 => de_casteljau_jet_small::<D, 7>(points, 6, t, m, values, errors),
-        7 => de_casteljau_jet_small::<D, 8>(points, 7, t, m, values, errors),
-        _ => de_casteljau_jet_small::<D, SMALL_JET_POINTS>(points, n, t, m, values, errors),
+        1 => by_order!(1),
+        2 => by_order!(2),
+        3 => by_order!(3),
+        4 => by_order!(4),
+        5 => by_order!(5),
+        6 => by_order!(6),
+        7 => by_order!(7),
+        _ => de_casteljau_jet_small::<D, SMALL_JET_POINTS, false>(points, n, t, m, values, errors),
     }
 }
 
@@ -674,7 +752,7 @@ const SMALL_JET_POINTS: usize = 16;
 /// the same products), so the same values and bounds bit for bit (unit
 /// test `small_jets_equal_the_slice_jets`).
 #[inline(always)]
-fn de_casteljau_jet_small<const D: usize, const CAP: usize>(
+fn de_casteljau_jet_small<const D: usize, const CAP: usize, const UNROLL: bool>(
     points: &[f64],
     n: usize,
     t: f64,
@@ -682,6 +760,13 @@ fn de_casteljau_jet_small<const D: usize, const CAP: usize>(
     values: &mut [f64],
     errors: &mut [f64],
 ) {
+    // With `UNROLL` (the degree `n` a constant, `CAP = n + 1`) every inner
+    // loop runs over `0..n` with a test instead of a bound that depends on
+    // the outer index, so that all bounds are constants and the loops
+    // unroll; the slots that pass the test get the operations of the tight
+    // loops (the bound `upto(x)` is `x` without `UNROLL`, where the tests
+    // always pass).
+    let upto = |x: usize| if UNROLL { n } else { x };
     // Level 0: the control points and their sizes (unused slots zero).
     let mut level = [[0.0f64; D]; CAP];
     let mut size = [0.0f64; CAP];
@@ -705,13 +790,15 @@ fn de_casteljau_jet_small<const D: usize, const CAP: usize>(
     let mut work_size = [0.0f64; CAP];
     for l in 0..=n {
         if l > 0 {
-            for i in 0..=n - l {
-                let next = level[i + 1];
-                let here = &mut level[i];
-                for c in 0..D {
-                    here[c] = s * here[c] + t * next[c];
+            for i in 0..upto(n - l + 1) {
+                if i + l <= n {
+                    let next = level[i + 1];
+                    let here = &mut level[i];
+                    for c in 0..D {
+                        here[c] = s * here[c] + t * next[c];
+                    }
+                    size[i] = s_abs * size[i] + t_abs * size[i + 1];
                 }
-                size[i] = s_abs * size[i] + t_abs * size[i + 1];
             }
         }
         let k = n - l;
@@ -721,21 +808,27 @@ fn de_casteljau_jet_small<const D: usize, const CAP: usize>(
         let (difference, difference_size) = if k == 0 {
             (level[0], size[0])
         } else {
-            for i in 0..k {
-                let (here, next) = (level[i], level[i + 1]);
-                for c in 0..D {
-                    work[i][c] = next[c] - here[c];
-                }
-                work_size[i] = size[i] + size[i + 1];
-            }
-            for pass in 1..k {
-                for i in 0..k - pass {
-                    let next = work[i + 1];
-                    let here = &mut work[i];
+            for i in 0..upto(k) {
+                if i < k {
+                    let (here, next) = (level[i], level[i + 1]);
                     for c in 0..D {
-                        here[c] = next[c] - here[c];
+                        work[i][c] = next[c] - here[c];
                     }
-                    work_size[i] += work_size[i + 1];
+                    work_size[i] = size[i] + size[i + 1];
+                }
+            }
+            for pass in 1..upto(k) {
+                if pass < k {
+                    for i in 0..upto(k - pass) {
+                        if i + pass < k {
+                            let next = work[i + 1];
+                            let here = &mut work[i];
+                            for c in 0..D {
+                                here[c] = next[c] - here[c];
+                            }
+                            work_size[i] += work_size[i + 1];
+                        }
+                    }
                 }
             }
             (work[0], work_size[0])
@@ -1616,6 +1709,42 @@ mod tests {
                             &mut slow.1,
                         );
                         assert_eq!(fast, slow, "n {n} dim {dim} t {t} order {order}");
+                    }
+                }
+            }
+        }
+    }
+
+    /// The fixed-array end jets ([`end_jet_small`], the branch of
+    /// `derivatives_with_error_into` at `t = 0` and `t = 1` for dimensions
+    /// 1..=4) equal the slice code ([`end_jet_slices`]) bit for bit, values
+    /// and bounds, degrees 1..=31 (the table range), orders 0, 1, `n` and
+    /// above the degree, both ends, with signed zeros and a huge point.
+    #[test]
+    fn small_end_jets_equal_the_slice_end_jets() {
+        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        for n in 1..END_TABLE_SIZE {
+            for dim in 1..=4 {
+                let mut points: Vec<f64> = (0..(n + 1) * dim)
+                    .map(|i| ((i * 7919) % 97) as f64 / 9.7 - 5.0)
+                    .collect();
+                points[0] = -0.0;
+                points[n * dim + dim / 2] = 1e300;
+                for at_one in [false, true] {
+                    for order in [0, 1, n, n + 2] {
+                        let mut fast = (vec![7.0; (order + 1) * dim], vec![7.0; order + 1]);
+                        let mut slow = fast.clone();
+                        let (values, errors) = (&mut fast.0, &mut fast.1);
+                        match dim {
+                            1 => end_jet_small::<1>(&points, n, at_one, values, errors),
+                            2 => end_jet_small::<2>(&points, n, at_one, values, errors),
+                            3 => end_jet_small::<3>(&points, n, at_one, values, errors),
+                            _ => end_jet_small::<4>(&points, n, at_one, values, errors),
+                        }
+                        end_jet_slices(&points, dim, n, at_one, order, &mut slow.0, &mut slow.1);
+                        let what = format!("n {n} dim {dim} at_one {at_one} order {order}");
+                        assert_eq!(bits(&fast.0), bits(&slow.0), "values, {what}");
+                        assert_eq!(bits(&fast.1), bits(&slow.1), "bounds, {what}");
                     }
                 }
             }
