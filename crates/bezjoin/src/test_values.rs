@@ -28,3 +28,63 @@ pub(crate) fn planar_curve(state: &mut u64, degree: usize) -> crate::bezier::Bez
     *state = values.0;
     crate::bezier::BezierCurve::new(2, degree, points).unwrap()
 }
+
+/// The exact jet `C^(k)(u)`, `k = 0..=order`, of the polynomial whose
+/// Bezier control points on `[a, b]` are `poles` (degree `p`, a Bezier
+/// curve on `[0, 1]`, a one-span NURBS elsewhere), from the f64 data in
+/// rational arithmetic: `t = (u - a) / (b - a)`, the de Casteljau
+/// triangle, `p!/(p-k)! Delta^k` and `(b - a)^-k`.
+#[allow(clippy::needless_range_loop)]
+pub(crate) fn exact_bezier_jet(
+    poles: &[f64],
+    dim: usize,
+    p: usize,
+    (a, b, u): (f64, f64, f64),
+    order: usize,
+) -> Vec<Vec<num_rational::BigRational>> {
+    use num_rational::BigRational;
+    use num_traits::{One, Zero};
+    let exact = |x: f64| BigRational::from_float(x).expect("finite");
+    let h = exact(b) - exact(a);
+    let t = (exact(u) - exact(a)) / &h;
+    let s = BigRational::one() - &t;
+    let mut level: Vec<Vec<BigRational>> = (0..=p)
+        .map(|i| {
+            poles[i * dim..(i + 1) * dim]
+                .iter()
+                .map(|&v| exact(v))
+                .collect()
+        })
+        .collect();
+    let mut jet = vec![vec![BigRational::zero(); dim]; order + 1];
+    for l in 0..=p {
+        if l > 0 {
+            for i in 0..=p - l {
+                for c in 0..dim {
+                    level[i][c] = &s * &level[i][c] + &t * &level[i + 1][c];
+                }
+            }
+        }
+        let k = p - l;
+        if k > order {
+            continue;
+        }
+        let mut work = level[..=k].to_vec();
+        for pass in 0..k {
+            for i in 0..k - pass {
+                for c in 0..dim {
+                    work[i][c] = &work[i + 1][c] - &work[i][c];
+                }
+            }
+        }
+        let falling: i64 = (0..k).map(|j| (p - j) as i64).product();
+        let mut factor = BigRational::from_integer(falling.into());
+        for _ in 0..k {
+            factor /= &h;
+        }
+        for c in 0..dim {
+            jet[k][c] = &work[0][c] * &factor;
+        }
+    }
+    jet
+}

@@ -1590,7 +1590,7 @@ mod tests {
     #[allow(clippy::needless_range_loop)]
     fn jets_in_place_are_within_their_bounds() {
         use num_rational::BigRational;
-        use num_traits::{ToPrimitive, Zero};
+        use num_traits::ToPrimitive;
         let exact = |x: f64| BigRational::from_float(x).expect("finite");
         for n in 0..=9 {
             for dim in 1..=4 {
@@ -1600,34 +1600,13 @@ mod tests {
                 let curve = BezierCurve::new(dim, n, points).unwrap();
                 for t in [0.0, 1.0, 0.3, 0.5, 0.77, 1e-9, -0.2, 1.4] {
                     // The exact jet: de Casteljau in rationals, then n!/(n-k)! Delta^k.
-                    let (tq, sq) = (exact(t), exact(1.0) - exact(t));
-                    let mut level: Vec<Vec<BigRational>> = (0..=n)
-                        .map(|i| curve.point(i).iter().map(|&v| exact(v)).collect())
-                        .collect();
-                    let mut exact_jet = vec![vec![BigRational::zero(); dim]; n + 1];
-                    for l in 0..=n {
-                        if l > 0 {
-                            for i in 0..=n - l {
-                                for c in 0..dim {
-                                    level[i][c] = &sq * &level[i][c] + &tq * &level[i + 1][c];
-                                }
-                            }
-                        }
-                        let k = n - l;
-                        let mut work: Vec<Vec<BigRational>> = level[..=k].to_vec();
-                        for pass in 0..k {
-                            for i in 0..k - pass {
-                                for c in 0..dim {
-                                    work[i][c] = &work[i + 1][c] - &work[i][c];
-                                }
-                            }
-                        }
-                        let falling: i64 = (0..k).map(|j| (n - j) as i64).product();
-                        for c in 0..dim {
-                            exact_jet[k][c] =
-                                &work[0][c] * BigRational::from_integer(falling.into());
-                        }
-                    }
+                    let exact_jet = crate::test_values::exact_bezier_jet(
+                        curve.points(),
+                        dim,
+                        n,
+                        (0.0, 1.0, t),
+                        n,
+                    );
                     for order in [0, 1, 2, 3, n, n + 2] {
                         let d = basis_rows(n, t, order);
                         let (values, errors) = derivatives_with_error(&curve, t, order);

@@ -619,7 +619,7 @@ mod tests {
 
     use crate::basis::{KnotSide, basis_scratch_len};
     use crate::bezier::BezierCurve;
-    use crate::test_values::Values;
+    use crate::test_values::{Values, exact_bezier_jet};
 
     /// Agreement of the span route with the basis route: each row `k`
     /// within `AGREEMENT_FACTOR` times the basis route's own first-order
@@ -692,64 +692,6 @@ mod tests {
         NurbsCurve::new(dim, p, poles, weights, knots).unwrap()
     }
 
-    /// The exact jet `C^(k)(u)`, `k = 0..=order`, of a one-span polynomial
-    /// NURBS from its f64 data in rational arithmetic: `t = (u - a) / (b -
-    /// a)`, the de Casteljau triangle, `p!/(p-k)! Delta^k` and `(b - a)^-k`.
-    #[allow(clippy::needless_range_loop)]
-    fn exact_one_span_jet(
-        poles: &[f64],
-        dim: usize,
-        p: usize,
-        (a, b, u): (f64, f64, f64),
-        order: usize,
-    ) -> Vec<Vec<num_rational::BigRational>> {
-        use num_rational::BigRational;
-        use num_traits::{One, Zero};
-        let exact = |x: f64| BigRational::from_float(x).expect("finite");
-        let h = exact(b) - exact(a);
-        let t = (exact(u) - exact(a)) / &h;
-        let s = BigRational::one() - &t;
-        let mut level: Vec<Vec<BigRational>> = (0..=p)
-            .map(|i| {
-                poles[i * dim..(i + 1) * dim]
-                    .iter()
-                    .map(|&v| exact(v))
-                    .collect()
-            })
-            .collect();
-        let mut jet = vec![vec![BigRational::zero(); dim]; order + 1];
-        for l in 0..=p {
-            if l > 0 {
-                for i in 0..=p - l {
-                    for c in 0..dim {
-                        level[i][c] = &s * &level[i][c] + &t * &level[i + 1][c];
-                    }
-                }
-            }
-            let k = p - l;
-            if k > order {
-                continue;
-            }
-            let mut work = level[..=k].to_vec();
-            for pass in 0..k {
-                for i in 0..k - pass {
-                    for c in 0..dim {
-                        work[i][c] = &work[i + 1][c] - &work[i][c];
-                    }
-                }
-            }
-            let falling: i64 = (0..k).map(|j| (p - j) as i64).product();
-            let mut factor = BigRational::from_integer(falling.into());
-            for _ in 0..k {
-                factor /= &h;
-            }
-            for c in 0..dim {
-                jet[k][c] = &work[0][c] * &factor;
-            }
-        }
-        jet
-    }
-
     /// `bezier_span_jet_into` (the jet with bounds a one-span polynomial
     /// NURBS gives connect and the G^k blends): every row within its bound
     /// of the exact jet of the same f64 data, for domains `[0, 1]`, shifted
@@ -802,7 +744,7 @@ mod tests {
                                         .all(|(x, y)| x.to_bits() == y.to_bits())
                                 );
                             }
-                            let exact = exact_one_span_jet(&poles, dim, p, (a, b, u), order);
+                            let exact = exact_bezier_jet(&poles, dim, p, (a, b, u), order);
                             for k in 0..=order {
                                 let miss = (0..dim)
                                     .map(|c| {
