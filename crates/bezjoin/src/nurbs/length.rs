@@ -249,7 +249,7 @@ impl NurbsCurve {
                 .map(|i| distance(self.point(i - 1), self.point(i)))
                 .fold(0.0f64, f64::max);
         let margin = 16.0 * f64::EPSILON * a.abs().max(b.abs()) * hull_speed / h;
-        if !(margin <= 0.5 * accuracy) {
+        if margin.is_nan() || margin > 0.5 * accuracy {
             return None;
         }
         let t0 = ((start - a) / h).clamp(0.0, 1.0);
