@@ -1081,3 +1081,125 @@ fn a_full_turn_from_any_start_angle_is_closed() {
         assert!(close(c.point(0), c.point(c.point_count() - 1), 0.0));
     }
 }
+
+/// The one-span polynomial curve of `bezier` on `[a, b]`.
+fn one_span_on(bezier: &BezierCurve, a: f64, b: f64) -> NurbsCurve {
+    let n = bezier.degree();
+    let mut knots = vec![a; n + 1];
+    knots.extend(std::iter::repeat_n(b, n + 1));
+    NurbsCurve::new(bezier.dim(), n, bezier.points().to_vec(), None, knots).unwrap()
+}
+
+#[test]
+fn one_span_param_at_length_on_the_unit_domain_is_the_bezier_inversion() {
+    let mut rng = Random(0x5eed_0a11);
+    for case in 0..40 {
+        let bezier_degree = 1 + rng.below(5);
+        let bezier = rng.curve(2, bezier_degree, 3.0);
+        let nurbs = NurbsCurve::from_bezier(&bezier);
+        let start = rng.range(0.0, 1.0);
+        let total = bezier.arc_length(start, 1.0, 1e-13).unwrap();
+        let back = bezier.arc_length(0.0, start, 1e-13).unwrap();
+        for (length, accuracy) in [(0.7 * total, 1e-6), (-0.4 * back, 1e-10)] {
+            if length.abs() < 1e-9 {
+                continue;
+            }
+            let expected = bezier.param_at_length(start, length, accuracy).unwrap();
+            let got = nurbs.param_at_length(start, length, accuracy).unwrap();
+            assert_eq!(got.to_bits(), expected.to_bits(), "case {case}");
+        }
+    }
+}
+
+#[test]
+fn one_span_param_at_length_on_shifted_domains_meets_its_accuracy() {
+    let mut rng = Random(0x5eed_0a12);
+    let domains = [(2.0, 5.0), (-7.5, -7.25), (1e3, 1e3 + 0.01), (-40.0, 90.0)];
+    for case in 0..24 {
+        let bezier_degree = 1 + rng.below(5);
+        let bezier = rng.curve(3, bezier_degree, 3.0);
+        let (a, b) = domains[case % domains.len()];
+        let nurbs = one_span_on(&bezier, a, b);
+        let start = a + rng.range(0.05, 0.95) * (b - a);
+        let ahead = nurbs.arc_length(start, b, 1e-14).unwrap();
+        let behind = nurbs.arc_length(a, start, 1e-14).unwrap();
+        for i in 2..11 {
+            let accuracy = 0.1f64.powi(i);
+            for length in [0.6 * ahead, -0.8 * behind] {
+                let u = nurbs.param_at_length(start, length, accuracy).unwrap();
+                assert!((a..=b).contains(&u), "case {case}: {u} outside [{a}, {b}]");
+                let walked = nurbs.arc_length(start, u, 1e-3 * accuracy).unwrap();
+                assert!(
+                    (walked - length).abs() <= accuracy,
+                    "case {case}, accuracy {accuracy}: walked {walked} for {length}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn one_span_intersections_on_shifted_domains_are_the_bezier_ones_mapped() {
+    let mut rng = Random(0x5eed_0a13);
+    let mut total = 0;
+    for case in 0..40 {
+        let p_degree = 1 + rng.below(4);
+        let p = rng.curve(2, p_degree, 3.0);
+        let q_degree = 1 + rng.below(4);
+        let q = rng.curve(2, q_degree, 3.0);
+        let (pn, qn) = (one_span_on(&p, 2.0, 5.0), one_span_on(&q, -1.0, -0.5));
+        let expected = intersect(&p, &q, &IntersectOptions::default()).unwrap();
+        let got = intersect(&pn, &qn, &IntersectOptions::default()).unwrap();
+        assert_eq!(expected.len(), got.len(), "case {case}");
+        for (x, y) in expected.iter().zip(&got) {
+            assert!((2.0 + 3.0 * x.u - y.u).abs() <= 1e-13, "case {case}");
+            assert!((-1.0 + 0.5 * x.v - y.v).abs() <= 1e-13, "case {case}");
+            assert_eq!(x.kind, y.kind, "case {case}");
+            if x.kind == IntersectionKind::Crossing {
+                let gap = bezjoin_core::distance(&pn.eval(y.u), &qn.eval(y.v));
+                assert!(gap <= 1e-9, "case {case}: the curves are {gap} apart");
+            }
+            total += 1;
+        }
+    }
+    assert!(total > 10, "only {total} intersections");
+}
+
+#[test]
+fn one_span_fillet_trims_are_the_segments_and_on_the_unit_domain_the_bezier_ones() {
+    use bezjoin_core::{FilletOptions, fillet};
+    let p = BezierCurve::new(2, 3, vec![0.0, 0.0, 0.8, 0.3, 1.5, -0.2, 2.2, 0.4]).unwrap();
+    let q = BezierCurve::new(2, 3, vec![1.0, -1.0, 1.3, -0.2, 0.8, 0.6, 1.2, 1.4]).unwrap();
+    for setback in [0.1, 0.3, 0.6] {
+        let options = FilletOptions::symmetric(setback, 3);
+        let bezier = fillet(&p, &q, &options).unwrap();
+        let unit = fillet(
+            &NurbsCurve::from_bezier(&p),
+            &NurbsCurve::from_bezier(&q),
+            &options,
+        )
+        .unwrap();
+        assert_eq!(unit.p_trimmed.points(), bezier.p_trimmed.points());
+        assert_eq!(unit.q_trimmed.points(), bezier.q_trimmed.points());
+        assert_eq!((unit.u0, unit.v0), (bezier.u0, bezier.v0));
+        let (pn, qn) = (one_span_on(&p, 2.0, 5.0), one_span_on(&q, -3.0, 1.0));
+        let shifted = fillet(&pn, &qn, &options).unwrap();
+        let p_piece = shifted.p_trimmed.as_nurbs().unwrap();
+        let q_piece = shifted.q_trimmed.as_nurbs().unwrap();
+        let p_segment = pn.segment(2.0, shifted.u0).unwrap();
+        let q_segment = qn.segment(shifted.v0, 1.0).unwrap();
+        assert_eq!(p_piece.knots(), p_segment.knots());
+        assert_eq!(q_piece.knots(), q_segment.knots());
+        assert!(close(p_piece.points(), p_segment.points(), 1e-13));
+        assert!(close(q_piece.points(), q_segment.points(), 1e-13));
+        // The cuts are where the setbacks say, measured on the inputs.
+        let dp = pn
+            .arc_length(shifted.u0, shifted.crossing.u, 1e-14)
+            .unwrap();
+        let dq = qn
+            .arc_length(shifted.crossing.v, shifted.v0, 1e-14)
+            .unwrap();
+        let accuracy = options.relative_length_accuracy * setback;
+        assert!((dp - setback).abs() <= accuracy && (dq - setback).abs() <= accuracy);
+    }
+}

@@ -496,19 +496,19 @@ pub(crate) fn assemble(
     let (p_first, _) = p.domain();
     let (_, q_last) = q.domain();
     let p_trimmed = match p {
-        CurveRef::Bezier(b) => bezier_trim(b, u0, true),
-        CurveRef::Nurbs(_) => None,
+        CurveRef::Bezier(b) => bezier_trim(b, u0, true).map(Curve::Bezier),
+        CurveRef::Nurbs(n) => n.one_span_trim(u0, true).map(Curve::Nurbs),
     };
     let p_trimmed = match p_trimmed {
-        Some(piece) => Curve::Bezier(piece),
+        Some(piece) => piece,
         None => p.segment(p_first, u0)?,
     };
     let q_trimmed = match q {
-        CurveRef::Bezier(b) => bezier_trim(b, v0, false),
-        CurveRef::Nurbs(_) => None,
+        CurveRef::Bezier(b) => bezier_trim(b, v0, false).map(Curve::Bezier),
+        CurveRef::Nurbs(n) => n.one_span_trim(v0, false).map(Curve::Nurbs),
     };
     let q_trimmed = match q_trimmed {
-        Some(piece) => Curve::Bezier(piece),
+        Some(piece) => piece,
         None => q.segment(v0, q_last)?,
     };
     Ok(Fillet {

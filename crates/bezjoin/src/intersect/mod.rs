@@ -204,12 +204,43 @@ pub fn intersect<'a>(
 ) -> Result<Vec<Intersection>> {
     let (p, q) = (p.into(), q.into());
     validate(p, q, options)?;
+    // A one-span polynomial NURBS on [a, b] is its Bezier curve in
+    // t = (u - a) / (b - a): searched as one (no span decomposition), its
+    // parameters mapped back (exact on [0, 1]; elsewhere a few roundings
+    // of u, with the ends kept exact).
+    let (p_bezier, q_bezier) = (one_span(p), one_span(q));
+    let p = p_bezier.as_ref().map_or(p, |(b, _)| CurveRef::Bezier(b));
+    let q = q_bezier.as_ref().map_or(q, |(b, _)| CurveRef::Bezier(b));
     let mut search = Search::new(Track::new(p), Track::new(q), options);
     search.find_overlaps();
     if !search.clip_search() {
         search.subdivide()?;
     }
-    search.finish()
+    let mut hits = search.finish()?;
+    let p_domain = p_bezier.map(|(_, d)| d);
+    let q_domain = q_bezier.map(|(_, d)| d);
+    if p_domain.is_some_and(|d| d != (0.0, 1.0)) || q_domain.is_some_and(|d| d != (0.0, 1.0)) {
+        for hit in &mut hits {
+            if let Some(d) = p_domain {
+                hit.u = from_unit(d, hit.u);
+            }
+            if let Some(d) = q_domain {
+                hit.v = from_unit(d, hit.v);
+            }
+        }
+    }
+    Ok(hits)
+}
+
+/// `a + (b - a) t` in `[a, b]`, the ends exact.
+fn from_unit((a, b): (f64, f64), t: f64) -> f64 {
+    if t <= 0.0 {
+        a
+    } else if t >= 1.0 {
+        b
+    } else {
+        (a + (b - a) * t).clamp(a, b)
+    }
 }
 
 /// [`intersect`] by the subdivision alone (the fallback of the clipping
@@ -240,6 +271,16 @@ pub(crate) fn intersect_by_clipping<'a>(
     let mut search = Search::new(Track::new(p), Track::new(q), options);
     search.find_overlaps();
     search.clip_search().then(|| search.finish())
+}
+
+/// The Bezier curve of a clamped one-span polynomial NURBS and its domain
+/// `[a, b]` (the curve is the Bezier curve in `t = (u - a) / (b - a)`);
+/// `None` otherwise.
+fn one_span(curve: CurveRef) -> Option<(BezierCurve, (f64, f64))> {
+    match curve {
+        CurveRef::Nurbs(n) => n.one_span_bezier().map(|b| (b, n.domain())),
+        CurveRef::Bezier(_) => None,
+    }
 }
 
 fn validate(p: CurveRef, q: CurveRef, options: &IntersectOptions) -> Result<()> {

@@ -146,6 +146,34 @@ impl NurbsCurve {
         Ok(curve)
     }
 
+    /// [`segment`](Self::segment)`(first, u)` (`left`) or `(u, last)` of a
+    /// clamped one-span polynomial curve without weights, by one de
+    /// Casteljau pass at `t = (u - first) / (last - first)` on the poles
+    /// ([`crate::fillet::bezier_trim`], the Bezier fillet's trim; exact in
+    /// exact arithmetic, as the knot insertions are). `None` for other
+    /// curves, `u` not strictly inside the domain or a non-finite result.
+    pub(crate) fn one_span_trim(&self, u: f64, left: bool) -> Option<NurbsCurve> {
+        if self.weights.is_some() {
+            return None;
+        }
+        let bezier = self.one_span_bezier()?;
+        let (a, b) = self.domain();
+        if !(u > a && u < b) {
+            return None;
+        }
+        let t = (u - a) / (b - a);
+        let piece = crate::fillet::bezier_trim(&bezier, t, left)?;
+        let (lo, hi) = if left { (a, u) } else { (u, b) };
+        Some(NurbsCurve::from_span_parts(
+            self.dim,
+            self.degree,
+            piece.points().to_vec(),
+            None,
+            lo,
+            hi,
+        ))
+    }
+
     /// The same point set traversed backwards on the same domain:
     /// `R(u) = C(first + last - u)`.
     pub fn reverse(&self) -> NurbsCurve {

@@ -220,6 +220,52 @@ fn rational_length(span: &NurbsCurve, a: f64, b: f64, accuracy: f64) -> Result<f
 }
 
 impl NurbsCurve {
+    /// [`param_at_length`](Self::param_at_length) of a clamped one-span
+    /// polynomial curve on `[a, b]` by the Bezier kernel on its poles
+    /// ([`BezierCurve::param_at_length`] in `t = (u - a) / (b - a)`): on
+    /// `[0, 1]` exactly the Bezier computation. Elsewhere the maps
+    /// `t0 = (start - a) / h` and `u = a + h t` (`h = b - a`) each move a
+    /// parameter by at most `4 eps max(|a|, |b|)` (a few roundings of
+    /// values below `2 max(|a|, |b|)`), so the length at the answer moves by
+    /// at most `margin = 16 eps max(|a|, |b|) S / h`, `S = n max |P_i -
+    /// P_(i-1)|` the hodograph hull's bound on `|dC/dt|`; the Bezier
+    /// inversion then runs to `accuracy - margin`. `None` (the span-by-span
+    /// path) for other curves or when the margin exceeds half the accuracy.
+    fn one_span_param_at_length(
+        &self,
+        start: f64,
+        length: f64,
+        accuracy: f64,
+    ) -> Option<Result<f64>> {
+        let bezier = self.one_span_bezier()?;
+        let (a, b) = self.domain();
+        if a == 0.0 && b == 1.0 {
+            return Some(bezier.param_at_length(start, length, accuracy));
+        }
+        let h = b - a;
+        let n = self.degree as f64;
+        let hull_speed = n
+            * (1..self.point_count())
+                .map(|i| distance(self.point(i - 1), self.point(i)))
+                .fold(0.0f64, f64::max);
+        let margin = 16.0 * f64::EPSILON * a.abs().max(b.abs()) * hull_speed / h;
+        if margin.is_nan() || margin > 0.5 * accuracy {
+            return None;
+        }
+        let t0 = ((start - a) / h).clamp(0.0, 1.0);
+        let t = match bezier.param_at_length(t0, length, accuracy - margin) {
+            Ok(t) => t,
+            Err(e) => return Some(Err(e)),
+        };
+        Some(Ok(if t == 0.0 {
+            a
+        } else if t == 1.0 {
+            b
+        } else {
+            (a + h * t).clamp(a, b)
+        }))
+    }
+
     /// Length of the control polygon (poles).
     pub fn polygon_length(&self) -> f64 {
         (1..self.point_count())
@@ -295,6 +341,9 @@ impl NurbsCurve {
         }
         if length == 0.0 {
             return Ok(start);
+        }
+        if let Some(t) = self.one_span_param_at_length(start, length, accuracy) {
+            return t;
         }
         let forward = length > 0.0;
         let (first, last) = self.domain();

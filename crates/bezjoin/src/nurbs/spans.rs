@@ -63,6 +63,22 @@ impl NurbsCurve {
             .collect()
     }
 
+    /// The Bezier curve of a clamped one-span polynomial curve, read from
+    /// its poles (no knot work): the curve is this Bezier curve in the
+    /// local parameter `t = (u - first) / (last - first)`. `None` for
+    /// several spans, unclamped ends or unequal weights.
+    pub(crate) fn one_span_bezier(&self) -> Option<BezierCurve> {
+        let p = self.degree;
+        let k = &self.knots;
+        if self.point_count() != p + 1 || k[0] != k[p] || k[p + 1] != k[2 * p + 1] {
+            return None;
+        }
+        if self.is_rational() {
+            return None;
+        }
+        Some(BezierCurve::from_parts(self.dim, p, self.points.clone()))
+    }
+
     /// The curve as a Bezier curve on `[0, 1]` when it is one polynomial
     /// span (clamped, weights all equal); `None` otherwise.
     pub fn to_bezier(&self) -> Option<BezierCurve> {
