@@ -1138,6 +1138,34 @@ fn one_span_param_at_length_on_shifted_domains_meets_its_accuracy() {
     }
 }
 
+/// A length longer than a one-span curve is refused with the message of
+/// the span-by-span path: the start and the end it runs towards in `u`, on
+/// the curve's own domain (not the Bezier kernel's `t`), on `[0, 1]` and
+/// shifted.
+#[test]
+fn one_span_too_long_length_is_reported_in_u() {
+    let mut rng = Random(0x5eed_0a14);
+    for (a, b) in [(0.0, 1.0), (2.0, 5.0), (-40.0, 90.0)] {
+        let bezier = rng.curve(3, 3, 3.0);
+        let nurbs = one_span_on(&bezier, a, b);
+        let start = a + 0.25 * (b - a);
+        let ahead = nurbs.arc_length(start, b, 1e-14).unwrap();
+        let e = nurbs.param_at_length(start, 2.0 * ahead, 1e-9).unwrap_err();
+        let text = e.to_string();
+        assert!(
+            text.contains(&format!("from u = {start} to the last end u = {b}")),
+            "[{a}, {b}]: {text}"
+        );
+        let e = nurbs
+            .param_at_length(start, -3.0 * ahead - 1.0, 1e-9)
+            .unwrap_err();
+        assert!(
+            e.to_string().contains(&format!("to the first end u = {a}")),
+            "[{a}, {b}]: {e}"
+        );
+    }
+}
+
 #[test]
 fn one_span_intersections_on_shifted_domains_are_the_bezier_ones_mapped() {
     let mut rng = Random(0x5eed_0a13);

@@ -230,7 +230,8 @@ impl NurbsCurve {
     /// at most `margin = 16 eps max(|a|, |b|) S / h`, `S = n max |P_i -
     /// P_(i-1)|` the hodograph hull's bound on `|dC/dt|`; the Bezier
     /// inversion then runs to `accuracy - margin`. `None` (the span-by-span
-    /// path) for other curves or when the margin exceeds half the accuracy.
+    /// path) for other curves, when the margin exceeds half the accuracy,
+    /// and on any error (the span-by-span path then reports it in `u`).
     fn one_span_param_at_length(
         &self,
         start: f64,
@@ -239,8 +240,11 @@ impl NurbsCurve {
     ) -> Option<Result<f64>> {
         let bezier = self.one_span_bezier()?;
         let (a, b) = self.domain();
+        // An error (a length longer than the curve, an inversion that
+        // cannot reach its accuracy) is left to the span-by-span path, so
+        // that its message names `u` on the curve's own domain.
         if a == 0.0 && b == 1.0 {
-            return Some(bezier.param_at_length(start, length, accuracy));
+            return bezier.param_at_length(start, length, accuracy).ok().map(Ok);
         }
         let h = b - a;
         let n = self.degree as f64;
@@ -253,10 +257,7 @@ impl NurbsCurve {
             return None;
         }
         let t0 = ((start - a) / h).clamp(0.0, 1.0);
-        let t = match bezier.param_at_length(t0, length, accuracy - margin) {
-            Ok(t) => t,
-            Err(e) => return Some(Err(e)),
-        };
+        let t = bezier.param_at_length(t0, length, accuracy - margin).ok()?;
         Some(Ok(if t == 0.0 {
             a
         } else if t == 1.0 {
