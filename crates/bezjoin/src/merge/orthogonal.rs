@@ -702,15 +702,17 @@ pub(super) fn orthogonal_solution(
         &e,
         (tolerance, explained, result_scale),
     )?;
-    // The integral metric beyond the double solve's reach: refined in
+    // Either metric beyond the double solve's reach: refined in
     // double-double (module `refine`), with its own a-posteriori estimate.
-    if metric == MergeMetric::Integral
-        && (estimate.is_nan() || estimate > accuracy)
-        && count == 2
-        && dependent.is_empty()
-    {
+    if (estimate.is_nan() || estimate > accuracy) && count == 2 && dependent.is_empty() {
         let fix_ends = problem.constraint_count() > 0;
-        if let Some(r) = super::refine::refine_integral(problem, breakpoints[1], fix_ends) {
+        if let Some(r) = super::refine::refine_least_squares(
+            problem,
+            breakpoints[1],
+            fix_ends,
+            metric,
+            merged.iter().all(|v| v.is_finite()).then_some(&merged),
+        ) {
             if r.estimate <= accuracy {
                 return Ok(Orthogonal {
                     merged: r.merged,

@@ -1,15 +1,24 @@
-//! Extra-precise iterative refinement of the integral (L2) metric's least
-//! squares, for the high degrees where the double solve alone cannot be
-//! trusted (two pieces, no kept curve, no keep points; fix ends allowed).
+//! Extra-precise iterative refinement of the orthogonal stage 1's least
+//! squares, both metrics, for the high degrees where the double solve
+//! alone cannot be trusted (two pieces, no kept curve, no keep points; fix
+//! ends allowed).
 //!
 //! The problem is the orthogonal stage 1's (module `orthogonal`):
-//! `min_r ||A r - t||`, `A` the rows `sqrt(w_k) B^m(t_jk)` at the Gauss-
-//! Legendre nodes of both pieces, `t` the rows `sqrt(w_k) C_j(u_k)`. Its
-//! Bernstein sample matrix has a condition near `sqrt(cond(Gram))` (about
-//! `1e9` at degree 31), and a least-squares solve in doubles loses `kappa^2
-//! eps` times the residual: the double answer's first-order estimate
-//! exceeds `1e-8` from about degree 25 for random pairs, and so does its
-//! true error (`docs/accuracy.md`, Merge).
+//! `min_r ||A r - t||`. Integral metric: `A` the rows `sqrt(w_k)
+//! B^m(t_jk)` at the Gauss-Legendre nodes of both pieces, `t` the rows
+//! `sqrt(w_k) C_j(u_k)`. Its Bernstein sample matrix has a condition near
+//! `sqrt(cond(Gram))` (about `1e9` at degree 31), and a least-squares
+//! solve in doubles loses `kappa^2 eps` times the residual: the double
+//! answer's first-order estimate exceeds `1e-8` from about degree 25 for
+//! random pairs, and so does its true error (`docs/accuracy.md`, Merge).
+//! Discrete metric: `A = S`, the restrictions of `R` to both pieces (row
+//! `i` of the left one `B^i_k(mu)`, of the right one `B^(m-i)_(k-i)(mu)`),
+//! `t` the pieces' own control points (exact); its double estimate
+//! exceeds `1e-8` near degree 31 (issue 20), where the KKT fallback was
+//! most of a merge's cost.
+//!
+//! The iteration starts from the double solve's answer when given (its
+//! residual as the augmented system's first part), else from zero.
 //!
 //! Here `A` and `t` are formed in double-double arithmetic (nodes and
 //! weights by Newton's method on the Legendre polynomial in double-double,
@@ -39,6 +48,7 @@
 
 use nalgebra::DMatrix;
 
+use super::MergeMetric;
 use super::orthogonal::gauss_legendre_unit;
 use super::rows::Problem;
 use crate::basis::binomial;
@@ -171,13 +181,16 @@ fn bernstein_dd(m: usize, t: Dd, out: &mut [Dd]) {
     }
 }
 
-/// The refined solution of the integral metric's least squares (see the
-/// module), or `None` when the case is not covered or the refinement does
-/// not contract. `fix_ends`: `r_0 = P_0`, `r_m = Q_m`.
-pub(super) fn refine_integral(
+/// The refined solution of the metric's least squares (see the module),
+/// or `None` when the case is not covered or the refinement does not
+/// contract. `fix_ends`: `r_0 = P_0`, `r_m = Q_m`. `start`: the double
+/// solve's `R` (its free control points are the first iterate).
+pub(super) fn refine_least_squares(
     problem: &Problem<'_, '_>,
     mu: f64,
     fix_ends: bool,
+    metric: MergeMetric,
+    start: Option<&DMatrix<f64>>,
 ) -> Option<Refined> {
     let pieces = problem.pieces;
     if pieces.len() != 2 || pieces.iter().any(|p| p.keep || !p.points.is_empty()) {
@@ -190,33 +203,60 @@ pub(super) fn refine_integral(
     }
     let dim = problem.dim;
     let rows = 2 * points;
-    let (nodes, weights) = gauss_legendre_dd(points);
     // A (rows x points) and t (rows x dim) in double-double.
     let mut a = vec![Dd::from(0.0); rows * points];
     let mut t = vec![Dd::from(0.0); rows * dim];
     let mut row = vec![Dd::from(0.0); points];
     let mu_dd = Dd::from(mu);
-    let rest = Dd::from(1.0).sub(mu_dd);
-    for k in 0..points {
-        let root = weights[k].sqrt();
-        for j in 0..2 {
-            let at = if j == 0 {
-                mu_dd.mul(nodes[k])
-            } else {
-                mu_dd.add(rest.mul(nodes[k]))
-            };
-            bernstein_dd(m, at, &mut row);
-            for i in 0..points {
-                a[(j * points + k) * points + i] = root.mul(row[i]);
-            }
-            bernstein_dd(m, nodes[k], &mut row);
-            let curve = &pieces[j].curve;
-            for c in 0..dim {
-                let mut v = Dd::from(0.0);
-                for i in 0..points {
-                    v = v.add(row[i].mul_f(curve.point(i)[c]));
+    match metric {
+        MergeMetric::Integral => {
+            let (nodes, weights) = gauss_legendre_dd(points);
+            let rest = Dd::from(1.0).sub(mu_dd);
+            for k in 0..points {
+                let root = weights[k].sqrt();
+                for j in 0..2 {
+                    let at = if j == 0 {
+                        mu_dd.mul(nodes[k])
+                    } else {
+                        mu_dd.add(rest.mul(nodes[k]))
+                    };
+                    bernstein_dd(m, at, &mut row);
+                    for i in 0..points {
+                        a[(j * points + k) * points + i] = root.mul(row[i]);
+                    }
+                    bernstein_dd(m, nodes[k], &mut row);
+                    let curve = &pieces[j].curve;
+                    for c in 0..dim {
+                        let mut v = Dd::from(0.0);
+                        for i in 0..points {
+                            v = v.add(row[i].mul_f(curve.point(i)[c]));
+                        }
+                        t[(j * points + k) * dim + c] = root.mul(v);
+                    }
                 }
-                t[(j * points + k) * dim + c] = root.mul(v);
+            }
+        }
+        MergeMetric::Discrete => {
+            // A = S, the exact restrictions (de Casteljau's weights): row
+            // i of the left piece is B^i_k(mu), k <= i; row i of the right
+            // one is B^(m-i)_(k-i)(mu), k >= i. t: the pieces' own points.
+            for d in 0..=m {
+                bernstein_dd(d, mu_dd, &mut row);
+                for k in 0..=d {
+                    a[d * points + k] = row[k];
+                }
+                let i = m - d;
+                for k in i..points {
+                    a[(points + i) * points + k] = row[k - i];
+                }
+            }
+            for j in 0..2 {
+                let curve = &pieces[j].curve;
+                for i in 0..points {
+                    for c in 0..dim {
+                        t[(j * points + i) * dim + c] = Dd::from(curve.point(i)[c]);
+                    }
+                }
             }
         }
     }
@@ -233,6 +273,15 @@ pub(super) fn refine_integral(
             r[(m, c)] = pieces[1].curve.point(m)[c];
         }
     }
+    // From the double solve's answer, if given (one correction fewer than
+    // from zero; the free control points only).
+    if let Some(start) = start {
+        for &i in &free {
+            for c in 0..dim {
+                r[(i, c)] = start[(i, c)];
+            }
+        }
+    }
     let cols = free.len();
     // The double factor of A's leading parts (free columns).
     let mut factor = vec![0.0; rows * cols];
@@ -246,35 +295,47 @@ pub(super) fn refine_integral(
     let a_norm = a.iter().map(|v| v.0 * v.0).sum::<f64>().sqrt();
     let t_inverse_norm = qr.inverse_frobenius()?;
 
-    let mut s = vec![0.0; rows * dim];
-    let residuals = |r: &DMatrix<f64>, s: &[f64]| {
-        // f = t - s - A r, g = -A^T s (double-double, rounded).
+    let residuals = |r: &DMatrix<f64>, s: &[f64], with_g: bool| {
+        // f = t - s - A r, g = -A^T s (double-double, rounded; g only
+        // when asked for).
         let mut f = vec![0.0; rows * dim];
         let mut g = vec![0.0; cols * dim];
         for c in 0..dim {
             for i in 0..rows {
                 let mut v = t[i * dim + c].sub(Dd::from(s[c * rows + i]));
                 for k in 0..points {
-                    v = v.sub(a[i * points + k].mul_f(r[(k, c)]));
+                    // The discrete metric's S is half zeros (exactly:
+                    // skipping them changes nothing).
+                    if a[i * points + k].0 != 0.0 {
+                        v = v.sub(a[i * points + k].mul_f(r[(k, c)]));
+                    }
                 }
                 f[c * rows + i] = v.0 + v.1;
             }
-            for (jc, &col) in free.iter().enumerate() {
+            for (jc, &col) in free.iter().enumerate().filter(|_| with_g) {
                 let mut v = Dd::from(0.0);
                 for i in 0..rows {
-                    v = v.sub(a[i * points + col].mul_f(s[c * rows + i]));
+                    if a[i * points + col].0 != 0.0 {
+                        v = v.sub(a[i * points + col].mul_f(s[c * rows + i]));
+                    }
                 }
                 g[c * cols + jc] = v.0 + v.1;
             }
         }
         (f, g)
     };
+    // The augmented system's residual part: from zero, or, from the double
+    // answer, its own residual (both parts then start near the solution).
+    let mut s = vec![0.0; rows * dim];
+    if start.is_some() {
+        s = residuals(&r, &s, false).0;
+    }
     let mut previous = f64::INFINITY;
     let mut first = true;
     let mut last = f64::INFINITY;
     let mut correction = DMatrix::zeros(points, dim);
     for step in 0..=REFINE_STEPS {
-        let (f, g) = residuals(&r, &s);
+        let (f, g) = residuals(&r, &s, true);
         let (dr, ds) = qr.augmented_correction(&f, &g, dim);
         correction.fill(0.0);
         for c in 0..dim {
@@ -320,7 +381,7 @@ pub(super) fn refine_integral(
     let result_scale = x.amax().max(problem.scale);
     let eps = f64::EPSILON;
     let dd_eps = eps * eps;
-    let (f, _) = residuals(&r, &vec![0.0; rows * dim]);
+    let (f, _) = residuals(&r, &vec![0.0; rows * dim], false);
     let residual_norm = f.iter().map(|v| v * v).sum::<f64>().sqrt();
     let t_norm = t.iter().map(|v| v.0 * v.0).sum::<f64>().sqrt();
     let dd_term = DD_MARGIN
@@ -504,9 +565,16 @@ mod tests {
     }
 
     /// The exact minimiser `r` of the integral metric (exact Gram matrix,
+    /// or the identity for the discrete metric,
     /// exact restrictions at a dyadic `mu`), by the normal equations in
     /// rationals; fix ends: `r_0 = P_0`, `r_m = Q_m`.
-    fn exact_r(p: &BezierCurve, q: &BezierCurve, mu: f64, fix_ends: bool) -> Vec<Vec<Q>> {
+    fn exact_r(
+        p: &BezierCurve,
+        q: &BezierCurve,
+        mu: f64,
+        fix_ends: bool,
+        metric: MergeMetric,
+    ) -> Vec<Vec<Q>> {
         let m = p.degree();
         let n = m + 1;
         let muq = exact(mu);
@@ -528,8 +596,17 @@ mod tests {
             binomial_q(m, i) * binomial_q(m, j)
                 / (Q::from_integer(BigInt::from(2 * m + 1)) * binomial_q(2 * m, i + j))
         };
+        // The discrete metric weighs the control points alike (G = I).
         let g: Vec<Vec<Q>> = (0..n)
-            .map(|i| (0..n).map(|j| gram(i, j)).collect())
+            .map(|i| {
+                (0..n)
+                    .map(|j| match metric {
+                        MergeMetric::Integral => gram(i, j),
+                        MergeMetric::Discrete if i == j => Q::one(),
+                        MergeMetric::Discrete => Q::zero(),
+                    })
+                    .collect()
+            })
             .collect();
         // N = sum S^T G S, b = sum S^T G x0 (two coordinates).
         let mut normal = vec![vec![Q::zero(); n]; n];
@@ -619,7 +696,15 @@ mod tests {
     /// below the double path's at the degrees where that one refuses.
     #[test]
     fn refined_solution_is_within_its_estimate_of_the_exact_minimiser() {
-        refined_against_exact(&[6, 12], &[77.0 / 256.0, 0.5]);
+        refined_against_exact(MergeMetric::Integral, &[6, 12], &[77.0 / 256.0, 0.5]);
+    }
+
+    /// The same for the discrete metric (`A = S`, the target the pieces'
+    /// points), at the degrees where its double solve refuses (31: the
+    /// degree of issue 20).
+    #[test]
+    fn refined_discrete_solution_is_within_its_estimate_of_the_exact_minimiser() {
+        refined_against_exact(MergeMetric::Discrete, &[12, 31], &[77.0 / 256.0, 0.5]);
     }
 
     /// The table of docs/accuracy.md (Merge, session 26): `cargo test
@@ -632,16 +717,23 @@ mod tests {
             Ok(list) => list.split(',').map(|d| d.trim().parse().unwrap()).collect(),
             Err(_) => vec![16, 20, 24, 27, 31],
         };
-        refined_against_exact(&degrees, &[13.0 / 128.0, 77.0 / 256.0, 0.5]);
+        let metrics = match std::env::var("REFINED_METRIC").as_deref() {
+            Ok("discrete") => vec![MergeMetric::Discrete],
+            Ok("integral") => vec![MergeMetric::Integral],
+            _ => vec![MergeMetric::Integral, MergeMetric::Discrete],
+        };
+        for metric in metrics {
+            refined_against_exact(metric, &degrees, &[13.0 / 128.0, 77.0 / 256.0, 0.5]);
+        }
     }
 
-    fn refined_against_exact(degrees: &[usize], mus: &[f64]) {
+    fn refined_against_exact(metric: MergeMetric, degrees: &[usize], mus: &[f64]) {
         let mut state = 21;
         for &degree in degrees {
             let (p, q) = (curve(&mut state, degree), curve(&mut state, degree));
             for fix_ends in [false, true] {
                 let options = MergeOptions {
-                    metric: MergeMetric::Integral,
+                    metric,
                     fix_ends,
                     ..MergeOptions::default()
                 };
@@ -649,8 +741,8 @@ mod tests {
                 for &mu in mus {
                     let lengths = [mu, 1.0 - mu];
                     let rows = Problem::new(&problem.pieces, &lengths, fix_ends);
-                    let refined = refine_integral(&rows, mu, fix_ends).unwrap();
-                    let reference = exact_r(&p, &q, mu, fix_ends);
+                    let refined = refine_least_squares(&rows, mu, fix_ends, metric, None).unwrap();
+                    let reference = exact_r(&p, &q, mu, fix_ends, metric);
                     let scale = refined.x.amax().max(rows.scale);
                     let mut worst = 0.0f64;
                     for i in 0..=degree {
@@ -664,12 +756,54 @@ mod tests {
                     let true_error = worst / scale;
                     // What the merge says at this mu (with the refinement).
                     let merged = problem.solve(mu, StageOneCheck::Full);
+                    // The merge's own answer (started from the double
+                    // solve when the refinement answers): its pieces
+                    // within its estimate of the exact pieces (the exact
+                    // R split at mu by de Casteljau in rationals).
+                    let mut answered_error = None;
+                    if let Ok(s) = &merged {
+                        let muq = exact(mu);
+                        let mut worst = 0.0f64;
+                        for c in 0..2 {
+                            let mut row: Vec<Q> =
+                                (0..=degree).map(|i| reference[i][c].clone()).collect();
+                            let mut left = vec![row[0].clone()];
+                            let mut right = vec![Q::zero(); degree + 1];
+                            right[degree] = row[degree].clone();
+                            for level in 1..=degree {
+                                for i in 0..=degree - level {
+                                    row[i] = (Q::one() - &muq) * &row[i] + &muq * &row[i + 1];
+                                }
+                                left.push(row[0].clone());
+                                right[degree - level] = row[degree - level].clone();
+                            }
+                            for i in 0..=degree {
+                                for (piece, exact_piece) in [(0, &left), (1, &right)] {
+                                    let gap = (exact(s.pieces[piece][(i, c)]) - &exact_piece[i])
+                                        .to_f64()
+                                        .unwrap();
+                                    worst = worst.max(gap.abs());
+                                }
+                            }
+                        }
+                        let error = worst / scale;
+                        answered_error = Some(error);
+                        assert!(
+                            s.error_estimate >= error,
+                            "degree {degree} ends {fix_ends} mu {mu}: merge estimate {:e} below the pieces' true error {error:e}",
+                            s.error_estimate
+                        );
+                    }
                     println!(
-                        "| {degree} | {mu} | {} | {true_error:.1e} | {:.1e} | {} |",
+                        "| {metric:?} | {degree} | {mu} | {} | {true_error:.1e} | {:.1e} | {} |",
                         if fix_ends { "fix ends" } else { "none" },
                         refined.estimate,
                         match merged {
-                            Ok(s) => format!("answered, estimate {:.1e}", s.error_estimate),
+                            Ok(s) => format!(
+                                "answered, estimate {:.1e}, pieces' true error {:.1e}",
+                                s.error_estimate,
+                                answered_error.unwrap()
+                            ),
                             Err(e) => e.to_string(),
                         }
                     );
