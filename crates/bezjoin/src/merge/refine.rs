@@ -700,11 +700,23 @@ mod tests {
     }
 
     /// The same for the discrete metric (`A = S`, the target the pieces'
-    /// points), at the degrees where its double solve refuses (31: the
-    /// degree of issue 20).
+    /// points) at degrees 12 and 24 (at 24 with `mu = 1/2` the double solve
+    /// refuses and the merge answers by this refinement); kept to about a
+    /// second in release. Degree 31 is
+    /// [`refined_discrete_solution_at_degree_31`] (about 80 s in release),
+    /// the case where dropping the low parts of the matrix is caught.
     #[test]
     fn refined_discrete_solution_is_within_its_estimate_of_the_exact_minimiser() {
-        refined_against_exact(MergeMetric::Discrete, &[12, 31], &[77.0 / 256.0, 0.5]);
+        refined_against_exact(MergeMetric::Discrete, &[12, 24], &[0.5]);
+    }
+
+    /// [`refined_discrete_solution_is_within_its_estimate_of_the_exact_minimiser`]
+    /// at degree 31 (issue 20's degree): `cargo test --release -p
+    /// bezjoin-core --lib refined_discrete_solution_at_degree_31 -- --ignored`.
+    #[test]
+    #[ignore = "slow exact-rational minimiser (about 80 s in release)"]
+    fn refined_discrete_solution_at_degree_31() {
+        refined_against_exact(MergeMetric::Discrete, &[31], &[77.0 / 256.0, 0.5]);
     }
 
     /// The table of docs/accuracy.md (Merge, session 26): `cargo test
