@@ -86,6 +86,7 @@ mod track;
 use crate::bezier::{BezierCurve, distance, norm};
 use crate::curve::CurveRef;
 use crate::error::{BezjoinError, Result, check_finite_scalar};
+use crate::nurbs::NurbsCurve;
 use std::rc::Rc;
 use track::{Piece, Pieces, Track, boxes_meet};
 
@@ -209,6 +210,10 @@ pub fn intersect<'a>(
     // parameters mapped back (exact on [0, 1]; elsewhere a few roundings
     // of u, with the ends kept exact).
     let (p_bezier, q_bezier) = (one_span(p), one_span(q));
+    let (p_nurbs, q_nurbs) = (
+        p_bezier.as_ref().map(|(_, n)| *n),
+        q_bezier.as_ref().map(|(_, n)| *n),
+    );
     let p = p_bezier.as_ref().map_or(p, |(b, _)| CurveRef::Bezier(b));
     let q = q_bezier.as_ref().map_or(q, |(b, _)| CurveRef::Bezier(b));
     let mut search = Search::new(Track::new(p), Track::new(q), options);
@@ -217,30 +222,18 @@ pub fn intersect<'a>(
         search.subdivide()?;
     }
     let mut hits = search.finish()?;
-    let p_domain = p_bezier.map(|(_, d)| d);
-    let q_domain = q_bezier.map(|(_, d)| d);
-    if p_domain.is_some_and(|d| d != (0.0, 1.0)) || q_domain.is_some_and(|d| d != (0.0, 1.0)) {
+    let unit = |n: &NurbsCurve| n.domain() == (0.0, 1.0);
+    if p_nurbs.is_some_and(|n| !unit(n)) || q_nurbs.is_some_and(|n| !unit(n)) {
         for hit in &mut hits {
-            if let Some(d) = p_domain {
-                hit.u = from_unit(d, hit.u);
+            if let Some(n) = p_nurbs {
+                hit.u = n.domain_parameter(hit.u);
             }
-            if let Some(d) = q_domain {
-                hit.v = from_unit(d, hit.v);
+            if let Some(n) = q_nurbs {
+                hit.v = n.domain_parameter(hit.v);
             }
         }
     }
     Ok(hits)
-}
-
-/// `a + (b - a) t` in `[a, b]`, the ends exact.
-fn from_unit((a, b): (f64, f64), t: f64) -> f64 {
-    if t <= 0.0 {
-        a
-    } else if t >= 1.0 {
-        b
-    } else {
-        (a + (b - a) * t).clamp(a, b)
-    }
 }
 
 /// [`intersect`] by the subdivision alone (the fallback of the clipping
@@ -273,12 +266,12 @@ pub(crate) fn intersect_by_clipping<'a>(
     search.clip_search().then(|| search.finish())
 }
 
-/// The Bezier curve of a clamped one-span polynomial NURBS and its domain
-/// `[a, b]` (the curve is the Bezier curve in `t = (u - a) / (b - a)`);
-/// `None` otherwise.
-fn one_span(curve: CurveRef) -> Option<(BezierCurve, (f64, f64))> {
+/// The Bezier curve of a clamped one-span polynomial NURBS on `[a, b]`
+/// (the curve is that Bezier curve in `t = (u - a) / (b - a)`) and the
+/// NURBS curve itself; `None` otherwise.
+fn one_span<'a>(curve: CurveRef<'a>) -> Option<(BezierCurve, &'a NurbsCurve)> {
     match curve {
-        CurveRef::Nurbs(n) => n.one_span_bezier().map(|b| (b, n.domain())),
+        CurveRef::Nurbs(n) => n.one_span_bezier().map(|b| (b, n)),
         CurveRef::Bezier(_) => None,
     }
 }

@@ -229,7 +229,7 @@ impl NurbsCurve {
     /// Whether the curve is one clamped span: its poles are the Bezier
     /// control points of the domain.
     #[inline(always)]
-    fn is_bezier_span(&self) -> bool {
+    pub(crate) fn is_bezier_span(&self) -> bool {
         let p = self.degree;
         let k = &self.knots;
         k.len() == 2 * p + 2 && k[0] == k[p] && k[p + 1] == k[2 * p + 1]

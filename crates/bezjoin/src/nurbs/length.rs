@@ -258,13 +258,7 @@ impl NurbsCurve {
         }
         let t0 = ((start - a) / h).clamp(0.0, 1.0);
         let t = bezier.param_at_length(t0, length, accuracy - margin).ok()?;
-        Some(Ok(if t == 0.0 {
-            a
-        } else if t == 1.0 {
-            b
-        } else {
-            (a + h * t).clamp(a, b)
-        }))
+        Some(Ok(self.domain_parameter(t)))
     }
 
     /// Length of the control polygon (poles).

@@ -68,15 +68,29 @@ impl NurbsCurve {
     /// local parameter `t = (u - first) / (last - first)`. `None` for
     /// several spans, unclamped ends or unequal weights.
     pub(crate) fn one_span_bezier(&self) -> Option<BezierCurve> {
-        let p = self.degree;
-        let k = &self.knots;
-        if self.point_count() != p + 1 || k[0] != k[p] || k[p + 1] != k[2 * p + 1] {
+        if !self.is_bezier_span() || self.is_rational() {
             return None;
         }
-        if self.is_rational() {
-            return None;
+        Some(BezierCurve::from_parts(
+            self.dim,
+            self.degree,
+            self.points.clone(),
+        ))
+    }
+
+    /// The parameter `a + (b - a) t` of the domain `[a, b]` for the local
+    /// parameter `t` of [`one_span_bezier`](Self::one_span_bezier): the
+    /// ends exact (`t <= 0` gives `a`, `t >= 1` gives `b`), clamped to the
+    /// domain in between.
+    pub(crate) fn domain_parameter(&self, t: f64) -> f64 {
+        let (a, b) = self.domain();
+        if t <= 0.0 {
+            a
+        } else if t >= 1.0 {
+            b
+        } else {
+            (a + (b - a) * t).clamp(a, b)
         }
-        Some(BezierCurve::from_parts(self.dim, p, self.points.clone()))
     }
 
     /// The curve as a Bezier curve on `[0, 1]` when it is one polynomial
