@@ -295,31 +295,64 @@ pub(super) fn refine_least_squares(
     let a_norm = a.iter().map(|v| v.0 * v.0).sum::<f64>().sqrt();
     let t_inverse_norm = qr.inverse_frobenius()?;
 
+    // The discrete metric's S is half zeros (exactly: skipping them
+    // changes nothing): each row's and each free column's span of
+    // nonzero entries (zeros inside it are skipped too).
+    let span = |entries: &mut dyn Iterator<Item = Dd>| {
+        let mut first = usize::MAX;
+        let mut end = 0;
+        for (k, e) in entries.enumerate() {
+            if e.0 != 0.0 {
+                first = first.min(k);
+                end = k + 1;
+            }
+        }
+        first.min(end)..end
+    };
+    let row_spans: Vec<_> = a
+        .chunks_exact(points)
+        .map(|row| span(&mut row.iter().copied()))
+        .collect();
+    // A's free columns, each contiguous (rows entries), for g.
+    let a_free: Vec<Dd> = free
+        .iter()
+        .flat_map(|&col| (0..rows).map(move |i| (i, col)))
+        .map(|(i, col)| a[i * points + col])
+        .collect();
+    let column_spans: Vec<_> = a_free
+        .chunks_exact(rows)
+        .map(|column| span(&mut column.iter().copied()))
+        .collect();
     let residuals = |r: &DMatrix<f64>, s: &[f64], with_g: bool| {
         // f = t - s - A r, g = -A^T s (double-double, rounded; g only
         // when asked for).
         let mut f = vec![0.0; rows * dim];
         let mut g = vec![0.0; cols * dim];
         for c in 0..dim {
-            for i in 0..rows {
-                let mut v = t[i * dim + c].sub(Dd::from(s[c * rows + i]));
-                for k in 0..points {
-                    // The discrete metric's S is half zeros (exactly:
-                    // skipping them changes nothing).
-                    if a[i * points + k].0 != 0.0 {
-                        v = v.sub(a[i * points + k].mul_f(r[(k, c)]));
+            let r_c = r.column(c);
+            let r_c = r_c.as_slice();
+            let s_c = &s[c * rows..(c + 1) * rows];
+            for (i, (row, span)) in a.chunks_exact(points).zip(&row_spans).enumerate() {
+                let mut v = t[i * dim + c].sub(Dd::from(s_c[i]));
+                for (e, &x) in row[span.clone()].iter().zip(&r_c[span.clone()]) {
+                    if e.0 != 0.0 {
+                        v = v.sub(e.mul_f(x));
                     }
                 }
                 f[c * rows + i] = v.0 + v.1;
             }
-            for (jc, &col) in free.iter().enumerate().filter(|_| with_g) {
+            if !with_g {
+                continue;
+            }
+            let g_c = &mut g[c * cols..(c + 1) * cols];
+            for ((column, span), out) in a_free.chunks_exact(rows).zip(&column_spans).zip(g_c) {
                 let mut v = Dd::from(0.0);
-                for i in 0..rows {
-                    if a[i * points + col].0 != 0.0 {
-                        v = v.sub(a[i * points + col].mul_f(s[c * rows + i]));
+                for (e, &x) in column[span.clone()].iter().zip(&s_c[span.clone()]) {
+                    if e.0 != 0.0 {
+                        v = v.sub(e.mul_f(x));
                     }
                 }
-                g[c * cols + jc] = v.0 + v.1;
+                *out = v.0 + v.1;
             }
         }
         (f, g)
@@ -426,13 +459,15 @@ impl Householder {
             a[k * rows + k] = akk - alpha;
             betas[k] = 1.0 / (norm * (norm + akk.abs()));
             diagonal[k] = alpha;
-            for j in k + 1..cols {
-                let s = betas[k]
-                    * (k..rows)
-                        .map(|i| a[k * rows + i] * a[j * rows + i])
-                        .sum::<f64>();
-                for i in k..rows {
-                    a[j * rows + i] -= s * a[k * rows + i];
+            // The later columns reflected (slices: the same products and
+            // sums, in the same order, as indexing).
+            let (head, tail) = a.split_at_mut((k + 1) * rows);
+            let v = &head[k * rows + k..];
+            for column in tail.chunks_exact_mut(rows) {
+                let column = &mut column[k..];
+                let s = betas[k] * v.iter().zip(column.iter()).map(|(a, b)| a * b).sum::<f64>();
+                for (e, &x) in column.iter_mut().zip(v) {
+                    *e -= s * x;
                 }
             }
         }
@@ -447,9 +482,11 @@ impl Householder {
 
     fn reflect(&self, k: usize, x: &mut [f64]) {
         let rows = self.rows;
-        let s = self.betas[k] * (k..rows).map(|i| self.a[k * rows + i] * x[i]).sum::<f64>();
-        for i in k..rows {
-            x[i] -= s * self.a[k * rows + i];
+        let v = &self.a[k * rows + k..(k + 1) * rows];
+        let x = &mut x[k..rows];
+        let s = self.betas[k] * v.iter().zip(x.iter()).map(|(a, b)| a * b).sum::<f64>();
+        for (e, &a) in x.iter_mut().zip(v) {
+            *e -= s * a;
         }
     }
 
@@ -475,12 +512,14 @@ impl Householder {
         }
     }
 
-    /// `y <- T^-1 y`.
+    /// `y <- T^-1 y` for the leading `n x n` block of `T` (`n = y.len()`,
+    /// at most `cols`).
     fn solve_t(&self, y: &mut [f64]) {
-        for i in (0..self.cols).rev() {
+        let n = y.len();
+        for i in (0..n).rev() {
             let mut sum = y[i];
-            for j in i + 1..self.cols {
-                sum -= self.t(i, j) * y[j];
+            for j in i + 1..n {
+                sum -= self.a[j * self.rows + i] * y[j];
             }
             y[i] = sum / self.diagonal[i];
         }
@@ -497,14 +536,19 @@ impl Householder {
         }
     }
 
-    /// `||T^-1||_F`.
+    /// `||T^-1||_F`, column `k` of `T^-1` by the solve with `e_k` on the
+    /// leading `(k + 1) x (k + 1)` block (`T^-1` is upper triangular: the
+    /// solve on all of `T` gives zeros below entry `k` and the same
+    /// entries above, up to the signs of zeros, so the same sum of
+    /// squares).
     fn inverse_frobenius(&self) -> Option<f64> {
         let mut total = 0.0;
         let mut e = vec![0.0; self.cols];
         for k in 0..self.cols {
+            let e = &mut e[..=k];
             e.fill(0.0);
             e[k] = 1.0;
-            self.solve_t(&mut e);
+            self.solve_t(e);
             total += e.iter().map(|v| v * v).sum::<f64>();
         }
         let norm = total.sqrt();
