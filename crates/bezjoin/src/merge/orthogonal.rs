@@ -1106,6 +1106,20 @@ mod tests {
 
     use crate::test_values::planar_curve as curve;
 
+    /// Two random planar pieces `P`, `Q` of `degree`, nothing kept.
+    fn random_pieces(state: &mut u64, degree: usize) -> Vec<PieceInput<'static>> {
+        ["P", "Q"]
+            .iter()
+            .map(|name| PieceInput {
+                curve: std::borrow::Cow::Owned(curve(state, degree)),
+                name,
+                points_name: "points",
+                keep: false,
+                points: Vec::new(),
+            })
+            .collect()
+    }
+
     /// The refusal floor (`refusal_floor`) changes no answer: with and
     /// without it, the same result bit for bit (R, the pieces, the
     /// estimate and the metric) or the same error, for random pairs at high
@@ -1118,16 +1132,7 @@ mod tests {
         for degree in [16, 24, 31] {
             for fix_ends in [false, true] {
                 for mu in [0.3, 0.5, 0.71] {
-                    let pieces: Vec<PieceInput<'_>> = ["P", "Q"]
-                        .iter()
-                        .map(|name| PieceInput {
-                            curve: std::borrow::Cow::Owned(curve(&mut state, degree)),
-                            name,
-                            points_name: "points",
-                            keep: false,
-                            points: Vec::new(),
-                        })
-                        .collect();
+                    let pieces = random_pieces(&mut state, degree);
                     let lengths = [mu, 1.0 - mu];
                     let problem = Problem::new(&pieces, &lengths, fix_ends);
                     let solve = |skip: bool| {
@@ -1183,16 +1188,7 @@ mod tests {
     fn fixed_ends_feasible_set_is_the_general_one() {
         let mut state = 17;
         for degree in [1, 2, 3, 4, 7, 15, 24, 31] {
-            let pieces: Vec<PieceInput<'_>> = ["P", "Q"]
-                .iter()
-                .map(|name| PieceInput {
-                    curve: std::borrow::Cow::Owned(curve(&mut state, degree)),
-                    name,
-                    points_name: "points",
-                    keep: false,
-                    points: Vec::new(),
-                })
-                .collect();
+            let pieces = random_pieces(&mut state, degree);
             for mu in [1e-3, 0.3, 0.5, 0.77] {
                 let lengths = [mu, 1.0 - mu];
                 let problem = Problem::new(&pieces, &lengths, true);
