@@ -626,6 +626,13 @@ pub(super) fn orthogonal_solution(
             merged.iter().all(|v| v.is_finite()).then_some(&merged),
         )
         .filter(|r| r.estimate <= accuracy)
+        .map(|r| Orthogonal {
+            merged: r.merged,
+            x: r.x,
+            estimate: r.estimate,
+            metric_value: r.metric_value,
+            slope,
+        })
     };
     let mut refinement_tried = false;
     if let (true, MergeMetric::Discrete, Some((_, y, a_abs, _))) = (refinable, metric, &factor) {
@@ -640,14 +647,8 @@ pub(super) fn orthogonal_solution(
             #[cfg(test)]
             FLOOR_TAKEN.with(|t| t.set(t.get() + 1));
             refinement_tried = true;
-            if let Some(r) = refined() {
-                return Ok(Orthogonal {
-                    merged: r.merged,
-                    x: r.x,
-                    estimate: r.estimate,
-                    metric_value: r.metric_value,
-                    slope,
-                });
+            if let Some(answer) = refined() {
+                return Ok(answer);
             }
         }
     }
@@ -740,14 +741,8 @@ pub(super) fn orthogonal_solution(
         (tolerance, explained, result_scale),
     )?;
     if (estimate.is_nan() || estimate > accuracy) && refinable && !refinement_tried {
-        if let Some(r) = refined() {
-            return Ok(Orthogonal {
-                merged: r.merged,
-                x: r.x,
-                estimate: r.estimate,
-                metric_value: r.metric_value,
-                slope,
-            });
+        if let Some(answer) = refined() {
+            return Ok(answer);
         }
     }
     if estimate.is_nan() || estimate > accuracy {
