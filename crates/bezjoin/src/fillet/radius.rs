@@ -320,11 +320,16 @@ fn round_radius_corner(
     let (centre_plane, _) = offset(p, &plane, u, radius, KnotSide::Left);
     let arc_centre = plane.lift(centre_plane);
     let g = connect_geometric(&p, u, &q, v, &GeometricOptions::new(order, order))?;
-    let arc_deviation = (0..=ARC_DEVIATION_SAMPLES)
-        .map(|i| {
-            let x = g.curve.eval(i as f64 / ARC_DEVIATION_SAMPLES as f64);
-            (crate::bezier::distance(&x, &arc_centre) - radius).abs()
-        })
+    // The samples in one batch evaluation (the bits of `eval` at each
+    // parameter, no allocation per sample).
+    let ts: Vec<f64> = (0..=ARC_DEVIATION_SAMPLES)
+        .map(|i| i as f64 / ARC_DEVIATION_SAMPLES as f64)
+        .collect();
+    let mut samples = vec![0.0; ts.len() * g.curve.dim()];
+    g.curve.eval_many_into(&ts, &mut samples);
+    let arc_deviation = samples
+        .chunks_exact(g.curve.dim())
+        .map(|x| (crate::bezier::distance(x, &arc_centre) - radius).abs())
         .fold(0.0f64, f64::max);
     Ok((
         RadiusCorner {
