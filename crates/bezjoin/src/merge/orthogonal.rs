@@ -635,15 +635,24 @@ pub(super) fn orthogonal_solution(
         })
     };
     let mut refinement_tried = false;
-    if let (true, MergeMetric::Discrete, Some((_, y, a_abs, _))) = (refinable, metric, &factor) {
+    if let (true, MergeMetric::Discrete, true, Some((qr, y, a_abs, _))) =
+        (refinable, metric, m >= REFUSAL_FLOOR_DEGREE, &factor)
+    {
         // The estimate below is at least `estimate` plus this floor of its
-        // normwise QR term (with `||Q||_F = sqrt(free)` halved for
-        // rounding, see `refusal_floor`): when the floor alone exceeds
-        // `accuracy` the double answer is refused whatever the rest adds,
-        // so the refinement is tried first and the bound is computed only
-        // if the refinement does not answer (same answers, same errors).
-        let floor = estimate + refusal_floor(a_abs, y, &reduced_target) / result_scale;
-        if floor > accuracy && !skip_refusal_floor() {
+        // normwise QR term (see `refusal_floor`): when the floor alone
+        // exceeds `accuracy` the double answer is refused whatever the
+        // rest adds, so the refinement is tried first and the bound is
+        // computed only if the refinement does not answer (same answers,
+        // same errors).
+        let floor = refusal_floor(
+            qr,
+            a_abs,
+            y,
+            &reduced_target,
+            &residual,
+            (accuracy - estimate) * result_scale,
+        );
+        if estimate + floor / result_scale > accuracy && !skip_refusal_floor() {
             #[cfg(test)]
             FLOOR_TAKEN.with(|t| t.set(t.get() + 1));
             refinement_tried = true;
@@ -766,21 +775,55 @@ pub(super) fn orthogonal_solution(
     })
 }
 
+/// From this degree on the discrete metric's solve first checks the
+/// refusal floor ([`refusal_floor`]); below it the double estimate
+/// refuses only at extreme `mu`, and the floor would cost more than it
+/// saves (the answers are the same either way).
+pub const REFUSAL_FLOOR_DEGREE: usize = 16;
+
 /// A floor of the normwise QR term of [`first_order_bound`] for the
-/// pieces of the discrete metric (`K0` the thin `Q`):
-/// `QR_MARGIN eps sqrt(rows free) ||Q||_F (||t|| + ||A||_F ||y||)`, with
-/// `||Q||_F = sqrt(free)` for orthonormal columns halved (the computed
-/// `Q`'s norm differs from it by about `free eps` relative). Every other
+/// pieces of the discrete metric (`K0` the thin `Q`, `K2 = Q T^-T`):
+/// `QR_MARGIN eps sqrt(rows free) (||Q||_F (||t|| + ||A||_F ||y||) +
+/// ||T^-1||_F ||A||_F ||res||)`, halved for rounding: `||Q||_F =
+/// sqrt(free)` and `||Q T^-T||_F = ||T^-1||_F` for orthonormal columns,
+/// which the computed `Q` and `K2` have to about `free eps` relative, and
+/// `||T^-1||_F` is solved here on the leading blocks of `T`. Every other
 /// term of that bound is non-negative, so the estimate is at least this
-/// divided by the result scale (test
-/// `refusal_floor_changes_no_answer`).
-fn refusal_floor(a_abs: &DMatrix<f64>, y: &DMatrix<f64>, target: &DMatrix<f64>) -> f64 {
+/// divided by the result scale (test `refusal_floor_changes_no_answer`).
+/// The residual part (`free` triangular solves) is computed only when the
+/// first part does not already reach `needed`.
+fn refusal_floor(
+    qr: &Factor,
+    a_abs: &DMatrix<f64>,
+    y: &DMatrix<f64>,
+    target: &DMatrix<f64>,
+    residual: &DMatrix<f64>,
+    needed: f64,
+) -> f64 {
     let (rows, free) = (a_abs.nrows(), a_abs.ncols());
-    0.5 * QR_MARGIN
-        * f64::EPSILON
-        * ((rows * free) as f64).sqrt()
-        * (free as f64).sqrt()
-        * (target.norm() + a_abs.norm() * y.norm())
+    let factor = 0.5 * QR_MARGIN * f64::EPSILON * ((rows * free) as f64).sqrt();
+    let a_norm = a_abs.norm();
+    let values = factor * (free as f64).sqrt() * (target.norm() + a_norm * y.norm());
+    if values > needed {
+        return values;
+    }
+    // ||T^-1||_F: column k of T^-1 from e_k on the leading (k+1) block.
+    let mut total = 0.0;
+    let mut e = vec![0.0; free];
+    for k in 0..free {
+        let e = &mut e[..=k];
+        e.fill(0.0);
+        e[k] = 1.0;
+        for j in (0..=k).rev() {
+            let ej = e[j] / qr.diagonal()[j];
+            e[j] = ej;
+            for (ei, &t) in e[..j].iter_mut().zip(qr.t_column(j)) {
+                *ei -= t * ej;
+            }
+        }
+        total += e.iter().map(|v| v * v).sum::<f64>();
+    }
+    values + factor * total.sqrt() * a_norm * residual.norm()
 }
 
 #[cfg(not(test))]
