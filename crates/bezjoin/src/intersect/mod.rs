@@ -711,22 +711,27 @@ impl<'a> Search<'a> {
         // evaluated and tested as before. Since widening the margin by
         // `2 slack` covers every point within `slack` of the evaluated
         // point, this skips only points the old test refuses.
-        let approximate =
-            |track: &Track, pieces: &[Piece], other: &[Piece], i: usize, x: &mut [f64]| -> bool {
-                let Some(slack) = track.break_slack() else {
-                    return true;
-                };
-                let (piece, end) = if i < pieces.len() {
-                    (&pieces[i], 0)
-                } else {
-                    (&pieces[pieces.len() - 1], pieces[pieces.len() - 1].degree())
-                };
-                x.copy_from_slice(piece.point(end));
-                !slack.is_finite() || near_widened(other, x, tol + 2.0 * slack)
+        let approximate = |slack: Option<f64>,
+                           pieces: &[Piece],
+                           other: &[Piece],
+                           i: usize,
+                           x: &mut [f64]|
+         -> bool {
+            let Some(slack) = slack else {
+                return true;
             };
+            let (piece, end) = if i < pieces.len() {
+                (&pieces[i], 0)
+            } else {
+                (&pieces[pieces.len() - 1], pieces[pieces.len() - 1].degree())
+            };
+            x.copy_from_slice(piece.point(end));
+            !slack.is_finite() || near_widened(other, x, tol + 2.0 * slack)
+        };
+        let (p_slack, q_slack) = (pair.p.break_slack(), pair.q.break_slack());
         for (i, &u) in p_breaks.iter().enumerate() {
             if p_breaks.len() == p_pieces.len() + 1
-                && !approximate(&pair.p, p_pieces, q_pieces, i, x)
+                && !approximate(p_slack, p_pieces, q_pieces, i, x)
             {
                 continue;
             }
@@ -740,7 +745,7 @@ impl<'a> Search<'a> {
         }
         for (i, &v) in q_breaks.iter().enumerate() {
             if q_breaks.len() == q_pieces.len() + 1
-                && !approximate(&pair.q, q_pieces, p_pieces, i, x)
+                && !approximate(q_slack, q_pieces, p_pieces, i, x)
             {
                 continue;
             }

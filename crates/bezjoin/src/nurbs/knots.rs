@@ -198,9 +198,7 @@ impl NurbsCurve {
         h.extend_from_slice(&self.points);
         let mut knots = Vec::with_capacity(self.knots.len() + insertions);
         knots.extend_from_slice(&self.knots);
-        for _ in 0..insertions {
-            super::spans::insert_once_in_place(d, p, &mut knots, &mut h, u);
-        }
+        super::spans::insert_in_place(d, p, &mut knots, &mut h, u, insertions);
         let j = knots.partition_point(|&k| k < u);
         let m = knots[j..].iter().take_while(|&&k| k == u).count();
         let (points, knots) = if left {

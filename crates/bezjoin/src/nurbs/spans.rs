@@ -126,9 +126,7 @@ impl NurbsCurve {
             knots.extend_from_slice(&self.knots);
             for &u in &breaks[1..breaks.len() - 1] {
                 let m = knots.iter().filter(|&&k| k == u).count();
-                for _ in m..p {
-                    insert_once_in_place(h, p, &mut knots, &mut rows, u);
-                }
+                insert_in_place(h, p, &mut knots, &mut rows, u, p.saturating_sub(m));
             }
         }
         let beziers = if rational {
@@ -294,42 +292,53 @@ impl SpanPoles {
     }
 }
 
-/// One insertion of `u` into the rows `h` (`hd` values each) on `knots`,
-/// in place: the operations of [`super::knots::insert_once`] (`k` the span
-/// of `u` from the right; rows `k + 1 - p ..= k` become `a_i R_i + (1 -
-/// a_i) R_(i-1)`, the rows from `k` on move up one), computed from the
-/// highest new row down so that each reads rows not yet written.
-pub(super) fn insert_once_in_place(
+/// `times` insertions of `u` into the rows `h` (`hd` values each) on
+/// `knots`, in place: each the operations of [`super::knots::insert_once`]
+/// (`k` the span of `u` from the right; rows `k + 1 - p ..= k` become
+/// `a_i R_i + (1 - a_i) R_(i-1)`, the rows from `k` on move up one),
+/// computed from the highest new row down so that each reads rows not yet
+/// written.
+pub(super) fn insert_in_place(
     hd: usize,
     p: usize,
     knots: &mut Vec<f64>,
     h: &mut Vec<f64>,
     u: f64,
+    times: usize,
 ) {
     // The plane and space (with or without the weight) with the row length
     // as a constant: the same operations.
     match hd {
-        2 => insert_once_sized(2, p, knots, h, u),
-        3 => insert_once_sized(3, p, knots, h, u),
-        4 => insert_once_sized(4, p, knots, h, u),
-        _ => insert_once_sized(hd, p, knots, h, u),
+        2 => insert_sized(2, p, knots, h, u, times),
+        3 => insert_sized(3, p, knots, h, u, times),
+        4 => insert_sized(4, p, knots, h, u, times),
+        _ => insert_sized(hd, p, knots, h, u, times),
     }
 }
 
-/// [`insert_once_in_place`], inlined so that a constant `hd` unrolls it.
+/// [`insert_in_place`], inlined so that a constant `hd` unrolls it.
 #[inline(always)]
-fn insert_once_sized(hd: usize, p: usize, knots: &mut Vec<f64>, h: &mut Vec<f64>, u: f64) {
-    let k = find_span(knots, p, u, KnotSide::Right);
-    let n = h.len() / hd;
-    h.resize((n + 1) * hd, 0.0);
-    h.copy_within(k * hd..n * hd, (k + 1) * hd);
-    for i in ((k + 1 - p)..=k).rev() {
-        let a = (u - knots[i]) / (knots[i + p] - knots[i]);
-        for c in 0..hd {
-            h[i * hd + c] = a * h[i * hd + c] + (1.0 - a) * h[(i - 1) * hd + c];
-        }
+fn insert_sized(hd: usize, p: usize, knots: &mut Vec<f64>, h: &mut Vec<f64>, u: f64, times: usize) {
+    if times == 0 {
+        return;
     }
-    knots.insert(k + 1, u);
+    let first = find_span(knots, p, u, KnotSide::Right);
+    for r in 0..times {
+        // After `r` insertions `u` occupies `first + 1 ..= first + r`, so
+        // the span of `u` from the right is `first + r`: what `find_span`
+        // would return.
+        let k = first + r;
+        let n = h.len() / hd;
+        h.resize((n + 1) * hd, 0.0);
+        h.copy_within(k * hd..n * hd, (k + 1) * hd);
+        for i in ((k + 1 - p)..=k).rev() {
+            let a = (u - knots[i]) / (knots[i + p] - knots[i]);
+            for c in 0..hd {
+                h[i * hd + c] = a * h[i * hd + c] + (1.0 - a) * h[(i - 1) * hd + c];
+            }
+        }
+        knots.insert(k + 1, u);
+    }
 }
 
 #[cfg(test)]
