@@ -598,6 +598,31 @@ impl<'a> ArcLengthInverse<'a> {
         }
     }
 
+    /// The arc length from `start` to the end `t = 1` (`forward`) or `t = 0`
+    /// it runs towards, to `accuracy`, by the Chebyshev interpolant of the
+    /// speed ([`ChebyshevSpeed`]'s `length_between`), without the adaptive
+    /// rule; `None` when the curve does not qualify for the Chebyshev
+    /// inversion or the length is not certified.
+    pub(crate) fn length_to_end(&mut self, forward: bool, accuracy: f64) -> Option<f64> {
+        let curve = self.curve;
+        if self.chebyshev.is_none() {
+            let slot = self.chebyshev.insert(Some(ChebyshevSpeed::zeroed()));
+            if !slot.as_mut().is_some_and(|speed| speed.fill(curve)) {
+                *slot = None;
+            }
+        }
+        let speed = self.chebyshev.as_ref()?.as_ref()?;
+        let start = self.start;
+        if !(0.0..=1.0).contains(&start) {
+            return None;
+        }
+        if forward {
+            speed.length_between(start, 1.0, accuracy)
+        } else {
+            speed.length_between(0.0, start, accuracy)
+        }
+    }
+
     /// [`BezierCurve::param_at_length`] from this inverse's `start`.
     ///
     /// One adaptive pass over the whole available range records its
@@ -1644,6 +1669,59 @@ impl ChebyshevSpeed {
             let answer = self.invert_on(start, far, target, accuracy, &mut samples);
             if answer.is_some() || width == room || width >= bound {
                 return answer.flatten();
+            }
+        }
+        None
+    }
+
+    /// `int_start^far |P'|` (`start <= far`) by the Chebyshev interpolant
+    /// of the speed on `[start, far]` integrated in closed form, certified
+    /// as [`Self::param_at_length`] certifies an answer: the interpolant
+    /// through every other sample differs from it by at most
+    /// `coarse_difference`, so the two lengths differ by at most `(far -
+    /// start)` times that, accepted within a quarter of `accuracy` (or the
+    /// rounding level of the length and of the speed's evaluation); 25
+    /// samples, 49 when those do not certify; `None` when neither does.
+    fn length_between(&self, start: f64, far: f64, accuracy: f64) -> Option<f64> {
+        let tables = chebyshev_tables();
+        let span = far - start;
+        if span.is_nan() || span <= 0.0 {
+            return None;
+        }
+        let mut samples = [0.0; CHEBYSHEV_MAX_N + 1];
+        samples[CHEBYSHEV_MAX_N] = self.at(start);
+        for (level, &n) in CHEBYSHEV_LEVELS.iter().enumerate() {
+            let step = CHEBYSHEV_MAX_N / n;
+            let new = if level == 0 { step } else { 2 * step };
+            let first_new = if level == 0 { 0 } else { step };
+            if !self.sample(&tables.nodes, start, span, first_new, new, &mut samples) {
+                return None;
+            }
+            let mut a = [0.0; CHEBYSHEV_MAX_N + 3];
+            let sample = |j: usize| samples[j * step];
+            if level == 0 {
+                fold_apply(&tables.coarse, sample, &mut a);
+            } else {
+                fold_apply(&tables.fine, sample, &mut a);
+            }
+            // The antiderivative's value at x = 1 with G(-1) = 0: `G(1) -
+            // G(-1) = sum_k c_k (1 - (-1)^k)` over k >= 1, i.e. twice the
+            // odd coefficients (c_k = (a_(k-1) - a_(k+1)) / 2k, c_1 = a_0 -
+            // a_2 / 2).
+            let mut odd = a[0] - 0.5 * a[2];
+            let mut k = 3;
+            while k <= n + 1 {
+                odd += (a[k - 1] - a[k + 1]) / (2 * k) as f64;
+                k += 2;
+            }
+            let total = span * odd;
+            if !total.is_finite() {
+                return None;
+            }
+            let estimate = span * coarse_difference(&a, n);
+            let floor = rounding_level(total, span) + self.noise_per_unit * span;
+            if estimate <= (CHEBYSHEV_ESTIMATE_SHARE * accuracy).max(floor) {
+                return Some(total);
             }
         }
         None

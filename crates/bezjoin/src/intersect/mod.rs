@@ -685,7 +685,14 @@ impl<'a> Search<'a> {
         let tol = self.tolerance;
         let mut ends: Vec<(f64, f64)> = Vec::new();
         let (p_pieces, q_pieces) = (&self.p_pieces, &self.q_pieces);
-        let near = |pieces: &[Piece], x: &[f64]| pieces.iter().any(|b| b.contains(x, tol));
+        // A break point is projected onto the other curve only when a piece of
+        // that curve may come within the tolerance of it (boxes of de
+        // Casteljau halves, [`Piece::may_come_within`]): otherwise the
+        // projection could not find it within the tolerance.
+        let near = |pieces: &[Piece], x: &[f64]| pieces.iter().any(|b| b.may_come_within(x, tol));
+        let near_widened = |pieces: &[Piece], x: &[f64], margin: f64| {
+            pieces.iter().any(|b| b.may_come_within(x, margin))
+        };
         // The end points: on the stack for small dimensions.
         let dim = pair.p.dim();
         let mut stack = [0.0f64; POLISH_STACK_DIM];
@@ -697,7 +704,37 @@ impl<'a> Search<'a> {
             &mut heap
         };
         let (p_breaks, q_breaks) = (pair.p.breaks(), pair.q.breaks());
-        for &u in p_breaks.iter() {
+        // A polynomial NURBS curve's break point is first tried at its
+        // pieces' end control point (the same point in exact arithmetic:
+        // both it and the evaluation are within `slack` of it), with the
+        // tolerance widened by twice that; only a point that passes is
+        // evaluated and tested as before. Since widening the margin by
+        // `2 slack` covers every point within `slack` of the evaluated
+        // point, this skips only points the old test refuses.
+        let approximate = |slack: Option<f64>,
+                           pieces: &[Piece],
+                           other: &[Piece],
+                           i: usize,
+                           x: &mut [f64]|
+         -> bool {
+            let Some(slack) = slack else {
+                return true;
+            };
+            let (piece, end) = if i < pieces.len() {
+                (&pieces[i], 0)
+            } else {
+                (&pieces[pieces.len() - 1], pieces[pieces.len() - 1].degree())
+            };
+            x.copy_from_slice(piece.point(end));
+            !slack.is_finite() || near_widened(other, x, tol + 2.0 * slack)
+        };
+        let (p_slack, q_slack) = (pair.p.break_slack(), pair.q.break_slack());
+        for (i, &u) in p_breaks.iter().enumerate() {
+            if p_breaks.len() == p_pieces.len() + 1
+                && !approximate(p_slack, p_pieces, q_pieces, i, x)
+            {
+                continue;
+            }
             pair.p.break_point_into(u, x);
             if near(q_pieces, x) {
                 let (v, d) = project_on(&pair.q, x, None, q_pieces);
@@ -706,7 +743,12 @@ impl<'a> Search<'a> {
                 }
             }
         }
-        for &v in q_breaks.iter() {
+        for (i, &v) in q_breaks.iter().enumerate() {
+            if q_breaks.len() == q_pieces.len() + 1
+                && !approximate(q_slack, q_pieces, p_pieces, i, x)
+            {
+                continue;
+            }
             pair.q.break_point_into(v, x);
             if near(p_pieces, x) {
                 let (u, d) = project_on(&pair.p, x, None, p_pieces);

@@ -152,10 +152,13 @@ impl<'a> Track<'a> {
     /// The parameters where pieces meet: the domain's ends and, for a
     /// NURBS curve, its interior knots (where two polynomial pieces can
     /// start or stop coinciding).
-    pub(super) fn breaks(&self) -> Cow<'static, [f64]> {
-        match self {
+    pub(super) fn breaks(&self) -> Cow<'a, [f64]> {
+        match *self {
             // A Bezier curve's domain is [0, 1]: nothing to allocate.
             Track::Bezier { .. } => Cow::Borrowed(&[0.0, 1.0]),
+            // The span decomposition's breaks (kept with the curve): the
+            // same values.
+            Track::Nurbs(n) if n.weights().is_none() => Cow::Borrowed(&n.span_poles().breaks),
             Track::Nurbs(n) => {
                 let (a, b) = n.domain();
                 let knots = n.interior_knots().0;
@@ -165,6 +168,27 @@ impl<'a> Track<'a> {
                 out.push(b);
                 Cow::Owned(out)
             }
+        }
+    }
+
+    /// For a NURBS curve without weights: a bound on the distance between
+    /// its point at a break (an interior knot or an end), as
+    /// [`Self::break_point_into`] evaluates it (de Boor, `p` levels of
+    /// convex combinations), and the end control point of the piece there
+    /// (knot insertion: at most `p` insertions at each of the `p + 1`
+    /// knots whose insertions reach that pole, each a convex combination).
+    /// Every convex combination of values at most `S` (the largest pole
+    /// coordinate) adds at most `2 eps S` per coordinate, so both lie
+    /// within `2 (p + 1)^2 eps S sqrt(d)` of the exact point; the bound
+    /// returned is four times that. `None` for Bezier and rational
+    /// curves (their breaks are tested as evaluated).
+    pub(super) fn break_slack(&self) -> Option<f64> {
+        match self {
+            Track::Nurbs(n) if n.weights().is_none() => {
+                let p = (n.degree() + 1) as f64;
+                Some(8.0 * p * p * f64::EPSILON * n.coordinate_scale() * (n.dim() as f64).sqrt())
+            }
+            _ => None,
         }
     }
 
@@ -182,6 +206,20 @@ impl<'a> Track<'a> {
         match self {
             Track::Bezier { curve, .. } => {
                 Pieces::One([Piece::new(Cow::Borrowed(*curve), false, 0.0, 1.0)])
+            }
+            // Without weights the spans' Bezier poles straight from the
+            // decomposition's buffer (the poles `bezier_spans` gives, bit
+            // for bit, without building a curve per span).
+            Track::Nurbs(n) if n.weights().is_none() => {
+                let poles = n.span_poles();
+                Pieces::Many(
+                    (0..poles.count())
+                        .map(|i| {
+                            let (lo, hi) = poles.domain(i);
+                            Piece::new(Cow::Borrowed(&poles.beziers[i]), false, lo, hi)
+                        })
+                        .collect(),
+                )
             }
             Track::Nurbs(n) => Pieces::Many(
                 n.bezier_spans()
@@ -374,6 +412,39 @@ impl<'a> Piece<'a> {
         )
     }
 
+    /// Whether a point of the piece may lie within `margin` of `x`: its box
+    /// widened by `margin` holds `x` ([`Self::contains`]) and, for a
+    /// polynomial piece of degree <= [`NEAR_MAX_DEGREE`] in dimension <=
+    /// [`NEAR_MAX_DIM`], so does the widened box of one of its halves, and
+    /// of one of their halves, down to [`NEAR_LEVELS`] de Casteljau
+    /// halvings at `1/2` (each half lies in the convex hull of its control
+    /// points). `false` proves that every point of the piece is farther
+    /// than `margin + slack` from `x`, `slack` a bound on the rounding of
+    /// the halvings (`8 (n + 1) (levels + 1) eps` times the largest
+    /// coordinate of the piece and `x`): an evaluated point of the curve
+    /// (within a few `eps` of the curve) is then farther than `margin`
+    /// too, so a projection of `x` onto the curve would not find it within
+    /// `margin`. Rational pieces: the box test alone.
+    pub(super) fn may_come_within(&self, x: &[f64], margin: f64) -> bool {
+        if !self.contains(x, margin) {
+            return false;
+        }
+        let (n, d) = (self.degree(), self.dim);
+        if self.is_rational() || n > NEAR_MAX_DEGREE || d > NEAR_MAX_DIM || n == 0 {
+            return true;
+        }
+        let points = self.curve.points();
+        let scale = points.iter().chain(x).fold(0.0f64, |m, v| m.max(v.abs()));
+        let slack = 8.0 * (n + 1) as f64 * (NEAR_LEVELS + 1) as f64 * f64::EPSILON * scale;
+        let widened = margin + slack;
+        if !widened.is_finite() {
+            return true;
+        }
+        let mut work = [0.0f64; (NEAR_MAX_DEGREE + 1) * NEAR_MAX_DIM];
+        work[..points.len()].copy_from_slice(points);
+        halves_come_within(&work, n, d, x, widened, NEAR_LEVELS)
+    }
+
     pub(super) fn contains(&self, x: &[f64], margin: f64) -> bool {
         let (min, max) = (self.min(), self.max());
         (0..x.len()).all(|c| x[c] >= min[c] - margin && x[c] <= max[c] + margin)
@@ -409,6 +480,63 @@ impl<'a> Piece<'a> {
     pub(super) fn points(&self) -> &[f64] {
         self.projected.as_deref().unwrap_or(self.curve.points())
     }
+}
+
+/// Largest degree [`Piece::may_come_within`] refines.
+const NEAR_MAX_DEGREE: usize = 15;
+/// Largest dimension [`Piece::may_come_within`] refines.
+const NEAR_MAX_DIM: usize = 4;
+/// Halving levels of [`Piece::may_come_within`].
+const NEAR_LEVELS: u32 = 6;
+
+/// Whether `x` lies in the box of the control points `points` (`n + 1`
+/// rows of `d`, the first of a buffer) widened by `margin`, and, while
+/// `levels > 0`, in the widened box of one of the two de Casteljau halves
+/// at `1/2`.
+fn halves_come_within(
+    points: &[f64; (NEAR_MAX_DEGREE + 1) * NEAR_MAX_DIM],
+    n: usize,
+    d: usize,
+    x: &[f64],
+    margin: f64,
+    levels: u32,
+) -> bool {
+    for c in 0..d {
+        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+        for i in 0..=n {
+            let v = points[i * d + c];
+            lo = lo.min(v);
+            hi = hi.max(v);
+        }
+        // A NaN coordinate (of the piece or of `x`) proves nothing.
+        let inside = x[c] >= lo - margin && x[c] <= hi + margin;
+        if !(inside || lo.is_nan() || x[c].is_nan()) {
+            return false;
+        }
+    }
+    if levels == 0 {
+        return true;
+    }
+    // Left half in `left` (its point r is the first point of level r),
+    // right half in `right` (its point n - r the last point of level r).
+    let mut left = *points;
+    let mut right = *points;
+    for r in 1..=n {
+        for i in (r..=n).rev() {
+            for c in 0..d {
+                left[i * d + c] = 0.5 * (left[(i - 1) * d + c] + left[i * d + c]);
+            }
+        }
+    }
+    for r in 1..=n {
+        for i in 0..=n - r {
+            for c in 0..d {
+                right[i * d + c] = 0.5 * (right[i * d + c] + right[(i + 1) * d + c]);
+            }
+        }
+    }
+    halves_come_within(&left, n, d, x, margin, levels - 1)
+        || halves_come_within(&right, n, d, x, margin, levels - 1)
 }
 
 /// Control-point coordinates up to which [`point_and_tangent`] works on the
@@ -652,5 +780,73 @@ mod tests {
                 "case {case}: tangent"
             );
         }
+    }
+}
+
+#[cfg(test)]
+mod near_tests {
+    use super::Piece;
+    use crate::bezier::{BezierCurve, distance};
+    use std::borrow::Cow;
+
+    /// `may_come_within` is conservative: whenever it says no, every point
+    /// of the piece (dense samples) is farther than the margin from `x`;
+    /// and it says no for points off the curve that the box alone lets
+    /// through (the refinement does prune). Random polynomial pieces of
+    /// degrees 1 to 6 in 2D and 3D, points near the curve and in its box.
+    #[test]
+    fn may_come_within_refuses_only_far_points() {
+        let mut state = 17u64;
+        let mut next = || {
+            state = state
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut pruned = 0;
+        for case in 0..80 {
+            let degree = 1 + case % 6;
+            let dim = 2 + case % 2;
+            let points: Vec<f64> = (0..(degree + 1) * dim)
+                .map(|_| 2.0 * next() - 1.0)
+                .collect();
+            let curve = BezierCurve::new(dim, degree, points).unwrap();
+            let piece = Piece::new(Cow::Borrowed(&curve), false, 0.0, 1.0);
+            for trial in 0..20 {
+                // A point on the curve moved by a small offset, or anywhere
+                // in the box.
+                let x: Vec<f64> = if trial % 2 == 0 {
+                    let t = next();
+                    let scale = [1e-9, 1e-4, 1e-2][trial % 3];
+                    curve
+                        .eval(t)
+                        .iter()
+                        .map(|v| v + scale * (2.0 * next() - 1.0))
+                        .collect()
+                } else {
+                    (0..dim)
+                        .map(|c| {
+                            let (lo, hi) = (piece.min()[c], piece.max()[c]);
+                            lo + (hi - lo) * next()
+                        })
+                        .collect()
+                };
+                let margin = [1e-9, 1e-6, 1e-3][trial % 3];
+                if piece.may_come_within(&x, margin) {
+                    continue;
+                }
+                if piece.contains(&x, margin) {
+                    pruned += 1;
+                }
+                let closest = (0..=10_000)
+                    .map(|i| distance(&curve.eval(i as f64 / 10_000.0), &x))
+                    .fold(f64::INFINITY, f64::min);
+                assert!(
+                    closest > margin,
+                    "case {case} trial {trial}: {closest} <= {margin}"
+                );
+            }
+        }
+        assert!(pruned > 100, "the halves pruned only {pruned} points");
     }
 }

@@ -117,7 +117,12 @@ pub(super) struct SpanTable {
 /// in `knots.rs` and `spans.rs` touch a curve just built, before anything
 /// evaluates it): the table always describes the data it sits beside.
 #[derive(Default)]
-pub(super) struct SpanCache(OnceLock<SpanTable>);
+pub(super) struct SpanCache(
+    OnceLock<SpanTable>,
+    /// The span decomposition ([`NurbsCurve::span_poles`]), boxed: a
+    /// curve without it stays small.
+    pub(super) OnceLock<Box<super::spans::SpanPoles>>,
+);
 
 impl Clone for SpanCache {
     fn clone(&self) -> Self {

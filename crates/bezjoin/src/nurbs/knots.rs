@@ -174,6 +174,56 @@ impl NurbsCurve {
         ))
     }
 
+    /// [`segment`](Self::segment)`(first, u)` (`left`) or `(u, last)` of a
+    /// clamped curve without weights, `u` strictly inside the domain: the
+    /// knot `u` inserted up to multiplicity `p` in one buffer (the
+    /// operations of `segment`'s `cut` on the Cartesian poles: without
+    /// weights the weight coordinate of the homogeneous rows stays exactly
+    /// 1, see [`NurbsCurve::span_poles`], so the poles are the same bits),
+    /// then the rows and knots of the side asked for. `None` for other
+    /// curves or parameters.
+    pub(crate) fn polynomial_trim(&self, u: f64, left: bool) -> Option<NurbsCurve> {
+        let p = self.degree;
+        let (first, last) = self.domain();
+        let n = self.point_count();
+        let clamped = self.knots[..=p].iter().all(|&k| k == first)
+            && self.knots[n..].iter().all(|&k| k == last);
+        if self.weights.is_some() || !clamped || !(u > first && u < last) {
+            return None;
+        }
+        let d = self.dim;
+        let now = self.multiplicity(u);
+        let insertions = p.saturating_sub(now);
+        let mut h = Vec::with_capacity((n + insertions) * d);
+        h.extend_from_slice(&self.points);
+        let mut knots = Vec::with_capacity(self.knots.len() + insertions);
+        knots.extend_from_slice(&self.knots);
+        super::spans::insert_in_place(d, p, &mut knots, &mut h, u, insertions);
+        let j = knots.partition_point(|&k| k < u);
+        let m = knots[j..].iter().take_while(|&&k| k == u).count();
+        let (points, knots) = if left {
+            h.truncate(j * d);
+            knots.truncate(j);
+            knots.extend(std::iter::repeat_n(u, p + 1));
+            (h, knots)
+        } else {
+            let start = j + m - p - 1;
+            h.drain(..start * d);
+            let mut k = Vec::with_capacity(p + 1 + knots.len() - (j + m));
+            k.extend(std::iter::repeat_n(u, p + 1));
+            k.extend_from_slice(&knots[j + m..]);
+            (h, k)
+        };
+        Some(NurbsCurve {
+            degree: p,
+            dim: d,
+            knots,
+            points,
+            weights: None,
+            span_cache: Default::default(),
+        })
+    }
+
     /// The same point set traversed backwards on the same domain:
     /// `R(u) = C(first + last - u)`.
     pub fn reverse(&self) -> NurbsCurve {

@@ -564,6 +564,22 @@ impl NurbsCurve {
     /// last level but one, `A' = p (d_p - d_(p-1)) / (u_(k+1) - u_k)`, and
     /// `C' = (A' - w' C) / w`.
     pub(crate) fn point_and_tangent(&self, u: f64, point: &mut [f64], tangent: Option<&mut [f64]>) {
+        // Quadratics and cubics in the plane and in space with the sizes as
+        // constants (loops unrolled, no bounds checks): the same operations
+        // in the same order as the general case below.
+        match (self.dim, self.degree) {
+            (2, 3) => return self.point_and_tangent_fixed::<3, 3>(u, point, tangent),
+            (3, 3) => return self.point_and_tangent_fixed::<4, 3>(u, point, tangent),
+            (2, 2) => return self.point_and_tangent_fixed::<3, 2>(u, point, tangent),
+            (3, 2) => return self.point_and_tangent_fixed::<4, 2>(u, point, tangent),
+            _ => {}
+        }
+        self.point_and_tangent_any(u, point, tangent);
+    }
+
+    /// [`point_and_tangent`](Self::point_and_tangent) for any dimension and
+    /// degree (the reference of the fixed sizes).
+    fn point_and_tangent_any(&self, u: f64, point: &mut [f64], tangent: Option<&mut [f64]>) {
         let p = self.degree;
         let d = self.dim;
         let hd = d + 1;
@@ -620,6 +636,63 @@ impl NurbsCurve {
         let w = work[p * hd + d];
         for c in 0..d {
             point[c] = work[p * hd + c] / w;
+        }
+        if let Some(tangent) = tangent {
+            for c in 0..d {
+                tangent[c] = (dh[c] - dh[d] * point[c]) / w;
+            }
+        }
+    }
+
+    /// [`point_and_tangent`](Self::point_and_tangent) for `HD = dim + 1`
+    /// homogeneous coordinates and degree `P >= 2` known at compile time:
+    /// the same operations in the same order (so the same bits).
+    #[inline(always)]
+    fn point_and_tangent_fixed<const HD: usize, const P: usize>(
+        &self,
+        u: f64,
+        point: &mut [f64],
+        tangent: Option<&mut [f64]>,
+    ) {
+        let d = HD - 1;
+        let mut work = [[0.0f64; HD]; 6];
+        let work = &mut work[..=P];
+        let knots = &self.knots[..];
+        let k = find_span(knots, P, u, KnotSide::Right);
+        for (j, row) in work.iter_mut().enumerate() {
+            let i = k - P + j;
+            let w = self.weight(i);
+            for (o, x) in row.iter_mut().zip(self.point(i)) {
+                *o = w * x;
+            }
+            row[d] = w;
+        }
+        let level = |r: usize, work: &mut [[f64; HD]]| {
+            for j in (r..=P).rev() {
+                let lo = knots[j + k - P];
+                let alpha = (u - lo) / (knots[j + 1 + k - r] - lo);
+                let (left, right) = work.split_at_mut(j);
+                let (prev, cur) = (&left[j - 1], &mut right[0]);
+                for c in 0..HD {
+                    cur[c] = (1.0 - alpha) * prev[c] + alpha * cur[c];
+                }
+            }
+        };
+        for r in 1..P {
+            level(r, work);
+        }
+        let mut dh = [0.0f64; HD];
+        let want_tangent = tangent.is_some();
+        if want_tangent {
+            let scale = P as f64 / (knots[k + 1] - knots[k]);
+            for c in 0..HD {
+                dh[c] = scale * (work[P][c] - work[P - 1][c]);
+            }
+        }
+        level(P, work);
+        let w = work[P][d];
+        for c in 0..d {
+            point[c] = work[P][c] / w;
         }
         if let Some(tangent) = tangent {
             for c in 0..d {
@@ -1386,5 +1459,64 @@ mod value_fast_path_tests {
             out.to_vec(),
             c.eval_derivatives_checked("u", last, 1).unwrap()
         );
+    }
+}
+
+#[cfg(test)]
+mod fixed_de_boor_tests {
+    use super::NurbsCurve;
+
+    /// The fixed-size de Boor evaluations (plane and space, degrees 2 and
+    /// 3) give the general path's bits, point and tangent, on random
+    /// curves with and without weights, at random parameters and at the
+    /// knots.
+    #[test]
+    fn fixed_sizes_are_the_general_path_bit_for_bit() {
+        let mut state = 71u64;
+        let mut next = || {
+            state = state
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for case in 0..120 {
+            let dim = 2 + case % 2;
+            let degree = 2 + (case / 2) % 2;
+            let count = degree + 1 + case % 5;
+            let mut knots = vec![0.0; degree + 1];
+            let mut inner: Vec<f64> = (0..count - degree - 1).map(|_| next()).collect();
+            inner.sort_by(f64::total_cmp);
+            knots.extend(inner);
+            knots.extend(std::iter::repeat_n(1.0, degree + 1));
+            let knots: Vec<f64> = knots.iter().map(|k| 2.0 + 3.0 * k).collect();
+            let poles: Vec<f64> = (0..count * dim).map(|_| 4.0 * next() - 2.0).collect();
+            let weights = (case % 3 == 0).then(|| (0..count).map(|_| 0.5 + next()).collect());
+            let c = NurbsCurve::new(dim, degree, poles, weights, knots.clone()).unwrap();
+            let mut us: Vec<f64> = (0..30).map(|_| 2.0 + 3.0 * next()).collect();
+            us.extend(knots.iter().copied());
+            for u in us {
+                let (mut p1, mut t1) = ([0.0; 3], [0.0; 3]);
+                let (mut p2, mut t2) = ([0.0; 3], [0.0; 3]);
+                c.point_and_tangent(u, &mut p1[..dim], Some(&mut t1[..dim]));
+                c.point_and_tangent_any(u, &mut p2[..dim], Some(&mut t2[..dim]));
+                assert_eq!(
+                    p1.map(f64::to_bits),
+                    p2.map(f64::to_bits),
+                    "case {case} u {u}"
+                );
+                assert_eq!(
+                    t1.map(f64::to_bits),
+                    t2.map(f64::to_bits),
+                    "case {case} u {u}"
+                );
+                let mut p3 = [0.0; 3];
+                c.point_and_tangent(u, &mut p3[..dim], None);
+                assert_eq!(
+                    p1.map(f64::to_bits),
+                    p3.map(f64::to_bits),
+                    "case {case} u {u}"
+                );
+            }
+        }
     }
 }

@@ -2,8 +2,8 @@
 //! insertion) and degree elevation (the spans elevated, then the knots the
 //! elevated curve does not need removed, each removal checked).
 
-use super::knots::insert_once;
 use super::{NurbsCurve, unit_weights_dropped};
+use crate::basis::{KnotSide, find_span};
 use crate::bezier::BezierCurve;
 use crate::error::{BezjoinError, Result};
 
@@ -32,35 +32,123 @@ impl NurbsCurve {
     /// degree on `[u_i, u_(i+1)]` (the distinct knots of the domain), with
     /// the original parameters; rational spans stay rational. Exact.
     pub fn bezier_spans(&self) -> Vec<NurbsCurve> {
-        let p = self.degree;
-        let hd = self.dim + 1;
-        let clamped = self.clamped();
-        let (breaks, mults) = clamped.interior_knots();
-        let mut h = clamped.homogeneous_points();
-        let mut knots = clamped.knots.clone();
-        for (&u, &m) in breaks.iter().zip(&mults) {
-            for _ in m..p {
-                insert_once(hd, p, &mut knots, &mut h, u);
-            }
-        }
-        let (first, last) = self.domain();
-        let mut ends = vec![first];
-        ends.extend_from_slice(&breaks);
-        ends.push(last);
+        let poles = self.span_poles();
         let rational = self.weights.is_some();
-        ends.windows(2)
-            .enumerate()
-            .map(|(i, ab)| {
-                let rows = &h[i * p * hd..(i * p + p + 1) * hd];
-                let mut span =
-                    NurbsCurve::from_homogeneous(self.dim, p, rows, Vec::new(), rational);
-                let mut k = vec![ab[0]; p + 1];
-                k.extend(std::iter::repeat_n(ab[1], p + 1));
-                span.knots = k;
-                span.weights = unit_weights_dropped(span.weights.take());
-                span
+        (0..poles.count())
+            .map(|i| {
+                let (lo, hi) = poles.domain(i);
+                let rows = poles.rows(i);
+                if rational {
+                    let mut span =
+                        NurbsCurve::from_homogeneous(self.dim, self.degree, rows, Vec::new(), true);
+                    let mut k = vec![lo; self.degree + 1];
+                    k.extend(std::iter::repeat_n(hi, self.degree + 1));
+                    span.knots = k;
+                    span.weights = unit_weights_dropped(span.weights.take());
+                    span
+                } else {
+                    NurbsCurve::from_span_parts(self.dim, self.degree, rows.to_vec(), None, lo, hi)
+                }
             })
             .collect()
+    }
+
+    /// The Bezier poles of every span in one buffer ([`SpanPoles`]): the
+    /// clamped curve's homogeneous poles (`(w P, w)`; for a curve without
+    /// weights its Cartesian poles) with every interior knot raised to
+    /// multiplicity `p` by single insertions in increasing order (Boehm,
+    /// A5.1: `Q_i = a_i R_i + (1 - a_i) R_(i-1)`), in place in one buffer
+    /// reserved for the result. These are the operations of
+    /// [`bezier_spans`](Self::bezier_spans) before this buffer existed
+    /// (one `insert_once` per insertion on homogeneous rows), so the rows
+    /// are the same bits: without weights the weight coordinate stays
+    /// exactly 1 (`a + fl(1 - a) = 1` for `a` in `[0, 1]`: exact for
+    /// `a >= 1/2`, else `fl(1 - a)` is within `2^-54` of `1 - a` and the
+    /// sum rounds to 1), so `1 * x` and the division by it are exact and
+    /// the Cartesian coordinates see the same operations.
+    ///
+    /// Built on first use and kept beside the curve (with the span table of
+    /// the evaluation, in the curve's `SpanCache`: empty in a clone, never
+    /// compared), so an intersection, the arc-length inversions and the
+    /// trims of one curve decompose it once.
+    pub(crate) fn span_poles(&self) -> &SpanPoles {
+        self.span_cache
+            .1
+            .get_or_init(|| Box::new(self.build_span_poles()))
+    }
+
+    fn build_span_poles(&self) -> SpanPoles {
+        let p = self.degree;
+        let (first, last) = self.domain();
+        let n = self.point_count();
+        let clamped = self.knots[..=p].iter().all(|&k| k == first)
+            && self.knots[n..].iter().all(|&k| k == last);
+        if !clamped {
+            return self.clamped().build_span_poles();
+        }
+        let rational = self.weights.is_some();
+        let h = if rational { self.dim + 1 } else { self.dim };
+        // Distinct interior knots and the insertions they need.
+        let mut breaks = Vec::with_capacity(n - p + 1);
+        breaks.push(first);
+        let mut insertions = 0;
+        let mut i = p + 1;
+        while i < n {
+            let u = self.knots[i];
+            let mut m = 1;
+            while self.knots[i + m] == u {
+                m += 1;
+            }
+            breaks.push(u);
+            insertions += p.saturating_sub(m);
+            i += m;
+        }
+        breaks.push(last);
+        let count = n + insertions;
+        let mut rows = Vec::with_capacity(count * h);
+        if rational {
+            let mut row = [0.0f64; 17];
+            for i in 0..n {
+                if h <= row.len() {
+                    self.homogeneous_point(i, &mut row[..h]);
+                    rows.extend_from_slice(&row[..h]);
+                } else {
+                    let mut row = vec![0.0; h];
+                    self.homogeneous_point(i, &mut row);
+                    rows.extend_from_slice(&row);
+                }
+            }
+        } else {
+            rows.extend_from_slice(&self.points);
+        }
+        if insertions > 0 {
+            let mut knots = Vec::with_capacity(self.knots.len() + insertions);
+            knots.extend_from_slice(&self.knots);
+            for &u in &breaks[1..breaks.len() - 1] {
+                let m = knots.iter().filter(|&&k| k == u).count();
+                insert_in_place(h, p, &mut knots, &mut rows, u, p.saturating_sub(m));
+            }
+        }
+        let beziers = if rational {
+            Vec::new()
+        } else {
+            (0..breaks.len() - 1)
+                .map(|i| {
+                    BezierCurve::from_parts(
+                        self.dim,
+                        p,
+                        rows[i * p * h..(i * p + p + 1) * h].to_vec(),
+                    )
+                })
+                .collect()
+        };
+        SpanPoles {
+            breaks,
+            rows,
+            h,
+            degree: p,
+            beziers,
+        }
     }
 
     /// The Bezier curve of a clamped one-span polynomial curve, read from
@@ -167,5 +255,224 @@ impl NurbsCurve {
         }
         curve.weights = unit_weights_dropped(curve.weights.take());
         Ok(curve)
+    }
+}
+
+/// The Bezier poles of a curve's spans ([`NurbsCurve::span_poles`]): span
+/// `i` on `[breaks[i], breaks[i + 1]]` has the `p + 1` rows starting at row
+/// `i p` (neighbouring spans share their end row), each of `h` values
+/// (`dim + 1` homogeneous for a curve with weights, else `dim`).
+#[derive(Debug, Clone)]
+pub(crate) struct SpanPoles {
+    pub(crate) breaks: Vec<f64>,
+    pub(crate) rows: Vec<f64>,
+    pub(crate) h: usize,
+    pub(crate) degree: usize,
+    /// For a curve without weights, span `i` as the Bezier curve of its
+    /// rows (in `t = (u - breaks[i]) / (breaks[i + 1] - breaks[i])`);
+    /// empty for a curve with weights.
+    pub(crate) beziers: Vec<BezierCurve>,
+}
+
+impl SpanPoles {
+    /// Number of spans.
+    pub(crate) fn count(&self) -> usize {
+        self.breaks.len() - 1
+    }
+
+    /// The domain of span `i`.
+    pub(crate) fn domain(&self, i: usize) -> (f64, f64) {
+        (self.breaks[i], self.breaks[i + 1])
+    }
+
+    /// The `p + 1` rows of span `i`.
+    pub(crate) fn rows(&self, i: usize) -> &[f64] {
+        let (p, h) = (self.degree, self.h);
+        &self.rows[i * p * h..(i * p + p + 1) * h]
+    }
+}
+
+/// `times` insertions of `u` into the rows `h` (`hd` values each) on
+/// `knots`, in place: each the operations of [`super::knots::insert_once`]
+/// (`k` the span of `u` from the right; rows `k + 1 - p ..= k` become
+/// `a_i R_i + (1 - a_i) R_(i-1)`, the rows from `k` on move up one),
+/// computed from the highest new row down so that each reads rows not yet
+/// written.
+pub(super) fn insert_in_place(
+    hd: usize,
+    p: usize,
+    knots: &mut Vec<f64>,
+    h: &mut Vec<f64>,
+    u: f64,
+    times: usize,
+) {
+    // The plane and space (with or without the weight) with the row length
+    // as a constant: the same operations.
+    match hd {
+        2 => insert_sized(2, p, knots, h, u, times),
+        3 => insert_sized(3, p, knots, h, u, times),
+        4 => insert_sized(4, p, knots, h, u, times),
+        _ => insert_sized(hd, p, knots, h, u, times),
+    }
+}
+
+/// [`insert_in_place`], inlined so that a constant `hd` unrolls it.
+#[inline(always)]
+fn insert_sized(hd: usize, p: usize, knots: &mut Vec<f64>, h: &mut Vec<f64>, u: f64, times: usize) {
+    if times == 0 {
+        return;
+    }
+    let first = find_span(knots, p, u, KnotSide::Right);
+    for r in 0..times {
+        // After `r` insertions `u` occupies `first + 1 ..= first + r`, so
+        // the span of `u` from the right is `first + r`: what `find_span`
+        // would return.
+        let k = first + r;
+        let n = h.len() / hd;
+        h.resize((n + 1) * hd, 0.0);
+        h.copy_within(k * hd..n * hd, (k + 1) * hd);
+        for i in ((k + 1 - p)..=k).rev() {
+            let a = (u - knots[i]) / (knots[i + p] - knots[i]);
+            for c in 0..hd {
+                h[i * hd + c] = a * h[i * hd + c] + (1.0 - a) * h[(i - 1) * hd + c];
+            }
+        }
+        knots.insert(k + 1, u);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::knots::insert_once;
+    use super::NurbsCurve;
+
+    fn generator(seed: u64) -> impl FnMut() -> f64 {
+        let mut state = seed;
+        move || {
+            state = state
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        }
+    }
+
+    /// A random curve of `degree` with `count` poles in `dim` on `[a, a +
+    /// h]`: interior knots random (some repeated), ends clamped or (when
+    /// `free`) not, weights when `rational`.
+    fn random_curve(
+        next: &mut impl FnMut() -> f64,
+        dim: usize,
+        degree: usize,
+        count: usize,
+        free: bool,
+        rational: bool,
+    ) -> NurbsCurve {
+        let (a, h) = (10.0 * next() - 5.0, 0.1 + 5.0 * next());
+        let mut inner: Vec<f64> = (0..count - degree - 1).map(|_| next()).collect();
+        inner.sort_by(f64::total_cmp);
+        if degree >= 2 && inner.len() >= 2 && next() < 0.3 {
+            inner[1] = inner[0];
+        }
+        let mut knots: Vec<f64> = if free {
+            (0..=degree).map(|i| -0.1 * (degree - i) as f64).collect()
+        } else {
+            vec![0.0; degree + 1]
+        };
+        knots.extend(inner);
+        if free {
+            knots.extend((0..=degree).map(|i| 1.0 + 0.1 * i as f64));
+        } else {
+            knots.extend(std::iter::repeat_n(1.0, degree + 1));
+        }
+        let knots = knots.iter().map(|k| a + h * k).collect();
+        let poles = (0..count * dim).map(|_| 4.0 * next() - 2.0).collect();
+        let weights = rational.then(|| (0..count).map(|_| 0.3 + 2.0 * next()).collect());
+        NurbsCurve::new(dim, degree, poles, weights, knots).expect("a valid curve")
+    }
+
+    /// The span decomposition's rows are the bits of the repeated
+    /// `insert_once` on the clamped curve's homogeneous poles (the
+    /// decomposition before the in-place buffer), and `bezier_spans` gives
+    /// each span's poles and weights from them: polynomial and rational
+    /// curves, clamped and free ends, repeated knots, degrees 1 to 5.
+    #[test]
+    fn span_poles_are_the_repeated_insertions_bit_for_bit() {
+        let mut next = generator(5);
+        for case in 0..300 {
+            let degree = 1 + case % 5;
+            let dim = 2 + case % 2;
+            let count = degree + 1 + (case / 5) % 6;
+            let rational = case % 3 == 0;
+            let c = random_curve(&mut next, dim, degree, count, case % 7 == 1, rational);
+            let clamped = c.clamped();
+            let hd = dim + 1;
+            let mut h = clamped.homogeneous_points();
+            let mut knots = clamped.knots.clone();
+            let (breaks, mults) = clamped.interior_knots();
+            for (&u, &m) in breaks.iter().zip(&mults) {
+                for _ in m..degree {
+                    insert_once(hd, degree, &mut knots, &mut h, u);
+                }
+            }
+            let poles = c.span_poles();
+            assert_eq!(poles.count(), breaks.len() + 1, "case {case}");
+            assert_eq!(&poles.breaks[1..poles.count()], &breaks[..], "case {case}");
+            let rows = poles.rows.len() / poles.h;
+            assert_eq!(rows, h.len() / hd, "case {case}");
+            for i in 0..rows {
+                let reference = &h[i * hd..(i + 1) * hd];
+                let got = &poles.rows[i * poles.h..(i + 1) * poles.h];
+                if rational {
+                    assert_eq!(got, reference, "case {case} row {i}");
+                } else {
+                    // The weight coordinate stayed exactly 1.
+                    assert_eq!(reference[dim], 1.0, "case {case} row {i}");
+                    assert_eq!(got, &reference[..dim], "case {case} row {i}");
+                }
+            }
+            for (i, span) in c.bezier_spans().iter().enumerate() {
+                assert_eq!(span.domain(), poles.domain(i), "case {case}");
+                if !rational {
+                    assert_eq!(span.points(), poles.beziers[i].points(), "case {case}");
+                }
+            }
+        }
+    }
+
+    /// `polynomial_trim` is `segment` bit for bit (knots and poles), left
+    /// and right, at random parameters and at existing knots of every
+    /// multiplicity; `None` for weights and free ends.
+    #[test]
+    fn polynomial_trims_are_the_segments_bit_for_bit() {
+        let mut next = generator(9);
+        for case in 0..300 {
+            let degree = 1 + case % 5;
+            let dim = 2 + case % 2;
+            let count = degree + 1 + (case / 5) % 6;
+            let free = case % 11 == 3;
+            let rational = case % 13 == 5;
+            let c = random_curve(&mut next, dim, degree, count, free, rational);
+            let (a, b) = c.domain();
+            let mut us: Vec<f64> = (0..4).map(|_| a + (b - a) * next()).collect();
+            us.extend(c.knots.iter().copied().filter(|&k| k > a && k < b));
+            for u in us {
+                for left in [true, false] {
+                    let trim = c.polynomial_trim(u, left);
+                    if free || rational {
+                        assert!(trim.is_none(), "case {case}");
+                        continue;
+                    }
+                    let segment = if left {
+                        c.segment(a, u).unwrap()
+                    } else {
+                        c.segment(u, b).unwrap()
+                    };
+                    let trim = trim.unwrap();
+                    assert_eq!(trim.knots, segment.knots, "case {case} u {u} left {left}");
+                    assert_eq!(trim.points, segment.points, "case {case} u {u} left {left}");
+                    assert_eq!(trim.weights, segment.weights, "case {case}");
+                }
+            }
+        }
     }
 }
