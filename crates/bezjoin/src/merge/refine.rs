@@ -166,6 +166,47 @@ fn gauss_legendre_dd(count: usize) -> (Vec<Dd>, Vec<Dd>) {
     (out_nodes, out_weights)
 }
 
+/// What the integral metric's rows take from the rule alone, for `count`
+/// nodes: the double-double nodes, the square roots of the weights, and
+/// the Bernstein values of degree `count - 1` at every node (row-major,
+/// `count x count`).
+#[derive(Clone)]
+struct IntegralRule {
+    nodes: Vec<Dd>,
+    roots: Vec<Dd>,
+    bernstein: Vec<Dd>,
+}
+
+impl IntegralRule {
+    fn new(count: usize) -> Self {
+        let (nodes, weights) = gauss_legendre_dd(count);
+        let roots = weights.iter().map(|w| w.sqrt()).collect();
+        let mut bernstein = vec![Dd::from(0.0); count * count];
+        for (k, row) in bernstein.chunks_exact_mut(count).enumerate() {
+            bernstein_dd(count - 1, nodes[k], row);
+        }
+        Self {
+            nodes,
+            roots,
+            bernstein,
+        }
+    }
+}
+
+/// Rules kept for the counts of every degree the merge answers.
+const STORED_INTEGRAL_RULES: usize = 64;
+
+/// [`IntegralRule::new`]`(count)`, computed once per count up to
+/// [`STORED_INTEGRAL_RULES`] (the same values as computing it each time).
+fn integral_rule(count: usize) -> std::borrow::Cow<'static, IntegralRule> {
+    static RULES: [std::sync::OnceLock<IntegralRule>; STORED_INTEGRAL_RULES + 1] =
+        [const { std::sync::OnceLock::new() }; STORED_INTEGRAL_RULES + 1];
+    match RULES.get(count) {
+        Some(slot) => std::borrow::Cow::Borrowed(slot.get_or_init(|| IntegralRule::new(count))),
+        None => std::borrow::Cow::Owned(IntegralRule::new(count)),
+    }
+}
+
 /// `B_i^m(t)`, `i = 0..m`, in double-double.
 fn bernstein_dd(m: usize, t: Dd, out: &mut [Dd]) {
     let s = Dd::from(1.0).sub(t);
@@ -210,10 +251,16 @@ pub(super) fn refine_least_squares(
     let mu_dd = Dd::from(mu);
     match metric {
         MergeMetric::Integral => {
-            let (nodes, weights) = gauss_legendre_dd(points);
+            let rule = integral_rule(points);
+            let IntegralRule {
+                nodes,
+                roots,
+                bernstein,
+            } = &*rule;
             let rest = Dd::from(1.0).sub(mu_dd);
             for k in 0..points {
-                let root = weights[k].sqrt();
+                let root = roots[k];
+                let at_node = &bernstein[k * points..(k + 1) * points];
                 for j in 0..2 {
                     let at = if j == 0 {
                         mu_dd.mul(nodes[k])
@@ -224,12 +271,11 @@ pub(super) fn refine_least_squares(
                     for i in 0..points {
                         a[(j * points + k) * points + i] = root.mul(row[i]);
                     }
-                    bernstein_dd(m, nodes[k], &mut row);
                     let curve = &pieces[j].curve;
                     for c in 0..dim {
                         let mut v = Dd::from(0.0);
                         for i in 0..points {
-                            v = v.add(row[i].mul_f(curve.point(i)[c]));
+                            v = v.add(at_node[i].mul_f(curve.point(i)[c]));
                         }
                         t[(j * points + k) * dim + c] = root.mul(v);
                     }
