@@ -66,7 +66,9 @@ fn check_restrictions(
 ) -> Result<(BezierCurve, f64, Vec<BezierCurve>)> {
     let scale = pieces
         .iter()
-        .map(|p| p.amax())
+        // As nalgebra's `amax` but 0 for an all-NaN piece: the same after
+        // the fold from 0 by `f64::max`.
+        .map(|p| super::lsq::amax(p.as_slice()))
         .fold(0.0f64, f64::max)
         .max(f64::MIN_POSITIVE);
     let mut worst = 0.0f64;
