@@ -130,11 +130,14 @@ impl BezierCurve {
                 "at least one control point is needed",
             ));
         }
+        // Row-major points from the column-major storage.
         let (rows, cols) = (m.nrows(), m.ncols());
         let data = m.as_slice();
         let mut points = Vec::with_capacity(rows * cols);
         for i in 0..rows {
-            points.extend(data[i..].iter().step_by(rows).take(cols));
+            for c in 0..cols {
+                points.push(data[c * rows + i]);
+            }
         }
         Self::new(m.ncols(), m.nrows() - 1, points)
     }

@@ -1042,17 +1042,36 @@ impl Scratch {
 fn largest_product(k: &[f64], out: usize, v: &DMatrix<f64>, acc: &mut [f64]) -> f64 {
     let mut worst = 0.0f64;
     debug_assert_eq!(acc.len(), out);
+    let inner = (k.len() / out.max(1)).min(v.nrows());
     for column in v.as_slice().chunks_exact(v.nrows().max(1)) {
-        acc.fill(0.0);
-        for (kc, &x) in k.chunks_exact(out).zip(column) {
-            for (a, &e) in acc.iter_mut().zip(kc) {
-                *a += e * x;
+        if out < SHORT_COLUMNS {
+            // Few outputs: entry by entry along K's rows (the same sums in
+            // the same order, `0 + k_o0 v_0 + k_o1 v_1 + ...`), rather than
+            // many short column updates.
+            for (o, a) in acc.iter_mut().enumerate() {
+                let mut sum = 0.0;
+                for (i, &x) in column[..inner].iter().enumerate() {
+                    sum += k[i * out + o] * x;
+                }
+                *a = sum;
+            }
+        } else {
+            acc.fill(0.0);
+            for (kc, &x) in k.chunks_exact(out).zip(column) {
+                for (a, &e) in acc.iter_mut().zip(kc) {
+                    *a += e * x;
+                }
             }
         }
         worst = worst.max(lsq::amax(acc));
     }
     worst
 }
+
+/// Below this many rows, [`largest_product`] and `|K1|` of
+/// [`first_order_bound`] go entry by entry instead of by column updates
+/// (the same operations in the same order per entry).
+const SHORT_COLUMNS: usize = 4;
 
 /// `max_c amax(K^T v_c)` for a column-major `inner x out` matrix `k`
 /// (`out` columns of length `inner`) and the columns `v_c` of `v`.
@@ -1180,17 +1199,31 @@ fn first_order_bound(
     // For the thin Q (K0 = Q) it is symmetric: the entries on and below
     // the diagonal are summed, those above copied from them.
     let symmetric = map.is_none();
-    for (i, column) in k1.chunks_exact_mut(out).enumerate() {
-        let from = if symmetric { i } else { 0 };
-        let q0 = q[i];
-        let column = &mut column[from..];
-        for (e, &x) in column.iter_mut().zip(&k0[from..out]) {
-            *e = x * q0;
+    if !symmetric && out < SHORT_COLUMNS {
+        // Entry by entry: `K0[o][0] Q[i][0] + K0[o][1] Q[i][1] + ...` in
+        // that order, as the column updates below.
+        for (i, column) in k1.chunks_exact_mut(out).enumerate() {
+            for (o, e) in column.iter_mut().enumerate() {
+                let mut sum = k0[o] * q[i];
+                for k in 1..free {
+                    sum += k0[k * out + o] * q[k * rows + i];
+                }
+                *e = sum;
+            }
         }
-        for k in 1..free {
-            let qik = q[k * rows + i];
-            for (e, &x) in column.iter_mut().zip(&k0[k * out + from..(k + 1) * out]) {
-                *e += x * qik;
+    } else {
+        for (i, column) in k1.chunks_exact_mut(out).enumerate() {
+            let from = if symmetric { i } else { 0 };
+            let q0 = q[i];
+            let column = &mut column[from..];
+            for (e, &x) in column.iter_mut().zip(&k0[from..out]) {
+                *e = x * q0;
+            }
+            for k in 1..free {
+                let qik = q[k * rows + i];
+                for (e, &x) in column.iter_mut().zip(&k0[k * out + from..(k + 1) * out]) {
+                    *e += x * qik;
+                }
             }
         }
     }
