@@ -347,6 +347,53 @@ fn abs_of(m: &DMatrix<f64>) -> DMatrix<f64> {
     out
 }
 
+/// [`minus_product`]`(c, m, p)` (`abs`: [`plus_abs_product`]) for the fixed
+/// ends' particular solution `p`, whose rows `1..k` (`k = p.nrows() - 1`)
+/// are exactly `+0` and `m`'s entries finite and `>= +0` (Bernstein
+/// values), from the two nonzero rows alone: entry `(i, c)` of the product
+/// is `a + (+0) + ... + (+0) + b` with `a = m[i][0] p[0][c]`, `b = m[i][k]
+/// p[k][c]` (the products by the zero rows are exactly `+0`), i.e. `(a +
+/// 0) + b` when there is a zero row (`a + 0` is `a`, but `+0` for `a =
+/// -0`) and `a + b` otherwise: the same values.
+fn ends_product(c: &DMatrix<f64>, m: &DMatrix<f64>, p: &DMatrix<f64>, abs: bool) -> DMatrix<f64> {
+    let rows = m.nrows();
+    let k = p.nrows() - 1;
+    debug_assert!(k >= 1 && m.ncols() == k + 1 && c.shape() == (rows, p.ncols()));
+    let (first, last) = (
+        &m.as_slice()[..rows],
+        &m.as_slice()[k * rows..(k + 1) * rows],
+    );
+    let mut out = c.clone();
+    for (col, (oc, pc)) in out
+        .as_mut_slice()
+        .chunks_exact_mut(rows)
+        .zip(p.as_slice().chunks_exact(k + 1))
+        .enumerate()
+    {
+        debug_assert!(pc[1..k].iter().all(|v| v.to_bits() == 0), "column {col}");
+        let (p0, pk) = if abs {
+            (pc[0].abs(), pc[k].abs())
+        } else {
+            (pc[0], pc[k])
+        };
+        for ((o, &f), &l) in oc.iter_mut().zip(first).zip(last) {
+            let (f, l) = if abs { (f.abs(), l.abs()) } else { (f, l) };
+            let a = f * p0;
+            let sum = if k >= 2 {
+                (a + 0.0) + l * pk
+            } else {
+                a + l * pk
+            };
+            if abs {
+                *o += sum;
+            } else {
+                *o -= sum;
+            }
+        }
+    }
+    out
+}
+
 /// `c + a * b` (`c` as `a * b` is `rows x cols`): the product as
 /// nalgebra's ([`product_into`]), then `c + p` entry by entry, the same
 /// values as nalgebra's `c + a * b` with one matrix allocated.
@@ -670,12 +717,20 @@ pub(super) fn orthogonal_solution(
         kept_condition,
     } = feasible;
     let kept_count = kept_condition.map_or(0, |(count, _)| count);
+    // The fixed ends' products with the particular solution from its two
+    // nonzero rows (`ends_product`), where nalgebra's product is the
+    // column axpys (not `matrixmultiply`'s blocked sums).
+    let ends_products = selection && !blocked_product(samples.nrows(), points, problem.dim);
     // Without kept rows the particular solution is zero: no products.
     let particular_abs = z.is_some().then(|| abs_of(&particular));
     let reduced_target = if z.is_none() {
         Cow::Borrowed(&*target)
     } else {
-        Cow::Owned(minus_product(&target, &samples, &particular))
+        Cow::Owned(if ends_products {
+            ends_product(&target, &samples, &particular, false)
+        } else {
+            minus_product(&target, &samples, &particular)
+        })
     };
     let samples: &DMatrix<f64> = &samples;
     let target: &DMatrix<f64> = &target;
@@ -843,6 +898,9 @@ pub(super) fn orthogonal_solution(
         // singular values at high degree), and R is an answer too.
         let target_size = match particular_abs {
             None => target_abs,
+            Some(particular_abs) if ends_products => {
+                ends_product(&target_abs, samples, &particular_abs, true)
+            }
             Some(particular_abs) => plus_abs_product(&target_abs, samples, &particular_abs),
         };
         let shared = Shared::new(
@@ -1418,6 +1476,40 @@ mod tests {
             let d = random_matrix(&mut values, rows, cols);
             assert!(
                 same_bits(&abs_tr_mul(&c, &d), &c.tr_mul(&d.abs())),
+                "{context}"
+            );
+        }
+    }
+
+    /// The fixed ends' products from the particular solution's two nonzero
+    /// rows are nalgebra's `c - M p` and `c + |M| |p|` bit for bit, with
+    /// zero entries of `M` and negative end values (signed-zero products,
+    /// `-0 + 0 = +0`).
+    #[test]
+    fn ends_products_are_nalgebras_bit_for_bit() {
+        let mut values = crate::test_values::Values(43);
+        for (rows, m, dim) in [(4, 1, 2), (6, 2, 3), (8, 3, 3), (12, 5, 2), (64, 31, 3)] {
+            let samples =
+                random_matrix(&mut values, rows, m + 1).map(|v| if v < 0.0 { 0.0 } else { v });
+            let mut p = DMatrix::zeros(m + 1, dim);
+            for c in 0..dim {
+                p[(0, c)] = values.signed();
+                p[(m, c)] = -values.unit();
+            }
+            let c = random_matrix(&mut values, rows, dim);
+            let context = format!("{rows} x {m} x {dim}");
+            assert!(
+                same_bits(
+                    &ends_product(&c, &samples, &p, false),
+                    &(&c - &samples * &p)
+                ),
+                "{context}"
+            );
+            assert!(
+                same_bits(
+                    &ends_product(&c, &samples, &p, true),
+                    &(&c + samples.abs() * p.abs())
+                ),
                 "{context}"
             );
         }
