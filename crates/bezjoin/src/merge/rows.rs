@@ -220,7 +220,7 @@ impl<'p, 'a> Problem<'p, 'a> {
         let mut worst = 0.0f64;
         for j in 0..self.pieces.len() - 1 {
             for r in 0..=m {
-                continuity_row(m, r, self.lengths[j], self.lengths[j + 1], left, right);
+                continuity_row_nonzero(m, r, self.lengths[j], self.lengths[j + 1], left, right);
                 for column in x.as_slice().chunks_exact(rows).take(self.dim) {
                     let here = &column[j * points..(j + 1) * points];
                     let next = &column[(j + 1) * points..(j + 2) * points];
@@ -300,13 +300,27 @@ pub(super) fn continuity_row(
     on_left: &mut [f64],
     on_right: &mut [f64],
 ) {
+    on_left.fill(0.0);
+    on_right.fill(0.0);
+    continuity_row_nonzero(m, r, left, right, on_left, on_right);
+}
+
+/// [`continuity_row`]'s nonzero entries only (`on_left[m - r..]`,
+/// `on_right[..=r]`), the others left as they are: for
+/// [`Problem::continuity_residual`], which reads no other.
+fn continuity_row_nonzero(
+    m: usize,
+    r: usize,
+    left: f64,
+    right: f64,
+    on_left: &mut [f64],
+    on_right: &mut [f64],
+) {
     let longer = left.max(right);
     let wl = (right / longer).powi(r as i32);
     let wr = (left / longer).powi(r as i32);
     let norm = ((wl * wl + wr * wr) * binomial(2 * r, r)).sqrt();
     let (wl, wr) = (wl / norm, wr / norm);
-    on_left.fill(0.0);
-    on_right.fill(0.0);
     // C(r, k) by the exact integer recurrence C(r, k+1) = C(r, k) (r - k) /
     // (k + 1) (exact in f64 while below 2^53, as `binomial`). Up to
     // INTEGER_ORDERS in integers (every product below 2^53, so the same
