@@ -743,8 +743,9 @@ pub(super) fn orthogonal_solution(
             // M Z for Z = (e_1 .. e_(m-1)): every entry of the product is
             // `M[i][k] 0 + ... + M[i][j+1] 1 + ... + 0` with the products
             // by 0 exactly +0 (M's entries are Bernstein values, finite,
-            // >= +0) and the sums exact, i.e. `M[i][j+1]` itself: the
-            // columns, copied.
+            // >= +0) and the sums exact in any order (also
+            // `matrixmultiply`'s), i.e. `M[i][j+1]` itself: the columns,
+            // copied.
             Some(_) if selection => {
                 let rows = samples.nrows();
                 Cow::Owned(DMatrix::from_column_slice(
@@ -877,8 +878,8 @@ pub(super) fn orthogonal_solution(
     }
 
     // First-order error estimate of the pieces (see the module).
-    // x is finite (de Casteljau of a finite R): nalgebra's amax, which
-    // differs from `lsq::amax` only for an all-NaN matrix.
+    // nalgebra's amax differs from `lsq::amax` only for an all-NaN x
+    // (NaN against 0), which the `max` with the positive scale hides.
     let result_scale = lsq::amax(x.as_slice()).max(problem.scale);
     let eps = f64::EPSILON;
     let mut estimate = (m as f64 + 2.0) * eps * x.amax() / result_scale;
