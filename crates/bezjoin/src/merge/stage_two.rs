@@ -101,10 +101,11 @@ fn check_restrictions(
         // matrix (first entry's magnitude, then f64::max), without forming
         // it: `back` is row-major, `p` column-major.
         let d = back.dim();
+        let (rows, data) = (p.nrows(), p.as_slice());
         let mut diff = f64::NAN;
         for (i, point) in back.points().chunks_exact(d).enumerate() {
             for (c, &v) in point.iter().enumerate() {
-                let gap = (v - p[(i, c)]).abs();
+                let gap = (v - data[c * rows + i]).abs();
                 diff = if i == 0 && c == 0 { gap } else { diff.max(gap) };
             }
         }
