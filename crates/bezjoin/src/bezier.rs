@@ -130,10 +130,13 @@ impl BezierCurve {
                 "at least one control point is needed",
             ));
         }
-        let mut points = Vec::with_capacity(m.nrows() * m.ncols());
-        for i in 0..m.nrows() {
-            for c in 0..m.ncols() {
-                points.push(m[(i, c)]);
+        // Row-major points from the column-major storage.
+        let (rows, cols) = (m.nrows(), m.ncols());
+        let data = m.as_slice();
+        let mut points = Vec::with_capacity(rows * cols);
+        for i in 0..rows {
+            for c in 0..cols {
+                points.push(data[c * rows + i]);
             }
         }
         Self::new(m.ncols(), m.nrows() - 1, points)
@@ -451,16 +454,15 @@ impl BezierCurve {
     pub(crate) fn split_unchecked(&self, t: f64) -> (BezierCurve, BezierCurve) {
         let n = self.degree;
         let d = self.dim;
-        let mut w = self.points.clone();
+        // The right half is the triangle's working row itself: step
+        // `level` changes points `0..=n - level` only, so point `n - level`
+        // is final after it (the same values as a separate copy).
+        let mut right = self.points.clone();
         let mut left = Vec::with_capacity((n + 1) * d);
-        let mut right = vec![0.0; (n + 1) * d];
-        left.extend_from_slice(&w[0..d]);
-        right[n * d..].copy_from_slice(&w[n * d..]);
+        left.extend_from_slice(&right[0..d]);
         for level in 1..=n {
-            de_casteljau_step(&mut w, n + 2 - level, d, t);
-            left.extend_from_slice(&w[0..d]);
-            let k = n - level;
-            right[k * d..(k + 1) * d].copy_from_slice(&w[k * d..(k + 1) * d]);
+            de_casteljau_step(&mut right, n + 2 - level, d, t);
+            left.extend_from_slice(&right[0..d]);
         }
         (
             BezierCurve::from_parts(d, n, left),

@@ -19,12 +19,9 @@ pub(super) struct Factor {
     rows: usize,
     cols: usize,
     /// Column-major `rows x cols`: `v_k` in column `k` from row `k` down,
-    /// `T`'s strict upper part above the diagonal.
+    /// `T`'s strict upper part above the diagonal; then `T`'s diagonal
+    /// `alpha_k` (`cols`), then `beta_k` (`cols`): one allocation.
     packed: Vec<f64>,
-    /// `T`'s diagonal, `alpha_k`.
-    diagonal: Vec<f64>,
-    /// `beta_k`.
-    beta: Vec<f64>,
 }
 
 /// `sum_i a_i b_i` over the common length, in four interleaved partial
@@ -68,10 +65,14 @@ impl Factor {
     /// would have a zero or non-finite pivot.
     pub(super) fn new(a: &[f64], rows: usize, cols: usize) -> Option<Self> {
         debug_assert!(rows >= cols && a.len() == rows * cols);
-        let mut packed = a.to_vec();
-        let mut diagonal = vec![0.0; cols];
-        let mut beta = vec![0.0; cols];
+        let size = rows * cols;
+        let mut packed = Vec::with_capacity(size + 2 * cols);
+        packed.extend_from_slice(a);
+        packed.resize(size + 2 * cols, 0.0);
+        let (matrix, rest) = packed.split_at_mut(size);
+        let (diagonal, beta) = rest.split_at_mut(cols);
         for k in 0..cols {
+            let packed = &mut *matrix;
             let column = &packed[k * rows..(k + 1) * rows];
             let norm = dot(&column[k..], &column[k..]).sqrt();
             if !(norm > 0.0 && norm.is_finite()) {
@@ -88,13 +89,7 @@ impl Factor {
                 reflect(v, &mut after[j * rows + k..(j + 1) * rows], beta[k]);
             }
         }
-        Some(Self {
-            rows,
-            cols,
-            packed,
-            diagonal,
-            beta,
-        })
+        Some(Self { rows, cols, packed })
     }
 
     pub(super) fn rows(&self) -> usize {
@@ -109,7 +104,7 @@ impl Factor {
     #[inline]
     fn t(&self, i: usize, j: usize) -> f64 {
         if i == j {
-            self.diagonal[i]
+            self.diagonal()[i]
         } else {
             self.packed[j * self.rows + i]
         }
@@ -122,7 +117,7 @@ impl Factor {
     /// `x <- Q^T x` (one column of length `rows`).
     pub(super) fn apply_qt(&self, x: &mut [f64]) {
         for k in 0..self.cols {
-            reflect(self.reflector(k), &mut x[k..], self.beta[k]);
+            reflect(self.reflector(k), &mut x[k..], self.beta()[k]);
         }
     }
 
@@ -133,13 +128,19 @@ impl Factor {
 
     /// `T`'s diagonal.
     pub(super) fn diagonal(&self) -> &[f64] {
-        &self.diagonal
+        let size = self.rows * self.cols;
+        &self.packed[size..size + self.cols]
+    }
+
+    /// The reflectors' `beta_k`.
+    fn beta(&self) -> &[f64] {
+        &self.packed[self.rows * self.cols + self.cols..]
     }
 
     /// `y <- T^-1 y` (the first `cols` entries), column by column.
     pub(super) fn solve_t(&self, y: &mut [f64]) {
         for j in (0..self.cols).rev() {
-            let yj = y[j] / self.diagonal[j];
+            let yj = y[j] / self.diagonal()[j];
             y[j] = yj;
             for (yi, &t) in y[..j].iter_mut().zip(self.t_column(j)) {
                 *yi -= t * yj;
@@ -150,7 +151,7 @@ impl Factor {
     /// `x <- T x` (the first `cols` entries).
     pub(super) fn mul_t(&self, x: &mut [f64]) {
         for i in 0..self.cols {
-            let mut sum = self.diagonal[i] * x[i];
+            let mut sum = self.diagonal()[i] * x[i];
             for (j, &xj) in x.iter().enumerate().take(self.cols).skip(i + 1) {
                 sum += self.t(i, j) * xj;
             }
@@ -180,7 +181,7 @@ impl Factor {
             // Q e_k = H_0 ... H_(cols-1) e_k: H_j for j > k acts on rows
             // j.. only, where e_k is zero, so H_k is the first to apply.
             for j in (0..=k).rev() {
-                reflect(self.reflector(j), &mut column[j..], self.beta[j]);
+                reflect(self.reflector(j), &mut column[j..], self.beta()[j]);
             }
         }
         q

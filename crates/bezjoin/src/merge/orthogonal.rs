@@ -194,34 +194,236 @@ fn restrictions(m: usize, breakpoints: &[f64]) -> DMatrix<f64> {
     }
     let mu = breakpoints[1];
     let points = m + 1;
-    // triangle[i][k] = B_k^i(mu), i = 0..m.
-    let mut triangle = vec![vec![0.0; points]; points];
-    triangle[0][0] = 1.0;
+    let rows = 2 * points;
+    // The triangle `B_k^i(mu)` is S_L itself: built in place in the top
+    // block (column-major, entry (i, k) at `k rows + i`), no other storage.
+    let mut s = DMatrix::zeros(rows, points);
+    let data = s.as_mut_slice();
+    data[0] = 1.0;
     for i in 1..points {
         for k in 0..=i {
             let from_same = if k < i {
-                (1.0 - mu) * triangle[i - 1][k]
+                (1.0 - mu) * data[k * rows + i - 1]
             } else {
                 0.0
             };
             let from_below = if k > 0 {
-                mu * triangle[i - 1][k - 1]
+                mu * data[(k - 1) * rows + i - 1]
             } else {
                 0.0
             };
-            triangle[i][k] = from_same + from_below;
+            data[k * rows + i] = from_same + from_below;
         }
     }
-    let mut s = DMatrix::zeros(2 * points, points);
+    // S_R[i][k] = B_(k-i)^(m-i)(mu), from the top block's row m - i.
     for i in 0..points {
-        for k in 0..=i {
-            s[(i, k)] = triangle[i][k];
-        }
         for k in i..points {
-            s[(points + i, k)] = triangle[m - i][k - i];
+            data[k * rows + points + i] = data[(k - i) * rows + m - i];
         }
     }
     s
+}
+
+/// Whether `a * b` (`a` `rows x inner`, `b` `inner x cols`) is one that
+/// nalgebra hands to `matrixmultiply` (its `gemm` does for dynamic
+/// matrices with every dimension above 5), whose kernels sum in another
+/// order: [`product_into`] then defers to nalgebra.
+fn blocked_product(rows: usize, inner: usize, cols: usize) -> bool {
+    rows > 5 && cols > 5 && inner > 5
+}
+
+/// `a * b` into the column-major `out` (`rows x cols`), the same values as
+/// nalgebra's `a * b` bit for bit: its `gemm` on small matrices is column
+/// axpys, entry `(i, j)` being `a[i][0] b[0][j]` and then `a[i][k] b[k][j]
+/// + sum` for `k = 1..` in order (no fused multiply-add; an empty inner
+/// dimension gives `0`), done here the same way on slices;
+/// `matrixmultiply`'s case is nalgebra's own product. No temporary but in
+/// that case. `abs`: of `|a| |b|` (entries' absolute values, exact), as
+/// nalgebra's `a.abs() * b.abs()`.
+fn product_into(a: &DMatrix<f64>, b: &DMatrix<f64>, abs: bool, out: &mut [f64]) {
+    let (rows, inner, cols) = (a.nrows(), a.ncols(), b.ncols());
+    debug_assert!(inner == b.nrows() && out.len() == rows * cols);
+    if blocked_product(rows, inner, cols) {
+        let product = if abs { a.abs() * b.abs() } else { a * b };
+        out.copy_from_slice(product.as_slice());
+        return;
+    }
+    if inner == 0 || rows == 0 {
+        out.fill(0.0);
+        return;
+    }
+    for (bj, oj) in b
+        .as_slice()
+        .chunks_exact(inner)
+        .zip(out.chunks_exact_mut(rows))
+    {
+        if abs {
+            product_column_abs(a, bj, oj);
+        } else {
+            product_column(a, bj, oj);
+        }
+    }
+}
+
+/// `out = a b` for one column `b` (`a.ncols()` entries, at least one) as
+/// nalgebra's small `gemm` (see [`product_into`]): `a[:, 0] b_0`, then
+/// `a[:, k] b_k + out` in order.
+fn product_column(a: &DMatrix<f64>, b: &[f64], out: &mut [f64]) {
+    let rows = a.nrows();
+    for (k, (ak, &bk)) in a.as_slice().chunks_exact(rows).zip(b).enumerate() {
+        if k == 0 {
+            out.iter_mut().zip(ak).for_each(|(o, &x)| *o = x * bk);
+        } else {
+            out.iter_mut().zip(ak).for_each(|(o, &x)| *o += x * bk);
+        }
+    }
+}
+
+/// [`product_column`] of `|a|` and `|b|`.
+fn product_column_abs(a: &DMatrix<f64>, b: &[f64], out: &mut [f64]) {
+    let rows = a.nrows();
+    for (k, (ak, &bk)) in a.as_slice().chunks_exact(rows).zip(b).enumerate() {
+        let bk = bk.abs();
+        if k == 0 {
+            out.iter_mut().zip(ak).for_each(|(o, &x)| *o = x.abs() * bk);
+        } else {
+            out.iter_mut()
+                .zip(ak)
+                .for_each(|(o, &x)| *o += x.abs() * bk);
+        }
+    }
+}
+
+/// nalgebra's `dot` of two dynamic columns bit for bit (its `dotx`: eight
+/// partial sums over blocks of eight, added pairwise into a sum from `0`,
+/// then the remaining products one by one), of `a` and `|b|`.
+fn nalgebra_dot_abs(a: &[f64], b: &[f64]) -> f64 {
+    let n = a.len();
+    let mut res = 0.0;
+    let mut acc = [0.0f64; 8];
+    let mut i = 0;
+    while n - i >= 8 {
+        for (l, s) in acc.iter_mut().enumerate() {
+            *s += a[i + l] * b[i + l].abs();
+        }
+        i += 8;
+    }
+    res += acc[0] + acc[4];
+    res += acc[1] + acc[5];
+    res += acc[2] + acc[6];
+    res += acc[3] + acc[7];
+    for k in i..n {
+        res += a[k] * b[k].abs();
+    }
+    res
+}
+
+/// `a.tr_mul(&b.abs())` bit for bit (nalgebra's: entry `(i, j)` the `dot`
+/// of column `i` of `a` and column `j` of `|b|`, [`nalgebra_dot_abs`]),
+/// without the matrix `|b|`.
+fn abs_tr_mul(a: &DMatrix<f64>, b: &DMatrix<f64>) -> DMatrix<f64> {
+    let rows = a.nrows();
+    debug_assert_eq!(rows, b.nrows());
+    let mut out = DMatrix::zeros(a.ncols(), b.ncols());
+    if rows == 0 {
+        return out;
+    }
+    for (bj, oj) in b
+        .as_slice()
+        .chunks_exact(rows)
+        .zip(out.as_mut_slice().chunks_exact_mut(a.ncols().max(1)))
+    {
+        for (ai, o) in a.as_slice().chunks_exact(rows).zip(oj.iter_mut()) {
+            *o = nalgebra_dot_abs(ai, bj);
+        }
+    }
+    out
+}
+
+/// `m.abs()` (nalgebra's, entry by entry) from a copy of the storage.
+fn abs_of(m: &DMatrix<f64>) -> DMatrix<f64> {
+    let mut out = m.clone();
+    out.as_mut_slice().iter_mut().for_each(|v| *v = v.abs());
+    out
+}
+
+/// [`minus_product`]`(c, m, p)` (`abs`: [`plus_abs_product`]) for the fixed
+/// ends' particular solution `p`, whose rows `1..k` (`k = p.nrows() - 1`)
+/// are exactly `+0` and `m`'s entries finite and `>= +0` (Bernstein
+/// values), from the two nonzero rows alone: entry `(i, c)` of the product
+/// is `a + (+0) + ... + (+0) + b` with `a = m[i][0] p[0][c]`, `b = m[i][k]
+/// p[k][c]` (the products by the zero rows are exactly `+0`), i.e. `(a +
+/// 0) + b` when there is a zero row (`a + 0` is `a`, but `+0` for `a =
+/// -0`) and `a + b` otherwise: the same values.
+fn ends_product(c: &DMatrix<f64>, m: &DMatrix<f64>, p: &DMatrix<f64>, abs: bool) -> DMatrix<f64> {
+    let rows = m.nrows();
+    let k = p.nrows() - 1;
+    debug_assert!(k >= 1 && m.ncols() == k + 1 && c.shape() == (rows, p.ncols()));
+    let (first, last) = (
+        &m.as_slice()[..rows],
+        &m.as_slice()[k * rows..(k + 1) * rows],
+    );
+    let mut out = c.clone();
+    for (col, (oc, pc)) in out
+        .as_mut_slice()
+        .chunks_exact_mut(rows)
+        .zip(p.as_slice().chunks_exact(k + 1))
+        .enumerate()
+    {
+        debug_assert!(pc[1..k].iter().all(|v| v.to_bits() == 0), "column {col}");
+        let (p0, pk) = if abs {
+            (pc[0].abs(), pc[k].abs())
+        } else {
+            (pc[0], pc[k])
+        };
+        for ((o, &f), &l) in oc.iter_mut().zip(first).zip(last) {
+            let (f, l) = if abs { (f.abs(), l.abs()) } else { (f, l) };
+            let a = f * p0;
+            let sum = if k >= 2 {
+                (a + 0.0) + l * pk
+            } else {
+                a + l * pk
+            };
+            if abs {
+                *o += sum;
+            } else {
+                *o -= sum;
+            }
+        }
+    }
+    out
+}
+
+/// `c + a * b` (`c` as `a * b` is `rows x cols`): the product as
+/// nalgebra's ([`product_into`]), then `c + p` entry by entry, the same
+/// values as nalgebra's `c + a * b` with one matrix allocated.
+fn plus_product(c: &DMatrix<f64>, a: &DMatrix<f64>, b: &DMatrix<f64>) -> DMatrix<f64> {
+    let mut out = DMatrix::zeros(c.nrows(), c.ncols());
+    product_into(a, b, false, out.as_mut_slice());
+    for (o, &x) in out.as_mut_slice().iter_mut().zip(c.as_slice()) {
+        *o += x;
+    }
+    out
+}
+
+/// `c + |a| |b|`, as [`plus_product`].
+fn plus_abs_product(c: &DMatrix<f64>, a: &DMatrix<f64>, b: &DMatrix<f64>) -> DMatrix<f64> {
+    let mut out = DMatrix::zeros(c.nrows(), c.ncols());
+    product_into(a, b, true, out.as_mut_slice());
+    for (o, &x) in out.as_mut_slice().iter_mut().zip(c.as_slice()) {
+        *o += x;
+    }
+    out
+}
+
+/// `c - a * b`, as [`plus_product`].
+fn minus_product(c: &DMatrix<f64>, a: &DMatrix<f64>, b: &DMatrix<f64>) -> DMatrix<f64> {
+    let mut out = DMatrix::zeros(c.nrows(), c.ncols());
+    product_into(a, b, false, out.as_mut_slice());
+    for (o, &x) in out.as_mut_slice().iter_mut().zip(c.as_slice()) {
+        *o = x - *o;
+    }
+    out
 }
 
 /// The metric's sample matrix `M` and target `b` (see the module; the
@@ -236,7 +438,7 @@ fn metric_samples<'s>(
         MergeMetric::Discrete => (
             Cow::Borrowed(s),
             Cow::Borrowed(&problem.x0),
-            problem.x0.abs(),
+            abs_of(&problem.x0),
         ),
         MergeMetric::Integral => {
             let points = problem.points_per_piece;
@@ -403,6 +605,10 @@ struct Feasible<'r> {
     /// The orthonormal null-space basis `Z` (`None`: no kept rows).
     free: usize,
     z: Option<DMatrix<f64>>,
+    /// `Z` is `e_1, ..., e_(m-1)` (the fixed ends' closed form): `M Z` is
+    /// columns `1..m` of `M`, and `Z`'s zero rows `0` and `m` carry nothing
+    /// into `R`'s guard.
+    selection: bool,
     /// The number of kept rows and their condition number (`None`: none).
     kept_condition: Option<(usize, f64)>,
 }
@@ -438,6 +644,7 @@ impl<'r> Feasible<'r> {
             particular,
             free: points - basis.len(),
             z,
+            selection: false,
             kept_condition,
         }
     }
@@ -463,6 +670,7 @@ impl<'r> Feasible<'r> {
             particular,
             free: m - 1,
             z: Some(z),
+            selection: true,
             kept_condition: Some((2, 1.0)),
         }
     }
@@ -505,15 +713,24 @@ pub(super) fn orthogonal_solution(
         particular,
         z,
         free,
+        selection,
         kept_condition,
     } = feasible;
     let kept_count = kept_condition.map_or(0, |(count, _)| count);
+    // The fixed ends' products with the particular solution from its two
+    // nonzero rows (`ends_product`), where nalgebra's product is the
+    // column axpys (not `matrixmultiply`'s blocked sums).
+    let ends_products = selection && !blocked_product(samples.nrows(), points, problem.dim);
     // Without kept rows the particular solution is zero: no products.
-    let particular_abs = z.is_some().then(|| particular.abs());
+    let particular_abs = z.is_some().then(|| abs_of(&particular));
     let reduced_target = if z.is_none() {
         Cow::Borrowed(&*target)
     } else {
-        Cow::Owned(&*target - &*samples * &particular)
+        Cow::Owned(if ends_products {
+            ends_product(&target, &samples, &particular, false)
+        } else {
+            minus_product(&target, &samples, &particular)
+        })
     };
     let samples: &DMatrix<f64> = &samples;
     let target: &DMatrix<f64> = &target;
@@ -523,50 +740,100 @@ pub(super) fn orthogonal_solution(
         merged = particular;
     } else {
         let a: Cow<'_, DMatrix<f64>> = match &z {
-            Some(z) => Cow::Owned(samples * z),
+            // M Z for Z = (e_1 .. e_(m-1)): every entry of the product is
+            // `M[i][k] 0 + ... + M[i][j+1] 1 + ... + 0` with the products
+            // by 0 exactly +0 (M's entries are Bernstein values, finite,
+            // >= +0) and the sums exact in any order (also
+            // `matrixmultiply`'s), i.e. `M[i][j+1]` itself: the columns,
+            // copied.
+            Some(_) if selection => {
+                let rows = samples.nrows();
+                Cow::Owned(DMatrix::from_column_slice(
+                    rows,
+                    free,
+                    &samples.as_slice()[rows..rows * (1 + free)],
+                ))
+            }
+            Some(z) => {
+                let mut a = DMatrix::zeros(samples.nrows(), z.ncols());
+                product_into(samples, z, false, a.as_mut_slice());
+                Cow::Owned(a)
+            }
             None => Cow::Borrowed(samples),
         };
         let a: &DMatrix<f64> = &a;
         let rows = a.nrows();
         let dim = problem.dim;
-        let a_abs = a.abs();
+        let a_abs = abs_of(a);
         // Householder QR with the reflectors kept (module `lsq`): Q^T is
         // applied from them, no Q is formed for the solve.
         let Some(qr) = Factor::new(a.as_slice(), rows, free) else {
             return Err(ill_conditioned_factor(accuracy));
         };
-        let mut work = vec![0.0; rows];
+        // One buffer for the solves' scratch, the refinement step and the
+        // remainder.
+        let mut buffer = vec![0.0; rows + free * dim + rows * dim];
+        let (work, rest) = buffer.split_at_mut(rows);
+        let (step, remainder) = rest.split_at_mut(free * dim);
         let mut y = DMatrix::zeros(free, dim);
-        qr.least_squares(reduced_target.as_slice(), y.as_mut_slice(), &mut work);
+        qr.least_squares(reduced_target.as_slice(), y.as_mut_slice(), work);
         // Two steps of refinement in working precision (the correction
         // from the residual through the same factor): they make the answer
         // componentwise backward stable, and the last correction measures
         // what the solve's rounding leaves (the estimate's a-posteriori
         // part).
         let mut correction = DMatrix::zeros(free, dim);
-        let mut step = DMatrix::zeros(free, dim);
-        let mut remainder = DMatrix::zeros(rows, dim);
         for _ in 0..REFINEMENT_STEPS {
-            remainder.copy_from(&reduced_target);
-            remainder.gemm(-1.0, a, &y, 1.0);
-            qr.least_squares(remainder.as_slice(), step.as_mut_slice(), &mut work);
+            // remainder = t - A y as nalgebra's `gemm(-1, A, y, 1)` on a
+            // copy of t: per column, `(-a_k) y_k + r` for k = 0.. in order
+            // (`matrixmultiply`'s case by nalgebra itself).
+            if blocked_product(rows, free, dim) {
+                let mut r = reduced_target.clone().into_owned();
+                r.gemm(-1.0, a, &y, 1.0);
+                remainder.copy_from_slice(r.as_slice());
+            } else {
+                for ((r, t), yc) in remainder
+                    .chunks_exact_mut(rows)
+                    .zip(reduced_target.as_slice().chunks_exact(rows))
+                    .zip(y.as_slice().chunks_exact(free))
+                {
+                    r.copy_from_slice(t);
+                    for (ak, &yk) in a.as_slice().chunks_exact(rows).zip(yc) {
+                        for (e, &x) in r.iter_mut().zip(ak) {
+                            *e += -x * yk;
+                        }
+                    }
+                }
+            }
+            qr.least_squares(remainder, step, work);
             if step.iter().any(|v| !v.is_finite()) {
                 break;
             }
-            y += &step;
-            correction.copy_from(&step);
+            for (e, &d) in y.as_mut_slice().iter_mut().zip(step.iter()) {
+                *e += d;
+            }
+            correction.copy_from_slice(step);
         }
         merged = match &z {
-            Some(z) => &particular + z * &y,
+            Some(z) => plus_product(&particular, z, &y),
             None => y.clone(),
         };
         factor = Some((qr, y, a_abs, correction));
     }
-    let residual = target - samples * &merged;
+    let residual = minus_product(target, samples, &merged);
     let metric_value = residual.norm_squared();
 
-    // The pieces: R split at the breakpoints (de Casteljau).
-    let curve = BezierCurve::from_matrix(&merged)?;
+    // The pieces: R split at the breakpoints (de Casteljau). `R` as a
+    // curve only for more than two pieces; for two, its construction is
+    // run only where it fails (a non-finite or too high `R`), for its error.
+    let curve = if count == 2 {
+        if merged.as_slice().iter().any(|v| !v.is_finite()) || m > crate::bezier::MAX_DEGREE {
+            BezierCurve::from_matrix(&merged)?;
+        }
+        None
+    } else {
+        Some(BezierCurve::from_matrix(&merged)?)
+    };
     let mut x = DMatrix::zeros(count * points, problem.dim);
     if count == 2 {
         // `curve.split_unchecked(mu)` coordinate by coordinate, in place in
@@ -586,6 +853,7 @@ pub(super) fn orthogonal_solution(
             }
         }
     } else {
+        let curve = curve.expect("built for more than two pieces");
         for j in 0..count {
             let piece = curve.segment_unchecked(breakpoints[j], breakpoints[j + 1]);
             x.rows_mut(j * points, points)
@@ -610,7 +878,9 @@ pub(super) fn orthogonal_solution(
     }
 
     // First-order error estimate of the pieces (see the module).
-    let result_scale = x.amax().max(problem.scale);
+    // nalgebra's amax differs from `lsq::amax` only for an all-NaN x
+    // (NaN against 0), which the `max` with the positive scale hides.
+    let result_scale = lsq::amax(x.as_slice()).max(problem.scale);
     let eps = f64::EPSILON;
     let mut estimate = (m as f64 + 2.0) * eps * x.amax() / result_scale;
     let mut reduced_gain = 0.0;
@@ -676,7 +946,10 @@ pub(super) fn orthogonal_solution(
         // singular values at high degree), and R is an answer too.
         let target_size = match particular_abs {
             None => target_abs,
-            Some(particular_abs) => &target_abs + samples.abs() * particular_abs,
+            Some(particular_abs) if ends_products => {
+                ends_product(&target_abs, samples, &particular_abs, true)
+            }
+            Some(particular_abs) => plus_abs_product(&target_abs, samples, &particular_abs),
         };
         let shared = Shared::new(
             qr,
@@ -696,11 +969,21 @@ pub(super) fn orthogonal_solution(
             // Discrete metric, no kept rows: R's map is the identity and
             // its K1 = T^-1 Q^T is the pieces' K2^T, already solved (and
             // its absolute values taken).
-            (Some(k2), None) => {
-                values_bound_transposed(&shared, &k2, REFINEMENT_MARGIN * correction.amax())
-            }
+            (true, None) => values_bound_transposed(
+                &shared,
+                scratch.k2(qr.rows(), qr.cols()),
+                REFINEMENT_MARGIN * correction.amax(),
+            ),
             _ => {
                 let zr = match &z {
+                    // Z = (e_1 .. e_(m-1)): its rows 1..m are the identity
+                    // and give the same rows of K0 = Z T^-1, K1 = K0 Q^T
+                    // and Z c (row by row the same operations); its zero
+                    // rows 0 and m give zero rows there (+-0, or NaN
+                    // against an infinite |t|), which no maximum of
+                    // absolute values (>= 0, NaN passed over) takes: the
+                    // same bound from the identity of the free columns.
+                    Some(_) if selection => Cow::Owned(DMatrix::identity(free, free)),
                     Some(z) => Cow::Borrowed(z),
                     None => Cow::Owned(DMatrix::identity(points, points)),
                 };
@@ -883,8 +1166,8 @@ impl<'s> Shared<'s> {
         m: usize,
         correction: &'s DMatrix<f64>,
     ) -> Self {
-        let through_values = target_size + a_abs * y.abs();
-        let through_residual = a_abs.tr_mul(&residual.abs());
+        let through_values = plus_abs_product(target_size, a_abs, y);
+        let through_residual = abs_tr_mul(a_abs, residual);
         Self {
             qr,
             q: qr.thin_q(),
@@ -900,26 +1183,47 @@ impl<'s> Shared<'s> {
     }
 }
 
-/// Buffers of [`first_order_bound`], kept between its calls for the
-/// pieces and for `R` (the same values, fewer allocations).
+/// The buffer of [`first_order_bound`], kept between its calls for the
+/// pieces and for `R` (the same values, one allocation); after a call for
+/// the pieces of the discrete metric it holds `|K2|` ([`Scratch::k2`]).
 #[derive(Default)]
 struct Scratch {
-    small: Vec<f64>,
-    acc: Vec<f64>,
-    k1: Vec<f64>,
+    buffer: Vec<f64>,
+}
+
+impl Scratch {
+    /// `|K2|` (column-major `rows x free`) of the last call of
+    /// [`first_order_bound`] without a map.
+    fn k2(&self, rows: usize, free: usize) -> &[f64] {
+        let start = free + rows + rows * rows;
+        &self.buffer[start..start + rows * free]
+    }
 }
 
 /// `max_c amax(K v_c)` for a column-major `out x inner` matrix `k` and the
 /// columns `v_c` of `v` (`inner x dim`).
-fn largest_product(k: &[f64], out: usize, v: &DMatrix<f64>, acc: &mut Vec<f64>) -> f64 {
+fn largest_product(k: &[f64], out: usize, v: &DMatrix<f64>, acc: &mut [f64]) -> f64 {
     let mut worst = 0.0f64;
-    acc.clear();
-    acc.resize(out, 0.0);
-    for column in v.column_iter() {
-        acc.fill(0.0);
-        for (kc, &x) in k.chunks_exact(out).zip(column.iter()) {
-            for (a, &e) in acc.iter_mut().zip(kc) {
-                *a += e * x;
+    debug_assert_eq!(acc.len(), out);
+    let inner = (k.len() / out.max(1)).min(v.nrows());
+    for column in v.as_slice().chunks_exact(v.nrows().max(1)) {
+        if out < SHORT_COLUMNS {
+            // Few outputs: entry by entry along K's rows (the same sums in
+            // the same order, `0 + k_o0 v_0 + k_o1 v_1 + ...`), rather than
+            // many short column updates.
+            for (o, a) in acc.iter_mut().enumerate() {
+                let mut sum = 0.0;
+                for (i, &x) in column[..inner].iter().enumerate() {
+                    sum += k[i * out + o] * x;
+                }
+                *a = sum;
+            }
+        } else {
+            acc.fill(0.0);
+            for (kc, &x) in k.chunks_exact(out).zip(column) {
+                for (a, &e) in acc.iter_mut().zip(kc) {
+                    *a += e * x;
+                }
             }
         }
         worst = worst.max(lsq::amax(acc));
@@ -927,13 +1231,18 @@ fn largest_product(k: &[f64], out: usize, v: &DMatrix<f64>, acc: &mut Vec<f64>) 
     worst
 }
 
+/// Below this many rows, [`largest_product`] and `|K1|` of
+/// [`first_order_bound`] go entry by entry instead of by column updates
+/// (the same operations in the same order per entry).
+const SHORT_COLUMNS: usize = 4;
+
 /// `max_c amax(K^T v_c)` for a column-major `inner x out` matrix `k`
 /// (`out` columns of length `inner`) and the columns `v_c` of `v`.
 fn largest_transposed_product(k: &[f64], inner: usize, v: &DMatrix<f64>) -> f64 {
     let mut worst = 0.0f64;
-    for column in v.column_iter() {
+    for column in v.as_slice().chunks_exact(v.nrows().max(1)) {
         for kc in k.chunks_exact(inner) {
-            worst = worst.max(lsq::dot(kc, column.as_slice()).abs());
+            worst = worst.max(lsq::dot(kc, column).abs());
         }
     }
     worst
@@ -976,12 +1285,7 @@ fn first_order_bound(
     map: Option<&DMatrix<f64>>,
     with_normwise: bool,
     scratch: &mut Scratch,
-) -> Option<(f64, f64, Option<Vec<f64>>)> {
-    let Scratch {
-        small: w,
-        acc,
-        k1: k1_buffer,
-    } = scratch;
+) -> Option<(f64, f64, bool)> {
     let qr = shared.qr;
     let (rows, free) = (qr.rows(), qr.cols());
     let q = &shared.q;
@@ -991,15 +1295,23 @@ fn first_order_bound(
     // carries a relative rounding of at most gamma.
     let gamma = ESTIMATE_MARGIN * (shared.m as f64 + 2.0) * eps;
     let out = map.map_or(rows, |map| map.nrows());
+    // One buffer: w (free), acc (max(rows, out)), |K1| (out x rows), K0
+    // and then K2 (out x free).
+    let acc_len = rows.max(out);
+    let need = free + acc_len + out * rows + out * free;
+    if scratch.buffer.len() < need {
+        scratch.buffer.resize(need, 0.0);
+    }
+    let (w, rest) = scratch.buffer.split_at_mut(free);
+    let (acc, rest) = rest.split_at_mut(acc_len);
+    let (k1, rest) = rest.split_at_mut(out * rows);
+    let k0 = &mut rest[..out * free];
     // K0 (out x free) and the last correction mapped, max |map c|.
-    let (k0, mapped_correction) = match map {
+    let mapped_correction = match map {
         None => {
-            // map = A = Q T: map c = Q (T c).
+            // map = A = Q T: map c = Q (T c). K0 = Q.
+            let acc = &mut acc[..rows];
             let mut worst = 0.0f64;
-            w.clear();
-            w.resize(free, 0.0);
-            acc.clear();
-            acc.resize(rows, 0.0);
             for c in 0..dim {
                 w.copy_from_slice(shared.correction.column(c).as_slice());
                 qr.mul_t(w);
@@ -1011,12 +1323,13 @@ fn first_order_bound(
                 }
                 worst = worst.max(lsq::amax(acc));
             }
-            (std::borrow::Cow::Borrowed(q.as_slice()), worst)
+            k0.copy_from_slice(q);
+            worst
         }
         Some(map) => {
             // K0 = map T^-1: K0[:, k] = (map[:, k] - sum_(j < k) T[j][k]
             // K0[:, j]) / T[k][k].
-            let mut k0 = map.as_slice().to_vec();
+            k0.copy_from_slice(map.as_slice());
             for k in 0..free {
                 let (done, rest) = k0.split_at_mut(k * out);
                 let column = &mut rest[..out];
@@ -1028,30 +1341,52 @@ fn first_order_bound(
                 let d = qr.diagonal()[k];
                 column.iter_mut().for_each(|e| *e /= d);
             }
-            (
-                std::borrow::Cow::Owned(k0),
-                (map * shared.correction).amax(),
-            )
+            // max |map c| as nalgebra's `amax` of the product (its
+            // entries are finite: a finite map, a finite correction), the
+            // product column by column in `acc` as nalgebra's.
+            let mut worst = 0.0f64;
+            if blocked_product(out, free, dim) {
+                worst = (map * shared.correction).amax();
+            } else {
+                let acc = &mut acc[..out];
+                for c in 0..dim {
+                    product_column(map, shared.correction.column(c).as_slice(), acc);
+                    worst = worst.max(lsq::amax(acc));
+                }
+            }
+            worst
         }
     };
+    let acc = &mut acc[..out];
     // |K1| = |K0 Q^T| (out x rows): column i is sum_k Q[i][k] K0[:, k].
     // For the thin Q (K0 = Q) it is symmetric: the entries on and below
     // the diagonal are summed, those above copied from them.
     let symmetric = map.is_none();
-    let mut k1 = std::mem::take(k1_buffer);
-    k1.clear();
-    k1.reserve(out * rows);
-    for i in 0..rows {
-        let start = k1.len();
-        let from = if symmetric { i } else { 0 };
-        k1.extend(std::iter::repeat_n(0.0, from));
-        let q0 = q[i];
-        k1.extend(k0[from..out].iter().map(|&e| e * q0));
-        let column = &mut k1[start + from..];
-        for k in 1..free {
-            let qik = q[k * rows + i];
-            for (e, &x) in column.iter_mut().zip(&k0[k * out + from..(k + 1) * out]) {
-                *e += x * qik;
+    if !symmetric && out < SHORT_COLUMNS {
+        // Entry by entry: `K0[o][0] Q[i][0] + K0[o][1] Q[i][1] + ...` in
+        // that order, as the column updates below.
+        for (i, column) in k1.chunks_exact_mut(out).enumerate() {
+            for (o, e) in column.iter_mut().enumerate() {
+                let mut sum = k0[o] * q[i];
+                for k in 1..free {
+                    sum += k0[k * out + o] * q[k * rows + i];
+                }
+                *e = sum;
+            }
+        }
+    } else {
+        for (i, column) in k1.chunks_exact_mut(out).enumerate() {
+            let from = if symmetric { i } else { 0 };
+            let q0 = q[i];
+            let column = &mut column[from..];
+            for (e, &x) in column.iter_mut().zip(&k0[from..out]) {
+                *e = x * q0;
+            }
+            for k in 1..free {
+                let qik = q[k * rows + i];
+                for (e, &x) in column.iter_mut().zip(&k0[k * out + from..(k + 1) * out]) {
+                    *e += x * qik;
+                }
             }
         }
     }
@@ -1063,20 +1398,19 @@ fn first_order_bound(
         }
     }
     k1.iter_mut().for_each(|v| *v = v.abs());
-    let k0_norm = lsq::norm(&k0);
+    let k0_norm = lsq::norm(k0);
     // What the solve's own rounding leaves after refinement: the last
     // correction mapped, with a margin (a-posteriori).
     let measured = REFINEMENT_MARGIN * mapped_correction;
     if !with_normwise {
         // R's guard: the values term only (what the measured weight was
         // calibrated on, merge back with zero residual); no K2.
-        let bound = values_bound(shared, &k1, measured, acc);
-        *k1_buffer = k1;
-        return Some((bound, k0_norm, None));
+        let bound = values_bound(shared, k1, measured, acc);
+        return Some((bound, k0_norm, false));
     }
-    // K2 = K0 T^-T (out x free).
-    let mut k2 = k0.into_owned();
-    times_t_inverse_transposed(qr, &mut k2, out);
+    // K2 = K0 T^-T (out x free), in K0's place.
+    let k2 = k0;
+    times_t_inverse_transposed(qr, k2, out);
     // Householder QR's own backward error is normwise (column by column),
     // not componentwise, and refinement in working precision does not
     // remove all of it (measured: test merge_exact, degree 20, mu ~0.1,
@@ -1086,37 +1420,33 @@ fn first_order_bound(
         * eps
         * ((rows * free) as f64).sqrt()
         * (k0_norm * (shared.target.norm() + a_norm * shared.y.norm())
-            + lsq::norm(&k2) * a_norm * shared.residual.norm());
+            + lsq::norm(k2) * a_norm * shared.residual.norm());
     k2.iter_mut().for_each(|v| *v = v.abs());
     let mut worst = 0.0f64;
-    acc.clear();
-    acc.resize(out, 0.0);
     for c in 0..dim {
         acc.fill(0.0);
         let tv = shared.through_values.column(c);
-        for (kc, &x) in k1.chunks_exact(out).zip(tv.iter()) {
+        for (kc, &x) in k1.chunks_exact(out).zip(tv.as_slice()) {
             for (a, &e) in acc.iter_mut().zip(kc) {
                 *a += e * x;
             }
         }
         let tr = shared.through_residual.column(c);
-        for (kc, &x) in k2.chunks_exact(out).zip(tr.iter()) {
+        for (kc, &x) in k2.chunks_exact(out).zip(tr.as_slice()) {
             for (a, &e) in acc.iter_mut().zip(kc) {
                 *a += e * x;
             }
         }
         worst = worst.max(gamma * lsq::amax(acc));
     }
-    *k1_buffer = k1;
-    let k2 = map.is_none().then_some(k2);
-    Some((worst + measured + normwise, k0_norm, k2))
+    Some((worst + measured + normwise, k0_norm, map.is_none()))
 }
 
 /// The values term of [`first_order_bound`] alone, `max_c gamma |K1|
 /// (|t_c| + |A| |y_c|)`, plus the `measured` refinement term: `R`'s guard,
 /// from `|K1|` (`|map A^+|`, absolute values taken; column-major, `rows`
 /// columns).
-fn values_bound(shared: &Shared<'_>, k1: &[f64], measured: f64, acc: &mut Vec<f64>) -> f64 {
+fn values_bound(shared: &Shared<'_>, k1: &[f64], measured: f64, acc: &mut [f64]) -> f64 {
     let gamma = ESTIMATE_MARGIN * (shared.m as f64 + 2.0) * f64::EPSILON;
     let out = k1.len() / shared.qr.rows();
     gamma * largest_product(k1, out, &shared.through_values, acc) + measured
@@ -1243,6 +1573,193 @@ mod tests {
                 let (count, condition) = general.kept_condition.unwrap();
                 assert_eq!(Some((count, condition)), closed.kept_condition, "{context}");
             }
+        }
+    }
+
+    fn random_matrix(
+        values: &mut crate::test_values::Values,
+        rows: usize,
+        cols: usize,
+    ) -> DMatrix<f64> {
+        DMatrix::from_fn(rows, cols, |_, _| {
+            // Signed values, some exact zeros of either sign.
+            let v = values.signed();
+            if v.abs() < 0.05 { 0.0 * v.signum() } else { v }
+        })
+    }
+
+    fn same_bits(a: &DMatrix<f64>, b: &DMatrix<f64>) -> bool {
+        a.shape() == b.shape()
+            && a.iter()
+                .zip(b.iter())
+                .all(|(x, y)| x.to_bits() == y.to_bits())
+    }
+
+    /// The slice products replace nalgebra's operators bit for bit: `a *
+    /// b`, `|a| |b|`, `c + a b`, `c - a b`, `c + |a| |b|`, `a^T |b|`,
+    /// `|m|`, on shapes below and above nalgebra's `matrixmultiply`
+    /// threshold, an empty inner dimension, and entries of both signs
+    /// with signed zeros.
+    #[test]
+    fn products_are_nalgebras_bit_for_bit() {
+        let mut values = crate::test_values::Values(41);
+        for (rows, inner, cols) in [
+            (8, 4, 3),
+            (8, 2, 3),
+            (4, 2, 3),
+            (1, 1, 1),
+            (2, 0, 2),
+            (64, 31, 2),
+            (7, 6, 6),
+            (9, 8, 7),
+            (12, 3, 9),
+        ] {
+            let context = format!("{rows} x {inner} x {cols}");
+            let a = random_matrix(&mut values, rows, inner);
+            let b = random_matrix(&mut values, inner, cols);
+            let c = random_matrix(&mut values, rows, cols);
+            let mut out = vec![0.0; rows * cols];
+            product_into(&a, &b, false, &mut out);
+            assert!(
+                same_bits(&DMatrix::from_vec(rows, cols, out.clone()), &(&a * &b)),
+                "{context}"
+            );
+            product_into(&a, &b, true, &mut out);
+            assert!(
+                same_bits(&DMatrix::from_vec(rows, cols, out), &(a.abs() * b.abs())),
+                "{context}"
+            );
+            assert!(
+                same_bits(&plus_product(&c, &a, &b), &(&c + &a * &b)),
+                "{context}"
+            );
+            assert!(
+                same_bits(&minus_product(&c, &a, &b), &(&c - &a * &b)),
+                "{context}"
+            );
+            assert!(
+                same_bits(&plus_abs_product(&c, &a, &b), &(&c + a.abs() * b.abs())),
+                "{context}"
+            );
+            assert!(same_bits(&abs_of(&a), &a.abs()), "{context}");
+            let d = random_matrix(&mut values, rows, cols);
+            assert!(
+                same_bits(&abs_tr_mul(&c, &d), &c.tr_mul(&d.abs())),
+                "{context}"
+            );
+        }
+    }
+
+    /// The fixed ends' products from the particular solution's two nonzero
+    /// rows are nalgebra's `c - M p` and `c + |M| |p|` bit for bit, with
+    /// zero entries of `M` and negative end values (signed-zero products,
+    /// `-0 + 0 = +0`).
+    #[test]
+    fn ends_products_are_nalgebras_bit_for_bit() {
+        let mut values = crate::test_values::Values(43);
+        for (rows, m, dim) in [(4, 1, 2), (6, 2, 3), (8, 3, 3), (12, 5, 2), (64, 31, 3)] {
+            let samples =
+                random_matrix(&mut values, rows, m + 1).map(|v| if v < 0.0 { 0.0 } else { v });
+            let mut p = DMatrix::zeros(m + 1, dim);
+            for c in 0..dim {
+                p[(0, c)] = values.signed();
+                p[(m, c)] = -values.unit();
+            }
+            let c = random_matrix(&mut values, rows, dim);
+            let context = format!("{rows} x {m} x {dim}");
+            assert!(
+                same_bits(
+                    &ends_product(&c, &samples, &p, false),
+                    &(&c - &samples * &p)
+                ),
+                "{context}"
+            );
+            assert!(
+                same_bits(
+                    &ends_product(&c, &samples, &p, true),
+                    &(&c + samples.abs() * p.abs())
+                ),
+                "{context}"
+            );
+        }
+    }
+
+    /// The restriction matrices of two pieces are the Bernstein triangle
+    /// at `mu` (`S_L[i][k] = B_k^i(mu)`, `S_R[i][k] = B_(k-i)^(m-i)(mu)`):
+    /// bit for bit the triangle's recurrence, run separately here.
+    #[test]
+    fn restrictions_are_the_bernstein_triangle() {
+        for m in [0, 1, 2, 3, 7, 16, 31] {
+            for mu in [1e-3, 0.3, 0.5, 0.77] {
+                let points = m + 1;
+                let mut triangle = vec![vec![0.0; points]; points];
+                triangle[0][0] = 1.0;
+                for i in 1..points {
+                    for k in 0..=i {
+                        let same = if k < i {
+                            (1.0 - mu) * triangle[i - 1][k]
+                        } else {
+                            0.0
+                        };
+                        let below = if k > 0 {
+                            mu * triangle[i - 1][k - 1]
+                        } else {
+                            0.0
+                        };
+                        triangle[i][k] = same + below;
+                    }
+                }
+                let s = restrictions(m, &[0.0, mu, 1.0]);
+                for i in 0..points {
+                    for k in 0..points {
+                        let left = if k <= i { triangle[i][k] } else { 0.0 };
+                        let right = if k >= i { triangle[m - i][k - i] } else { 0.0 };
+                        assert_eq!(s[(i, k)].to_bits(), left.to_bits(), "m {m} mu {mu}");
+                        assert_eq!(
+                            s[(points + i, k)].to_bits(),
+                            right.to_bits(),
+                            "m {m} mu {mu}"
+                        );
+                    }
+                }
+            }
+        }
+    }
+
+    /// `R`'s guard through the fixed ends' `Z = (e_1 .. e_(m-1))` is the
+    /// guard through the identity of the free columns (what the closed
+    /// form passes), bit for bit: the zero rows of `Z` add nothing.
+    #[test]
+    fn selection_guard_is_the_identity_guard() {
+        let mut values = crate::test_values::Values(7);
+        for m in [2, 3, 5, 9, 20] {
+            let (rows, free, dim) = (2 * (m + 1), m - 1, 2);
+            let a = random_matrix(&mut values, rows, free);
+            let qr = Factor::new(a.as_slice(), rows, free).unwrap();
+            let a_abs = a.abs();
+            let y = random_matrix(&mut values, free, dim);
+            let target = random_matrix(&mut values, rows, dim);
+            let target_size = random_matrix(&mut values, rows, dim).abs();
+            let residual = random_matrix(&mut values, rows, dim);
+            let correction = random_matrix(&mut values, free, dim) * 1e-17;
+            let shared = Shared::new(
+                &qr,
+                &y,
+                &a_abs,
+                &target,
+                &target_size,
+                &residual,
+                m,
+                &correction,
+            );
+            let z = DMatrix::from_fn(m + 1, free, |i, k| if i == k + 1 { 1.0 } else { 0.0 });
+            let mut scratch = Scratch::default();
+            let through_z = first_order_bound(&shared, Some(&z), false, &mut scratch).unwrap();
+            let identity = DMatrix::identity(free, free);
+            let through_i =
+                first_order_bound(&shared, Some(&identity), false, &mut scratch).unwrap();
+            assert_eq!(through_z.0.to_bits(), through_i.0.to_bits(), "m {m}");
+            assert!(through_z.0 > 0.0, "m {m}");
         }
     }
 }

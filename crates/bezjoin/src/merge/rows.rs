@@ -70,7 +70,9 @@ impl<'p, 'a> Problem<'p, 'a> {
                 }
             }
         }
-        let scale = x0.amax().max(f64::MIN_POSITIVE);
+        // As nalgebra's `amax` (which differs only for an all-NaN x0, and
+        // then gives NaN, which `max` passes over as well).
+        let scale = super::lsq::amax(x0.as_slice()).max(f64::MIN_POSITIVE);
         let constraint_count = 2 * usize::from(fix_ends)
             + pieces
                 .iter()
@@ -195,29 +197,39 @@ impl<'p, 'a> Problem<'p, 'a> {
     /// join, no row is stored.
     pub(super) fn continuity_residual(&self, x: &DMatrix<f64>) -> f64 {
         let points = self.points_per_piece;
-        let m = points - 1;
-        // The two halves of a row: on the stack up to degree 63.
-        let mut on_stack = [[0.0f64; 64]; 2];
-        let mut on_heap;
-        let (left, right): (&mut [f64], &mut [f64]) = if points <= 64 {
-            let [left, right] = &mut on_stack;
-            (&mut left[..points], &mut right[..points])
+        // The two halves of a row: on the stack up to degree 15, then 63
+        // (zeroing the larger buffer costs more than the rows at low
+        // degree).
+        if points <= 16 {
+            let [mut left, mut right] = [[0.0f64; 16]; 2];
+            self.continuity_residual_in(x, &mut left[..points], &mut right[..points])
+        } else if points <= 64 {
+            let [mut left, mut right] = [[0.0f64; 64]; 2];
+            self.continuity_residual_in(x, &mut left[..points], &mut right[..points])
         } else {
-            on_heap = (vec![0.0; points], vec![0.0; points]);
-            (&mut on_heap.0, &mut on_heap.1)
-        };
+            let (mut left, mut right) = (vec![0.0; points], vec![0.0; points]);
+            self.continuity_residual_in(x, &mut left, &mut right)
+        }
+    }
+
+    /// [`Problem::continuity_residual`] with the row halves' storage.
+    fn continuity_residual_in(&self, x: &DMatrix<f64>, left: &mut [f64], right: &mut [f64]) -> f64 {
+        let points = self.points_per_piece;
+        let m = points - 1;
+        let rows = x.nrows();
         let mut worst = 0.0f64;
         for j in 0..self.pieces.len() - 1 {
             for r in 0..=m {
-                continuity_row(m, r, self.lengths[j], self.lengths[j + 1], left, right);
-                for c in 0..self.dim {
-                    let column = x.column(c);
+                continuity_row_nonzero(m, r, self.lengths[j], self.lengths[j + 1], left, right);
+                for column in x.as_slice().chunks_exact(rows).take(self.dim) {
+                    let here = &column[j * points..(j + 1) * points];
+                    let next = &column[(j + 1) * points..(j + 2) * points];
                     let mut sum = 0.0;
-                    for i in m - r..=m {
-                        sum += left[i] * column[j * points + i];
+                    for (a, v) in left[m - r..].iter().zip(&here[m - r..]) {
+                        sum += a * v;
                     }
-                    for i in 0..=r {
-                        sum += right[i] * column[(j + 1) * points + i];
+                    for (a, v) in right[..=r].iter().zip(&next[..=r]) {
+                        sum += a * v;
                     }
                     // f64::max passes over a NaN, as the row-wise amax did
                     // (non-finite pieces are refused later, as such).
@@ -288,13 +300,27 @@ pub(super) fn continuity_row(
     on_left: &mut [f64],
     on_right: &mut [f64],
 ) {
+    on_left.fill(0.0);
+    on_right.fill(0.0);
+    continuity_row_nonzero(m, r, left, right, on_left, on_right);
+}
+
+/// [`continuity_row`]'s nonzero entries only (`on_left[m - r..]`,
+/// `on_right[..=r]`), the others left as they are: for
+/// [`Problem::continuity_residual`], which reads no other.
+fn continuity_row_nonzero(
+    m: usize,
+    r: usize,
+    left: f64,
+    right: f64,
+    on_left: &mut [f64],
+    on_right: &mut [f64],
+) {
     let longer = left.max(right);
     let wl = (right / longer).powi(r as i32);
     let wr = (left / longer).powi(r as i32);
     let norm = ((wl * wl + wr * wr) * binomial(2 * r, r)).sqrt();
     let (wl, wr) = (wl / norm, wr / norm);
-    on_left.fill(0.0);
-    on_right.fill(0.0);
     // C(r, k) by the exact integer recurrence C(r, k+1) = C(r, k) (r - k) /
     // (k + 1) (exact in f64 while below 2^53, as `binomial`). Up to
     // INTEGER_ORDERS in integers (every product below 2^53, so the same

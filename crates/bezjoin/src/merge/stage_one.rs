@@ -153,12 +153,24 @@ pub(crate) fn solve_stage_one_slope(
 ) -> Result<StageOne> {
     let count = pieces.len();
     debug_assert!(count >= 2 && breakpoints.len() == count + 1);
-    let lengths: Vec<f64> = breakpoints.windows(2).map(|w| w[1] - w[0]).collect();
+    // The piece lengths, on the stack for two pieces.
+    let pair;
+    let many: Vec<f64>;
+    let lengths: &[f64] = if count == 2 {
+        pair = [
+            breakpoints[1] - breakpoints[0],
+            breakpoints[2] - breakpoints[1],
+        ];
+        &pair
+    } else {
+        many = breakpoints.windows(2).map(|w| w[1] - w[0]).collect();
+        &many
+    };
     let m = pieces[0].curve.degree();
-    let problem = Problem::new(pieces, &lengths, fix_ends);
+    let problem = Problem::new(pieces, lengths, fix_ends);
     let mut found = None;
     let (x, estimate) = if pieces.iter().any(|p| p.keep) {
-        kept_solution(&problem, breakpoints, &lengths, accuracy)?
+        kept_solution(&problem, breakpoints, lengths, accuracy)?
     } else {
         let want_slope = slope && count == 2 && pieces.iter().all(|p| p.points.is_empty());
         match orthogonal_solution(
@@ -190,7 +202,9 @@ pub(crate) fn solve_stage_one_slope(
     };
     // The continuity conditions (3) themselves, on the original rows (unit
     // length), relative to the coordinate scale of the input and result.
-    let result_scale = x.amax().max(problem.scale);
+    // As nalgebra's `amax` but 0 for an all-NaN x: the same once the
+    // input's scale (finite, positive) is the larger.
+    let result_scale = super::lsq::amax(x.as_slice()).max(problem.scale);
     let continuity_residual = problem.continuity_residual(&x) / result_scale;
     if continuity_residual.is_nan() || continuity_residual > accuracy {
         return Err(BezjoinError::IllConditioned {
@@ -221,7 +235,16 @@ pub(crate) fn solve_stage_one_slope(
             let ej = e.rows(j * points_per_piece, points_per_piece);
             metric_value += (ej.transpose() * &weight * ej).trace();
         }
-        new_pieces.push(x.rows(j * points_per_piece, points_per_piece).into_owned());
+        // x's rows of piece j, column by column (contiguous slices).
+        let mut piece = DMatrix::zeros(points_per_piece, x.ncols());
+        for (to, from) in piece
+            .as_mut_slice()
+            .chunks_exact_mut(points_per_piece)
+            .zip(x.as_slice().chunks_exact(x.nrows()))
+        {
+            to.copy_from_slice(&from[j * points_per_piece..(j + 1) * points_per_piece]);
+        }
+        new_pieces.push(piece);
     }
     let (merged, slope) = match found {
         // The orthogonal path measured the metric on its least-squares
@@ -235,7 +258,7 @@ pub(crate) fn solve_stage_one_slope(
     // Coordinates near the top of the f64 range can overflow the squared
     // changes (or the solution itself) without any NaN in the input; the
     // optimal-`mu` search would then see no finite value at all.
-    if !metric_value.is_finite() || x.iter().any(|v| !v.is_finite()) {
+    if !metric_value.is_finite() || x.as_slice().iter().any(|v| !v.is_finite()) {
         return Err(BezjoinError::NonFiniteScalar {
             name: format!(
                 "merge metric at mu = {} (the control-point changes overflow f64: \

@@ -66,7 +66,9 @@ fn check_restrictions(
 ) -> Result<(BezierCurve, f64, Vec<BezierCurve>)> {
     let scale = pieces
         .iter()
-        .map(|p| p.amax())
+        // As nalgebra's `amax` but 0 for an all-NaN piece: the same after
+        // the fold from 0 by `f64::max`.
+        .map(|p| super::lsq::amax(p.as_slice()))
         .fold(0.0f64, f64::max)
         .max(f64::MIN_POSITIVE);
     let mut worst = 0.0f64;
@@ -99,10 +101,11 @@ fn check_restrictions(
         // matrix (first entry's magnitude, then f64::max), without forming
         // it: `back` is row-major, `p` column-major.
         let d = back.dim();
+        let (rows, data) = (p.nrows(), p.as_slice());
         let mut diff = f64::NAN;
         for (i, point) in back.points().chunks_exact(d).enumerate() {
             for (c, &v) in point.iter().enumerate() {
-                let gap = (v - p[(i, c)]).abs();
+                let gap = (v - data[c * rows + i]).abs();
                 diff = if i == 0 && c == 0 { gap } else { diff.max(gap) };
             }
         }
