@@ -287,6 +287,10 @@ fn clip_n<const N: usize>(
     }
     let mut e = [0.0; N];
     let mut scale = 1.0;
+    // At most two passes: unnormalised, then (a product overflowed) with
+    // the unit normal. A flag, not `scale != 1.0`: when `len == 1` the unit
+    // normal is the first one, and the test never ended (fuzz finding F11).
+    let mut unit = false;
     let (lo, hi) = loop {
         let (nx, ny) = (-dy * scale, dx * scale);
         let c = -(nx * b.x(0) + ny * b.y(0));
@@ -303,9 +307,10 @@ fn clip_n<const N: usize>(
             *e = nx * p[0] + ny * p[1] + c;
             finite &= e.is_finite();
         }
-        if finite || scale != 1.0 {
+        if finite || unit {
             break (lo, hi);
         }
+        unit = true;
         scale = 1.0 / len;
     };
     // The t-extent of hull({(i/n, e_i)}) within lo <= y <= hi: its extreme
@@ -582,6 +587,35 @@ mod tests {
     use crate::bezier::BezierCurve;
     use crate::curve::CurveRef;
     use crate::nurbs::NurbsCurve;
+
+    /// Fuzz finding F11: a chord of length exactly 1 whose signed
+    /// distances overflow. The retry with the unit normal was decided by
+    /// `scale != 1.0`, which stays false when `len == 1`, so the loop never
+    /// ended; now two passes at most, and the clip answers (on a thread
+    /// with a deadline, so that a return of the hang fails instead of
+    /// hanging the test run).
+    #[test]
+    fn clip_with_a_unit_chord_and_overflowing_distances_ends() {
+        let (sender, receiver) = std::sync::mpsc::channel();
+        std::thread::spawn(move || {
+            let b = super::Poly::<{ super::SMALL }> {
+                n: 2,
+                points: [[0.0, -1.7e308], [0.5, 1.0e308], [1.0, -1.7e308], [0.0, 0.0]],
+            };
+            let a = super::Poly::<{ super::SMALL }> {
+                n: 2,
+                points: [[0.0, 1.7e308], [0.5, 0.0], [1.0, 1.7e308], [0.0, 0.0]],
+            };
+            // The chord of b: (1, 0), length 1 exactly; a's distances from
+            // it, 1.7e308 + 1.7e308, overflow in both passes.
+            sender.send(super::clip(&a, &b, 1e-9)).unwrap();
+        });
+        let result = receiver
+            .recv_timeout(std::time::Duration::from_secs(20))
+            .expect("clip ended within 20 s");
+        // No claim about the clipped range of such a pair; it must answer.
+        let _ = result;
+    }
 
     /// Fixed-seed linear congruential generator (Knuth's MMIX constants).
     struct Lcg(u64);
