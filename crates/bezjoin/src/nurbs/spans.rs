@@ -88,22 +88,18 @@ impl NurbsCurve {
         }
         let rational = self.weights.is_some();
         let h = if rational { self.dim + 1 } else { self.dim };
-        // Distinct interior knots and the insertions they need.
-        let mut breaks = Vec::with_capacity(n - p + 1);
+        // Distinct interior knots and the insertions they need: those of
+        // `interior_knots` (strictly inside the domain), as the old
+        // `bezier_spans` took them. (Reading every run of equal knots
+        // instead broke on a knot vector that steps back by an ulp next to
+        // an end, which the `nurbs` fuzz target produced: more breaks than
+        // rows, an out-of-range slice.)
+        let (interior, multiplicities) = self.interior_knots();
+        let mut breaks = Vec::with_capacity(interior.len() + 2);
         breaks.push(first);
-        let mut insertions = 0;
-        let mut i = p + 1;
-        while i < n {
-            let u = self.knots[i];
-            let mut m = 1;
-            while self.knots[i + m] == u {
-                m += 1;
-            }
-            breaks.push(u);
-            insertions += p.saturating_sub(m);
-            i += m;
-        }
+        breaks.extend_from_slice(&interior);
         breaks.push(last);
+        let insertions: usize = multiplicities.iter().map(|&m| p.saturating_sub(m)).sum();
         let count = n + insertions;
         let mut rows = Vec::with_capacity(count * h);
         if rational {
