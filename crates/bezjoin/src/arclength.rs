@@ -1325,6 +1325,25 @@ fn chebyshev_tables() -> &'static ChebyshevTables {
 /// column at a time and two rows per step (an even and an odd row, whose
 /// foldings are the two lanes of `[F_even_j, F_odd_j]`), so the loop has
 /// no branch and the compiler pairs the lanes.
+/// Coefficients of the level's interpolant `p_n = sum_k a_k T_k` (two
+/// zeros past the end for the antiderivative's recurrence) from the speed
+/// samples on the grid (the level's node `j` at index `j * step`), into
+/// `a` (zeros on entry).
+fn level_coefficients(
+    tables: &ChebyshevTables,
+    level: usize,
+    samples: &[f64; CHEBYSHEV_MAX_N + 1],
+    step: usize,
+    a: &mut [f64; CHEBYSHEV_MAX_N + 3],
+) {
+    let sample = |j: usize| samples[j * step];
+    if level == 0 {
+        fold_apply(&tables.coarse, sample, a);
+    } else {
+        fold_apply(&tables.fine, sample, a);
+    }
+}
+
 fn fold_apply<const C: usize, const P: usize>(
     matrix: &FoldedMatrix<C, P>,
     samples: impl Fn(usize) -> f64,
@@ -1698,12 +1717,7 @@ impl ChebyshevSpeed {
                 return None;
             }
             let mut a = [0.0; CHEBYSHEV_MAX_N + 3];
-            let sample = |j: usize| samples[j * step];
-            if level == 0 {
-                fold_apply(&tables.coarse, sample, &mut a);
-            } else {
-                fold_apply(&tables.fine, sample, &mut a);
-            }
+            level_coefficients(tables, level, &samples, step, &mut a);
             // The antiderivative's value at x = 1 with G(-1) = 0: `G(1) -
             // G(-1) = sum_k c_k (1 - (-1)^k)` over k >= 1, i.e. twice the
             // odd coefficients (c_k = (a_(k-1) - a_(k+1)) / 2k, c_1 = a_0 -
@@ -1753,15 +1767,8 @@ impl ChebyshevSpeed {
             if !self.sample(&tables.nodes, start, span, first_new, new, samples) {
                 return Some(None);
             }
-            // Coefficients of p_n = sum_k a_k T_k (two zeros past the end
-            // for the antiderivative's recurrence).
             let mut a = [0.0; CHEBYSHEV_MAX_N + 3];
-            let sample = |j: usize| samples[j * step];
-            if level == 0 {
-                fold_apply(&tables.coarse, sample, &mut a);
-            } else {
-                fold_apply(&tables.fine, sample, &mut a);
-            }
+            level_coefficients(tables, level, samples, step, &mut a);
             let inverted = if level == 0 {
                 invert_level::<{ CHEBYSHEV_LEVELS[0] }>(&a, start, far, target, accuracy, self)
             } else {

@@ -20,6 +20,12 @@ impl Values {
     }
 }
 
+/// [`Values::unit`] as a closure from the state `seed` (the same sequence).
+pub(crate) fn unit_generator(seed: u64) -> impl FnMut() -> f64 {
+    let mut values = Values(seed);
+    move || values.unit()
+}
+
 /// A planar Bezier curve of `degree` whose coordinates are the generator's
 /// next `signed` values (the state carried in `state`), for the merge tests.
 pub(crate) fn planar_curve(state: &mut u64, degree: usize) -> crate::bezier::BezierCurve {

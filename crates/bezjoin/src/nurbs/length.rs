@@ -562,15 +562,7 @@ impl NurbsCurve {
 mod tests {
     use super::NurbsCurve;
 
-    fn generator(seed: u64) -> impl FnMut() -> f64 {
-        let mut state = seed;
-        move || {
-            state = state
-                .wrapping_mul(6_364_136_223_846_793_005)
-                .wrapping_add(1_442_695_040_888_963_407);
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        }
-    }
+    use crate::test_values::unit_generator as generator;
 
     /// The multi-span inversion (the answer inside the span that holds it
     /// without that span's length first; the lengths of the spans walked
