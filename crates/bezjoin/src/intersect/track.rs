@@ -796,13 +796,7 @@ mod near_tests {
     /// degrees 1 to 6 in 2D and 3D, points near the curve and in its box.
     #[test]
     fn may_come_within_refuses_only_far_points() {
-        let mut state = 17u64;
-        let mut next = || {
-            state = state
-                .wrapping_mul(6_364_136_223_846_793_005)
-                .wrapping_add(1_442_695_040_888_963_407);
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut next = crate::test_values::unit_generator(17);
         let mut pruned = 0;
         for case in 0..80 {
             let degree = 1 + case % 6;

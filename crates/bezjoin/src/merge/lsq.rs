@@ -148,6 +148,28 @@ impl Factor {
         }
     }
 
+    /// `||T^-1||_F`: column `k` of `T^-1` from `e_k` on the leading
+    /// `(k + 1) x (k + 1)` block (`T^-1` is upper triangular), column by
+    /// column as [`Self::solve_t`].
+    pub(super) fn inverse_frobenius(&self) -> f64 {
+        let mut total = 0.0;
+        let mut e = vec![0.0; self.cols];
+        for k in 0..self.cols {
+            let e = &mut e[..=k];
+            e.fill(0.0);
+            e[k] = 1.0;
+            for j in (0..=k).rev() {
+                let ej = e[j] / self.diagonal()[j];
+                e[j] = ej;
+                for (ei, &t) in e[..j].iter_mut().zip(self.t_column(j)) {
+                    *ei -= t * ej;
+                }
+            }
+            total += e.iter().map(|v| v * v).sum::<f64>();
+        }
+        total.sqrt()
+    }
+
     /// `x <- T x` (the first `cols` entries).
     pub(super) fn mul_t(&self, x: &mut [f64]) {
         for i in 0..self.cols {

@@ -152,19 +152,29 @@ pub(crate) fn gauss_legendre_unit(count: usize) -> (Vec<f64>, Vec<f64>) {
     (nodes, weights)
 }
 
-/// Node counts whose Gauss-Legendre rule is computed once and kept
-/// ([`gauss_legendre_stored`]).
-const STORED_RULES: usize = 64;
+/// Node counts whose Gauss-Legendre rule (double here, double-double in
+/// module `refine`) is computed once and kept ([`stored_per_count`]).
+pub(super) const STORED_RULES: usize = 64;
+
+/// `make(count)`, computed once and kept in `slots[count]`; counts past
+/// the slots are computed on each call (the same values either way).
+pub(super) fn stored_per_count<T: Clone>(
+    slots: &'static [OnceLock<T>],
+    count: usize,
+    make: impl FnOnce(usize) -> T,
+) -> std::borrow::Cow<'static, T> {
+    match slots.get(count) {
+        Some(slot) => std::borrow::Cow::Borrowed(slot.get_or_init(|| make(count))),
+        None => std::borrow::Cow::Owned(make(count)),
+    }
+}
 
 /// [`gauss_legendre_unit`]`(count)`, computed once per count up to
-/// [`STORED_RULES`] (the same values; computed on each call above).
+/// [`STORED_RULES`].
 fn gauss_legendre_stored(count: usize) -> std::borrow::Cow<'static, (Vec<f64>, Vec<f64>)> {
     static RULES: [OnceLock<(Vec<f64>, Vec<f64>)>; STORED_RULES + 1] =
         [const { OnceLock::new() }; STORED_RULES + 1];
-    match RULES.get(count) {
-        Some(slot) => std::borrow::Cow::Borrowed(slot.get_or_init(|| gauss_legendre_unit(count))),
-        None => std::borrow::Cow::Owned(gauss_legendre_unit(count)),
-    }
+    stored_per_count(&RULES, count, gauss_legendre_unit)
 }
 
 /// All Bernstein values `B_i^m(t)`, `i = 0..m`, into `out` (product form
@@ -257,39 +267,27 @@ fn product_into(a: &DMatrix<f64>, b: &DMatrix<f64>, abs: bool, out: &mut [f64]) 
         .chunks_exact(inner)
         .zip(out.chunks_exact_mut(rows))
     {
-        if abs {
-            product_column_abs(a, bj, oj);
-        } else {
-            product_column(a, bj, oj);
-        }
+        product_column(a, bj, abs, oj);
     }
 }
 
 /// `out = a b` for one column `b` (`a.ncols()` entries, at least one) as
 /// nalgebra's small `gemm` (see [`product_into`]): `a[:, 0] b_0`, then
-/// `a[:, k] b_k + out` in order.
-fn product_column(a: &DMatrix<f64>, b: &[f64], out: &mut [f64]) {
+/// `a[:, k] b_k + out` in order; with `abs`, of `|a|` and `|b|`.
+#[inline(always)]
+fn product_column(a: &DMatrix<f64>, b: &[f64], abs: bool, out: &mut [f64]) {
     let rows = a.nrows();
+    let value = |x: f64| if abs { x.abs() } else { x };
     for (k, (ak, &bk)) in a.as_slice().chunks_exact(rows).zip(b).enumerate() {
+        let bk = value(bk);
         if k == 0 {
-            out.iter_mut().zip(ak).for_each(|(o, &x)| *o = x * bk);
-        } else {
-            out.iter_mut().zip(ak).for_each(|(o, &x)| *o += x * bk);
-        }
-    }
-}
-
-/// [`product_column`] of `|a|` and `|b|`.
-fn product_column_abs(a: &DMatrix<f64>, b: &[f64], out: &mut [f64]) {
-    let rows = a.nrows();
-    for (k, (ak, &bk)) in a.as_slice().chunks_exact(rows).zip(b).enumerate() {
-        let bk = bk.abs();
-        if k == 0 {
-            out.iter_mut().zip(ak).for_each(|(o, &x)| *o = x.abs() * bk);
+            out.iter_mut()
+                .zip(ak)
+                .for_each(|(o, &x)| *o = value(x) * bk);
         } else {
             out.iter_mut()
                 .zip(ak)
-                .for_each(|(o, &x)| *o += x.abs() * bk);
+                .for_each(|(o, &x)| *o += value(x) * bk);
         }
     }
 }
@@ -347,7 +345,7 @@ fn abs_of(m: &DMatrix<f64>) -> DMatrix<f64> {
     out
 }
 
-/// [`minus_product`]`(c, m, p)` (`abs`: [`plus_abs_product`]) for the fixed
+/// [`combined_product`]`(c, m, p, Minus)` (`abs`: `PlusAbs`) for the fixed
 /// ends' particular solution `p`, whose rows `1..k` (`k = p.nrows() - 1`)
 /// are exactly `+0` and `m`'s entries finite and `>= +0` (Bernstein
 /// values), from the two nonzero rows alone: entry `(i, c)` of the product
@@ -394,34 +392,33 @@ fn ends_product(c: &DMatrix<f64>, m: &DMatrix<f64>, p: &DMatrix<f64>, abs: bool)
     out
 }
 
-/// `c + a * b` (`c` as `a * b` is `rows x cols`): the product as
-/// nalgebra's ([`product_into`]), then `c + p` entry by entry, the same
-/// values as nalgebra's `c + a * b` with one matrix allocated.
-fn plus_product(c: &DMatrix<f64>, a: &DMatrix<f64>, b: &DMatrix<f64>) -> DMatrix<f64> {
-    let mut out = DMatrix::zeros(c.nrows(), c.ncols());
-    product_into(a, b, false, out.as_mut_slice());
-    for (o, &x) in out.as_mut_slice().iter_mut().zip(c.as_slice()) {
-        *o += x;
-    }
-    out
+/// How [`combined_product`] joins `c` and the product.
+#[derive(Clone, Copy)]
+enum Combine {
+    /// `c + a b`.
+    Plus,
+    /// `c + |a| |b|`.
+    PlusAbs,
+    /// `c - a b`.
+    Minus,
 }
 
-/// `c + |a| |b|`, as [`plus_product`].
-fn plus_abs_product(c: &DMatrix<f64>, a: &DMatrix<f64>, b: &DMatrix<f64>) -> DMatrix<f64> {
+/// `c + a b`, `c + |a| |b|` or `c - a b` (`c` as `a b` is `rows x
+/// cols`): the product as nalgebra's ([`product_into`]), then joined with
+/// `c` entry by entry, the same values as nalgebra's `c + a * b` (and the
+/// others) with one matrix allocated.
+fn combined_product(
+    c: &DMatrix<f64>,
+    a: &DMatrix<f64>,
+    b: &DMatrix<f64>,
+    how: Combine,
+) -> DMatrix<f64> {
     let mut out = DMatrix::zeros(c.nrows(), c.ncols());
-    product_into(a, b, true, out.as_mut_slice());
-    for (o, &x) in out.as_mut_slice().iter_mut().zip(c.as_slice()) {
-        *o += x;
-    }
-    out
-}
-
-/// `c - a * b`, as [`plus_product`].
-fn minus_product(c: &DMatrix<f64>, a: &DMatrix<f64>, b: &DMatrix<f64>) -> DMatrix<f64> {
-    let mut out = DMatrix::zeros(c.nrows(), c.ncols());
-    product_into(a, b, false, out.as_mut_slice());
-    for (o, &x) in out.as_mut_slice().iter_mut().zip(c.as_slice()) {
-        *o = x - *o;
+    product_into(a, b, matches!(how, Combine::PlusAbs), out.as_mut_slice());
+    let joined = out.as_mut_slice().iter_mut().zip(c.as_slice());
+    match how {
+        Combine::Plus | Combine::PlusAbs => joined.for_each(|(o, &x)| *o += x),
+        Combine::Minus => joined.for_each(|(o, &x)| *o = x - *o),
     }
     out
 }
@@ -729,7 +726,7 @@ pub(super) fn orthogonal_solution(
         Cow::Owned(if ends_products {
             ends_product(&target, &samples, &particular, false)
         } else {
-            minus_product(&target, &samples, &particular)
+            combined_product(&target, &samples, &particular, Combine::Minus)
         })
     };
     let samples: &DMatrix<f64> = &samples;
@@ -815,12 +812,12 @@ pub(super) fn orthogonal_solution(
             correction.copy_from_slice(step);
         }
         merged = match &z {
-            Some(z) => plus_product(&particular, z, &y),
+            Some(z) => combined_product(&particular, z, &y, Combine::Plus),
             None => y.clone(),
         };
         factor = Some((qr, y, a_abs, correction));
     }
-    let residual = minus_product(target, samples, &merged);
+    let residual = combined_product(target, samples, &merged, Combine::Minus);
     let metric_value = residual.norm_squared();
 
     // The pieces: R split at the breakpoints (de Casteljau). `R` as a
@@ -949,7 +946,9 @@ pub(super) fn orthogonal_solution(
             Some(particular_abs) if ends_products => {
                 ends_product(&target_abs, samples, &particular_abs, true)
             }
-            Some(particular_abs) => plus_abs_product(&target_abs, samples, &particular_abs),
+            Some(particular_abs) => {
+                combined_product(&target_abs, samples, &particular_abs, Combine::PlusAbs)
+            }
         };
         let shared = Shared::new(
             qr,
@@ -1090,23 +1089,7 @@ fn refusal_floor(
     if values > needed {
         return values;
     }
-    // ||T^-1||_F: column k of T^-1 from e_k on the leading (k+1) block.
-    let mut total = 0.0;
-    let mut e = vec![0.0; free];
-    for k in 0..free {
-        let e = &mut e[..=k];
-        e.fill(0.0);
-        e[k] = 1.0;
-        for j in (0..=k).rev() {
-            let ej = e[j] / qr.diagonal()[j];
-            e[j] = ej;
-            for (ei, &t) in e[..j].iter_mut().zip(qr.t_column(j)) {
-                *ei -= t * ej;
-            }
-        }
-        total += e.iter().map(|v| v * v).sum::<f64>();
-    }
-    values + factor * total.sqrt() * a_norm * residual.norm()
+    values + factor * qr.inverse_frobenius() * a_norm * residual.norm()
 }
 
 #[cfg(not(test))]
@@ -1166,7 +1149,7 @@ impl<'s> Shared<'s> {
         m: usize,
         correction: &'s DMatrix<f64>,
     ) -> Self {
-        let through_values = plus_abs_product(target_size, a_abs, y);
+        let through_values = combined_product(target_size, a_abs, y, Combine::PlusAbs);
         let through_residual = abs_tr_mul(a_abs, residual);
         Self {
             qr,
@@ -1350,7 +1333,7 @@ fn first_order_bound(
             } else {
                 let acc = &mut acc[..out];
                 for c in 0..dim {
-                    product_column(map, shared.correction.column(c).as_slice(), acc);
+                    product_column(map, shared.correction.column(c).as_slice(), false, acc);
                     worst = worst.max(lsq::amax(acc));
                 }
             }
@@ -1630,15 +1613,24 @@ mod tests {
                 "{context}"
             );
             assert!(
-                same_bits(&plus_product(&c, &a, &b), &(&c + &a * &b)),
+                same_bits(
+                    &combined_product(&c, &a, &b, Combine::Plus),
+                    &(&c + &a * &b)
+                ),
                 "{context}"
             );
             assert!(
-                same_bits(&minus_product(&c, &a, &b), &(&c - &a * &b)),
+                same_bits(
+                    &combined_product(&c, &a, &b, Combine::Minus),
+                    &(&c - &a * &b)
+                ),
                 "{context}"
             );
             assert!(
-                same_bits(&plus_abs_product(&c, &a, &b), &(&c + a.abs() * b.abs())),
+                same_bits(
+                    &combined_product(&c, &a, &b, Combine::PlusAbs),
+                    &(&c + a.abs() * b.abs())
+                ),
                 "{context}"
             );
             assert!(same_bits(&abs_of(&a), &a.abs()), "{context}");

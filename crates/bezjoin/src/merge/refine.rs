@@ -49,7 +49,7 @@
 use nalgebra::DMatrix;
 
 use super::MergeMetric;
-use super::orthogonal::gauss_legendre_unit;
+use super::orthogonal::{STORED_RULES, gauss_legendre_unit, stored_per_count};
 use super::rows::Problem;
 use crate::basis::binomial;
 use crate::bezier::BezierCurve;
@@ -193,18 +193,12 @@ impl IntegralRule {
     }
 }
 
-/// Rules kept for the counts of every degree the merge answers.
-const STORED_INTEGRAL_RULES: usize = 64;
-
 /// [`IntegralRule::new`]`(count)`, computed once per count up to
-/// [`STORED_INTEGRAL_RULES`] (the same values as computing it each time).
+/// [`STORED_RULES`].
 fn integral_rule(count: usize) -> std::borrow::Cow<'static, IntegralRule> {
-    static RULES: [std::sync::OnceLock<IntegralRule>; STORED_INTEGRAL_RULES + 1] =
-        [const { std::sync::OnceLock::new() }; STORED_INTEGRAL_RULES + 1];
-    match RULES.get(count) {
-        Some(slot) => std::borrow::Cow::Borrowed(slot.get_or_init(|| IntegralRule::new(count))),
-        None => std::borrow::Cow::Owned(IntegralRule::new(count)),
-    }
+    static RULES: [std::sync::OnceLock<IntegralRule>; STORED_RULES + 1] =
+        [const { std::sync::OnceLock::new() }; STORED_RULES + 1];
+    stored_per_count(&RULES, count, IntegralRule::new)
 }
 
 /// `B_i^m(t)`, `i = 0..m`, in double-double.
@@ -344,31 +338,14 @@ pub(super) fn refine_least_squares(
     // The discrete metric's S is half zeros (exactly: skipping them
     // changes nothing): each row's and each free column's span of
     // nonzero entries (zeros inside it are skipped too).
-    let span = |entries: &mut dyn Iterator<Item = Dd>| {
-        let mut first = usize::MAX;
-        let mut end = 0;
-        for (k, e) in entries.enumerate() {
-            if e.0 != 0.0 {
-                first = first.min(k);
-                end = k + 1;
-            }
-        }
-        first.min(end)..end
-    };
-    let row_spans: Vec<_> = a
-        .chunks_exact(points)
-        .map(|row| span(&mut row.iter().copied()))
-        .collect();
+    let row_spans: Vec<_> = a.chunks_exact(points).map(nonzero_span).collect();
     // A's free columns, each contiguous (rows entries), for g.
     let a_free: Vec<Dd> = free
         .iter()
         .flat_map(|&col| (0..rows).map(move |i| (i, col)))
         .map(|(i, col)| a[i * points + col])
         .collect();
-    let column_spans: Vec<_> = a_free
-        .chunks_exact(rows)
-        .map(|column| span(&mut column.iter().copied()))
-        .collect();
+    let column_spans: Vec<_> = a_free.chunks_exact(rows).map(nonzero_span).collect();
     let residuals = |r: &DMatrix<f64>, s: &[f64], with_g: bool| {
         // f = t - s - A r, g = -A^T s (double-double, rounded; g only
         // when asked for).
@@ -476,6 +453,21 @@ pub(super) fn refine_least_squares(
         metric_value: residual_norm * residual_norm,
         estimate,
     })
+}
+
+/// The range from the first to past the last entry of `entries` whose
+/// leading part is not zero (empty when all are).
+fn nonzero_span(entries: &[Dd]) -> std::ops::Range<usize> {
+    match entries.iter().position(|e| e.0 != 0.0) {
+        Some(first) => {
+            first
+                ..entries
+                    .iter()
+                    .rposition(|e| e.0 != 0.0)
+                    .map_or(first, |l| l + 1)
+        }
+        None => 0..0,
+    }
 }
 
 /// A double Householder QR `A = Q [T; 0]` (`rows x cols`, column-major).

@@ -1472,13 +1472,7 @@ mod fixed_de_boor_tests {
     /// knots.
     #[test]
     fn fixed_sizes_are_the_general_path_bit_for_bit() {
-        let mut state = 71u64;
-        let mut next = || {
-            state = state
-                .wrapping_mul(6_364_136_223_846_793_005)
-                .wrapping_add(1_442_695_040_888_963_407);
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut next = crate::test_values::unit_generator(71);
         for case in 0..120 {
             let dim = 2 + case % 2;
             let degree = 2 + (case / 2) % 2;
