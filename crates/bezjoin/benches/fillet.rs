@@ -1,10 +1,12 @@
 //! Intersection and corner rounding: one cubic-cubic intersection, one
 //! cubic-cubic C3 fillet (blend degree 7), the fair G2 fillet by radius of
-//! the same corner, one deviation-bound fillet, and a
-//! chain of 100 000 corners on 1 and 2 threads (local rayon pools).
+//! the same corner, one deviation-bound fillet, the intersection and the
+//! C3 fillet of the same cubics as two-span NURBS (polynomial and
+//! rational), and a chain of 100 000 corners on 1 and 2 threads (local
+//! rayon pools).
 use std::hint::black_box;
 
-use bezjoin_core::BezierCurve;
+use bezjoin_core::{BezierCurve, NurbsCurve};
 use bezjoin_core::{
     ChainFilletOptions, DeviationFilletOptions, FilletOptions, fillet, fillet_chain, fillet_radius,
     fillet_within_deviation,
@@ -31,6 +33,16 @@ fn zigzag(n: usize) -> Vec<BezierCurve> {
             ])
         })
         .collect()
+}
+
+/// `curve` as a clamped cubic NURBS with `weights` (none: polynomial),
+/// cut into two spans at `u = 1/2` by knot insertion (the same curve).
+fn two_spans(curve: &BezierCurve, weights: Option<Vec<f64>>) -> NurbsCurve {
+    let knots = vec![0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0];
+    NurbsCurve::new(2, 3, curve.points().to_vec(), weights, knots)
+        .unwrap()
+        .insert_knot(0.5, 1)
+        .unwrap()
 }
 
 fn bench_fillet(c: &mut Criterion) {
@@ -98,6 +110,23 @@ fn bench_fillet(c: &mut Criterion) {
     let options = FilletOptions::symmetric(0.3, 3);
     c.bench_function("fillet/cubic_cubic_c3", |b| {
         b.iter(|| fillet(black_box(&p), black_box(&q), &options).unwrap())
+    });
+    // Issue 20: NURBS within 2x their Bezier counterparts. The same two
+    // cubics as two-span NURBS, polynomial and rational (the C demo
+    // driver's pair, weights inside (0.8, 1.3)).
+    let (pn, qn) = (two_spans(&p, None), two_spans(&q, None));
+    let (pw, qw) = (
+        two_spans(&p, Some(vec![1.0, 1.3, 0.8, 1.0])),
+        two_spans(&q, Some(vec![1.0, 0.9, 1.25, 1.0])),
+    );
+    c.bench_function("intersect/nurbs_two_span_rational", |b| {
+        b.iter(|| intersect(black_box(&pw), black_box(&qw), &IntersectOptions::default()).unwrap())
+    });
+    c.bench_function("fillet/nurbs_two_span_c3", |b| {
+        b.iter(|| fillet(black_box(&pn), black_box(&qn), &options).unwrap())
+    });
+    c.bench_function("fillet/nurbs_two_span_rational_c3", |b| {
+        b.iter(|| fillet(black_box(&pw), black_box(&qw), &options).unwrap())
     });
     let deviation = DeviationFilletOptions::new(0.05, 3);
     // Issue 18's goal: a fair G2 fillet of two cubics at most 10x the C^k

@@ -466,7 +466,7 @@ const GRADING_RATIO: f64 = 4.0;
 /// `(delta / w)^2`, is below the rounding level there) need no grading. At
 /// most 15 cuts per side of a minimum (ratio 2 gave the same accuracy in
 /// the near-cusp tests at 1.7 times the evaluations).
-fn grade_at_near_cusps(hodograph: &BezierCurve, cuts: &mut Vec<f64>) {
+pub(crate) fn grade_at_near_cusps(hodograph: &BezierCurve, cuts: &mut Vec<f64>) {
     let n = cuts.len();
     if n <= 2 {
         return;
@@ -1051,7 +1051,7 @@ const SPEED_MARGIN: f64 = 0.1;
 /// max |H_j|` for all `i`. Then `|H(t)| >= u . H(t) >= SPEED_MARGIN * max
 /// |H_j|` on `[0, 1]` (convex hull property), so the speed has no zero and
 /// no sharp minimum there. Costs one pass over the control points.
-fn speed_bounded_away_from_zero(hodograph: &BezierCurve, lo: f64, hi: f64) -> bool {
+pub(crate) fn speed_bounded_away_from_zero(hodograph: &BezierCurve, lo: f64, hi: f64) -> bool {
     if lo < 0.0 || hi > 1.0 {
         return false;
     }
@@ -1086,7 +1086,7 @@ const MINIMA_MAX_DEGREE: usize = 200;
 /// (`H . H'` changes sign from - to +), located by Bernstein subdivision
 /// (variation diminishing: no sign change of the coefficients, no root)
 /// to a relative width of `2^-44`. Empty above [`MINIMA_MAX_DEGREE`].
-fn speed_minima(hodograph: &BezierCurve, lo: f64, hi: f64) -> Vec<f64> {
+pub(crate) fn speed_minima(hodograph: &BezierCurve, lo: f64, hi: f64) -> Vec<f64> {
     let p = hodograph.degree();
     if p == 0 || p > MINIMA_MAX_DEGREE || hi <= lo {
         return Vec::new();

@@ -499,7 +499,7 @@ pub(crate) fn assemble(
         CurveRef::Bezier(b) => bezier_trim(b, u0, true).map(Curve::Bezier),
         CurveRef::Nurbs(n) => n
             .one_span_trim(u0, true)
-            .or_else(|| n.polynomial_trim(u0, true))
+            .or_else(|| n.clamped_trim(u0, true))
             .map(Curve::Nurbs),
     };
     let p_trimmed = match p_trimmed {
@@ -510,7 +510,7 @@ pub(crate) fn assemble(
         CurveRef::Bezier(b) => bezier_trim(b, v0, false).map(Curve::Bezier),
         CurveRef::Nurbs(n) => n
             .one_span_trim(v0, false)
-            .or_else(|| n.polynomial_trim(v0, false))
+            .or_else(|| n.clamped_trim(v0, false))
             .map(Curve::Nurbs),
     };
     let q_trimmed = match q_trimmed {

@@ -35,7 +35,7 @@
 //!    is skipped (such pieces cross at most once).
 //!
 //!    *Fast path* (module `clip`): for planar curves whose pieces are all
-//!    polynomial of degree 1..=15, when step 1 found no overlap, the pairs
+//!    of degree 1..=15 (polynomial, or rational with positive weights), when step 1 found no overlap, the pairs
 //!    of spans are first searched by fat-line Bezier clipping (Sederberg
 //!    and Nishita 1990) instead: a piece is cut to the parameter interval
 //!    where the convex hull of its signed distances from the other piece's

@@ -221,25 +221,31 @@ impl<'a> Track<'a> {
                         .collect(),
                 )
             }
-            Track::Nurbs(n) => Pieces::Many(
-                n.bezier_spans()
-                    .into_iter()
-                    .map(|span| {
-                        let (lo, hi) = span.domain();
-                        if span.weights().is_some() {
-                            let h = span.homogeneous_points();
-                            let curve = BezierCurve::new(span.dim() + 1, span.degree(), h)
-                                .expect("a span's homogeneous poles are a valid Bezier curve");
-                            Piece::new(Cow::Owned(curve), true, lo, hi)
-                        } else {
-                            let curve =
-                                BezierCurve::new(span.dim(), span.degree(), span.points().to_vec())
-                                    .expect("a span's poles are a valid Bezier curve");
-                            Piece::new(Cow::Owned(curve), false, lo, hi)
-                        }
-                    })
-                    .collect(),
-            ),
+            // With weights: a span whose weights are all 1 is polynomial
+            // (its Cartesian poles, `x / 1`); the others borrow their
+            // homogeneous curves from the decomposition.
+            Track::Nurbs(n) => {
+                let poles = n.span_poles();
+                let dim = n.dim();
+                Pieces::Many(
+                    (0..poles.count())
+                        .map(|i| {
+                            let (lo, hi) = poles.domain(i);
+                            let rows = poles.rows(i);
+                            if rows.chunks_exact(dim + 1).all(|r| r[dim] == 1.0) {
+                                let points = rows
+                                    .chunks_exact(dim + 1)
+                                    .flat_map(|r| r[..dim].iter().copied())
+                                    .collect();
+                                let curve = BezierCurve::from_parts(dim, n.degree(), points);
+                                Piece::new(Cow::Owned(curve), false, lo, hi)
+                            } else {
+                                Piece::new(Cow::Borrowed(poles.span_curve(i)), true, lo, hi)
+                            }
+                        })
+                        .collect(),
+                )
+            }
         }
     }
 }
@@ -474,6 +480,17 @@ impl<'a> Piece<'a> {
     /// Whether the piece is a span of a rational curve.
     pub(super) fn is_rational(&self) -> bool {
         self.projected.is_some()
+    }
+
+    /// Cartesian dimension.
+    pub(super) fn dim(&self) -> usize {
+        self.dim
+    }
+
+    /// The homogeneous control points `(w P, w)` of a rational piece,
+    /// row-major (`None` for a polynomial piece).
+    pub(super) fn homogeneous(&self) -> Option<&[f64]> {
+        self.projected.as_ref().map(|_| self.curve.points())
     }
 
     /// The Cartesian control points, row-major.

@@ -175,27 +175,36 @@ impl NurbsCurve {
     }
 
     /// [`segment`](Self::segment)`(first, u)` (`left`) or `(u, last)` of a
-    /// clamped curve without weights, `u` strictly inside the domain: the
-    /// knot `u` inserted up to multiplicity `p` in one buffer (the
-    /// operations of `segment`'s `cut` on the Cartesian poles: without
-    /// weights the weight coordinate of the homogeneous rows stays exactly
-    /// 1, see [`NurbsCurve::span_poles`], so the poles are the same bits),
-    /// then the rows and knots of the side asked for. `None` for other
-    /// curves or parameters.
-    pub(crate) fn polynomial_trim(&self, u: f64, left: bool) -> Option<NurbsCurve> {
+    /// clamped curve, `u` strictly inside the domain: the knot `u` inserted
+    /// up to multiplicity `p` in one buffer (the operations of `segment`'s
+    /// `cut`: on the homogeneous poles with weights, then the Cartesian
+    /// poles and weights as `from_homogeneous` gives them; without weights
+    /// on the Cartesian poles, since the weight coordinate of the
+    /// homogeneous rows stays exactly 1, see [`NurbsCurve::span_poles`], so
+    /// the poles are the same bits either way), then the rows and knots of
+    /// the side asked for. `None` for other curves or parameters.
+    pub(crate) fn clamped_trim(&self, u: f64, left: bool) -> Option<NurbsCurve> {
         let p = self.degree;
         let (first, last) = self.domain();
         let n = self.point_count();
         let clamped = self.knots[..=p].iter().all(|&k| k == first)
             && self.knots[n..].iter().all(|&k| k == last);
-        if self.weights.is_some() || !clamped || !(u > first && u < last) {
+        if !(clamped && u > first && u < last) {
             return None;
         }
-        let d = self.dim;
+        let rational = self.weights.is_some();
+        let d = if rational { self.dim + 1 } else { self.dim };
         let now = self.multiplicity(u);
         let insertions = p.saturating_sub(now);
         let mut h = Vec::with_capacity((n + insertions) * d);
-        h.extend_from_slice(&self.points);
+        if rational {
+            h.resize(n * d, 0.0);
+            for (i, row) in h.chunks_exact_mut(d).enumerate() {
+                self.homogeneous_point(i, row);
+            }
+        } else {
+            h.extend_from_slice(&self.points);
+        }
         let mut knots = Vec::with_capacity(self.knots.len() + insertions);
         knots.extend_from_slice(&self.knots);
         super::spans::insert_in_place(d, p, &mut knots, &mut h, u, insertions);
@@ -214,6 +223,11 @@ impl NurbsCurve {
             k.extend_from_slice(&knots[j + m..]);
             (h, k)
         };
+        if rational {
+            return Some(NurbsCurve::from_homogeneous(
+                self.dim, p, &points, knots, true,
+            ));
+        }
         Some(NurbsCurve {
             degree: p,
             dim: d,

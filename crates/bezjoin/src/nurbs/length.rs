@@ -5,18 +5,25 @@
 //! not depend on the (affine) parametrization, so its length is the Bezier
 //! curve's ([`BezierCurve::arc_length`], adaptive Gauss-Legendre with cusp
 //! cuts, docs/mathematics.md#arc-length) and so is its inverse. A rational
-//! span's speed `|C'(u)|` (A4.2) is integrated by adaptive Gauss-Kronrod
-//! (7/15 points): an interval is accepted when the two rules agree within
-//! its share of the accuracy, otherwise both halves are refined, within a
-//! budget of [`MAX_RATIONAL_EVALUATIONS`] speed evaluations; past it the
-//! call is `IllConditioned` with the estimate. The inverse on a rational
-//! span is Newton's method on `u` (derivative: the speed) safeguarded by
-//! bisection.
+//! span's speed `|C'(u)|` (A4.2, [`RationalSpan::speed`] on the span's
+//! homogeneous Bezier poles) is integrated by adaptive Gauss-Kronrod (7/15
+//! points) on the pieces between the span's cuts (where the speed has a
+//! kink or a sharp minimum, [`RationalSpan::cuts_of`]): an interval is
+//! accepted when the two rules agree within its share of the accuracy,
+//! otherwise both halves are refined, within a budget of
+//! [`MAX_RATIONAL_EVALUATIONS`] speed evaluations; past it the call is
+//! `IllConditioned` with the estimate. The inverse on a rational span is
+//! Newton's method on `u` (derivative: the speed) safeguarded by
+//! bisection, each step measuring the length from the last iterate only.
 
 use std::borrow::Cow;
 
 use super::NurbsCurve;
-use crate::arclength::{ArcLengthInverse, DEFAULT_ARC_LENGTH_ACCURACY};
+use crate::arclength::{
+    ArcLengthInverse, DEFAULT_ARC_LENGTH_ACCURACY, grade_at_near_cusps,
+    speed_bounded_away_from_zero, speed_minima,
+};
+use crate::basis::binomial;
 use crate::bezier::{BezierCurve, distance, norm};
 use crate::error::{BezjoinError, Result, check_finite_scalar};
 
@@ -61,8 +68,302 @@ const WG: [f64; 4] = [
 enum SpanForm<'a> {
     /// Polynomial: the Bezier curve on local `t = (u - lo) / (hi - lo)`.
     Polynomial(Cow<'a, BezierCurve>),
-    /// Rational: the one-span NURBS itself.
-    Rational(NurbsCurve),
+    /// Rational: the span's homogeneous Bezier poles.
+    Rational(RationalSpan<'a>),
+}
+
+/// A rational span as its homogeneous Bezier poles `(w P, w)` (`dim + 1`
+/// values each, the rows of the curve's kept decomposition,
+/// [`NurbsCurve::span_poles`]) on `[lo, hi]`: the curve there is `A(t) /
+/// w(t)` in `t = (u - lo) / (hi - lo)`, `A` and `w` Bernstein polynomials
+/// of the degree `p`.
+struct RationalSpan<'a> {
+    rows: &'a [f64],
+    dim: usize,
+    degree: usize,
+    lo: f64,
+    hi: f64,
+    /// Parameters strictly inside `(lo, hi)`, increasing, where the
+    /// quadrature cuts the span ([`RationalSpan::cuts_of`]; computed once
+    /// per curve, kept with its span decomposition).
+    cuts: &'a [f64],
+}
+
+impl RationalSpan<'_> {
+    /// Where `|C'|` has a kink or a sharp minimum: `C' = N / w^2` with the
+    /// polynomial `N = A' w - A w'` (degree `2p - 1` in this product form,
+    /// Bernstein coefficients from the products of Bernstein polynomials),
+    /// so `|C'|` has a kink exactly where `N` vanishes (a cusp; in one
+    /// dimension, wherever the curve turns back), and the strip where `|C'|`
+    /// is analytic is `N . N`'s, as for a polynomial curve's hodograph. The
+    /// cuts are those of the Bezier arc length for the hodograph `N`: the
+    /// local minima of `|N|` ([`crate::arclength::speed_minima`]) and the
+    /// geometric mesh towards a small nonzero minimum
+    /// ([`crate::arclength::grade_at_near_cusps`]); none when `N`'s
+    /// polygon keeps it away from zero. Without them the 7/15-point check
+    /// is fooled at a kink (both rules off by about the same amount):
+    /// measured on a one-dimensional degree-5 span, a length accepted
+    /// `2.6e-11` off at a tolerance of `6e-14`.
+    fn cuts_of(&self) -> Vec<f64> {
+        let (p, d) = (self.degree, self.dim);
+        let hd = d + 1;
+        if p == 0 {
+            return Vec::new();
+        }
+        let q = 2 * p - 1;
+        let mut numerator = vec![0.0; (q + 1) * d];
+        // A' w and A w' as products of a degree p - 1 and a degree p
+        // Bernstein polynomial: coefficient i + j of degree q gets
+        // C(p-1, i) C(p, j) / C(q, i + j) times the product.
+        for i in 0..p {
+            for j in 0..=p {
+                let weight = binomial(p - 1, i) * binomial(p, j) / binomial(q, i + j);
+                let (r0, r1, rj) = (
+                    &self.rows[i * hd..(i + 1) * hd],
+                    &self.rows[(i + 1) * hd..(i + 2) * hd],
+                    &self.rows[j * hd..(j + 1) * hd],
+                );
+                let dw = p as f64 * (r1[d] - r0[d]);
+                for c in 0..d {
+                    let da = p as f64 * (r1[c] - r0[c]);
+                    numerator[(i + j) * d + c] += weight * (da * rj[d] - rj[c] * dw);
+                }
+            }
+        }
+        if numerator.iter().any(|v| !v.is_finite()) {
+            return Vec::new();
+        }
+        let Ok(n) = BezierCurve::new(d, q, numerator) else {
+            return Vec::new();
+        };
+        if speed_bounded_away_from_zero(&n, 0.0, 1.0) {
+            return Vec::new();
+        }
+        let mut cuts = vec![0.0];
+        cuts.extend(speed_minima(&n, 0.0, 1.0));
+        cuts.push(1.0);
+        grade_at_near_cusps(&n, &mut cuts);
+        let h = self.hi - self.lo;
+        let mut inside: Vec<f64> = cuts
+            .iter()
+            .map(|&t| self.lo + t * h)
+            .filter(|&u| u > self.lo && u < self.hi)
+            .collect();
+        inside.dedup();
+        inside
+    }
+
+    /// The speed `|dC/du|` at `u` in `[lo, hi]`: de Casteljau at `t` on the
+    /// homogeneous poles to level `p - 1`, whose two points give `A'(t) = p
+    /// (d_1 - d_0)` (the same step as de Boor's last level but one,
+    /// [`NurbsCurve::point_and_tangent`]), the last level `A(t)`;
+    /// `C' = (A' - w' C) / w` and `dC/du = C'(t) / (hi - lo)`. No heap allocation up
+    /// to `(p + 1) (dim + 1) <= 128`; plane and space quadratics and cubics
+    /// with the sizes as constants.
+    fn speed(&self, u: f64) -> f64 {
+        let t = (u - self.lo) / (self.hi - self.lo);
+        let scale = 1.0 / (self.hi - self.lo);
+        match (self.dim, self.degree) {
+            (2, 3) => speed_fixed::<3, 3>(self.rows, t) * scale,
+            (3, 3) => speed_fixed::<4, 3>(self.rows, t) * scale,
+            (2, 2) => speed_fixed::<3, 2>(self.rows, t) * scale,
+            (3, 2) => speed_fixed::<4, 2>(self.rows, t) * scale,
+            _ => self.speed_any(t) * scale,
+        }
+    }
+
+    /// The parameter in `[lo, hi]` (which holds `start`) whose signed arc
+    /// length from `start` is `target`, and whether the length there met
+    /// `accuracy`: Newton's method on `f(u) = len(start, u) - target`
+    /// (increasing in `u`; `f(start) = -target` exactly), safeguarded by
+    /// bisection. Each step measures only the length between the last
+    /// iterate and the next (not from `start` again), the `k`-th to
+    /// `accuracy / 2^(k + 3)`, so the lengths summed along the way are
+    /// within `accuracy / 4` of the length from `start`; the answer is taken
+    /// when the sum is within `accuracy / 2` of `target` (`true`), or when
+    /// the bracket has shrunk to rounding (`false`, its middle).
+    fn invert(
+        &self,
+        start: f64,
+        target: f64,
+        mut lo: f64,
+        mut hi: f64,
+        accuracy: f64,
+    ) -> Result<(f64, bool)> {
+        let mut u = start;
+        let mut value = -target;
+        let mut tolerance = 0.125 * accuracy;
+        for _ in 0..200 {
+            let speed = self.speed(u);
+            let newton = u - value / speed;
+            let next = if speed > 0.0 && newton > lo && newton < hi {
+                newton
+            } else {
+                0.5 * (lo + hi)
+            };
+            value += if next >= u {
+                rational_length(self, u, next, tolerance)?
+            } else {
+                -rational_length(self, next, u, tolerance)?
+            };
+            tolerance *= 0.5;
+            u = next;
+            if value.abs() <= 0.5 * accuracy {
+                return Ok((u, true));
+            }
+            if value > 0.0 {
+                hi = u;
+            } else {
+                lo = u;
+            }
+            if hi - lo <= 4.0 * f64::EPSILON * hi.abs().max(lo.abs()).max(f64::MIN_POSITIVE) {
+                return Ok((0.5 * (lo + hi), false));
+            }
+        }
+        Ok((u, false))
+    }
+
+    /// Length of the Cartesian control polygon of the span's part on `[t0,
+    /// 1]` (`forward`) or `[0, t0]`: one de Casteljau pass on the
+    /// homogeneous poles (on the stack up to 128 values; the whole polygon,
+    /// a larger bound, above that or at the ends).
+    fn part_polygon_length(&self, t0: f64, forward: bool) -> f64 {
+        let (p, d) = (self.degree, self.dim);
+        let hd = d + 1;
+        let mut work = [0.0f64; 128];
+        let rows = self.rows;
+        let polygon = |w: &[f64]| -> f64 {
+            let mut total = 0.0;
+            let mut a = [0.0f64; 16];
+            let mut b = [0.0f64; 16];
+            if d > a.len() {
+                return f64::INFINITY;
+            }
+            for i in 1..=p {
+                for c in 0..d {
+                    a[c] = w[(i - 1) * hd + c] / w[(i - 1) * hd + d];
+                    b[c] = w[i * hd + c] / w[i * hd + d];
+                }
+                total += distance(&a[..d], &b[..d]);
+            }
+            total
+        };
+        if rows.len() > work.len() || !(t0 > 0.0 && t0 < 1.0) {
+            return polygon(rows);
+        }
+        let work = &mut work[..rows.len()];
+        work.copy_from_slice(rows);
+        let s = 1.0 - t0;
+        if forward {
+            // Right part: after step r, point p - r is final.
+            for r in 1..=p {
+                for i in 0..=p - r {
+                    for c in 0..hd {
+                        work[i * hd + c] = s * work[i * hd + c] + t0 * work[(i + 1) * hd + c];
+                    }
+                }
+            }
+        } else {
+            // Left part: after step r, point r is final.
+            for r in 1..=p {
+                for i in (r..=p).rev() {
+                    for c in 0..hd {
+                        work[i * hd + c] = s * work[(i - 1) * hd + c] + t0 * work[i * hd + c];
+                    }
+                }
+            }
+        }
+        polygon(work)
+    }
+
+    /// [`Self::speed`] in `t` (per unit `t`) for any dimension and degree.
+    fn speed_any(&self, t: f64) -> f64 {
+        let (p, d) = (self.degree, self.dim);
+        let hd = d + 1;
+        if p == 0 {
+            return 0.0;
+        }
+        let mut stack = [0.0f64; 128];
+        let mut heap = Vec::new();
+        let work: &mut [f64] = if self.rows.len() <= stack.len() {
+            &mut stack[..self.rows.len()]
+        } else {
+            heap.resize(self.rows.len(), 0.0);
+            &mut heap
+        };
+        work.copy_from_slice(self.rows);
+        let s = 1.0 - t;
+        for r in 1..p {
+            for i in 0..=p - r {
+                for c in 0..hd {
+                    work[i * hd + c] = s * work[i * hd + c] + t * work[(i + 1) * hd + c];
+                }
+            }
+        }
+        // Two points left (rows 0 and 1): the derivative, then the value.
+        let mut square = 0.0;
+        let (w, dw) = (
+            s * work[d] + t * work[hd + d],
+            p as f64 * (work[hd + d] - work[d]),
+        );
+        let mut tangent = [0.0f64; 16];
+        let mut tangent_heap = Vec::new();
+        let tangent: &mut [f64] = if d <= tangent.len() {
+            &mut tangent[..d]
+        } else {
+            tangent_heap.resize(d, 0.0);
+            &mut tangent_heap
+        };
+        for c in 0..d {
+            let a = s * work[c] + t * work[hd + c];
+            let da = p as f64 * (work[hd + c] - work[c]);
+            tangent[c] = (da - dw * (a / w)) / w;
+            square += tangent[c] * tangent[c];
+        }
+        if square.is_normal() {
+            square.sqrt()
+        } else {
+            norm(tangent)
+        }
+    }
+}
+
+/// [`RationalSpan::speed`] in `t` for `HD = dim + 1` homogeneous
+/// coordinates and the degree `P >= 1` known at compile time (loops
+/// unrolled): the operations of [`RationalSpan::speed_any`].
+#[inline(always)]
+fn speed_fixed<const HD: usize, const P: usize>(rows: &[f64], t: f64) -> f64 {
+    let d = HD - 1;
+    let mut work = [[0.0f64; HD]; 4];
+    for (row, poles) in work.iter_mut().zip(rows.chunks_exact(HD)).take(P + 1) {
+        row.copy_from_slice(poles);
+    }
+    let s = 1.0 - t;
+    for r in 1..P {
+        for i in 0..=P - r {
+            let next = work[i + 1];
+            for (x, y) in work[i].iter_mut().zip(next) {
+                *x = s * *x + t * y;
+            }
+        }
+    }
+    let (w, dw) = (
+        s * work[0][d] + t * work[1][d],
+        P as f64 * (work[1][d] - work[0][d]),
+    );
+    let mut tangent = [0.0f64; HD];
+    let mut square = 0.0;
+    for c in 0..d {
+        let a = s * work[0][c] + t * work[1][c];
+        let da = P as f64 * (work[1][c] - work[0][c]);
+        tangent[c] = (da - dw * (a / w)) / w;
+        square += tangent[c] * tangent[c];
+    }
+    if square.is_normal() {
+        square.sqrt()
+    } else {
+        norm(&tangent[..d])
+    }
 }
 
 struct Span<'a> {
@@ -126,8 +427,28 @@ impl Span<'_> {
     /// accuracies of the span's length from `start`, and then both answers
     /// meet the accuracy.
     fn param_inside(&self, start: f64, length: f64, forward: bool, accuracy: f64) -> Option<f64> {
-        let SpanForm::Polynomial(bez) = &self.form else {
-            return None;
+        let bez = match &self.form {
+            SpanForm::Polynomial(bez) => bez,
+            SpanForm::Rational(span) => {
+                // The same on a rational span: its part's control polygon
+                // bounds that part's length too (each de Casteljau level's
+                // projected points lie on the previous level's polygon), and
+                // the inversion's answer is taken when it met its accuracy
+                // strictly inside the span.
+                let bound = span.part_polygon_length(self.local(start), forward);
+                if length.is_nan() || bound.is_nan() || length > bound {
+                    return None;
+                }
+                let (lo, hi) = if forward {
+                    (start, self.hi)
+                } else {
+                    (self.lo, start)
+                };
+                let target = if forward { length } else { -length };
+                let (u, met) = span.invert(start, target, lo, hi, accuracy).ok()?;
+                let end = if forward { self.hi } else { self.lo };
+                return (met && u != end && u != start).then_some(u);
+            }
         };
         let t0 = self.local(start);
         // The control polygon of the part from `t0` to the end it runs
@@ -153,50 +474,13 @@ impl Span<'_> {
                 Ok(self.global(t))
             }
             SpanForm::Rational(span) => {
-                let (mut lo, mut hi) = if forward {
+                let (lo, hi) = if forward {
                     (start, self.hi)
                 } else {
                     (self.lo, start)
                 };
-                // f(u) = signed length from start to u minus the target,
-                // increasing in u.
                 let target = if forward { length } else { -length };
-                let f = |u: f64| -> Result<f64> {
-                    let l = if u >= start {
-                        rational_length(span, start, u, 0.25 * accuracy)?
-                    } else {
-                        -rational_length(span, u, start, 0.25 * accuracy)?
-                    };
-                    Ok(l - target)
-                };
-                let mut u = if forward {
-                    start + 0.5 * (hi - start)
-                } else {
-                    start - 0.5 * (start - lo)
-                };
-                for _ in 0..200 {
-                    let value = f(u)?;
-                    if value.abs() <= 0.5 * accuracy {
-                        return Ok(u);
-                    }
-                    if value > 0.0 {
-                        hi = u;
-                    } else {
-                        lo = u;
-                    }
-                    let speed = rational_speed(span, u);
-                    let newton = u - value / speed;
-                    u = if speed > 0.0 && newton > lo && newton < hi {
-                        newton
-                    } else {
-                        0.5 * (lo + hi)
-                    };
-                    if hi - lo <= 4.0 * f64::EPSILON * hi.abs().max(lo.abs()).max(f64::MIN_POSITIVE)
-                    {
-                        return Ok(0.5 * (lo + hi));
-                    }
-                }
-                Ok(u)
+                Ok(span.invert(start, target, lo, hi, accuracy)?.0)
             }
         }
     }
@@ -249,30 +533,16 @@ fn part_polygon_sized(work: &mut [f64; 64], n: usize, d: usize, t0: f64, forward
         .sum()
 }
 
-fn rational_speed(span: &NurbsCurve, u: f64) -> f64 {
-    let mut point = [0.0f64; 16];
-    let mut tangent = [0.0f64; 16];
-    let d = span.dim();
-    if d <= point.len() {
-        span.point_and_tangent(u, &mut point[..d], Some(&mut tangent[..d]));
-        norm(&tangent[..d])
-    } else {
-        let (mut point, mut tangent) = (vec![0.0; d], vec![0.0; d]);
-        span.point_and_tangent(u, &mut point, Some(&mut tangent));
-        norm(&tangent)
-    }
-}
-
 /// One Gauss-Kronrod panel: (Kronrod value, |Kronrod - Gauss|).
-fn kronrod(span: &NurbsCurve, a: f64, b: f64, evaluations: &mut usize) -> (f64, f64) {
+fn kronrod(span: &RationalSpan<'_>, a: f64, b: f64, evaluations: &mut usize) -> (f64, f64) {
     let half = 0.5 * (b - a);
     let mid = 0.5 * (a + b);
-    let centre = rational_speed(span, mid);
+    let centre = span.speed(mid);
     let mut k = WGK[7] * centre;
     let mut g = WG[3] * centre;
     for j in 0..7 {
         let dx = half * XGK[j];
-        let pair = rational_speed(span, mid - dx) + rational_speed(span, mid + dx);
+        let pair = span.speed(mid - dx) + span.speed(mid + dx);
         k += WGK[j] * pair;
         if j % 2 == 1 {
             g += WG[j / 2] * pair;
@@ -282,26 +552,47 @@ fn kronrod(span: &NurbsCurve, a: f64, b: f64, evaluations: &mut usize) -> (f64, 
     (k * half, ((k - g) * half).abs())
 }
 
-/// `int_a^b |C'|` on a rational span, adaptive Gauss-Kronrod.
-fn rational_length(span: &NurbsCurve, a: f64, b: f64, accuracy: f64) -> Result<f64> {
+/// `int_a^b |C'|` on a rational span (`lo <= a <= b <= hi`), adaptive
+/// Gauss-Kronrod on each piece between the span's cuts
+/// ([`RationalSpan::cuts_of`]) inside `(a, b)`, each to its equal share of
+/// `accuracy`.
+fn rational_length(span: &RationalSpan<'_>, a: f64, b: f64, accuracy: f64) -> Result<f64> {
     let mut evaluations = 0usize;
     let mut total = 0.0;
     let mut unresolved = 0.0;
-    let mut stack = vec![(a, b, accuracy, 0u32)];
-    while let Some((lo, hi, tol, depth)) = stack.pop() {
-        let (value, error) = kronrod(span, lo, hi, &mut evaluations);
-        let floor = 16.0 * f64::EPSILON * value.abs();
-        if error <= tol.max(floor) || depth >= MAX_DEPTH || evaluations >= MAX_RATIONAL_EVALUATIONS
-        {
-            if error > tol.max(floor) {
-                unresolved += error;
+    let inside = span.cuts.iter().filter(|&&u| u > a && u < b);
+    let share = accuracy / (inside.clone().count() + 1) as f64;
+    let ends = std::iter::once(a)
+        .chain(inside.copied())
+        .chain(std::iter::once(b));
+    let mut piece_lo = a;
+    for piece_hi in ends.skip(1) {
+        // Depth-first: at most one pending interval per level (depth <=
+        // MAX_DEPTH), on the stack.
+        let mut stack = [(0.0f64, 0.0f64, 0.0f64, 0u32); MAX_DEPTH as usize + 2];
+        stack[0] = (piece_lo, piece_hi, share, 0);
+        piece_lo = piece_hi;
+        let mut pending = 1;
+        while pending > 0 {
+            pending -= 1;
+            let (lo, hi, tol, depth) = stack[pending];
+            let (value, error) = kronrod(span, lo, hi, &mut evaluations);
+            let floor = 16.0 * f64::EPSILON * value.abs();
+            if error <= tol.max(floor)
+                || depth >= MAX_DEPTH
+                || evaluations >= MAX_RATIONAL_EVALUATIONS
+            {
+                if error > tol.max(floor) {
+                    unresolved += error;
+                }
+                total += value;
+                continue;
             }
-            total += value;
-            continue;
+            let mid = 0.5 * (lo + hi);
+            stack[pending] = (mid, hi, 0.5 * tol, depth + 1);
+            stack[pending + 1] = (lo, mid, 0.5 * tol, depth + 1);
+            pending += 2;
         }
-        let mid = 0.5 * (lo + hi);
-        stack.push((mid, hi, 0.5 * tol, depth + 1));
-        stack.push((lo, mid, 0.5 * tol, depth + 1));
     }
     if !total.is_finite() {
         return Err(BezjoinError::NonFiniteScalar {
@@ -393,13 +684,52 @@ impl NurbsCurve {
                 })
                 .collect();
         }
-        self.bezier_spans()
-            .into_iter()
-            .map(|s| {
-                let (lo, hi) = s.domain();
-                let form = match s.to_bezier() {
+        // A span whose weights are all equal is polynomial: its Bezier
+        // curve has the poles `w P / w` (what `to_bezier` of the span of
+        // `bezier_spans` gives, bit for bit); the others are read as
+        // homogeneous rows in place.
+        let poles = self.span_poles();
+        let (dim, degree, h) = (self.dim, self.degree, poles.h);
+        let cuts = poles.rational_cuts.get_or_init(|| {
+            (0..poles.count())
+                .map(|i| {
+                    let (lo, hi) = poles.domain(i);
+                    RationalSpan {
+                        rows: poles.rows(i),
+                        dim,
+                        degree,
+                        lo,
+                        hi,
+                        cuts: &[],
+                    }
+                    .cuts_of()
+                })
+                .collect()
+        });
+        (0..poles.count())
+            .map(|i| {
+                let (lo, hi) = poles.domain(i);
+                let rows = poles.rows(i);
+                let equal = rows.chunks_exact(h).all(|r| r[dim] == rows[dim]);
+                let polynomial = equal
+                    .then(|| {
+                        let points = rows
+                            .chunks_exact(h)
+                            .flat_map(|r| r[..dim].iter().map(move |x| x / r[dim]))
+                            .collect();
+                        BezierCurve::new(dim, degree, points).ok()
+                    })
+                    .flatten();
+                let form = match polynomial {
                     Some(b) => SpanForm::Polynomial(Cow::Owned(b)),
-                    None => SpanForm::Rational(s),
+                    None => SpanForm::Rational(RationalSpan {
+                        rows,
+                        dim,
+                        degree,
+                        lo,
+                        hi,
+                        cuts: &cuts[i],
+                    }),
                 };
                 Span { lo, hi, form }
             })
