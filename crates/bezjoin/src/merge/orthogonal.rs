@@ -112,6 +112,10 @@ pub(super) struct Orthogonal {
     /// envelope theorem: the derivative of `||M(mu) r - b||^2` at the
     /// optimal, fixed `r`.
     pub(super) slope: Option<f64>,
+    /// `x` is `R` split at `mu` by the de Casteljau steps of
+    /// [`BezierCurve::split_unchecked`] (two pieces, the double solve), so
+    /// stage 2's split of `R` gives it back bit for bit.
+    pub(super) split_of_merged: bool,
 }
 
 /// Gauss-Legendre nodes and weights on `[0, 1]` (`count` nodes, exact for
@@ -871,6 +875,7 @@ pub(super) fn orthogonal_solution(
             estimate: 0.0,
             metric_value,
             slope,
+            split_of_merged: count == 2,
         });
     }
 
@@ -899,6 +904,7 @@ pub(super) fn orthogonal_solution(
             estimate: r.estimate,
             metric_value: r.metric_value,
             slope,
+            split_of_merged: false,
         })
     };
     let mut refinement_tried = false;
@@ -1054,6 +1060,7 @@ pub(super) fn orthogonal_solution(
         estimate,
         metric_value,
         slope,
+        split_of_merged: count == 2,
     })
 }
 

@@ -87,6 +87,11 @@ pub(crate) struct StageOne {
     /// `d metric / d mu` for two pieces without keep points (orthogonal
     /// path), for the search of the optimal `mu`.
     pub slope: Option<f64>,
+    /// The pieces are `merged` split at the breakpoint by
+    /// [`BezierCurve::split_unchecked`]'s operations (two pieces, the
+    /// orthogonal path's double solve): stage 2's split gives them back bit
+    /// for bit ([`super::stage_two::stage_two`]).
+    pub split_of_merged: bool,
 }
 
 /// The exact Bernstein Gram matrix `G_ij = int_0^1 B_i^n B_j^n =
@@ -169,6 +174,7 @@ pub(crate) fn solve_stage_one_slope(
     let m = pieces[0].curve.degree();
     let problem = Problem::new(pieces, lengths, fix_ends);
     let mut found = None;
+    let mut split_of_merged = false;
     let (x, estimate) = if pieces.iter().any(|p| p.keep) {
         kept_solution(&problem, breakpoints, lengths, accuracy)?
     } else {
@@ -183,6 +189,7 @@ pub(crate) fn solve_stage_one_slope(
         ) {
             Ok(solved) => {
                 found = Some((solved.merged, solved.metric_value, solved.slope));
+                split_of_merged = solved.split_of_merged;
                 (solved.x, solved.estimate)
             }
             // The orthogonal estimate can be far more pessimistic than the
@@ -274,5 +281,6 @@ pub(crate) fn solve_stage_one_slope(
         error_estimate: estimate,
         merged,
         slope,
+        split_of_merged,
     })
 }

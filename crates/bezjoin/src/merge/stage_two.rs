@@ -25,11 +25,23 @@ pub(crate) fn stage_two(
     breakpoints: &[f64],
     accuracy: f64,
     found: Option<&DMatrix<f64>>,
+    split_of_merged: bool,
 ) -> Result<(BezierCurve, f64, Vec<BezierCurve>)> {
     let merged = match found {
         Some(r) => BezierCurve::from_matrix(r)?,
         None => extrapolate(pieces, breakpoints)?,
     };
+    if found.is_some() && split_of_merged && pieces.len() == 2 {
+        // The pieces are R's split at mu by the operations of the split
+        // below (stage 1 computed them so): the restrictions are the pieces
+        // themselves and the check's difference is exactly zero (test
+        // `split_of_merged_is_the_stage_two_split_to_the_bit`).
+        let restrictions = pieces
+            .iter()
+            .map(BezierCurve::from_matrix)
+            .collect::<Result<Vec<_>>>()?;
+        return Ok((merged, 0.0, restrictions));
+    }
     check_restrictions(merged, pieces, breakpoints, accuracy)
 }
 
@@ -58,7 +70,7 @@ fn extrapolate(pieces: &[DMatrix<f64>], breakpoints: &[f64]) -> Result<BezierCur
 }
 
 /// `R` restricted to every piece's interval against the piece.
-fn check_restrictions(
+pub(super) fn check_restrictions(
     merged: BezierCurve,
     pieces: &[DMatrix<f64>],
     breakpoints: &[f64],
