@@ -115,9 +115,48 @@ impl Factor {
     }
 
     /// `x <- Q^T x` (one column of length `rows`).
+    #[cfg(test)]
     pub(super) fn apply_qt(&self, x: &mut [f64]) {
-        for k in 0..self.cols {
-            reflect(self.reflector(k), &mut x[k..], self.beta()[k]);
+        self.apply_qt_sized::<0, 0>(x);
+    }
+
+    /// `(rows, cols)`: `(R, C)` when `R > 0` (sizes known at compile
+    /// time), else the factor's own.
+    #[inline(always)]
+    fn sizes<const R: usize, const C: usize>(&self) -> (usize, usize) {
+        if R == 0 {
+            (self.rows, self.cols)
+        } else {
+            debug_assert_eq!((R, C), (self.rows, self.cols));
+            (R, C)
+        }
+    }
+
+    /// [`Self::apply_qt`] with the sizes of [`Self::sizes`].
+    #[inline(always)]
+    fn apply_qt_sized<const R: usize, const C: usize>(&self, x: &mut [f64]) {
+        let (rows, cols) = self.sizes::<R, C>();
+        let beta = &self.packed[rows * cols + cols..];
+        for k in 0..cols {
+            reflect(
+                &self.packed[k * rows + k..(k + 1) * rows],
+                &mut x[k..],
+                beta[k],
+            );
+        }
+    }
+
+    /// [`Self::solve_t`] with the sizes of [`Self::sizes`].
+    #[inline(always)]
+    fn solve_t_sized<const R: usize, const C: usize>(&self, y: &mut [f64]) {
+        let (rows, cols) = self.sizes::<R, C>();
+        let diagonal = &self.packed[rows * cols..rows * cols + cols];
+        for j in (0..cols).rev() {
+            let yj = y[j] / diagonal[j];
+            y[j] = yj;
+            for (yi, &t) in y[..j].iter_mut().zip(&self.packed[j * rows..j * rows + j]) {
+                *yi -= t * yj;
+            }
         }
     }
 
@@ -138,14 +177,9 @@ impl Factor {
     }
 
     /// `y <- T^-1 y` (the first `cols` entries), column by column.
+    #[cfg(test)]
     pub(super) fn solve_t(&self, y: &mut [f64]) {
-        for j in (0..self.cols).rev() {
-            let yj = y[j] / self.diagonal()[j];
-            y[j] = yj;
-            for (yi, &t) in y[..j].iter_mut().zip(self.t_column(j)) {
-                *yi -= t * yj;
-            }
-        }
+        self.solve_t_sized::<0, 0>(y);
     }
 
     /// `||T^-1||_F`: column `k` of `T^-1` from `e_k` on the leading
@@ -185,11 +219,36 @@ impl Factor {
     /// `b` (column-major `rows x dim`) into `y` (`cols x dim`), with
     /// `work` (`rows`) as scratch.
     pub(super) fn least_squares(&self, b: &[f64], y: &mut [f64], work: &mut [f64]) {
-        let (rows, cols) = (self.rows, self.cols);
+        // The merge's small factors (two pieces of degree m, rows 2 (m +
+        // 1); m - 1 free columns with fixed ends, m + 1 without) with the
+        // sizes as constants: the same operations in the same order.
+        match (self.rows, self.cols) {
+            (6, 1) => self.least_squares_sized::<6, 1>(b, y, work),
+            (8, 2) => self.least_squares_sized::<8, 2>(b, y, work),
+            (10, 3) => self.least_squares_sized::<10, 3>(b, y, work),
+            (12, 4) => self.least_squares_sized::<12, 4>(b, y, work),
+            (4, 2) => self.least_squares_sized::<4, 2>(b, y, work),
+            (6, 3) => self.least_squares_sized::<6, 3>(b, y, work),
+            (8, 4) => self.least_squares_sized::<8, 4>(b, y, work),
+            _ => self.least_squares_sized::<0, 0>(b, y, work),
+        }
+    }
+
+    /// [`Self::least_squares`] with the sizes of [`Self::sizes`]:
+    /// [`Self::apply_qt`] then [`Self::solve_t`] per column, inlined.
+    #[inline(always)]
+    fn least_squares_sized<const R: usize, const C: usize>(
+        &self,
+        b: &[f64],
+        y: &mut [f64],
+        work: &mut [f64],
+    ) {
+        let (rows, cols) = self.sizes::<R, C>();
         for (column, out) in b.chunks_exact(rows).zip(y.chunks_exact_mut(cols)) {
+            let work = &mut work[..rows];
             work.copy_from_slice(column);
-            self.apply_qt(work);
-            self.solve_t(work);
+            self.apply_qt_sized::<R, C>(work);
+            self.solve_t_sized::<R, C>(work);
             out.copy_from_slice(&work[..cols]);
         }
     }
@@ -285,5 +344,36 @@ mod tests {
         }
         // A zero column has no factor.
         assert!(Factor::new(&[1.0, 2.0, 0.0, 0.0], 2, 2).is_none());
+    }
+
+    /// The least-squares solve with the sizes as constants (every size of
+    /// the dispatch) is the general loop run with the sizes unknown at
+    /// compile time, to the bit, on random matrices and right-hand sides.
+    #[test]
+    fn constant_size_solves_are_the_general_one_to_the_bit() {
+        use std::hint::black_box;
+        let mut state = 11;
+        for (rows, cols) in [
+            (6, 1),
+            (8, 2),
+            (10, 3),
+            (12, 4),
+            (4, 2),
+            (6, 3),
+            (8, 4),
+            (9, 2),
+        ] {
+            for _ in 0..20 {
+                let a = matrix(&mut state, rows, cols);
+                let b = matrix(&mut state, rows, 3);
+                let f = Factor::new(a.as_slice(), rows, cols).unwrap();
+                let (mut fast, mut general) = (vec![0.0; cols * 3], vec![0.0; cols * 3]);
+                let mut work = vec![0.0; rows];
+                f.least_squares(b.as_slice(), &mut fast, &mut work);
+                black_box(&f).least_squares_sized::<0, 0>(b.as_slice(), &mut general, &mut work);
+                let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                assert_eq!(bits(&fast), bits(&general), "{rows}x{cols}");
+            }
+        }
     }
 }
