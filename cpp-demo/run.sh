@@ -54,12 +54,16 @@ fi
 # ---- 2. the Rust library -----------------------------------------------------
 say "cargo build --release -p bezjoin-ffi"
 (cd "$root" && cargo build --release -p bezjoin-ffi)
+# Where cargo put it: CARGO_TARGET_DIR when set (relative to the root, where
+# cargo ran), else the workspace's target/.
+target_dir="${CARGO_TARGET_DIR:-target}"
+[[ "$target_dir" = /* ]] || target_dir="$root/$target_dir"
 
 # ---- 3. the demo --------------------------------------------------------------
 say "building the demo"
 mkdir -p "$build"
-cmake -S "$here" -B "$build" -DCMAKE_BUILD_TYPE=Release \
-      -DBEZJOIN_LIBRARY_DIR="$root/target/release" >"$build/cmake.log" 2>&1 \
+cmake -S "$here" -B "$build" -DCMAKE_BUILD_TYPE=Release -U BEZJOIN_LIBRARY \
+      -DBEZJOIN_LIBRARY_DIR="$target_dir/release" >"$build/cmake.log" 2>&1 \
     || { cat "$build/cmake.log"; exit 1; }
 cmake --build "$build" -j "$jobs"
 mkdir -p "$output"
