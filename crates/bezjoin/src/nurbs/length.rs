@@ -161,14 +161,30 @@ impl RationalSpan<'_> {
     /// to `(p + 1) (dim + 1) <= 128`; plane and space quadratics and cubics
     /// with the sizes as constants.
     fn speed(&self, u: f64) -> f64 {
-        let t = (u - self.lo) / (self.hi - self.lo);
-        let scale = 1.0 / (self.hi - self.lo);
+        let mut out = [0.0];
+        self.speeds(&[u], &mut out);
+        out[0]
+    }
+
+    /// [`Self::speed`] at every `u` of `us` into `out` (the size dispatch
+    /// once for all of them: a Gauss-Kronrod panel's 15 nodes).
+    fn speeds(&self, us: &[f64], out: &mut [f64]) {
         match (self.dim, self.degree) {
-            (2, 3) => speed_fixed::<3, 3>(self.rows, t) * scale,
-            (3, 3) => speed_fixed::<4, 3>(self.rows, t) * scale,
-            (2, 2) => speed_fixed::<3, 2>(self.rows, t) * scale,
-            (3, 2) => speed_fixed::<4, 2>(self.rows, t) * scale,
-            _ => self.speed_any(t) * scale,
+            (2, 3) => self.speeds_with(us, out, speed_fixed::<3, 3>),
+            (3, 3) => self.speeds_with(us, out, speed_fixed::<4, 3>),
+            (2, 2) => self.speeds_with(us, out, speed_fixed::<3, 2>),
+            (3, 2) => self.speeds_with(us, out, speed_fixed::<4, 2>),
+            _ => self.speeds_with(us, out, |_, t| self.speed_any(t)),
+        }
+    }
+
+    /// [`Self::speeds`] by `per_unit_t` (the speed in `t` from the rows).
+    #[inline(always)]
+    fn speeds_with(&self, us: &[f64], out: &mut [f64], per_unit_t: impl Fn(&[f64], f64) -> f64) {
+        let scale = 1.0 / (self.hi - self.lo);
+        for (o, &u) in out.iter_mut().zip(us) {
+            let t = (u - self.lo) / (self.hi - self.lo);
+            *o = per_unit_t(self.rows, t) * scale;
         }
     }
 
@@ -537,12 +553,20 @@ fn part_polygon_sized(work: &mut [f64; 64], n: usize, d: usize, t0: f64, forward
 fn kronrod(span: &RationalSpan<'_>, a: f64, b: f64, evaluations: &mut usize) -> (f64, f64) {
     let half = 0.5 * (b - a);
     let mid = 0.5 * (a + b);
-    let centre = span.speed(mid);
+    // The nodes: the centre, then `mid - dx_j`, `mid + dx_j` for j = 0..7.
+    let mut nodes = [mid; 15];
+    for j in 0..7 {
+        let dx = half * XGK[j];
+        nodes[1 + 2 * j] = mid - dx;
+        nodes[2 + 2 * j] = mid + dx;
+    }
+    let mut speeds = [0.0; 15];
+    span.speeds(&nodes, &mut speeds);
+    let centre = speeds[0];
     let mut k = WGK[7] * centre;
     let mut g = WG[3] * centre;
     for j in 0..7 {
-        let dx = half * XGK[j];
-        let pair = span.speed(mid - dx) + span.speed(mid + dx);
+        let pair = speeds[1 + 2 * j] + speeds[2 + 2 * j];
         k += WGK[j] * pair;
         if j % 2 == 1 {
             g += WG[j / 2] * pair;
