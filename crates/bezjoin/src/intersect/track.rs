@@ -556,96 +556,23 @@ fn halves_come_within(
         || halves_come_within(&right, n, d, x, margin, levels - 1)
 }
 
-/// Control-point coordinates up to which [`point_and_tangent`] works on the
-/// stack.
-const DE_CASTELJAU_STACK: usize = 64;
-
-/// `P(t)` into `point` and `P'(t)` into `tangent`, `t` in `[0, 1]`, by de
-/// Casteljau's scheme: the levels `(1 - t) b_i + t b_(i+1)` down to two
-/// points `b_0`, `b_1` (the control points of the two halves' common
-/// edge), then `P(t) = (1 - t) b_0 + t b_1` and `P'(t) = n (b_1 - b_0)`.
-/// Convex combinations only (the most stable evaluation, exact at `t = 0`
-/// and `t = 1`); on the stack up to [`DE_CASTELJAU_STACK`] coordinates.
+/// `P(t)` and `P'(t)` of a Bezier curve by de Casteljau's scheme
+/// ([`crate::bezier::point_and_tangent_rows`] on its control points).
+#[inline]
 pub(super) fn point_and_tangent(
     curve: &BezierCurve,
     t: f64,
     point: &mut [f64],
     tangent: &mut [f64],
 ) {
-    let (n, d) = (curve.degree(), curve.dim());
-    let points = curve.points();
-    // The plane and space up to degree 7: the dimension and the buffer's
-    // size known at compile time (the same operations as below).
-    match (d, n) {
-        // Cubics with the degree as a constant as well (loops unrolled).
-        (2, 3) => return point_and_tangent_fixed::<2, 4>(points, 3, t, point, tangent),
-        (3, 3) => return point_and_tangent_fixed::<3, 4>(points, 3, t, point, tangent),
-        (2, 1..=3) => return point_and_tangent_fixed::<2, 4>(points, n, t, point, tangent),
-        (2, 4..=7) => return point_and_tangent_fixed::<2, 8>(points, n, t, point, tangent),
-        (3, 1..=3) => return point_and_tangent_fixed::<3, 4>(points, n, t, point, tangent),
-        (3, 4..=7) => return point_and_tangent_fixed::<3, 8>(points, n, t, point, tangent),
-        _ => {}
-    }
-    if n == 0 {
-        point.copy_from_slice(&points[..d]);
-        tangent.fill(0.0);
-        return;
-    }
-    let mut stack = [0.0f64; DE_CASTELJAU_STACK];
-    let mut heap = Vec::new();
-    let work: &mut [f64] = if points.len() <= DE_CASTELJAU_STACK {
-        &mut stack[..points.len()]
-    } else {
-        heap.extend_from_slice(points);
-        &mut heap
-    };
-    if points.len() <= DE_CASTELJAU_STACK {
-        work.copy_from_slice(points);
-    }
-    let s = 1.0 - t;
-    for level in 1..n {
-        for i in 0..(n - level + 1) * d {
-            work[i] = s * work[i] + t * work[i + d];
-        }
-    }
-    let nf = n as f64;
-    for c in 0..d {
-        let (b0, b1) = (work[c], work[d + c]);
-        point[c] = s * b0 + t * b1;
-        tangent[c] = nf * (b1 - b0);
-    }
-}
-
-/// [`point_and_tangent`] for `D` coordinates and degree `1 <= n < CAP`.
-#[inline(always)]
-fn point_and_tangent_fixed<const D: usize, const CAP: usize>(
-    points: &[f64],
-    n: usize,
-    t: f64,
-    point: &mut [f64],
-    tangent: &mut [f64],
-) {
-    let n = n.min(CAP - 1);
-    let mut w = [[0.0f64; D]; CAP];
-    for (row, p) in w.iter_mut().zip(points.chunks_exact(D)).take(n + 1) {
-        row.copy_from_slice(p);
-    }
-    let s = 1.0 - t;
-    for level in 1..n {
-        for i in 0..=n - level {
-            let next = w[i + 1];
-            for (x, y) in w[i].iter_mut().zip(next) {
-                *x = s * *x + t * y;
-            }
-        }
-    }
-    let nf = n as f64;
-    let (point, tangent) = (&mut point[..D], &mut tangent[..D]);
-    for c in 0..D {
-        let (b0, b1) = (w[0][c], w[1][c]);
-        point[c] = s * b0 + t * b1;
-        tangent[c] = nf * (b1 - b0);
-    }
+    crate::bezier::point_and_tangent_rows(
+        curve.points(),
+        curve.dim(),
+        curve.degree(),
+        t,
+        point,
+        tangent,
+    );
 }
 
 /// [`Piece::is_flat`] for the degree-`n` polygon `points` (row-major,
@@ -770,7 +697,7 @@ mod tests {
     /// fixed-seed random cubics at random parameters.
     #[test]
     fn cubic_point_and_tangent_are_the_general_loop_to_the_bit() {
-        use super::point_and_tangent_fixed;
+        use crate::bezier::point_and_tangent_fixed;
         use std::hint::black_box;
         let mut values = crate::test_values::Values(27);
         for case in 0..400 {

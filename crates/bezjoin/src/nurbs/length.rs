@@ -25,6 +25,7 @@ use crate::arclength::{
 };
 use crate::basis::binomial;
 use crate::bezier::{BezierCurve, distance, norm};
+use crate::bezier::{point_and_tangent_fixed, point_and_tangent_rows};
 use crate::error::{BezjoinError, Result, check_finite_scalar};
 
 /// Speed evaluations one rational-span length may spend (about 1,000
@@ -292,94 +293,63 @@ impl RationalSpan<'_> {
         polygon(work)
     }
 
-    /// [`Self::speed`] in `t` (per unit `t`) for any dimension and degree.
+    /// [`Self::speed`] in `t` (per unit `t`) for any dimension and degree:
+    /// `A(t)` and `A'(t)` by [`point_and_tangent_rows`] on the homogeneous
+    /// poles, then [`rational_speed`].
     fn speed_any(&self, t: f64) -> f64 {
-        let (p, d) = (self.degree, self.dim);
-        let hd = d + 1;
-        if p == 0 {
+        let hd = self.dim + 1;
+        if self.degree == 0 {
             return 0.0;
         }
-        let mut stack = [0.0f64; 128];
-        let mut heap = Vec::new();
-        let work: &mut [f64] = if self.rows.len() <= stack.len() {
-            &mut stack[..self.rows.len()]
+        let (mut a, mut da) = ([0.0f64; 17], [0.0f64; 17]);
+        let (mut a_heap, mut da_heap) = (Vec::new(), Vec::new());
+        let (a, da): (&mut [f64], &mut [f64]) = if hd <= a.len() {
+            (&mut a[..hd], &mut da[..hd])
         } else {
-            heap.resize(self.rows.len(), 0.0);
-            &mut heap
+            a_heap.resize(hd, 0.0);
+            da_heap.resize(hd, 0.0);
+            (&mut a_heap, &mut da_heap)
         };
-        work.copy_from_slice(self.rows);
-        let s = 1.0 - t;
-        for r in 1..p {
-            for i in 0..=p - r {
-                for c in 0..hd {
-                    work[i * hd + c] = s * work[i * hd + c] + t * work[(i + 1) * hd + c];
-                }
-            }
-        }
-        // Two points left (rows 0 and 1): the derivative, then the value.
-        let mut square = 0.0;
-        let (w, dw) = (
-            s * work[d] + t * work[hd + d],
-            p as f64 * (work[hd + d] - work[d]),
-        );
-        let mut tangent = [0.0f64; 16];
-        let mut tangent_heap = Vec::new();
-        let tangent: &mut [f64] = if d <= tangent.len() {
-            &mut tangent[..d]
-        } else {
-            tangent_heap.resize(d, 0.0);
-            &mut tangent_heap
-        };
-        for c in 0..d {
-            let a = s * work[c] + t * work[hd + c];
-            let da = p as f64 * (work[hd + c] - work[c]);
-            tangent[c] = (da - dw * (a / w)) / w;
-            square += tangent[c] * tangent[c];
-        }
-        if square.is_normal() {
-            square.sqrt()
-        } else {
-            norm(tangent)
-        }
+        point_and_tangent_rows(self.rows, hd, self.degree, t, a, da);
+        rational_speed(a, da)
     }
 }
 
-/// [`RationalSpan::speed`] in `t` for `HD = dim + 1` homogeneous
-/// coordinates and the degree `P >= 1` known at compile time (loops
-/// unrolled): the operations of [`RationalSpan::speed_any`].
+/// `|C'|` from the homogeneous `A` and `A'` (`dim + 1` values each, the
+/// weight last): `C' = (A' - w' C) / w` with `C = A / w`; the plain sum of
+/// squares while it is a normal number, the overflow-safe norm otherwise.
 #[inline(always)]
-fn speed_fixed<const HD: usize, const P: usize>(rows: &[f64], t: f64) -> f64 {
-    let d = HD - 1;
-    let mut work = [[0.0f64; HD]; 4];
-    for (row, poles) in work.iter_mut().zip(rows.chunks_exact(HD)).take(P + 1) {
-        row.copy_from_slice(poles);
-    }
-    let s = 1.0 - t;
-    for r in 1..P {
-        for i in 0..=P - r {
-            let next = work[i + 1];
-            for (x, y) in work[i].iter_mut().zip(next) {
-                *x = s * *x + t * y;
-            }
-        }
-    }
-    let (w, dw) = (
-        s * work[0][d] + t * work[1][d],
-        P as f64 * (work[1][d] - work[0][d]),
-    );
-    let mut tangent = [0.0f64; HD];
+fn rational_speed(a: &[f64], da: &[f64]) -> f64 {
+    let d = a.len() - 1;
+    let (w, dw) = (a[d], da[d]);
+    let mut tangent = [0.0f64; 16];
+    let mut heap = Vec::new();
+    let tangent: &mut [f64] = if d <= tangent.len() {
+        &mut tangent[..d]
+    } else {
+        heap.resize(d, 0.0);
+        &mut heap
+    };
     let mut square = 0.0;
     for c in 0..d {
-        let a = s * work[0][c] + t * work[1][c];
-        let da = P as f64 * (work[1][c] - work[0][c]);
-        tangent[c] = (da - dw * (a / w)) / w;
+        tangent[c] = (da[c] - dw * (a[c] / w)) / w;
         square += tangent[c] * tangent[c];
     }
     if square.is_normal() {
         square.sqrt()
     } else {
-        norm(&tangent[..d])
+        norm(tangent)
     }
+}
+
+/// [`RationalSpan::speed`] in `t` for `HD = dim + 1` homogeneous
+/// coordinates and the degree `P` (1 to 3) known at compile time (loops
+/// unrolled): the operations of [`RationalSpan::speed_any`].
+#[inline(always)]
+fn speed_fixed<const HD: usize, const P: usize>(rows: &[f64], t: f64) -> f64 {
+    let (mut a, mut da) = ([0.0f64; HD], [0.0f64; HD]);
+    point_and_tangent_fixed::<HD, 4>(rows, P, t, &mut a, &mut da);
+    rational_speed(&a, &da)
 }
 
 struct Span<'a> {
