@@ -1004,7 +1004,7 @@ mod tests {
         }
         assert!(fast > 30, "fast {fast}");
         assert!(
-            rational_fast > 60 && rational_crossings > 60,
+            rational_fast > 100 && rational_crossings > 120,
             "rational: fast {rational_fast}, crossings {rational_crossings}"
         );
     }
