@@ -298,7 +298,7 @@ fn product_column(a: &DMatrix<f64>, b: &[f64], abs: bool, out: &mut [f64]) {
 
 /// nalgebra's `dot` of two dynamic columns bit for bit (its `dotx`: eight
 /// partial sums over blocks of eight, added pairwise into a sum from `0`,
-/// then the remaining products one by one), of `a` and `|b|`.
+/// then the remaining products one by one), of `|a|` and `|b|`.
 fn nalgebra_dot_abs(a: &[f64], b: &[f64]) -> f64 {
     let n = a.len();
     let mut res = 0.0;
@@ -306,7 +306,7 @@ fn nalgebra_dot_abs(a: &[f64], b: &[f64]) -> f64 {
     let mut i = 0;
     while n - i >= 8 {
         for (l, s) in acc.iter_mut().enumerate() {
-            *s += a[i + l] * b[i + l].abs();
+            *s += a[i + l].abs() * b[i + l].abs();
         }
         i += 8;
     }
@@ -315,14 +315,14 @@ fn nalgebra_dot_abs(a: &[f64], b: &[f64]) -> f64 {
     res += acc[2] + acc[6];
     res += acc[3] + acc[7];
     for k in i..n {
-        res += a[k] * b[k].abs();
+        res += a[k].abs() * b[k].abs();
     }
     res
 }
 
-/// `a.tr_mul(&b.abs())` bit for bit (nalgebra's: entry `(i, j)` the `dot`
-/// of column `i` of `a` and column `j` of `|b|`, [`nalgebra_dot_abs`]),
-/// without the matrix `|b|`.
+/// `a.abs().tr_mul(&b.abs())` bit for bit (nalgebra's: entry `(i, j)` the
+/// `dot` of column `i` of `|a|` and column `j` of `|b|`,
+/// [`nalgebra_dot_abs`]), without the matrices `|a|` and `|b|`.
 fn abs_tr_mul(a: &DMatrix<f64>, b: &DMatrix<f64>) -> DMatrix<f64> {
     let rows = a.nrows();
     debug_assert_eq!(rows, b.nrows());
@@ -358,6 +358,18 @@ fn abs_of(m: &DMatrix<f64>) -> DMatrix<f64> {
 /// 0) + b` when there is a zero row (`a + 0` is `a`, but `+0` for `a =
 /// -0`) and `a + b` otherwise: the same values.
 fn ends_product(c: &DMatrix<f64>, m: &DMatrix<f64>, p: &DMatrix<f64>, abs: bool) -> DMatrix<f64> {
+    ends_product_of(c, false, m, p, abs)
+}
+
+/// [`ends_product`] with `c` replaced by `|c|` when `c_abs` (entry by
+/// entry, exact: the same values as passing `abs_of(c)`, one matrix fewer).
+fn ends_product_of(
+    c: &DMatrix<f64>,
+    c_abs: bool,
+    m: &DMatrix<f64>,
+    p: &DMatrix<f64>,
+    abs: bool,
+) -> DMatrix<f64> {
     let rows = m.nrows();
     let k = p.nrows() - 1;
     debug_assert!(k >= 1 && m.ncols() == k + 1 && c.shape() == (rows, p.ncols()));
@@ -366,6 +378,9 @@ fn ends_product(c: &DMatrix<f64>, m: &DMatrix<f64>, p: &DMatrix<f64>, abs: bool)
         &m.as_slice()[k * rows..(k + 1) * rows],
     );
     let mut out = c.clone();
+    if c_abs {
+        out.as_mut_slice().iter_mut().for_each(|v| *v = v.abs());
+    }
     for (col, (oc, pc)) in out
         .as_mut_slice()
         .chunks_exact_mut(rows)
@@ -427,20 +442,25 @@ fn combined_product(
     out
 }
 
+/// [`metric_samples`]' `(M, b, what b's rounding is relative to)`.
+type MetricSamples<'s> = (
+    Cow<'s, DMatrix<f64>>,
+    Cow<'s, DMatrix<f64>>,
+    Option<DMatrix<f64>>,
+);
+
 /// The metric's sample matrix `M` and target `b` (see the module; the
-/// discrete metric's are `S` and `x0` themselves, borrowed).
+/// discrete metric's are `S` and `x0` themselves, borrowed), and what the
+/// target's rounding is relative to: `None` for the discrete metric, where
+/// it is `|b|` itself (taken where it is used).
 fn metric_samples<'s>(
     problem: &'s Problem<'_, '_>,
     breakpoints: &[f64],
     metric: MergeMetric,
     s: &'s DMatrix<f64>,
-) -> (Cow<'s, DMatrix<f64>>, Cow<'s, DMatrix<f64>>, DMatrix<f64>) {
+) -> MetricSamples<'s> {
     match metric {
-        MergeMetric::Discrete => (
-            Cow::Borrowed(s),
-            Cow::Borrowed(&problem.x0),
-            abs_of(&problem.x0),
-        ),
+        MergeMetric::Discrete => (Cow::Borrowed(s), Cow::Borrowed(&problem.x0), None),
         MergeMetric::Integral => {
             let points = problem.points_per_piece;
             let m = points - 1;
@@ -475,7 +495,7 @@ fn metric_samples<'s>(
                     }
                 }
             }
-            (Cow::Owned(samples), Cow::Owned(target), target_abs)
+            (Cow::Owned(samples), Cow::Owned(target), Some(target_abs))
         }
     }
 }
@@ -723,7 +743,6 @@ pub(super) fn orthogonal_solution(
     // column axpys (not `matrixmultiply`'s blocked sums).
     let ends_products = selection && !blocked_product(samples.nrows(), points, problem.dim);
     // Without kept rows the particular solution is zero: no products.
-    let particular_abs = z.is_some().then(|| abs_of(&particular));
     let reduced_target = if z.is_none() {
         Cow::Borrowed(&*target)
     } else {
@@ -738,9 +757,9 @@ pub(super) fn orthogonal_solution(
     let merged;
     let mut factor = None;
     if free == 0 {
-        merged = particular;
+        merged = particular.clone();
     } else {
-        let a: Cow<'_, DMatrix<f64>> = match &z {
+        let a_matrix: Cow<'_, DMatrix<f64>> = match &z {
             // M Z for Z = (e_1 .. e_(m-1)): every entry of the product is
             // `M[i][k] 0 + ... + M[i][j+1] 1 + ... + 0` with the products
             // by 0 exactly +0 (M's entries are Bernstein values, finite,
@@ -762,10 +781,9 @@ pub(super) fn orthogonal_solution(
             }
             None => Cow::Borrowed(samples),
         };
-        let a: &DMatrix<f64> = &a;
+        let a: &DMatrix<f64> = &a_matrix;
         let rows = a.nrows();
         let dim = problem.dim;
-        let a_abs = abs_of(a);
         // Householder QR with the reflectors kept (module `lsq`): Q^T is
         // applied from them, no Q is formed for the solve.
         let Some(qr) = Factor::new(a.as_slice(), rows, free) else {
@@ -819,7 +837,9 @@ pub(super) fn orthogonal_solution(
             Some(z) => combined_product(&particular, z, &y, Combine::Plus),
             None => y.clone(),
         };
-        factor = Some((qr, y, a_abs, correction));
+        // `A` itself where its absolute values are needed: every use takes
+        // them (`abs_tr_mul`, `PlusAbs`) or is a norm.
+        factor = Some((qr, y, a_matrix, correction));
     }
     let residual = combined_product(target, samples, &merged, Combine::Minus);
     let metric_value = residual.norm_squared();
@@ -908,7 +928,7 @@ pub(super) fn orthogonal_solution(
         })
     };
     let mut refinement_tried = false;
-    if let (true, MergeMetric::Discrete, true, Some((qr, y, a_abs, _))) =
+    if let (true, MergeMetric::Discrete, true, Some((qr, y, a, _))) =
         (refinable, metric, m >= REFUSAL_FLOOR_DEGREE, &factor)
     {
         // The estimate below is at least `estimate` plus this floor of its
@@ -919,7 +939,7 @@ pub(super) fn orthogonal_solution(
         // same errors).
         let floor = refusal_floor(
             qr,
-            a_abs,
+            a,
             y,
             &reduced_target,
             &residual,
@@ -934,7 +954,7 @@ pub(super) fn orthogonal_solution(
             }
         }
     }
-    if let Some((qr, y, a_abs, correction)) = &factor {
+    if let Some((qr, y, a, correction)) = &factor {
         // The discrete metric samples the pieces themselves (M = S), so
         // the pieces' map S Z is A = Q T and K0 = S Z T^-1 is the thin Q
         // (no triangular solve); otherwise K0 is solved for.
@@ -947,19 +967,27 @@ pub(super) fn orthogonal_solution(
         // The pieces (through S Z) and R itself (through Z): R's control
         // points are less well determined than the pieces' (S has small
         // singular values at high degree), and R is an answer too.
-        let target_size = match particular_abs {
-            None => target_abs,
-            Some(particular_abs) if ends_products => {
-                ends_product(&target_abs, samples, &particular_abs, true)
-            }
-            Some(particular_abs) => {
-                combined_product(&target_abs, samples, &particular_abs, Combine::PlusAbs)
+        // `|M| |r_p|`: both products take the entries' absolute values
+        // themselves (`abs`, `PlusAbs`), so `r_p` is passed as it is.
+        let target_size = match (&z, target_abs) {
+            (None, Some(t)) => t,
+            (None, None) => abs_of(target),
+            (Some(_), t) if ends_products => ends_product_of(
+                t.as_ref().unwrap_or(target),
+                t.is_none(),
+                samples,
+                &particular,
+                true,
+            ),
+            (Some(_), t) => {
+                let t = t.unwrap_or_else(|| abs_of(target));
+                combined_product(&t, samples, &particular, Combine::PlusAbs)
             }
         };
         let shared = Shared::new(
             qr,
             y,
-            a_abs,
+            a,
             &reduced_target,
             &target_size,
             &residual,
@@ -1083,15 +1111,15 @@ pub const REFUSAL_FLOOR_DEGREE: usize = 16;
 /// first part does not already reach `needed`.
 fn refusal_floor(
     qr: &Factor,
-    a_abs: &DMatrix<f64>,
+    a: &DMatrix<f64>,
     y: &DMatrix<f64>,
     target: &DMatrix<f64>,
     residual: &DMatrix<f64>,
     needed: f64,
 ) -> f64 {
-    let (rows, free) = (a_abs.nrows(), a_abs.ncols());
+    let (rows, free) = (a.nrows(), a.ncols());
     let factor = 0.5 * QR_MARGIN * f64::EPSILON * ((rows * free) as f64).sqrt();
-    let a_norm = a_abs.norm();
+    let a_norm = a.norm();
     let values = factor * (free as f64).sqrt() * (target.norm() + a_norm * y.norm());
     if values > needed {
         return values;
@@ -1130,7 +1158,9 @@ struct Shared<'s> {
     /// The thin `Q`, `rows x free`, formed once from the reflectors.
     q: Vec<f64>,
     y: &'s DMatrix<f64>,
-    a_abs: &'s DMatrix<f64>,
+    /// `A` (`rows x free`): only its absolute values (`|A|` in the
+    /// products) and its norm are read.
+    a: &'s DMatrix<f64>,
     target: &'s DMatrix<f64>,
     residual: &'s DMatrix<f64>,
     m: usize,
@@ -1149,20 +1179,20 @@ impl<'s> Shared<'s> {
     fn new(
         qr: &'s Factor,
         y: &'s DMatrix<f64>,
-        a_abs: &'s DMatrix<f64>,
+        a: &'s DMatrix<f64>,
         target: &'s DMatrix<f64>,
         target_size: &DMatrix<f64>,
         residual: &'s DMatrix<f64>,
         m: usize,
         correction: &'s DMatrix<f64>,
     ) -> Self {
-        let through_values = combined_product(target_size, a_abs, y, Combine::PlusAbs);
-        let through_residual = abs_tr_mul(a_abs, residual);
+        let through_values = combined_product(target_size, a, y, Combine::PlusAbs);
+        let through_residual = abs_tr_mul(a, residual);
         Self {
             qr,
             q: qr.thin_q(),
             y,
-            a_abs,
+            a,
             target,
             residual,
             m,
@@ -1434,7 +1464,7 @@ fn first_order_bound_sized<const R: usize, const F: usize>(
     // not componentwise, and refinement in working precision does not
     // remove all of it (measured: test merge_exact, degree 20, mu ~0.1,
     // integral metric): its first-order effect with Frobenius norms.
-    let a_norm = shared.a_abs.norm();
+    let a_norm = shared.a.norm();
     let normwise = QR_MARGIN
         * eps
         * ((rows * free) as f64).sqrt()
@@ -1672,7 +1702,7 @@ mod tests {
             assert!(same_bits(&abs_of(&a), &a.abs()), "{context}");
             let d = random_matrix(&mut values, rows, cols);
             assert!(
-                same_bits(&abs_tr_mul(&c, &d), &c.tr_mul(&d.abs())),
+                same_bits(&abs_tr_mul(&c, &d), &c.abs().tr_mul(&d.abs())),
                 "{context}"
             );
         }
