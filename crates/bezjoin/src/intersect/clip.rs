@@ -121,15 +121,7 @@ impl<const N: usize> Poly<N> {
     /// cubic's, unrolls it).
     #[inline(always)]
     fn keep_left_n(&mut self, n: usize, t: f64) {
-        let p = &mut self.points;
-        for r in 1..=n {
-            for i in (r..=n).rev() {
-                let prev = p[i - 1];
-                for (x, y) in p[i].iter_mut().zip(prev) {
-                    *x = y + t * (*x - y);
-                }
-            }
-        }
+        keep_left_rows(&mut self.points, n, t);
     }
 
     /// `self` becomes the piece on `[s, 1]` (de Casteljau in place: after
@@ -144,15 +136,7 @@ impl<const N: usize> Poly<N> {
     /// [`Self::keep_right`] of degree `n` (see [`Self::keep_left_n`]).
     #[inline(always)]
     fn keep_right_n(&mut self, n: usize, s: f64) {
-        let p = &mut self.points;
-        for r in 1..=n {
-            for i in 0..=n - r {
-                let next = p[i + 1];
-                for (x, y) in p[i].iter_mut().zip(next) {
-                    *x += s * (y - *x);
-                }
-            }
-        }
+        keep_right_rows(&mut self.points, n, s);
     }
 
     /// The piece on `[s, t]`, `0 <= s < t <= 1`.
@@ -255,6 +239,35 @@ impl<const N: usize> Poly<N> {
     }
 }
 
+/// The rows `p[0..=n]` (`K` coordinates each: Cartesian, or homogeneous)
+/// become the piece on `[0, t]`, de Casteljau in place: after step `r`,
+/// row `i >= r` holds level `r`'s point `i - r`, so row `r` is final.
+#[inline(always)]
+fn keep_left_rows<const K: usize>(p: &mut [[f64; K]], n: usize, t: f64) {
+    for r in 1..=n {
+        for i in (r..=n).rev() {
+            let prev = p[i - 1];
+            for (x, y) in p[i].iter_mut().zip(prev) {
+                *x = y + t * (*x - y);
+            }
+        }
+    }
+}
+
+/// The rows `p[0..=n]` become the piece on `[s, 1]`, de Casteljau in place
+/// (after step `r`, row `n - r` is final).
+#[inline(always)]
+fn keep_right_rows<const K: usize>(p: &mut [[f64; K]], n: usize, s: f64) {
+    for r in 1..=n {
+        for i in 0..=n - r {
+            let next = p[i + 1];
+            for (x, y) in p[i].iter_mut().zip(next) {
+                *x += s * (y - *x);
+            }
+        }
+    }
+}
+
 /// A planar rational Bezier piece of degree `n < N`: its homogeneous
 /// control points `(w x, w y, w)` (weights positive) and their Cartesian
 /// projections `(x, y)` as a [`Poly`], on which the box, the flatness and
@@ -312,25 +325,10 @@ impl<const N: usize> RationalPoly<N> {
         let n = self.projected.n;
         let mut h = self.homogeneous;
         if t < 1.0 {
-            for r in 1..=n {
-                for i in (r..=n).rev() {
-                    let prev = h[i - 1];
-                    for (x, y) in h[i].iter_mut().zip(prev) {
-                        *x = y + t * (*x - y);
-                    }
-                }
-            }
+            keep_left_rows(&mut h, n, t);
         }
         if s > 0.0 {
-            let s = s / t;
-            for r in 1..=n {
-                for i in 0..=n - r {
-                    let next = h[i + 1];
-                    for (x, y) in h[i].iter_mut().zip(next) {
-                        *x += s * (y - *x);
-                    }
-                }
-            }
+            keep_right_rows(&mut h, n, s / t);
         }
         let mut projected = self.projected;
         for (p, row) in projected.points.iter_mut().zip(&h).take(n + 1) {
@@ -346,6 +344,8 @@ impl<const N: usize> RationalPoly<N> {
 /// What [`Search::clip_spans`] needs of a piece: the polynomial [`Poly`]
 /// and the rational [`RationalPoly`].
 trait Clippable<const N: usize>: Copy {
+    /// The piece in this form (`None`: not one the clipping takes).
+    fn from_piece(piece: &Piece) -> Option<Self>;
     /// The Cartesian control points (box, flatness, chord).
     fn cartesian(&self) -> &Poly<N>;
     fn segment(&self, s: f64, t: f64) -> Self;
@@ -355,6 +355,9 @@ trait Clippable<const N: usize>: Copy {
 }
 
 impl<const N: usize> Clippable<N> for Poly<N> {
+    fn from_piece(piece: &Piece) -> Option<Self> {
+        Poly::from_piece(piece)
+    }
     fn cartesian(&self) -> &Poly<N> {
         self
     }
@@ -367,6 +370,9 @@ impl<const N: usize> Clippable<N> for Poly<N> {
 }
 
 impl<const N: usize> Clippable<N> for RationalPoly<N> {
+    fn from_piece(piece: &Piece) -> Option<Self> {
+        RationalPoly::from_piece(piece)
+    }
     fn cartesian(&self) -> &Poly<N> {
         &self.projected
     }
@@ -596,43 +602,28 @@ impl Search<'_> {
                 }
                 let (u_span, v_span) = ((a.lo, a.hi), (b.lo, b.hi));
                 let small = a.degree() < SMALL && b.degree() < SMALL;
-                let clipped = if a.is_rational() || b.is_rational() {
-                    // Both in homogeneous form (a polynomial one with unit
-                    // weights).
-                    if small {
-                        match (
-                            RationalPoly::<SMALL>::from_piece(a),
-                            RationalPoly::<SMALL>::from_piece(b),
-                        ) {
-                            (Some(pa), Some(pb)) => {
-                                self.clip_spans(&pa, u_span, &pb, v_span, &mut rounds)
-                            }
-                            _ => false,
-                        }
-                    } else {
-                        match (
-                            RationalPoly::<LARGE>::from_piece(a),
-                            RationalPoly::<LARGE>::from_piece(b),
-                        ) {
-                            (Some(pa), Some(pb)) => {
-                                self.clip_spans(&pa, u_span, &pb, v_span, &mut rounds)
-                            }
-                            _ => false,
-                        }
+                // A pair with a rational piece: both in homogeneous form (a
+                // polynomial one with unit weights).
+                let clipped = match (a.is_rational() || b.is_rational(), small) {
+                    (true, true) => self.clip_pair::<SMALL, RationalPoly<SMALL>>(
+                        i,
+                        j,
+                        u_span,
+                        v_span,
+                        &mut rounds,
+                    ),
+                    (true, false) => self.clip_pair::<LARGE, RationalPoly<LARGE>>(
+                        i,
+                        j,
+                        u_span,
+                        v_span,
+                        &mut rounds,
+                    ),
+                    (false, true) => {
+                        self.clip_pair::<SMALL, Poly<SMALL>>(i, j, u_span, v_span, &mut rounds)
                     }
-                } else if small {
-                    match (Poly::<SMALL>::from_piece(a), Poly::<SMALL>::from_piece(b)) {
-                        (Some(pa), Some(pb)) => {
-                            self.clip_spans(&pa, u_span, &pb, v_span, &mut rounds)
-                        }
-                        _ => false,
-                    }
-                } else {
-                    match (Poly::<LARGE>::from_piece(a), Poly::<LARGE>::from_piece(b)) {
-                        (Some(pa), Some(pb)) => {
-                            self.clip_spans(&pa, u_span, &pb, v_span, &mut rounds)
-                        }
-                        _ => false,
+                    (false, false) => {
+                        self.clip_pair::<LARGE, Poly<LARGE>>(i, j, u_span, v_span, &mut rounds)
                     }
                 };
                 if !clipped {
@@ -641,6 +632,26 @@ impl Search<'_> {
             }
         }
         true
+    }
+
+    /// [`Self::clip_spans`] on P's piece `i` and Q's piece `j` in the form
+    /// `P` (copied into its buffers first); `false` (give up) when either
+    /// is not one that form takes.
+    fn clip_pair<const N: usize, P: Clippable<N>>(
+        &mut self,
+        i: usize,
+        j: usize,
+        u_span: (f64, f64),
+        v_span: (f64, f64),
+        rounds: &mut usize,
+    ) -> bool {
+        match (
+            P::from_piece(&self.p_pieces[i]),
+            P::from_piece(&self.q_pieces[j]),
+        ) {
+            (Some(pa), Some(pb)) => self.clip_spans(&pa, u_span, &pb, v_span, rounds),
+            _ => false,
+        }
     }
 
     /// Clipping on one pair of spans (`pa` on `[u_lo, u_hi]` of P, `pb` on

@@ -14,6 +14,59 @@
 //! quantity the merge uses (`T^-1 Q^T`, `Q Q^T`, the least-squares
 //! solution, Frobenius norms) is independent of them.
 
+/// `$call` with the consts `$r`, `$c` bound to the factor's `(rows, cols)`
+/// when it is one of the merge's small sizes (two pieces of degree `m`,
+/// rows `2 (m + 1)`; `m - 1` free columns with fixed ends, `m = 2..=5`, and
+/// `m + 1` without, `m = 1..=3`), else to `(0, 0)` (sizes read at run
+/// time, [`Factor::sizes`]): loops of known length, the same operations.
+macro_rules! with_small_sizes {
+    ($rows:expr, $cols:expr, |$r:ident, $c:ident| $call:expr) => {
+        match ($rows, $cols) {
+            (6, 1) => {
+                const $r: usize = 6;
+                const $c: usize = 1;
+                $call
+            }
+            (8, 2) => {
+                const $r: usize = 8;
+                const $c: usize = 2;
+                $call
+            }
+            (10, 3) => {
+                const $r: usize = 10;
+                const $c: usize = 3;
+                $call
+            }
+            (12, 4) => {
+                const $r: usize = 12;
+                const $c: usize = 4;
+                $call
+            }
+            (4, 2) => {
+                const $r: usize = 4;
+                const $c: usize = 2;
+                $call
+            }
+            (6, 3) => {
+                const $r: usize = 6;
+                const $c: usize = 3;
+                $call
+            }
+            (8, 4) => {
+                const $r: usize = 8;
+                const $c: usize = 4;
+                $call
+            }
+            _ => {
+                const $r: usize = 0;
+                const $c: usize = 0;
+                $call
+            }
+        }
+    };
+}
+pub(super) use with_small_sizes;
+
 /// `A = Q T` of a `rows x cols` matrix (`rows >= cols`), reflectors kept.
 pub(super) struct Factor {
     rows: usize,
@@ -123,7 +176,7 @@ impl Factor {
     /// `(rows, cols)`: `(R, C)` when `R > 0` (sizes known at compile
     /// time), else the factor's own.
     #[inline(always)]
-    fn sizes<const R: usize, const C: usize>(&self) -> (usize, usize) {
+    pub(super) fn sizes<const R: usize, const C: usize>(&self) -> (usize, usize) {
         if R == 0 {
             (self.rows, self.cols)
         } else {
@@ -149,9 +202,17 @@ impl Factor {
     /// [`Self::solve_t`] with the sizes of [`Self::sizes`].
     #[inline(always)]
     fn solve_t_sized<const R: usize, const C: usize>(&self, y: &mut [f64]) {
+        let (_, cols) = self.sizes::<R, C>();
+        self.solve_leading_t::<R, C>(&mut y[..cols]);
+    }
+
+    /// `y <- T_k^-1 y` on the leading `k x k` block of `T`, `k = y.len() <=
+    /// cols`, column by column from the last (the sizes of [`Self::sizes`]).
+    #[inline(always)]
+    fn solve_leading_t<const R: usize, const C: usize>(&self, y: &mut [f64]) {
         let (rows, cols) = self.sizes::<R, C>();
         let diagonal = &self.packed[rows * cols..rows * cols + cols];
-        for j in (0..cols).rev() {
+        for j in (0..y.len()).rev() {
             let yj = y[j] / diagonal[j];
             y[j] = yj;
             for (yi, &t) in y[..j].iter_mut().zip(&self.packed[j * rows..j * rows + j]) {
@@ -192,13 +253,7 @@ impl Factor {
             let e = &mut e[..=k];
             e.fill(0.0);
             e[k] = 1.0;
-            for j in (0..=k).rev() {
-                let ej = e[j] / self.diagonal()[j];
-                e[j] = ej;
-                for (ei, &t) in e[..j].iter_mut().zip(self.t_column(j)) {
-                    *ei -= t * ej;
-                }
-            }
+            self.solve_leading_t::<0, 0>(e);
             total += e.iter().map(|v| v * v).sum::<f64>();
         }
         total.sqrt()
@@ -219,19 +274,8 @@ impl Factor {
     /// `b` (column-major `rows x dim`) into `y` (`cols x dim`), with
     /// `work` (`rows`) as scratch.
     pub(super) fn least_squares(&self, b: &[f64], y: &mut [f64], work: &mut [f64]) {
-        // The merge's small factors (two pieces of degree m, rows 2 (m +
-        // 1); m - 1 free columns with fixed ends, m + 1 without) with the
-        // sizes as constants: the same operations in the same order.
-        match (self.rows, self.cols) {
-            (6, 1) => self.least_squares_sized::<6, 1>(b, y, work),
-            (8, 2) => self.least_squares_sized::<8, 2>(b, y, work),
-            (10, 3) => self.least_squares_sized::<10, 3>(b, y, work),
-            (12, 4) => self.least_squares_sized::<12, 4>(b, y, work),
-            (4, 2) => self.least_squares_sized::<4, 2>(b, y, work),
-            (6, 3) => self.least_squares_sized::<6, 3>(b, y, work),
-            (8, 4) => self.least_squares_sized::<8, 4>(b, y, work),
-            _ => self.least_squares_sized::<0, 0>(b, y, work),
-        }
+        with_small_sizes!(self.rows, self.cols, |R, C| self
+            .least_squares_sized::<R, C>(b, y, work))
     }
 
     /// [`Self::least_squares`] with the sizes of [`Self::sizes`]:

@@ -1306,20 +1306,11 @@ fn first_order_bound(
     with_normwise: bool,
     scratch: &mut Scratch,
 ) -> Option<(f64, f64, bool)> {
-    // Two pieces of degree m (rows 2 (m + 1); m - 1 free columns with
-    // fixed ends, m = 2..=5, and m + 1 without, m = 1..=3) with the sizes
-    // as constants (loops of known length), as `lsq::Factor::least_squares`:
-    // the same operations in the same order.
-    match (shared.qr.rows(), shared.qr.cols()) {
-        (6, 1) => first_order_bound_sized::<6, 1>(shared, map, with_normwise, scratch),
-        (8, 2) => first_order_bound_sized::<8, 2>(shared, map, with_normwise, scratch),
-        (10, 3) => first_order_bound_sized::<10, 3>(shared, map, with_normwise, scratch),
-        (12, 4) => first_order_bound_sized::<12, 4>(shared, map, with_normwise, scratch),
-        (4, 2) => first_order_bound_sized::<4, 2>(shared, map, with_normwise, scratch),
-        (6, 3) => first_order_bound_sized::<6, 3>(shared, map, with_normwise, scratch),
-        (8, 4) => first_order_bound_sized::<8, 4>(shared, map, with_normwise, scratch),
-        _ => first_order_bound_sized::<0, 0>(shared, map, with_normwise, scratch),
-    }
+    // The merge's small sizes as constants (`lsq::with_small_sizes`), as
+    // `lsq::Factor::least_squares`: the same operations in the same order.
+    lsq::with_small_sizes!(shared.qr.rows(), shared.qr.cols(), |R, F| {
+        first_order_bound_sized::<R, F>(shared, map, with_normwise, scratch)
+    })
 }
 
 /// [`first_order_bound`] with `rows = R`, `free = F` known at compile time
@@ -1332,11 +1323,7 @@ fn first_order_bound_sized<const R: usize, const F: usize>(
     scratch: &mut Scratch,
 ) -> Option<(f64, f64, bool)> {
     let qr = shared.qr;
-    let (rows, free) = if R == 0 {
-        (qr.rows(), qr.cols())
-    } else {
-        (R, F)
-    };
+    let (rows, free) = qr.sizes::<R, F>();
     let q = &shared.q;
     let dim = shared.y.ncols();
     let eps = f64::EPSILON;

@@ -105,8 +105,8 @@ impl RationalSpan<'_> {
     /// is fooled at a kink (both rules off by about the same amount):
     /// measured on a one-dimensional degree-5 span, a length accepted
     /// `2.6e-11` off at a tolerance of `6e-14`.
-    fn cuts_of(&self) -> Vec<f64> {
-        let (p, d) = (self.degree, self.dim);
+    fn cuts_of(rows: &[f64], dim: usize, degree: usize, lo: f64, hi: f64) -> Vec<f64> {
+        let (p, d) = (degree, dim);
         let hd = d + 1;
         if p == 0 {
             return Vec::new();
@@ -120,9 +120,9 @@ impl RationalSpan<'_> {
             for j in 0..=p {
                 let weight = binomial(p - 1, i) * binomial(p, j) / binomial(q, i + j);
                 let (r0, r1, rj) = (
-                    &self.rows[i * hd..(i + 1) * hd],
-                    &self.rows[(i + 1) * hd..(i + 2) * hd],
-                    &self.rows[j * hd..(j + 1) * hd],
+                    &rows[i * hd..(i + 1) * hd],
+                    &rows[(i + 1) * hd..(i + 2) * hd],
+                    &rows[j * hd..(j + 1) * hd],
                 );
                 let dw = p as f64 * (r1[d] - r0[d]);
                 for c in 0..d {
@@ -144,11 +144,11 @@ impl RationalSpan<'_> {
         cuts.extend(speed_minima(&n, 0.0, 1.0));
         cuts.push(1.0);
         grade_at_near_cusps(&n, &mut cuts);
-        let h = self.hi - self.lo;
+        let h = hi - lo;
         let mut inside: Vec<f64> = cuts
             .iter()
-            .map(|&t| self.lo + t * h)
-            .filter(|&u| u > self.lo && u < self.hi)
+            .map(|&t| lo + t * h)
+            .filter(|&u| u > lo && u < hi)
             .collect();
         inside.dedup();
         inside
@@ -158,8 +158,9 @@ impl RationalSpan<'_> {
     /// homogeneous poles to level `p - 1`, whose two points give `A'(t) = p
     /// (d_1 - d_0)` (the same step as de Boor's last level but one,
     /// [`NurbsCurve::point_and_tangent`]), the last level `A(t)`;
-    /// `C' = (A' - w' C) / w` and `dC/du = C'(t) / (hi - lo)`. No heap allocation up
-    /// to `(p + 1) (dim + 1) <= 128`; plane and space quadratics and cubics
+    /// `C' = (A' - w' C) / w` and `dC/du = C'(t) / (hi - lo)`
+    /// ([`point_and_tangent_rows`]: no heap allocation up to
+    /// `(p + 1) (dim + 1) <= 64`); plane and space quadratics and cubics
     /// with the sizes as constants.
     fn speed(&self, u: f64) -> f64 {
         let mut out = [0.0];
@@ -270,26 +271,7 @@ impl RationalSpan<'_> {
         }
         let work = &mut work[..rows.len()];
         work.copy_from_slice(rows);
-        let s = 1.0 - t0;
-        if forward {
-            // Right part: after step r, point p - r is final.
-            for r in 1..=p {
-                for i in 0..=p - r {
-                    for c in 0..hd {
-                        work[i * hd + c] = s * work[i * hd + c] + t0 * work[(i + 1) * hd + c];
-                    }
-                }
-            }
-        } else {
-            // Left part: after step r, point r is final.
-            for r in 1..=p {
-                for i in (r..=p).rev() {
-                    for c in 0..hd {
-                        work[i * hd + c] = s * work[(i - 1) * hd + c] + t0 * work[i * hd + c];
-                    }
-                }
-            }
-        }
+        part_in_place(work, p, hd, t0, forward);
         polygon(work)
     }
 
@@ -495,6 +477,16 @@ fn part_polygon_length(bez: &BezierCurve, t0: f64, forward: bool) -> f64 {
 #[inline(always)]
 fn part_polygon_sized(work: &mut [f64; 64], n: usize, d: usize, t0: f64, forward: bool) -> f64 {
     let work = &mut work[..(n + 1) * d];
+    part_in_place(work, n, d, t0, forward);
+    (1..=n)
+        .map(|i| distance(&work[(i - 1) * d..i * d], &work[i * d..(i + 1) * d]))
+        .sum()
+}
+
+/// The control points (`n + 1` rows of `d` in `work`) of the part on `[t0,
+/// 1]` (`forward`) or `[0, t0]`, in place: one de Casteljau pass.
+#[inline(always)]
+fn part_in_place(work: &mut [f64], n: usize, d: usize, t0: f64, forward: bool) {
     if forward {
         // Right part: after step r, point n - r is final.
         for r in 1..=n {
@@ -514,9 +506,6 @@ fn part_polygon_sized(work: &mut [f64; 64], n: usize, d: usize, t0: f64, forward
             }
         }
     }
-    (1..=n)
-        .map(|i| distance(&work[(i - 1) * d..i * d], &work[i * d..(i + 1) * d]))
-        .sum()
 }
 
 /// One Gauss-Kronrod panel: (Kronrod value, |Kronrod - Gauss|).
@@ -688,15 +677,7 @@ impl NurbsCurve {
             (0..poles.count())
                 .map(|i| {
                     let (lo, hi) = poles.domain(i);
-                    RationalSpan {
-                        rows: poles.rows(i),
-                        dim,
-                        degree,
-                        lo,
-                        hi,
-                        cuts: &[],
-                    }
-                    .cuts_of()
+                    RationalSpan::cuts_of(poles.rows(i), dim, degree, lo, hi)
                 })
                 .collect()
         });
@@ -896,9 +877,7 @@ mod tests {
     /// Gauss-Legendre rule on each smooth piece between them. Without the
     /// cuts at the kinks (`RationalSpan::cuts_of`) the Gauss-Kronrod check
     /// accepted a panel across a kink: measured `2.6e-11` off at `6.2e-14`
-    /// on this curve (the inversion test's random case that found it). The
-    /// speed by de Casteljau on the homogeneous span poles agrees with de
-    /// Boor's to the rounding level along the way.
+    /// on this curve (the inversion test's random case that found it).
     #[test]
     fn rational_length_across_kinks_meets_its_accuracy() {
         let poles = vec![
