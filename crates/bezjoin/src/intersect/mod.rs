@@ -704,7 +704,7 @@ impl<'a> Search<'a> {
             &mut heap
         };
         let (p_breaks, q_breaks) = (pair.p.breaks(), pair.q.breaks());
-        // A polynomial NURBS curve's break point is first tried at its
+        // A NURBS curve's break point is first tried at its
         // pieces' end control point (the same point in exact arithmetic:
         // both it and the evaluation are within `slack` of it), with the
         // tolerance widened by twice that; only a point that passes is

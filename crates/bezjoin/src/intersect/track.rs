@@ -157,36 +157,42 @@ impl<'a> Track<'a> {
             // A Bezier curve's domain is [0, 1]: nothing to allocate.
             Track::Bezier { .. } => Cow::Borrowed(&[0.0, 1.0]),
             // The span decomposition's breaks (kept with the curve): the
-            // same values.
-            Track::Nurbs(n) if n.weights().is_none() => Cow::Borrowed(&n.span_poles().breaks),
-            Track::Nurbs(n) => {
-                let (a, b) = n.domain();
-                let knots = n.interior_knots().0;
-                let mut out = Vec::with_capacity(knots.len() + 2);
-                out.push(a);
-                out.extend(knots);
-                out.push(b);
-                Cow::Owned(out)
-            }
+            // same values (the domain's ends around `interior_knots`).
+            Track::Nurbs(n) => Cow::Borrowed(&n.span_poles().breaks),
         }
     }
 
-    /// For a NURBS curve without weights: a bound on the distance between
-    /// its point at a break (an interior knot or an end), as
-    /// [`Self::break_point_into`] evaluates it (de Boor, `p` levels of
-    /// convex combinations), and the end control point of the piece there
-    /// (knot insertion: at most `p` insertions at each of the `p + 1`
-    /// knots whose insertions reach that pole, each a convex combination).
-    /// Every convex combination of values at most `S` (the largest pole
-    /// coordinate) adds at most `2 eps S` per coordinate, so both lie
-    /// within `2 (p + 1)^2 eps S sqrt(d)` of the exact point; the bound
-    /// returned is four times that. `None` for Bezier and rational
-    /// curves (their breaks are tested as evaluated).
+    /// For a NURBS curve: a bound on the distance between its point at a
+    /// break (an interior knot or an end), as [`Self::break_point_into`]
+    /// evaluates it (de Boor, `p` levels of convex combinations), and the
+    /// end control point of the piece there (knot insertion: at most `p`
+    /// insertions at each of the `p + 1` knots whose insertions reach that
+    /// pole, each a convex combination). Every convex combination of values
+    /// at most `S` (the largest pole coordinate) adds at most `2 eps S` per
+    /// coordinate, so both lie within `2 (p + 1)^2 eps S sqrt(d)` of the
+    /// exact point; the bound returned is four times that. With weights
+    /// both are combined in homogeneous coordinates `(w x, w)` (entries up
+    /// to `w_max S` and `w_max`) and divided by a weight `W >= w_min`: the
+    /// Cartesian error `(|dX| + |x| |dW|) / W` plus the division's rounding
+    /// is at most `2 (p + 1)^2 eps S (2 w_max / w_min + 1)` per coordinate,
+    /// so the bound grows by the factor `2 w_max / w_min + 2`. `None` for
+    /// Bezier curves (their breaks are tested as evaluated).
     pub(super) fn break_slack(&self) -> Option<f64> {
         match self {
-            Track::Nurbs(n) if n.weights().is_none() => {
+            Track::Nurbs(n) => {
                 let p = (n.degree() + 1) as f64;
-                Some(8.0 * p * p * f64::EPSILON * n.coordinate_scale() * (n.dim() as f64).sqrt())
+                let slack =
+                    8.0 * p * p * f64::EPSILON * n.coordinate_scale() * (n.dim() as f64).sqrt();
+                Some(match n.weights() {
+                    None => slack,
+                    Some(w) => {
+                        let (w_min, w_max) =
+                            w.iter().fold((f64::INFINITY, 0.0f64), |(lo, hi), &w| {
+                                (lo.min(w), hi.max(w))
+                            });
+                        slack * (2.0 * (w_max / w_min) + 2.0)
+                    }
+                })
             }
             _ => None,
         }
@@ -430,25 +436,47 @@ impl<'a> Piece<'a> {
     /// coordinate of the piece and `x`): an evaluated point of the curve
     /// (within a few `eps` of the curve) is then farther than `margin`
     /// too, so a projection of `x` onto the curve would not find it within
-    /// `margin`. Rational pieces: the box test alone.
+    /// `margin`. A rational piece (positive weights) is halved in its
+    /// homogeneous rows, each half boxed by its Cartesian points, with the
+    /// slack grown by the ratio of its weights.
     pub(super) fn may_come_within(&self, x: &[f64], margin: f64) -> bool {
         if !self.contains(x, margin) {
             return false;
         }
         let (n, d) = (self.degree(), self.dim);
-        if self.is_rational() || n > NEAR_MAX_DEGREE || d > NEAR_MAX_DIM || n == 0 {
+        let rational = self.is_rational();
+        // Row width: homogeneous rows `(w x, w)` for a rational piece.
+        let width = d + usize::from(rational);
+        if n > NEAR_MAX_DEGREE || width > NEAR_MAX_DIM || n == 0 {
             return true;
         }
         let points = self.curve.points();
-        let scale = points.iter().chain(x).fold(0.0f64, |m, v| m.max(v.abs()));
-        let slack = 8.0 * (n + 1) as f64 * (NEAR_LEVELS + 1) as f64 * f64::EPSILON * scale;
+        let cartesian = self.projected.as_deref().unwrap_or(points);
+        let scale = cartesian
+            .iter()
+            .chain(x)
+            .fold(0.0f64, |m, v| m.max(v.abs()));
+        let mut slack = 8.0 * (n + 1) as f64 * (NEAR_LEVELS + 1) as f64 * f64::EPSILON * scale;
+        if rational {
+            // The halvings round the homogeneous rows (entries up to
+            // `w_max |x|`) and the division by a weight (>= `w_min`) carries
+            // that over to the Cartesian points: the slack grows by
+            // `w_max / w_min`, doubled for the weight's own rounding and the
+            // division.
+            let (w_min, w_max) = points
+                .chunks_exact(width)
+                .fold((f64::INFINITY, 0.0f64), |(lo, hi), row| {
+                    (lo.min(row[d]), hi.max(row[d]))
+                });
+            slack *= 2.0 * (w_max / w_min) + 2.0;
+        }
         let widened = margin + slack;
         if !widened.is_finite() {
             return true;
         }
         let mut work = [0.0f64; (NEAR_MAX_DEGREE + 1) * NEAR_MAX_DIM];
         work[..points.len()].copy_from_slice(points);
-        halves_come_within(&work, n, d, x, widened, NEAR_LEVELS)
+        halves_come_within(&work, n, d, rational, x, widened, NEAR_LEVELS)
     }
 
     pub(super) fn contains(&self, x: &[f64], margin: f64) -> bool {
@@ -514,14 +542,20 @@ fn halves_come_within(
     points: &[f64; (NEAR_MAX_DEGREE + 1) * NEAR_MAX_DIM],
     n: usize,
     d: usize,
+    rational: bool,
     x: &[f64],
     margin: f64,
     levels: u32,
 ) -> bool {
+    let width = d + usize::from(rational);
     for c in 0..d {
         let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
         for i in 0..=n {
-            let v = points[i * d + c];
+            let v = if rational {
+                points[i * width + c] / points[i * width + d]
+            } else {
+                points[i * d + c]
+            };
             lo = lo.min(v);
             hi = hi.max(v);
         }
@@ -536,24 +570,25 @@ fn halves_come_within(
     }
     // Left half in `left` (its point r is the first point of level r),
     // right half in `right` (its point n - r the last point of level r).
+    let d_row = width;
     let mut left = *points;
     let mut right = *points;
     for r in 1..=n {
         for i in (r..=n).rev() {
-            for c in 0..d {
-                left[i * d + c] = 0.5 * (left[(i - 1) * d + c] + left[i * d + c]);
+            for c in 0..d_row {
+                left[i * d_row + c] = 0.5 * (left[(i - 1) * d_row + c] + left[i * d_row + c]);
             }
         }
     }
     for r in 1..=n {
         for i in 0..=n - r {
-            for c in 0..d {
-                right[i * d + c] = 0.5 * (right[i * d + c] + right[(i + 1) * d + c]);
+            for c in 0..d_row {
+                right[i * d_row + c] = 0.5 * (right[i * d_row + c] + right[(i + 1) * d_row + c]);
             }
         }
     }
-    halves_come_within(&left, n, d, x, margin, levels - 1)
-        || halves_come_within(&right, n, d, x, margin, levels - 1)
+    halves_come_within(&left, n, d, rational, x, margin, levels - 1)
+        || halves_come_within(&right, n, d, rational, x, margin, levels - 1)
 }
 
 /// `P(t)` and `P'(t)` of a Bezier curve by de Casteljau's scheme
