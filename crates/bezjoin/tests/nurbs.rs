@@ -722,6 +722,48 @@ fn an_arc_overlaps_a_piece_of_itself_in_its_own_parameters() {
     }
 }
 
+/// A multi-span rational curve overlaps a piece of itself cut inside its
+/// domain (the piece's ends are the curve's points at `a`, `b`, its
+/// breaks the curve's knots between): every break point of both is found
+/// on the other, whether taken at the pieces' end poles or evaluated.
+/// Cuts where the curve nearly stops (speed below 1e-3 of the pole scale
+/// per domain length) are left out: there a point of the piece matches a
+/// range of the curve's parameters to within the tolerance.
+#[test]
+fn a_rational_curve_overlaps_a_piece_of_itself() {
+    let mut rng = Random(0x5eed_0032);
+    let mut rational = 0;
+    let mut case = 0;
+    while rational < 30 {
+        case += 1;
+        let c = random_nurbs_2d(&mut rng);
+        if c.weights().is_none() || c.span_count() < 2 {
+            continue;
+        }
+        rational += 1;
+        let (lo, hi) = c.domain();
+        let a = lo + (hi - lo) * rng.range(0.05, 0.4);
+        let b = lo + (hi - lo) * rng.range(0.6, 0.95);
+        let slow = |u: f64| {
+            let jet = c.eval_derivatives(u, 1);
+            distance(&jet[2..4], &[0.0, 0.0]) * (hi - lo) < 1e-3 * c.coordinate_scale()
+        };
+        if slow(a) || slow(b) {
+            continue;
+        }
+        let piece = c.segment(a, b).unwrap();
+        let hits = intersect(&c, &piece, &IntersectOptions::default()).unwrap();
+        let covered = hits.iter().any(|h| match h.kind {
+            IntersectionKind::Overlap { u_range, .. } => {
+                let units = hi - lo;
+                (u_range.0 - a).abs() < 1e-6 * units && (u_range.1 - b).abs() < 1e-6 * units
+            }
+            _ => false,
+        });
+        assert!(covered, "case {case}: [{a}, {b}] of {c:?}: {hits:?}");
+    }
+}
+
 #[test]
 fn a_bezier_as_nurbs_intersects_as_the_bezier() {
     let mut rng = Random(0x5eed_000c);

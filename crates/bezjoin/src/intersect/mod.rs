@@ -544,15 +544,7 @@ fn project_on(track: &Track, x: &[f64], start: Option<f64>, pieces: &[Piece]) ->
                 if box_distance > best.1 {
                     break;
                 }
-                for i in 0..=per_span {
-                    let s = (piece.lo + (piece.hi - piece.lo) * i as f64 / per_span as f64)
-                        .clamp(piece.lo, piece.hi);
-                    track.eval_into(s, &mut buf);
-                    let d = distance(&buf, x);
-                    if d < best.1 {
-                        best = (s, d);
-                    }
-                }
+                sample_piece(track, piece, x, per_span, &mut buf, &mut best);
             }
             best.0
         }
@@ -570,13 +562,37 @@ fn project_on(track: &Track, x: &[f64], start: Option<f64>, pieces: &[Piece]) ->
             best.0
         }
     };
-    track.eval_into(t, &mut buf);
+    newton_within(track, x, t, (lo, hi), false, &mut buf)
+}
+
+/// Newton on the squared distance from `x` to `track`, from `t` inside
+/// `[lo, hi]`, every step clamped to `[lo, hi]` and accepted only when it
+/// brings the point closer (halved up to 16 times): the parameter and the
+/// distance where it stops. `inside`: `[lo, hi]` is a piece between
+/// breaks, whose tangent at an end is taken a few ulps inside (at a knot
+/// the track's own tangent may be the next span's, which would hold Newton
+/// at the end). `buf`: scratch of the track's dimension.
+fn newton_within(
+    track: &Track,
+    x: &[f64],
+    t: f64,
+    (lo, hi): (f64, f64),
+    inside: bool,
+    buf: &mut [f64],
+) -> (f64, f64) {
+    let mut t = t;
+    track.eval_into(t, buf);
     let mut r: Vec<f64> = buf.iter().zip(x).map(|(a, b)| a - b).collect();
     let mut f = norm(&r);
     let mut tangent = vec![0.0; track.dim()];
     let resolution = 4.0 * f64::EPSILON * (hi - lo).max(lo.abs()).max(hi.abs());
     for _ in 0..60 {
-        track.tangent_into(t, &mut tangent);
+        let at = if inside && hi - lo > 4.0 * resolution {
+            t.clamp(lo + resolution, hi - resolution)
+        } else {
+            t
+        };
+        track.tangent_into(at, &mut tangent);
         let tt = dot(&tangent, &tangent);
         if tt == 0.0 || f == 0.0 {
             break;
@@ -595,7 +611,7 @@ fn project_on(track: &Track, x: &[f64], start: Option<f64>, pieces: &[Piece]) ->
         let mut moved = 0.0f64;
         for _ in 0..16 {
             let nt = (t + step * dt).clamp(lo, hi);
-            track.eval_into(nt, &mut buf);
+            track.eval_into(nt, buf);
             for (ri, (a, b)) in r.iter_mut().zip(buf.iter().zip(x)) {
                 *ri = a - b;
             }
@@ -615,6 +631,78 @@ fn project_on(track: &Track, x: &[f64], start: Option<f64>, pieces: &[Piece]) ->
     }
     (t, f)
 }
+
+/// The sample of `piece` (`per_span + 1` parameters spread evenly over
+/// its domain) closest to `x`, into `best` (parameter, distance) when it is
+/// closer than `best`.
+fn sample_piece(
+    track: &Track,
+    piece: &Piece,
+    x: &[f64],
+    per_span: usize,
+    buf: &mut [f64],
+    best: &mut (f64, f64),
+) {
+    for i in 0..=per_span {
+        let s = (piece.lo + (piece.hi - piece.lo) * i as f64 / per_span as f64)
+            .clamp(piece.lo, piece.hi);
+        track.eval_into(s, buf);
+        let d = distance(buf, x);
+        if d < best.1 {
+            *best = (s, d);
+        }
+    }
+}
+
+/// [`project_on`] for a point that may lie on `track` (an overlap's end
+/// candidate). When the projection from the best sample of all the pieces
+/// ends farther than `tol`, the pieces are searched by branch and bound:
+/// de Casteljau halves at `1/2` are kept while they may come within `tol`
+/// of `x` ([`Piece::may_come_within`], a proof when it says no), and
+/// Newton runs inside each kept half that is flat (or at depth
+/// [`NEAR_SEARCH_DEPTH`]), from its middle, until one ends within `tol`
+/// (at most [`NEAR_SEARCH_NEWTONS`] runs). The one start from the closest
+/// sample can be caught by a farther local minimum (weights far apart
+/// sample one span densely and the next sparsely; a loop passes near the
+/// point); a point of the curve within `tol` is then still found.
+fn project_near(track: &Track, x: &[f64], pieces: &[Piece], tol: f64) -> (f64, f64) {
+    let mut best = project_on(track, x, None, pieces);
+    if best.1 <= tol {
+        return best;
+    }
+    let mut buf = vec![0.0; track.dim()];
+    let mut stack: Vec<(Piece, u32)> = pieces.iter().rev().map(|p| (p.clone(), 0)).collect();
+    let mut newtons = 0;
+    while let Some((piece, depth)) = stack.pop() {
+        if !piece.may_come_within(x, tol) {
+            continue;
+        }
+        if depth >= NEAR_SEARCH_DEPTH || piece.is_flat(tol, RELATIVE_CHORD_FLATNESS) {
+            let middle = 0.5 * (piece.lo + piece.hi);
+            let found = newton_within(track, x, middle, (piece.lo, piece.hi), true, &mut buf);
+            if found.1 < best.1 {
+                best = found;
+                if best.1 <= tol {
+                    break;
+                }
+            }
+            newtons += 1;
+            if newtons >= NEAR_SEARCH_NEWTONS {
+                break;
+            }
+            continue;
+        }
+        let (left, right) = piece.split();
+        stack.push((right, depth + 1));
+        stack.push((left, depth + 1));
+    }
+    best
+}
+
+/// Halving depth of [`project_near`]'s search.
+const NEAR_SEARCH_DEPTH: u32 = 24;
+/// Newton runs of [`project_near`]'s search.
+const NEAR_SEARCH_NEWTONS: usize = 64;
 
 struct Overlap {
     u: (f64, f64),
@@ -737,7 +825,7 @@ impl<'a> Search<'a> {
             }
             pair.p.break_point_into(u, x);
             if near(q_pieces, x) {
-                let (v, d) = project_on(&pair.q, x, None, q_pieces);
+                let (v, d) = project_near(&pair.q, x, q_pieces, tol);
                 if d <= tol {
                     ends.push((u, v));
                 }
@@ -751,7 +839,7 @@ impl<'a> Search<'a> {
             }
             pair.q.break_point_into(v, x);
             if near(p_pieces, x) {
-                let (u, d) = project_on(&pair.p, x, None, p_pieces);
+                let (u, d) = project_near(&pair.p, x, p_pieces, tol);
                 if d <= tol {
                     ends.push((u, v));
                 }

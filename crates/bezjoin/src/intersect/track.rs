@@ -775,24 +775,54 @@ mod near_tests {
     /// degrees 1 to 6 in 2D and 3D, points near the curve and in its box.
     #[test]
     fn may_come_within_refuses_only_far_points() {
+        let pruned = refusals_are_far(false);
+        assert!(pruned > 100, "the halves pruned only {pruned} points");
+    }
+
+    /// The same for rational pieces (weights in `[0.3, 3]`, halved in
+    /// their homogeneous rows), the dense samples projected.
+    #[test]
+    fn may_come_within_refuses_only_far_points_rational() {
+        let pruned = refusals_are_far(true);
+        assert!(pruned > 100, "the halves pruned only {pruned} points");
+    }
+
+    /// The check of the two tests above; the count of points refused that
+    /// the box alone lets through.
+    fn refusals_are_far(rational: bool) -> usize {
         let mut next = crate::test_values::unit_generator(17);
         let mut pruned = 0;
         for case in 0..80 {
             let degree = 1 + case % 6;
             let dim = 2 + case % 2;
-            let points: Vec<f64> = (0..(degree + 1) * dim)
-                .map(|_| 2.0 * next() - 1.0)
+            let width = dim + usize::from(rational);
+            let points: Vec<f64> = (0..=degree)
+                .flat_map(|_| {
+                    let w = if rational { 0.3 + 2.7 * next() } else { 1.0 };
+                    let mut row: Vec<f64> = (0..dim).map(|_| w * (2.0 * next() - 1.0)).collect();
+                    if rational {
+                        row.push(w);
+                    }
+                    row
+                })
                 .collect();
-            let curve = BezierCurve::new(dim, degree, points).unwrap();
-            let piece = Piece::new(Cow::Borrowed(&curve), false, 0.0, 1.0);
+            let curve = BezierCurve::new(width, degree, points).unwrap();
+            let piece = Piece::new(Cow::Borrowed(&curve), rational, 0.0, 1.0);
+            let point_at = |t: f64| {
+                let row = curve.eval(t);
+                if rational {
+                    row[..dim].iter().map(|v| v / row[dim]).collect()
+                } else {
+                    row
+                }
+            };
             for trial in 0..20 {
                 // A point on the curve moved by a small offset, or anywhere
                 // in the box.
                 let x: Vec<f64> = if trial % 2 == 0 {
                     let t = next();
                     let scale = [1e-9, 1e-4, 1e-2][trial % 3];
-                    curve
-                        .eval(t)
+                    point_at(t)
                         .iter()
                         .map(|v| v + scale * (2.0 * next() - 1.0))
                         .collect()
@@ -812,7 +842,7 @@ mod near_tests {
                     pruned += 1;
                 }
                 let closest = (0..=10_000)
-                    .map(|i| distance(&curve.eval(i as f64 / 10_000.0), &x))
+                    .map(|i| distance(&point_at(i as f64 / 10_000.0), &x))
                     .fold(f64::INFINITY, f64::min);
                 assert!(
                     closest > margin,
@@ -820,6 +850,6 @@ mod near_tests {
                 );
             }
         }
-        assert!(pruned > 100, "the halves pruned only {pruned} points");
+        pruned
     }
 }
