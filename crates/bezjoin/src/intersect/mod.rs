@@ -530,7 +530,7 @@ pub(crate) fn project(
 fn project_on(track: &Track, x: &[f64], start: Option<f64>, pieces: &[Piece]) -> (f64, f64) {
     let (lo, hi) = track.domain();
     let mut buf = vec![0.0; track.dim()];
-    let mut t = match start {
+    let t = match start {
         Some(t) => t.clamp(lo, hi),
         None if pieces.len() > 1 => {
             let per_span = 2 * (track.degree() + 1);
