@@ -246,7 +246,12 @@ impl<'a> Track<'a> {
                                 let curve = BezierCurve::from_parts(dim, n.degree(), points);
                                 Piece::new(Cow::Owned(curve), false, lo, hi)
                             } else {
-                                Piece::new(Cow::Borrowed(poles.span_curve(i)), true, lo, hi)
+                                Piece::with_projected(
+                                    Cow::Borrowed(poles.span_curve(i)),
+                                    Some(Cow::Borrowed(poles.projected(i))),
+                                    lo,
+                                    hi,
+                                )
                             }
                         })
                         .collect(),
@@ -282,7 +287,7 @@ pub(super) struct Piece<'a> {
     curve: Cow<'a, BezierCurve>,
     /// Cartesian control points of a rational piece, row-major (a
     /// polynomial piece's are the curve's own: no copy).
-    projected: Option<Vec<f64>>,
+    projected: Option<Cow<'a, [f64]>>,
     dim: usize,
     pub(super) lo: f64,
     pub(super) hi: f64,
@@ -320,7 +325,29 @@ impl Bounds {
 
 impl<'a> Piece<'a> {
     fn new(curve: Cow<'a, BezierCurve>, rational: bool, lo: f64, hi: f64) -> Self {
-        let dim = if rational {
+        let projected = rational.then(|| {
+            let d = curve.dim() - 1;
+            Cow::Owned(
+                curve
+                    .points()
+                    .chunks_exact(d + 1)
+                    .flat_map(|row| row[..d].iter().map(move |x| x / row[d]))
+                    .collect(),
+            )
+        });
+        Self::with_projected(curve, projected, lo, hi)
+    }
+
+    /// A piece of the homogeneous curve `curve` whose Cartesian poles
+    /// (`(w x) / w` of each row) are `projected`, or of the polynomial
+    /// `curve` (`None`).
+    fn with_projected(
+        curve: Cow<'a, BezierCurve>,
+        projected: Option<Cow<'a, [f64]>>,
+        lo: f64,
+        hi: f64,
+    ) -> Self {
+        let dim = if projected.is_some() {
             curve.dim() - 1
         } else {
             curve.dim()
@@ -328,28 +355,21 @@ impl<'a> Piece<'a> {
         // The plane with the dimension as a constant (the box loops
         // unrolled); the same comparisons as the general case.
         if dim == 2 {
-            Self::new_sized(curve, rational, 2, lo, hi)
+            Self::new_sized(curve, projected, 2, lo, hi)
         } else {
-            Self::new_sized(curve, rational, dim, lo, hi)
+            Self::new_sized(curve, projected, dim, lo, hi)
         }
     }
 
-    /// [`Self::new`] for Cartesian dimension `dim`.
+    /// [`Self::with_projected`] for Cartesian dimension `dim`.
     #[inline(always)]
     fn new_sized(
         curve: Cow<'a, BezierCurve>,
-        rational: bool,
+        projected: Option<Cow<'a, [f64]>>,
         dim: usize,
         lo: f64,
         hi: f64,
     ) -> Self {
-        let projected: Option<Vec<f64>> = rational.then(|| {
-            curve
-                .points()
-                .chunks_exact(dim + 1)
-                .flat_map(|row| row[..dim].iter().map(move |x| x / row[dim]))
-                .collect()
-        });
         let mut bounds = if dim <= INLINE_BOUNDS_DIM {
             Bounds::Inline([0.0; 2 * INLINE_BOUNDS_DIM])
         } else {
@@ -767,6 +787,37 @@ mod near_tests {
     use super::Piece;
     use crate::bezier::{BezierCurve, distance};
     use std::borrow::Cow;
+
+    /// A rational NURBS curve's pieces borrow the decomposition's
+    /// Cartesian poles: the same bits and the same box as a piece that
+    /// projects its homogeneous rows itself ([`Piece::new`]).
+    #[test]
+    fn kept_cartesian_poles_are_the_projected_rows() {
+        let mut next = crate::test_values::unit_generator(23);
+        for case in 0..40 {
+            let (p, dim) = (1 + case % 4, 2 + case % 2);
+            let count = p + 1 + case % 3;
+            let poles: Vec<f64> = (0..count * dim).map(|_| 4.0 * next() - 2.0).collect();
+            let weights: Vec<f64> = (0..count).map(|_| 0.2 + 3.0 * next()).collect();
+            let mut knots = vec![0.0; p + 1];
+            knots.extend((1..count - p).map(|k| k as f64 + 0.5 * next()));
+            knots.extend(vec![(count - p) as f64 + 1.0; p + 1]);
+            let curve = crate::NurbsCurve::new(dim, p, poles, Some(weights), knots).unwrap();
+            let track = super::Track::Nurbs(&curve);
+            for (i, piece) in track.pieces().iter().enumerate() {
+                let poles = curve.span_poles();
+                let own = Piece::new(Cow::Borrowed(poles.span_curve(i)), true, piece.lo, piece.hi);
+                let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                assert_eq!(
+                    bits(piece.points()),
+                    bits(own.points()),
+                    "case {case} span {i}"
+                );
+                assert_eq!(bits(piece.min()), bits(own.min()), "case {case} span {i}");
+                assert_eq!(bits(piece.max()), bits(own.max()), "case {case} span {i}");
+            }
+        }
+    }
 
     /// `may_come_within` is conservative: whenever it says no, every point
     /// of the piece (dense samples) is farther than the margin from `x`;

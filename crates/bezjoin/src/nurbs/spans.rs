@@ -146,6 +146,7 @@ impl NurbsCurve {
             beziers,
             rational_cuts: std::sync::OnceLock::new(),
             homogeneous: std::sync::OnceLock::new(),
+            projected: std::sync::OnceLock::new(),
         }
     }
 
@@ -277,6 +278,10 @@ pub(crate) struct SpanPoles {
     /// homogeneous rows (dimension `dim + 1`), built on first use (the
     /// intersection's pieces).
     homogeneous: std::sync::OnceLock<Vec<BezierCurve>>,
+    /// For a curve with weights, the Cartesian poles `x = (w x) / w` of
+    /// every span's rows, spans one after the other, built on first use
+    /// (the intersection's pieces and their boxes).
+    projected: std::sync::OnceLock<Vec<f64>>,
 }
 
 impl SpanPoles {
@@ -293,6 +298,22 @@ impl SpanPoles {
                 .collect()
         });
         &all[i]
+    }
+
+    /// For a curve with weights, the Cartesian poles of span `i` (`p + 1`
+    /// rows of `h - 1` values, each `(w x) / w` of its homogeneous row).
+    pub(crate) fn projected(&self, i: usize) -> &[f64] {
+        let (p, d) = (self.degree, self.h - 1);
+        let all = self.projected.get_or_init(|| {
+            (0..self.count())
+                .flat_map(|k| {
+                    self.rows(k)
+                        .chunks_exact(d + 1)
+                        .flat_map(move |row| row[..d].iter().map(move |x| x / row[d]))
+                })
+                .collect()
+        });
+        &all[i * (p + 1) * d..(i + 1) * (p + 1) * d]
     }
 
     /// Number of spans.
