@@ -262,7 +262,10 @@ impl CurveJet for NurbsCurve {
     /// A clamped one-span polynomial curve (a Bezier curve as a NURBS
     /// handle): the Bezier curve's de Casteljau jet of its poles, scaled to
     /// the domain ([`NurbsCurve::bezier_span_jet_into`]; on `[0, 1]` the
-    /// jet of the Bezier curve itself). Any other curve: A2.3
+    /// jet of the Bezier curve itself). A polynomial curve of several
+    /// spans: the same from its span's poles in the kept decomposition,
+    /// with their rounding in the bound ([`NurbsCurve::spans_jet_into`]).
+    /// Any other curve: A2.3
     /// (the rows and bounds of `NurbsCurve::eval_derivatives_into`).
     fn jet_into(
         &self,
@@ -272,7 +275,9 @@ impl CurveJet for NurbsCurve {
         values: &mut [f64],
         errors: &mut [f64],
     ) {
-        if self.bezier_span_jet_into(u, order, values, errors) {
+        if self.bezier_span_jet_into(u, order, values, errors)
+            || self.spans_jet_into(u, order, side, values, errors)
+        {
             return;
         }
         // The A2.3 rows and bounds into zero-filled caller storage.

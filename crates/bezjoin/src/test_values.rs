@@ -49,12 +49,8 @@ pub(crate) fn exact_bezier_jet(
     order: usize,
 ) -> Vec<Vec<num_rational::BigRational>> {
     use num_rational::BigRational;
-    use num_traits::{One, Zero};
     let exact = |x: f64| BigRational::from_float(x).expect("finite");
-    let h = exact(b) - exact(a);
-    let t = (exact(u) - exact(a)) / &h;
-    let s = BigRational::one() - &t;
-    let mut level: Vec<Vec<BigRational>> = (0..=p)
+    let level: Vec<Vec<BigRational>> = (0..=p)
         .map(|i| {
             poles[i * dim..(i + 1) * dim]
                 .iter()
@@ -62,6 +58,27 @@ pub(crate) fn exact_bezier_jet(
                 .collect()
         })
         .collect();
+    exact_bezier_jet_of(level, dim, p, (exact(a), exact(b), exact(u)), order)
+}
+
+/// [`exact_bezier_jet`] of exact poles (`p + 1` rows of `dim`) on the
+/// exact domain `(a, b)` at the exact `u`.
+pub(crate) fn exact_bezier_jet_of(
+    mut level: Vec<Vec<num_rational::BigRational>>,
+    dim: usize,
+    p: usize,
+    (a, b, u): (
+        num_rational::BigRational,
+        num_rational::BigRational,
+        num_rational::BigRational,
+    ),
+    order: usize,
+) -> Vec<Vec<num_rational::BigRational>> {
+    use num_rational::BigRational;
+    use num_traits::{One, Zero};
+    let h = &b - &a;
+    let t = (u - &a) / &h;
+    let s = BigRational::one() - &t;
     let mut jet = vec![vec![BigRational::zero(); dim]; order + 1];
     for l in 0..=p {
         if l > 0 {
