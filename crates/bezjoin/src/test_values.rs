@@ -63,6 +63,7 @@ pub(crate) fn exact_bezier_jet(
 
 /// [`exact_bezier_jet`] of exact poles (`p + 1` rows of `dim`) on the
 /// exact domain `(a, b)` at the exact `u`.
+#[allow(clippy::needless_range_loop)]
 pub(crate) fn exact_bezier_jet_of(
     mut level: Vec<Vec<num_rational::BigRational>>,
     dim: usize,
