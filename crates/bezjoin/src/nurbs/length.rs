@@ -215,7 +215,9 @@ impl RationalSpan<'_> {
     /// `C' = (A' - w' C) / w` and `dC/du = C'(t) / (hi - lo)`
     /// ([`point_and_tangent_rows`]: no heap allocation up to
     /// `(p + 1) (dim + 1) <= 64`); plane and space quadratics and cubics
-    /// with the sizes as constants.
+    /// with the sizes as constants. On a span with [`SpeedBounds`] (no
+    /// cuts) the plane and space quadratics and cubics take
+    /// [`horner_speed`] instead, about half the work.
     fn speed(&self, u: f64) -> f64 {
         let mut out = [0.0];
         self.speeds(&[u], &mut out);
@@ -225,6 +227,17 @@ impl RationalSpan<'_> {
     /// [`Self::speed`] at every `u` of `us` into `out` (the size dispatch
     /// once for all of them: a Gauss-Kronrod panel's 15 nodes).
     fn speeds(&self, us: &[f64], out: &mut [f64]) {
+        if self.bounds.is_some() {
+            let job = FillSpeeds {
+                us,
+                out: &mut *out,
+                lo: self.lo,
+                h: self.hi - self.lo,
+            };
+            if self.with_horner(job).is_some() {
+                return;
+            }
+        }
         match (self.dim, self.degree) {
             (2, 3) => self.speeds_with(us, out, speed_fixed::<3, 3>),
             (3, 3) => self.speeds_with(us, out, speed_fixed::<4, 3>),
@@ -232,6 +245,28 @@ impl RationalSpan<'_> {
             (3, 2) => self.speeds_with(us, out, speed_fixed::<4, 2>),
             _ => self.speeds_with(us, out, |_, t| self.speed_any(t)),
         }
+    }
+
+    /// `job` run on the speed per unit `t` by [`horner_speed`] (the
+    /// polynomials copied once into a table of constant size, the sizes
+    /// dispatched once, the speed inlined into the job): `None` (nothing
+    /// run) without [`SpeedBounds`] or for a size other than plane and
+    /// space quadratics and cubics.
+    #[inline(always)]
+    fn with_horner<J: HornerJob>(&self, job: J) -> Option<J::Output> {
+        let mut table = [0.0f64; HORNER_TABLE];
+        if self.bounds.is_none() || self.horner.len() > HORNER_TABLE {
+            return None;
+        }
+        table[..self.horner.len()].copy_from_slice(self.horner);
+        let table = &table;
+        Some(match (self.dim, self.degree) {
+            (2, 3) => job.run(|t| horner_speed::<2, 3>(table, t)),
+            (3, 3) => job.run(|t| horner_speed::<3, 3>(table, t)),
+            (2, 2) => job.run(|t| horner_speed::<2, 2>(table, t)),
+            (3, 2) => job.run(|t| horner_speed::<3, 2>(table, t)),
+            _ => return None,
+        })
     }
 
     /// [`Self::speeds`] by `per_unit_t` (the speed in `t` from the rows).
@@ -417,7 +452,7 @@ fn speed_bounds(
 /// f^Q`, `w(t) = w_r f^P` (`f` = `1 - t` or `t`), so `|C'| = |N_r| / (w_r^2
 /// f)`.
 #[inline(always)]
-fn horner_speed<const D: usize, const P: usize>(horner: &[f64], t: f64) -> f64 {
+fn horner_speed<const D: usize, const P: usize>(horner: &[f64; HORNER_TABLE], t: f64) -> f64 {
     let q = 2 * P - 1;
     let (numerator, weight) = horner.split_at((q + 1) * D);
     let s = 1.0 - t;
@@ -458,6 +493,56 @@ fn horner_speed<const D: usize, const P: usize>(horner: &[f64], t: f64) -> f64 {
     };
     size / (w * w * factor)
 }
+
+/// Work done on a rational span's speed per unit `t`
+/// ([`RationalSpan::with_horner`]), generic in the speed so that it is
+/// inlined.
+trait HornerJob {
+    type Output;
+    fn run(self, speed: impl Fn(f64) -> f64) -> Self::Output;
+}
+
+/// [`RationalSpan::speeds`]: the speed per unit `u` at `us` into `out`.
+struct FillSpeeds<'j> {
+    us: &'j [f64],
+    out: &'j mut [f64],
+    lo: f64,
+    h: f64,
+}
+
+impl HornerJob for FillSpeeds<'_> {
+    type Output = ();
+    #[inline(always)]
+    fn run(self, speed: impl Fn(f64) -> f64) {
+        for (o, &u) in self.out.iter_mut().zip(self.us) {
+            *o = speed(((u - self.lo) / self.h).clamp(0.0, 1.0)) / self.h;
+        }
+    }
+}
+
+/// [`ChebyshevSampled::sample_speeds`] of [`RationalChebyshev`]: the
+/// speed per unit `u` at the grid's nodes ([`sample_nodes`]).
+struct SampleNodes<'j> {
+    grid: (&'j [f64; CHEBYSHEV_MAX_N + 1], f64, f64, usize, usize),
+    samples: &'j mut [f64; CHEBYSHEV_MAX_N + 1],
+    lo: f64,
+    h: f64,
+}
+
+impl HornerJob for SampleNodes<'_> {
+    type Output = bool;
+    #[inline(always)]
+    fn run(self, speed: impl Fn(f64) -> f64) -> bool {
+        let (lo, h) = (self.lo, self.h);
+        sample_nodes(self.grid, self.samples, |u| {
+            speed(((u - lo) / h).clamp(0.0, 1.0)) / h
+        })
+    }
+}
+
+/// Size of [`horner_speed`]'s table: `(2p) dim + p + 1` values, at most 22
+/// for the cubics in space.
+const HORNER_TABLE: usize = 32;
 
 /// [`horner_speed`] for any dimension (up to 16) and degree.
 fn horner_speed_any(horner: &[f64], dim: usize, degree: usize, t: f64) -> f64 {
@@ -526,16 +611,7 @@ impl ChebyshevSampled for RationalChebyshev<'_, '_> {
     }
 
     fn speed_at(&self, u: f64) -> f64 {
-        let s = self.span;
-        let h = s.hi - s.lo;
-        let t = ((u - s.lo) / h).clamp(0.0, 1.0);
-        match (s.dim, s.degree) {
-            (2, 3) => horner_speed::<2, 3>(s.horner, t) / h,
-            (3, 3) => horner_speed::<3, 3>(s.horner, t) / h,
-            (2, 2) => horner_speed::<2, 2>(s.horner, t) / h,
-            (3, 2) => horner_speed::<3, 2>(s.horner, t) / h,
-            (d, p) => horner_speed_any(s.horner, d, p, t) / h,
-        }
+        self.span.speed(u)
     }
 
     fn speed_bounds(&self) -> (f64, f64) {
@@ -558,17 +634,21 @@ impl ChebyshevSampled for RationalChebyshev<'_, '_> {
         let s = self.span;
         let (lo, h) = (s.lo, s.hi - s.lo);
         let grid = (nodes, start, span, first, step);
-        let horner = s.horner;
         let t = |u: f64| ((u - lo) / h).clamp(0.0, 1.0);
-        // The values of `speed_at`, the sizes dispatched once for all the
-        // nodes.
-        match (s.dim, s.degree) {
-            (2, 3) => sample_nodes(grid, samples, |u| horner_speed::<2, 3>(horner, t(u)) / h),
-            (3, 3) => sample_nodes(grid, samples, |u| horner_speed::<3, 3>(horner, t(u)) / h),
-            (2, 2) => sample_nodes(grid, samples, |u| horner_speed::<2, 2>(horner, t(u)) / h),
-            (3, 2) => sample_nodes(grid, samples, |u| horner_speed::<3, 2>(horner, t(u)) / h),
-            (d, p) => sample_nodes(grid, samples, |u| horner_speed_any(horner, d, p, t(u)) / h),
+        // The values of `speed_at` (`RationalSpan::speeds`), the table and
+        // the sizes set up once for all the nodes.
+        let job = SampleNodes {
+            grid,
+            samples: &mut *samples,
+            lo,
+            h,
+        };
+        if let Some(finite) = s.with_horner(job) {
+            return finite;
         }
+        sample_nodes(grid, samples, |u| {
+            horner_speed_any(s.horner, s.dim, s.degree, t(u)) / h
+        })
     }
 }
 
@@ -1235,8 +1315,9 @@ mod tests {
     /// asked for. Random rational curves of degrees 1 to 5 in the plane and
     /// in space, weights in `[0.2, 5]`, starts anywhere in a span (and at its
     /// ends), lengths over the whole span, both directions, accuracies
-    /// `1e-12` and `1e-9` relative. Also its speed is the module's
-    /// (`RationalSpan::speed`, de Casteljau) within rounding, and enough
+    /// `1e-12` and `1e-9` relative. Also its speed (`horner_speed`, from
+    /// `N` and `w`) is de Casteljau's on the homogeneous poles
+    /// (`RationalSpan::speed_any`) within rounding, and enough
     /// spans qualify and are answered (the path is exercised).
     #[test]
     fn rational_chebyshev_inversion_meets_its_accuracy() {
@@ -1255,7 +1336,8 @@ mod tests {
                 qualified += 1;
                 for k in 0..=8 {
                     let u = s.lo + (s.hi - s.lo) * k as f64 / 8.0;
-                    let (a, b) = (speed.speed_at(u), span.speed(u));
+                    let t = (u - s.lo) / (s.hi - s.lo);
+                    let (a, b) = (speed.speed_at(u), span.speed_any(t) / (s.hi - s.lo));
                     assert!(
                         (a - b).abs() <= 1e-12 * b,
                         "case {case}: speed {a} vs {b} at {u}"
