@@ -1317,7 +1317,8 @@ mod tests {
     /// ends), lengths over the whole span, both directions, accuracies
     /// `1e-12` and `1e-9` relative. Also its speed (`horner_speed`, from
     /// `N` and `w`) is de Casteljau's on the homogeneous poles
-    /// (`RationalSpan::speed_any`) within rounding, and enough
+    /// (`RationalSpan::speed_any`) within rounding, its rounding floor far
+    /// below the speed, and enough
     /// spans qualify and are answered (the path is exercised).
     #[test]
     fn rational_chebyshev_inversion_meets_its_accuracy() {
@@ -1334,6 +1335,16 @@ mod tests {
                     continue;
                 };
                 qualified += 1;
+                // The rounding floor stays far below the speed (so that the
+                // accuracies asked for are met by the estimate, not
+                // excused by the floor): `(q + 1) eps` relative, and the
+                // products' size, near the origin within a few hundred.
+                let (_, high) = speed.speed_bounds();
+                assert!(
+                    speed.noise_per_unit() <= 1e-11 * high,
+                    "case {case}: noise {} for speeds up to {high}",
+                    speed.noise_per_unit()
+                );
                 for k in 0..=8 {
                     let u = s.lo + (s.hi - s.lo) * k as f64 / 8.0;
                     let t = (u - s.lo) / (s.hi - s.lo);
