@@ -13,8 +13,14 @@
 //! otherwise both halves are refined, within a budget of
 //! [`MAX_RATIONAL_EVALUATIONS`] speed evaluations; past it the call is
 //! `IllConditioned` with the estimate. The inverse on a rational span is
-//! Newton's method on `u` (derivative: the speed) safeguarded by
-//! bisection, each step measuring the length from the last iterate only.
+//! first, when the span has no cuts (its speed `|N| / w^2` provably
+//! bounded away from zero, [`RationalChebyshev`]), the Chebyshev inversion
+//! of the polynomial spans ([`ChebyshevSampled::param_at_length`]: 25
+//! samples of the speed on a bracket, the interpolant integrated and
+//! inverted, certified against the interpolant through every other
+//! sample); otherwise, or where that does not certify, Newton's method on
+//! `u` (derivative: the speed) safeguarded by bisection, each step
+//! measuring the length from the last iterate only.
 
 use std::borrow::Cow;
 
@@ -131,7 +137,9 @@ impl RationalSpan<'_> {
     /// local minima of `|N|` ([`crate::arclength::speed_minima`]) and the
     /// geometric mesh towards a small nonzero minimum
     /// ([`crate::arclength::grade_at_near_cusps`]); none when `N`'s
-    /// polygon keeps it away from zero. Without them the 7/15-point check
+    /// polygon keeps it away from zero, and then the speed's bounds
+    /// ([`speed_bounds`]) and `N` and `w` for [`horner_speed`] are kept
+    /// instead (the Chebyshev inversion's, [`RationalChebyshev`]). Without them the 7/15-point check
     /// is fooled at a kink (both rules off by about the same amount):
     /// measured on a one-dimensional degree-5 span, a length accepted
     /// `2.6e-11` off at a tolerance of `6e-14`.
@@ -281,7 +289,10 @@ impl RationalSpan<'_> {
 
     /// The parameter in `[lo, hi]` (which holds `start`) whose signed arc
     /// length from `start` is `target`, and whether the length there met
-    /// `accuracy`: Newton's method on `f(u) = len(start, u) - target`
+    /// `accuracy`: first, on a span with [`SpeedBounds`], the Chebyshev
+    /// inversion ([`RationalChebyshev`], its answer certified to `0.75
+    /// accuracy`, `true`); otherwise, or when it does not certify,
+    /// Newton's method on `f(u) = len(start, u) - target`
     /// (increasing in `u`; `f(start) = -target` exactly), safeguarded by
     /// bisection. Each step measures only the length between the last
     /// iterate and the next (not from `start` again), the `k`-th to
