@@ -1035,10 +1035,18 @@ impl NurbsCurve {
                 })
                 .collect();
         }
-        // A span whose weights are all equal is polynomial: its Bezier
-        // curve has the poles `w P / w` (what `to_bezier` of the span of
-        // `bezier_spans` gives, bit for bit); the others are read as
-        // homogeneous rows in place.
+        (0..self.span_poles().count())
+            .map(|i| self.weighted_span(i))
+            .collect()
+    }
+
+    /// Span `i` of a curve with weights, as [`Self::length_spans`] lists it:
+    /// a span whose weights are all equal is polynomial, its Bezier curve
+    /// with the poles `w P / w` (what `to_bezier` of the span of
+    /// `bezier_spans` gives, bit for bit); the others are read as
+    /// homogeneous rows in place, with their cuts (computed for all spans
+    /// on first use and kept with the decomposition).
+    fn weighted_span(&self, i: usize) -> Span<'_> {
         let poles = self.span_poles();
         let (dim, degree, h) = (self.dim, self.degree, poles.h);
         let cuts = poles.rational_cuts.get_or_init(|| {
@@ -1049,36 +1057,32 @@ impl NurbsCurve {
                 })
                 .collect()
         });
-        (0..poles.count())
-            .map(|i| {
-                let (lo, hi) = poles.domain(i);
-                let rows = poles.rows(i);
-                let equal = rows.chunks_exact(h).all(|r| r[dim] == rows[dim]);
-                let polynomial = equal
-                    .then(|| {
-                        let points = rows
-                            .chunks_exact(h)
-                            .flat_map(|r| r[..dim].iter().map(move |x| x / r[dim]))
-                            .collect();
-                        BezierCurve::new(dim, degree, points).ok()
-                    })
-                    .flatten();
-                let form = match polynomial {
-                    Some(b) => SpanForm::Polynomial(Cow::Owned(b)),
-                    None => SpanForm::Rational(RationalSpan {
-                        rows,
-                        dim,
-                        degree,
-                        lo,
-                        hi,
-                        cuts: &cuts[i].cuts,
-                        bounds: cuts[i].bounds,
-                        horner: &cuts[i].horner,
-                    }),
-                };
-                Span { lo, hi, form }
+        let (lo, hi) = poles.domain(i);
+        let rows = poles.rows(i);
+        let equal = rows.chunks_exact(h).all(|r| r[dim] == rows[dim]);
+        let polynomial = equal
+            .then(|| {
+                let points = rows
+                    .chunks_exact(h)
+                    .flat_map(|r| r[..dim].iter().map(move |x| x / r[dim]))
+                    .collect();
+                BezierCurve::new(dim, degree, points).ok()
             })
-            .collect()
+            .flatten();
+        let form = match polynomial {
+            Some(b) => SpanForm::Polynomial(Cow::Owned(b)),
+            None => SpanForm::Rational(RationalSpan {
+                rows,
+                dim,
+                degree,
+                lo,
+                hi,
+                cuts: &cuts[i].cuts,
+                bounds: cuts[i].bounds,
+                horner: &cuts[i].horner,
+            }),
+        };
+        Span { lo, hi, form }
     }
 
     /// Arc length from `a` to `b` (both in the domain; signed: negative
@@ -1203,18 +1207,28 @@ impl NurbsCurve {
                 }
             }
         } else {
-            let mut spans: Vec<Span> = self
-                .length_spans()
-                .into_iter()
-                .filter(|s| if forward { s.hi > start } else { s.lo < start })
-                .collect();
-            if !forward {
-                spans.reverse();
-            }
-            let share = 0.5 * accuracy / spans.len().max(1) as f64;
-            for s in &spans {
-                if let Some(u) = step(s, share)? {
-                    return Ok(u);
+            // The spans visited in place, one at a time (the same spans, in
+            // the same order, as `length_spans` filtered to those with `hi >
+            // start` forwards, `lo < start` backwards, reversed).
+            let poles = self.span_poles();
+            let count = poles.count();
+            let ahead = |i: usize| {
+                let (lo, hi) = poles.domain(i);
+                if forward { hi > start } else { lo < start }
+            };
+            let visited = (0..count).filter(|&i| ahead(i)).count();
+            let share = 0.5 * accuracy / visited.max(1) as f64;
+            if forward {
+                for i in (0..count).filter(|&i| ahead(i)) {
+                    if let Some(u) = step(&self.weighted_span(i), share)? {
+                        return Ok(u);
+                    }
+                }
+            } else {
+                for i in (0..count).rev().filter(|&i| ahead(i)) {
+                    if let Some(u) = step(&self.weighted_span(i), share)? {
+                        return Ok(u);
+                    }
                 }
             }
         }
