@@ -29,7 +29,7 @@
 //!
 //! Before all that, curves whose hodograph polygon keeps the speed away
 //! from zero (no cusp; degree and dimension small enough for a stack
-//! buffer) are inverted by [`ChebyshevSpeed::param_at_length`]: 25 speed
+//! buffer) are inverted by [`ChebyshevSampled::param_at_length`]: 25 speed
 //! samples (49 when those do not certify) on a bracket of the answer, the interpolant integrated in closed
 //! form, Newton on that polynomial, and a check of the interpolant against
 //! the one through every other sample (the analogue of the rule against its
@@ -71,7 +71,7 @@ const SUBNORMAL_STEPS: f64 = 4.0;
 /// least that many units of `5e-324` in length (without it such intervals
 /// bisected until the evaluation budget ran out). The second term is the
 /// larger only for a width or a value below about `5.5e-309`.
-fn rounding_level(value: f64, width: f64) -> f64 {
+pub(crate) fn rounding_level(value: f64, width: f64) -> f64 {
     let step = f64::from_bits(1);
     let mean_speed = if width > 0.0 {
         value.abs() / width
@@ -1055,6 +1055,13 @@ pub(crate) fn speed_bounded_away_from_zero(hodograph: &BezierCurve, lo: f64, hi:
     if lo < 0.0 || hi > 1.0 {
         return false;
     }
+    speed_bounds_away_from_zero(hodograph).is_some()
+}
+
+/// The bounds behind [`speed_bounded_away_from_zero`] on `[0, 1]`: `(low,
+/// high)` with `low <= |H(t)| <= high` there (`low = min_i u . H_i`, `high =
+/// max_i |H_i|`), when `low >= SPEED_MARGIN * high`; `None` otherwise.
+pub(crate) fn speed_bounds_away_from_zero(hodograph: &BezierCurve) -> Option<(f64, f64)> {
     let d = hodograph.dim();
     let n = hodograph.degree() + 1;
     let mut mean = vec![0.0; d];
@@ -1065,7 +1072,7 @@ pub(crate) fn speed_bounded_away_from_zero(hodograph: &BezierCurve, lo: f64, hi:
     }
     let mean_norm = norm(&mean);
     if !(mean_norm > 0.0 && mean_norm.is_finite()) {
-        return false;
+        return None;
     }
     let mut min_along = f64::INFINITY;
     let mut max_norm = 0.0f64;
@@ -1075,7 +1082,7 @@ pub(crate) fn speed_bounded_away_from_zero(hodograph: &BezierCurve, lo: f64, hi:
         min_along = min_along.min(along);
         max_norm = max_norm.max(norm(p));
     }
-    max_norm.is_finite() && min_along >= SPEED_MARGIN * max_norm
+    (max_norm.is_finite() && min_along >= SPEED_MARGIN * max_norm).then_some((min_along, max_norm))
 }
 
 /// Highest hodograph degree for which [`speed_minima`] splits the range
@@ -1201,7 +1208,7 @@ fn isolate(coefficients: &[f64], s0: f64, s1: f64, roots: &mut Vec<f64>, budget:
 const CHEBYSHEV_LEVELS: [usize; 2] = [24, 48];
 
 /// The finer level's intervals: the sample buffer's size and the node grid.
-const CHEBYSHEV_MAX_N: usize = CHEBYSHEV_LEVELS[1];
+pub(crate) const CHEBYSHEV_MAX_N: usize = CHEBYSHEV_LEVELS[1];
 
 /// Largest `(degree + 1) * dim` of a hodograph the Chebyshev inversion
 /// keeps on the stack (degree 15 in 4D, degree 31 in 2D).
@@ -1384,7 +1391,7 @@ fn fold_apply<const C: usize, const P: usize>(
 /// polygon keeps the speed provably away from zero
 /// ([`speed_bounded_away_from_zero`]: no cusp, no kink of `|P'|`, which is
 /// then analytic on `[0, 1]`), for the Chebyshev inversion
-/// ([`ChebyshevSpeed::param_at_length`]). The hodograph is kept once as
+/// ([`ChebyshevSampled::param_at_length`]). The hodograph is kept once as
 /// its binomial-weighted control points `C(m, i) H_i` on the stack, so an
 /// evaluation is one Horner pass with no allocation.
 struct ChebyshevSpeed {
@@ -1633,15 +1640,80 @@ impl ChebyshevSpeed {
         }
         norm(&acc[..d]) * power
     }
+}
+
+impl ChebyshevSampled for ChebyshevSpeed {
+    fn domain(&self) -> (f64, f64) {
+        (0.0, 1.0)
+    }
+
+    #[inline(always)]
+    fn speed_at(&self, t: f64) -> f64 {
+        self.at(t)
+    }
+
+    fn speed_bounds(&self) -> (f64, f64) {
+        (self.low, self.high)
+    }
+
+    fn noise_per_unit(&self) -> f64 {
+        self.noise_per_unit
+    }
+
+    #[inline(always)]
+    fn sample_speeds(
+        &self,
+        nodes: &[f64; CHEBYSHEV_MAX_N + 1],
+        start: f64,
+        span: f64,
+        first: usize,
+        step: usize,
+        samples: &mut [f64; CHEBYSHEV_MAX_N + 1],
+    ) -> bool {
+        self.sample(nodes, start, span, first, step, samples)
+    }
+}
+
+/// A speed the Chebyshev inversion runs on: the polynomial
+/// [`ChebyshevSpeed`] on `[0, 1]`, and a rational NURBS span's speed on its
+/// knot interval (`nurbs::length`). Its implementor vouches that the speed
+/// is analytic on [`Self::domain`] (no kink: provably bounded away from
+/// zero) and lies within [`Self::speed_bounds`] there.
+pub(crate) trait ChebyshevSampled {
+    /// The parameter interval `[lo, hi]` of the speed.
+    fn domain(&self) -> (f64, f64);
+
+    /// The speed at `t` in the domain.
+    fn speed_at(&self, t: f64) -> f64;
+
+    /// `(low, high)` with `low <= speed <= high` on the domain, `low > 0`.
+    fn speed_bounds(&self) -> (f64, f64);
+
+    /// Rounding-noise bound of the speed's evaluation per unit of the
+    /// parameter ([`speed_noise_per_unit`]).
+    fn noise_per_unit(&self) -> f64;
+
+    /// The speed at the grid nodes `i = first, first + step, ..` below
+    /// [`CHEBYSHEV_MAX_N`], `t = start + (nodes[i] + 1) span / 2`, into
+    /// `samples[i]`; `false` at the first value that is not finite.
+    fn sample_speeds(
+        &self,
+        nodes: &[f64; CHEBYSHEV_MAX_N + 1],
+        start: f64,
+        span: f64,
+        first: usize,
+        step: usize,
+        samples: &mut [f64; CHEBYSHEV_MAX_N + 1],
+    ) -> bool;
 
     /// The parameter at signed arc length `length != 0` from `start` in
-    /// `[0, 1]`, certified to `accuracy`, or `None` (then the adaptive path
-    /// answers, including every error).
+    /// the domain (`[0, 1]` for a Bezier curve), certified to `accuracy`,
+    /// or `None` (then the adaptive path answers, including every error).
     ///
     /// The speed is sampled at the `n + 1` Chebyshev-Lobatto points of a
     /// bracket `[start, far]` (first `1.25 length / |P'(start)|` wide, then
     /// `length / low`, which holds the answer by the speed bound, each at
-    /// most up to the curve's end), `n = 24`, and `n = 48` (24 more samples
+    /// most up to the domain's end), `n = 24`, and `n = 48` (24 more samples
     /// between the first) only when the first level cannot be certified.
     /// The interpolant `p_n` is integrated in closed form (Chebyshev
     /// series), and Newton's method safeguarded by bisection solves
@@ -1663,18 +1735,24 @@ impl ChebyshevSpeed {
     fn param_at_length(&self, start: f64, length: f64, accuracy: f64) -> Option<f64> {
         let target = length.abs();
         let forward = length > 0.0;
-        let room = if forward { 1.0 - start } else { start };
+        let (domain_lo, domain_hi) = self.domain();
+        let room = if forward {
+            domain_hi - start
+        } else {
+            start - domain_lo
+        };
         if !(room > 0.0 && target.is_finite()) {
             return None;
         }
-        let at_start = self.at(start);
-        let bound = target / self.low;
-        let first = (CHEBYSHEV_FIRST_WIDTH * target / at_start).max(target / self.high);
+        let at_start = self.speed_at(start);
+        let (low, high) = self.speed_bounds();
+        let bound = target / low;
+        let first = (CHEBYSHEV_FIRST_WIDTH * target / at_start).max(target / high);
         let mut samples = [0.0; CHEBYSHEV_MAX_N + 1];
         samples[CHEBYSHEV_MAX_N] = at_start;
         for width in [first.min(bound), bound] {
             let (width, far) = if width >= room || !width.is_finite() {
-                (room, if forward { 1.0 } else { 0.0 })
+                (room, if forward { domain_hi } else { domain_lo })
             } else {
                 (
                     width,
@@ -1708,12 +1786,12 @@ impl ChebyshevSpeed {
             return None;
         }
         let mut samples = [0.0; CHEBYSHEV_MAX_N + 1];
-        samples[CHEBYSHEV_MAX_N] = self.at(start);
+        samples[CHEBYSHEV_MAX_N] = self.speed_at(start);
         for (level, &n) in CHEBYSHEV_LEVELS.iter().enumerate() {
             let step = CHEBYSHEV_MAX_N / n;
             let new = if level == 0 { step } else { 2 * step };
             let first_new = if level == 0 { 0 } else { step };
-            if !self.sample(&tables.nodes, start, span, first_new, new, &mut samples) {
+            if !self.sample_speeds(&tables.nodes, start, span, first_new, new, &mut samples) {
                 return None;
             }
             let mut a = [0.0; CHEBYSHEV_MAX_N + 3];
@@ -1733,7 +1811,7 @@ impl ChebyshevSpeed {
                 return None;
             }
             let estimate = span * coarse_difference(&a, n);
-            let floor = rounding_level(total, span) + self.noise_per_unit * span;
+            let floor = rounding_level(total, span) + self.noise_per_unit() * span;
             if estimate <= (CHEBYSHEV_ESTIMATE_SHARE * accuracy).max(floor) {
                 return Some(total);
             }
@@ -1764,15 +1842,29 @@ impl ChebyshevSpeed {
             // x = cos(pi j / N) in [-1, 1] is t = start + (x + 1) span / 2:
             // x = -1 at `start` (the last sample, already taken), x = 1 at
             // `far`.
-            if !self.sample(&tables.nodes, start, span, first_new, new, samples) {
+            if !self.sample_speeds(&tables.nodes, start, span, first_new, new, samples) {
                 return Some(None);
             }
             let mut a = [0.0; CHEBYSHEV_MAX_N + 3];
             level_coefficients(tables, level, samples, step, &mut a);
             let inverted = if level == 0 {
-                invert_level::<{ CHEBYSHEV_LEVELS[0] }>(&a, start, far, target, accuracy, self)
+                invert_level::<{ CHEBYSHEV_LEVELS[0] }>(
+                    &a,
+                    start,
+                    far,
+                    target,
+                    accuracy,
+                    self.noise_per_unit(),
+                )
             } else {
-                invert_level::<{ CHEBYSHEV_LEVELS[1] }>(&a, start, far, target, accuracy, self)
+                invert_level::<{ CHEBYSHEV_LEVELS[1] }>(
+                    &a,
+                    start,
+                    far,
+                    target,
+                    accuracy,
+                    self.noise_per_unit(),
+                )
             };
             match inverted {
                 // Too short a bracket, or an answer: done with this bracket.
@@ -1790,7 +1882,7 @@ impl ChebyshevSpeed {
 /// `samples[i]`; `false` at the first value that is not finite. The loop
 /// of both sampling routes of [`ChebyshevSpeed::sample`].
 #[inline(always)]
-fn sample_nodes(
+pub(crate) fn sample_nodes(
     (nodes, start, span, first, step): (&[f64; CHEBYSHEV_MAX_N + 1], f64, f64, usize, usize),
     samples: &mut [f64; CHEBYSHEV_MAX_N + 1],
     speed: impl Fn(f64) -> f64,
@@ -1847,7 +1939,7 @@ fn coarse_difference(a: &[f64], n: usize) -> f64 {
     2.0 * a[n / 2 + 1..=n].iter().map(|x| x.abs()).sum::<f64>()
 }
 
-/// One level of [`ChebyshevSpeed::invert_on`]: `n` intervals, `a[..=n]`
+/// One level of [`ChebyshevSampled::invert_on`]: `n` intervals, `a[..=n]`
 /// the coefficients of the speed's interpolant `p_n` on the bracket (`x =
 /// -1` at `start`), `a[n + 1] = a[n + 2] = 0`. `None` when
 /// the interpolant's length on the bracket is shorter than `target`,
@@ -1860,10 +1952,9 @@ fn invert_level<const N: usize>(
     far: f64,
     target: f64,
     accuracy: f64,
-    speed: &ChebyshevSpeed,
+    noise_per_unit: f64,
 ) -> Option<Option<f64>> {
     let n = N;
-    let noise_per_unit = speed.noise_per_unit;
     let span = far - start;
     let difference = coarse_difference(a, n);
     // The antiderivative G = sum_k c_k T_k with G(-1) = 0, degree n + 1.

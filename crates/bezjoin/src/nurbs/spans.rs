@@ -273,7 +273,7 @@ pub(crate) struct SpanPoles {
     pub(crate) beziers: Vec<BezierCurve>,
     /// For a curve with weights, the arc-length quadrature's cuts of every
     /// span (module `length`), computed on first use.
-    pub(crate) rational_cuts: std::sync::OnceLock<Vec<Vec<f64>>>,
+    pub(crate) rational_cuts: std::sync::OnceLock<Vec<super::length::RationalSpanSpeed>>,
     /// For a curve with weights, span `i` as the Bezier curve of its
     /// homogeneous rows (dimension `dim + 1`), built on first use (the
     /// intersection's pieces).
