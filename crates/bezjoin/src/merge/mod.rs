@@ -367,7 +367,8 @@ pub fn merge_metric_at(
 /// Two curves at the working degree with their constraints: what stage 1
 /// needs for any `mu`.
 struct PairProblem<'a> {
-    pieces: Vec<PieceInput<'a>>,
+    /// `P` and `Q` (on the stack: a merge's one allocation fewer).
+    pieces: [PieceInput<'a>; 2],
     metric: MergeMetric,
     fix_ends: bool,
     accuracy: f64,
@@ -385,7 +386,7 @@ impl<'a> PairProblem<'a> {
         }
         check_positive("accuracy", options.accuracy)?;
         let degree = working_degree(&[p, q], options.degree)?;
-        let pieces = vec![
+        let pieces = [
             piece_input(
                 p,
                 "P",

@@ -995,9 +995,13 @@ pub(super) fn orthogonal_solution(
             correction,
         );
         let mut scratch = Scratch::default();
-        let (pieces_bound, pieces_gain, pieces_k2t) =
-            first_order_bound(&shared, pieces_map.as_ref(), true, &mut scratch)
-                .ok_or_else(|| ill_conditioned_factor(accuracy))?;
+        let (pieces_bound, pieces_gain, pieces_k2t) = first_order_bound(
+            &shared,
+            pieces_map.as_ref().map_or(Map::Factor, Map::Of),
+            true,
+            &mut scratch,
+        )
+        .ok_or_else(|| ill_conditioned_factor(accuracy))?;
         let merged_bound = match (pieces_k2t, &z) {
             // Discrete metric, no kept rows: R's map is the identity and
             // its K1 = T^-1 Q^T is the pieces' K2^T, already solved (and
@@ -1016,11 +1020,11 @@ pub(super) fn orthogonal_solution(
                     // against an infinite |t|), which no maximum of
                     // absolute values (>= 0, NaN passed over) takes: the
                     // same bound from the identity of the free columns.
-                    Some(_) if selection => Cow::Owned(DMatrix::identity(free, free)),
-                    Some(z) => Cow::Borrowed(z),
-                    None => Cow::Owned(DMatrix::identity(points, points)),
+                    Some(_) if selection => Map::Identity(free),
+                    Some(z) => Map::Of(z),
+                    None => Map::Identity(points),
                 };
-                first_order_bound(&shared, Some(&zr), false, &mut scratch)
+                first_order_bound(&shared, zr, false, &mut scratch)
                     .ok_or_else(|| ill_conditioned_factor(accuracy))?
                     .0
             }
@@ -1290,6 +1294,19 @@ fn times_t_inverse_transposed(qr: &Factor, k: &mut [f64], out: usize) {
     }
 }
 
+/// The map of [`first_order_bound`].
+#[derive(Clone, Copy)]
+enum Map<'m> {
+    /// The pieces of the discrete metric: `S Z = A` itself (`K0` the thin
+    /// `Q`).
+    Factor,
+    /// A matrix (`S Z` of the integral metric, `Z`).
+    Of(&'m DMatrix<f64>),
+    /// The identity of this size (`R`'s guard through the free columns),
+    /// the same values as [`Map::Of`] an identity matrix without it.
+    Identity(usize),
+}
+
 /// The first-order bound (module documentation) of the largest change of
 /// `map y` (`map` = `S Z` for the pieces, `Z` for `R`; `None`: the pieces
 /// of the discrete metric, whose map `S Z` is `A` itself, so that `K0 =
@@ -1302,7 +1319,7 @@ fn times_t_inverse_transposed(qr: &Factor, k: &mut [f64], out: usize) {
 /// `K1 = K0 Q^T` (outer products of columns), `K2 = K0 T^-T`.
 fn first_order_bound(
     shared: &Shared<'_>,
-    map: Option<&DMatrix<f64>>,
+    map: Map<'_>,
     with_normwise: bool,
     scratch: &mut Scratch,
 ) -> Option<(f64, f64, bool)> {
@@ -1318,7 +1335,7 @@ fn first_order_bound(
 #[inline(always)]
 fn first_order_bound_sized<const R: usize, const F: usize>(
     shared: &Shared<'_>,
-    map: Option<&DMatrix<f64>>,
+    map: Map<'_>,
     with_normwise: bool,
     scratch: &mut Scratch,
 ) -> Option<(f64, f64, bool)> {
@@ -1330,7 +1347,11 @@ fn first_order_bound_sized<const R: usize, const F: usize>(
     // Componentwise (Skeel-style): every entry of A and of the target
     // carries a relative rounding of at most gamma.
     let gamma = ESTIMATE_MARGIN * (shared.m as f64 + 2.0) * eps;
-    let out = map.map_or(rows, |map| map.nrows());
+    let out = match map {
+        Map::Factor => rows,
+        Map::Of(map) => map.nrows(),
+        Map::Identity(n) => n,
+    };
     // One buffer: w (free), acc (max(rows, out)), |K1| (out x rows), K0
     // and then K2 (out x free).
     let acc_len = rows.max(out);
@@ -1344,7 +1365,7 @@ fn first_order_bound_sized<const R: usize, const F: usize>(
     let k0 = &mut rest[..out * free];
     // K0 (out x free) and the last correction mapped, max |map c|.
     let mapped_correction = match map {
-        None => {
+        Map::Factor => {
             // map = A = Q T: map c = Q (T c). K0 = Q.
             let acc = &mut acc[..rows];
             let mut worst = 0.0f64;
@@ -1362,10 +1383,16 @@ fn first_order_bound_sized<const R: usize, const F: usize>(
             k0.copy_from_slice(q);
             worst
         }
-        Some(map) => {
+        Map::Of(_) | Map::Identity(_) => {
             // K0 = map T^-1: K0[:, k] = (map[:, k] - sum_(j < k) T[j][k]
             // K0[:, j]) / T[k][k].
-            k0.copy_from_slice(map.as_slice());
+            match map {
+                Map::Of(map) => k0.copy_from_slice(map.as_slice()),
+                _ => {
+                    k0.fill(0.0);
+                    k0.iter_mut().step_by(out + 1).for_each(|e| *e = 1.0);
+                }
+            }
             for k in 0..free {
                 let (done, rest) = k0.split_at_mut(k * out);
                 let column = &mut rest[..out];
@@ -1381,14 +1408,28 @@ fn first_order_bound_sized<const R: usize, const F: usize>(
             // entries are finite: a finite map, a finite correction), the
             // product column by column in `acc` as nalgebra's.
             let mut worst = 0.0f64;
-            if blocked_product(out, free, dim) {
-                worst = (map * shared.correction).amax();
-            } else {
-                let acc = &mut acc[..out];
-                for c in 0..dim {
-                    product_column(map, shared.correction.column(c).as_slice(), false, acc);
-                    worst = worst.max(lsq::amax(acc));
+            match map {
+                Map::Identity(n) => {
+                    // `I c` as nalgebra's product (also `matrixmultiply`'s)
+                    // is `c` entry by entry up to the sign of a zero (the
+                    // products by 0 and 1 exact, the sums with zeros
+                    // exact), so its largest absolute value is `c`'s.
+                    debug_assert_eq!(n, free);
+                    for column in shared.correction.as_slice().chunks_exact(free) {
+                        worst = worst.max(lsq::amax(column));
+                    }
                 }
+                Map::Of(map) if blocked_product(out, free, dim) => {
+                    worst = (map * shared.correction).amax();
+                }
+                Map::Of(map) => {
+                    let acc = &mut acc[..out];
+                    for c in 0..dim {
+                        product_column(map, shared.correction.column(c).as_slice(), false, acc);
+                        worst = worst.max(lsq::amax(acc));
+                    }
+                }
+                Map::Factor => unreachable!("the thin Q's case above"),
             }
             worst
         }
@@ -1397,7 +1438,7 @@ fn first_order_bound_sized<const R: usize, const F: usize>(
     // |K1| = |K0 Q^T| (out x rows): column i is sum_k Q[i][k] K0[:, k].
     // For the thin Q (K0 = Q) it is symmetric: the entries on and below
     // the diagonal are summed, those above copied from them.
-    let symmetric = map.is_none();
+    let symmetric = matches!(map, Map::Factor);
     if !symmetric && out < SHORT_COLUMNS {
         // Entry by entry: `K0[o][0] Q[i][0] + K0[o][1] Q[i][1] + ...` in
         // that order, as the column updates below.
@@ -1475,7 +1516,7 @@ fn first_order_bound_sized<const R: usize, const F: usize>(
         }
         worst = worst.max(gamma * lsq::amax(acc));
     }
-    Some((worst + measured + normwise, k0_norm, map.is_none()))
+    Some((worst + measured + normwise, k0_norm, symmetric))
 }
 
 /// The values term of [`first_order_bound`] alone, `max_c gamma |K1|
@@ -1771,6 +1812,57 @@ mod tests {
         }
     }
 
+    /// `Map::Identity` (no matrix) gives what an identity matrix gives,
+    /// bit for bit, for `R`'s guard and with the normwise part, on both
+    /// sides of nalgebra's `matrixmultiply` threshold, with zero and
+    /// negative corrections.
+    #[test]
+    fn identity_map_is_the_identity_matrix_to_the_bit() {
+        let mut values = crate::test_values::Values(11);
+        for (free, dim) in [(1, 1), (2, 3), (3, 2), (6, 7), (9, 3), (7, 6)] {
+            let rows = 2 * free + 2;
+            let a = random_matrix(&mut values, rows, free);
+            let qr = Factor::new(a.as_slice(), rows, free).unwrap();
+            let y = random_matrix(&mut values, free, dim);
+            let target = random_matrix(&mut values, rows, dim);
+            let target_size = random_matrix(&mut values, rows, dim).abs();
+            let residual = random_matrix(&mut values, rows, dim);
+            let mut correction = random_matrix(&mut values, free, dim) * 1e-17;
+            correction[(0, 0)] = 0.0;
+            correction[(free - 1, dim - 1)] = -0.0;
+            let shared = Shared::new(
+                &qr,
+                &y,
+                &a,
+                &target,
+                &target_size,
+                &residual,
+                2 * free,
+                &correction,
+            );
+            let identity = DMatrix::identity(free, free);
+            let mut scratch = Scratch::default();
+            for normwise in [false, true] {
+                let matrix =
+                    first_order_bound(&shared, Map::Of(&identity), normwise, &mut scratch).unwrap();
+                let map = first_order_bound(&shared, Map::Identity(free), normwise, &mut scratch)
+                    .unwrap();
+                assert_eq!(
+                    matrix.0.to_bits(),
+                    map.0.to_bits(),
+                    "{free} {dim} {normwise}"
+                );
+                assert_eq!(
+                    matrix.1.to_bits(),
+                    map.1.to_bits(),
+                    "{free} {dim} {normwise}"
+                );
+                assert_eq!(matrix.2, map.2);
+                assert!(map.0 > 0.0);
+            }
+        }
+    }
+
     /// `R`'s guard through the fixed ends' `Z = (e_1 .. e_(m-1))` is the
     /// guard through the identity of the free columns (what the closed
     /// form passes), bit for bit: the zero rows of `Z` add nothing.
@@ -1799,11 +1891,15 @@ mod tests {
             );
             let z = DMatrix::from_fn(m + 1, free, |i, k| if i == k + 1 { 1.0 } else { 0.0 });
             let mut scratch = Scratch::default();
-            let through_z = first_order_bound(&shared, Some(&z), false, &mut scratch).unwrap();
+            let through_z = first_order_bound(&shared, Map::Of(&z), false, &mut scratch).unwrap();
             let identity = DMatrix::identity(free, free);
             let through_i =
-                first_order_bound(&shared, Some(&identity), false, &mut scratch).unwrap();
+                first_order_bound(&shared, Map::Of(&identity), false, &mut scratch).unwrap();
+            let through_map =
+                first_order_bound(&shared, Map::Identity(free), false, &mut scratch).unwrap();
             assert_eq!(through_z.0.to_bits(), through_i.0.to_bits(), "m {m}");
+            assert_eq!(through_map.0.to_bits(), through_i.0.to_bits(), "m {m}");
+            assert_eq!(through_map.1.to_bits(), through_i.1.to_bits(), "m {m}");
             assert!(through_z.0 > 0.0, "m {m}");
         }
     }

@@ -255,9 +255,22 @@ pub(crate) fn max_deviation(
     };
     let (n, d) = (first.degree(), first.dim());
     let len = (n + 1) * d;
-    // Half the difference curves, piece after piece.
-    let mut halves = Vec::with_capacity(restrictions.len() * len);
-    for (back, c) in restrictions.iter().zip(originals) {
+    // Half the difference curves, piece after piece (on the stack for
+    // small pieces).
+    let total = restrictions.len().min(originals.len()) * len;
+    let mut on_stack = [0.0f64; HALVES_ON_STACK];
+    let mut on_heap = Vec::new();
+    let halves: &mut [f64] = if total <= HALVES_ON_STACK {
+        &mut on_stack[..total]
+    } else {
+        on_heap.resize(total, 0.0);
+        &mut on_heap
+    };
+    for ((back, c), half) in restrictions
+        .iter()
+        .zip(originals)
+        .zip(halves.chunks_exact_mut(len.max(1)))
+    {
         // C_j at the working degree (n >= its degree: working_degree checks
         // it).
         let elevated;
@@ -267,13 +280,11 @@ pub(crate) fn max_deviation(
             elevated = c.elevate_degree(n)?;
             elevated.points()
         };
-        halves.extend(
-            back.points()
-                .iter()
-                .zip(c_points)
-                .map(|(r, c)| 0.5 * r - 0.5 * c),
-        );
+        for ((h, r), c) in half.iter_mut().zip(back.points()).zip(c_points) {
+            *h = 0.5 * r - 0.5 * c;
+        }
     }
+    let halves: &[f64] = halves;
     let mut worst = Worst::default();
     if let Some(table) = deviation_table(n) {
         // Per piece: the sample values accumulated coefficient by
@@ -321,6 +332,10 @@ pub(crate) fn max_deviation(
     let worst = worst.value();
     Ok(2.0 * worst)
 }
+
+/// The largest number of coordinates of [`max_deviation`]'s half
+/// differences kept on the stack (two pieces of degree 7 in space).
+const HALVES_ON_STACK: usize = 48;
 
 /// Degrees up to which [`max_deviation`] reads the Bernstein values at its
 /// samples from a table computed once per degree ([`TABLE_ROW`]` (n + 1)`
