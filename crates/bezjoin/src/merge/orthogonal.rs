@@ -277,12 +277,31 @@ fn product_into(a: &DMatrix<f64>, b: &DMatrix<f64>, abs: bool, out: &mut [f64]) 
 
 /// `out = a b` for one column `b` (`a.ncols()` entries, at least one) as
 /// nalgebra's small `gemm` (see [`product_into`]): `a[:, 0] b_0`, then
-/// `a[:, k] b_k + out` in order; with `abs`, of `|a|` and `|b|`.
+/// `a[:, k] b_k + out` in order; with `abs`, of `|a|` and `|b|`. The
+/// merge's small row counts as constants ([`product_column_sized`]).
 #[inline(always)]
 fn product_column(a: &DMatrix<f64>, b: &[f64], abs: bool, out: &mut [f64]) {
-    let rows = a.nrows();
+    debug_assert_eq!(out.len(), a.nrows());
+    let a = a.as_slice();
+    match out.len() {
+        4 => product_column_sized::<4>(a, b, abs, out),
+        6 => product_column_sized::<6>(a, b, abs, out),
+        8 => product_column_sized::<8>(a, b, abs, out),
+        10 => product_column_sized::<10>(a, b, abs, out),
+        12 => product_column_sized::<12>(a, b, abs, out),
+        _ => product_column_sized::<0>(a, b, abs, out),
+    }
+}
+
+/// [`product_column`] with `N` rows known at compile time (`N = 0`: the
+/// length of `out`): per entry the same operations in the same order.
+#[inline(always)]
+fn product_column_sized<const N: usize>(a: &[f64], b: &[f64], abs: bool, out: &mut [f64]) {
+    let rows = if N == 0 { out.len() } else { N };
+    let out = &mut out[..rows];
     let value = |x: f64| if abs { x.abs() } else { x };
-    for (k, (ak, &bk)) in a.as_slice().chunks_exact(rows).zip(b).enumerate() {
+    for (k, (ak, &bk)) in a.chunks_exact(rows).zip(b).enumerate() {
+        let ak = &ak[..rows];
         let bk = value(bk);
         if k == 0 {
             out.iter_mut()
@@ -1690,6 +1709,10 @@ mod tests {
             (7, 6, 6),
             (9, 8, 7),
             (12, 3, 9),
+            (6, 3, 2),
+            (10, 4, 3),
+            (16, 5, 3),
+            (6, 1, 1),
         ] {
             let context = format!("{rows} x {inner} x {cols}");
             let a = random_matrix(&mut values, rows, inner);
@@ -1807,6 +1830,26 @@ mod tests {
                             "m {m} mu {mu}"
                         );
                     }
+                }
+            }
+        }
+    }
+
+    /// The constant-size product columns are the general one bit for bit
+    /// (the same sums in the same order), with and without `abs`.
+    #[test]
+    fn constant_size_product_columns_are_the_general_one() {
+        let mut values = crate::test_values::Values(43);
+        for rows in [4, 6, 8, 10, 12] {
+            for inner in [1, 2, 3, 5, 9] {
+                let a = random_matrix(&mut values, rows, inner);
+                let b = random_matrix(&mut values, inner, 1);
+                for abs in [false, true] {
+                    let (mut sized, mut general) = (vec![0.0; rows], vec![0.0; rows]);
+                    product_column(&a, b.as_slice(), abs, &mut sized);
+                    product_column_sized::<0>(a.as_slice(), b.as_slice(), abs, &mut general);
+                    let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                    assert_eq!(bits(&sized), bits(&general), "{rows} x {inner} {abs}");
                 }
             }
         }
