@@ -1344,15 +1344,22 @@ fn first_order_bound(
 ) -> Option<(f64, f64, bool)> {
     // The merge's small sizes as constants (`lsq::with_small_sizes`), as
     // `lsq::Factor::least_squares`: the same operations in the same order.
+    // The map's rows too: `rows` for the thin Q, `free` for the identity.
     lsq::with_small_sizes!(shared.qr.rows(), shared.qr.cols(), |R, F| {
-        first_order_bound_sized::<R, F>(shared, map, with_normwise, scratch)
+        match map {
+            Map::Factor => first_order_bound_sized::<R, F, R>(shared, map, with_normwise, scratch),
+            Map::Identity(_) => {
+                first_order_bound_sized::<R, F, F>(shared, map, with_normwise, scratch)
+            }
+            Map::Of(_) => first_order_bound_sized::<R, F, 0>(shared, map, with_normwise, scratch),
+        }
     })
 }
 
-/// [`first_order_bound`] with `rows = R`, `free = F` known at compile time
-/// (`R = 0`: read from the factor).
+/// [`first_order_bound`] with `rows = R`, `free = F` and the map's rows
+/// `O` known at compile time (`0`: read from the factor / the map).
 #[inline(always)]
-fn first_order_bound_sized<const R: usize, const F: usize>(
+fn first_order_bound_sized<const R: usize, const F: usize, const O: usize>(
     shared: &Shared<'_>,
     map: Map<'_>,
     with_normwise: bool,
@@ -1367,10 +1374,16 @@ fn first_order_bound_sized<const R: usize, const F: usize>(
     // carries a relative rounding of at most gamma.
     let gamma = ESTIMATE_MARGIN * (shared.m as f64 + 2.0) * eps;
     let out = match map {
+        _ if O != 0 => O,
         Map::Factor => rows,
         Map::Of(map) => map.nrows(),
         Map::Identity(n) => n,
     };
+    debug_assert!(match map {
+        Map::Factor => out == rows,
+        Map::Of(map) => out == map.nrows(),
+        Map::Identity(n) => out == n,
+    });
     // One buffer: w (free), acc (max(rows, out)), |K1| (out x rows), K0
     // and then K2 (out x free).
     let acc_len = rows.max(out);
@@ -1850,6 +1863,64 @@ mod tests {
                     product_column_sized::<0>(a.as_slice(), b.as_slice(), abs, &mut general);
                     let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
                     assert_eq!(bits(&sized), bits(&general), "{rows} x {inner} {abs}");
+                }
+            }
+        }
+    }
+
+    /// The first-order bound with the sizes as constants (rows, free
+    /// columns and the map's rows) is the general one bit for bit, for the
+    /// thin Q, an identity and a matrix map, with and without the normwise
+    /// part.
+    #[test]
+    fn constant_size_first_order_bound_is_the_general_one() {
+        let mut values = crate::test_values::Values(13);
+        for (rows, free) in [
+            (6, 1),
+            (8, 2),
+            (10, 3),
+            (12, 4),
+            (4, 2),
+            (6, 3),
+            (8, 4),
+            (7, 3),
+        ] {
+            for dim in [1, 3, 7] {
+                let a = random_matrix(&mut values, rows, free);
+                let qr = Factor::new(a.as_slice(), rows, free).unwrap();
+                let y = random_matrix(&mut values, free, dim);
+                let target = random_matrix(&mut values, rows, dim);
+                let target_size = random_matrix(&mut values, rows, dim).abs();
+                let residual = random_matrix(&mut values, rows, dim);
+                let correction = random_matrix(&mut values, free, dim) * 1e-17;
+                let shared = Shared::new(
+                    &qr,
+                    &y,
+                    &a,
+                    &target,
+                    &target_size,
+                    &residual,
+                    rows / 2,
+                    &correction,
+                );
+                let map = random_matrix(&mut values, rows + 1, free);
+                for normwise in [false, true] {
+                    for which in [Map::Factor, Map::Identity(free), Map::Of(&map)] {
+                        let mut scratch = Scratch::default();
+                        let sized = first_order_bound(&shared, which, normwise, &mut scratch);
+                        let mut scratch = Scratch::default();
+                        let general = first_order_bound_sized::<0, 0, 0>(
+                            &shared,
+                            which,
+                            normwise,
+                            &mut scratch,
+                        );
+                        let bits = |b: Option<(f64, f64, bool)>| {
+                            b.map(|(x, y, z)| (x.to_bits(), y.to_bits(), z))
+                        };
+                        assert_eq!(bits(sized), bits(general), "{rows} x {free}, {dim}");
+                        assert!(sized.is_some_and(|b| b.0 > 0.0));
+                    }
                 }
             }
         }
