@@ -318,8 +318,17 @@ fn product_column_sized<const N: usize>(a: &[f64], b: &[f64], abs: bool, out: &m
 /// nalgebra's `dot` of two dynamic columns bit for bit (its `dotx`: eight
 /// partial sums over blocks of eight, added pairwise into a sum from `0`,
 /// then the remaining products one by one), of `|a|` and `|b|`.
+#[inline(always)]
 fn nalgebra_dot_abs(a: &[f64], b: &[f64]) -> f64 {
-    let n = a.len();
+    nalgebra_dot_abs_sized::<0>(a, b)
+}
+
+/// [`nalgebra_dot_abs`] with the length `N` known at compile time (`0`:
+/// `a.len()`): the same operations in the same order.
+#[inline(always)]
+fn nalgebra_dot_abs_sized<const N: usize>(a: &[f64], b: &[f64]) -> f64 {
+    let n = if N == 0 { a.len() } else { N };
+    let (a, b) = (&a[..n], &b[..n]);
     let mut res = 0.0;
     let mut acc = [0.0f64; 8];
     let mut i = 0;
@@ -355,7 +364,15 @@ fn abs_tr_mul(a: &DMatrix<f64>, b: &DMatrix<f64>) -> DMatrix<f64> {
         .zip(out.as_mut_slice().chunks_exact_mut(a.ncols().max(1)))
     {
         for (ai, o) in a.as_slice().chunks_exact(rows).zip(oj.iter_mut()) {
-            *o = nalgebra_dot_abs(ai, bj);
+            // The merge's small row counts as constants.
+            *o = match rows {
+                4 => nalgebra_dot_abs_sized::<4>(ai, bj),
+                6 => nalgebra_dot_abs_sized::<6>(ai, bj),
+                8 => nalgebra_dot_abs_sized::<8>(ai, bj),
+                10 => nalgebra_dot_abs_sized::<10>(ai, bj),
+                12 => nalgebra_dot_abs_sized::<12>(ai, bj),
+                _ => nalgebra_dot_abs(ai, bj),
+            };
         }
     }
     out
@@ -1244,11 +1261,24 @@ impl Scratch {
 }
 
 /// `max_c amax(K v_c)` for a column-major `out x inner` matrix `k` and the
-/// columns `v_c` of `v` (`inner x dim`).
-fn largest_product(k: &[f64], out: usize, v: &DMatrix<f64>, acc: &mut [f64]) -> f64 {
+/// columns `v_c` of `v` (`inner x dim`); `O`, `I`: `out` and `inner` known
+/// at compile time (`0`: not).
+#[inline(always)]
+fn largest_product<const O: usize, const I: usize>(
+    k: &[f64],
+    out: usize,
+    v: &DMatrix<f64>,
+    acc: &mut [f64],
+) -> f64 {
     let mut worst = 0.0f64;
     debug_assert_eq!(acc.len(), out);
-    let inner = (k.len() / out.max(1)).min(v.nrows());
+    let general_inner = |out: usize| (k.len() / out.max(1)).min(v.nrows());
+    debug_assert!(O == 0 || O == out);
+    debug_assert!(I == 0 || I == general_inner(out));
+    let out = if O != 0 { O } else { out };
+    let inner = if I != 0 { I } else { general_inner(out) };
+    let acc = &mut acc[..out];
+    let k = &k[..out * inner];
     for column in v.as_slice().chunks_exact(v.nrows().max(1)) {
         if out < SHORT_COLUMNS {
             // Few outputs: entry by entry along K's rows (the same sums in
@@ -1514,7 +1544,7 @@ fn first_order_bound_sized<const R: usize, const F: usize, const O: usize>(
     if !with_normwise {
         // R's guard: the values term only (what the measured weight was
         // calibrated on, merge back with zero residual); no K2.
-        let bound = values_bound(shared, k1, measured, acc);
+        let bound = values_bound::<O, R>(shared, k1, measured, acc);
         return Some((bound, k0_norm, false));
     }
     // K2 = K0 T^-T (out x free), in K0's place.
@@ -1555,10 +1585,17 @@ fn first_order_bound_sized<const R: usize, const F: usize, const O: usize>(
 /// (|t_c| + |A| |y_c|)`, plus the `measured` refinement term: `R`'s guard,
 /// from `|K1|` (`|map A^+|`, absolute values taken; column-major, `rows`
 /// columns).
-fn values_bound(shared: &Shared<'_>, k1: &[f64], measured: f64, acc: &mut [f64]) -> f64 {
+/// `O`, `R`: `|K1|`'s rows and columns known at compile time (`0`: not).
+#[inline(always)]
+fn values_bound<const O: usize, const R: usize>(
+    shared: &Shared<'_>,
+    k1: &[f64],
+    measured: f64,
+    acc: &mut [f64],
+) -> f64 {
     let gamma = ESTIMATE_MARGIN * (shared.m as f64 + 2.0) * f64::EPSILON;
     let out = k1.len() / shared.qr.rows();
-    gamma * largest_product(k1, out, &shared.through_values, acc) + measured
+    gamma * largest_product::<O, R>(k1, out, &shared.through_values, acc) + measured
 }
 
 /// [`values_bound`] with `|K1|` given by its transpose (column-major
