@@ -348,20 +348,31 @@ fn nalgebra_dot_abs_sized<const N: usize>(a: &[f64], b: &[f64]) -> f64 {
     res
 }
 
-/// `a.abs().tr_mul(&b.abs())` bit for bit (nalgebra's: entry `(i, j)` the
-/// `dot` of column `i` of `|a|` and column `j` of `|b|`,
-/// [`nalgebra_dot_abs`]), without the matrices `|a|` and `|b|`.
+/// [`abs_tr_mul_into`] into a new matrix (the tests' form).
+#[cfg(test)]
 fn abs_tr_mul(a: &DMatrix<f64>, b: &DMatrix<f64>) -> DMatrix<f64> {
     let rows = a.nrows();
     debug_assert_eq!(rows, b.nrows());
     let mut out = DMatrix::zeros(a.ncols(), b.ncols());
+    abs_tr_mul_into(a, b, out.as_mut_slice());
+    out
+}
+
+/// `a.abs().tr_mul(&b.abs())` bit for bit (nalgebra's: entry `(i, j)` the
+/// `dot` of column `i` of `|a|` and column `j` of `|b|`,
+/// [`nalgebra_dot_abs`]), into the column-major `out` (`a.ncols() x
+/// b.ncols()`), without the matrices `|a|` and `|b|`.
+fn abs_tr_mul_into(a: &DMatrix<f64>, b: &DMatrix<f64>, out: &mut [f64]) {
+    let rows = a.nrows();
+    debug_assert_eq!(out.len(), a.ncols() * b.ncols());
     if rows == 0 {
-        return out;
+        out.fill(0.0);
+        return;
     }
     for (bj, oj) in b
         .as_slice()
         .chunks_exact(rows)
-        .zip(out.as_mut_slice().chunks_exact_mut(a.ncols().max(1)))
+        .zip(out.chunks_exact_mut(a.ncols().max(1)))
     {
         for (ai, o) in a.as_slice().chunks_exact(rows).zip(oj.iter_mut()) {
             // The merge's small row counts as constants.
@@ -375,7 +386,6 @@ fn abs_tr_mul(a: &DMatrix<f64>, b: &DMatrix<f64>) -> DMatrix<f64> {
             };
         }
     }
-    out
 }
 
 /// `m.abs()` (nalgebra's, entry by entry) from a copy of the storage.
@@ -469,13 +479,24 @@ fn combined_product(
     how: Combine,
 ) -> DMatrix<f64> {
     let mut out = DMatrix::zeros(c.nrows(), c.ncols());
-    product_into(a, b, matches!(how, Combine::PlusAbs), out.as_mut_slice());
-    let joined = out.as_mut_slice().iter_mut().zip(c.as_slice());
+    combined_product_into(c, a, b, how, out.as_mut_slice());
+    out
+}
+
+/// [`combined_product`] into the column-major `out` (`c`'s shape).
+fn combined_product_into(
+    c: &DMatrix<f64>,
+    a: &DMatrix<f64>,
+    b: &DMatrix<f64>,
+    how: Combine,
+    out: &mut [f64],
+) {
+    product_into(a, b, matches!(how, Combine::PlusAbs), out);
+    let joined = out.iter_mut().zip(c.as_slice());
     match how {
         Combine::Plus | Combine::PlusAbs => joined.for_each(|(o, &x)| *o += x),
         Combine::Minus => joined.for_each(|(o, &x)| *o = x - *o),
     }
-    out
 }
 
 /// [`metric_samples`]' `(M, b, what b's rounding is relative to)`.
@@ -1195,8 +1216,10 @@ fn skip_refusal_floor() -> bool {
 struct Shared<'s> {
     /// `A = Q T` (reflectors kept), `T` upper triangular (`free x free`).
     qr: &'s Factor,
-    /// The thin `Q`, `rows x free`, formed once from the reflectors.
-    q: Vec<f64>,
+    /// One allocation: the thin `Q` (`rows x free`, formed once from the
+    /// reflectors), then `through_values` (`rows x dim`), then
+    /// `through_residual` (`free x dim`), each column-major.
+    values: Vec<f64>,
     y: &'s DMatrix<f64>,
     /// `A` (`rows x free`): only its absolute values (`|A|` in the
     /// products) and its norm are read.
@@ -1206,12 +1229,6 @@ struct Shared<'s> {
     m: usize,
     /// The last refinement correction of `y`.
     correction: &'s DMatrix<f64>,
-    /// Per coordinate `c`: `|t_c| + |A| |y_c|`, where `|t_c|` is what the
-    /// reduced target's rounding is relative to (`|b|` as evaluated, `sum
-    /// |B| |P|`, plus `|M| |r_p|`); `rows x dim`.
-    through_values: DMatrix<f64>,
-    /// Per coordinate: `|A|^T |res_c|`, `free x dim`.
-    through_residual: DMatrix<f64>,
 }
 
 impl<'s> Shared<'s> {
@@ -1226,20 +1243,43 @@ impl<'s> Shared<'s> {
         m: usize,
         correction: &'s DMatrix<f64>,
     ) -> Self {
-        let through_values = combined_product(target_size, a, y, Combine::PlusAbs);
-        let through_residual = abs_tr_mul(a, residual);
+        let (rows, free, dim) = (qr.rows(), qr.cols(), y.ncols());
+        debug_assert!(target_size.shape() == (rows, dim) && residual.shape() == (rows, dim));
+        let mut values = vec![0.0; rows * free + rows * dim + free * dim];
+        let (q, rest) = values.split_at_mut(rows * free);
+        let (through_values, through_residual) = rest.split_at_mut(rows * dim);
+        qr.thin_q_into(q);
+        combined_product_into(target_size, a, y, Combine::PlusAbs, through_values);
+        abs_tr_mul_into(a, residual, through_residual);
         Self {
             qr,
-            q: qr.thin_q(),
+            values,
             y,
             a,
             target,
             residual,
             m,
             correction,
-            through_values,
-            through_residual,
         }
+    }
+
+    /// The thin `Q`, column-major `rows x free`.
+    fn q(&self) -> &[f64] {
+        &self.values[..self.qr.rows() * self.qr.cols()]
+    }
+
+    /// Per coordinate `c`: `|t_c| + |A| |y_c|`, where `|t_c|` is what the
+    /// reduced target's rounding is relative to (`|b|` as evaluated, `sum
+    /// |B| |P|`, plus `|M| |r_p|`); column-major `rows x dim`.
+    fn through_values(&self) -> &[f64] {
+        let (rows, free, dim) = (self.qr.rows(), self.qr.cols(), self.y.ncols());
+        &self.values[rows * free..rows * free + rows * dim]
+    }
+
+    /// Per coordinate: `|A|^T |res_c|`, column-major `free x dim`.
+    fn through_residual(&self) -> &[f64] {
+        let (rows, free, dim) = (self.qr.rows(), self.qr.cols(), self.y.ncols());
+        &self.values[rows * free + rows * dim..]
     }
 }
 
@@ -1267,19 +1307,20 @@ impl Scratch {
 fn largest_product<const O: usize, const I: usize>(
     k: &[f64],
     out: usize,
-    v: &DMatrix<f64>,
+    v: &[f64],
+    v_rows: usize,
     acc: &mut [f64],
 ) -> f64 {
     let mut worst = 0.0f64;
     debug_assert_eq!(acc.len(), out);
-    let general_inner = |out: usize| (k.len() / out.max(1)).min(v.nrows());
+    let general_inner = |out: usize| (k.len() / out.max(1)).min(v_rows);
     debug_assert!(O == 0 || O == out);
     debug_assert!(I == 0 || I == general_inner(out));
     let out = if O != 0 { O } else { out };
     let inner = if I != 0 { I } else { general_inner(out) };
     let acc = &mut acc[..out];
     let k = &k[..out * inner];
-    for column in v.as_slice().chunks_exact(v.nrows().max(1)) {
+    for column in v.chunks_exact(v_rows.max(1)) {
         if out < SHORT_COLUMNS {
             // Few outputs: entry by entry along K's rows (the same sums in
             // the same order, `0 + k_o0 v_0 + k_o1 v_1 + ...`), rather than
@@ -1311,9 +1352,9 @@ const SHORT_COLUMNS: usize = 4;
 
 /// `max_c amax(K^T v_c)` for a column-major `inner x out` matrix `k`
 /// (`out` columns of length `inner`) and the columns `v_c` of `v`.
-fn largest_transposed_product(k: &[f64], inner: usize, v: &DMatrix<f64>) -> f64 {
+fn largest_transposed_product(k: &[f64], inner: usize, v: &[f64], v_rows: usize) -> f64 {
     let mut worst = 0.0f64;
-    for column in v.as_slice().chunks_exact(v.nrows().max(1)) {
+    for column in v.chunks_exact(v_rows.max(1)) {
         for kc in k.chunks_exact(inner) {
             worst = worst.max(lsq::dot(kc, column).abs());
         }
@@ -1397,7 +1438,7 @@ fn first_order_bound_sized<const R: usize, const F: usize, const O: usize>(
 ) -> Option<(f64, f64, bool)> {
     let qr = shared.qr;
     let (rows, free) = qr.sizes::<R, F>();
-    let q = &shared.q;
+    let q = shared.q();
     let dim = shared.y.ncols();
     let eps = f64::EPSILON;
     // Componentwise (Skeel-style): every entry of A and of the target
@@ -1564,14 +1605,14 @@ fn first_order_bound_sized<const R: usize, const F: usize, const O: usize>(
     let mut worst = 0.0f64;
     for c in 0..dim {
         acc.fill(0.0);
-        let tv = shared.through_values.column(c);
-        for (kc, &x) in k1.chunks_exact(out).zip(tv.as_slice()) {
+        let tv = &shared.through_values()[c * rows..(c + 1) * rows];
+        for (kc, &x) in k1.chunks_exact(out).zip(tv) {
             for (a, &e) in acc.iter_mut().zip(kc) {
                 *a += e * x;
             }
         }
-        let tr = shared.through_residual.column(c);
-        for (kc, &x) in k2.chunks_exact(out).zip(tr.as_slice()) {
+        let tr = &shared.through_residual()[c * free..(c + 1) * free];
+        for (kc, &x) in k2.chunks_exact(out).zip(tr) {
             for (a, &e) in acc.iter_mut().zip(kc) {
                 *a += e * x;
             }
@@ -1595,14 +1636,22 @@ fn values_bound<const O: usize, const R: usize>(
 ) -> f64 {
     let gamma = ESTIMATE_MARGIN * (shared.m as f64 + 2.0) * f64::EPSILON;
     let out = k1.len() / shared.qr.rows();
-    gamma * largest_product::<O, R>(k1, out, &shared.through_values, acc) + measured
+    gamma * largest_product::<O, R>(k1, out, shared.through_values(), shared.qr.rows(), acc)
+        + measured
 }
 
 /// [`values_bound`] with `|K1|` given by its transpose (column-major
 /// `rows x out`): `R`'s guard from the pieces' `|K2| = |A^+|^T`.
 fn values_bound_transposed(shared: &Shared<'_>, k1t: &[f64], measured: f64) -> f64 {
     let gamma = ESTIMATE_MARGIN * (shared.m as f64 + 2.0) * f64::EPSILON;
-    gamma * largest_transposed_product(k1t, shared.qr.rows(), &shared.through_values) + measured
+    gamma
+        * largest_transposed_product(
+            k1t,
+            shared.qr.rows(),
+            shared.through_values(),
+            shared.qr.rows(),
+        )
+        + measured
 }
 
 fn ill_conditioned_factor(accuracy: f64) -> BezjoinError {
@@ -1960,6 +2009,44 @@ mod tests {
                     }
                 }
             }
+        }
+    }
+
+    /// `Shared`'s one buffer holds the thin `Q`, `|t| + |A| |y|` and `|A|^T
+    /// |res|` as the separate matrices did, bit for bit.
+    #[test]
+    fn shared_buffer_holds_the_three_matrices() {
+        let mut values = crate::test_values::Values(19);
+        for (rows, free, dim) in [(8, 2, 3), (6, 1, 2), (12, 4, 1), (9, 5, 7)] {
+            let a = random_matrix(&mut values, rows, free);
+            let qr = Factor::new(a.as_slice(), rows, free).unwrap();
+            let y = random_matrix(&mut values, free, dim);
+            let target = random_matrix(&mut values, rows, dim);
+            let target_size = random_matrix(&mut values, rows, dim).abs();
+            let residual = random_matrix(&mut values, rows, dim);
+            let correction = random_matrix(&mut values, free, dim);
+            let shared = Shared::new(
+                &qr,
+                &y,
+                &a,
+                &target,
+                &target_size,
+                &residual,
+                rows / 2,
+                &correction,
+            );
+            let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            assert_eq!(bits(shared.q()), bits(&qr.thin_q()));
+            let through_values = combined_product(&target_size, &a, &y, Combine::PlusAbs);
+            assert_eq!(
+                bits(shared.through_values()),
+                bits(through_values.as_slice())
+            );
+            let through_residual = abs_tr_mul(&a, &residual);
+            assert_eq!(
+                bits(shared.through_residual()),
+                bits(through_residual.as_slice())
+            );
         }
     }
 
