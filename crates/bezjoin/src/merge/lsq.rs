@@ -297,10 +297,20 @@ impl Factor {
         }
     }
 
-    /// The thin `Q` (column-major `rows x cols`), from the reflectors.
+    /// The thin `Q` (column-major `rows x cols`), from the reflectors
+    /// ([`Factor::thin_q_into`] into a new vector).
+    #[cfg(test)]
     pub(super) fn thin_q(&self) -> Vec<f64> {
-        let (rows, cols) = (self.rows, self.cols);
-        let mut q = vec![0.0; rows * cols];
+        let mut q = vec![0.0; self.rows * self.cols];
+        self.thin_q_into(&mut q);
+        q
+    }
+
+    /// The thin `Q` (column-major `rows x cols`), from the reflectors, into
+    /// `q` (`rows x cols` entries, all zero).
+    pub(super) fn thin_q_into(&self, q: &mut [f64]) {
+        let rows = self.rows;
+        debug_assert!(q.len() == rows * self.cols && q.iter().all(|&v| v == 0.0));
         for (k, column) in q.chunks_exact_mut(rows).enumerate() {
             column[k] = 1.0;
             // Q e_k = H_0 ... H_(cols-1) e_k: H_j for j > k acts on rows
@@ -309,7 +319,6 @@ impl Factor {
                 reflect(self.reflector(j), &mut column[j..], self.beta()[j]);
             }
         }
-        q
     }
 }
 

@@ -313,28 +313,33 @@ pub fn merge(p: &BezierCurve, q: &BezierCurve, options: &MergeOptions) -> Result
         }
     };
     let breakpoints = [0.0, mu, 1.0];
-    let (merged, split_check_error, restrictions) = stage_two(
-        &stage_one.pieces,
-        &breakpoints,
-        options.accuracy,
-        stage_one.merged.as_ref(),
-        stage_one.split_of_merged,
-    )?;
-    let max_deviation = max_deviation(&restrictions, &[p, q])?;
-    // P^ and Q^ are stage 1's pieces; when they are R's split, stage 2's
-    // restrictions are those very curves (built from them).
-    let (p_hat, q_hat) = if stage_one.split_of_merged {
-        let mut hats = restrictions.into_iter();
-        (
-            hats.next().expect("two pieces"),
-            hats.next().expect("two pieces"),
-        )
-    } else {
-        let mut hats = stage_one.pieces.iter().map(BezierCurve::from_matrix);
-        (
-            hats.next().expect("two pieces")?,
-            hats.next().expect("two pieces")?,
-        )
+    let (merged, split_check_error, [p_hat, q_hat], max_deviation) = match &stage_one.merged {
+        // Stage 1's pieces are R's split at mu: stage 2's restrictions are
+        // those very curves and its check's difference is exactly zero (the
+        // shortcut of `stage_two`, here without the pieces' matrices). P^
+        // and Q^ are those curves.
+        Some(r) if stage_one.split_of_merged => {
+            let merged = BezierCurve::from_matrix(r)?;
+            let hats = [stage_one.piece_curve(0)?, stage_one.piece_curve(1)?];
+            let max_deviation = max_deviation(&hats, &[p, q])?;
+            (merged, 0.0, hats, max_deviation)
+        }
+        _ => {
+            let pieces = stage_one.pieces();
+            let (merged, split_check_error, restrictions) = stage_two(
+                &pieces,
+                &breakpoints,
+                options.accuracy,
+                stage_one.merged.as_ref(),
+                stage_one.split_of_merged,
+            )?;
+            let max_deviation = max_deviation(&restrictions, &[p, q])?;
+            // P^ and Q^ are stage 1's pieces.
+            let mut hats = pieces.iter().map(BezierCurve::from_matrix);
+            let p_hat = hats.next().expect("two pieces")?;
+            let q_hat = hats.next().expect("two pieces")?;
+            (merged, split_check_error, [p_hat, q_hat], max_deviation)
+        }
     };
     Ok(Merge {
         merged,
@@ -367,7 +372,8 @@ pub fn merge_metric_at(
 /// Two curves at the working degree with their constraints: what stage 1
 /// needs for any `mu`.
 struct PairProblem<'a> {
-    pieces: Vec<PieceInput<'a>>,
+    /// `P` and `Q` (on the stack: a merge's one allocation fewer).
+    pieces: [PieceInput<'a>; 2],
     metric: MergeMetric,
     fix_ends: bool,
     accuracy: f64,
@@ -385,7 +391,7 @@ impl<'a> PairProblem<'a> {
         }
         check_positive("accuracy", options.accuracy)?;
         let degree = working_degree(&[p, q], options.degree)?;
-        let pieces = vec![
+        let pieces = [
             piece_input(
                 p,
                 "P",
@@ -673,16 +679,16 @@ pub fn merge_chain(curves: &[BezierCurve], options: &ChainMergeOptions) -> Resul
         options.accuracy,
         StageOneCheck::Full,
     )?;
+    let stage_one_pieces = stage_one.pieces();
     let (merged, split_check_error, restrictions) = stage_two(
-        &stage_one.pieces,
+        &stage_one_pieces,
         &breakpoints,
         options.accuracy,
         stage_one.merged.as_ref(),
         stage_one.split_of_merged,
     )?;
     let max_deviation = max_deviation(&restrictions, &refs)?;
-    let pieces = stage_one
-        .pieces
+    let pieces = stage_one_pieces
         .iter()
         .map(BezierCurve::from_matrix)
         .collect::<Result<Vec<_>>>()?;
@@ -992,19 +998,28 @@ mod split_tests {
                 continue;
             };
             solved += 1;
+            // The pieces as curves without their matrices: the same bits.
+            for (j, piece) in stage_one.pieces().iter().enumerate() {
+                let curve = stage_one.piece_curve(j).unwrap();
+                assert_eq!(
+                    bits(&curve),
+                    bits(&BezierCurve::from_matrix(piece).unwrap()),
+                    "case {case}"
+                );
+            }
             if !stage_one.split_of_merged {
                 continue;
             }
             taken += 1;
             let merged = BezierCurve::from_matrix(stage_one.merged.as_ref().unwrap()).unwrap();
             let (left, right) = merged.split_unchecked(mu);
-            for (piece, split) in stage_one.pieces.iter().zip([&left, &right]) {
+            for (piece, split) in stage_one.pieces().iter().zip([&left, &right]) {
                 let hat = BezierCurve::from_matrix(piece).unwrap();
                 assert_eq!(bits(&hat), bits(split), "case {case}");
             }
             let (_, worst, restrictions) = super::stage_two::check_restrictions(
                 merged,
-                &stage_one.pieces,
+                &stage_one.pieces(),
                 &[0.0, mu, 1.0],
                 options.accuracy,
             )
@@ -1094,7 +1109,7 @@ mod reference_tests {
                         let (x, _) =
                             kkt::kkt_solution(&problem, metric, 1.0, StageOneCheck::Full).unwrap();
                         let scale = x.amax().max(1.0);
-                        for (j, piece) in ours.pieces.iter().enumerate() {
+                        for (j, piece) in ours.pieces().iter().enumerate() {
                             let reference = x.rows(j * (degree + 1), degree + 1);
                             let gap = (piece - reference).amax() / scale;
                             assert!(

@@ -277,12 +277,31 @@ fn product_into(a: &DMatrix<f64>, b: &DMatrix<f64>, abs: bool, out: &mut [f64]) 
 
 /// `out = a b` for one column `b` (`a.ncols()` entries, at least one) as
 /// nalgebra's small `gemm` (see [`product_into`]): `a[:, 0] b_0`, then
-/// `a[:, k] b_k + out` in order; with `abs`, of `|a|` and `|b|`.
+/// `a[:, k] b_k + out` in order; with `abs`, of `|a|` and `|b|`. The
+/// merge's small row counts as constants ([`product_column_sized`]).
 #[inline(always)]
 fn product_column(a: &DMatrix<f64>, b: &[f64], abs: bool, out: &mut [f64]) {
-    let rows = a.nrows();
+    debug_assert_eq!(out.len(), a.nrows());
+    let a = a.as_slice();
+    match out.len() {
+        4 => product_column_sized::<4>(a, b, abs, out),
+        6 => product_column_sized::<6>(a, b, abs, out),
+        8 => product_column_sized::<8>(a, b, abs, out),
+        10 => product_column_sized::<10>(a, b, abs, out),
+        12 => product_column_sized::<12>(a, b, abs, out),
+        _ => product_column_sized::<0>(a, b, abs, out),
+    }
+}
+
+/// [`product_column`] with `N` rows known at compile time (`N = 0`: the
+/// length of `out`): per entry the same operations in the same order.
+#[inline(always)]
+fn product_column_sized<const N: usize>(a: &[f64], b: &[f64], abs: bool, out: &mut [f64]) {
+    let rows = if N == 0 { out.len() } else { N };
+    let out = &mut out[..rows];
     let value = |x: f64| if abs { x.abs() } else { x };
-    for (k, (ak, &bk)) in a.as_slice().chunks_exact(rows).zip(b).enumerate() {
+    for (k, (ak, &bk)) in a.chunks_exact(rows).zip(b).enumerate() {
+        let ak = &ak[..rows];
         let bk = value(bk);
         if k == 0 {
             out.iter_mut()
@@ -299,8 +318,17 @@ fn product_column(a: &DMatrix<f64>, b: &[f64], abs: bool, out: &mut [f64]) {
 /// nalgebra's `dot` of two dynamic columns bit for bit (its `dotx`: eight
 /// partial sums over blocks of eight, added pairwise into a sum from `0`,
 /// then the remaining products one by one), of `|a|` and `|b|`.
+#[inline(always)]
 fn nalgebra_dot_abs(a: &[f64], b: &[f64]) -> f64 {
-    let n = a.len();
+    nalgebra_dot_abs_sized::<0>(a, b)
+}
+
+/// [`nalgebra_dot_abs`] with the length `N` known at compile time (`0`:
+/// `a.len()`): the same operations in the same order.
+#[inline(always)]
+fn nalgebra_dot_abs_sized<const N: usize>(a: &[f64], b: &[f64]) -> f64 {
+    let n = if N == 0 { a.len() } else { N };
+    let (a, b) = (&a[..n], &b[..n]);
     let mut res = 0.0;
     let mut acc = [0.0f64; 8];
     let mut i = 0;
@@ -320,26 +348,44 @@ fn nalgebra_dot_abs(a: &[f64], b: &[f64]) -> f64 {
     res
 }
 
-/// `a.abs().tr_mul(&b.abs())` bit for bit (nalgebra's: entry `(i, j)` the
-/// `dot` of column `i` of `|a|` and column `j` of `|b|`,
-/// [`nalgebra_dot_abs`]), without the matrices `|a|` and `|b|`.
+/// [`abs_tr_mul_into`] into a new matrix (the tests' form).
+#[cfg(test)]
 fn abs_tr_mul(a: &DMatrix<f64>, b: &DMatrix<f64>) -> DMatrix<f64> {
     let rows = a.nrows();
     debug_assert_eq!(rows, b.nrows());
     let mut out = DMatrix::zeros(a.ncols(), b.ncols());
+    abs_tr_mul_into(a, b, out.as_mut_slice());
+    out
+}
+
+/// `a.abs().tr_mul(&b.abs())` bit for bit (nalgebra's: entry `(i, j)` the
+/// `dot` of column `i` of `|a|` and column `j` of `|b|`,
+/// [`nalgebra_dot_abs`]), into the column-major `out` (`a.ncols() x
+/// b.ncols()`), without the matrices `|a|` and `|b|`.
+fn abs_tr_mul_into(a: &DMatrix<f64>, b: &DMatrix<f64>, out: &mut [f64]) {
+    let rows = a.nrows();
+    debug_assert_eq!(out.len(), a.ncols() * b.ncols());
     if rows == 0 {
-        return out;
+        out.fill(0.0);
+        return;
     }
     for (bj, oj) in b
         .as_slice()
         .chunks_exact(rows)
-        .zip(out.as_mut_slice().chunks_exact_mut(a.ncols().max(1)))
+        .zip(out.chunks_exact_mut(a.ncols().max(1)))
     {
         for (ai, o) in a.as_slice().chunks_exact(rows).zip(oj.iter_mut()) {
-            *o = nalgebra_dot_abs(ai, bj);
+            // The merge's small row counts as constants.
+            *o = match rows {
+                4 => nalgebra_dot_abs_sized::<4>(ai, bj),
+                6 => nalgebra_dot_abs_sized::<6>(ai, bj),
+                8 => nalgebra_dot_abs_sized::<8>(ai, bj),
+                10 => nalgebra_dot_abs_sized::<10>(ai, bj),
+                12 => nalgebra_dot_abs_sized::<12>(ai, bj),
+                _ => nalgebra_dot_abs(ai, bj),
+            };
         }
     }
-    out
 }
 
 /// `m.abs()` (nalgebra's, entry by entry) from a copy of the storage.
@@ -433,13 +479,24 @@ fn combined_product(
     how: Combine,
 ) -> DMatrix<f64> {
     let mut out = DMatrix::zeros(c.nrows(), c.ncols());
-    product_into(a, b, matches!(how, Combine::PlusAbs), out.as_mut_slice());
-    let joined = out.as_mut_slice().iter_mut().zip(c.as_slice());
+    combined_product_into(c, a, b, how, out.as_mut_slice());
+    out
+}
+
+/// [`combined_product`] into the column-major `out` (`c`'s shape).
+fn combined_product_into(
+    c: &DMatrix<f64>,
+    a: &DMatrix<f64>,
+    b: &DMatrix<f64>,
+    how: Combine,
+    out: &mut [f64],
+) {
+    product_into(a, b, matches!(how, Combine::PlusAbs), out);
+    let joined = out.iter_mut().zip(c.as_slice());
     match how {
         Combine::Plus | Combine::PlusAbs => joined.for_each(|(o, &x)| *o += x),
         Combine::Minus => joined.for_each(|(o, &x)| *o = x - *o),
     }
-    out
 }
 
 /// [`metric_samples`]' `(M, b, what b's rounding is relative to)`.
@@ -995,9 +1052,13 @@ pub(super) fn orthogonal_solution(
             correction,
         );
         let mut scratch = Scratch::default();
-        let (pieces_bound, pieces_gain, pieces_k2t) =
-            first_order_bound(&shared, pieces_map.as_ref(), true, &mut scratch)
-                .ok_or_else(|| ill_conditioned_factor(accuracy))?;
+        let (pieces_bound, pieces_gain, pieces_k2t) = first_order_bound(
+            &shared,
+            pieces_map.as_ref().map_or(Map::Factor, Map::Of),
+            true,
+            &mut scratch,
+        )
+        .ok_or_else(|| ill_conditioned_factor(accuracy))?;
         let merged_bound = match (pieces_k2t, &z) {
             // Discrete metric, no kept rows: R's map is the identity and
             // its K1 = T^-1 Q^T is the pieces' K2^T, already solved (and
@@ -1016,11 +1077,11 @@ pub(super) fn orthogonal_solution(
                     // against an infinite |t|), which no maximum of
                     // absolute values (>= 0, NaN passed over) takes: the
                     // same bound from the identity of the free columns.
-                    Some(_) if selection => Cow::Owned(DMatrix::identity(free, free)),
-                    Some(z) => Cow::Borrowed(z),
-                    None => Cow::Owned(DMatrix::identity(points, points)),
+                    Some(_) if selection => Map::Identity(free),
+                    Some(z) => Map::Of(z),
+                    None => Map::Identity(points),
                 };
-                first_order_bound(&shared, Some(&zr), false, &mut scratch)
+                first_order_bound(&shared, zr, false, &mut scratch)
                     .ok_or_else(|| ill_conditioned_factor(accuracy))?
                     .0
             }
@@ -1155,8 +1216,10 @@ fn skip_refusal_floor() -> bool {
 struct Shared<'s> {
     /// `A = Q T` (reflectors kept), `T` upper triangular (`free x free`).
     qr: &'s Factor,
-    /// The thin `Q`, `rows x free`, formed once from the reflectors.
-    q: Vec<f64>,
+    /// One allocation: the thin `Q` (`rows x free`, formed once from the
+    /// reflectors), then `through_values` (`rows x dim`), then
+    /// `through_residual` (`free x dim`), each column-major.
+    values: Vec<f64>,
     y: &'s DMatrix<f64>,
     /// `A` (`rows x free`): only its absolute values (`|A|` in the
     /// products) and its norm are read.
@@ -1166,12 +1229,6 @@ struct Shared<'s> {
     m: usize,
     /// The last refinement correction of `y`.
     correction: &'s DMatrix<f64>,
-    /// Per coordinate `c`: `|t_c| + |A| |y_c|`, where `|t_c|` is what the
-    /// reduced target's rounding is relative to (`|b|` as evaluated, `sum
-    /// |B| |P|`, plus `|M| |r_p|`); `rows x dim`.
-    through_values: DMatrix<f64>,
-    /// Per coordinate: `|A|^T |res_c|`, `free x dim`.
-    through_residual: DMatrix<f64>,
 }
 
 impl<'s> Shared<'s> {
@@ -1186,20 +1243,43 @@ impl<'s> Shared<'s> {
         m: usize,
         correction: &'s DMatrix<f64>,
     ) -> Self {
-        let through_values = combined_product(target_size, a, y, Combine::PlusAbs);
-        let through_residual = abs_tr_mul(a, residual);
+        let (rows, free, dim) = (qr.rows(), qr.cols(), y.ncols());
+        debug_assert!(target_size.shape() == (rows, dim) && residual.shape() == (rows, dim));
+        let mut values = vec![0.0; rows * free + rows * dim + free * dim];
+        let (q, rest) = values.split_at_mut(rows * free);
+        let (through_values, through_residual) = rest.split_at_mut(rows * dim);
+        qr.thin_q_into(q);
+        combined_product_into(target_size, a, y, Combine::PlusAbs, through_values);
+        abs_tr_mul_into(a, residual, through_residual);
         Self {
             qr,
-            q: qr.thin_q(),
+            values,
             y,
             a,
             target,
             residual,
             m,
             correction,
-            through_values,
-            through_residual,
         }
+    }
+
+    /// The thin `Q`, column-major `rows x free`.
+    fn q(&self) -> &[f64] {
+        &self.values[..self.qr.rows() * self.qr.cols()]
+    }
+
+    /// Per coordinate `c`: `|t_c| + |A| |y_c|`, where `|t_c|` is what the
+    /// reduced target's rounding is relative to (`|b|` as evaluated, `sum
+    /// |B| |P|`, plus `|M| |r_p|`); column-major `rows x dim`.
+    fn through_values(&self) -> &[f64] {
+        let (rows, free, dim) = (self.qr.rows(), self.qr.cols(), self.y.ncols());
+        &self.values[rows * free..rows * free + rows * dim]
+    }
+
+    /// Per coordinate: `|A|^T |res_c|`, column-major `free x dim`.
+    fn through_residual(&self) -> &[f64] {
+        let (rows, free, dim) = (self.qr.rows(), self.qr.cols(), self.y.ncols());
+        &self.values[rows * free + rows * dim..]
     }
 }
 
@@ -1221,12 +1301,26 @@ impl Scratch {
 }
 
 /// `max_c amax(K v_c)` for a column-major `out x inner` matrix `k` and the
-/// columns `v_c` of `v` (`inner x dim`).
-fn largest_product(k: &[f64], out: usize, v: &DMatrix<f64>, acc: &mut [f64]) -> f64 {
+/// columns `v_c` of `v` (`inner x dim`); `O`, `I`: `out` and `inner` known
+/// at compile time (`0`: not).
+#[inline(always)]
+fn largest_product<const O: usize, const I: usize>(
+    k: &[f64],
+    out: usize,
+    v: &[f64],
+    v_rows: usize,
+    acc: &mut [f64],
+) -> f64 {
     let mut worst = 0.0f64;
     debug_assert_eq!(acc.len(), out);
-    let inner = (k.len() / out.max(1)).min(v.nrows());
-    for column in v.as_slice().chunks_exact(v.nrows().max(1)) {
+    let general_inner = |out: usize| (k.len() / out.max(1)).min(v_rows);
+    debug_assert!(O == 0 || O == out);
+    debug_assert!(I == 0 || I == general_inner(out));
+    let out = if O != 0 { O } else { out };
+    let inner = if I != 0 { I } else { general_inner(out) };
+    let acc = &mut acc[..out];
+    let k = &k[..out * inner];
+    for column in v.chunks_exact(v_rows.max(1)) {
         if out < SHORT_COLUMNS {
             // Few outputs: entry by entry along K's rows (the same sums in
             // the same order, `0 + k_o0 v_0 + k_o1 v_1 + ...`), rather than
@@ -1258,9 +1352,9 @@ const SHORT_COLUMNS: usize = 4;
 
 /// `max_c amax(K^T v_c)` for a column-major `inner x out` matrix `k`
 /// (`out` columns of length `inner`) and the columns `v_c` of `v`.
-fn largest_transposed_product(k: &[f64], inner: usize, v: &DMatrix<f64>) -> f64 {
+fn largest_transposed_product(k: &[f64], inner: usize, v: &[f64], v_rows: usize) -> f64 {
     let mut worst = 0.0f64;
-    for column in v.as_slice().chunks_exact(v.nrows().max(1)) {
+    for column in v.chunks_exact(v_rows.max(1)) {
         for kc in k.chunks_exact(inner) {
             worst = worst.max(lsq::dot(kc, column).abs());
         }
@@ -1290,6 +1384,19 @@ fn times_t_inverse_transposed(qr: &Factor, k: &mut [f64], out: usize) {
     }
 }
 
+/// The map of [`first_order_bound`].
+#[derive(Clone, Copy)]
+enum Map<'m> {
+    /// The pieces of the discrete metric: `S Z = A` itself (`K0` the thin
+    /// `Q`).
+    Factor,
+    /// A matrix (`S Z` of the integral metric, `Z`).
+    Of(&'m DMatrix<f64>),
+    /// The identity of this size (`R`'s guard through the free columns),
+    /// the same values as [`Map::Of`] an identity matrix without it.
+    Identity(usize),
+}
+
 /// The first-order bound (module documentation) of the largest change of
 /// `map y` (`map` = `S Z` for the pieces, `Z` for `R`; `None`: the pieces
 /// of the discrete metric, whose map `S Z` is `A` itself, so that `K0 =
@@ -1302,35 +1409,52 @@ fn times_t_inverse_transposed(qr: &Factor, k: &mut [f64], out: usize) {
 /// `K1 = K0 Q^T` (outer products of columns), `K2 = K0 T^-T`.
 fn first_order_bound(
     shared: &Shared<'_>,
-    map: Option<&DMatrix<f64>>,
+    map: Map<'_>,
     with_normwise: bool,
     scratch: &mut Scratch,
 ) -> Option<(f64, f64, bool)> {
     // The merge's small sizes as constants (`lsq::with_small_sizes`), as
     // `lsq::Factor::least_squares`: the same operations in the same order.
+    // The map's rows too: `rows` for the thin Q, `free` for the identity.
     lsq::with_small_sizes!(shared.qr.rows(), shared.qr.cols(), |R, F| {
-        first_order_bound_sized::<R, F>(shared, map, with_normwise, scratch)
+        match map {
+            Map::Factor => first_order_bound_sized::<R, F, R>(shared, map, with_normwise, scratch),
+            Map::Identity(_) => {
+                first_order_bound_sized::<R, F, F>(shared, map, with_normwise, scratch)
+            }
+            Map::Of(_) => first_order_bound_sized::<R, F, 0>(shared, map, with_normwise, scratch),
+        }
     })
 }
 
-/// [`first_order_bound`] with `rows = R`, `free = F` known at compile time
-/// (`R = 0`: read from the factor).
+/// [`first_order_bound`] with `rows = R`, `free = F` and the map's rows
+/// `O` known at compile time (`0`: read from the factor / the map).
 #[inline(always)]
-fn first_order_bound_sized<const R: usize, const F: usize>(
+fn first_order_bound_sized<const R: usize, const F: usize, const O: usize>(
     shared: &Shared<'_>,
-    map: Option<&DMatrix<f64>>,
+    map: Map<'_>,
     with_normwise: bool,
     scratch: &mut Scratch,
 ) -> Option<(f64, f64, bool)> {
     let qr = shared.qr;
     let (rows, free) = qr.sizes::<R, F>();
-    let q = &shared.q;
+    let q = shared.q();
     let dim = shared.y.ncols();
     let eps = f64::EPSILON;
     // Componentwise (Skeel-style): every entry of A and of the target
     // carries a relative rounding of at most gamma.
     let gamma = ESTIMATE_MARGIN * (shared.m as f64 + 2.0) * eps;
-    let out = map.map_or(rows, |map| map.nrows());
+    let out = match map {
+        _ if O != 0 => O,
+        Map::Factor => rows,
+        Map::Of(map) => map.nrows(),
+        Map::Identity(n) => n,
+    };
+    debug_assert!(match map {
+        Map::Factor => out == rows,
+        Map::Of(map) => out == map.nrows(),
+        Map::Identity(n) => out == n,
+    });
     // One buffer: w (free), acc (max(rows, out)), |K1| (out x rows), K0
     // and then K2 (out x free).
     let acc_len = rows.max(out);
@@ -1344,7 +1468,7 @@ fn first_order_bound_sized<const R: usize, const F: usize>(
     let k0 = &mut rest[..out * free];
     // K0 (out x free) and the last correction mapped, max |map c|.
     let mapped_correction = match map {
-        None => {
+        Map::Factor => {
             // map = A = Q T: map c = Q (T c). K0 = Q.
             let acc = &mut acc[..rows];
             let mut worst = 0.0f64;
@@ -1362,10 +1486,16 @@ fn first_order_bound_sized<const R: usize, const F: usize>(
             k0.copy_from_slice(q);
             worst
         }
-        Some(map) => {
+        Map::Of(_) | Map::Identity(_) => {
             // K0 = map T^-1: K0[:, k] = (map[:, k] - sum_(j < k) T[j][k]
             // K0[:, j]) / T[k][k].
-            k0.copy_from_slice(map.as_slice());
+            match map {
+                Map::Of(map) => k0.copy_from_slice(map.as_slice()),
+                _ => {
+                    k0.fill(0.0);
+                    k0.iter_mut().step_by(out + 1).for_each(|e| *e = 1.0);
+                }
+            }
             for k in 0..free {
                 let (done, rest) = k0.split_at_mut(k * out);
                 let column = &mut rest[..out];
@@ -1381,14 +1511,28 @@ fn first_order_bound_sized<const R: usize, const F: usize>(
             // entries are finite: a finite map, a finite correction), the
             // product column by column in `acc` as nalgebra's.
             let mut worst = 0.0f64;
-            if blocked_product(out, free, dim) {
-                worst = (map * shared.correction).amax();
-            } else {
-                let acc = &mut acc[..out];
-                for c in 0..dim {
-                    product_column(map, shared.correction.column(c).as_slice(), false, acc);
-                    worst = worst.max(lsq::amax(acc));
+            match map {
+                Map::Identity(n) => {
+                    // `I c` as nalgebra's product (also `matrixmultiply`'s)
+                    // is `c` entry by entry up to the sign of a zero (the
+                    // products by 0 and 1 exact, the sums with zeros
+                    // exact), so its largest absolute value is `c`'s.
+                    debug_assert_eq!(n, free);
+                    for column in shared.correction.as_slice().chunks_exact(free) {
+                        worst = worst.max(lsq::amax(column));
+                    }
                 }
+                Map::Of(map) if blocked_product(out, free, dim) => {
+                    worst = (map * shared.correction).amax();
+                }
+                Map::Of(map) => {
+                    let acc = &mut acc[..out];
+                    for c in 0..dim {
+                        product_column(map, shared.correction.column(c).as_slice(), false, acc);
+                        worst = worst.max(lsq::amax(acc));
+                    }
+                }
+                Map::Factor => unreachable!("the thin Q's case above"),
             }
             worst
         }
@@ -1397,7 +1541,7 @@ fn first_order_bound_sized<const R: usize, const F: usize>(
     // |K1| = |K0 Q^T| (out x rows): column i is sum_k Q[i][k] K0[:, k].
     // For the thin Q (K0 = Q) it is symmetric: the entries on and below
     // the diagonal are summed, those above copied from them.
-    let symmetric = map.is_none();
+    let symmetric = matches!(map, Map::Factor);
     if !symmetric && out < SHORT_COLUMNS {
         // Entry by entry: `K0[o][0] Q[i][0] + K0[o][1] Q[i][1] + ...` in
         // that order, as the column updates below.
@@ -1441,7 +1585,7 @@ fn first_order_bound_sized<const R: usize, const F: usize>(
     if !with_normwise {
         // R's guard: the values term only (what the measured weight was
         // calibrated on, merge back with zero residual); no K2.
-        let bound = values_bound(shared, k1, measured, acc);
+        let bound = values_bound::<O, R>(shared, k1, measured, acc);
         return Some((bound, k0_norm, false));
     }
     // K2 = K0 T^-T (out x free), in K0's place.
@@ -1461,38 +1605,53 @@ fn first_order_bound_sized<const R: usize, const F: usize>(
     let mut worst = 0.0f64;
     for c in 0..dim {
         acc.fill(0.0);
-        let tv = shared.through_values.column(c);
-        for (kc, &x) in k1.chunks_exact(out).zip(tv.as_slice()) {
+        let tv = &shared.through_values()[c * rows..(c + 1) * rows];
+        for (kc, &x) in k1.chunks_exact(out).zip(tv) {
             for (a, &e) in acc.iter_mut().zip(kc) {
                 *a += e * x;
             }
         }
-        let tr = shared.through_residual.column(c);
-        for (kc, &x) in k2.chunks_exact(out).zip(tr.as_slice()) {
+        let tr = &shared.through_residual()[c * free..(c + 1) * free];
+        for (kc, &x) in k2.chunks_exact(out).zip(tr) {
             for (a, &e) in acc.iter_mut().zip(kc) {
                 *a += e * x;
             }
         }
         worst = worst.max(gamma * lsq::amax(acc));
     }
-    Some((worst + measured + normwise, k0_norm, map.is_none()))
+    Some((worst + measured + normwise, k0_norm, symmetric))
 }
 
 /// The values term of [`first_order_bound`] alone, `max_c gamma |K1|
 /// (|t_c| + |A| |y_c|)`, plus the `measured` refinement term: `R`'s guard,
 /// from `|K1|` (`|map A^+|`, absolute values taken; column-major, `rows`
 /// columns).
-fn values_bound(shared: &Shared<'_>, k1: &[f64], measured: f64, acc: &mut [f64]) -> f64 {
+/// `O`, `R`: `|K1|`'s rows and columns known at compile time (`0`: not).
+#[inline(always)]
+fn values_bound<const O: usize, const R: usize>(
+    shared: &Shared<'_>,
+    k1: &[f64],
+    measured: f64,
+    acc: &mut [f64],
+) -> f64 {
     let gamma = ESTIMATE_MARGIN * (shared.m as f64 + 2.0) * f64::EPSILON;
     let out = k1.len() / shared.qr.rows();
-    gamma * largest_product(k1, out, &shared.through_values, acc) + measured
+    gamma * largest_product::<O, R>(k1, out, shared.through_values(), shared.qr.rows(), acc)
+        + measured
 }
 
 /// [`values_bound`] with `|K1|` given by its transpose (column-major
 /// `rows x out`): `R`'s guard from the pieces' `|K2| = |A^+|^T`.
 fn values_bound_transposed(shared: &Shared<'_>, k1t: &[f64], measured: f64) -> f64 {
     let gamma = ESTIMATE_MARGIN * (shared.m as f64 + 2.0) * f64::EPSILON;
-    gamma * largest_transposed_product(k1t, shared.qr.rows(), &shared.through_values) + measured
+    gamma
+        * largest_transposed_product(
+            k1t,
+            shared.qr.rows(),
+            shared.through_values(),
+            shared.qr.rows(),
+        )
+        + measured
 }
 
 fn ill_conditioned_factor(accuracy: f64) -> BezjoinError {
@@ -1649,6 +1808,10 @@ mod tests {
             (7, 6, 6),
             (9, 8, 7),
             (12, 3, 9),
+            (6, 3, 2),
+            (10, 4, 3),
+            (16, 5, 3),
+            (6, 1, 1),
         ] {
             let context = format!("{rows} x {inner} x {cols}");
             let a = random_matrix(&mut values, rows, inner);
@@ -1771,6 +1934,173 @@ mod tests {
         }
     }
 
+    /// The constant-size product columns are the general one bit for bit
+    /// (the same sums in the same order), with and without `abs`.
+    #[test]
+    fn constant_size_product_columns_are_the_general_one() {
+        let mut values = crate::test_values::Values(43);
+        for rows in [4, 6, 8, 10, 12] {
+            for inner in [1, 2, 3, 5, 9] {
+                let a = random_matrix(&mut values, rows, inner);
+                let b = random_matrix(&mut values, inner, 1);
+                for abs in [false, true] {
+                    let (mut sized, mut general) = (vec![0.0; rows], vec![0.0; rows]);
+                    product_column(&a, b.as_slice(), abs, &mut sized);
+                    product_column_sized::<0>(a.as_slice(), b.as_slice(), abs, &mut general);
+                    let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                    assert_eq!(bits(&sized), bits(&general), "{rows} x {inner} {abs}");
+                }
+            }
+        }
+    }
+
+    /// The first-order bound with the sizes as constants (rows, free
+    /// columns and the map's rows) is the general one bit for bit, for the
+    /// thin Q, an identity and a matrix map, with and without the normwise
+    /// part.
+    #[test]
+    fn constant_size_first_order_bound_is_the_general_one() {
+        let mut values = crate::test_values::Values(13);
+        for (rows, free) in [
+            (6, 1),
+            (8, 2),
+            (10, 3),
+            (12, 4),
+            (4, 2),
+            (6, 3),
+            (8, 4),
+            (7, 3),
+        ] {
+            for dim in [1, 3, 7] {
+                let a = random_matrix(&mut values, rows, free);
+                let qr = Factor::new(a.as_slice(), rows, free).unwrap();
+                let y = random_matrix(&mut values, free, dim);
+                let target = random_matrix(&mut values, rows, dim);
+                let target_size = random_matrix(&mut values, rows, dim).abs();
+                let residual = random_matrix(&mut values, rows, dim);
+                let correction = random_matrix(&mut values, free, dim) * 1e-17;
+                let shared = Shared::new(
+                    &qr,
+                    &y,
+                    &a,
+                    &target,
+                    &target_size,
+                    &residual,
+                    rows / 2,
+                    &correction,
+                );
+                let map = random_matrix(&mut values, rows + 1, free);
+                for normwise in [false, true] {
+                    for which in [Map::Factor, Map::Identity(free), Map::Of(&map)] {
+                        let mut scratch = Scratch::default();
+                        let sized = first_order_bound(&shared, which, normwise, &mut scratch);
+                        let mut scratch = Scratch::default();
+                        let general = first_order_bound_sized::<0, 0, 0>(
+                            &shared,
+                            which,
+                            normwise,
+                            &mut scratch,
+                        );
+                        let bits = |b: Option<(f64, f64, bool)>| {
+                            b.map(|(x, y, z)| (x.to_bits(), y.to_bits(), z))
+                        };
+                        assert_eq!(bits(sized), bits(general), "{rows} x {free}, {dim}");
+                        assert!(sized.is_some_and(|b| b.0 > 0.0));
+                    }
+                }
+            }
+        }
+    }
+
+    /// `Shared`'s one buffer holds the thin `Q`, `|t| + |A| |y|` and `|A|^T
+    /// |res|` as the separate matrices did, bit for bit.
+    #[test]
+    fn shared_buffer_holds_the_three_matrices() {
+        let mut values = crate::test_values::Values(19);
+        for (rows, free, dim) in [(8, 2, 3), (6, 1, 2), (12, 4, 1), (9, 5, 7)] {
+            let a = random_matrix(&mut values, rows, free);
+            let qr = Factor::new(a.as_slice(), rows, free).unwrap();
+            let y = random_matrix(&mut values, free, dim);
+            let target = random_matrix(&mut values, rows, dim);
+            let target_size = random_matrix(&mut values, rows, dim).abs();
+            let residual = random_matrix(&mut values, rows, dim);
+            let correction = random_matrix(&mut values, free, dim);
+            let shared = Shared::new(
+                &qr,
+                &y,
+                &a,
+                &target,
+                &target_size,
+                &residual,
+                rows / 2,
+                &correction,
+            );
+            let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            assert_eq!(bits(shared.q()), bits(&qr.thin_q()));
+            let through_values = combined_product(&target_size, &a, &y, Combine::PlusAbs);
+            assert_eq!(
+                bits(shared.through_values()),
+                bits(through_values.as_slice())
+            );
+            let through_residual = abs_tr_mul(&a, &residual);
+            assert_eq!(
+                bits(shared.through_residual()),
+                bits(through_residual.as_slice())
+            );
+        }
+    }
+
+    /// `Map::Identity` (no matrix) gives what an identity matrix gives,
+    /// bit for bit, for `R`'s guard and with the normwise part, on both
+    /// sides of nalgebra's `matrixmultiply` threshold, with zero and
+    /// negative corrections.
+    #[test]
+    fn identity_map_is_the_identity_matrix_to_the_bit() {
+        let mut values = crate::test_values::Values(11);
+        for (free, dim) in [(1, 1), (2, 3), (3, 2), (6, 7), (9, 3), (7, 6)] {
+            let rows = 2 * free + 2;
+            let a = random_matrix(&mut values, rows, free);
+            let qr = Factor::new(a.as_slice(), rows, free).unwrap();
+            let y = random_matrix(&mut values, free, dim);
+            let target = random_matrix(&mut values, rows, dim);
+            let target_size = random_matrix(&mut values, rows, dim).abs();
+            let residual = random_matrix(&mut values, rows, dim);
+            let mut correction = random_matrix(&mut values, free, dim) * 1e-17;
+            correction[(0, 0)] = 0.0;
+            correction[(free - 1, dim - 1)] = -0.0;
+            let shared = Shared::new(
+                &qr,
+                &y,
+                &a,
+                &target,
+                &target_size,
+                &residual,
+                2 * free,
+                &correction,
+            );
+            let identity = DMatrix::identity(free, free);
+            let mut scratch = Scratch::default();
+            for normwise in [false, true] {
+                let matrix =
+                    first_order_bound(&shared, Map::Of(&identity), normwise, &mut scratch).unwrap();
+                let map = first_order_bound(&shared, Map::Identity(free), normwise, &mut scratch)
+                    .unwrap();
+                assert_eq!(
+                    matrix.0.to_bits(),
+                    map.0.to_bits(),
+                    "{free} {dim} {normwise}"
+                );
+                assert_eq!(
+                    matrix.1.to_bits(),
+                    map.1.to_bits(),
+                    "{free} {dim} {normwise}"
+                );
+                assert_eq!(matrix.2, map.2);
+                assert!(map.0 > 0.0);
+            }
+        }
+    }
+
     /// `R`'s guard through the fixed ends' `Z = (e_1 .. e_(m-1))` is the
     /// guard through the identity of the free columns (what the closed
     /// form passes), bit for bit: the zero rows of `Z` add nothing.
@@ -1799,11 +2129,15 @@ mod tests {
             );
             let z = DMatrix::from_fn(m + 1, free, |i, k| if i == k + 1 { 1.0 } else { 0.0 });
             let mut scratch = Scratch::default();
-            let through_z = first_order_bound(&shared, Some(&z), false, &mut scratch).unwrap();
+            let through_z = first_order_bound(&shared, Map::Of(&z), false, &mut scratch).unwrap();
             let identity = DMatrix::identity(free, free);
             let through_i =
-                first_order_bound(&shared, Some(&identity), false, &mut scratch).unwrap();
+                first_order_bound(&shared, Map::Of(&identity), false, &mut scratch).unwrap();
+            let through_map =
+                first_order_bound(&shared, Map::Identity(free), false, &mut scratch).unwrap();
             assert_eq!(through_z.0.to_bits(), through_i.0.to_bits(), "m {m}");
+            assert_eq!(through_map.0.to_bits(), through_i.0.to_bits(), "m {m}");
+            assert_eq!(through_map.1.to_bits(), through_i.1.to_bits(), "m {m}");
             assert!(through_z.0 > 0.0, "m {m}");
         }
     }

@@ -873,7 +873,8 @@ mod tests {
                             }
                             for i in 0..=degree {
                                 for (piece, exact_piece) in [(0, &left), (1, &right)] {
-                                    let gap = (exact(s.pieces[piece][(i, c)]) - &exact_piece[i])
+                                    let gap = (exact(s.x[(piece * (degree + 1) + i, c)])
+                                        - &exact_piece[i])
                                         .to_f64()
                                         .unwrap();
                                     worst = worst.max(gap.abs());

@@ -75,8 +75,11 @@ pub(crate) struct PieceInput<'a> {
 
 /// The result of stage 1.
 pub(crate) struct StageOne {
-    /// New control points of every piece, `(m + 1) x dim` each.
-    pub pieces: Vec<DMatrix<f64>>,
+    /// New control points of every piece, stacked: piece `j` is rows `j
+    /// (m + 1) .. (j + 1) (m + 1)` ([`StageOne::pieces`] copies them out).
+    pub x: DMatrix<f64>,
+    /// `m + 1`.
+    pub points_per_piece: usize,
     /// The minimised metric.
     pub metric_value: f64,
     /// Relative error estimate of the stage-1 solve.
@@ -92,6 +95,42 @@ pub(crate) struct StageOne {
     /// orthogonal path's double solve): stage 2's split gives them back bit
     /// for bit ([`super::stage_two::stage_two`]).
     pub split_of_merged: bool,
+}
+
+impl StageOne {
+    /// New control points of every piece, `(m + 1) x dim` each.
+    pub fn pieces(&self) -> Vec<DMatrix<f64>> {
+        let (x, points) = (&self.x, self.points_per_piece);
+        (0..x.nrows() / points)
+            .map(|j| {
+                // x's rows of piece j, column by column (contiguous slices).
+                let mut piece = DMatrix::zeros(points, x.ncols());
+                for (to, from) in piece
+                    .as_mut_slice()
+                    .chunks_exact_mut(points)
+                    .zip(x.as_slice().chunks_exact(x.nrows()))
+                {
+                    to.copy_from_slice(&from[j * points..(j + 1) * points]);
+                }
+                piece
+            })
+            .collect()
+    }
+
+    /// Piece `j` as a curve: `BezierCurve::from_matrix(&self.pieces()[j])`
+    /// (the same points, the same errors) without the matrices.
+    pub fn piece_curve(&self, j: usize) -> Result<BezierCurve> {
+        let (x, points) = (&self.x, self.points_per_piece);
+        let (rows, dim) = (x.nrows(), x.ncols());
+        let data = x.as_slice();
+        let mut out = Vec::with_capacity(points * dim);
+        for i in j * points..(j + 1) * points {
+            for c in 0..dim {
+                out.push(data[c * rows + i]);
+            }
+        }
+        BezierCurve::new(dim, points - 1, out)
+    }
 }
 
 /// The exact Bernstein Gram matrix `G_ij = int_0^1 B_i^n B_j^n =
@@ -236,22 +275,11 @@ pub(crate) fn solve_stage_one_slope(
     } else {
         DMatrix::zeros(0, 0)
     };
-    let mut new_pieces = Vec::with_capacity(count);
-    for j in 0..count {
-        if found.is_none() {
+    if found.is_none() {
+        for j in 0..count {
             let ej = e.rows(j * points_per_piece, points_per_piece);
             metric_value += (ej.transpose() * &weight * ej).trace();
         }
-        // x's rows of piece j, column by column (contiguous slices).
-        let mut piece = DMatrix::zeros(points_per_piece, x.ncols());
-        for (to, from) in piece
-            .as_mut_slice()
-            .chunks_exact_mut(points_per_piece)
-            .zip(x.as_slice().chunks_exact(x.nrows()))
-        {
-            to.copy_from_slice(&from[j * points_per_piece..(j + 1) * points_per_piece]);
-        }
-        new_pieces.push(piece);
     }
     let (merged, slope) = match found {
         // The orthogonal path measured the metric on its least-squares
@@ -276,7 +304,8 @@ pub(crate) fn solve_stage_one_slope(
         });
     }
     Ok(StageOne {
-        pieces: new_pieces,
+        x,
+        points_per_piece,
         metric_value: metric_value.max(0.0),
         error_estimate: estimate,
         merged,

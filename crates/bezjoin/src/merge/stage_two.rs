@@ -255,9 +255,22 @@ pub(crate) fn max_deviation(
     };
     let (n, d) = (first.degree(), first.dim());
     let len = (n + 1) * d;
-    // Half the difference curves, piece after piece.
-    let mut halves = Vec::with_capacity(restrictions.len() * len);
-    for (back, c) in restrictions.iter().zip(originals) {
+    // Half the difference curves, piece after piece (on the stack for
+    // small pieces).
+    let total = restrictions.len().min(originals.len()) * len;
+    let mut on_stack = [0.0f64; HALVES_ON_STACK];
+    let mut on_heap = Vec::new();
+    let halves: &mut [f64] = if total <= HALVES_ON_STACK {
+        &mut on_stack[..total]
+    } else {
+        on_heap.resize(total, 0.0);
+        &mut on_heap
+    };
+    for ((back, c), half) in restrictions
+        .iter()
+        .zip(originals)
+        .zip(halves.chunks_exact_mut(len.max(1)))
+    {
         // C_j at the working degree (n >= its degree: working_degree checks
         // it).
         let elevated;
@@ -267,13 +280,11 @@ pub(crate) fn max_deviation(
             elevated = c.elevate_degree(n)?;
             elevated.points()
         };
-        halves.extend(
-            back.points()
-                .iter()
-                .zip(c_points)
-                .map(|(r, c)| 0.5 * r - 0.5 * c),
-        );
+        for ((h, r), c) in half.iter_mut().zip(back.points()).zip(c_points) {
+            *h = 0.5 * r - 0.5 * c;
+        }
     }
+    let halves: &[f64] = halves;
     let mut worst = Worst::default();
     if let Some(table) = deviation_table(n) {
         // Per piece: the sample values accumulated coefficient by
@@ -321,6 +332,10 @@ pub(crate) fn max_deviation(
     let worst = worst.value();
     Ok(2.0 * worst)
 }
+
+/// The largest number of coordinates of [`max_deviation`]'s half
+/// differences kept on the stack (two pieces of degree 7 in space).
+const HALVES_ON_STACK: usize = 48;
 
 /// Degrees up to which [`max_deviation`] reads the Bernstein values at its
 /// samples from a table computed once per degree ([`TABLE_ROW`]` (n + 1)`
@@ -577,69 +592,83 @@ fn screen<const D: usize, const K: usize>(table: &[f64], half: &[f64], worst: &m
     const CANDIDATES: usize = 16;
     let mut candidates = [(0.0f64, 0usize); CANDIDATES];
     let mut count = 0;
-    let mut stack = [whole; SAMPLE_LEVELS as usize + 2];
-    let mut depth = 1;
+    // Depth first, the half with the larger bound first: the span being
+    // searched is `span`, the halves set aside wait on the stack (at most
+    // one per level). A half is dropped when set aside if its bound is
+    // already below `best - bound` (`best` only grows, so it would be
+    // dropped when taken up again: the same spans are searched in the
+    // same order as with both halves stacked).
+    let mut stack = [whole; SAMPLE_LEVELS as usize + 1];
+    let mut depth = 0;
+    let mut span = whole;
     let mut halvings = 0;
-    while depth > 0 {
-        depth -= 1;
-        let span = stack[depth];
-        if span.upper < best - bound {
-            continue;
-        }
-        if span.level == SAMPLE_LEVELS {
-            // One sample spacing: its ends are samples `first`, `first + 1`.
-            for (value, sample) in [
-                (span.coefficients[0], span.first),
-                (span.coefficients[degree], span.first + 1),
-            ] {
-                if value < best - bound || candidates[..count].iter().any(|c| c.1 == sample) {
-                    continue;
-                }
-                if count == CANDIDATES {
-                    let mut write = 0;
-                    for read in 0..CANDIDATES {
-                        if candidates[read].0 >= best - bound {
-                            candidates[write] = candidates[read];
-                            write += 1;
+    loop {
+        let dropped = span.upper < best - bound;
+        if !dropped {
+            if span.level == SAMPLE_LEVELS {
+                // One sample spacing: its ends are samples `first`, `first + 1`.
+                for (value, sample) in [
+                    (span.coefficients[0], span.first),
+                    (span.coefficients[degree], span.first + 1),
+                ] {
+                    if value < best - bound || candidates[..count].iter().any(|c| c.1 == sample) {
+                        continue;
+                    }
+                    if count == CANDIDATES {
+                        let mut write = 0;
+                        for read in 0..CANDIDATES {
+                            if candidates[read].0 >= best - bound {
+                                candidates[write] = candidates[read];
+                                write += 1;
+                            }
                         }
+                        if write == CANDIDATES {
+                            return false;
+                        }
+                        count = write;
                     }
-                    if write == CANDIDATES {
-                        return false;
-                    }
-                    count = write;
+                    candidates[count] = (value, sample);
+                    count += 1;
                 }
-                candidates[count] = (value, sample);
-                count += 1;
+            } else {
+                halvings += 1;
+                if halvings > SCREEN_BUDGET {
+                    return false;
+                }
+                // de Casteljau at 1/2: the left half's coefficients are the
+                // triangle's first entries, the right half's its last.
+                let mut c = span.coefficients;
+                let mut l = span.coefficients;
+                for r in 1..K {
+                    for k in 0..K - r {
+                        c[k] = 0.5 * (c[k] + c[k + 1]);
+                    }
+                    l[r] = c[0];
+                }
+                best = larger(c[0], best);
+                let level = span.level + 1;
+                let left = Span::new(l, level, span.first);
+                let right = Span::new(c, level, span.first + (1 << (SAMPLE_LEVELS - level)));
+                // The half with the larger bound is searched first.
+                let (first, second) = if left.upper > right.upper {
+                    (left, right)
+                } else {
+                    (right, left)
+                };
+                let dropped = second.upper < best - bound;
+                if !dropped {
+                    stack[depth] = second;
+                    depth += 1;
+                }
+                span = first;
+                continue;
             }
-            continue;
         }
-        halvings += 1;
-        if halvings > SCREEN_BUDGET {
-            return false;
+        if depth == 0 {
+            break;
         }
-        // de Casteljau at 1/2: the left half's coefficients are the
-        // triangle's first entries, the right half's its last.
-        let mut c = span.coefficients;
-        let mut l = span.coefficients;
-        for r in 1..K {
-            for k in 0..K - r {
-                c[k] = 0.5 * (c[k] + c[k + 1]);
-            }
-            l[r] = c[0];
-        }
-        best = larger(c[0], best);
-        let level = span.level + 1;
-        let left = Span::new(l, level, span.first);
-        let right = Span::new(c, level, span.first + (1 << (SAMPLE_LEVELS - level)));
-        // The half with the larger bound is searched first.
-        if left.upper > right.upper {
-            stack[depth] = right;
-            stack[depth + 1] = left;
-        } else {
-            stack[depth] = left;
-            stack[depth + 1] = right;
-        }
-        depth += 2;
+        depth -= 1;
+        span = stack[depth];
     }
     if !(best.is_finite() && best - bound >= 4.0 * f64::MIN_POSITIVE) {
         return false;
