@@ -15,7 +15,8 @@
 //! Bezier counterparts"). Per fillet: the difference of two repeat counts
 //! under `valgrind --tool=callgrind`, e.g.
 //! `FILLET_MODE=3 FILLET_REPEATS=110 cargo test --release -p bezjoin-core
-//! --test fillet_instructions -- --ignored` minus the same at 10, over 100.
+//! --test fillet_instructions -- --ignored` minus the same at 10, over 100
+//! (`scripts/fillet-instructions.sh [MODE...]` does this).
 
 use bezjoin_core::{BezierCurve, Curve, FilletOptions, NurbsCurve, fillet};
 
