@@ -1771,6 +1771,38 @@ mod tests {
         }
     }
 
+    /// Random inputs of a first-order bound (`rows x free` system, `dim`
+    /// right-hand sides), drawn in this order: `A`, `y`, the target, its
+    /// size (absolute values), the residual, the correction.
+    struct BoundInputs {
+        a: DMatrix<f64>,
+        qr: Factor,
+        y: DMatrix<f64>,
+        target: DMatrix<f64>,
+        target_size: DMatrix<f64>,
+        residual: DMatrix<f64>,
+        correction: DMatrix<f64>,
+    }
+
+    fn bound_inputs(
+        values: &mut crate::test_values::Values,
+        rows: usize,
+        free: usize,
+        dim: usize,
+    ) -> BoundInputs {
+        let a = random_matrix(values, rows, free);
+        let qr = Factor::new(a.as_slice(), rows, free).unwrap();
+        BoundInputs {
+            y: random_matrix(values, free, dim),
+            target: random_matrix(values, rows, dim),
+            target_size: random_matrix(values, rows, dim).abs(),
+            residual: random_matrix(values, rows, dim),
+            correction: random_matrix(values, free, dim),
+            a,
+            qr,
+        }
+    }
+
     fn random_matrix(
         values: &mut crate::test_values::Values,
         rows: usize,
@@ -1972,13 +2004,16 @@ mod tests {
             (7, 3),
         ] {
             for dim in [1, 3, 7] {
-                let a = random_matrix(&mut values, rows, free);
-                let qr = Factor::new(a.as_slice(), rows, free).unwrap();
-                let y = random_matrix(&mut values, free, dim);
-                let target = random_matrix(&mut values, rows, dim);
-                let target_size = random_matrix(&mut values, rows, dim).abs();
-                let residual = random_matrix(&mut values, rows, dim);
-                let correction = random_matrix(&mut values, free, dim) * 1e-17;
+                let BoundInputs {
+                    a,
+                    qr,
+                    y,
+                    target,
+                    target_size,
+                    residual,
+                    correction,
+                } = bound_inputs(&mut values, rows, free, dim);
+                let correction = correction * 1e-17;
                 let shared = Shared::new(
                     &qr,
                     &y,
@@ -2018,13 +2053,15 @@ mod tests {
     fn shared_buffer_holds_the_three_matrices() {
         let mut values = crate::test_values::Values(19);
         for (rows, free, dim) in [(8, 2, 3), (6, 1, 2), (12, 4, 1), (9, 5, 7)] {
-            let a = random_matrix(&mut values, rows, free);
-            let qr = Factor::new(a.as_slice(), rows, free).unwrap();
-            let y = random_matrix(&mut values, free, dim);
-            let target = random_matrix(&mut values, rows, dim);
-            let target_size = random_matrix(&mut values, rows, dim).abs();
-            let residual = random_matrix(&mut values, rows, dim);
-            let correction = random_matrix(&mut values, free, dim);
+            let BoundInputs {
+                a,
+                qr,
+                y,
+                target,
+                target_size,
+                residual,
+                correction,
+            } = bound_inputs(&mut values, rows, free, dim);
             let shared = Shared::new(
                 &qr,
                 &y,
@@ -2059,13 +2096,16 @@ mod tests {
         let mut values = crate::test_values::Values(11);
         for (free, dim) in [(1, 1), (2, 3), (3, 2), (6, 7), (9, 3), (7, 6)] {
             let rows = 2 * free + 2;
-            let a = random_matrix(&mut values, rows, free);
-            let qr = Factor::new(a.as_slice(), rows, free).unwrap();
-            let y = random_matrix(&mut values, free, dim);
-            let target = random_matrix(&mut values, rows, dim);
-            let target_size = random_matrix(&mut values, rows, dim).abs();
-            let residual = random_matrix(&mut values, rows, dim);
-            let mut correction = random_matrix(&mut values, free, dim) * 1e-17;
+            let BoundInputs {
+                a,
+                qr,
+                y,
+                target,
+                target_size,
+                residual,
+                correction,
+            } = bound_inputs(&mut values, rows, free, dim);
+            let mut correction = correction * 1e-17;
             correction[(0, 0)] = 0.0;
             correction[(free - 1, dim - 1)] = -0.0;
             let shared = Shared::new(
@@ -2109,14 +2149,17 @@ mod tests {
         let mut values = crate::test_values::Values(7);
         for m in [2, 3, 5, 9, 20] {
             let (rows, free, dim) = (2 * (m + 1), m - 1, 2);
-            let a = random_matrix(&mut values, rows, free);
-            let qr = Factor::new(a.as_slice(), rows, free).unwrap();
+            let BoundInputs {
+                a,
+                qr,
+                y,
+                target,
+                target_size,
+                residual,
+                correction,
+            } = bound_inputs(&mut values, rows, free, dim);
             let a_abs = a.abs();
-            let y = random_matrix(&mut values, free, dim);
-            let target = random_matrix(&mut values, rows, dim);
-            let target_size = random_matrix(&mut values, rows, dim).abs();
-            let residual = random_matrix(&mut values, rows, dim);
-            let correction = random_matrix(&mut values, free, dim) * 1e-17;
+            let correction = correction * 1e-17;
             let shared = Shared::new(
                 &qr,
                 &y,
