@@ -1784,6 +1784,28 @@ mod tests {
         correction: DMatrix<f64>,
     }
 
+    impl BoundInputs {
+        /// `Shared` of these inputs with `a` (`A` or `|A|`), the ends'
+        /// count `ends` and the correction `correction`.
+        fn shared<'s>(
+            &'s self,
+            a: &'s DMatrix<f64>,
+            ends: usize,
+            correction: &'s DMatrix<f64>,
+        ) -> Shared<'s> {
+            Shared::new(
+                &self.qr,
+                &self.y,
+                a,
+                &self.target,
+                &self.target_size,
+                &self.residual,
+                ends,
+                correction,
+            )
+        }
+    }
+
     fn bound_inputs(
         values: &mut crate::test_values::Values,
         rows: usize,
@@ -2004,26 +2026,9 @@ mod tests {
             (7, 3),
         ] {
             for dim in [1, 3, 7] {
-                let BoundInputs {
-                    a,
-                    qr,
-                    y,
-                    target,
-                    target_size,
-                    residual,
-                    correction,
-                } = bound_inputs(&mut values, rows, free, dim);
-                let correction = correction * 1e-17;
-                let shared = Shared::new(
-                    &qr,
-                    &y,
-                    &a,
-                    &target,
-                    &target_size,
-                    &residual,
-                    rows / 2,
-                    &correction,
-                );
+                let inputs = bound_inputs(&mut values, rows, free, dim);
+                let correction = inputs.correction.clone() * 1e-17;
+                let shared = inputs.shared(&inputs.a, rows / 2, &correction);
                 let map = random_matrix(&mut values, rows + 1, free);
                 for normwise in [false, true] {
                     for which in [Map::Factor, Map::Identity(free), Map::Of(&map)] {
@@ -2053,33 +2058,17 @@ mod tests {
     fn shared_buffer_holds_the_three_matrices() {
         let mut values = crate::test_values::Values(19);
         for (rows, free, dim) in [(8, 2, 3), (6, 1, 2), (12, 4, 1), (9, 5, 7)] {
-            let BoundInputs {
-                a,
-                qr,
-                y,
-                target,
-                target_size,
-                residual,
-                correction,
-            } = bound_inputs(&mut values, rows, free, dim);
-            let shared = Shared::new(
-                &qr,
-                &y,
-                &a,
-                &target,
-                &target_size,
-                &residual,
-                rows / 2,
-                &correction,
-            );
+            let inputs = bound_inputs(&mut values, rows, free, dim);
+            let shared = inputs.shared(&inputs.a, rows / 2, &inputs.correction);
             let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
-            assert_eq!(bits(shared.q()), bits(&qr.thin_q()));
-            let through_values = combined_product(&target_size, &a, &y, Combine::PlusAbs);
+            assert_eq!(bits(shared.q()), bits(&inputs.qr.thin_q()));
+            let through_values =
+                combined_product(&inputs.target_size, &inputs.a, &inputs.y, Combine::PlusAbs);
             assert_eq!(
                 bits(shared.through_values()),
                 bits(through_values.as_slice())
             );
-            let through_residual = abs_tr_mul(&a, &residual);
+            let through_residual = abs_tr_mul(&inputs.a, &inputs.residual);
             assert_eq!(
                 bits(shared.through_residual()),
                 bits(through_residual.as_slice())
@@ -2096,28 +2085,11 @@ mod tests {
         let mut values = crate::test_values::Values(11);
         for (free, dim) in [(1, 1), (2, 3), (3, 2), (6, 7), (9, 3), (7, 6)] {
             let rows = 2 * free + 2;
-            let BoundInputs {
-                a,
-                qr,
-                y,
-                target,
-                target_size,
-                residual,
-                correction,
-            } = bound_inputs(&mut values, rows, free, dim);
-            let mut correction = correction * 1e-17;
+            let inputs = bound_inputs(&mut values, rows, free, dim);
+            let mut correction = inputs.correction.clone() * 1e-17;
             correction[(0, 0)] = 0.0;
             correction[(free - 1, dim - 1)] = -0.0;
-            let shared = Shared::new(
-                &qr,
-                &y,
-                &a,
-                &target,
-                &target_size,
-                &residual,
-                2 * free,
-                &correction,
-            );
+            let shared = inputs.shared(&inputs.a, 2 * free, &correction);
             let identity = DMatrix::identity(free, free);
             let mut scratch = Scratch::default();
             for normwise in [false, true] {
@@ -2149,27 +2121,10 @@ mod tests {
         let mut values = crate::test_values::Values(7);
         for m in [2, 3, 5, 9, 20] {
             let (rows, free, dim) = (2 * (m + 1), m - 1, 2);
-            let BoundInputs {
-                a,
-                qr,
-                y,
-                target,
-                target_size,
-                residual,
-                correction,
-            } = bound_inputs(&mut values, rows, free, dim);
-            let a_abs = a.abs();
-            let correction = correction * 1e-17;
-            let shared = Shared::new(
-                &qr,
-                &y,
-                &a_abs,
-                &target,
-                &target_size,
-                &residual,
-                m,
-                &correction,
-            );
+            let inputs = bound_inputs(&mut values, rows, free, dim);
+            let a_abs = inputs.a.abs();
+            let correction = inputs.correction.clone() * 1e-17;
+            let shared = inputs.shared(&a_abs, m, &correction);
             let z = DMatrix::from_fn(m + 1, free, |i, k| if i == k + 1 { 1.0 } else { 0.0 });
             let mut scratch = Scratch::default();
             let through_z = first_order_bound(&shared, Map::Of(&z), false, &mut scratch).unwrap();
