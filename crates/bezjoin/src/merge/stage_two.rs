@@ -452,6 +452,66 @@ const SCREENED_DEGREE: usize = 5;
 const SAMPLE_LEVELS: u32 = DEVIATION_SAMPLES.trailing_zeros();
 const _: () = assert!(1 << SAMPLE_LEVELS == DEVIATION_SAMPLES);
 
+/// The level at which [`deviation_screened`] stops halving and evaluates
+/// a span's samples exactly (as [`deviation_fixed`] does): spans of
+/// [`EXACT_WIDTH`] sample spacings.
+const EXACT_LEVEL: u32 = 5;
+
+/// Sample spacings of one span at [`EXACT_LEVEL`] (a multiple of
+/// [`LANES`]).
+const EXACT_WIDTH: usize = 1 << (SAMPLE_LEVELS - EXACT_LEVEL);
+const _: () = assert!(EXACT_WIDTH % LANES == 0 && EXACT_LEVEL <= SAMPLE_LEVELS);
+
+/// The squares of samples `first .. first + EXACT_WIDTH` as
+/// [`deviation_fixed`] computes them ([`LANES`] at a time: each sample's
+/// sums from `0.0` in the order `i = 0..n`, then the square summed over
+/// the coordinates in order). `first` is a multiple of [`LANES`].
+// The lanes are read across the coordinate rows (`acc[c][k]`).
+#[allow(clippy::needless_range_loop)]
+#[inline]
+fn exact_squares<const D: usize>(table: &[f64], half: &[f64], first: usize) -> [f64; EXACT_WIDTH] {
+    let mut squares = [0.0f64; EXACT_WIDTH];
+    for (g, out) in squares.chunks_exact_mut(LANES).enumerate() {
+        let s0 = first + g * LANES;
+        let mut acc = [[0.0f64; LANES]; D];
+        for (row, p) in table.chunks_exact(TABLE_ROW).zip(half.chunks_exact(D)) {
+            let b: &[f64; LANES] = row[s0..s0 + LANES].try_into().expect("LANES entries");
+            for c in 0..D {
+                let x = p[c];
+                for k in 0..LANES {
+                    acc[c][k] += b[k] * x;
+                }
+            }
+        }
+        for k in 0..LANES {
+            let mut square = 0.0;
+            for c in 0..D {
+                square += acc[c][k] * acc[c][k];
+            }
+            out[k] = square;
+        }
+    }
+    squares
+}
+
+/// The square of sample `s` as [`deviation_fixed`] computes it (its lane).
+#[allow(clippy::needless_range_loop)]
+#[inline]
+fn exact_square<const D: usize>(table: &[f64], half: &[f64], s: usize) -> f64 {
+    let mut acc = [0.0f64; D];
+    for (row, p) in table.chunks_exact(TABLE_ROW).zip(half.chunks_exact(D)) {
+        let b = row[s];
+        for c in 0..D {
+            acc[c] += b * p[c];
+        }
+    }
+    let mut square = 0.0;
+    for c in 0..D {
+        square += acc[c] * acc[c];
+    }
+    square
+}
+
 /// Halvings [`deviation_screened`] may run before it declines (a curve
 /// whose distance is nearly the same at many samples).
 const SCREEN_BUDGET: usize = 96;
@@ -514,12 +574,18 @@ impl<const K: usize> Span<K> {
 /// it locates the samples that can hold the largest square: an interval's
 /// coefficients bound the polynomial there from above (convex hull), its
 /// end coefficients are its values at the ends, and halving an interval
-/// (de Casteljau at `1/2`) down to one sample spacing puts a sample at
-/// every end; an interval whose largest coefficient is below the best
-/// known value by more than the rounding bound `T` is dropped. The samples
-/// within `T` of the best value are then evaluated as [`deviation_fixed`]
-/// evaluates them (the same sums in the same order), and the largest of
-/// those squares is [`deviation_fixed`]'s largest square.
+/// (de Casteljau at `1/2`) down to [`EXACT_WIDTH`] sample spacings
+/// ([`EXACT_LEVEL`]) puts a sample at every end; an interval whose largest
+/// coefficient is below the best known value by more than the rounding
+/// bound `T` is dropped. The samples of every interval that reaches
+/// [`EXACT_LEVEL`] are evaluated as [`deviation_fixed`] evaluates them (the
+/// same sums in the same order; its last sample only if its value, the last
+/// coefficient, is not below `best - T`), and the largest of those squares
+/// is [`deviation_fixed`]'s largest square: the sample of that square is
+/// among them, and every square evaluated is one of [`deviation_fixed`]'s.
+/// The best known value is the largest of the halving midpoints' values and
+/// of the squares evaluated (both within the rounding below of the exact
+/// `|D(u_s)|^2`).
 ///
 /// Why the same: with `K = max_i |D_i|^2` (so `|E_k| <= K`, the weights of
 /// one `k` summing to 1), the computed coefficients are within `(n + D +
@@ -527,10 +593,11 @@ impl<const K: usize> Span<K> {
 /// every computed bound and value is within `(17n + D + 4) eps K` of the
 /// exact one; [`deviation_fixed`]'s squares are within `(4n + D + 5) eps
 /// K` of `|D(u_s)|^2`. The sample of the largest square therefore survives
-/// every comparison with the margin `(42n + 4D + 18) eps K`; `T` is four
-/// times that (plus `1e-300` for subnormal products). Declines (returns
-/// `false`, nothing noted) at degree 0 and above [`SCREENED_DEGREE`], after
-/// [`SCREEN_BUDGET`] halvings or more than 16 candidate samples, and when
+/// every comparison with the margin `(42n + 4D + 18) eps K` (a best value
+/// from an evaluated square is closer: its error is the smaller); `T` is
+/// four times that (plus `1e-300` for subnormal products). Declines
+/// (returns `false`, nothing noted) at degree 0 and above
+/// [`SCREENED_DEGREE`], after [`SCREEN_BUDGET`] halvings, and when
 /// `K` is not finite, above `f64::MAX / 1024` (so [`deviation_fixed`]'s
 /// sum of squares is finite) or below `2^-900` (subnormal rounding), or
 /// the best value is within `T + 4 MIN_POSITIVE` of zero: whenever
@@ -587,49 +654,42 @@ fn screen<const D: usize, const K: usize>(table: &[f64], half: &[f64], worst: &m
     let eps = f64::EPSILON;
     let bound = 4.0 * (42 * n + 4 * D + 18) as f64 * eps * largest_coefficient + 1e-300;
     let mut best = larger(whole.coefficients[0], whole.coefficients[degree]);
-    // Candidate samples with their polynomial values (superset of those
-    // within `bound` of the final best).
-    const CANDIDATES: usize = 16;
-    let mut candidates = [(0.0f64, 0usize); CANDIDATES];
-    let mut count = 0;
+    // The largest square of the samples evaluated exactly so far (as
+    // `deviation_fixed` evaluates them), over the spans that reach
+    // [`EXACT_LEVEL`].
+    let mut largest = 0.0f64;
     // Depth first, the half with the larger bound first: the span being
     // searched is `span`, the halves set aside wait on the stack (at most
     // one per level). A half is dropped when set aside if its bound is
     // already below `best - bound` (`best` only grows, so it would be
-    // dropped when taken up again: the same spans are searched in the
-    // same order as with both halves stacked).
-    let mut stack = [whole; SAMPLE_LEVELS as usize + 1];
+    // dropped when taken up again).
+    let mut stack = [whole; EXACT_LEVEL as usize + 1];
     let mut depth = 0;
     let mut span = whole;
     let mut halvings = 0;
     loop {
         let dropped = span.upper < best - bound;
         if !dropped {
-            if span.level == SAMPLE_LEVELS {
-                // One sample spacing: its ends are samples `first`, `first + 1`.
-                for (value, sample) in [
-                    (span.coefficients[0], span.first),
-                    (span.coefficients[degree], span.first + 1),
-                ] {
-                    if value < best - bound || candidates[..count].iter().any(|c| c.1 == sample) {
-                        continue;
-                    }
-                    if count == CANDIDATES {
-                        let mut write = 0;
-                        for read in 0..CANDIDATES {
-                            if candidates[read].0 >= best - bound {
-                                candidates[write] = candidates[read];
-                                write += 1;
-                            }
-                        }
-                        if write == CANDIDATES {
-                            return false;
-                        }
-                        count = write;
-                    }
-                    candidates[count] = (value, sample);
-                    count += 1;
+            if span.level == EXACT_LEVEL {
+                // Its samples `first .. first + EXACT_WIDTH` exactly,
+                // [`LANES`] at a time (`first` is a multiple of
+                // `EXACT_WIDTH`, itself a multiple of `LANES`), and its
+                // last sample `first + EXACT_WIDTH` alone, unless its
+                // polynomial value (the last coefficient) already rules it
+                // out.
+                let squares = exact_squares::<D>(table, half, span.first);
+                let mut here = squares[0];
+                for &square in &squares[1..] {
+                    here = larger(square, here);
                 }
+                if span.coefficients[degree] >= best - bound {
+                    here = larger(
+                        exact_square::<D>(table, half, span.first + EXACT_WIDTH),
+                        here,
+                    );
+                }
+                largest = larger(here, largest);
+                best = larger(here, best);
             } else {
                 halvings += 1;
                 if halvings > SCREEN_BUDGET {
@@ -672,27 +732,6 @@ fn screen<const D: usize, const K: usize>(table: &[f64], half: &[f64], worst: &m
     }
     if !(best.is_finite() && best - bound >= 4.0 * f64::MIN_POSITIVE) {
         return false;
-    }
-    let mut largest = 0.0f64;
-    for &(value, s) in &candidates[..count] {
-        if value < best - bound {
-            continue;
-        }
-        // Sample s as deviation_fixed sums it (its lane).
-        let mut acc = [0.0f64; D];
-        for (row, p) in table.chunks_exact(TABLE_ROW).zip(half.chunks_exact(D)) {
-            let b = row[s];
-            for c in 0..D {
-                acc[c] += b * p[c];
-            }
-        }
-        let mut square = 0.0;
-        for c in 0..D {
-            square += acc[c] * acc[c];
-        }
-        if square > largest {
-            largest = square;
-        }
     }
     worst.square = worst.square.max(largest);
     true
@@ -882,6 +921,59 @@ mod tests {
             screened_count >= 2 * 2 * SCREENED_DEGREE,
             "{screened_count}"
         );
+    }
+
+    /// The exact evaluation at [`EXACT_LEVEL`] (every sample of a span that
+    /// reaches it, its last one unless ruled out by its value) gives
+    /// `deviation_fixed`'s largest square bit for bit on many random
+    /// difference curves: ones whose largest distance lies anywhere,
+    /// including at span ends and near ties between two humps.
+    #[test]
+    fn screened_exact_spans_are_the_fixed_one_bit_for_bit() {
+        fn both<const D: usize>(n: usize, half: &[f64]) -> Option<(f64, f64)> {
+            let table = deviation_table(n).unwrap();
+            let mut screened = Worst::default();
+            if !deviation_screened::<D>(n, table, half, &mut screened) {
+                return None;
+            }
+            let mut fixed = Worst::default();
+            deviation_fixed::<D>(table, half, &mut fixed);
+            Some((screened.square, fixed.square))
+        }
+        let mut state = 7;
+        let mut screened_count = 0;
+        for case in 0..6000 {
+            let n = 1 + case % SCREENED_DEGREE;
+            let dim = 2 + (case / SCREENED_DEGREE) % 2;
+            let c = curve(&mut state, dim, n);
+            let half: Vec<f64> = if case % 3 == 0 {
+                // Symmetric control polygons: two equal humps, the
+                // largest distance decided by rounding.
+                let p = c.points();
+                (0..=n)
+                    .flat_map(|i| {
+                        let j = i.min(n - i);
+                        p[j * dim..(j + 1) * dim].to_vec()
+                    })
+                    .collect()
+            } else {
+                c.points().to_vec()
+            };
+            let result = if dim == 2 {
+                both::<2>(n, &half)
+            } else {
+                both::<3>(n, &half)
+            };
+            if let Some((screened, fixed)) = result {
+                screened_count += 1;
+                assert_eq!(
+                    screened.to_bits(),
+                    fixed.to_bits(),
+                    "case {case} degree {n} dim {dim}: {screened:e} vs {fixed:e}"
+                );
+            }
+        }
+        assert!(screened_count >= 5000, "{screened_count}");
     }
 
     /// Differences so small that their squares are subnormal or zero, and
