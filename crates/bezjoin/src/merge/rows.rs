@@ -200,6 +200,18 @@ impl<'p, 'a> Problem<'p, 'a> {
         // The two halves of a row: on the stack up to degree 15, then 63
         // (zeroing the larger buffer costs more than the rows at low
         // degree).
+        // Constant-size rows and sums up to degree 7 (the same values in
+        // the same order).
+        match points {
+            2 => return self.continuity_residual_sized::<2>(x),
+            3 => return self.continuity_residual_sized::<3>(x),
+            4 => return self.continuity_residual_sized::<4>(x),
+            5 => return self.continuity_residual_sized::<5>(x),
+            6 => return self.continuity_residual_sized::<6>(x),
+            7 => return self.continuity_residual_sized::<7>(x),
+            8 => return self.continuity_residual_sized::<8>(x),
+            _ => {}
+        }
         if points <= 16 {
             let [mut left, mut right] = [[0.0f64; 16]; 2];
             self.continuity_residual_in(x, &mut left[..points], &mut right[..points])
@@ -210,6 +222,44 @@ impl<'p, 'a> Problem<'p, 'a> {
             let (mut left, mut right) = (vec![0.0; points], vec![0.0; points]);
             self.continuity_residual_in(x, &mut left, &mut right)
         }
+    }
+
+    /// [`Problem::continuity_residual`] for `P` points per piece (`P <=
+    /// SMALL_ROWS`): the rows by [`continuity_row_small`], the sums over
+    /// fixed-size halves in the same order.
+    fn continuity_residual_sized<const P: usize>(&self, x: &DMatrix<f64>) -> f64 {
+        let m = P - 1;
+        let rows = x.nrows();
+        let mut worst = 0.0f64;
+        let mut left = [0.0f64; P];
+        let mut right = [0.0f64; P];
+        for j in 0..self.pieces.len() - 1 {
+            for r in 0..=m {
+                continuity_row_small(
+                    m,
+                    r,
+                    self.lengths[j],
+                    self.lengths[j + 1],
+                    &mut left,
+                    &mut right,
+                );
+                for column in x.as_slice().chunks_exact(rows).take(self.dim) {
+                    let here: &[f64; P] = column[j * P..(j + 1) * P].try_into().expect("P points");
+                    let next: &[f64; P] = column[(j + 1) * P..(j + 2) * P]
+                        .try_into()
+                        .expect("P points");
+                    let mut sum = 0.0;
+                    for i in m - r..P {
+                        sum += left[i] * here[i];
+                    }
+                    for i in 0..=r {
+                        sum += right[i] * next[i];
+                    }
+                    worst = worst.max(sum.abs());
+                }
+            }
+        }
+        worst
     }
 
     /// [`Problem::continuity_residual`] with the row halves' storage.
@@ -338,6 +388,68 @@ fn continuity_row_nonzero(
             }
         }
         // Left: i = m - k, sign (-1)^k; right: i = k, sign (-1)^(r-k).
+        on_left[m - k] = if k % 2 == 0 { wl * c } else { -wl * c };
+        on_right[k] = if (r - k) % 2 == 0 { -wr * c } else { wr * c };
+    }
+}
+
+/// Orders up to which [`continuity_row_small`] reads its binomials from
+/// tables.
+const SMALL_ROWS: usize = 16;
+
+/// `C(r, k)` for `r, k < SMALL_ROWS` (exact integers).
+const PASCAL: [[f64; SMALL_ROWS]; SMALL_ROWS] = {
+    let mut table = [[0.0; SMALL_ROWS]; SMALL_ROWS];
+    let mut r = 0;
+    while r < SMALL_ROWS {
+        let mut c = 1u64;
+        let mut k = 0;
+        while k <= r {
+            table[r][k] = c as f64;
+            c = c * (r - k) as u64 / (k + 1) as u64;
+            k += 1;
+        }
+        r += 1;
+    }
+    table
+};
+
+/// `C(2r, r)` for `r < SMALL_ROWS` (exact integers).
+const CENTRAL: [f64; SMALL_ROWS] = {
+    let mut table = [0.0; SMALL_ROWS];
+    let mut r = 0;
+    while r < SMALL_ROWS {
+        let mut c = 1u64;
+        let mut i = 0;
+        while i < r {
+            c = c * (2 * r - i) as u64 / (i + 1) as u64;
+            i += 1;
+        }
+        table[r] = c as f64;
+        r += 1;
+    }
+    table
+};
+
+/// [`continuity_row_nonzero`] for `r < SMALL_ROWS`, the binomials `C(2r,
+/// r)` and `C(r, k)` read from [`CENTRAL`] and [`PASCAL`] (the same exact
+/// integers as `binomial` and the integer recurrence give): the same
+/// entries.
+#[inline]
+fn continuity_row_small(
+    m: usize,
+    r: usize,
+    left: f64,
+    right: f64,
+    on_left: &mut [f64],
+    on_right: &mut [f64],
+) {
+    let longer = left.max(right);
+    let wl = (right / longer).powi(r as i32);
+    let wr = (left / longer).powi(r as i32);
+    let norm = ((wl * wl + wr * wr) * CENTRAL[r]).sqrt();
+    let (wl, wr) = (wl / norm, wr / norm);
+    for (k, &c) in PASCAL[r][..=r].iter().enumerate() {
         on_left[m - k] = if k % 2 == 0 { wl * c } else { -wl * c };
         on_right[k] = if (r - k) % 2 == 0 { -wr * c } else { wr * c };
     }
@@ -478,6 +590,7 @@ pub(super) fn extend_orthonormal<'r>(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::BezierCurve;
 
     /// The closed-form continuity row against the definition: the `r`-th
     /// derivatives of the Bernstein basis at 1 and 0 (general basis code),
@@ -510,6 +623,67 @@ mod tests {
                     }
                 }
             }
+        }
+    }
+
+    /// The table-driven rows are [`continuity_row_nonzero`]'s to the bit
+    /// (every order below [`SMALL_ROWS`], random lengths), and the
+    /// constant-size residual is the general one to the bit (degrees 1..7,
+    /// two and three pieces, dimensions 1..4, values of mixed signs and
+    /// scales).
+    #[test]
+    fn small_continuity_rows_and_residual_are_the_general_ones_to_the_bit() {
+        let mut state = 99u64;
+        let mut next = || {
+            state = state
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for m in 0..SMALL_ROWS {
+            for _ in 0..20 {
+                let (left, right) = (next(), next());
+                for r in 0..=m {
+                    let ([mut a, mut b], [mut c, mut d]) =
+                        ([[7.0; SMALL_ROWS]; 2], [[7.0; SMALL_ROWS]; 2]);
+                    continuity_row_nonzero(m, r, left, right, &mut a[..=m], &mut b[..=m]);
+                    continuity_row_small(m, r, left, right, &mut c[..=m], &mut d[..=m]);
+                    assert_eq!(a.map(f64::to_bits), c.map(f64::to_bits), "m {m} r {r}");
+                    assert_eq!(b.map(f64::to_bits), d.map(f64::to_bits), "m {m} r {r}");
+                }
+            }
+        }
+        for case in 0..600 {
+            let m = 1 + case % 7;
+            let count = 2 + case % 2;
+            let dim = 1 + case % 4;
+            let scale = [1.0, 1e-3, 1e4][case % 3];
+            let curves: Vec<BezierCurve> = (0..count)
+                .map(|_| {
+                    let points = (0..(m + 1) * dim)
+                        .map(|_| (next() * 2.0 - 1.0) * scale)
+                        .collect();
+                    BezierCurve::new(dim, m, points).unwrap()
+                })
+                .collect();
+            let pieces: Vec<PieceInput<'_>> = curves
+                .iter()
+                .map(|c| PieceInput {
+                    curve: std::borrow::Cow::Borrowed(c),
+                    name: "P",
+                    points_name: "p_points",
+                    keep: false,
+                    points: Vec::new(),
+                })
+                .collect();
+            let lengths: Vec<f64> = (0..count).map(|_| 0.05 + next()).collect();
+            let problem = Problem::new(&pieces, &lengths, false);
+            // x: the pieces' points, near-continuous, plus noise.
+            let x = DMatrix::from_fn(count * (m + 1), dim, |_, _| (next() - 0.5) * scale);
+            let sized = problem.continuity_residual(&x);
+            let [mut left, mut right] = [[0.0f64; SMALL_ROWS]; 2];
+            let general = problem.continuity_residual_in(&x, &mut left[..=m], &mut right[..=m]);
+            assert_eq!(sized.to_bits(), general.to_bits(), "case {case}");
         }
     }
 }
