@@ -848,7 +848,16 @@ pub(super) fn orthogonal_solution(
         };
         // One buffer for the solves' scratch, the refinement step and the
         // remainder.
-        let mut buffer = vec![0.0; rows + free * dim + rows * dim];
+        // (On the stack up to SOLVE_ON_STACK entries.)
+        let need = rows + free * dim + rows * dim;
+        let mut on_stack = [0.0f64; SOLVE_ON_STACK];
+        let mut on_heap = Vec::new();
+        let buffer: &mut [f64] = if need <= SOLVE_ON_STACK {
+            &mut on_stack[..need]
+        } else {
+            on_heap.resize(need, 0.0);
+            &mut on_heap
+        };
         let (work, rest) = buffer.split_at_mut(rows);
         let (step, remainder) = rest.split_at_mut(free * dim);
         let mut y = DMatrix::zeros(free, dim);
@@ -1283,20 +1292,64 @@ impl<'s> Shared<'s> {
     }
 }
 
+/// Entries of the solves' buffer in [`orthogonal_solution`] kept on the
+/// stack (two pieces of degree 3 in space: `8 + 6 + 24 = 38`).
+const SOLVE_ON_STACK: usize = 64;
+
 /// The buffer of [`first_order_bound`], kept between its calls for the
 /// pieces and for `R` (the same values, one allocation); after a call for
 /// the pieces of the discrete metric it holds `|K2|` ([`Scratch::k2`]).
-#[derive(Default)]
+///
+/// Up to [`SCRATCH_ON_STACK`] entries it lives on the stack (`small`,
+/// zeros at first, as a new `Vec` resized with zeros); beyond, in `large`,
+/// which starts as a copy of `small` and grows with zeros: every call sees
+/// the same contents as with one `Vec` grown to the largest need so far.
 struct Scratch {
-    buffer: Vec<f64>,
+    small: [f64; SCRATCH_ON_STACK],
+    large: Vec<f64>,
+}
+
+/// Entries of [`Scratch`] kept on the stack (the buffer of two pieces of
+/// degree 5 in the discrete metric: `2 + 12 + 144 + 48 = 206`).
+const SCRATCH_ON_STACK: usize = 224;
+
+impl Default for Scratch {
+    fn default() -> Self {
+        Self {
+            small: [0.0; SCRATCH_ON_STACK],
+            large: Vec::new(),
+        }
+    }
 }
 
 impl Scratch {
+    /// The buffer with at least `need` entries.
+    fn buffer_mut(&mut self, need: usize) -> &mut [f64] {
+        if self.large.is_empty() && need <= SCRATCH_ON_STACK {
+            return &mut self.small;
+        }
+        if self.large.is_empty() {
+            self.large.extend_from_slice(&self.small);
+        }
+        if self.large.len() < need {
+            self.large.resize(need, 0.0);
+        }
+        &mut self.large
+    }
+
+    fn buffer(&self) -> &[f64] {
+        if self.large.is_empty() {
+            &self.small
+        } else {
+            &self.large
+        }
+    }
+
     /// `|K2|` (column-major `rows x free`) of the last call of
     /// [`first_order_bound`] without a map.
     fn k2(&self, rows: usize, free: usize) -> &[f64] {
         let start = free + rows + rows * rows;
-        &self.buffer[start..start + rows * free]
+        &self.buffer()[start..start + rows * free]
     }
 }
 
@@ -1459,10 +1512,7 @@ fn first_order_bound_sized<const R: usize, const F: usize, const O: usize>(
     // and then K2 (out x free).
     let acc_len = rows.max(out);
     let need = free + acc_len + out * rows + out * free;
-    if scratch.buffer.len() < need {
-        scratch.buffer.resize(need, 0.0);
-    }
-    let (w, rest) = scratch.buffer.split_at_mut(free);
+    let (w, rest) = scratch.buffer_mut(need).split_at_mut(free);
     let (acc, rest) = rest.split_at_mut(acc_len);
     let (k1, rest) = rest.split_at_mut(out * rows);
     let k0 = &mut rest[..out * free];
@@ -1842,6 +1892,52 @@ mod tests {
             && a.iter()
                 .zip(b.iter())
                 .all(|(x, y)| x.to_bits() == y.to_bits())
+    }
+
+    /// `Scratch` holds what one `Vec` grown with zeros to the largest need
+    /// so far would hold: zeros at first, earlier writes kept when a later
+    /// need crosses from the stack to the heap, and zeros in the growth;
+    /// `k2` reads the buffer in use.
+    #[test]
+    fn scratch_is_a_vec_grown_with_zeros() {
+        let mut scratch = Scratch::default();
+        let mut reference: Vec<f64> = Vec::new();
+        let mut next = 1.0;
+        for need in [
+            5,
+            40,
+            SCRATCH_ON_STACK,
+            3,
+            SCRATCH_ON_STACK + 1,
+            10,
+            700,
+            20,
+        ] {
+            if reference.len() < need {
+                reference.resize(need, 0.0);
+            }
+            let buffer = scratch.buffer_mut(need);
+            assert!(buffer.len() >= need);
+            assert_eq!(
+                buffer[..reference.len().min(buffer.len())],
+                reference[..reference.len().min(buffer.len())],
+                "need {need}"
+            );
+            // Write part of the need, as a call does.
+            for (b, r) in buffer[..need / 2].iter_mut().zip(&mut reference) {
+                *b = next;
+                *r = next;
+                next += 1.0;
+            }
+            let (rows, free) = (2, 1);
+            let start = free + rows + rows * rows;
+            if reference.len() >= start + rows * free {
+                assert_eq!(
+                    scratch.k2(rows, free),
+                    &reference[start..start + rows * free]
+                );
+            }
+        }
     }
 
     /// The slice products replace nalgebra's operators bit for bit: `a *
