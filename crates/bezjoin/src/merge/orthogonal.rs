@@ -1254,7 +1254,11 @@ impl<'s> Shared<'s> {
     ) -> Self {
         let (rows, free, dim) = (qr.rows(), qr.cols(), y.ncols());
         debug_assert!(target_size.shape() == (rows, dim) && residual.shape() == (rows, dim));
-        let mut values = vec![0.0; rows * free + rows * dim + free * dim];
+        // Zeros written by a fill loop (`repeat_n`): `vec![0.0; n]` is a
+        // `calloc`, which glibc serves without its thread cache (about
+        // four times a small `malloc`).
+        let mut values: Vec<f64> =
+            std::iter::repeat_n(0.0, rows * free + rows * dim + free * dim).collect();
         let (q, rest) = values.split_at_mut(rows * free);
         let (through_values, through_residual) = rest.split_at_mut(rows * dim);
         qr.thin_q_into(q);
