@@ -7,6 +7,12 @@ use super::{NurbsCurve, unit_weights_dropped};
 use crate::basis::{KnotSide, find_span};
 use crate::error::{BezjoinError, Result, check_finite_scalar};
 
+/// Values of the window of [`NurbsCurve::clamped_trim_windowed`]: `2 p + 1`
+/// rows of `dim + 1` values.
+const TRIM_ROWS: usize = 64;
+/// Knots of that window: `3 p + 1`.
+const TRIM_KNOTS: usize = 32;
+
 impl NurbsCurve {
     /// Multiplicity of the value `u` in the knot vector.
     pub fn multiplicity(&self, u: f64) -> usize {
@@ -199,8 +205,6 @@ impl NurbsCurve {
     /// multiplicity `p` or more, the curve is not clamped, `u` is not
     /// strictly inside, or the window does not fit its buffers.
     pub(crate) fn clamped_trim_windowed(&self, u: f64, left: bool) -> Option<NurbsCurve> {
-        const ROWS: usize = 64;
-        const KNOTS: usize = 32;
         let p = self.degree;
         let (first_u, last_u) = self.domain();
         let n = self.point_count();
@@ -214,16 +218,40 @@ impl NurbsCurve {
             return None;
         }
         let times = p - now;
-        let rational = self.weights.is_some();
-        let (dim, hd) = (self.dim, self.dim + usize::from(rational));
-        if (2 * p + 1) * hd > ROWS || 3 * p + 1 > KNOTS {
+        let hd = self.dim + usize::from(self.weights.is_some());
+        if (2 * p + 1) * hd > TRIM_ROWS || 3 * p + 1 > TRIM_KNOTS {
             return None;
         }
         let first = find_span(&self.knots, p, u, KnotSide::Right);
+        // Cubics in the plane and in space, with and without weights, with
+        // the sizes as constants: the same operations.
+        Some(match (p, hd) {
+            (3, 2) => self.trim_window(3, 2, u, left, first, times),
+            (3, 3) => self.trim_window(3, 3, u, left, first, times),
+            (3, 4) => self.trim_window(3, 4, u, left, first, times),
+            _ => self.trim_window(p, hd, u, left, first, times),
+        })
+    }
+
+    /// The body of [`clamped_trim_windowed`](Self::clamped_trim_windowed):
+    /// degree `p`, rows of `hd` values, `first` the span of `u` from the
+    /// right, `times` insertions; the buffers fit.
+    #[inline(always)]
+    fn trim_window(
+        &self,
+        p: usize,
+        hd: usize,
+        u: f64,
+        left: bool,
+        first: usize,
+        times: usize,
+    ) -> NurbsCurve {
+        let rational = self.weights.is_some();
+        let (dim, n) = (self.dim, self.point_count());
         let lo = first - p;
         // The window: rows `lo ..= first` (homogeneous with weights) and
         // knots `lo ..= first + p`, local indices from `lo`.
-        let mut h = [0.0f64; ROWS];
+        let mut h = [0.0f64; TRIM_ROWS];
         for (r, row) in h[..(p + 1) * hd].chunks_exact_mut(hd).enumerate() {
             if rational {
                 self.homogeneous_point(lo + r, row);
@@ -231,7 +259,7 @@ impl NurbsCurve {
                 row.copy_from_slice(self.point(lo + r));
             }
         }
-        let mut kn = [0.0f64; KNOTS];
+        let mut kn = [0.0f64; TRIM_KNOTS];
         kn[..2 * p + 1].copy_from_slice(&self.knots[lo..=first + p]);
         let mut kn_len = 2 * p + 1;
         // `insert_in_place`'s loop with `first` at local `p`.
@@ -297,14 +325,14 @@ impl NurbsCurve {
             k.extend_from_slice(&self.knots[first + 1..]);
             k
         };
-        Some(NurbsCurve {
+        NurbsCurve {
             degree: p,
             dim,
             knots,
             points,
             weights: rational.then_some(weights),
             span_cache: Default::default(),
-        })
+        }
     }
 
     /// [`clamped_trim`](Self::clamped_trim) by insertions on all rows (the
