@@ -295,7 +295,7 @@ impl<const N: usize> RationalPoly<N> {
                     if !(row[2] > 0.0 && row[2].is_finite()) {
                         return None;
                     }
-                    h.copy_from_slice(row);
+                    *h = [row[0], row[1], row[2]];
                 }
             }
             None => {
@@ -322,7 +322,16 @@ impl<const N: usize> RationalPoly<N> {
     /// homogeneous points (as [`Poly::segment`] on the Cartesian ones),
     /// then projected.
     fn segment(&self, s: f64, t: f64) -> RationalPoly<N> {
-        let n = self.projected.n;
+        // Cubics with the degree as a constant: the same operations.
+        match self.projected.n {
+            3 => self.segment_n(3, s, t),
+            n => self.segment_n(n, s, t),
+        }
+    }
+
+    /// [`Self::segment`] of degree `n` (`self.projected.n`).
+    #[inline(always)]
+    fn segment_n(&self, n: usize, s: f64, t: f64) -> RationalPoly<N> {
         let mut h = self.homogeneous;
         if t < 1.0 {
             keep_left_rows(&mut h, n, t);
@@ -398,16 +407,24 @@ fn clip_rational<const N: usize>(
     b: &RationalPoly<N>,
     margin: f64,
 ) -> Option<(f64, f64)> {
-    let n = a.projected.n.min(N - 1);
+    // Cubics with the degrees as constants (unrolled): the same operations.
+    match (a.projected.n.min(N - 1), b.projected.n.min(N - 1)) {
+        (3, 3) => clip_rational_n(a, 3, b, 3, margin),
+        (n, m) => clip_rational_n(a, n, b, m, margin),
+    }
+}
+
+/// [`clip_rational`] for `a` of degree `n` and `b` of degree `m`.
+#[inline(always)]
+fn clip_rational_n<const N: usize>(
+    a: &RationalPoly<N>,
+    n: usize,
+    b: &RationalPoly<N>,
+    m: usize,
+    margin: f64,
+) -> Option<(f64, f64)> {
     let mut e = [0.0; N];
-    let Some((lo, hi)) = distances(
-        &a.projected,
-        n,
-        &b.projected,
-        b.projected.n.min(N - 1),
-        margin,
-        &mut e,
-    ) else {
+    let Some((lo, hi)) = distances(&a.projected, n, &b.projected, m, margin, &mut e) else {
         return Some((0.0, 1.0));
     };
     let (mut above, mut below) = ([0.0; N], [0.0; N]);

@@ -253,10 +253,17 @@ impl NurbsCurve {
         // knots `lo ..= first + p`, local indices from `lo`.
         let mut h = [0.0f64; TRIM_ROWS];
         for (r, row) in h[..(p + 1) * hd].chunks_exact_mut(hd).enumerate() {
-            if rational {
-                self.homogeneous_point(lo + r, row);
-            } else {
-                row.copy_from_slice(self.point(lo + r));
+            let x = self.point(lo + r);
+            match &self.weights {
+                // `homogeneous_point`'s operations.
+                Some(weights) => {
+                    let w = weights[lo + r];
+                    for (o, x) in row.iter_mut().zip(x) {
+                        *o = w * x;
+                    }
+                    row[dim] = w;
+                }
+                None => row.copy_from_slice(x),
             }
         }
         let mut kn = [0.0f64; TRIM_KNOTS];
