@@ -288,9 +288,20 @@ impl<const N: usize> RationalPoly<N> {
         if n == 0 || n >= N || piece.dim() != 2 {
             return None;
         }
+        // Cubics with the degree as a constant: the same rows and checks.
+        match n {
+            3 => Self::from_piece_n(piece, 3),
+            n => Self::from_piece_n(piece, n),
+        }
+    }
+
+    /// [`Self::from_piece`] of degree `n` (`0 < n < N`, the plane).
+    #[inline(always)]
+    fn from_piece_n(piece: &Piece, n: usize) -> Option<RationalPoly<N>> {
         let mut homogeneous = [[0.0; 3]; N];
         match piece.homogeneous() {
             Some(rows) => {
+                let rows = &rows[..3 * (n + 1)];
                 for (h, row) in homogeneous.iter_mut().zip(rows.chunks_exact(3)) {
                     if !(row[2] > 0.0 && row[2].is_finite()) {
                         return None;
@@ -299,7 +310,8 @@ impl<const N: usize> RationalPoly<N> {
                 }
             }
             None => {
-                for (h, row) in homogeneous.iter_mut().zip(piece.points().chunks_exact(2)) {
+                let rows = &piece.points()[..2 * (n + 1)];
+                for (h, row) in homogeneous.iter_mut().zip(rows.chunks_exact(2)) {
                     *h = [row[0], row[1], 1.0];
                 }
             }
@@ -1245,11 +1257,13 @@ mod tests {
         );
     }
 
-    /// The rational cubics' constant-degree paths (`RationalPoly::segment`
-    /// and `clip_rational` on degree 3) are the same bodies run with the
-    /// degree unknown at compile time, to the bit (homogeneous rows,
-    /// projections, clipped intervals), on fixed-seed random rational
-    /// cubics with weights in `[0.3, 3]`.
+    /// The rational cubics' constant-degree paths (`RationalPoly::segment`,
+    /// `clip_rational` and `RationalPoly::from_piece` on degree 3) are the
+    /// same bodies run with the degree unknown at compile time, to the bit
+    /// (homogeneous rows, projections, clipped intervals), on fixed-seed
+    /// random rational cubics with weights in `[0.3, 3]` (and, for
+    /// `from_piece`, the spans of two-span rational NURBS cubics and
+    /// Bezier cubics' pieces).
     #[test]
     fn rational_constant_degree_paths_are_the_general_ones_to_the_bit() {
         use super::{Poly, RationalPoly, SMALL, clip_rational, clip_rational_n};
@@ -1309,5 +1323,36 @@ mod tests {
             }
         }
         assert!(clipped > 100, "{clipped}");
+        // `from_piece` of cubic pieces (rational spans of two-span NURBS
+        // cubics, and a Bezier cubic's piece) with the degree constant is
+        // the body with the degree unknown.
+        let mut built = 0;
+        for case in 0..100 {
+            let poles: Vec<f64> = (0..8).map(|_| rng.range(-1.0, 1.0)).collect();
+            let weights: Vec<f64> = (0..4).map(|_| rng.range(0.3, 3.0)).collect();
+            let knots = vec![0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0];
+            let curve = crate::NurbsCurve::new(2, 3, poles.clone(), Some(weights), knots)
+                .unwrap()
+                .insert_knot(rng.range(0.2, 0.8), 1)
+                .unwrap();
+            let bezier = crate::BezierCurve::new(2, 3, poles).unwrap();
+            for track in [
+                super::super::track::Track::new(CurveRef::from(&curve)),
+                super::super::track::Track::new(CurveRef::from(&bezier)),
+            ] {
+                for piece in track.pieces().iter() {
+                    let x = RationalPoly::<SMALL>::from_piece(piece).unwrap();
+                    let y = RationalPoly::<SMALL>::from_piece_n(piece, three_constant()).unwrap();
+                    assert_eq!(bits(&x), bits(&y), "case {case}: from_piece");
+                    built += 1;
+                }
+            }
+        }
+        assert_eq!(built, 300);
+    }
+
+    /// 3, unknown at compile time.
+    fn three_constant() -> usize {
+        std::hint::black_box(3)
     }
 }
