@@ -288,18 +288,30 @@ impl<const N: usize> RationalPoly<N> {
         if n == 0 || n >= N || piece.dim() != 2 {
             return None;
         }
+        // Cubics with the degree as a constant: the same rows and checks.
+        match n {
+            3 => Self::from_piece_n(piece, 3),
+            n => Self::from_piece_n(piece, n),
+        }
+    }
+
+    /// [`Self::from_piece`] of degree `n` (`0 < n < N`, the plane).
+    #[inline(always)]
+    fn from_piece_n(piece: &Piece, n: usize) -> Option<RationalPoly<N>> {
         let mut homogeneous = [[0.0; 3]; N];
         match piece.homogeneous() {
             Some(rows) => {
+                let rows = &rows[..3 * (n + 1)];
                 for (h, row) in homogeneous.iter_mut().zip(rows.chunks_exact(3)) {
                     if !(row[2] > 0.0 && row[2].is_finite()) {
                         return None;
                     }
-                    h.copy_from_slice(row);
+                    *h = [row[0], row[1], row[2]];
                 }
             }
             None => {
-                for (h, row) in homogeneous.iter_mut().zip(piece.points().chunks_exact(2)) {
+                let rows = &piece.points()[..2 * (n + 1)];
+                for (h, row) in homogeneous.iter_mut().zip(rows.chunks_exact(2)) {
                     *h = [row[0], row[1], 1.0];
                 }
             }
@@ -322,7 +334,16 @@ impl<const N: usize> RationalPoly<N> {
     /// homogeneous points (as [`Poly::segment`] on the Cartesian ones),
     /// then projected.
     fn segment(&self, s: f64, t: f64) -> RationalPoly<N> {
-        let n = self.projected.n;
+        // Cubics with the degree as a constant: the same operations.
+        match self.projected.n {
+            3 => self.segment_n(3, s, t),
+            n => self.segment_n(n, s, t),
+        }
+    }
+
+    /// [`Self::segment`] of degree `n` (`self.projected.n`).
+    #[inline(always)]
+    fn segment_n(&self, n: usize, s: f64, t: f64) -> RationalPoly<N> {
         let mut h = self.homogeneous;
         if t < 1.0 {
             keep_left_rows(&mut h, n, t);
@@ -398,16 +419,24 @@ fn clip_rational<const N: usize>(
     b: &RationalPoly<N>,
     margin: f64,
 ) -> Option<(f64, f64)> {
-    let n = a.projected.n.min(N - 1);
+    // Cubics with the degrees as constants (unrolled): the same operations.
+    match (a.projected.n.min(N - 1), b.projected.n.min(N - 1)) {
+        (3, 3) => clip_rational_n(a, 3, b, 3, margin),
+        (n, m) => clip_rational_n(a, n, b, m, margin),
+    }
+}
+
+/// [`clip_rational`] for `a` of degree `n` and `b` of degree `m`.
+#[inline(always)]
+fn clip_rational_n<const N: usize>(
+    a: &RationalPoly<N>,
+    n: usize,
+    b: &RationalPoly<N>,
+    m: usize,
+    margin: f64,
+) -> Option<(f64, f64)> {
     let mut e = [0.0; N];
-    let Some((lo, hi)) = distances(
-        &a.projected,
-        n,
-        &b.projected,
-        b.projected.n.min(N - 1),
-        margin,
-        &mut e,
-    ) else {
+    let Some((lo, hi)) = distances(&a.projected, n, &b.projected, m, margin, &mut e) else {
         return Some((0.0, 1.0));
     };
     let (mut above, mut below) = ([0.0; N], [0.0; N]);
@@ -1226,5 +1255,104 @@ mod tests {
             flat > 100 && curved > 100 && clipped > 100,
             "{flat} {curved} {clipped}"
         );
+    }
+
+    /// The rational cubics' constant-degree paths (`RationalPoly::segment`,
+    /// `clip_rational` and `RationalPoly::from_piece` on degree 3) are the
+    /// same bodies run with the degree unknown at compile time, to the bit
+    /// (homogeneous rows, projections, clipped intervals), on fixed-seed
+    /// random rational cubics with weights in `[0.3, 3]` (and, for
+    /// `from_piece`, the spans of two-span rational NURBS cubics and
+    /// Bezier cubics' pieces).
+    #[test]
+    fn rational_constant_degree_paths_are_the_general_ones_to_the_bit() {
+        use super::{Poly, RationalPoly, SMALL, clip_rational, clip_rational_n};
+        use std::hint::black_box;
+        let bits = |p: &RationalPoly<SMALL>| -> Vec<u64> {
+            let h = p.homogeneous.iter().flatten();
+            h.chain(p.projected.points.iter().flatten())
+                .map(|x| x.to_bits())
+                .collect()
+        };
+        let pair_bits = |r: Option<(f64, f64)>| r.map(|(a, b)| (a.to_bits(), b.to_bits()));
+        let mut rng = Lcg(41);
+        let mut clipped = 0;
+        for case in 0..400 {
+            let mut poly = |scale: f64| {
+                let mut homogeneous = [[0.0; 3]; SMALL];
+                let mut projected = Poly::<SMALL> {
+                    n: 3,
+                    points: [[0.0; 2]; SMALL],
+                };
+                for (h, p) in homogeneous.iter_mut().zip(&mut projected.points).take(4) {
+                    let w = rng.range(0.3, 3.0);
+                    let (x, y) = (scale * rng.range(-1.0, 1.0), rng.range(-1.0, 1.0));
+                    *h = [w * x, w * y, w];
+                    *p = [h[0] / h[2], h[1] / h[2]];
+                }
+                RationalPoly {
+                    homogeneous,
+                    projected,
+                }
+            };
+            let (a, b) = (poly(1.0), poly(1.0));
+            // A flat one (small extent across), so that clips cut.
+            let c = poly(0.05);
+            let three = black_box(3);
+            for p in [a, b, c] {
+                let (s, t) = (rng.range(0.0, 0.5), rng.range(0.5, 1.0));
+                for (s, t) in [(s, t), (0.0, t), (s, 1.0)] {
+                    assert_eq!(
+                        bits(&p.segment(s, t)),
+                        bits(&p.segment_n(three, s, t)),
+                        "case {case}: segment {s} {t}"
+                    );
+                }
+            }
+            for (p, q) in [(&a, &b), (&b, &a), (&a, &c), (&c, &a), (&b, &c)] {
+                let margin = rng.range(0.0, 1e-2);
+                let x = clip_rational(p, q, margin);
+                assert_eq!(
+                    pair_bits(x),
+                    pair_bits(clip_rational_n(p, three, q, three, margin)),
+                    "case {case}: clip"
+                );
+                if x.is_some_and(|(lo, hi)| lo > 0.0 || hi < 1.0) {
+                    clipped += 1;
+                }
+            }
+        }
+        assert!(clipped > 100, "{clipped}");
+        // `from_piece` of cubic pieces (rational spans of two-span NURBS
+        // cubics, and a Bezier cubic's piece) with the degree constant is
+        // the body with the degree unknown.
+        let mut built = 0;
+        for case in 0..100 {
+            let poles: Vec<f64> = (0..8).map(|_| rng.range(-1.0, 1.0)).collect();
+            let weights: Vec<f64> = (0..4).map(|_| rng.range(0.3, 3.0)).collect();
+            let knots = vec![0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0];
+            let curve = crate::NurbsCurve::new(2, 3, poles.clone(), Some(weights), knots)
+                .unwrap()
+                .insert_knot(rng.range(0.2, 0.8), 1)
+                .unwrap();
+            let bezier = crate::BezierCurve::new(2, 3, poles).unwrap();
+            for track in [
+                super::super::track::Track::new(CurveRef::from(&curve)),
+                super::super::track::Track::new(CurveRef::from(&bezier)),
+            ] {
+                for piece in track.pieces().iter() {
+                    let x = RationalPoly::<SMALL>::from_piece(piece).unwrap();
+                    let y = RationalPoly::<SMALL>::from_piece_n(piece, three_constant()).unwrap();
+                    assert_eq!(bits(&x), bits(&y), "case {case}: from_piece");
+                    built += 1;
+                }
+            }
+        }
+        assert_eq!(built, 300);
+    }
+
+    /// 3, unknown at compile time.
+    fn three_constant() -> usize {
+        std::hint::black_box(3)
     }
 }

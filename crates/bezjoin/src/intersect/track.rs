@@ -494,6 +494,15 @@ impl<'a> Piece<'a> {
         if !widened.is_finite() {
             return true;
         }
+        // Cubics in the plane and in space, with and without weights, with
+        // the sizes as constants: the same operations in the same order.
+        match (n, d, rational) {
+            (3, 2, true) => return halves_fixed::<4, 2, 3>(points, x, widened, NEAR_LEVELS),
+            (3, 2, false) => return halves_fixed::<4, 2, 2>(points, x, widened, NEAR_LEVELS),
+            (3, 3, true) => return halves_fixed::<4, 3, 4>(points, x, widened, NEAR_LEVELS),
+            (3, 3, false) => return halves_fixed::<4, 3, 3>(points, x, widened, NEAR_LEVELS),
+            _ => {}
+        }
         let mut work = [0.0f64; (NEAR_MAX_DEGREE + 1) * NEAR_MAX_DIM];
         work[..points.len()].copy_from_slice(points);
         halves_come_within(&work, n, d, rational, x, widened, NEAR_LEVELS)
@@ -609,6 +618,69 @@ fn halves_come_within(
     }
     halves_come_within(&left, n, d, rational, x, margin, levels - 1)
         || halves_come_within(&right, n, d, rational, x, margin, levels - 1)
+}
+
+/// [`halves_come_within`] for `R` rows of `W` values in dimension `D`
+/// (`W = D + 1`: homogeneous rows of a rational piece), the rows given
+/// row-major in `points`: the same comparisons on the same values.
+fn halves_fixed<const R: usize, const D: usize, const W: usize>(
+    points: &[f64],
+    x: &[f64],
+    margin: f64,
+    levels: u32,
+) -> bool {
+    let mut rows = [[0.0f64; W]; R];
+    for (row, values) in rows.iter_mut().zip(points.chunks_exact(W)) {
+        row.copy_from_slice(values);
+    }
+    let mut at = [0.0f64; D];
+    at.copy_from_slice(&x[..D]);
+    halves_fixed_rows::<R, D, W>(&rows, &at, margin, levels)
+}
+
+/// The recursion of [`halves_fixed`].
+#[allow(clippy::needless_range_loop)] // rows `i - 1` and `i` in one statement
+fn halves_fixed_rows<const R: usize, const D: usize, const W: usize>(
+    points: &[[f64; W]; R],
+    x: &[f64; D],
+    margin: f64,
+    levels: u32,
+) -> bool {
+    let rational = W > D;
+    for c in 0..D {
+        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+        for row in points {
+            let v = if rational { row[c] / row[D] } else { row[c] };
+            lo = lo.min(v);
+            hi = hi.max(v);
+        }
+        // A NaN coordinate (of the piece or of `x`) proves nothing.
+        let inside = x[c] >= lo - margin && x[c] <= hi + margin;
+        if !(inside || lo.is_nan() || x[c].is_nan()) {
+            return false;
+        }
+    }
+    if levels == 0 {
+        return true;
+    }
+    let mut left = *points;
+    let mut right = *points;
+    for r in 1..R {
+        for i in (r..R).rev() {
+            for c in 0..W {
+                left[i][c] = 0.5 * (left[i - 1][c] + left[i][c]);
+            }
+        }
+    }
+    for r in 1..R {
+        for i in 0..R - r {
+            for c in 0..W {
+                right[i][c] = 0.5 * (right[i][c] + right[i + 1][c]);
+            }
+        }
+    }
+    halves_fixed_rows::<R, D, W>(&left, x, margin, levels - 1)
+        || halves_fixed_rows::<R, D, W>(&right, x, margin, levels - 1)
 }
 
 /// `P(t)` and `P'(t)` of a Bezier curve by de Casteljau's scheme
@@ -836,6 +908,53 @@ mod near_tests {
     fn may_come_within_refuses_only_far_points_rational() {
         let pruned = refusals_are_far(true);
         assert!(pruned > 100, "the halves pruned only {pruned} points");
+    }
+
+    /// The cubics' fixed-size halvings answer as the general ones: random
+    /// cubics in the plane and in space, with and without weights, points
+    /// near the curve and anywhere in its box, several margins; both
+    /// answers occur.
+    #[test]
+    fn fixed_halvings_answer_as_the_general_ones() {
+        let mut next = crate::test_values::unit_generator(23);
+        let (mut yes, mut no) = (0, 0);
+        for case in 0..400 {
+            let dim = 2 + case % 2;
+            let rational = case % 4 < 2;
+            let width = dim + usize::from(rational);
+            let points: Vec<f64> = (0..4)
+                .flat_map(|_| {
+                    let w = if rational { 0.3 + 2.7 * next() } else { 1.0 };
+                    let mut row: Vec<f64> = (0..dim).map(|_| w * (2.0 * next() - 1.0)).collect();
+                    if rational {
+                        row.push(w);
+                    }
+                    row
+                })
+                .collect();
+            let mut work = [0.0f64; (super::NEAR_MAX_DEGREE + 1) * super::NEAR_MAX_DIM];
+            work[..points.len()].copy_from_slice(&points);
+            for trial in 0..10 {
+                let x: Vec<f64> = (0..dim).map(|_| 2.0 * next() - 1.0).collect();
+                let margin = [1e-9, 1e-3, 3e-2, 0.1, 0.3][trial % 5];
+                let levels = [super::NEAR_LEVELS, 2, 0][trial % 3];
+                let general =
+                    super::halves_come_within(&work, 3, dim, rational, &x, margin, levels);
+                let fixed = match (dim, rational) {
+                    (2, true) => super::halves_fixed::<4, 2, 3>(&points, &x, margin, levels),
+                    (2, false) => super::halves_fixed::<4, 2, 2>(&points, &x, margin, levels),
+                    (3, true) => super::halves_fixed::<4, 3, 4>(&points, &x, margin, levels),
+                    _ => super::halves_fixed::<4, 3, 3>(&points, &x, margin, levels),
+                };
+                assert_eq!(fixed, general, "case {case} trial {trial} width {width}");
+                if general {
+                    yes += 1;
+                } else {
+                    no += 1;
+                }
+            }
+        }
+        assert!(yes > 400 && no > 400, "{yes} {no}");
     }
 
     /// The check of the two tests above; the count of points refused that

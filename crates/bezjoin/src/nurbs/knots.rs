@@ -7,6 +7,12 @@ use super::{NurbsCurve, unit_weights_dropped};
 use crate::basis::{KnotSide, find_span};
 use crate::error::{BezjoinError, Result, check_finite_scalar};
 
+/// Values of the window of [`NurbsCurve::clamped_trim_windowed`]: `2 p + 1`
+/// rows of `dim + 1` values.
+const TRIM_ROWS: usize = 64;
+/// Knots of that window: `3 p + 1`.
+const TRIM_KNOTS: usize = 32;
+
 impl NurbsCurve {
     /// Multiplicity of the value `u` in the knot vector.
     pub fn multiplicity(&self, u: f64) -> usize {
@@ -184,6 +190,161 @@ impl NurbsCurve {
     /// the poles are the same bits either way), then the rows and knots of
     /// the side asked for. `None` for other curves or parameters.
     pub(crate) fn clamped_trim(&self, u: f64, left: bool) -> Option<NurbsCurve> {
+        self.clamped_trim_windowed(u, left)
+            .or_else(|| self.clamped_trim_by_insertion(u, left))
+    }
+
+    /// [`clamped_trim`](Self::clamped_trim) with the insertions on a window
+    /// of `p + 1` rows on the stack: the insertions of `u` read only the
+    /// original rows `first - p ..= first` (`first` the span of `u` from the
+    /// right; every later row only moves) and the knots `first - p ..=
+    /// first + p` with the inserted `u`s, so the same loop on those rows
+    /// and knots gives the same bits; the rows outside the window are the
+    /// curve's own (with weights through `(w x) / w`, as the full path
+    /// gives them). `None` (the full path answers) when `u` already has
+    /// multiplicity `p` or more, the curve is not clamped, `u` is not
+    /// strictly inside, or the window does not fit its buffers.
+    pub(crate) fn clamped_trim_windowed(&self, u: f64, left: bool) -> Option<NurbsCurve> {
+        let p = self.degree;
+        let (first_u, last_u) = self.domain();
+        let n = self.point_count();
+        if !(u > first_u && u < last_u) || p == 0 {
+            return None;
+        }
+        let clamped = self.knots[..=p].iter().all(|&k| k == first_u)
+            && self.knots[n..].iter().all(|&k| k == last_u);
+        let now = self.multiplicity(u);
+        if !clamped || now >= p {
+            return None;
+        }
+        let times = p - now;
+        let hd = self.dim + usize::from(self.weights.is_some());
+        if (2 * p + 1) * hd > TRIM_ROWS || 3 * p + 1 > TRIM_KNOTS {
+            return None;
+        }
+        let first = find_span(&self.knots, p, u, KnotSide::Right);
+        // Cubics in the plane and in space, with and without weights, with
+        // the sizes as constants: the same operations.
+        Some(match (p, hd) {
+            (3, 2) => self.trim_window(3, 2, u, left, first, times),
+            (3, 3) => self.trim_window(3, 3, u, left, first, times),
+            (3, 4) => self.trim_window(3, 4, u, left, first, times),
+            _ => self.trim_window(p, hd, u, left, first, times),
+        })
+    }
+
+    /// The body of [`clamped_trim_windowed`](Self::clamped_trim_windowed):
+    /// degree `p`, rows of `hd` values, `first` the span of `u` from the
+    /// right, `times` insertions; the buffers fit.
+    #[inline(always)]
+    fn trim_window(
+        &self,
+        p: usize,
+        hd: usize,
+        u: f64,
+        left: bool,
+        first: usize,
+        times: usize,
+    ) -> NurbsCurve {
+        let rational = self.weights.is_some();
+        let (dim, n) = (self.dim, self.point_count());
+        let lo = first - p;
+        // The window: rows `lo ..= first` (homogeneous with weights) and
+        // knots `lo ..= first + p`, local indices from `lo`.
+        let mut h = [0.0f64; TRIM_ROWS];
+        for (r, row) in h[..(p + 1) * hd].chunks_exact_mut(hd).enumerate() {
+            let x = self.point(lo + r);
+            match &self.weights {
+                // `homogeneous_point`'s operations.
+                Some(weights) => {
+                    let w = weights[lo + r];
+                    for (o, x) in row.iter_mut().zip(x) {
+                        *o = w * x;
+                    }
+                    row[dim] = w;
+                }
+                None => row.copy_from_slice(x),
+            }
+        }
+        let mut kn = [0.0f64; TRIM_KNOTS];
+        kn[..2 * p + 1].copy_from_slice(&self.knots[lo..=first + p]);
+        let mut kn_len = 2 * p + 1;
+        // `insert_in_place`'s loop with `first` at local `p`.
+        for r in 0..times {
+            let k = p + r;
+            h.copy_within(k * hd..(k + 1) * hd, (k + 1) * hd);
+            for i in ((k + 1 - p)..=k).rev() {
+                let a = (u - kn[i]) / (kn[i + p] - kn[i]);
+                for c in 0..hd {
+                    h[i * hd + c] = a * h[i * hd + c] + (1.0 - a) * h[(i - 1) * hd + c];
+                }
+            }
+            kn.copy_within(k + 1..kn_len, k + 2);
+            kn[k + 1] = u;
+            kn_len += 1;
+        }
+        // After the insertions `u` has multiplicity `p`: its first copy at
+        // `j` (global), the left piece's rows `..j`, the right piece's from
+        // `j - 1`.
+        let j = lo + kn[..kn_len].partition_point(|&k| k < u);
+        let window_rows = p + 1 + times;
+        let (orig_rows, win_rows, tail_rows) = if left {
+            (0..lo, 0..j - lo, first + 1..first + 1)
+        } else {
+            (first + 1..first + 1, j - 1 - lo..window_rows, first + 1..n)
+        };
+        let count = orig_rows.len() + win_rows.len() + tail_rows.len();
+        let mut points = Vec::with_capacity(count * dim);
+        let mut weights = Vec::with_capacity(if rational { count } else { 0 });
+        let own = |i: usize, points: &mut Vec<f64>, weights: &mut Vec<f64>| {
+            let x = self.point(i);
+            if rational {
+                let w = self.weight(i);
+                points.extend(x.iter().map(|x| (w * x) / w));
+                weights.push(w);
+            } else {
+                points.extend_from_slice(x);
+            }
+        };
+        for i in orig_rows {
+            own(i, &mut points, &mut weights);
+        }
+        for row in h[win_rows.start * hd..win_rows.end * hd].chunks_exact(hd) {
+            if rational {
+                let w = row[dim];
+                points.extend(row[..dim].iter().map(|x| x / w));
+                weights.push(w);
+            } else {
+                points.extend_from_slice(row);
+            }
+        }
+        for i in tail_rows {
+            own(i, &mut points, &mut weights);
+        }
+        let knots = if left {
+            let mut k = Vec::with_capacity(j + p + 1);
+            k.extend_from_slice(&self.knots[..j]);
+            k.extend(std::iter::repeat_n(u, p + 1));
+            k
+        } else {
+            let mut k = Vec::with_capacity(p + 1 + self.knots.len() - (first + 1));
+            k.extend(std::iter::repeat_n(u, p + 1));
+            k.extend_from_slice(&self.knots[first + 1..]);
+            k
+        };
+        NurbsCurve {
+            degree: p,
+            dim,
+            knots,
+            points,
+            weights: rational.then_some(weights),
+            span_cache: Default::default(),
+        }
+    }
+
+    /// [`clamped_trim`](Self::clamped_trim) by insertions on all rows (the
+    /// general path, and the reference of the windowed one in tests).
+    pub(crate) fn clamped_trim_by_insertion(&self, u: f64, left: bool) -> Option<NurbsCurve> {
         let p = self.degree;
         let (first, last) = self.domain();
         let n = self.point_count();

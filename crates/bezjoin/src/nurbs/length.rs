@@ -355,9 +355,27 @@ impl RationalSpan<'_> {
     /// homogeneous poles (on the stack up to 128 values; the whole polygon,
     /// a larger bound, above that or at the ends).
     fn part_polygon_length(&self, t0: f64, forward: bool) -> f64 {
-        let (p, d) = (self.degree, self.dim);
+        // Plane and space cubics with the sizes as constants and a buffer
+        // of their 12 or 16 values: the same operations.
+        match (self.degree, self.dim) {
+            (3, 2) => self.part_polygon_sized::<16>(3, 2, t0, forward),
+            (3, 3) => self.part_polygon_sized::<16>(3, 3, t0, forward),
+            (p, d) => self.part_polygon_sized::<128>(p, d, t0, forward),
+        }
+    }
+
+    /// [`Self::part_polygon_length`] for degree `p == self.degree` and
+    /// dimension `d == self.dim`, on a buffer of `W` values.
+    #[inline(always)]
+    fn part_polygon_sized<const W: usize>(
+        &self,
+        p: usize,
+        d: usize,
+        t0: f64,
+        forward: bool,
+    ) -> f64 {
         let hd = d + 1;
-        let mut work = [0.0f64; 128];
+        let mut work = [0.0f64; W];
         let rows = self.rows;
         let polygon = |w: &[f64]| -> f64 {
             let mut total = 0.0;
@@ -1331,6 +1349,40 @@ mod tests {
             .map(|_| (25f64.ln() * next()).exp() * 0.2)
             .collect();
         NurbsCurve::new(dim, degree, poles, Some(weights), knots).unwrap()
+    }
+
+    /// The control polygon bound of a rational span's part with the
+    /// cubics' constant sizes (`part_polygon_length`) is the general body's
+    /// (run-time degree and dimension, the 128-value buffer) to the bit:
+    /// random rational curves of degrees 1 to 5 in the plane and in space,
+    /// at random `t0`, at the ends and outside, both directions.
+    #[test]
+    fn part_polygon_length_with_constant_sizes_is_the_general_one() {
+        use std::hint::black_box;
+        let mut next = generator(44);
+        let mut cubics = 0;
+        for case in 0..120 {
+            let c = random_rational(&mut next, case);
+            for s in c.length_spans() {
+                let SpanForm::Rational(span) = &s.form else {
+                    continue;
+                };
+                cubics += usize::from(span.degree == 3);
+                for t0 in [next(), next(), 0.0, 1.0, 1.5] {
+                    for forward in [true, false] {
+                        let fast = span.part_polygon_length(t0, forward);
+                        let general = span.part_polygon_sized::<128>(
+                            black_box(span.degree),
+                            black_box(span.dim),
+                            t0,
+                            forward,
+                        );
+                        assert_eq!(fast.to_bits(), general.to_bits(), "case {case} t0 {t0}");
+                    }
+                }
+            }
+        }
+        assert!(cubics > 20, "{cubics}");
     }
 
     /// The Chebyshev inversion on a rational span (`RationalChebyshev`,

@@ -920,7 +920,15 @@ impl NurbsCurve {
     ) {
         debug_assert!(self.dim == D && self.degree == P && out.len() <= 8 * D);
         let (mut b, mut w, mut j) = ([0.0; B], [0.0; W], [0.0; 24]);
-        self.eval_rows_with(P, D, u, n, side, out, bound, &mut b, &mut w, &mut j);
+        // Rows up to the degree (`n == P`, `P + 1` rows: the connect's jets
+        // of cubics to order 3) with the order and the row count constants
+        // too: the same operations.
+        if n == P && out.len() == (P + 1) * D {
+            let out = &mut out[..(P + 1) * D];
+            self.eval_rows_with(P, D, u, P, side, out, bound, &mut b, &mut w, &mut j);
+        } else {
+            self.eval_rows_with(P, D, u, n, side, out, bound, &mut b, &mut w, &mut j);
+        }
     }
 
     /// The body of [`eval_derivatives_into`](Self::eval_derivatives_into)

@@ -511,4 +511,51 @@ mod tests {
         }
         assert!(rational_trims > 300, "{rational_trims}");
     }
+
+    /// The windowed trim (insertions on `p + 1` rows on the stack) is the
+    /// insertion on all rows bit for bit, left and right, with and without
+    /// weights, at random parameters and at knots of multiplicity below the
+    /// degree; the trimmed curve evaluates as the curve on the kept range.
+    #[test]
+    fn windowed_trims_are_the_full_insertions_bit_for_bit() {
+        let mut next = generator(31);
+        let (mut windowed, mut rational_windowed) = (0, 0);
+        for case in 0..400 {
+            let degree = 1 + case % 5;
+            let dim = 2 + case % 2;
+            let count = degree + 1 + (case / 5) % 7;
+            let rational = case % 2 == 1;
+            let c = random_curve(&mut next, dim, degree, count, false, rational);
+            let (a, b) = c.domain();
+            let mut us: Vec<f64> = (0..4).map(|_| a + (b - a) * next()).collect();
+            us.extend(c.knots.iter().copied().filter(|&k| k > a && k < b));
+            for u in us {
+                for left in [true, false] {
+                    let full = c.clamped_trim_by_insertion(u, left).unwrap();
+                    let Some(fast) = c.clamped_trim_windowed(u, left) else {
+                        assert!(c.multiplicity(u) >= degree, "case {case} u {u}");
+                        continue;
+                    };
+                    assert_eq!(fast.knots, full.knots, "case {case} u {u} left {left}");
+                    assert_eq!(fast.points, full.points, "case {case} u {u} left {left}");
+                    assert_eq!(fast.weights, full.weights, "case {case} u {u} left {left}");
+                    let (lo, hi) = fast.domain();
+                    assert_eq!((lo, hi), if left { (a, u) } else { (u, b) });
+                    for s in 0..=8 {
+                        let t = lo + (hi - lo) * s as f64 / 8.0;
+                        let (x, y) = (fast.eval(t), c.eval(t));
+                        for (x, y) in x.iter().zip(&y) {
+                            assert!((x - y).abs() <= 1e-12 * (1.0 + y.abs()), "case {case}");
+                        }
+                    }
+                    windowed += 1;
+                    rational_windowed += usize::from(rational);
+                }
+            }
+        }
+        assert!(
+            windowed > 2000 && rational_windowed > 1000,
+            "{windowed} {rational_windowed}"
+        );
+    }
 }
