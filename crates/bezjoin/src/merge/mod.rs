@@ -313,18 +313,18 @@ pub fn merge(p: &BezierCurve, q: &BezierCurve, options: &MergeOptions) -> Result
         }
     };
     let breakpoints = [0.0, mu, 1.0];
-    let (merged, split_check_error, [p_hat, q_hat], max_deviation) = match &stage_one.merged {
+    let (merged, split_check_error, [p_hat, q_hat], max_deviation) = match stage_one.split_curves()
+    {
         // Stage 1's pieces are R's split at mu: stage 2's restrictions are
         // those very curves and its check's difference is exactly zero (the
         // shortcut of `stage_two`, here without the pieces' matrices). P^
-        // and Q^ are those curves.
-        Some(r) if stage_one.split_of_merged => {
-            let merged = BezierCurve::from_matrix(r)?;
-            let hats = [stage_one.piece_curve(0)?, stage_one.piece_curve(1)?];
+        // and Q^ are those curves; their construction cannot fail
+        // (`StageOne::split_curves`).
+        Some((merged, hats)) => {
             let max_deviation = max_deviation(&hats, &[p, q])?;
             (merged, 0.0, hats, max_deviation)
         }
-        _ => {
+        None => {
             let pieces = stage_one.pieces();
             let (merged, split_check_error, restrictions) = stage_two(
                 &pieces,
@@ -1030,6 +1030,78 @@ mod split_tests {
         assert!(
             taken > solved * 3 / 4 && solved > 200,
             "{taken} of {solved}"
+        );
+    }
+
+    /// `StageOne::split_curves` (no validation) gives the curves of the
+    /// validated constructors bit for bit where the pieces are `R`'s split,
+    /// and nothing elsewhere: random pairs in dimensions 1 to 4, degrees 1
+    /// to 9 (P and Q of different degrees too), both metrics, with and
+    /// without fixed ends, coordinate scales 1e-3 to 1e4, random `mu`.
+    #[test]
+    fn split_curves_are_the_checked_ones_to_the_bit() {
+        let mut values = crate::test_values::Values(0x5b1_17c0);
+        let bits = |c: &BezierCurve| {
+            let mut b: Vec<u64> = c.points().iter().map(|v| v.to_bits()).collect();
+            b.extend([c.dim() as u64, c.degree() as u64]);
+            b
+        };
+        let (mut split, mut other, mut found_unsplit) = (0, 0, 0);
+        for case in 0..600 {
+            let dim = 1 + case % 4;
+            let scale = [1.0, 1e-3, 10.0, 1e4][(case / 4) % 4];
+            let mut random_curve = |degree: usize| {
+                let points = (0..(degree + 1) * dim)
+                    .map(|_| scale * values.signed())
+                    .collect();
+                BezierCurve::new(dim, degree, points).unwrap()
+            };
+            // Every tenth case of degree 14 to 21: some of these take the
+            // refined solve (`R` found, the pieces not its split).
+            let (p_degree, q_degree) = if case % 10 == 9 {
+                (14 + case % 8, 14 + (case / 10) % 8)
+            } else {
+                (1 + case % 9, 1 + (case / 9) % 9)
+            };
+            let p = random_curve(p_degree);
+            let q = random_curve(q_degree);
+            let metric = if case % 2 == 0 {
+                MergeMetric::Discrete
+            } else {
+                MergeMetric::Integral
+            };
+            let mut options = MergeOptions::default().with_metric(metric);
+            options.fix_ends = case % 3 != 0;
+            let problem = PairProblem::new(&p, &q, &options).unwrap();
+            let mu = 0.05 + 0.9 * values.unit();
+            let Ok(stage_one) = problem.solve_given(mu) else {
+                continue;
+            };
+            match stage_one.split_curves() {
+                Some((merged, hats)) => {
+                    split += 1;
+                    assert!(stage_one.split_of_merged, "case {case}");
+                    let checked =
+                        BezierCurve::from_matrix(stage_one.merged.as_ref().unwrap()).unwrap();
+                    assert_eq!(bits(&merged), bits(&checked), "case {case}");
+                    for (j, hat) in hats.iter().enumerate() {
+                        let checked = BezierCurve::from_matrix(&stage_one.pieces()[j]).unwrap();
+                        assert_eq!(bits(hat), bits(&checked), "case {case}, piece {j}");
+                    }
+                }
+                None => {
+                    other += 1;
+                    assert!(
+                        !stage_one.split_of_merged || stage_one.merged.is_none(),
+                        "case {case}"
+                    );
+                    found_unsplit += usize::from(stage_one.merged.is_some());
+                }
+            }
+        }
+        assert!(
+            split > 400 && found_unsplit > 0,
+            "{split} split, {other} other ({found_unsplit} with R)"
         );
     }
 }

@@ -59,7 +59,7 @@
 use std::borrow::Cow;
 use std::sync::OnceLock;
 
-use nalgebra::{DMatrix, DVector};
+use nalgebra::{DMatrix, DMatrixView, DVector};
 
 use crate::basis::binomial;
 use crate::bezier::BezierCurve;
@@ -813,6 +813,10 @@ pub(super) fn orthogonal_solution(
     let target: &DMatrix<f64> = &target;
     let merged;
     let mut factor = None;
+    // The solves' buffer (below), here for the last correction, which
+    // outlives the solve.
+    let mut on_stack;
+    let mut on_heap = Vec::new();
     if free == 0 {
         merged = particular.clone();
     } else {
@@ -846,12 +850,11 @@ pub(super) fn orthogonal_solution(
         let Some(qr) = Factor::new(a.as_slice(), rows, free) else {
             return Err(ill_conditioned_factor(accuracy));
         };
-        // One buffer for the solves' scratch, the refinement step and the
-        // remainder.
+        // One buffer for the solves' scratch, the refinement step, the
+        // remainder and the last correction (zeros until a step is taken).
         // (On the stack up to SOLVE_ON_STACK entries.)
-        let need = rows + free * dim + rows * dim;
-        let mut on_stack = [0.0f64; SOLVE_ON_STACK];
-        let mut on_heap = Vec::new();
+        let need = rows + 2 * free * dim + rows * dim;
+        on_stack = [0.0f64; SOLVE_ON_STACK];
         let buffer: &mut [f64] = if need <= SOLVE_ON_STACK {
             &mut on_stack[..need]
         } else {
@@ -859,7 +862,8 @@ pub(super) fn orthogonal_solution(
             &mut on_heap
         };
         let (work, rest) = buffer.split_at_mut(rows);
-        let (step, remainder) = rest.split_at_mut(free * dim);
+        let (step, rest) = rest.split_at_mut(free * dim);
+        let (correction, remainder) = rest.split_at_mut(free * dim);
         let mut y = DMatrix::zeros(free, dim);
         qr.least_squares(reduced_target.as_slice(), y.as_mut_slice(), work);
         // Two steps of refinement in working precision (the correction
@@ -867,7 +871,6 @@ pub(super) fn orthogonal_solution(
         // componentwise backward stable, and the last correction measures
         // what the solve's rounding leaves (the estimate's a-posteriori
         // part).
-        let mut correction = DMatrix::zeros(free, dim);
         for _ in 0..REFINEMENT_STEPS {
             // remainder = t - A y as nalgebra's `gemm(-1, A, y, 1)` on a
             // copy of t: per column, `(-a_k) y_k + r` for k = 0.. in order
@@ -905,6 +908,7 @@ pub(super) fn orthogonal_solution(
         };
         // `A` itself where its absolute values are needed: every use takes
         // them (`abs_tr_mul`, `PlusAbs`) or is a norm.
+        let correction: &[f64] = correction;
         factor = Some((qr, y, a_matrix, correction));
     }
     let residual = combined_product(target, samples, &merged, Combine::Minus);
@@ -1075,7 +1079,7 @@ pub(super) fn orthogonal_solution(
             (true, None) => values_bound_transposed(
                 &shared,
                 scratch.k2(qr.rows(), qr.cols()),
-                REFINEMENT_MARGIN * correction.amax(),
+                REFINEMENT_MARGIN * shared.correction().amax(),
             ),
             _ => {
                 let zr = match &z {
@@ -1236,8 +1240,9 @@ struct Shared<'s> {
     target: &'s DMatrix<f64>,
     residual: &'s DMatrix<f64>,
     m: usize,
-    /// The last refinement correction of `y`.
-    correction: &'s DMatrix<f64>,
+    /// The last refinement correction of `y` (`free x dim`,
+    /// column-major).
+    correction: &'s [f64],
 }
 
 impl<'s> Shared<'s> {
@@ -1250,9 +1255,10 @@ impl<'s> Shared<'s> {
         target_size: &DMatrix<f64>,
         residual: &'s DMatrix<f64>,
         m: usize,
-        correction: &'s DMatrix<f64>,
+        correction: &'s [f64],
     ) -> Self {
         let (rows, free, dim) = (qr.rows(), qr.cols(), y.ncols());
+        debug_assert_eq!(correction.len(), free * dim);
         debug_assert!(target_size.shape() == (rows, dim) && residual.shape() == (rows, dim));
         // Zeros written by a fill loop (`repeat_n`): `vec![0.0; n]` is a
         // `calloc`, which glibc serves without its thread cache (about
@@ -1274,6 +1280,12 @@ impl<'s> Shared<'s> {
             m,
             correction,
         }
+    }
+
+    /// The last refinement correction as a `free x dim` matrix (a view of
+    /// the same column-major values).
+    fn correction(&self) -> DMatrixView<'s, f64> {
+        DMatrixView::from_slice(self.correction, self.qr.cols(), self.y.ncols())
     }
 
     /// The thin `Q`, column-major `rows x free`.
@@ -1527,7 +1539,7 @@ fn first_order_bound_sized<const R: usize, const F: usize, const O: usize>(
             let acc = &mut acc[..rows];
             let mut worst = 0.0f64;
             for c in 0..dim {
-                w.copy_from_slice(shared.correction.column(c).as_slice());
+                w.copy_from_slice(&shared.correction[c * free..(c + 1) * free]);
                 qr.mul_t(w);
                 acc.fill(0.0);
                 for (qk, &wk) in q.chunks_exact(rows).zip(w.iter()) {
@@ -1572,17 +1584,22 @@ fn first_order_bound_sized<const R: usize, const F: usize, const O: usize>(
                     // products by 0 and 1 exact, the sums with zeros
                     // exact), so its largest absolute value is `c`'s.
                     debug_assert_eq!(n, free);
-                    for column in shared.correction.as_slice().chunks_exact(free) {
+                    for column in shared.correction.chunks_exact(free) {
                         worst = worst.max(lsq::amax(column));
                     }
                 }
                 Map::Of(map) if blocked_product(out, free, dim) => {
-                    worst = (map * shared.correction).amax();
+                    worst = (map * shared.correction()).amax();
                 }
                 Map::Of(map) => {
                     let acc = &mut acc[..out];
                     for c in 0..dim {
-                        product_column(map, shared.correction.column(c).as_slice(), false, acc);
+                        product_column(
+                            map,
+                            &shared.correction[c * free..(c + 1) * free],
+                            false,
+                            acc,
+                        );
                         worst = worst.max(lsq::amax(acc));
                     }
                 }
@@ -1855,7 +1872,7 @@ mod tests {
                 &self.target_size,
                 &self.residual,
                 ends,
-                correction,
+                correction.as_slice(),
             )
         }
     }
@@ -2149,6 +2166,45 @@ mod tests {
                     }
                 }
             }
+        }
+    }
+
+    /// `Shared`'s correction (a slice of the solves' buffer) is the
+    /// `free x dim` matrix it was built from, bit for bit and in shape, and
+    /// a map's product with its view is the product with that matrix bit
+    /// for bit, also where nalgebra takes `matrixmultiply` (the blocked
+    /// sizes, `blocked_product`) and with exact zeros of either sign.
+    #[test]
+    fn shared_correction_is_the_matrix_it_was_given() {
+        let mut values = crate::test_values::Values(23);
+        let bits = |m: &DMatrix<f64>| {
+            let mut b: Vec<u64> = m.iter().map(|x| x.to_bits()).collect();
+            b.extend([m.nrows() as u64, m.ncols() as u64]);
+            b
+        };
+        for (rows, free, dim, out) in [
+            (8, 2, 3, 5),
+            (12, 4, 1, 3),
+            (14, 7, 6, 9),
+            (20, 9, 7, 16),
+            (30, 6, 13, 8),
+        ] {
+            let inputs = bound_inputs(&mut values, rows, free, dim);
+            let shared = inputs.shared(&inputs.a, rows / 2, &inputs.correction);
+            assert_eq!(
+                bits(&shared.correction().into_owned()),
+                bits(&inputs.correction)
+            );
+            let map = random_matrix(&mut values, out, free);
+            assert_eq!(
+                bits(&(&map * shared.correction())),
+                bits(&(&map * &inputs.correction)),
+                "{rows} x {free} x {dim}, map {out} rows"
+            );
+            assert_eq!(
+                (&map * shared.correction()).amax().to_bits(),
+                (&map * &inputs.correction).amax().to_bits()
+            );
         }
     }
 

@@ -120,17 +120,61 @@ impl StageOne {
     /// Piece `j` as a curve: `BezierCurve::from_matrix(&self.pieces()[j])`
     /// (the same points, the same errors) without the matrices.
     pub fn piece_curve(&self, j: usize) -> Result<BezierCurve> {
-        let (x, points) = (&self.x, self.points_per_piece);
-        let (rows, dim) = (x.nrows(), x.ncols());
-        let data = x.as_slice();
-        let mut out = Vec::with_capacity(points * dim);
-        for i in j * points..(j + 1) * points {
-            for c in 0..dim {
-                out.push(data[c * rows + i]);
-            }
-        }
-        BezierCurve::new(dim, points - 1, out)
+        let points = self.points_per_piece;
+        BezierCurve::new(
+            self.x.ncols(),
+            points - 1,
+            rows_of(&self.x, j * points, points),
+        )
     }
+
+    /// `R` and the two pieces as curves where the pieces are `R`'s split
+    /// (`split_of_merged`): the points of `BezierCurve::from_matrix(R)`,
+    /// `piece_curve(0)` and `piece_curve(1)`, built without their
+    /// validation (`None` for any other stage-1 result), which cannot fail
+    /// on such a result:
+    ///
+    /// * `split_of_merged` is set only by `orthogonal_solution` for two
+    ///   pieces, whose `R` passed its check before the split (every entry
+    ///   finite and the degree `m` at most `MAX_DEGREE`, else the error of
+    ///   `from_matrix`) and is not changed after it;
+    /// * [`solve_stage_one_slope`] returns a stage-1 result only when every
+    ///   entry of `x` (the pieces) is finite, else `NonFiniteScalar`;
+    /// * the dimension is the input curves' (at least 1) and every curve
+    ///   has `m + 1 >= 1` points: the sizes match.
+    ///
+    /// So `new`'s checks (dimension, degree cap, size, finite) all pass and
+    /// are not repeated (test `split_curves_are_the_checked_ones_to_the_bit`;
+    /// a debug build checks every call against the validated constructors).
+    pub(crate) fn split_curves(&self) -> Option<(BezierCurve, [BezierCurve; 2])> {
+        let merged = self.merged.as_ref().filter(|_| self.split_of_merged)?;
+        let (x, points) = (&self.x, self.points_per_piece);
+        let dim = x.ncols();
+        let merged_curve = BezierCurve::from_parts(dim, points - 1, rows_of(merged, 0, points));
+        let hats = [
+            BezierCurve::from_parts(dim, points - 1, rows_of(x, 0, points)),
+            BezierCurve::from_parts(dim, points - 1, rows_of(x, points, points)),
+        ];
+        debug_assert!(
+            BezierCurve::from_matrix(merged).is_ok_and(|c| c == merged_curve)
+                && (0..2).all(|j| self.piece_curve(j).is_ok_and(|c| c == hats[j]))
+        );
+        Some((merged_curve, hats))
+    }
+}
+
+/// Rows `first .. first + count` of `m` as row-major points (the order
+/// `BezierCurve::from_matrix` reads them in).
+fn rows_of(m: &DMatrix<f64>, first: usize, count: usize) -> Vec<f64> {
+    let (rows, dim) = (m.nrows(), m.ncols());
+    let data = m.as_slice();
+    let mut out = Vec::with_capacity(count * dim);
+    for i in first..first + count {
+        for c in 0..dim {
+            out.push(data[c * rows + i]);
+        }
+    }
+    out
 }
 
 /// The exact Bernstein Gram matrix `G_ij = int_0^1 B_i^n B_j^n =
