@@ -104,7 +104,7 @@ impl<'a> Track<'a> {
     pub(super) fn point_and_tangent_into(&self, u: f64, point: &mut [f64], tangent: &mut [f64]) {
         match self {
             Track::Bezier { curve, .. } => point_and_tangent(curve, u, point, tangent),
-            Track::Nurbs(n) => n.point_and_tangent(u, point, Some(tangent)),
+            Track::Nurbs(n) => n.point_and_tangent_by_spans(u, point, tangent),
         }
     }
 

@@ -701,6 +701,87 @@ impl NurbsCurve {
         }
     }
 
+    /// [`point_and_tangent`](Self::point_and_tangent) with the tangent, for
+    /// a curve with weights by de Casteljau's algorithm on the kept
+    /// homogeneous Bezier rows of the span of `u` ([`Self::span_poles`],
+    /// from the right at an interior knot, the end spans beyond the domain)
+    /// in `t = (u - a) / (b - a)`: no knot search and no rows to weight.
+    /// The same point and tangent up to rounding (the rows are the
+    /// decomposition's, not the poles'); quadratics and cubics in the plane
+    /// and in space, everything else by `point_and_tangent`.
+    pub(crate) fn point_and_tangent_by_spans(
+        &self,
+        u: f64,
+        point: &mut [f64],
+        tangent: &mut [f64],
+    ) {
+        if self.weights.is_some() {
+            match (self.dim, self.degree) {
+                (2, 3) => return self.point_and_tangent_spans_fixed::<3, 3>(u, point, tangent),
+                (3, 3) => return self.point_and_tangent_spans_fixed::<4, 3>(u, point, tangent),
+                (2, 2) => return self.point_and_tangent_spans_fixed::<3, 2>(u, point, tangent),
+                (3, 2) => return self.point_and_tangent_spans_fixed::<4, 2>(u, point, tangent),
+                _ => {}
+            }
+        }
+        self.point_and_tangent(u, point, Some(tangent));
+    }
+
+    /// [`point_and_tangent_by_spans`](Self::point_and_tangent_by_spans) with
+    /// `HD = dim + 1` and the degree `P` constants.
+    fn point_and_tangent_spans_fixed<const HD: usize, const P: usize>(
+        &self,
+        u: f64,
+        point: &mut [f64],
+        tangent: &mut [f64],
+    ) {
+        let d = HD - 1;
+        let poles = self.span_poles();
+        let breaks = &poles.breaks[..];
+        let last = breaks.len() - 2;
+        let mut i = 0;
+        while i < last && u >= breaks[i + 1] {
+            i += 1;
+        }
+        let (lo, hi) = (breaks[i], breaks[i + 1]);
+        let Some(rows) = poles.rows.get(i * P * HD..(i * P + P + 1) * HD) else {
+            // Not the layout of a decomposition (never for a valid curve).
+            return self.point_and_tangent(u, point, Some(tangent));
+        };
+        let mut work = [[0.0f64; HD]; 6];
+        let work = &mut work[..=P];
+        for (j, row) in work.iter_mut().enumerate() {
+            row.copy_from_slice(&rows[j * HD..(j + 1) * HD]);
+        }
+        let t = (u - lo) / (hi - lo);
+        let s = 1.0 - t;
+        let level = |r: usize, work: &mut [[f64; HD]]| {
+            for j in (r..=P).rev() {
+                let (left, right) = work.split_at_mut(j);
+                let (prev, cur) = (&left[j - 1], &mut right[0]);
+                for c in 0..HD {
+                    cur[c] = s * prev[c] + t * cur[c];
+                }
+            }
+        };
+        for r in 1..P {
+            level(r, work);
+        }
+        let scale = P as f64 / (hi - lo);
+        let mut dh = [0.0f64; HD];
+        for c in 0..HD {
+            dh[c] = scale * (work[P][c] - work[P - 1][c]);
+        }
+        level(P, work);
+        let w = work[P][d];
+        for c in 0..d {
+            point[c] = work[P][c] / w;
+        }
+        for c in 0..d {
+            tangent[c] = (dh[c] - dh[d] * point[c]) / w;
+        }
+    }
+
     /// Value and derivatives `0..=max_order` at `u`, taken from the span on
     /// `side` of `u` when `u` is a knot; row-major, `(max_order + 1) * dim`
     /// values (row `k` is the `k`-th derivative). Any order is allowed:

@@ -423,6 +423,53 @@ mod tests {
         NurbsCurve::new(dim, degree, poles, weights, knots).expect("a valid curve")
     }
 
+    /// `point_and_tangent_by_spans` (de Casteljau on the kept Bezier rows,
+    /// the polish's evaluation) is `point_and_tangent` (de Boor on the
+    /// poles) up to rounding for rational quadratics and cubics in the
+    /// plane and in space, at random parameters, at every interior knot
+    /// (from the right: the tangent jumps at a double knot of a quadratic)
+    /// and at both ends; every other curve goes to `point_and_tangent`
+    /// itself, the same bits.
+    #[test]
+    fn span_row_evaluation_is_de_boor_up_to_rounding() {
+        let mut next = generator(47);
+        let (mut by_rows, mut same) = (0, 0);
+        for case in 0..400 {
+            let degree = 1 + case % 4;
+            let dim = 2 + (case / 4) % 2;
+            let count = degree + 1 + (case / 8) % 5;
+            let rational = case % 5 != 0;
+            let c = random_curve(&mut next, dim, degree, count, case % 7 == 3, rational);
+            let (a, b) = c.domain();
+            let mut us: Vec<f64> = (0..6).map(|_| a + (b - a) * next()).collect();
+            us.extend(c.knots.iter().copied().filter(|&k| k > a && k < b));
+            us.extend([a, b]);
+            for u in us {
+                let (mut p0, mut t0) = (vec![0.0; dim], vec![0.0; dim]);
+                let (mut p1, mut t1) = (vec![0.0; dim], vec![0.0; dim]);
+                c.point_and_tangent(u, &mut p0, Some(&mut t0));
+                c.point_and_tangent_by_spans(u, &mut p1, &mut t1);
+                if !(rational && (degree == 2 || degree == 3)) {
+                    assert_eq!((&p1, &t1), (&p0, &t0), "case {case} u {u}");
+                    same += 1;
+                    continue;
+                }
+                let speed = t0.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+                for (x, y) in p1.iter().zip(&p0) {
+                    assert!(
+                        (x - y).abs() <= 1e-13 * (1.0 + y.abs()),
+                        "case {case} u {u}"
+                    );
+                }
+                for (x, y) in t1.iter().zip(&t0) {
+                    assert!((x - y).abs() <= 1e-12 * (1.0 + speed), "case {case} u {u}");
+                }
+                by_rows += 1;
+            }
+        }
+        assert!(by_rows > 1000 && same > 500, "{by_rows} {same}");
+    }
+
     /// The span decomposition's rows are the bits of the repeated
     /// `insert_once` on the clamped curve's homogeneous poles (the
     /// decomposition before the in-place buffer), and `bezier_spans` gives
