@@ -355,6 +355,20 @@ pub(super) fn continuity_row(
     continuity_row_nonzero(m, r, left, right, on_left, on_right);
 }
 
+/// The two sides' weights of continuity row `r` with the interval lengths
+/// `left`, `right` and `central = C(2r, r)`: `(right / longer)^r` and
+/// `(left / longer)^r` divided by the row's norm factor
+/// `sqrt((wl^2 + wr^2) C(2r, r))`. Shared by [`continuity_row_nonzero`]
+/// and [`continuity_row_small`], so both form them with the same operations.
+#[inline(always)]
+fn row_weights(r: usize, left: f64, right: f64, central: f64) -> (f64, f64) {
+    let longer = left.max(right);
+    let wl = (right / longer).powi(r as i32);
+    let wr = (left / longer).powi(r as i32);
+    let norm = ((wl * wl + wr * wr) * central).sqrt();
+    (wl / norm, wr / norm)
+}
+
 /// [`continuity_row`]'s nonzero entries only (`on_left[m - r..]`,
 /// `on_right[..=r]`), the others left as they are: for
 /// [`Problem::continuity_residual`], which reads no other.
@@ -366,11 +380,7 @@ fn continuity_row_nonzero(
     on_left: &mut [f64],
     on_right: &mut [f64],
 ) {
-    let longer = left.max(right);
-    let wl = (right / longer).powi(r as i32);
-    let wr = (left / longer).powi(r as i32);
-    let norm = ((wl * wl + wr * wr) * binomial(2 * r, r)).sqrt();
-    let (wl, wr) = (wl / norm, wr / norm);
+    let (wl, wr) = row_weights(r, left, right, binomial(2 * r, r));
     // C(r, k) by the exact integer recurrence C(r, k+1) = C(r, k) (r - k) /
     // (k + 1) (exact in f64 while below 2^53, as `binomial`). Up to
     // INTEGER_ORDERS in integers (every product below 2^53, so the same
@@ -444,11 +454,7 @@ fn continuity_row_small(
     on_left: &mut [f64],
     on_right: &mut [f64],
 ) {
-    let longer = left.max(right);
-    let wl = (right / longer).powi(r as i32);
-    let wr = (left / longer).powi(r as i32);
-    let norm = ((wl * wl + wr * wr) * CENTRAL[r]).sqrt();
-    let (wl, wr) = (wl / norm, wr / norm);
+    let (wl, wr) = row_weights(r, left, right, CENTRAL[r]);
     for (k, &c) in PASCAL[r][..=r].iter().enumerate() {
         on_left[m - k] = if k % 2 == 0 { wl * c } else { -wl * c };
         on_right[k] = if (r - k) % 2 == 0 { -wr * c } else { wr * c };

@@ -867,8 +867,10 @@ mod tests {
     /// curves, near-constant ones (every sample ties up to rounding), tiny
     /// ones and ones at the edges of the accepted range, every screened
     /// degree, dimensions 2 and 3.
-    #[test]
-    fn screened_deviation_is_the_fixed_one_bit_for_bit() {
+    /// The largest squares of `deviation_screened` and `deviation_fixed`
+    /// on the difference curve `half` (degree `n`, dimension 2 or 3), or
+    /// `None` when the screened search declines.
+    fn screened_and_fixed(n: usize, dim: usize, half: &[f64]) -> Option<(f64, f64)> {
         fn both<const D: usize>(n: usize, half: &[f64]) -> Option<(f64, f64)> {
             let table = deviation_table(n).unwrap();
             let mut screened = Worst::default();
@@ -880,6 +882,15 @@ mod tests {
             assert_eq!(fixed.other, 0.0);
             Some((screened.square, fixed.square))
         }
+        match dim {
+            2 => both::<2>(n, half),
+            3 => both::<3>(n, half),
+            _ => unreachable!("dimension {dim}"),
+        }
+    }
+
+    #[test]
+    fn screened_deviation_is_the_fixed_one_bit_for_bit() {
         let mut state = 41;
         let mut screened_count = 0;
         for n in 0..=SCREENED_DEGREE {
@@ -900,11 +911,7 @@ mod tests {
                         3 => c.points().iter().map(|v| v * 1e-250).collect(),
                         _ => c.points().iter().map(|v| v * 1e150).collect(),
                     };
-                    let result = if dim == 2 {
-                        both::<2>(n, &half)
-                    } else {
-                        both::<3>(n, &half)
-                    };
+                    let result = screened_and_fixed(n, dim, &half);
                     if let Some((screened, fixed)) = result {
                         screened_count += 1;
                         assert_eq!(
@@ -930,16 +937,6 @@ mod tests {
     /// including at span ends and near ties between two humps.
     #[test]
     fn screened_exact_spans_are_the_fixed_one_bit_for_bit() {
-        fn both<const D: usize>(n: usize, half: &[f64]) -> Option<(f64, f64)> {
-            let table = deviation_table(n).unwrap();
-            let mut screened = Worst::default();
-            if !deviation_screened::<D>(n, table, half, &mut screened) {
-                return None;
-            }
-            let mut fixed = Worst::default();
-            deviation_fixed::<D>(table, half, &mut fixed);
-            Some((screened.square, fixed.square))
-        }
         let mut state = 7;
         let mut screened_count = 0;
         for case in 0..6000 {
@@ -959,11 +956,7 @@ mod tests {
             } else {
                 c.points().to_vec()
             };
-            let result = if dim == 2 {
-                both::<2>(n, &half)
-            } else {
-                both::<3>(n, &half)
-            };
+            let result = screened_and_fixed(n, dim, &half);
             if let Some((screened, fixed)) = result {
                 screened_count += 1;
                 assert_eq!(
