@@ -383,6 +383,27 @@ fn deviation_table(n: usize) -> Option<&'static [f64]> {
     }))
 }
 
+/// The values of samples `s0 .. s0 + LANES` of the (half) difference curve
+/// `half` of dimension `D`, `acc[c][k]` the coordinate `c` of sample
+/// `s0 + k`: each sum from `0.0` in the order `i = 0..n` (the one body of
+/// [`deviation_fixed`] and [`exact_squares`]).
+// The lanes are read across the coordinate rows (`acc[c][k]`).
+#[allow(clippy::needless_range_loop)]
+#[inline(always)]
+fn lane_values<const D: usize>(table: &[f64], half: &[f64], s0: usize) -> [[f64; LANES]; D] {
+    let mut acc = [[0.0f64; LANES]; D];
+    for (row, p) in table.chunks_exact(TABLE_ROW).zip(half.chunks_exact(D)) {
+        let b: &[f64; LANES] = row[s0..s0 + LANES].try_into().expect("LANES entries");
+        for c in 0..D {
+            let x = p[c];
+            for k in 0..LANES {
+                acc[c][k] += b[k] * x;
+            }
+        }
+    }
+    acc
+}
+
 /// The sample values of one (half) difference curve of dimension `D`,
 /// `sum_i B_i(u_s) half_i` for every sample `s` (each sum from `0.0` in
 /// the order `i = 0..n`), noted in `worst`. [`LANES`] samples at a time,
@@ -391,19 +412,7 @@ fn deviation_table(n: usize) -> Option<&'static [f64]> {
 // The lanes are read across the coordinate rows (`acc[c][k]`).
 #[allow(clippy::needless_range_loop)]
 fn deviation_fixed<const D: usize>(table: &[f64], half: &[f64], worst: &mut Worst) {
-    let values = |s0: usize| {
-        let mut acc = [[0.0f64; LANES]; D];
-        for (row, p) in table.chunks_exact(TABLE_ROW).zip(half.chunks_exact(D)) {
-            let b: &[f64; LANES] = row[s0..s0 + LANES].try_into().expect("LANES entries");
-            for c in 0..D {
-                let x = p[c];
-                for k in 0..LANES {
-                    acc[c][k] += b[k] * x;
-                }
-            }
-        }
-        acc
-    };
+    let values = |s0: usize| lane_values::<D>(table, half, s0);
     // The largest square (a plain compare) and the sum of all squares. A
     // NaN or infinite square makes the sum non-finite; a subnormal or
     // underflowed square (its value below sqrt(MIN_POSITIVE), so it
@@ -472,17 +481,7 @@ const _: () = assert!(EXACT_WIDTH % LANES == 0 && EXACT_LEVEL <= SAMPLE_LEVELS);
 fn exact_squares<const D: usize>(table: &[f64], half: &[f64], first: usize) -> [f64; EXACT_WIDTH] {
     let mut squares = [0.0f64; EXACT_WIDTH];
     for (g, out) in squares.chunks_exact_mut(LANES).enumerate() {
-        let s0 = first + g * LANES;
-        let mut acc = [[0.0f64; LANES]; D];
-        for (row, p) in table.chunks_exact(TABLE_ROW).zip(half.chunks_exact(D)) {
-            let b: &[f64; LANES] = row[s0..s0 + LANES].try_into().expect("LANES entries");
-            for c in 0..D {
-                let x = p[c];
-                for k in 0..LANES {
-                    acc[c][k] += b[k] * x;
-                }
-            }
-        }
+        let acc = lane_values::<D>(table, half, first + g * LANES);
         for k in 0..LANES {
             let mut square = 0.0;
             for c in 0..D {
