@@ -578,19 +578,14 @@ fn halves_come_within(
 ) -> bool {
     let width = d + usize::from(rational);
     for c in 0..d {
-        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-        for i in 0..=n {
-            let v = if rational {
+        let values = (0..=n).map(|i| {
+            if rational {
                 points[i * width + c] / points[i * width + d]
             } else {
                 points[i * d + c]
-            };
-            lo = lo.min(v);
-            hi = hi.max(v);
-        }
-        // A NaN coordinate (of the piece or of `x`) proves nothing.
-        let inside = x[c] >= lo - margin && x[c] <= hi + margin;
-        if !(inside || lo.is_nan() || x[c].is_nan()) {
+            }
+        });
+        if coordinate_rules_out(values, x[c], margin) {
             return false;
         }
     }
@@ -618,6 +613,22 @@ fn halves_come_within(
     }
     halves_come_within(&left, n, d, rational, x, margin, levels - 1)
         || halves_come_within(&right, n, d, rational, x, margin, levels - 1)
+}
+
+/// Whether the coordinate `x` lies more than `margin` outside the range of
+/// `values` (a piece's control-point coordinates, taken in order for the
+/// minimum and maximum): the test of [`halves_come_within`] and
+/// [`halves_fixed_rows`]. A NaN coordinate (of the piece or of `x`) proves
+/// nothing (`false`).
+#[inline(always)]
+fn coordinate_rules_out(values: impl Iterator<Item = f64>, x: f64, margin: f64) -> bool {
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for v in values {
+        lo = lo.min(v);
+        hi = hi.max(v);
+    }
+    let inside = x >= lo - margin && x <= hi + margin;
+    !(inside || lo.is_nan() || x.is_nan())
 }
 
 /// [`halves_come_within`] for `R` rows of `W` values in dimension `D`
@@ -648,15 +659,10 @@ fn halves_fixed_rows<const R: usize, const D: usize, const W: usize>(
 ) -> bool {
     let rational = W > D;
     for c in 0..D {
-        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-        for row in points {
-            let v = if rational { row[c] / row[D] } else { row[c] };
-            lo = lo.min(v);
-            hi = hi.max(v);
-        }
-        // A NaN coordinate (of the piece or of `x`) proves nothing.
-        let inside = x[c] >= lo - margin && x[c] <= hi + margin;
-        if !(inside || lo.is_nan() || x[c].is_nan()) {
+        let values = points
+            .iter()
+            .map(|row| if rational { row[c] / row[D] } else { row[c] });
+        if coordinate_rules_out(values, x[c], margin) {
             return false;
         }
     }
