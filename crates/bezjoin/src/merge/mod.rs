@@ -967,6 +967,20 @@ mod split_tests {
 
     use crate::test_values::planar_curve as curve;
 
+    /// The options of case `case` of the stage-1 tests: the discrete
+    /// metric for even cases, the integral one for odd; the ends fixed
+    /// unless `case` is a multiple of 3.
+    fn case_options(case: usize) -> MergeOptions {
+        let metric = if case % 2 == 0 {
+            MergeMetric::Discrete
+        } else {
+            MergeMetric::Integral
+        };
+        let mut options = MergeOptions::default().with_metric(metric);
+        options.fix_ends = case % 3 != 0;
+        options
+    }
+
     /// Where stage 1 reports its pieces as `R`'s split
     /// (`split_of_merged`), they are `R.split_unchecked(mu)` bit for bit,
     /// and stage 2's full check on them (the restrictions recomputed and
@@ -985,13 +999,7 @@ mod split_tests {
                 curve(&mut state, degree),
                 curve(&mut state, 1 + (case / 9) % 9),
             );
-            let metric = if case % 2 == 0 {
-                MergeMetric::Discrete
-            } else {
-                MergeMetric::Integral
-            };
-            let mut options = MergeOptions::default().with_metric(metric);
-            options.fix_ends = case % 3 != 0;
+            let options = case_options(case);
             let problem = PairProblem::new(&p, &q, &options).unwrap();
             let mu = 0.05 + 0.9 * next();
             let Ok(stage_one) = problem.solve_given(mu) else {
@@ -1065,13 +1073,7 @@ mod split_tests {
             };
             let p = random_curve(p_degree);
             let q = random_curve(q_degree);
-            let metric = if case % 2 == 0 {
-                MergeMetric::Discrete
-            } else {
-                MergeMetric::Integral
-            };
-            let mut options = MergeOptions::default().with_metric(metric);
-            options.fix_ends = case % 3 != 0;
+            let options = case_options(case);
             let problem = PairProblem::new(&p, &q, &options).unwrap();
             let mu = 0.05 + 0.9 * values.unit();
             let Ok(stage_one) = problem.solve_given(mu) else {
