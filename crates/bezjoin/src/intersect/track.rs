@@ -928,16 +928,7 @@ mod near_tests {
             let dim = 2 + case % 2;
             let rational = case % 4 < 2;
             let width = dim + usize::from(rational);
-            let points: Vec<f64> = (0..4)
-                .flat_map(|_| {
-                    let w = if rational { 0.3 + 2.7 * next() } else { 1.0 };
-                    let mut row: Vec<f64> = (0..dim).map(|_| w * (2.0 * next() - 1.0)).collect();
-                    if rational {
-                        row.push(w);
-                    }
-                    row
-                })
-                .collect();
+            let points = random_rows(&mut next, 4, dim, rational);
             let mut work = [0.0f64; (super::NEAR_MAX_DEGREE + 1) * super::NEAR_MAX_DIM];
             work[..points.len()].copy_from_slice(&points);
             for trial in 0..10 {
@@ -963,6 +954,27 @@ mod near_tests {
         assert!(yes > 400 && no > 400, "{yes} {no}");
     }
 
+    /// `rows` random control points of dimension `dim` in `[-1, 1]`,
+    /// row-major; with `rational`, homogeneous (`w x`, then `w`, the weight
+    /// `w` in `[0.3, 3]`, drawn before the coordinates).
+    fn random_rows(
+        next: &mut impl FnMut() -> f64,
+        rows: usize,
+        dim: usize,
+        rational: bool,
+    ) -> Vec<f64> {
+        (0..rows)
+            .flat_map(|_| {
+                let w = if rational { 0.3 + 2.7 * next() } else { 1.0 };
+                let mut row: Vec<f64> = (0..dim).map(|_| w * (2.0 * next() - 1.0)).collect();
+                if rational {
+                    row.push(w);
+                }
+                row
+            })
+            .collect()
+    }
+
     /// The check of the two tests above; the count of points refused that
     /// the box alone lets through.
     fn refusals_are_far(rational: bool) -> usize {
@@ -972,16 +984,7 @@ mod near_tests {
             let degree = 1 + case % 6;
             let dim = 2 + case % 2;
             let width = dim + usize::from(rational);
-            let points: Vec<f64> = (0..=degree)
-                .flat_map(|_| {
-                    let w = if rational { 0.3 + 2.7 * next() } else { 1.0 };
-                    let mut row: Vec<f64> = (0..dim).map(|_| w * (2.0 * next() - 1.0)).collect();
-                    if rational {
-                        row.push(w);
-                    }
-                    row
-                })
-                .collect();
+            let points = random_rows(&mut next, degree + 1, dim, rational);
             let curve = BezierCurve::new(width, degree, points).unwrap();
             let piece = Piece::new(Cow::Borrowed(&curve), rational, 0.0, 1.0);
             let point_at = |t: f64| {
