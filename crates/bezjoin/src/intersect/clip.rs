@@ -344,6 +344,12 @@ impl<const N: usize> RationalPoly<N> {
     /// [`Self::segment`] of degree `n` (`self.projected.n`).
     #[inline(always)]
     fn segment_n(&self, n: usize, s: f64, t: f64) -> RationalPoly<N> {
+        if t >= 1.0 && s <= 0.0 {
+            // Nothing cut (the whole piece, as a clipping pair starts):
+            // the rows and their projections are `self`'s, computed by the
+            // same divisions.
+            return *self;
+        }
         let mut h = self.homogeneous;
         if t < 1.0 {
             keep_left_rows(&mut h, n, t);
