@@ -1216,74 +1216,53 @@ impl NurbsCurve {
             walked += piece;
             Ok(None)
         };
-        if self.weights.is_none() {
-            // The spans from the kept decomposition, visited in place (the
-            // same spans, in the same order, as the list below).
-            let poles = self.span_poles();
-            let span = |i: usize| {
-                let (lo, hi) = poles.domain(i);
-                Span {
-                    lo,
-                    hi,
-                    form: SpanForm::Polynomial(Cow::Borrowed(&poles.beziers[i])),
-                }
-            };
-            let count = poles.count();
-            let (lo_index, hi_index) = if forward {
-                // Spans with hi > start.
-                (
-                    (0..count)
-                        .find(|&i| poles.breaks[i + 1] > start)
-                        .unwrap_or(count),
-                    count,
-                )
-            } else {
-                // Spans with lo < start.
-                (
-                    0,
-                    (0..count)
-                        .rev()
-                        .find(|&i| poles.breaks[i] < start)
-                        .map_or(0, |i| i + 1),
-                )
-            };
-            let share = 0.5 * accuracy / (hi_index - lo_index).max(1) as f64;
-            if forward {
-                for i in lo_index..hi_index {
-                    if let Some(u) = step(&span(i), share)? {
-                        return Ok(u);
-                    }
-                }
-            } else {
-                for i in (lo_index..hi_index).rev() {
-                    if let Some(u) = step(&span(i), share)? {
-                        return Ok(u);
-                    }
+        // The spans ahead of `start`, visited in place one at a time (the
+        // same spans, in the same order, as `length_spans` filtered to
+        // those with `hi > start` forwards, `lo < start` backwards,
+        // reversed): the breaks increase, so they are the indices
+        // `lo_index..hi_index`.
+        let poles = self.span_poles();
+        let span = |i: usize| {
+            if self.weights.is_some() {
+                return self.weighted_span(i);
+            }
+            let (lo, hi) = poles.domain(i);
+            Span {
+                lo,
+                hi,
+                form: SpanForm::Polynomial(Cow::Borrowed(&poles.beziers[i])),
+            }
+        };
+        let count = poles.count();
+        let (lo_index, hi_index) = if forward {
+            // Spans with hi > start.
+            (
+                (0..count)
+                    .find(|&i| poles.breaks[i + 1] > start)
+                    .unwrap_or(count),
+                count,
+            )
+        } else {
+            // Spans with lo < start.
+            (
+                0,
+                (0..count)
+                    .rev()
+                    .find(|&i| poles.breaks[i] < start)
+                    .map_or(0, |i| i + 1),
+            )
+        };
+        let share = 0.5 * accuracy / (hi_index - lo_index).max(1) as f64;
+        if forward {
+            for i in lo_index..hi_index {
+                if let Some(u) = step(&span(i), share)? {
+                    return Ok(u);
                 }
             }
         } else {
-            // The spans visited in place, one at a time (the same spans, in
-            // the same order, as `length_spans` filtered to those with `hi >
-            // start` forwards, `lo < start` backwards, reversed).
-            let poles = self.span_poles();
-            let count = poles.count();
-            let ahead = |i: usize| {
-                let (lo, hi) = poles.domain(i);
-                if forward { hi > start } else { lo < start }
-            };
-            let visited = (0..count).filter(|&i| ahead(i)).count();
-            let share = 0.5 * accuracy / visited.max(1) as f64;
-            if forward {
-                for i in (0..count).filter(|&i| ahead(i)) {
-                    if let Some(u) = step(&self.weighted_span(i), share)? {
-                        return Ok(u);
-                    }
-                }
-            } else {
-                for i in (0..count).rev().filter(|&i| ahead(i)) {
-                    if let Some(u) = step(&self.weighted_span(i), share)? {
-                        return Ok(u);
-                    }
+            for i in (lo_index..hi_index).rev() {
+                if let Some(u) = step(&span(i), share)? {
+                    return Ok(u);
                 }
             }
         }
