@@ -490,7 +490,7 @@ fn speed_bounds(
 /// Bernstein-Horner form in `r = t / (1 - t)` or `(1 - t) / t`, whichever
 /// is at most 1 (the scheme of [`BezierCurve::eval`]): `N(t) = N_r
 /// f^Q`, `w(t) = w_r f^P` (`f` = `1 - t` or `t`), so `|C'| = |N_r| / (w_r^2
-/// f)`.
+/// f)`. `L = 2 P D + P + 1` is the polynomials' length ([`run_horner`]).
 #[inline(always)]
 fn horner_speed<const D: usize, const P: usize, const L: usize>(horner: &[f64; L], t: f64) -> f64 {
     let q = 2 * P - 1;
@@ -683,8 +683,8 @@ impl ChebyshevSampled for RationalChebyshev<'_, '_> {
         let (lo, h) = (s.lo, s.hi - s.lo);
         let grid = (nodes, start, span, first, step);
         let t = |u: f64| ((u - lo) / h).clamp(0.0, 1.0);
-        // The values of `speed_at` (`RationalSpan::speeds`), the table and
-        // the sizes set up once for all the nodes.
+        // The values of `speed_at` (`RationalSpan::speeds`), the table
+        // read and the sizes dispatched once for all the nodes.
         let job = SampleNodes {
             grid,
             samples: &mut *samples,
