@@ -280,9 +280,8 @@ impl CurveJet for NurbsCurve {
         {
             return;
         }
-        // The A2.3 rows and bounds into zero-filled caller storage.
-        values.fill(0.0);
-        errors.fill(0.0);
+        // The A2.3 rows and bounds (every value and bound written there:
+        // the rows are zeroed before they are summed).
         self.eval_derivatives_into(u, order, side, values, Some(errors));
     }
 }

@@ -283,6 +283,7 @@ struct RationalPoly<const N: usize> {
 impl<const N: usize> RationalPoly<N> {
     /// A rational piece, or a polynomial one with unit weights (a pair with
     /// one rational piece is clipped in this form on both sides).
+    #[inline(always)]
     fn from_piece(piece: &Piece) -> Option<RationalPoly<N>> {
         let n = piece.degree();
         if n == 0 || n >= N || piece.dim() != 2 {
@@ -332,7 +333,9 @@ impl<const N: usize> RationalPoly<N> {
 
     /// The piece on `[s, t]`, `0 <= s < t <= 1`: de Casteljau on the
     /// homogeneous points (as [`Poly::segment`] on the Cartesian ones),
-    /// then projected.
+    /// then projected. Inlined into the clipping loop, which keeps the
+    /// result (a copy of about 170 bytes otherwise).
+    #[inline(always)]
     fn segment(&self, s: f64, t: f64) -> RationalPoly<N> {
         // Cubics with the degree as a constant: the same operations.
         match self.projected.n {
@@ -344,6 +347,12 @@ impl<const N: usize> RationalPoly<N> {
     /// [`Self::segment`] of degree `n` (`self.projected.n`).
     #[inline(always)]
     fn segment_n(&self, n: usize, s: f64, t: f64) -> RationalPoly<N> {
+        if t >= 1.0 && s <= 0.0 {
+            // Nothing cut (the whole piece, as a clipping pair starts):
+            // the rows and their projections are `self`'s, computed by the
+            // same divisions.
+            return *self;
+        }
         let mut h = self.homogeneous;
         if t < 1.0 {
             keep_left_rows(&mut h, n, t);
@@ -391,12 +400,14 @@ impl<const N: usize> Clippable<N> for Poly<N> {
 }
 
 impl<const N: usize> Clippable<N> for RationalPoly<N> {
+    #[inline(always)]
     fn from_piece(piece: &Piece) -> Option<Self> {
         RationalPoly::from_piece(piece)
     }
     fn cartesian(&self) -> &Poly<N> {
         &self.projected
     }
+    #[inline(always)]
     fn segment(&self, s: f64, t: f64) -> Self {
         RationalPoly::segment(self, s, t)
     }

@@ -340,7 +340,9 @@ impl<'a> Piece<'a> {
 
     /// A piece of the homogeneous curve `curve` whose Cartesian poles
     /// (`(w x) / w` of each row) are `projected`, or of the polynomial
-    /// `curve` (`None`).
+    /// `curve` (`None`). Inlined, so that a piece is built where it is kept
+    /// (a span's in the pieces' vector) instead of copied there.
+    #[inline(always)]
     fn with_projected(
         curve: Cow<'a, BezierCurve>,
         projected: Option<Cow<'a, [f64]>>,

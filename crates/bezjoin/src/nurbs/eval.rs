@@ -65,7 +65,7 @@ pub(super) const TABLE_MAX_ORDER: usize = 3;
 
 /// Rows `0..=SPAN_FAST_MAX_DEGREE` of Pascal's triangle (row `n` starts at
 /// `n (n + 1) / 2`), exact in `f64`.
-const BINOMIALS: [f64; 136] = binomial_rows();
+pub(super) const BINOMIALS: [f64; 136] = binomial_rows();
 
 const fn binomial_rows() -> [f64; 136] {
     let mut table = [0.0; 136];

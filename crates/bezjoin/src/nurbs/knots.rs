@@ -225,19 +225,22 @@ impl NurbsCurve {
         let first = find_span(&self.knots, p, u, KnotSide::Right);
         // Cubics in the plane and in space, with and without weights, with
         // the sizes as constants: the same operations.
+        // Buffers of exactly `(2p + 1) hd` rows' values and `3p + 1` knots
+        // for those (less to zero).
         Some(match (p, hd) {
-            (3, 2) => self.trim_window(3, 2, u, left, first, times),
-            (3, 3) => self.trim_window(3, 3, u, left, first, times),
-            (3, 4) => self.trim_window(3, 4, u, left, first, times),
-            _ => self.trim_window(p, hd, u, left, first, times),
+            (3, 2) => self.trim_window::<14, 10>(3, 2, u, left, first, times),
+            (3, 3) => self.trim_window::<21, 10>(3, 3, u, left, first, times),
+            (3, 4) => self.trim_window::<28, 10>(3, 4, u, left, first, times),
+            _ => self.trim_window::<TRIM_ROWS, TRIM_KNOTS>(p, hd, u, left, first, times),
         })
     }
 
     /// The body of [`clamped_trim_windowed`](Self::clamped_trim_windowed):
     /// degree `p`, rows of `hd` values, `first` the span of `u` from the
-    /// right, `times` insertions; the buffers fit.
+    /// right, `times` insertions; the buffers of `R` row values and `K`
+    /// knots fit (`(2p + 1) hd <= R`, `3p + 1 <= K`).
     #[inline(always)]
-    fn trim_window(
+    fn trim_window<const R: usize, const K: usize>(
         &self,
         p: usize,
         hd: usize,
@@ -251,7 +254,7 @@ impl NurbsCurve {
         let lo = first - p;
         // The window: rows `lo ..= first` (homogeneous with weights) and
         // knots `lo ..= first + p`, local indices from `lo`.
-        let mut h = [0.0f64; TRIM_ROWS];
+        let mut h = [0.0f64; R];
         for (r, row) in h[..(p + 1) * hd].chunks_exact_mut(hd).enumerate() {
             let x = self.point(lo + r);
             match &self.weights {
@@ -266,7 +269,7 @@ impl NurbsCurve {
                 None => row.copy_from_slice(x),
             }
         }
-        let mut kn = [0.0f64; TRIM_KNOTS];
+        let mut kn = [0.0f64; K];
         kn[..2 * p + 1].copy_from_slice(&self.knots[lo..=first + p]);
         let mut kn_len = 2 * p + 1;
         // `insert_in_place`'s loop with `first` at local `p`.

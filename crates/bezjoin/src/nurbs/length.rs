@@ -256,25 +256,22 @@ impl RationalSpan<'_> {
     }
 
     /// `job` run on the speed per unit `t` by [`horner_speed`] (the
-    /// polynomials copied once into a table of constant size, the sizes
-    /// dispatched once, the speed inlined into the job): `None` (nothing
-    /// run) without [`SpeedBounds`] or for a size other than plane and
-    /// space quadratics and cubics.
+    /// polynomials read in place as an array of their exact length, the
+    /// sizes dispatched once, the speed inlined into the job): `None`
+    /// (nothing run) without [`SpeedBounds`] or for a size other than plane
+    /// and space quadratics and cubics.
     #[inline(always)]
     fn with_horner<J: HornerJob>(&self, job: J) -> Option<J::Output> {
-        let mut table = [0.0f64; HORNER_TABLE];
-        if self.bounds.is_none() || self.horner.len() > HORNER_TABLE {
-            return None;
+        // Nothing run without bounds.
+        self.bounds?;
+        // Table lengths `(2p) dim + p + 1`.
+        match (self.dim, self.degree) {
+            (2, 3) => run_horner::<J, 2, 3, 16>(self.horner, job),
+            (3, 3) => run_horner::<J, 3, 3, 22>(self.horner, job),
+            (2, 2) => run_horner::<J, 2, 2, 11>(self.horner, job),
+            (3, 2) => run_horner::<J, 3, 2, 15>(self.horner, job),
+            _ => None,
         }
-        table[..self.horner.len()].copy_from_slice(self.horner);
-        let table = &table;
-        Some(match (self.dim, self.degree) {
-            (2, 3) => job.run(|t| horner_speed::<2, 3>(table, t)),
-            (3, 3) => job.run(|t| horner_speed::<3, 3>(table, t)),
-            (2, 2) => job.run(|t| horner_speed::<2, 2>(table, t)),
-            (3, 2) => job.run(|t| horner_speed::<3, 2>(table, t)),
-            _ => return None,
-        })
     }
 
     /// [`Self::speeds`] by `per_unit_t` (the speed in `t` from the rows).
@@ -376,34 +373,18 @@ impl RationalSpan<'_> {
     ) -> f64 {
         let hd = d + 1;
         let mut work = [0.0f64; W];
-        let rows = self.rows;
-        let polygon = |w: &[f64]| -> f64 {
-            let mut total = 0.0;
-            let mut a = [0.0f64; 16];
-            let mut b = [0.0f64; 16];
-            if d > a.len() {
-                return f64::INFINITY;
-            }
-            // Each pole projected once, the previous one kept.
-            for c in 0..d {
-                a[c] = w[c] / w[d];
-            }
-            for i in 1..=p {
-                for c in 0..d {
-                    b[c] = w[i * hd + c] / w[i * hd + d];
-                }
-                total += distance(&a[..d], &b[..d]);
-                a[..d].copy_from_slice(&b[..d]);
-            }
-            total
+        // The span's `p + 1` rows (of constant length for constant `p`, `d`:
+        // the copy below inlined).
+        let rows = self.rows.get(..(p + 1) * hd).unwrap_or(self.rows);
+        let part: &[f64] = if rows.len() > work.len() || !(t0 > 0.0 && t0 < 1.0) {
+            rows
+        } else {
+            let work = &mut work[..rows.len()];
+            work.copy_from_slice(rows);
+            part_in_place(work, p, hd, t0, forward);
+            work
         };
-        if rows.len() > work.len() || !(t0 > 0.0 && t0 < 1.0) {
-            return polygon(rows);
-        }
-        let work = &mut work[..rows.len()];
-        work.copy_from_slice(rows);
-        part_in_place(work, p, hd, t0, forward);
-        polygon(work)
+        projected_polygon_length(part, p, d)
     }
 
     /// [`Self::speed`] in `t` (per unit `t`) for any dimension and degree:
@@ -426,6 +407,32 @@ impl RationalSpan<'_> {
         point_and_tangent_rows(self.rows, hd, self.degree, t, a, da);
         rational_speed(a, da)
     }
+}
+
+/// Length of the Cartesian polygon of `p + 1` homogeneous rows `(w x, w)`
+/// of `d + 1` values in `w` (infinite above 16 dimensions): each pole
+/// projected once, the previous one kept. Inlined into its one caller so
+/// that constant sizes unroll it.
+#[inline(always)]
+fn projected_polygon_length(w: &[f64], p: usize, d: usize) -> f64 {
+    let hd = d + 1;
+    let mut total = 0.0;
+    let mut a = [0.0f64; 16];
+    let mut b = [0.0f64; 16];
+    if d > a.len() {
+        return f64::INFINITY;
+    }
+    for c in 0..d {
+        a[c] = w[c] / w[d];
+    }
+    for i in 1..=p {
+        for c in 0..d {
+            b[c] = w[i * hd + c] / w[i * hd + d];
+        }
+        total += distance(&a[..d], &b[..d]);
+        a[..d].copy_from_slice(&b[..d]);
+    }
+    total
 }
 
 /// [`SpeedBounds`] of a rational span (`p + 1` homogeneous rows of `dim +
@@ -483,9 +490,9 @@ fn speed_bounds(
 /// Bernstein-Horner form in `r = t / (1 - t)` or `(1 - t) / t`, whichever
 /// is at most 1 (the scheme of [`BezierCurve::eval`]): `N(t) = N_r
 /// f^Q`, `w(t) = w_r f^P` (`f` = `1 - t` or `t`), so `|C'| = |N_r| / (w_r^2
-/// f)`.
+/// f)`. `L = 2 P D + P + 1` is the polynomials' length ([`run_horner`]).
 #[inline(always)]
-fn horner_speed<const D: usize, const P: usize>(horner: &[f64; HORNER_TABLE], t: f64) -> f64 {
+fn horner_speed<const D: usize, const P: usize, const L: usize>(horner: &[f64; L], t: f64) -> f64 {
     let q = 2 * P - 1;
     let (numerator, weight) = horner.split_at((q + 1) * D);
     let s = 1.0 - t;
@@ -573,9 +580,17 @@ impl HornerJob for SampleNodes<'_> {
     }
 }
 
-/// Size of [`horner_speed`]'s table: `(2p) dim + p + 1` values, at most 22
-/// for the cubics in space.
-const HORNER_TABLE: usize = 32;
+/// `job` on [`horner_speed`] for `D` coordinates and degree `P` when
+/// `horner` has the length `L = 2 P D + P + 1` of their table (else `None`,
+/// nothing run).
+#[inline(always)]
+fn run_horner<J: HornerJob, const D: usize, const P: usize, const L: usize>(
+    horner: &[f64],
+    job: J,
+) -> Option<J::Output> {
+    let table: &[f64; L] = horner.try_into().ok()?;
+    Some(job.run(|t| horner_speed::<D, P, L>(table, t)))
+}
 
 /// [`horner_speed`] for any dimension (up to 16) and degree.
 fn horner_speed_any(horner: &[f64], dim: usize, degree: usize, t: f64) -> f64 {
@@ -668,8 +683,8 @@ impl ChebyshevSampled for RationalChebyshev<'_, '_> {
         let (lo, h) = (s.lo, s.hi - s.lo);
         let grid = (nodes, start, span, first, step);
         let t = |u: f64| ((u - lo) / h).clamp(0.0, 1.0);
-        // The values of `speed_at` (`RationalSpan::speeds`), the table and
-        // the sizes set up once for all the nodes.
+        // The values of `speed_at` (`RationalSpan::speeds`), the table
+        // read and the sizes dispatched once for all the nodes.
         let job = SampleNodes {
             grid,
             samples: &mut *samples,
@@ -1201,74 +1216,53 @@ impl NurbsCurve {
             walked += piece;
             Ok(None)
         };
-        if self.weights.is_none() {
-            // The spans from the kept decomposition, visited in place (the
-            // same spans, in the same order, as the list below).
-            let poles = self.span_poles();
-            let span = |i: usize| {
-                let (lo, hi) = poles.domain(i);
-                Span {
-                    lo,
-                    hi,
-                    form: SpanForm::Polynomial(Cow::Borrowed(&poles.beziers[i])),
-                }
-            };
-            let count = poles.count();
-            let (lo_index, hi_index) = if forward {
-                // Spans with hi > start.
-                (
-                    (0..count)
-                        .find(|&i| poles.breaks[i + 1] > start)
-                        .unwrap_or(count),
-                    count,
-                )
-            } else {
-                // Spans with lo < start.
-                (
-                    0,
-                    (0..count)
-                        .rev()
-                        .find(|&i| poles.breaks[i] < start)
-                        .map_or(0, |i| i + 1),
-                )
-            };
-            let share = 0.5 * accuracy / (hi_index - lo_index).max(1) as f64;
-            if forward {
-                for i in lo_index..hi_index {
-                    if let Some(u) = step(&span(i), share)? {
-                        return Ok(u);
-                    }
-                }
-            } else {
-                for i in (lo_index..hi_index).rev() {
-                    if let Some(u) = step(&span(i), share)? {
-                        return Ok(u);
-                    }
+        // The spans ahead of `start`, visited in place one at a time (the
+        // same spans, in the same order, as `length_spans` filtered to
+        // those with `hi > start` forwards, `lo < start` backwards,
+        // reversed): the breaks increase, so they are the indices
+        // `lo_index..hi_index`.
+        let poles = self.span_poles();
+        let span = |i: usize| {
+            if self.weights.is_some() {
+                return self.weighted_span(i);
+            }
+            let (lo, hi) = poles.domain(i);
+            Span {
+                lo,
+                hi,
+                form: SpanForm::Polynomial(Cow::Borrowed(&poles.beziers[i])),
+            }
+        };
+        let count = poles.count();
+        let (lo_index, hi_index) = if forward {
+            // Spans with hi > start.
+            (
+                (0..count)
+                    .find(|&i| poles.breaks[i + 1] > start)
+                    .unwrap_or(count),
+                count,
+            )
+        } else {
+            // Spans with lo < start.
+            (
+                0,
+                (0..count)
+                    .rev()
+                    .find(|&i| poles.breaks[i] < start)
+                    .map_or(0, |i| i + 1),
+            )
+        };
+        let share = 0.5 * accuracy / (hi_index - lo_index).max(1) as f64;
+        if forward {
+            for i in lo_index..hi_index {
+                if let Some(u) = step(&span(i), share)? {
+                    return Ok(u);
                 }
             }
         } else {
-            // The spans visited in place, one at a time (the same spans, in
-            // the same order, as `length_spans` filtered to those with `hi >
-            // start` forwards, `lo < start` backwards, reversed).
-            let poles = self.span_poles();
-            let count = poles.count();
-            let ahead = |i: usize| {
-                let (lo, hi) = poles.domain(i);
-                if forward { hi > start } else { lo < start }
-            };
-            let visited = (0..count).filter(|&i| ahead(i)).count();
-            let share = 0.5 * accuracy / visited.max(1) as f64;
-            if forward {
-                for i in (0..count).filter(|&i| ahead(i)) {
-                    if let Some(u) = step(&self.weighted_span(i), share)? {
-                        return Ok(u);
-                    }
-                }
-            } else {
-                for i in (0..count).rev().filter(|&i| ahead(i)) {
-                    if let Some(u) = step(&self.weighted_span(i), share)? {
-                        return Ok(u);
-                    }
+            for i in (lo_index..hi_index).rev() {
+                if let Some(u) = step(&span(i), share)? {
+                    return Ok(u);
                 }
             }
         }

@@ -1100,20 +1100,27 @@ impl NurbsCurve {
                 }
             }
             Some(weights) => {
-                for k in 0..=n {
-                    let row = &mut out[k * d..(k + 1) * d];
-                    for (j, &b) in basis[k * m..(k + 1) * m].iter().enumerate() {
+                // Pole by pole (its weighted coordinates and their size
+                // formed once for all the orders); each order's sums still
+                // take the poles in their order, so the same sums.
+                for j in 0..m {
+                    let wi = weights[first + j];
+                    let pole = &self.points[(first + j) * d..(first + j + 1) * d];
+                    let size = if track {
+                        pole.iter().fold(0.0f64, |s, x| s.max((wi * x).abs()))
+                    } else {
+                        0.0
+                    };
+                    for k in 0..=n {
+                        let b = basis[k * m + j];
                         if b == 0.0 {
                             continue;
                         }
-                        let wi = weights[first + j];
-                        let pole = &self.points[(first + j) * d..(first + j + 1) * d];
                         let bw = b * wi;
-                        for (o, &x) in row.iter_mut().zip(pole) {
+                        for (o, &x) in out[k * d..(k + 1) * d].iter_mut().zip(pole) {
                             *o += b * (wi * x);
                         }
                         if track {
-                            let size = pole.iter().fold(0.0f64, |s, x| s.max((wi * x).abs()));
                             a_abs[k] += b.abs() * size;
                             w_abs[k] += b.abs() * wi;
                         }
@@ -1127,11 +1134,18 @@ impl NurbsCurve {
         for k in 0..rows {
             let mut row_abs = a_abs[k];
             if rational {
-                // C(k, i) by its recurrence: each step exact in f64 (an
-                // integer times an integer, divided exactly).
+                // C(k, i): from the table of exact binomials up to row
+                // `SPAN_FAST_MAX_DEGREE` (constants for a constant row count),
+                // beyond by its recurrence, each step exact in f64 (an
+                // integer times an integer, divided exactly): the same
+                // values.
                 let mut choose = 1.0;
                 for i in 1..=k {
-                    choose = choose * (k + 1 - i) as f64 / i as f64;
+                    choose = if k <= eval::SPAN_FAST_MAX_DEGREE {
+                        eval::BINOMIALS[k * (k + 1) / 2 + i]
+                    } else {
+                        choose * (k + 1 - i) as f64 / i as f64
+                    };
                     if w[i] == 0.0 && w_abs[i] == 0.0 {
                         continue;
                     }
