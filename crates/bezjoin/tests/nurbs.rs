@@ -1273,3 +1273,63 @@ fn one_span_fillet_trims_are_the_segments_and_on_the_unit_domain_the_bezier_ones
         assert!((dp - setback).abs() <= accuracy && (dq - setback).abs() <= accuracy);
     }
 }
+
+/// Fuzz finding F12 (docs/reliability.md): mirroring the knots by
+/// `first + last - k` rounded the five copies of the end knot an ulp below
+/// the new start, so the reversed knot vector stepped back and its clamped
+/// form kept knots below the domain. The reversed curve must keep an
+/// ordered knot vector with the same end multiplicities, run backwards, and
+/// reverse back to the same knots.
+#[test]
+fn reverse_keeps_the_knot_vector_ordered_when_the_mirror_rounds() {
+    // The knot vector of the fuzz seed
+    // fuzz/seeds/nurbs/regression-F12-nurbs-span-poles-knot-step-back.
+    let knots = vec![
+        -79.67529296875,
+        -79.67529296875,
+        -79.67529296875,
+        -78.02928466796875,
+        -77.67593994140626,
+        -77.25295410156251,
+        -77.25295410156251,
+        -77.25295410156251,
+        -77.25295410156251,
+        -77.12495117187501,
+        -77.12495117187501,
+        -77.12495117187501,
+        -77.12495117187501,
+        -77.12495117187501,
+        -75.22509765625001,
+        -75.22509765625001,
+        -75.22509765625001,
+    ];
+    let mut rng = Random(0x5eed_f012);
+    for case in 0..8 {
+        let poles: Vec<f64> = (0..11 * 2).map(|_| rng.range(-5.0, 5.0)).collect();
+        let weights = (case % 2 == 1).then(|| (0..11).map(|_| rng.range(0.5, 2.0)).collect());
+        let c = NurbsCurve::new(2, 5, poles, weights, knots.clone()).unwrap();
+        let (a, b) = c.domain();
+        let r = c.reverse();
+        let ordered = |k: &[f64]| k.windows(2).all(|w| w[0] <= w[1]);
+        assert!(ordered(r.knots()), "case {case}: {:?}", r.knots());
+        assert_eq!(r.domain(), (a, b));
+        assert_eq!(r.multiplicity(a), c.multiplicity(b), "case {case}");
+        assert_eq!(r.multiplicity(b), c.multiplicity(a), "case {case}");
+        assert_eq!(r.reverse().knots(), c.knots(), "case {case}");
+        let clamped = r.clamped();
+        assert!(
+            ordered(clamped.knots()),
+            "case {case}: {:?}",
+            clamped.knots()
+        );
+        assert!(clamped.knots()[..=5].iter().all(|&k| k == a), "case {case}");
+        for v in samples(&c, 13) {
+            let w = (a + b - v).clamp(a, b);
+            assert!(close(&r.eval(v), &c.eval(w), 1e-11), "case {case} v {v}");
+            assert!(
+                close(&clamped.eval(v), &c.eval(w), 1e-11),
+                "case {case} v {v}"
+            );
+        }
+    }
+}

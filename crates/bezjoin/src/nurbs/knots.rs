@@ -403,7 +403,13 @@ impl NurbsCurve {
     }
 
     /// The same point set traversed backwards on the same domain:
-    /// `R(u) = C(first + last - u)`.
+    /// `R(u) = C(first + last - u)`. The knots are `first + last - k`,
+    /// except that a knot equal to `first` or `last` becomes exactly `last`
+    /// or `first` (the rounded mirror can land an ulp off, which split one
+    /// multiple end knot into knots an ulp apart and made the knot vector
+    /// step back; fuzz finding F12, docs/reliability.md), and the mirrored
+    /// knots of the domain stay inside it; so the knot vector stays
+    /// non-decreasing (the mirror is monotone, and so is rounding).
     pub fn reverse(&self) -> NurbsCurve {
         let (first, last) = self.domain();
         let d = self.dim;
@@ -411,7 +417,17 @@ impl NurbsCurve {
             .knots
             .iter()
             .rev()
-            .map(|&k| (first + last) - k)
+            .map(|&k| {
+                if k == first {
+                    last
+                } else if k == last {
+                    first
+                } else if k > first && k < last {
+                    ((first + last) - k).clamp(first, last)
+                } else {
+                    (first + last) - k
+                }
+            })
             .collect();
         let mut points = Vec::with_capacity(self.points.len());
         for row in self.points.chunks_exact(d).rev() {
@@ -429,7 +445,7 @@ impl NurbsCurve {
             weights,
             span_cache: Default::default(),
         };
-        // `first + last - k` need not give `first`/`last` back bit for bit.
+        // The knots outside the domain stay outside it.
         let p = self.degree;
         let n = r.point_count();
         r.knots[p] = first;
