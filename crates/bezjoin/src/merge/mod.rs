@@ -96,6 +96,7 @@
 
 mod bspline;
 mod bspline_slope;
+mod columns;
 mod kept;
 mod kkt;
 mod lsq;
