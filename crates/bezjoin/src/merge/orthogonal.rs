@@ -65,7 +65,7 @@ use crate::bezier::BezierCurve;
 use crate::error::{BezjoinError, Result};
 
 use super::MergeMetric;
-use super::columns::{Columns, Parts, stack_or_heap};
+use super::columns::{Columns, Parts, nalgebra_dot_sized, stack_or_heap};
 use super::lsq::{self, Factor};
 use super::rows::{Problem, Row, check_dependent_rows, extend_orthonormal};
 use super::stage_one::{CONSISTENCY_TOLERANCE, RANK_TOLERANCE};
@@ -331,37 +331,18 @@ fn product_column_sized<const N: usize>(a: &[f64], b: &[f64], abs: bool, out: &m
     }
 }
 
-/// nalgebra's `dot` of two dynamic columns bit for bit (its `dotx`: eight
-/// partial sums over blocks of eight, added pairwise into a sum from `0`,
-/// then the remaining products one by one), of `|a|` and `|b|`.
+/// nalgebra's `dot` of two dynamic columns bit for bit, of `|a|` and
+/// `|b|` ([`nalgebra_dot_sized`]).
 #[inline(always)]
 fn nalgebra_dot_abs(a: &[f64], b: &[f64]) -> f64 {
-    nalgebra_dot_abs_sized::<0>(a, b)
+    nalgebra_dot_sized::<0, true>(a, b)
 }
 
 /// [`nalgebra_dot_abs`] with the length `N` known at compile time (`0`:
 /// `a.len()`): the same operations in the same order.
 #[inline(always)]
 fn nalgebra_dot_abs_sized<const N: usize>(a: &[f64], b: &[f64]) -> f64 {
-    let n = if N == 0 { a.len() } else { N };
-    let (a, b) = (&a[..n], &b[..n]);
-    let mut res = 0.0;
-    let mut acc = [0.0f64; 8];
-    let mut i = 0;
-    while n - i >= 8 {
-        for (l, s) in acc.iter_mut().enumerate() {
-            *s += a[i + l].abs() * b[i + l].abs();
-        }
-        i += 8;
-    }
-    res += acc[0] + acc[4];
-    res += acc[1] + acc[5];
-    res += acc[2] + acc[6];
-    res += acc[3] + acc[7];
-    for k in i..n {
-        res += a[k].abs() * b[k].abs();
-    }
-    res
+    nalgebra_dot_sized::<N, true>(a, b)
 }
 
 /// [`abs_tr_mul_into`] into a new matrix (the tests' form).
@@ -962,7 +943,7 @@ pub(super) fn orthogonal_solution(
     let residual = parts.matrix(rows, dim, |out| {
         combined_product_into(target, samples, (&merged).into(), Combine::Minus, out)
     });
-    let metric_value = residual.view().norm_squared();
+    let metric_value = residual.norm_squared();
 
     // The pieces: R split at the breakpoints (de Casteljau). `R` as a
     // curve only for more than two pieces; for two, its construction is
@@ -1168,7 +1149,11 @@ pub(super) fn orthogonal_solution(
         // moves by up to cond(rows) eps relative, which the pieces feel
         // through S directly and through the reduced least-squares problem
         // (the optimum moves along with the particular solution).
-        estimate += ESTIMATE_MARGIN * eps * condition * (s.norm() + reduced_gain) * merged.norm()
+        estimate += ESTIMATE_MARGIN
+            * eps
+            * condition
+            * (s.norm() + reduced_gain)
+            * Columns::from(&merged).norm()
             / result_scale;
     }
 
