@@ -80,6 +80,57 @@ impl<'a> From<&'a DMatrix<f64>> for Columns<'a> {
     }
 }
 
+/// A column-major matrix owning its entries: on the stack up to
+/// [`OWNED_ON_STACK`] entries, else on the heap.
+pub(super) struct OwnedColumns {
+    small: [f64; OWNED_ON_STACK],
+    large: Vec<f64>,
+    rows: usize,
+    cols: usize,
+}
+
+/// Entries of an [`OwnedColumns`] kept on the stack (the input points of
+/// two pieces of degree 7 in space).
+const OWNED_ON_STACK: usize = 48;
+
+impl OwnedColumns {
+    /// The `rows x cols` zero matrix.
+    pub(super) fn zeros(rows: usize, cols: usize) -> Self {
+        let len = rows * cols;
+        Self {
+            small: [0.0; OWNED_ON_STACK],
+            large: if len > OWNED_ON_STACK {
+                vec![0.0; len]
+            } else {
+                Vec::new()
+            },
+            rows,
+            cols,
+        }
+    }
+
+    /// The entries, column after column.
+    pub(super) fn as_mut_slice(&mut self) -> &mut [f64] {
+        let len = self.rows * self.cols;
+        if len > OWNED_ON_STACK {
+            &mut self.large
+        } else {
+            &mut self.small[..len]
+        }
+    }
+
+    /// The matrix, borrowed.
+    pub(super) fn columns(&self) -> Columns<'_> {
+        let len = self.rows * self.cols;
+        let data = if len > OWNED_ON_STACK {
+            &self.large
+        } else {
+            &self.small[..len]
+        };
+        Columns::new(data, self.rows, self.cols)
+    }
+}
+
 /// nalgebra's `dot` of two dynamic columns bit for bit (its `dotx`: eight
 /// partial sums over blocks of eight, added pairwise into a sum from `0`,
 /// then the remaining products one by one), of `|a|` and `|b|` when `ABS`;

@@ -653,7 +653,7 @@ fn null_space(basis: &[(DVector<f64>, DVector<f64>)], n: usize) -> DMatrix<f64> 
 /// length.
 fn constraint_rows_on_r<'s>(problem: &Problem<'_, '_>, s: impl Into<Columns<'s>>) -> Vec<Row> {
     let s = s.into().view();
-    let x0 = &problem.x0;
+    let x0 = problem.x0().view();
     problem
         .constraints()
         .iter()
@@ -749,10 +749,13 @@ impl<'r, 'a> Feasible<'r, 'a> {
     /// order (every other unit vector has remainder 1, the first wins), and
     /// the kept rows are orthonormal (condition 1): what [`Feasible::general`]
     /// computes, in closed form, without building the rows.
-    fn fixed_ends(x0: &DMatrix<f64>, dim: usize, m: usize, parts: &mut Parts<'a>) -> Self {
+    fn fixed_ends(x0: Columns<'_>, dim: usize, m: usize, parts: &mut Parts<'a>) -> Self {
         let points = m + 1;
         let particular = parts.matrix(points, dim, |p| {
-            for (column, from) in p.chunks_exact_mut(points).zip(x0.column_iter()) {
+            for (column, from) in p
+                .chunks_exact_mut(points)
+                .zip(x0.as_slice().chunks_exact(2 * points))
+            {
                 column.fill(0.0);
                 column[0] = from[0];
                 column[m] = from[2 * points - 1];
@@ -793,7 +796,7 @@ pub(super) fn orthogonal_solution(
     let m = points - 1;
     let count = problem.pieces.len();
     let dim = problem.dim;
-    let x0 = &problem.x0;
+    let x0 = problem.x0();
     // The samples' rows (both metrics: `points` per piece).
     let rows = count * points;
     // The intermediate matrices in parts of two buffers, on the stack for
@@ -814,7 +817,7 @@ pub(super) fn orthogonal_solution(
             Some((samples, target, target_abs)) => {
                 (samples.into(), target.into(), Some(target_abs.into()))
             }
-            None => (s, x0.into(), None),
+            None => (s, x0, None),
         };
 
     let ends_only = count == 2
@@ -1161,7 +1164,7 @@ pub(super) fn orthogonal_solution(
     let e = if dependent.is_empty() {
         DMatrix::zeros(0, 0)
     } else {
-        &x - x0
+        &x - x0.view()
     };
     let tolerance = CONSISTENCY_TOLERANCE.max(accuracy) * result_scale;
     let unknowns = problem.unknowns;
@@ -1905,7 +1908,7 @@ mod tests {
                     &mut Parts::new(&mut general_buffer),
                 );
                 let closed = Feasible::fixed_ends(
-                    &problem.x0,
+                    problem.x0(),
                     problem.dim,
                     degree,
                     &mut Parts::new(&mut closed_buffer),

@@ -364,7 +364,7 @@ pub(crate) fn solve_stage_one_slope(
     };
     // The changes, for the metric of the kept and KKT paths only.
     let e = if found.is_none() {
-        &x - &problem.x0
+        &x - problem.x0().view()
     } else {
         DMatrix::zeros(0, 0)
     };
