@@ -159,26 +159,28 @@ pub(super) fn nalgebra_dot_sized<const N: usize, const ABS: bool>(a: &[f64], b: 
     res
 }
 
-/// Disjoint parts of one buffer, handed out in order.
+/// Disjoint parts of one zeroed buffer, handed out in order (each once,
+/// so every part is zeros when handed out).
 pub(super) struct Parts<'a> {
     rest: &'a mut [f64],
 }
 
 impl<'a> Parts<'a> {
+    /// `buffer`: all zero.
     pub(super) fn new(buffer: &'a mut [f64]) -> Self {
+        debug_assert!(buffer.iter().all(|v| v.to_bits() == 0));
         Self { rest: buffer }
     }
 
-    /// The next `len` entries, as the buffer holds them (zeros in a
-    /// zeroed buffer: every part is handed out once).
+    /// The next `len` entries (zeros).
     pub(super) fn take(&mut self, len: usize) -> &'a mut [f64] {
         let (part, rest) = std::mem::take(&mut self.rest).split_at_mut(len);
         self.rest = rest;
         part
     }
 
-    /// A zeroed `rows x cols` part filled by `fill` (the column-major
-    /// entries), as a matrix.
+    /// The next `rows x cols` part (zeros) filled by `fill` (the
+    /// column-major entries), as a matrix.
     pub(super) fn matrix(
         &mut self,
         rows: usize,

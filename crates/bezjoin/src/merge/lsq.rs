@@ -128,8 +128,8 @@ impl<'p> Factor<'p> {
         debug_assert!(rows >= cols && a.len() == rows * cols);
         let size = rows * cols;
         assert_eq!(packed.len(), Self::packed_len(rows, cols));
+        // T's diagonal and the betas are written column by column below.
         packed[..size].copy_from_slice(a);
-        packed[size..].fill(0.0);
         let (matrix, rest) = packed.split_at_mut(size);
         let (diagonal, beta) = rest.split_at_mut(cols);
         for k in 0..cols {

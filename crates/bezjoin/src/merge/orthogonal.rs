@@ -756,13 +756,11 @@ impl<'r, 'a> Feasible<'r, 'a> {
                 .chunks_exact_mut(points)
                 .zip(x0.as_slice().chunks_exact(2 * points))
             {
-                column.fill(0.0);
                 column[0] = from[0];
                 column[m] = from[2 * points - 1];
             }
         });
         let z = parts.matrix(points, m - 1, |z| {
-            z.fill(0.0);
             z.iter_mut()
                 .skip(1)
                 .step_by(points + 1)
@@ -811,6 +809,10 @@ pub(super) fn orthogonal_solution(
         rows * points + points * dim + points * points,
     ));
     let s = parts.matrix(rows, points, |s| restrictions_into(m, breakpoints, s));
+    // `||S||_F`, and `||M||_F`, which is the same for the discrete metric
+    // (`M = S`), computed once.
+    let s_norm = std::cell::OnceCell::new();
+    let s_norm = || *s_norm.get_or_init(|| s.norm());
     let integral = integral_samples(problem, breakpoints, metric);
     let (samples, target, target_abs): (Columns<'_>, Columns<'_>, Option<Columns<'_>>) =
         match &integral {
@@ -819,6 +821,10 @@ pub(super) fn orthogonal_solution(
             }
             None => (s, x0, None),
         };
+    let samples_norm = || match &integral {
+        Some(_) => samples.norm(),
+        None => s_norm(),
+    };
 
     let ends_only = count == 2
         && m >= 1
@@ -1100,6 +1106,7 @@ pub(super) fn orthogonal_solution(
             reduced_target,
             target_size,
             residual,
+            metric_value.sqrt(),
             m,
             correction,
             parts.take(Shared::values_len(rows, free, dim)),
@@ -1145,7 +1152,7 @@ pub(super) fn orthogonal_solution(
         // ||S Z A^+||_F ||M||_F: how much a move of the particular solution
         // (the kept rows' rounding, below) reaches the pieces through the
         // least-squares problem.
-        reduced_gain = pieces_gain * samples.norm();
+        reduced_gain = pieces_gain * samples_norm();
     }
     if let Some((_, condition)) = kept_condition {
         // The kept rows carry their entries' rounding: the feasible set
@@ -1155,7 +1162,7 @@ pub(super) fn orthogonal_solution(
         estimate += ESTIMATE_MARGIN
             * eps
             * condition
-            * (s.norm() + reduced_gain)
+            * (s_norm() + reduced_gain)
             * Columns::from(&merged).norm()
             / result_scale;
     }
@@ -1284,7 +1291,8 @@ struct Shared<'s> {
     /// products) and its norm are read.
     a: Columns<'s>,
     target: Columns<'s>,
-    residual: Columns<'s>,
+    /// The residual's norm (`|A|^T |res|` is in `values`).
+    residual_norm: f64,
     m: usize,
     /// The last refinement correction of `y` (`free x dim`,
     /// column-major).
@@ -1298,7 +1306,8 @@ impl<'s> Shared<'s> {
         rows * free + rows * dim + free * dim
     }
 
-    /// `values`: [`Shared::values_len`] entries, any contents.
+    /// `values`: [`Shared::values_len`] entries, all zero; `residual_norm`:
+    /// `residual.norm()` (the root of the metric value, already summed).
     #[allow(clippy::too_many_arguments)]
     fn new(
         qr: Factor<'s>,
@@ -1306,7 +1315,8 @@ impl<'s> Shared<'s> {
         a: Columns<'s>,
         target: Columns<'s>,
         target_size: Columns<'_>,
-        residual: Columns<'s>,
+        residual: Columns<'_>,
+        residual_norm: f64,
         m: usize,
         correction: &'s [f64],
         values: &'s mut [f64],
@@ -1316,7 +1326,6 @@ impl<'s> Shared<'s> {
         debug_assert!(target_size.shape() == (rows, dim) && residual.shape() == (rows, dim));
         let (q, rest) = values.split_at_mut(rows * free);
         let (through_values, through_residual) = rest.split_at_mut(rows * dim);
-        q.fill(0.0);
         qr.thin_q_into(q);
         combined_product_into(target_size, a, y, Combine::PlusAbs, through_values);
         abs_tr_mul_into(a, residual, through_residual);
@@ -1326,7 +1335,7 @@ impl<'s> Shared<'s> {
             y,
             a,
             target,
-            residual,
+            residual_norm,
             m,
             correction,
         }
@@ -1742,7 +1751,7 @@ fn first_order_bound_sized<const R: usize, const F: usize, const O: usize>(
         * eps
         * ((rows * free) as f64).sqrt()
         * (k0_norm * (shared.target.norm() + a_norm * shared.y.norm())
-            + lsq::norm(k2) * a_norm * shared.residual.norm());
+            + lsq::norm(k2) * a_norm * shared.residual_norm);
     k2.iter_mut().for_each(|v| *v = v.abs());
     let mut worst = 0.0f64;
     for c in 0..dim {
@@ -1967,6 +1976,7 @@ mod tests {
                 (&self.target).into(),
                 (&self.target_size).into(),
                 (&self.residual).into(),
+                self.residual.norm(),
                 ends,
                 correction.as_slice(),
                 values,

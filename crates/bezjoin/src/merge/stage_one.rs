@@ -190,27 +190,28 @@ impl StageOne {
 }
 
 /// Rows `0 .. count` of `m` as row-major points, as [`rows_of`]`(m, 0,
-/// count)`, in `m`'s own storage (through a copy of its entries, on the
-/// stack for small matrices).
+/// count)`, in `m`'s own storage (the points gathered on the stack first
+/// for small pieces).
 fn leading_rows(m: DMatrix<f64>, count: usize) -> Vec<f64> {
     let (rows, dim) = (m.nrows(), m.ncols());
-    let mut points = Vec::from(m.data);
     let mut on_stack = [0.0f64; LEADING_ROWS_ON_STACK];
     let mut on_heap = Vec::new();
-    let columns = stack_or_heap(&mut on_stack, &mut on_heap, points.len());
-    columns.copy_from_slice(&points);
-    points.truncate(count * dim);
-    for (i, point) in points.chunks_exact_mut(dim).enumerate() {
+    let gathered = stack_or_heap(&mut on_stack, &mut on_heap, count * dim);
+    let data = m.as_slice();
+    for (i, point) in gathered.chunks_exact_mut(dim).enumerate() {
         for (c, v) in point.iter_mut().enumerate() {
-            *v = columns[c * rows + i];
+            *v = data[c * rows + i];
         }
     }
+    let mut points = Vec::from(m.data);
+    points.truncate(count * dim);
+    points.copy_from_slice(gathered);
     points
 }
 
-/// Entries of a matrix copied on the stack by [`leading_rows`] (two
-/// pieces of degree 7 in space).
-const LEADING_ROWS_ON_STACK: usize = 48;
+/// Points' entries gathered on the stack by [`leading_rows`] (a piece of
+/// degree 7 in space).
+const LEADING_ROWS_ON_STACK: usize = 24;
 
 /// Rows `first .. first + count` of `m` as row-major points (the order
 /// `BezierCurve::from_matrix` reads them in).
