@@ -433,12 +433,9 @@ fn ends_product_into(
         &m.as_slice()[..rows],
         &m.as_slice()[k * rows..(k + 1) * rows],
     );
-    out.copy_from_slice(c.as_slice());
-    if c_abs {
-        out.iter_mut().for_each(|v| *v = v.abs());
-    }
-    for (col, (oc, pc)) in out
+    for (col, ((oc, cc), pc)) in out
         .chunks_exact_mut(rows)
+        .zip(c.as_slice().chunks_exact(rows))
         .zip(p.as_slice().chunks_exact(k + 1))
         .enumerate()
     {
@@ -448,7 +445,8 @@ fn ends_product_into(
         } else {
             (pc[0], pc[k])
         };
-        for ((o, &f), &l) in oc.iter_mut().zip(first).zip(last) {
+        for (((o, &x), &f), &l) in oc.iter_mut().zip(cc).zip(first).zip(last) {
+            let x = if c_abs { x.abs() } else { x };
             let (f, l) = if abs { (f.abs(), l.abs()) } else { (f, l) };
             let a = f * p0;
             let sum = if k >= 2 {
@@ -456,11 +454,7 @@ fn ends_product_into(
             } else {
                 a + l * pk
             };
-            if abs {
-                *o += sum;
-            } else {
-                *o -= sum;
-            }
+            *o = if abs { x + sum } else { x - sum };
         }
     }
 }
@@ -895,11 +889,13 @@ pub(super) fn orthogonal_solution(
         let Some(qr) = Factor::new(a.as_slice(), rows, free, packed) else {
             return Err(ill_conditioned_factor(accuracy));
         };
-        // The solves' scratch, the refinement step, the remainder and the
-        // last correction (zeros until a step is taken).
+        // The solves' scratch, the refinement steps, the remainder. The
+        // steps go to two buffers in turn, so the last finite one is still
+        // in its buffer after a step that is not (the last correction,
+        // no copy); zeros until written.
         let work = parts.take(rows);
-        let step = parts.take(free * dim);
-        let correction = parts.take(free * dim);
+        let steps = [parts.take(free * dim), parts.take(free * dim)];
+        let mut last_step = None;
         let remainder = parts.take(rows * dim);
         let y = parts.take(free * dim);
         qr.least_squares(reduced_target.as_slice(), y, work);
@@ -908,10 +904,11 @@ pub(super) fn orthogonal_solution(
         // componentwise backward stable, and the last correction measures
         // what the solve's rounding leaves (the estimate's a-posteriori
         // part).
-        for _ in 0..REFINEMENT_STEPS {
+        for taken in 0..REFINEMENT_STEPS {
             // remainder = t - A y as nalgebra's `gemm(-1, A, y, 1)` on a
-            // copy of t: per column, `(-a_k) y_k + r` for k = 0.. in order
-            // (`matrixmultiply`'s case by nalgebra itself).
+            // copy of t: per column, `(-a_k) y_k + r` for k = 0.. in order,
+            // the first from t itself (`matrixmultiply`'s case by nalgebra
+            // itself).
             if blocked_product(rows, free, dim) {
                 let mut r = reduced_target.to_matrix();
                 r.gemm(-1.0, &a.view(), &Columns::new(y, free, dim).view(), 1.0);
@@ -922,14 +919,20 @@ pub(super) fn orthogonal_solution(
                     .zip(reduced_target.as_slice().chunks_exact(rows))
                     .zip(y.chunks_exact(free))
                 {
-                    r.copy_from_slice(t);
-                    for (ak, &yk) in a.as_slice().chunks_exact(rows).zip(yc) {
+                    let mut columns = a.as_slice().chunks_exact(rows).zip(yc);
+                    if let Some((a0, &y0)) = columns.next() {
+                        for ((e, &x), &from) in r.iter_mut().zip(a0).zip(t) {
+                            *e = from + -x * y0;
+                        }
+                    }
+                    for (ak, &yk) in columns {
                         for (e, &x) in r.iter_mut().zip(ak) {
                             *e += -x * yk;
                         }
                     }
                 }
             }
+            let step = &mut *steps[taken % 2];
             qr.least_squares(remainder, step, work);
             if step.iter().any(|v| !v.is_finite()) {
                 break;
@@ -937,8 +940,15 @@ pub(super) fn orthogonal_solution(
             for (e, &d) in y.iter_mut().zip(step.iter()) {
                 *e += d;
             }
-            correction.copy_from_slice(step);
+            last_step = Some(taken % 2);
         }
+        // The last finite step, or zeros (the second buffer, never written,
+        // when the first step is not finite or none is taken).
+        let [first_step, second_step] = steps;
+        let correction: &[f64] = match last_step {
+            Some(0) => first_step,
+            Some(_) | None => second_step,
+        };
         let y = Columns::new(y, free, dim);
         merged = match z {
             Some(z) => combined_product(particular, z, y, Combine::Plus),
@@ -946,7 +956,6 @@ pub(super) fn orthogonal_solution(
         };
         // `A` itself where its absolute values are needed: every use takes
         // them (`abs_tr_mul`, `PlusAbs`) or is a norm.
-        let correction: &[f64] = correction;
         factor = Some((qr, y, a, correction));
     }
     let residual = parts.matrix(rows, dim, |out| {
@@ -1379,8 +1388,8 @@ const SOLVE_ON_STACK: usize = 240;
 /// The entries [`orthogonal_solution`] takes from its solve's buffer at
 /// most, for `rows` samples, `free` free columns and `dim` coordinates.
 fn solve_buffer_len(rows: usize, free: usize, dim: usize) -> usize {
-    // The reduced target, A = M Z, the factor; the solves' scratch, step,
-    // correction, remainder and y.
+    // The reduced target, A = M Z, the factor; the solves' scratch, the
+    // two steps, the remainder and y.
     let solve = rows * dim
         + rows * free
         + Factor::packed_len(rows, free)
