@@ -193,18 +193,36 @@ impl<'a> Parts<'a> {
     }
 }
 
-/// `need` zeros: the first entries of `stack` when they fit, else `heap`
-/// grown to `need` zeros (one allocation).
-pub(super) fn stack_or_heap<'a>(
-    stack: &'a mut [f64],
-    heap: &'a mut Vec<f64>,
-    need: usize,
-) -> &'a mut [f64] {
-    if need <= stack.len() {
-        &mut stack[..need]
-    } else {
-        heap.resize(need, 0.0);
-        heap
+/// Zeros on the stack up to `N` entries, else on the heap (one
+/// allocation).
+pub(super) struct ZeroBuffer<const N: usize> {
+    stack: [f64; N],
+    heap: Vec<f64>,
+}
+
+impl<const N: usize> ZeroBuffer<N> {
+    #[inline(always)]
+    pub(super) fn new() -> Self {
+        Self {
+            stack: [0.0; N],
+            heap: Vec::new(),
+        }
+    }
+
+    /// `need` zeros (the buffer's first use): the first entries of the
+    /// stack array when they fit, else the heap's.
+    pub(super) fn zeros(&mut self, need: usize) -> &mut [f64] {
+        if need <= N {
+            &mut self.stack[..need]
+        } else {
+            self.heap.resize(need, 0.0);
+            &mut self.heap
+        }
+    }
+
+    /// [`ZeroBuffer::zeros`] handed out in parts.
+    pub(super) fn parts(&mut self, need: usize) -> Parts<'_> {
+        Parts::new(self.zeros(need))
     }
 }
 

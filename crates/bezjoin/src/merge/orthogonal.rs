@@ -65,7 +65,7 @@ use crate::bezier::BezierCurve;
 use crate::error::{BezjoinError, Result};
 
 use super::MergeMetric;
-use super::columns::{Columns, Parts, nalgebra_dot_sized, stack_or_heap};
+use super::columns::{Columns, Parts, ZeroBuffer, nalgebra_dot_sized};
 use super::lsq::{self, Factor};
 use super::rows::{Problem, Row, check_dependent_rows, extend_orthonormal};
 use super::stage_one::{CONSISTENCY_TOLERANCE, RANK_TOLERANCE};
@@ -795,13 +795,8 @@ pub(super) fn orthogonal_solution(
     // small degrees (each below the size where glibc's `memset` switches
     // to `rep stosb`): `S`, `r_p` and `Z`, then, once the number of free
     // columns is known, the solve's (`solve_buffer_len`).
-    let mut problem_on_stack = [0.0f64; PROBLEM_ON_STACK];
-    let mut problem_on_heap = Vec::new();
-    let mut parts = Parts::new(stack_or_heap(
-        &mut problem_on_stack,
-        &mut problem_on_heap,
-        rows * points + points * dim + points * points,
-    ));
+    let mut problem_buffer = ZeroBuffer::<PROBLEM_ON_STACK>::new();
+    let mut parts = problem_buffer.parts(rows * points + points * dim + points * points);
     let s = parts.matrix(rows, points, |s| restrictions_into(m, breakpoints, s));
     // `||S||_F`, and `||M||_F`, which is the same for the discrete metric
     // (`M = S`), computed once.
@@ -842,13 +837,8 @@ pub(super) fn orthogonal_solution(
         kept_condition,
     } = feasible;
     let kept_count = kept_condition.map_or(0, |(count, _)| count);
-    let mut on_stack = [0.0f64; SOLVE_ON_STACK];
-    let mut on_heap = Vec::new();
-    let mut parts = Parts::new(stack_or_heap(
-        &mut on_stack,
-        &mut on_heap,
-        solve_buffer_len(rows, free, dim),
-    ));
+    let mut solve_buffer = ZeroBuffer::<SOLVE_ON_STACK>::new();
+    let mut parts = solve_buffer.parts(solve_buffer_len(rows, free, dim));
     // The fixed ends' products with the particular solution from its two
     // nonzero rows (`ends_product`), where nalgebra's product is the
     // column axpys (not `matrixmultiply`'s blocked sums).
@@ -1377,7 +1367,7 @@ impl<'s> Shared<'s> {
 }
 
 /// Entries of the first buffer of [`orthogonal_solution`] (`S`, `r_p`,
-/// `Z`) kept on the stack (two pieces of degree 3 in space: `52`).
+/// `Z`) kept on the stack (two pieces of degree 3 in space: `60`).
 const PROBLEM_ON_STACK: usize = 64;
 
 /// Entries of the solve's buffer of [`orthogonal_solution`] kept on the

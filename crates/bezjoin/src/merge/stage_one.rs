@@ -21,7 +21,7 @@ use crate::basis::binomial;
 use crate::bezier::BezierCurve;
 use crate::error::{BezjoinError, Result};
 
-use super::columns::stack_or_heap;
+use super::columns::ZeroBuffer;
 use super::kept::kept_solution;
 use super::kkt::kkt_solution;
 use super::orthogonal::orthogonal_solution;
@@ -194,9 +194,8 @@ impl StageOne {
 /// for small pieces).
 fn leading_rows(m: DMatrix<f64>, count: usize) -> Vec<f64> {
     let (rows, dim) = (m.nrows(), m.ncols());
-    let mut on_stack = [0.0f64; LEADING_ROWS_ON_STACK];
-    let mut on_heap = Vec::new();
-    let gathered = stack_or_heap(&mut on_stack, &mut on_heap, count * dim);
+    let mut buffer = ZeroBuffer::<LEADING_ROWS_ON_STACK>::new();
+    let gathered = buffer.zeros(count * dim);
     let data = m.as_slice();
     for (i, point) in gathered.chunks_exact_mut(dim).enumerate() {
         for (c, v) in point.iter_mut().enumerate() {
