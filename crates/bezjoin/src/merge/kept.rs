@@ -25,7 +25,7 @@ pub(super) fn kept_solution(
     let count = pieces.len();
     let (unknowns, points_per_piece, dim) =
         (problem.unknowns, problem.points_per_piece, problem.dim);
-    let x0 = &problem.x0;
+    let x0 = problem.x0().view();
     // The kept piece with the shortest extrapolation (as in stage 2).
     let reach = |j: usize| breakpoints[j].max(1.0 - breakpoints[j + 1]) / lengths[j];
     let source = (0..count)
@@ -33,7 +33,7 @@ pub(super) fn kept_solution(
         .min_by(|&a, &b| reach(a).total_cmp(&reach(b)))
         .expect("a kept piece");
     let h = lengths[source];
-    let mut x = x0.clone();
+    let mut x = x0.clone_owned();
     let mut bound = DMatrix::zeros(unknowns, dim);
     let mut sensitivity = DMatrix::zeros(unknowns, dim);
     let source_points = pieces[source].curve.control_matrix();

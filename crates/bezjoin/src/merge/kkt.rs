@@ -25,7 +25,7 @@ pub(super) fn kkt_solution(
         (problem.unknowns, problem.points_per_piece, problem.dim);
     let count = problem.pieces.len();
     let m = points_per_piece - 1;
-    let x0 = &problem.x0;
+    let x0 = problem.x0().view();
 
     // The rows are replaced by an orthonormal basis of their span (same
     // feasible set, a well-conditioned KKT matrix): the continuity rows by

@@ -67,14 +67,16 @@ macro_rules! with_small_sizes {
 }
 pub(super) use with_small_sizes;
 
-/// `A = Q T` of a `rows x cols` matrix (`rows >= cols`), reflectors kept.
-pub(super) struct Factor {
+/// `A = Q T` of a `rows x cols` matrix (`rows >= cols`), reflectors kept,
+/// in the caller's buffer ([`Factor::packed_len`] entries).
+#[derive(Clone, Copy)]
+pub(super) struct Factor<'p> {
     rows: usize,
     cols: usize,
     /// Column-major `rows x cols`: `v_k` in column `k` from row `k` down,
     /// `T`'s strict upper part above the diagonal; then `T`'s diagonal
-    /// `alpha_k` (`cols`), then `beta_k` (`cols`): one allocation.
-    packed: Vec<f64>,
+    /// `alpha_k` (`cols`), then `beta_k` (`cols`).
+    packed: &'p [f64],
 }
 
 /// `sum_i a_i b_i` over the common length, in four interleaved partial
@@ -112,16 +114,22 @@ fn reflect(v: &[f64], x: &mut [f64], beta: f64) {
     }
 }
 
-impl Factor {
-    /// The factor of `a` (column-major `rows x cols`); `None` when a column
+impl<'p> Factor<'p> {
+    /// The entries of a factor's buffer for a `rows x cols` matrix.
+    pub(super) fn packed_len(rows: usize, cols: usize) -> usize {
+        rows * cols + 2 * cols
+    }
+
+    /// The factor of `a` (column-major `rows x cols`) in `packed`
+    /// ([`Factor::packed_len`] entries, any contents); `None` when a column
     /// is (numerically) zero below the diagonal or not finite, i.e. `T`
     /// would have a zero or non-finite pivot.
-    pub(super) fn new(a: &[f64], rows: usize, cols: usize) -> Option<Self> {
+    pub(super) fn new(a: &[f64], rows: usize, cols: usize, packed: &'p mut [f64]) -> Option<Self> {
         debug_assert!(rows >= cols && a.len() == rows * cols);
         let size = rows * cols;
-        let mut packed = Vec::with_capacity(size + 2 * cols);
-        packed.extend_from_slice(a);
-        packed.resize(size + 2 * cols, 0.0);
+        assert_eq!(packed.len(), Self::packed_len(rows, cols));
+        // T's diagonal and the betas are written column by column below.
+        packed[..size].copy_from_slice(a);
         let (matrix, rest) = packed.split_at_mut(size);
         let (diagonal, beta) = rest.split_at_mut(cols);
         for k in 0..cols {
@@ -355,7 +363,8 @@ mod tests {
         let mut state = 7;
         for (rows, cols) in [(1, 1), (4, 2), (8, 4), (8, 2), (32, 16), (20, 20), (64, 31)] {
             let a = matrix(&mut state, rows, cols);
-            let f = Factor::new(a.as_slice(), rows, cols).unwrap();
+            let mut packed = vec![0.0; Factor::packed_len(rows, cols)];
+            let f = Factor::new(a.as_slice(), rows, cols, &mut packed).unwrap();
             let q = DMatrix::from_column_slice(rows, cols, &f.thin_q());
             let t = DMatrix::from_fn(cols, cols, |i, j| if i <= j { f.t(i, j) } else { 0.0 });
             let tol = 64.0 * (rows as f64) * f64::EPSILON;
@@ -396,7 +405,8 @@ mod tests {
             );
         }
         // A zero column has no factor.
-        assert!(Factor::new(&[1.0, 2.0, 0.0, 0.0], 2, 2).is_none());
+        let mut packed = [0.0; 8];
+        assert!(Factor::new(&[1.0, 2.0, 0.0, 0.0], 2, 2, &mut packed).is_none());
     }
 
     /// The least-squares solve with the sizes as constants (every size of
@@ -419,7 +429,8 @@ mod tests {
             for _ in 0..20 {
                 let a = matrix(&mut state, rows, cols);
                 let b = matrix(&mut state, rows, 3);
-                let f = Factor::new(a.as_slice(), rows, cols).unwrap();
+                let mut packed = vec![0.0; Factor::packed_len(rows, cols)];
+                let f = Factor::new(a.as_slice(), rows, cols, &mut packed).unwrap();
                 let (mut fast, mut general) = (vec![0.0; cols * 3], vec![0.0; cols * 3]);
                 let mut work = vec![0.0; rows];
                 f.least_squares(b.as_slice(), &mut fast, &mut work);

@@ -96,6 +96,7 @@
 
 mod bspline;
 mod bspline_slope;
+mod columns;
 mod kept;
 mod kkt;
 mod lsq;
@@ -313,43 +314,44 @@ pub fn merge(p: &BezierCurve, q: &BezierCurve, options: &MergeOptions) -> Result
         }
     };
     let breakpoints = [0.0, mu, 1.0];
-    let (merged, split_check_error, [p_hat, q_hat], max_deviation) = match stage_one.split_curves()
-    {
-        // Stage 1's pieces are R's split at mu: stage 2's restrictions are
-        // those very curves and its check's difference is exactly zero (the
-        // shortcut of `stage_two`, here without the pieces' matrices). P^
-        // and Q^ are those curves; their construction cannot fail
-        // (`StageOne::split_curves`).
-        Some((merged, hats)) => {
-            let max_deviation = max_deviation(&hats, &[p, q])?;
-            (merged, 0.0, hats, max_deviation)
-        }
-        None => {
-            let pieces = stage_one.pieces();
-            let (merged, split_check_error, restrictions) = stage_two(
-                &pieces,
-                &breakpoints,
-                options.accuracy,
-                stage_one.merged.as_ref(),
-                stage_one.split_of_merged,
-            )?;
-            let max_deviation = max_deviation(&restrictions, &[p, q])?;
-            // P^ and Q^ are stage 1's pieces.
-            let mut hats = pieces.iter().map(BezierCurve::from_matrix);
-            let p_hat = hats.next().expect("two pieces")?;
-            let q_hat = hats.next().expect("two pieces")?;
-            (merged, split_check_error, [p_hat, q_hat], max_deviation)
-        }
-    };
+    let (metric_value, solve_error_estimate) = (stage_one.metric_value, stage_one.error_estimate);
+    let (merged, split_check_error, [p_hat, q_hat], max_deviation) =
+        match stage_one.into_split_curves() {
+            // Stage 1's pieces are R's split at mu: stage 2's restrictions are
+            // those very curves and its check's difference is exactly zero (the
+            // shortcut of `stage_two`, here without the pieces' matrices). P^
+            // and Q^ are those curves; their construction cannot fail
+            // (`StageOne::into_split_curves`).
+            Ok((merged, hats)) => {
+                let max_deviation = max_deviation(&hats, &[p, q])?;
+                (merged, 0.0, hats, max_deviation)
+            }
+            Err(stage_one) => {
+                let pieces = stage_one.pieces();
+                let (merged, split_check_error, restrictions) = stage_two(
+                    &pieces,
+                    &breakpoints,
+                    options.accuracy,
+                    stage_one.merged.as_ref(),
+                    stage_one.split_of_merged,
+                )?;
+                let max_deviation = max_deviation(&restrictions, &[p, q])?;
+                // P^ and Q^ are stage 1's pieces.
+                let mut hats = pieces.iter().map(BezierCurve::from_matrix);
+                let p_hat = hats.next().expect("two pieces")?;
+                let q_hat = hats.next().expect("two pieces")?;
+                (merged, split_check_error, [p_hat, q_hat], max_deviation)
+            }
+        };
     Ok(Merge {
         merged,
         p_hat,
         q_hat,
         report: MergeReport {
             mu,
-            metric_value: stage_one.metric_value,
+            metric_value,
             max_deviation,
-            solve_error_estimate: stage_one.error_estimate,
+            solve_error_estimate,
             split_check_error,
         },
     })
@@ -1041,7 +1043,7 @@ mod split_tests {
         );
     }
 
-    /// `StageOne::split_curves` (no validation) gives the curves of the
+    /// `StageOne::into_split_curves` (no validation) gives the curves of the
     /// validated constructors bit for bit where the pieces are `R`'s split,
     /// and nothing elsewhere: random pairs in dimensions 1 to 4, degrees 1
     /// to 9 (P and Q of different degrees too), both metrics, with and
@@ -1079,19 +1081,28 @@ mod split_tests {
             let Ok(stage_one) = problem.solve_given(mu) else {
                 continue;
             };
-            match stage_one.split_curves() {
-                Some((merged, hats)) => {
+            let split_of_merged = stage_one.split_of_merged;
+            let checked = (
+                stage_one
+                    .merged
+                    .as_ref()
+                    .map(|r| BezierCurve::from_matrix(r).unwrap()),
+                stage_one
+                    .pieces()
+                    .iter()
+                    .map(|piece| BezierCurve::from_matrix(piece).unwrap())
+                    .collect::<Vec<_>>(),
+            );
+            match stage_one.into_split_curves() {
+                Ok((merged, hats)) => {
                     split += 1;
-                    assert!(stage_one.split_of_merged, "case {case}");
-                    let checked =
-                        BezierCurve::from_matrix(stage_one.merged.as_ref().unwrap()).unwrap();
-                    assert_eq!(bits(&merged), bits(&checked), "case {case}");
+                    assert!(split_of_merged, "case {case}");
+                    assert_eq!(bits(&merged), bits(&checked.0.unwrap()), "case {case}");
                     for (j, hat) in hats.iter().enumerate() {
-                        let checked = BezierCurve::from_matrix(&stage_one.pieces()[j]).unwrap();
-                        assert_eq!(bits(hat), bits(&checked), "case {case}, piece {j}");
+                        assert_eq!(bits(hat), bits(&checked.1[j]), "case {case}, piece {j}");
                     }
                 }
-                None => {
+                Err(stage_one) => {
                     other += 1;
                     assert!(
                         !stage_one.split_of_merged || stage_one.merged.is_none(),

@@ -56,7 +56,6 @@
 //! actual sensitivity; measured against an exact rational reference in
 //! test `merge_exact`.
 
-use std::borrow::Cow;
 use std::sync::OnceLock;
 
 use nalgebra::{DMatrix, DMatrixView, DVector};
@@ -66,6 +65,7 @@ use crate::bezier::BezierCurve;
 use crate::error::{BezjoinError, Result};
 
 use super::MergeMetric;
+use super::columns::{Columns, Parts, ZeroBuffer, nalgebra_dot_sized};
 use super::lsq::{self, Factor};
 use super::rows::{Problem, Row, check_dependent_rows, extend_orthonormal};
 use super::stage_one::{CONSISTENCY_TOLERANCE, RANK_TOLERANCE};
@@ -198,21 +198,30 @@ fn bernstein_row(m: usize, t: f64, out: &mut [f64]) {
     }
 }
 
+/// [`restrictions_into`] as a new matrix (the tests' form).
+#[cfg(test)]
+fn restrictions(m: usize, breakpoints: &[f64]) -> DMatrix<f64> {
+    let mut s = DMatrix::zeros((breakpoints.len() - 1) * (m + 1), m + 1);
+    restrictions_into(m, breakpoints, s.as_mut_slice());
+    s
+}
+
 /// The stacked restriction matrices `[S_0; S_1; ...]` (`R`'s control
-/// points to the pieces'). Two pieces: from the Bernstein triangle at `mu`,
+/// points to the pieces') into the column-major `data` (`count (m + 1) x
+/// (m + 1)`, all zero). Two pieces: from the Bernstein triangle at `mu`,
 /// `S_L[i][k] = B_k^i(mu)`, `S_R[i][k] = B_(k-i)^(m-i)(mu)`; more: segment
 /// of every unit vector.
-fn restrictions(m: usize, breakpoints: &[f64]) -> DMatrix<f64> {
+fn restrictions_into(m: usize, breakpoints: &[f64], data: &mut [f64]) {
     if breakpoints.len() != 3 {
-        return restriction_matrix(m, breakpoints);
+        data.copy_from_slice(restriction_matrix(m, breakpoints).as_slice());
+        return;
     }
     let mu = breakpoints[1];
     let points = m + 1;
     let rows = 2 * points;
+    debug_assert_eq!(data.len(), rows * points);
     // The triangle `B_k^i(mu)` is S_L itself: built in place in the top
     // block (column-major, entry (i, k) at `k rows + i`), no other storage.
-    let mut s = DMatrix::zeros(rows, points);
-    let data = s.as_mut_slice();
     data[0] = 1.0;
     for i in 1..points {
         for k in 0..=i {
@@ -235,7 +244,6 @@ fn restrictions(m: usize, breakpoints: &[f64]) -> DMatrix<f64> {
             data[k * rows + points + i] = data[(k - i) * rows + m - i];
         }
     }
-    s
 }
 
 /// Whether `a * b` (`a` `rows x inner`, `b` `inner x cols`) is one that
@@ -254,10 +262,17 @@ fn blocked_product(rows: usize, inner: usize, cols: usize) -> bool {
 /// `matrixmultiply`'s case is nalgebra's own product. No temporary but in
 /// that case. `abs`: of `|a| |b|` (entries' absolute values, exact), as
 /// nalgebra's `a.abs() * b.abs()`.
-fn product_into(a: &DMatrix<f64>, b: &DMatrix<f64>, abs: bool, out: &mut [f64]) {
+fn product_into<'a, 'b>(
+    a: impl Into<Columns<'a>>,
+    b: impl Into<Columns<'b>>,
+    abs: bool,
+    out: &mut [f64],
+) {
+    let (a, b) = (a.into(), b.into());
     let (rows, inner, cols) = (a.nrows(), a.ncols(), b.ncols());
     debug_assert!(inner == b.nrows() && out.len() == rows * cols);
     if blocked_product(rows, inner, cols) {
+        let (a, b) = (a.view(), b.view());
         let product = if abs { a.abs() * b.abs() } else { a * b };
         out.copy_from_slice(product.as_slice());
         return;
@@ -280,7 +295,8 @@ fn product_into(a: &DMatrix<f64>, b: &DMatrix<f64>, abs: bool, out: &mut [f64]) 
 /// `a[:, k] b_k + out` in order; with `abs`, of `|a|` and `|b|`. The
 /// merge's small row counts as constants ([`product_column_sized`]).
 #[inline(always)]
-fn product_column(a: &DMatrix<f64>, b: &[f64], abs: bool, out: &mut [f64]) {
+fn product_column<'a>(a: impl Into<Columns<'a>>, b: &[f64], abs: bool, out: &mut [f64]) {
+    let a = a.into();
     debug_assert_eq!(out.len(), a.nrows());
     let a = a.as_slice();
     match out.len() {
@@ -315,37 +331,18 @@ fn product_column_sized<const N: usize>(a: &[f64], b: &[f64], abs: bool, out: &m
     }
 }
 
-/// nalgebra's `dot` of two dynamic columns bit for bit (its `dotx`: eight
-/// partial sums over blocks of eight, added pairwise into a sum from `0`,
-/// then the remaining products one by one), of `|a|` and `|b|`.
+/// nalgebra's `dot` of two dynamic columns bit for bit, of `|a|` and
+/// `|b|` ([`nalgebra_dot_sized`]).
 #[inline(always)]
 fn nalgebra_dot_abs(a: &[f64], b: &[f64]) -> f64 {
-    nalgebra_dot_abs_sized::<0>(a, b)
+    nalgebra_dot_sized::<0, true>(a, b)
 }
 
 /// [`nalgebra_dot_abs`] with the length `N` known at compile time (`0`:
 /// `a.len()`): the same operations in the same order.
 #[inline(always)]
 fn nalgebra_dot_abs_sized<const N: usize>(a: &[f64], b: &[f64]) -> f64 {
-    let n = if N == 0 { a.len() } else { N };
-    let (a, b) = (&a[..n], &b[..n]);
-    let mut res = 0.0;
-    let mut acc = [0.0f64; 8];
-    let mut i = 0;
-    while n - i >= 8 {
-        for (l, s) in acc.iter_mut().enumerate() {
-            *s += a[i + l].abs() * b[i + l].abs();
-        }
-        i += 8;
-    }
-    res += acc[0] + acc[4];
-    res += acc[1] + acc[5];
-    res += acc[2] + acc[6];
-    res += acc[3] + acc[7];
-    for k in i..n {
-        res += a[k].abs() * b[k].abs();
-    }
-    res
+    nalgebra_dot_sized::<N, true>(a, b)
 }
 
 /// [`abs_tr_mul_into`] into a new matrix (the tests' form).
@@ -354,7 +351,7 @@ fn abs_tr_mul(a: &DMatrix<f64>, b: &DMatrix<f64>) -> DMatrix<f64> {
     let rows = a.nrows();
     debug_assert_eq!(rows, b.nrows());
     let mut out = DMatrix::zeros(a.ncols(), b.ncols());
-    abs_tr_mul_into(a, b, out.as_mut_slice());
+    abs_tr_mul_into(a.into(), b.into(), out.as_mut_slice());
     out
 }
 
@@ -362,7 +359,7 @@ fn abs_tr_mul(a: &DMatrix<f64>, b: &DMatrix<f64>) -> DMatrix<f64> {
 /// `dot` of column `i` of `|a|` and column `j` of `|b|`,
 /// [`nalgebra_dot_abs`]), into the column-major `out` (`a.ncols() x
 /// b.ncols()`), without the matrices `|a|` and `|b|`.
-fn abs_tr_mul_into(a: &DMatrix<f64>, b: &DMatrix<f64>, out: &mut [f64]) {
+fn abs_tr_mul_into(a: Columns<'_>, b: Columns<'_>, out: &mut [f64]) {
     let rows = a.nrows();
     debug_assert_eq!(out.len(), a.ncols() * b.ncols());
     if rows == 0 {
@@ -388,11 +385,19 @@ fn abs_tr_mul_into(a: &DMatrix<f64>, b: &DMatrix<f64>, out: &mut [f64]) {
     }
 }
 
-/// `m.abs()` (nalgebra's, entry by entry) from a copy of the storage.
+/// [`abs_into`] as a new matrix (the tests' form).
+#[cfg(test)]
 fn abs_of(m: &DMatrix<f64>) -> DMatrix<f64> {
     let mut out = m.clone();
-    out.as_mut_slice().iter_mut().for_each(|v| *v = v.abs());
+    abs_into(m.into(), out.as_mut_slice());
     out
+}
+
+/// `m.abs()` (nalgebra's, entry by entry) into the column-major `out`.
+fn abs_into(m: Columns<'_>, out: &mut [f64]) {
+    for (o, v) in out.iter_mut().zip(m.as_slice()) {
+        *o = v.abs();
+    }
 }
 
 /// [`combined_product`]`(c, m, p, Minus)` (`abs`: `PlusAbs`) for the fixed
@@ -403,19 +408,24 @@ fn abs_of(m: &DMatrix<f64>) -> DMatrix<f64> {
 /// p[k][c]` (the products by the zero rows are exactly `+0`), i.e. `(a +
 /// 0) + b` when there is a zero row (`a + 0` is `a`, but `+0` for `a =
 /// -0`) and `a + b` otherwise: the same values.
+#[cfg(test)]
 fn ends_product(c: &DMatrix<f64>, m: &DMatrix<f64>, p: &DMatrix<f64>, abs: bool) -> DMatrix<f64> {
-    ends_product_of(c, false, m, p, abs)
+    let mut out = DMatrix::zeros(c.nrows(), c.ncols());
+    ends_product_into(c.into(), false, m.into(), p.into(), abs, out.as_mut_slice());
+    out
 }
 
-/// [`ends_product`] with `c` replaced by `|c|` when `c_abs` (entry by
-/// entry, exact: the same values as passing `abs_of(c)`, one matrix fewer).
-fn ends_product_of(
-    c: &DMatrix<f64>,
+/// [`ends_product`] into the column-major `out` (`c`'s shape), with `c`
+/// replaced by `|c|` when `c_abs` (entry by entry, exact: the same values
+/// as passing `abs_of(c)`, one matrix fewer).
+fn ends_product_into(
+    c: Columns<'_>,
     c_abs: bool,
-    m: &DMatrix<f64>,
-    p: &DMatrix<f64>,
+    m: Columns<'_>,
+    p: Columns<'_>,
     abs: bool,
-) -> DMatrix<f64> {
+    out: &mut [f64],
+) {
     let rows = m.nrows();
     let k = p.nrows() - 1;
     debug_assert!(k >= 1 && m.ncols() == k + 1 && c.shape() == (rows, p.ncols()));
@@ -423,13 +433,9 @@ fn ends_product_of(
         &m.as_slice()[..rows],
         &m.as_slice()[k * rows..(k + 1) * rows],
     );
-    let mut out = c.clone();
-    if c_abs {
-        out.as_mut_slice().iter_mut().for_each(|v| *v = v.abs());
-    }
-    for (col, (oc, pc)) in out
-        .as_mut_slice()
+    for (col, ((oc, cc), pc)) in out
         .chunks_exact_mut(rows)
+        .zip(c.as_slice().chunks_exact(rows))
         .zip(p.as_slice().chunks_exact(k + 1))
         .enumerate()
     {
@@ -439,7 +445,8 @@ fn ends_product_of(
         } else {
             (pc[0], pc[k])
         };
-        for ((o, &f), &l) in oc.iter_mut().zip(first).zip(last) {
+        for (((o, &x), &f), &l) in oc.iter_mut().zip(cc).zip(first).zip(last) {
+            let x = if c_abs { x.abs() } else { x };
             let (f, l) = if abs { (f.abs(), l.abs()) } else { (f, l) };
             let a = f * p0;
             let sum = if k >= 2 {
@@ -447,14 +454,9 @@ fn ends_product_of(
             } else {
                 a + l * pk
             };
-            if abs {
-                *o += sum;
-            } else {
-                *o -= sum;
-            }
+            *o = if abs { x + sum } else { x - sum };
         }
     }
-    out
 }
 
 /// How [`combined_product`] joins `c` and the product.
@@ -472,22 +474,23 @@ enum Combine {
 /// cols`): the product as nalgebra's ([`product_into`]), then joined with
 /// `c` entry by entry, the same values as nalgebra's `c + a * b` (and the
 /// others) with one matrix allocated.
-fn combined_product(
-    c: &DMatrix<f64>,
-    a: &DMatrix<f64>,
-    b: &DMatrix<f64>,
+fn combined_product<'c, 'a, 'b>(
+    c: impl Into<Columns<'c>>,
+    a: impl Into<Columns<'a>>,
+    b: impl Into<Columns<'b>>,
     how: Combine,
 ) -> DMatrix<f64> {
+    let c = c.into();
     let mut out = DMatrix::zeros(c.nrows(), c.ncols());
-    combined_product_into(c, a, b, how, out.as_mut_slice());
+    combined_product_into(c, a.into(), b.into(), how, out.as_mut_slice());
     out
 }
 
 /// [`combined_product`] into the column-major `out` (`c`'s shape).
 fn combined_product_into(
-    c: &DMatrix<f64>,
-    a: &DMatrix<f64>,
-    b: &DMatrix<f64>,
+    c: Columns<'_>,
+    a: Columns<'_>,
+    b: Columns<'_>,
     how: Combine,
     out: &mut [f64],
 ) {
@@ -499,25 +502,20 @@ fn combined_product_into(
     }
 }
 
-/// [`metric_samples`]' `(M, b, what b's rounding is relative to)`.
-type MetricSamples<'s> = (
-    Cow<'s, DMatrix<f64>>,
-    Cow<'s, DMatrix<f64>>,
-    Option<DMatrix<f64>>,
-);
+/// [`integral_samples`]' `(M, b, what b's rounding is relative to)`.
+type IntegralSamples = (DMatrix<f64>, DMatrix<f64>, DMatrix<f64>);
 
-/// The metric's sample matrix `M` and target `b` (see the module; the
-/// discrete metric's are `S` and `x0` themselves, borrowed), and what the
-/// target's rounding is relative to: `None` for the discrete metric, where
-/// it is `|b|` itself (taken where it is used).
-fn metric_samples<'s>(
-    problem: &'s Problem<'_, '_>,
+/// The integral metric's sample matrix `M` and target `b` (see the
+/// module), and what the target's rounding is relative to; `None` for the
+/// discrete metric, whose `M` and `b` are `S` and `x0` themselves and whose
+/// target's rounding is relative to `|b|` (taken where it is used).
+fn integral_samples(
+    problem: &Problem<'_, '_>,
     breakpoints: &[f64],
     metric: MergeMetric,
-    s: &'s DMatrix<f64>,
-) -> MetricSamples<'s> {
+) -> Option<IntegralSamples> {
     match metric {
-        MergeMetric::Discrete => (Cow::Borrowed(s), Cow::Borrowed(&problem.x0), None),
+        MergeMetric::Discrete => None,
         MergeMetric::Integral => {
             let points = problem.points_per_piece;
             let m = points - 1;
@@ -552,7 +550,7 @@ fn metric_samples<'s>(
                     }
                 }
             }
-            (Cow::Owned(samples), Cow::Owned(target), Some(target_abs))
+            Some((samples, target, target_abs))
         }
     }
 }
@@ -647,8 +645,9 @@ fn null_space(basis: &[(DVector<f64>, DVector<f64>)], n: usize) -> DMatrix<f64> 
 
 /// The constraint rows on `r`: `(G S) r = G x0 + rhs`, scaled to unit
 /// length.
-fn constraint_rows_on_r(problem: &Problem<'_, '_>, s: &DMatrix<f64>) -> Vec<Row> {
-    let x0 = &problem.x0;
+fn constraint_rows_on_r<'s>(problem: &Problem<'_, '_>, s: impl Into<Columns<'s>>) -> Vec<Row> {
+    let s = s.into().view();
+    let x0 = problem.x0().view();
     problem
         .constraints()
         .iter()
@@ -673,16 +672,17 @@ fn constraint_rows_on_r(problem: &Problem<'_, '_>, s: &DMatrix<f64>) -> Vec<Row>
         .collect()
 }
 
-/// The feasible set `{r_p + Z y}` of the constraint rows on `r`.
-struct Feasible<'r> {
+/// The feasible set `{r_p + Z y}` of the constraint rows on `r`, its
+/// matrices in parts of the solve's buffer.
+struct Feasible<'r, 'a> {
     /// Rows kept (independent) and dependent (checked at the answer).
     kept: Vec<&'r Row>,
     dependent: Vec<&'r Row>,
     /// The particular solution `r_p` (`(m + 1) x dim`).
-    particular: DMatrix<f64>,
+    particular: Columns<'a>,
     /// The orthonormal null-space basis `Z` (`None`: no kept rows).
     free: usize,
-    z: Option<DMatrix<f64>>,
+    z: Option<Columns<'a>>,
     /// `Z` is `e_1, ..., e_(m-1)` (the fixed ends' closed form): `M Z` is
     /// columns `1..m` of `M`, and `Z`'s zero rows `0` and `m` carry nothing
     /// into `R`'s guard.
@@ -691,11 +691,16 @@ struct Feasible<'r> {
     kept_condition: Option<(usize, f64)>,
 }
 
-impl<'r> Feasible<'r> {
+impl<'r, 'a> Feasible<'r, 'a> {
     /// Any rows: Gram-Schmidt (two passes), the particular solution from
     /// the orthonormal rows, the greedy null-space completion, the kept
     /// rows' condition from their singular values.
-    fn general(rows_r: &'r [Row], problem: &Problem<'_, '_>, points: usize) -> Self {
+    fn general(
+        rows_r: &'r [Row],
+        problem: &Problem<'_, '_>,
+        points: usize,
+        parts: &mut Parts<'a>,
+    ) -> Self {
         let mut basis: Vec<(DVector<f64>, DVector<f64>)> = Vec::new();
         let rank_tolerance = RANK_TOLERANCE * (problem.unknowns as f64).sqrt();
         let (kept, dependent) = extend_orthonormal(&mut basis, rows_r, rank_tolerance, points);
@@ -703,11 +708,13 @@ impl<'r> Feasible<'r> {
         for (b, rhs) in &basis {
             particular.ger(1.0, b, rhs, 1.0);
         }
-        let z = if basis.is_empty() {
-            None
-        } else {
-            Some(null_space(&basis, points))
-        };
+        let particular = parts.matrix(points, problem.dim, |p| {
+            p.copy_from_slice(particular.as_slice())
+        });
+        let z = (!basis.is_empty()).then(|| {
+            let z = null_space(&basis, points);
+            parts.matrix(points, z.ncols(), |p| p.copy_from_slice(z.as_slice()))
+        });
         let kept_condition = (!kept.is_empty()).then(|| {
             let g = DMatrix::from_fn(kept.len(), points, |k, i| kept[k].coefficients[i]);
             let singular = g.singular_values();
@@ -736,12 +743,23 @@ impl<'r> Feasible<'r> {
     /// order (every other unit vector has remainder 1, the first wins), and
     /// the kept rows are orthonormal (condition 1): what [`Feasible::general`]
     /// computes, in closed form, without building the rows.
-    fn fixed_ends(x0: &DMatrix<f64>, dim: usize, m: usize) -> Self {
+    fn fixed_ends(x0: Columns<'_>, dim: usize, m: usize, parts: &mut Parts<'a>) -> Self {
         let points = m + 1;
-        let mut particular = DMatrix::zeros(points, dim);
-        particular.row_mut(0).copy_from(&x0.row(0));
-        particular.row_mut(m).copy_from(&x0.row(2 * points - 1));
-        let z = DMatrix::from_fn(points, m - 1, |i, k| if i == k + 1 { 1.0 } else { 0.0 });
+        let particular = parts.matrix(points, dim, |p| {
+            for (column, from) in p
+                .chunks_exact_mut(points)
+                .zip(x0.as_slice().chunks_exact(2 * points))
+            {
+                column[0] = from[0];
+                column[m] = from[2 * points - 1];
+            }
+        });
+        let z = parts.matrix(points, m - 1, |z| {
+            z.iter_mut()
+                .skip(1)
+                .step_by(points + 1)
+                .for_each(|e| *e = 1.0);
+        });
         Self {
             kept: Vec::new(),
             dependent: Vec::new(),
@@ -769,9 +787,33 @@ pub(super) fn orthogonal_solution(
     let points = problem.points_per_piece;
     let m = points - 1;
     let count = problem.pieces.len();
-    let x0 = &problem.x0;
-    let s = restrictions(m, breakpoints);
-    let (samples, target, target_abs) = metric_samples(problem, breakpoints, metric, &s);
+    let dim = problem.dim;
+    let x0 = problem.x0();
+    // The samples' rows (both metrics: `points` per piece).
+    let rows = count * points;
+    // The intermediate matrices in parts of two buffers, on the stack for
+    // small degrees (each below the size where glibc's `memset` switches
+    // to `rep stosb`): `S`, `r_p` and `Z`, then, once the number of free
+    // columns is known, the solve's (`solve_buffer_len`).
+    let mut problem_buffer = ZeroBuffer::<PROBLEM_ON_STACK>::new();
+    let mut parts = problem_buffer.parts(rows * points + points * dim + points * points);
+    let s = parts.matrix(rows, points, |s| restrictions_into(m, breakpoints, s));
+    // `||S||_F`, and `||M||_F`, which is the same for the discrete metric
+    // (`M = S`), computed once.
+    let s_norm = std::cell::OnceCell::new();
+    let s_norm = || *s_norm.get_or_init(|| s.norm());
+    let integral = integral_samples(problem, breakpoints, metric);
+    let (samples, target, target_abs): (Columns<'_>, Columns<'_>, Option<Columns<'_>>) =
+        match &integral {
+            Some((samples, target, target_abs)) => {
+                (samples.into(), target.into(), Some(target_abs.into()))
+            }
+            None => (s, x0, None),
+        };
+    let samples_norm = || match &integral {
+        Some(_) => samples.norm(),
+        None => s_norm(),
+    };
 
     let ends_only = count == 2
         && m >= 1
@@ -780,10 +822,10 @@ pub(super) fn orthogonal_solution(
     let rows_r: Vec<Row>;
     let feasible = if ends_only {
         rows_r = Vec::new();
-        Feasible::fixed_ends(x0, problem.dim, m)
+        Feasible::fixed_ends(x0, dim, m, &mut parts)
     } else {
-        rows_r = constraint_rows_on_r(problem, &s);
-        Feasible::general(&rows_r, problem, points)
+        rows_r = constraint_rows_on_r(problem, s);
+        Feasible::general(&rows_r, problem, points, &mut parts)
     };
     let Feasible {
         kept,
@@ -795,123 +837,120 @@ pub(super) fn orthogonal_solution(
         kept_condition,
     } = feasible;
     let kept_count = kept_condition.map_or(0, |(count, _)| count);
+    let mut solve_buffer = ZeroBuffer::<SOLVE_ON_STACK>::new();
+    let mut parts = solve_buffer.parts(solve_buffer_len(rows, free, dim));
     // The fixed ends' products with the particular solution from its two
     // nonzero rows (`ends_product`), where nalgebra's product is the
     // column axpys (not `matrixmultiply`'s blocked sums).
-    let ends_products = selection && !blocked_product(samples.nrows(), points, problem.dim);
+    let ends_products = selection && !blocked_product(rows, points, dim);
     // Without kept rows the particular solution is zero: no products.
     let reduced_target = if z.is_none() {
-        Cow::Borrowed(&*target)
+        target
     } else {
-        Cow::Owned(if ends_products {
-            ends_product(&target, &samples, &particular, false)
-        } else {
-            combined_product(&target, &samples, &particular, Combine::Minus)
+        parts.matrix(rows, dim, |out| {
+            if ends_products {
+                ends_product_into(target, false, samples, particular, false, out);
+            } else {
+                combined_product_into(target, samples, particular, Combine::Minus, out);
+            }
         })
     };
-    let samples: &DMatrix<f64> = &samples;
-    let target: &DMatrix<f64> = &target;
     let merged;
     let mut factor = None;
-    // The solves' buffer (below), here for the last correction, which
-    // outlives the solve.
-    let mut on_stack;
-    let mut on_heap = Vec::new();
     if free == 0 {
-        merged = particular.clone();
+        merged = particular.to_matrix();
     } else {
-        let a_matrix: Cow<'_, DMatrix<f64>> = match &z {
+        let a = match z {
             // M Z for Z = (e_1 .. e_(m-1)): every entry of the product is
             // `M[i][k] 0 + ... + M[i][j+1] 1 + ... + 0` with the products
             // by 0 exactly +0 (M's entries are Bernstein values, finite,
             // >= +0) and the sums exact in any order (also
             // `matrixmultiply`'s), i.e. `M[i][j+1]` itself: the columns,
-            // copied.
+            // read in place.
             Some(_) if selection => {
-                let rows = samples.nrows();
-                Cow::Owned(DMatrix::from_column_slice(
-                    rows,
-                    free,
-                    &samples.as_slice()[rows..rows * (1 + free)],
-                ))
+                Columns::new(&samples.as_slice()[rows..rows * (1 + free)], rows, free)
             }
-            Some(z) => {
-                let mut a = DMatrix::zeros(samples.nrows(), z.ncols());
-                product_into(samples, z, false, a.as_mut_slice());
-                Cow::Owned(a)
-            }
-            None => Cow::Borrowed(samples),
+            Some(z) => parts.matrix(rows, z.ncols(), |a| product_into(samples, z, false, a)),
+            None => samples,
         };
-        let a: &DMatrix<f64> = &a_matrix;
-        let rows = a.nrows();
-        let dim = problem.dim;
         // Householder QR with the reflectors kept (module `lsq`): Q^T is
         // applied from them, no Q is formed for the solve.
-        let Some(qr) = Factor::new(a.as_slice(), rows, free) else {
+        let packed = parts.take(Factor::packed_len(rows, free));
+        let Some(qr) = Factor::new(a.as_slice(), rows, free, packed) else {
             return Err(ill_conditioned_factor(accuracy));
         };
-        // One buffer for the solves' scratch, the refinement step, the
-        // remainder and the last correction (zeros until a step is taken).
-        // (On the stack up to SOLVE_ON_STACK entries.)
-        let need = rows + 2 * free * dim + rows * dim;
-        on_stack = [0.0f64; SOLVE_ON_STACK];
-        let buffer: &mut [f64] = if need <= SOLVE_ON_STACK {
-            &mut on_stack[..need]
-        } else {
-            on_heap.resize(need, 0.0);
-            &mut on_heap
-        };
-        let (work, rest) = buffer.split_at_mut(rows);
-        let (step, rest) = rest.split_at_mut(free * dim);
-        let (correction, remainder) = rest.split_at_mut(free * dim);
-        let mut y = DMatrix::zeros(free, dim);
-        qr.least_squares(reduced_target.as_slice(), y.as_mut_slice(), work);
+        // The solves' scratch, the refinement steps, the remainder. The
+        // steps go to two buffers in turn, so the last finite one is still
+        // in its buffer after a step that is not (the last correction,
+        // no copy); zeros until written.
+        let work = parts.take(rows);
+        let steps = [parts.take(free * dim), parts.take(free * dim)];
+        let mut last_step = None;
+        let remainder = parts.take(rows * dim);
+        let y = parts.take(free * dim);
+        qr.least_squares(reduced_target.as_slice(), y, work);
         // Two steps of refinement in working precision (the correction
         // from the residual through the same factor): they make the answer
         // componentwise backward stable, and the last correction measures
         // what the solve's rounding leaves (the estimate's a-posteriori
         // part).
-        for _ in 0..REFINEMENT_STEPS {
+        for taken in 0..REFINEMENT_STEPS {
             // remainder = t - A y as nalgebra's `gemm(-1, A, y, 1)` on a
-            // copy of t: per column, `(-a_k) y_k + r` for k = 0.. in order
-            // (`matrixmultiply`'s case by nalgebra itself).
+            // copy of t: per column, `(-a_k) y_k + r` for k = 0.. in order,
+            // the first from t itself (`matrixmultiply`'s case by nalgebra
+            // itself).
             if blocked_product(rows, free, dim) {
-                let mut r = reduced_target.clone().into_owned();
-                r.gemm(-1.0, a, &y, 1.0);
+                let mut r = reduced_target.to_matrix();
+                r.gemm(-1.0, &a.view(), &Columns::new(y, free, dim).view(), 1.0);
                 remainder.copy_from_slice(r.as_slice());
             } else {
                 for ((r, t), yc) in remainder
                     .chunks_exact_mut(rows)
                     .zip(reduced_target.as_slice().chunks_exact(rows))
-                    .zip(y.as_slice().chunks_exact(free))
+                    .zip(y.chunks_exact(free))
                 {
-                    r.copy_from_slice(t);
-                    for (ak, &yk) in a.as_slice().chunks_exact(rows).zip(yc) {
+                    let mut columns = a.as_slice().chunks_exact(rows).zip(yc);
+                    if let Some((a0, &y0)) = columns.next() {
+                        for ((e, &x), &from) in r.iter_mut().zip(a0).zip(t) {
+                            *e = from + -x * y0;
+                        }
+                    }
+                    for (ak, &yk) in columns {
                         for (e, &x) in r.iter_mut().zip(ak) {
                             *e += -x * yk;
                         }
                     }
                 }
             }
+            let step = &mut *steps[taken % 2];
             qr.least_squares(remainder, step, work);
             if step.iter().any(|v| !v.is_finite()) {
                 break;
             }
-            for (e, &d) in y.as_mut_slice().iter_mut().zip(step.iter()) {
+            for (e, &d) in y.iter_mut().zip(step.iter()) {
                 *e += d;
             }
-            correction.copy_from_slice(step);
+            last_step = Some(taken % 2);
         }
-        merged = match &z {
-            Some(z) => combined_product(&particular, z, &y, Combine::Plus),
-            None => y.clone(),
+        // The last finite step, or zeros (the second buffer, never written,
+        // when the first step is not finite or none is taken).
+        let [first_step, second_step] = steps;
+        let correction: &[f64] = match last_step {
+            Some(0) => first_step,
+            Some(_) | None => second_step,
+        };
+        let y = Columns::new(y, free, dim);
+        merged = match z {
+            Some(z) => combined_product(particular, z, y, Combine::Plus),
+            None => y.to_matrix(),
         };
         // `A` itself where its absolute values are needed: every use takes
         // them (`abs_tr_mul`, `PlusAbs`) or is a norm.
-        let correction: &[f64] = correction;
-        factor = Some((qr, y, a_matrix, correction));
+        factor = Some((qr, y, a, correction));
     }
-    let residual = combined_product(target, samples, &merged, Combine::Minus);
+    let residual = parts.matrix(rows, dim, |out| {
+        combined_product_into(target, samples, (&merged).into(), Combine::Minus, out)
+    });
     let metric_value = residual.norm_squared();
 
     // The pieces: R split at the breakpoints (de Casteljau). `R` as a
@@ -954,7 +993,7 @@ pub(super) fn orthogonal_solution(
 
     let slope = if want_slope && count == 2 {
         let derivative = sample_slopes(&merged, breakpoints, metric)?;
-        Some(-2.0 * residual.dot(&derivative))
+        Some(-2.0 * residual.view().dot(&derivative))
     } else {
         None
     };
@@ -1009,10 +1048,10 @@ pub(super) fn orthogonal_solution(
         // same errors).
         let floor = refusal_floor(
             qr,
-            a,
-            y,
-            &reduced_target,
-            &residual,
+            *a,
+            *y,
+            reduced_target,
+            residual,
             (accuracy - estimate) * result_scale,
         );
         if estimate + floor / result_scale > accuracy && !skip_refusal_floor() {
@@ -1030,8 +1069,8 @@ pub(super) fn orthogonal_solution(
         // (no triangular solve); otherwise K0 is solved for.
         let pieces_map = match (metric, &z) {
             (MergeMetric::Discrete, _) => None,
-            (MergeMetric::Integral, Some(z)) => Some(&s * z),
-            (MergeMetric::Integral, None) => Some(s.clone()),
+            (MergeMetric::Integral, Some(z)) => Some(s.view() * z.view()),
+            (MergeMetric::Integral, None) => Some(s.to_matrix()),
         };
 
         // The pieces (through S Z) and R itself (through Z): R's control
@@ -1039,35 +1078,44 @@ pub(super) fn orthogonal_solution(
         // singular values at high degree), and R is an answer too.
         // `|M| |r_p|`: both products take the entries' absolute values
         // themselves (`abs`, `PlusAbs`), so `r_p` is passed as it is.
-        let target_size = match (&z, target_abs) {
+        let target_size = match (z, target_abs) {
             (None, Some(t)) => t,
-            (None, None) => abs_of(target),
-            (Some(_), t) if ends_products => ends_product_of(
-                t.as_ref().unwrap_or(target),
-                t.is_none(),
-                samples,
-                &particular,
-                true,
-            ),
+            (None, None) => parts.matrix(rows, dim, |out| abs_into(target, out)),
+            (Some(_), t) if ends_products => parts.matrix(rows, dim, |out| {
+                ends_product_into(
+                    t.unwrap_or(target),
+                    t.is_none(),
+                    samples,
+                    particular,
+                    true,
+                    out,
+                )
+            }),
             (Some(_), t) => {
-                let t = t.unwrap_or_else(|| abs_of(target));
-                combined_product(&t, samples, &particular, Combine::PlusAbs)
+                let t = t.unwrap_or_else(|| parts.matrix(rows, dim, |out| abs_into(target, out)));
+                parts.matrix(rows, dim, |out| {
+                    combined_product_into(t, samples, particular, Combine::PlusAbs, out)
+                })
             }
         };
         let shared = Shared::new(
-            qr,
-            y,
-            a,
-            &reduced_target,
-            &target_size,
-            &residual,
+            *qr,
+            *y,
+            *a,
+            reduced_target,
+            target_size,
+            residual,
+            metric_value.sqrt(),
             m,
             correction,
+            parts.take(Shared::values_len(rows, free, dim)),
         );
         let mut scratch = Scratch::default();
         let (pieces_bound, pieces_gain, pieces_k2t) = first_order_bound(
             &shared,
-            pieces_map.as_ref().map_or(Map::Factor, Map::Of),
+            pieces_map
+                .as_ref()
+                .map_or(Map::Factor, |map| Map::Of(map.into())),
             true,
             &mut scratch,
         )
@@ -1091,7 +1139,7 @@ pub(super) fn orthogonal_solution(
                     // absolute values (>= 0, NaN passed over) takes: the
                     // same bound from the identity of the free columns.
                     Some(_) if selection => Map::Identity(free),
-                    Some(z) => Map::Of(z),
+                    Some(z) => Map::Of(*z),
                     None => Map::Identity(points),
                 };
                 first_order_bound(&shared, zr, false, &mut scratch)
@@ -1103,14 +1151,18 @@ pub(super) fn orthogonal_solution(
         // ||S Z A^+||_F ||M||_F: how much a move of the particular solution
         // (the kept rows' rounding, below) reaches the pieces through the
         // least-squares problem.
-        reduced_gain = pieces_gain * samples.norm();
+        reduced_gain = pieces_gain * samples_norm();
     }
     if let Some((_, condition)) = kept_condition {
         // The kept rows carry their entries' rounding: the feasible set
         // moves by up to cond(rows) eps relative, which the pieces feel
         // through S directly and through the reduced least-squares problem
         // (the optimum moves along with the particular solution).
-        estimate += ESTIMATE_MARGIN * eps * condition * (s.norm() + reduced_gain) * merged.norm()
+        estimate += ESTIMATE_MARGIN
+            * eps
+            * condition
+            * (s_norm() + reduced_gain)
+            * Columns::from(&merged).norm()
             / result_scale;
     }
 
@@ -1118,7 +1170,7 @@ pub(super) fn orthogonal_solution(
     let e = if dependent.is_empty() {
         DMatrix::zeros(0, 0)
     } else {
-        &x - x0
+        &x - x0.view()
     };
     let tolerance = CONSISTENCY_TOLERANCE.max(accuracy) * result_scale;
     let unknowns = problem.unknowns;
@@ -1184,11 +1236,11 @@ pub const REFUSAL_FLOOR_DEGREE: usize = 16;
 /// The residual part (`free` triangular solves) is computed only when the
 /// first part does not already reach `needed`.
 fn refusal_floor(
-    qr: &Factor,
-    a: &DMatrix<f64>,
-    y: &DMatrix<f64>,
-    target: &DMatrix<f64>,
-    residual: &DMatrix<f64>,
+    qr: &Factor<'_>,
+    a: Columns<'_>,
+    y: Columns<'_>,
+    target: Columns<'_>,
+    residual: Columns<'_>,
     needed: f64,
 ) -> f64 {
     let (rows, free) = (a.nrows(), a.ncols());
@@ -1228,17 +1280,18 @@ fn skip_refusal_floor() -> bool {
 /// column-major buffers.
 struct Shared<'s> {
     /// `A = Q T` (reflectors kept), `T` upper triangular (`free x free`).
-    qr: &'s Factor,
-    /// One allocation: the thin `Q` (`rows x free`, formed once from the
-    /// reflectors), then `through_values` (`rows x dim`), then
-    /// `through_residual` (`free x dim`), each column-major.
-    values: Vec<f64>,
-    y: &'s DMatrix<f64>,
+    qr: Factor<'s>,
+    /// One buffer ([`Shared::values_len`]): the thin `Q` (`rows x free`,
+    /// formed once from the reflectors), then `through_values` (`rows x
+    /// dim`), then `through_residual` (`free x dim`), each column-major.
+    values: &'s [f64],
+    y: Columns<'s>,
     /// `A` (`rows x free`): only its absolute values (`|A|` in the
     /// products) and its norm are read.
-    a: &'s DMatrix<f64>,
-    target: &'s DMatrix<f64>,
-    residual: &'s DMatrix<f64>,
+    a: Columns<'s>,
+    target: Columns<'s>,
+    /// The residual's norm (`|A|^T |res|` is in `values`).
+    residual_norm: f64,
     m: usize,
     /// The last refinement correction of `y` (`free x dim`,
     /// column-major).
@@ -1246,25 +1299,30 @@ struct Shared<'s> {
 }
 
 impl<'s> Shared<'s> {
+    /// The entries of the buffer of a `rows x free` factor with `dim`
+    /// coordinates.
+    fn values_len(rows: usize, free: usize, dim: usize) -> usize {
+        rows * free + rows * dim + free * dim
+    }
+
+    /// `values`: [`Shared::values_len`] entries, all zero; `residual_norm`:
+    /// `residual.norm()` (the root of the metric value, already summed).
     #[allow(clippy::too_many_arguments)]
     fn new(
-        qr: &'s Factor,
-        y: &'s DMatrix<f64>,
-        a: &'s DMatrix<f64>,
-        target: &'s DMatrix<f64>,
-        target_size: &DMatrix<f64>,
-        residual: &'s DMatrix<f64>,
+        qr: Factor<'s>,
+        y: Columns<'s>,
+        a: Columns<'s>,
+        target: Columns<'s>,
+        target_size: Columns<'_>,
+        residual: Columns<'_>,
+        residual_norm: f64,
         m: usize,
         correction: &'s [f64],
+        values: &'s mut [f64],
     ) -> Self {
         let (rows, free, dim) = (qr.rows(), qr.cols(), y.ncols());
         debug_assert_eq!(correction.len(), free * dim);
         debug_assert!(target_size.shape() == (rows, dim) && residual.shape() == (rows, dim));
-        // Zeros written by a fill loop (`repeat_n`): `vec![0.0; n]` is a
-        // `calloc`, which glibc serves without its thread cache (about
-        // four times a small `malloc`).
-        let mut values: Vec<f64> =
-            std::iter::repeat_n(0.0, rows * free + rows * dim + free * dim).collect();
         let (q, rest) = values.split_at_mut(rows * free);
         let (through_values, through_residual) = rest.split_at_mut(rows * dim);
         qr.thin_q_into(q);
@@ -1276,7 +1334,7 @@ impl<'s> Shared<'s> {
             y,
             a,
             target,
-            residual,
+            residual_norm,
             m,
             correction,
         }
@@ -1308,9 +1366,30 @@ impl<'s> Shared<'s> {
     }
 }
 
-/// Entries of the solves' buffer in [`orthogonal_solution`] kept on the
-/// stack (two pieces of degree 3 in space: `8 + 6 + 24 = 38`).
-const SOLVE_ON_STACK: usize = 64;
+/// Entries of the first buffer of [`orthogonal_solution`] (`S`, `r_p`,
+/// `Z`) kept on the stack (two pieces of degree 3 in space: `60`).
+const PROBLEM_ON_STACK: usize = 64;
+
+/// Entries of the solve's buffer of [`orthogonal_solution`] kept on the
+/// stack (two pieces of degree 3 in space with fixed ends:
+/// [`solve_buffer_len`]` = 228`).
+const SOLVE_ON_STACK: usize = 240;
+
+/// The entries [`orthogonal_solution`] takes from its solve's buffer at
+/// most, for `rows` samples, `free` free columns and `dim` coordinates.
+fn solve_buffer_len(rows: usize, free: usize, dim: usize) -> usize {
+    // The reduced target, A = M Z, the factor; the solves' scratch, the
+    // two steps, the remainder and y.
+    let solve = rows * dim
+        + rows * free
+        + Factor::packed_len(rows, free)
+        + rows
+        + 3 * free * dim
+        + rows * dim;
+    // The residual, the target's size (and its absolute values), `Shared`.
+    let bound = 3 * rows * dim + Shared::values_len(rows, free, dim);
+    solve + bound
+}
 
 /// The buffer of [`first_order_bound`], kept between its calls for the
 /// pieces and for `R` (the same values, one allocation); after a call for
@@ -1460,7 +1539,7 @@ enum Map<'m> {
     /// `Q`).
     Factor,
     /// A matrix (`S Z` of the integral metric, `Z`).
-    Of(&'m DMatrix<f64>),
+    Of(Columns<'m>),
     /// The identity of this size (`R`'s guard through the free columns),
     /// the same values as [`Map::Of`] an identity matrix without it.
     Identity(usize),
@@ -1589,7 +1668,7 @@ fn first_order_bound_sized<const R: usize, const F: usize, const O: usize>(
                     }
                 }
                 Map::Of(map) if blocked_product(out, free, dim) => {
-                    worst = (map * shared.correction()).amax();
+                    worst = (map.view() * shared.correction()).amax();
                 }
                 Map::Of(map) => {
                     let acc = &mut acc[..out];
@@ -1661,7 +1740,7 @@ fn first_order_bound_sized<const R: usize, const F: usize, const O: usize>(
     }
     // K2 = K0 T^-T (out x free), in K0's place.
     let k2 = k0;
-    times_t_inverse_transposed(qr, k2, out);
+    times_t_inverse_transposed(&qr, k2, out);
     // Householder QR's own backward error is normwise (column by column),
     // not componentwise, and refinement in working precision does not
     // remove all of it (measured: test merge_exact, degree 20, mu ~0.1,
@@ -1671,7 +1750,7 @@ fn first_order_bound_sized<const R: usize, const F: usize, const O: usize>(
         * eps
         * ((rows * free) as f64).sqrt()
         * (k0_norm * (shared.target.norm() + a_norm * shared.y.norm())
-            + lsq::norm(k2) * a_norm * shared.residual.norm());
+            + lsq::norm(k2) * a_norm * shared.residual_norm);
     k2.iter_mut().for_each(|v| *v = v.abs());
     let mut worst = 0.0f64;
     for c in 0..dim {
@@ -1828,14 +1907,34 @@ mod tests {
                 let problem = Problem::new(&pieces, &lengths, true);
                 let s = restrictions(degree, &[0.0, mu, 1.0]);
                 let rows_r = constraint_rows_on_r(&problem, &s);
-                let general = Feasible::general(&rows_r, &problem, degree + 1);
-                let closed = Feasible::fixed_ends(&problem.x0, problem.dim, degree);
+                let len = (degree + 1) * (problem.dim + degree + 1);
+                let (mut general_buffer, mut closed_buffer) = (vec![0.0; len], vec![0.0; len]);
+                let general = Feasible::general(
+                    &rows_r,
+                    &problem,
+                    degree + 1,
+                    &mut Parts::new(&mut general_buffer),
+                );
+                let closed = Feasible::fixed_ends(
+                    problem.x0(),
+                    problem.dim,
+                    degree,
+                    &mut Parts::new(&mut closed_buffer),
+                );
                 let context = format!("degree {degree} mu {mu}");
                 assert_eq!(general.kept.len(), 2, "{context}");
                 assert!(general.dependent.is_empty(), "{context}");
                 assert_eq!(closed.free, general.free, "{context}");
-                assert_eq!(closed.particular, general.particular, "{context}");
-                assert_eq!(closed.z, general.z, "{context}");
+                assert_eq!(
+                    closed.particular.to_matrix(),
+                    general.particular.to_matrix(),
+                    "{context}"
+                );
+                assert_eq!(
+                    closed.z.map(Columns::to_matrix),
+                    general.z.map(Columns::to_matrix),
+                    "{context}"
+                );
                 let (count, condition) = general.kept_condition.unwrap();
                 assert_eq!(Some((count, condition)), closed.kept_condition, "{context}");
             }
@@ -1847,7 +1946,6 @@ mod tests {
     /// size (absolute values), the residual, the correction.
     struct BoundInputs {
         a: DMatrix<f64>,
-        qr: Factor,
         y: DMatrix<f64>,
         target: DMatrix<f64>,
         target_size: DMatrix<f64>,
@@ -1857,22 +1955,30 @@ mod tests {
 
     impl BoundInputs {
         /// `Shared` of these inputs with `a` (`A` or `|A|`), the ends'
-        /// count `ends` and the correction `correction`.
+        /// count `ends` and the correction `correction`; the factor of the
+        /// inputs' `A` and the shared values in `buffer`.
         fn shared<'s>(
             &'s self,
             a: &'s DMatrix<f64>,
             ends: usize,
             correction: &'s DMatrix<f64>,
+            buffer: &'s mut Vec<f64>,
         ) -> Shared<'s> {
+            let (rows, free, dim) = (self.a.nrows(), self.a.ncols(), self.y.ncols());
+            let packed_len = Factor::packed_len(rows, free);
+            buffer.resize(packed_len + Shared::values_len(rows, free, dim), 0.0);
+            let (packed, values) = buffer.split_at_mut(packed_len);
             Shared::new(
-                &self.qr,
-                &self.y,
-                a,
-                &self.target,
-                &self.target_size,
-                &self.residual,
+                Factor::new(self.a.as_slice(), rows, free, packed).unwrap(),
+                (&self.y).into(),
+                a.into(),
+                (&self.target).into(),
+                (&self.target_size).into(),
+                (&self.residual).into(),
+                self.residual.norm(),
                 ends,
                 correction.as_slice(),
+                values,
             )
         }
     }
@@ -1884,7 +1990,6 @@ mod tests {
         dim: usize,
     ) -> BoundInputs {
         let a = random_matrix(values, rows, free);
-        let qr = Factor::new(a.as_slice(), rows, free).unwrap();
         BoundInputs {
             y: random_matrix(values, free, dim),
             target: random_matrix(values, rows, dim),
@@ -1892,7 +1997,6 @@ mod tests {
             residual: random_matrix(values, rows, dim),
             correction: random_matrix(values, free, dim),
             a,
-            qr,
         }
     }
 
@@ -2145,10 +2249,11 @@ mod tests {
             for dim in [1, 3, 7] {
                 let inputs = bound_inputs(&mut values, rows, free, dim);
                 let correction = inputs.correction.clone() * 1e-17;
-                let shared = inputs.shared(&inputs.a, rows / 2, &correction);
+                let mut buffer = Vec::new();
+                let shared = inputs.shared(&inputs.a, rows / 2, &correction, &mut buffer);
                 let map = random_matrix(&mut values, rows + 1, free);
                 for normwise in [false, true] {
-                    for which in [Map::Factor, Map::Identity(free), Map::Of(&map)] {
+                    for which in [Map::Factor, Map::Identity(free), Map::Of((&map).into())] {
                         let mut scratch = Scratch::default();
                         let sized = first_order_bound(&shared, which, normwise, &mut scratch);
                         let mut scratch = Scratch::default();
@@ -2190,7 +2295,8 @@ mod tests {
             (30, 6, 13, 8),
         ] {
             let inputs = bound_inputs(&mut values, rows, free, dim);
-            let shared = inputs.shared(&inputs.a, rows / 2, &inputs.correction);
+            let mut buffer = Vec::new();
+            let shared = inputs.shared(&inputs.a, rows / 2, &inputs.correction, &mut buffer);
             assert_eq!(
                 bits(&shared.correction().into_owned()),
                 bits(&inputs.correction)
@@ -2215,9 +2321,10 @@ mod tests {
         let mut values = crate::test_values::Values(19);
         for (rows, free, dim) in [(8, 2, 3), (6, 1, 2), (12, 4, 1), (9, 5, 7)] {
             let inputs = bound_inputs(&mut values, rows, free, dim);
-            let shared = inputs.shared(&inputs.a, rows / 2, &inputs.correction);
+            let mut buffer = Vec::new();
+            let shared = inputs.shared(&inputs.a, rows / 2, &inputs.correction, &mut buffer);
             let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
-            assert_eq!(bits(shared.q()), bits(&inputs.qr.thin_q()));
+            assert_eq!(bits(shared.q()), bits(&shared.qr.thin_q()));
             let through_values =
                 combined_product(&inputs.target_size, &inputs.a, &inputs.y, Combine::PlusAbs);
             assert_eq!(
@@ -2245,12 +2352,14 @@ mod tests {
             let mut correction = inputs.correction.clone() * 1e-17;
             correction[(0, 0)] = 0.0;
             correction[(free - 1, dim - 1)] = -0.0;
-            let shared = inputs.shared(&inputs.a, 2 * free, &correction);
+            let mut buffer = Vec::new();
+            let shared = inputs.shared(&inputs.a, 2 * free, &correction, &mut buffer);
             let identity = DMatrix::identity(free, free);
             let mut scratch = Scratch::default();
             for normwise in [false, true] {
                 let matrix =
-                    first_order_bound(&shared, Map::Of(&identity), normwise, &mut scratch).unwrap();
+                    first_order_bound(&shared, Map::Of((&identity).into()), normwise, &mut scratch)
+                        .unwrap();
                 let map = first_order_bound(&shared, Map::Identity(free), normwise, &mut scratch)
                     .unwrap();
                 assert_eq!(
@@ -2280,13 +2389,16 @@ mod tests {
             let inputs = bound_inputs(&mut values, rows, free, dim);
             let a_abs = inputs.a.abs();
             let correction = inputs.correction.clone() * 1e-17;
-            let shared = inputs.shared(&a_abs, m, &correction);
+            let mut buffer = Vec::new();
+            let shared = inputs.shared(&a_abs, m, &correction, &mut buffer);
             let z = DMatrix::from_fn(m + 1, free, |i, k| if i == k + 1 { 1.0 } else { 0.0 });
             let mut scratch = Scratch::default();
-            let through_z = first_order_bound(&shared, Map::Of(&z), false, &mut scratch).unwrap();
+            let through_z =
+                first_order_bound(&shared, Map::Of((&z).into()), false, &mut scratch).unwrap();
             let identity = DMatrix::identity(free, free);
             let through_i =
-                first_order_bound(&shared, Map::Of(&identity), false, &mut scratch).unwrap();
+                first_order_bound(&shared, Map::Of((&identity).into()), false, &mut scratch)
+                    .unwrap();
             let through_map =
                 first_order_bound(&shared, Map::Identity(free), false, &mut scratch).unwrap();
             assert_eq!(through_z.0.to_bits(), through_i.0.to_bits(), "m {m}");

@@ -9,6 +9,7 @@ use nalgebra::{DMatrix, DVector};
 use crate::basis::{bezier_basis_derivatives, binomial};
 use crate::error::{BezjoinError, Result};
 
+use super::columns::{Columns, OwnedColumns};
 use super::stage_one::{CONTRADICTION_MARGIN, PieceInput};
 
 pub(super) struct Row {
@@ -36,7 +37,8 @@ pub(super) struct Problem<'p, 'a> {
     pub(super) points_per_piece: usize,
     pub(super) unknowns: usize,
     pub(super) dim: usize,
-    pub(super) x0: DMatrix<f64>,
+    /// The input control points, stacked (`unknowns x dim`, [`Problem::x0`]).
+    x0: OwnedColumns,
     /// Coordinate scale of the input.
     pub(super) scale: f64,
     /// The piece lengths `h_j` (the continuity rows' weights).
@@ -60,7 +62,7 @@ impl<'p, 'a> Problem<'p, 'a> {
         let dim = pieces[0].curve.dim();
         let points_per_piece = m + 1;
         let unknowns = count * points_per_piece;
-        let mut x0 = DMatrix::zeros(unknowns, dim);
+        let mut x0 = OwnedColumns::zeros(unknowns, dim);
         for (j, p) in pieces.iter().enumerate() {
             let rows = x0.as_mut_slice();
             // Column-major x0 from the row-major control points.
@@ -72,7 +74,7 @@ impl<'p, 'a> Problem<'p, 'a> {
         }
         // As nalgebra's `amax` (which differs only for an all-NaN x0, and
         // then gives NaN, which `max` passes over as well).
-        let scale = super::lsq::amax(x0.as_slice()).max(f64::MIN_POSITIVE);
+        let scale = super::lsq::amax(x0.columns().as_slice()).max(f64::MIN_POSITIVE);
         let constraint_count = 2 * usize::from(fix_ends)
             + pieces
                 .iter()
@@ -91,6 +93,12 @@ impl<'p, 'a> Problem<'p, 'a> {
             constraint_count,
             constraints: OnceCell::new(),
         }
+    }
+
+    /// The input control points of every piece, stacked (`unknowns x
+    /// dim`, piece after piece).
+    pub(super) fn x0(&self) -> Columns<'_> {
+        self.x0.columns()
     }
 
     /// The number of constraint rows, without building them.

@@ -21,6 +21,7 @@ use crate::basis::binomial;
 use crate::bezier::BezierCurve;
 use crate::error::{BezjoinError, Result};
 
+use super::columns::ZeroBuffer;
 use super::kept::kept_solution;
 use super::kkt::kkt_solution;
 use super::orthogonal::orthogonal_solution;
@@ -118,7 +119,9 @@ impl StageOne {
     }
 
     /// Piece `j` as a curve: `BezierCurve::from_matrix(&self.pieces()[j])`
-    /// (the same points, the same errors) without the matrices.
+    /// (the same points, the same errors) without the matrices (the debug
+    /// check of [`StageOne::into_split_curves`], the tests).
+    #[cfg(any(debug_assertions, test))]
     pub fn piece_curve(&self, j: usize) -> Result<BezierCurve> {
         let points = self.points_per_piece;
         BezierCurve::new(
@@ -146,22 +149,68 @@ impl StageOne {
     /// So `new`'s checks (dimension, degree cap, size, finite) all pass and
     /// are not repeated (test `split_curves_are_the_checked_ones_to_the_bit`;
     /// a debug build checks every call against the validated constructors).
-    pub(crate) fn split_curves(&self) -> Option<(BezierCurve, [BezierCurve; 2])> {
-        let merged = self.merged.as_ref().filter(|_| self.split_of_merged)?;
-        let (x, points) = (&self.x, self.points_per_piece);
-        let dim = x.ncols();
-        let merged_curve = BezierCurve::from_parts(dim, points - 1, rows_of(merged, 0, points));
-        let hats = [
-            BezierCurve::from_parts(dim, points - 1, rows_of(x, 0, points)),
-            BezierCurve::from_parts(dim, points - 1, rows_of(x, points, points)),
-        ];
-        debug_assert!(
-            BezierCurve::from_matrix(merged).is_ok_and(|c| c == merged_curve)
-                && (0..2).all(|j| self.piece_curve(j).is_ok_and(|c| c == hats[j]))
+    ///
+    /// The result is consumed: `R`'s points and `P^`'s are rearranged in
+    /// the storage of `merged` and `x` (`Err(self)` for any other result:
+    /// the result itself handed back, moved once, not an error to box).
+    #[allow(clippy::result_large_err)]
+    pub(crate) fn into_split_curves(
+        self,
+    ) -> std::result::Result<(BezierCurve, [BezierCurve; 2]), Self> {
+        if !self.split_of_merged || self.merged.is_none() {
+            return Err(self);
+        }
+        #[cfg(debug_assertions)]
+        let checked = (
+            BezierCurve::from_matrix(self.merged.as_ref().expect("R found")),
+            [self.piece_curve(0), self.piece_curve(1)],
         );
-        Some((merged_curve, hats))
+        let Self {
+            x,
+            points_per_piece: points,
+            merged,
+            ..
+        } = self;
+        let dim = x.ncols();
+        let q_hat = BezierCurve::from_parts(dim, points - 1, rows_of(&x, points, points));
+        let merged = merged.expect("R found");
+        let merged_curve = BezierCurve::from_parts(dim, points - 1, leading_rows(merged, points));
+        let p_hat = BezierCurve::from_parts(dim, points - 1, leading_rows(x, points));
+        #[cfg(debug_assertions)]
+        {
+            let (merged, [p, q]) = checked;
+            debug_assert!(
+                merged.is_ok_and(|c| c == merged_curve)
+                    && p.is_ok_and(|c| c == p_hat)
+                    && q.is_ok_and(|c| c == q_hat)
+            );
+        }
+        Ok((merged_curve, [p_hat, q_hat]))
     }
 }
+
+/// Rows `0 .. count` of `m` as row-major points, as [`rows_of`]`(m, 0,
+/// count)`, in `m`'s own storage (the points gathered on the stack first
+/// for small pieces).
+fn leading_rows(m: DMatrix<f64>, count: usize) -> Vec<f64> {
+    let (rows, dim) = (m.nrows(), m.ncols());
+    let mut buffer = ZeroBuffer::<LEADING_ROWS_ON_STACK>::new();
+    let gathered = buffer.zeros(count * dim);
+    let data = m.as_slice();
+    for (i, point) in gathered.chunks_exact_mut(dim).enumerate() {
+        for (c, v) in point.iter_mut().enumerate() {
+            *v = data[c * rows + i];
+        }
+    }
+    let mut points = Vec::from(m.data);
+    points.truncate(count * dim);
+    points.copy_from_slice(gathered);
+    points
+}
+
+/// Points' entries gathered on the stack by [`leading_rows`] (a piece of
+/// degree 7 in space).
+const LEADING_ROWS_ON_STACK: usize = 24;
 
 /// Rows `first .. first + count` of `m` as row-major points (the order
 /// `BezierCurve::from_matrix` reads them in).
@@ -315,7 +364,7 @@ pub(crate) fn solve_stage_one_slope(
     };
     // The changes, for the metric of the kept and KKT paths only.
     let e = if found.is_none() {
-        &x - &problem.x0
+        &x - problem.x0().view()
     } else {
         DMatrix::zeros(0, 0)
     };

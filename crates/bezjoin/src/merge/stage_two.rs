@@ -620,6 +620,10 @@ fn deviation_screened<const D: usize>(
     }
 }
 
+/// `2^-900`: below it, [`deviation_screened`]'s squares may round as
+/// subnormals (exact: a power of two, as `2f64.powi(-900)`).
+const SUBNORMAL_ROUNDING: f64 = f64::from_bits((1023 - 900) << 52);
+
 /// [`deviation_screened`] for the degree `2n = K - 1`.
 #[allow(clippy::needless_range_loop)]
 fn screen<const D: usize, const K: usize>(table: &[f64], half: &[f64], worst: &mut Worst) -> bool {
@@ -634,8 +638,7 @@ fn screen<const D: usize, const K: usize>(table: &[f64], half: &[f64], worst: &m
         .map(|p| p.iter().map(|x| x * x).sum::<f64>())
         .fold(0.0f64, |m, v| if v > m { v } else { m });
     if !(largest_coefficient.is_finite()
-        && largest_coefficient <= f64::MAX / 1024.0
-        && largest_coefficient >= 2f64.powi(-900))
+        && (SUBNORMAL_ROUNDING..=f64::MAX / 1024.0).contains(&largest_coefficient))
     {
         return false;
     }
@@ -804,6 +807,12 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// The screen's subnormal threshold is `2^-900` as `powi` computes it.
+    #[test]
+    fn subnormal_rounding_is_two_to_the_minus_900() {
+        assert_eq!(SUBNORMAL_ROUNDING.to_bits(), 2f64.powi(-900).to_bits());
     }
 
     /// `max_deviation` (difference curves, tabulated basis, the unrolled
