@@ -1481,16 +1481,42 @@ fn largest_product<const O: usize, const I: usize>(
                 *a = sum;
             }
         } else {
-            acc.fill(0.0);
-            for (kc, &x) in k.chunks_exact(out).zip(column) {
-                for (a, &e) in acc.iter_mut().zip(kc) {
-                    *a += e * x;
-                }
-            }
+            columns_times(acc, k, column, Start::Set);
         }
         worst = worst.max(lsq::amax(acc));
     }
     worst
+}
+
+/// Where [`columns_times`] starts.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Start {
+    /// `acc` set from the first column's product (no zero fill first): the
+    /// values of summing into zeros (`0 + e x` is `e x`) but for the sign
+    /// of an entry whose every term is a zero, which the largest absolute
+    /// value that is read of it ([`lsq::amax`]) does not see.
+    Set,
+    /// Added to `acc` as it is.
+    Add,
+}
+
+/// `acc (+)= sum_k K[:, k] x_k`, `k` in order, column update by column
+/// update (`K` column-major with `acc.len()` rows; as many columns as both
+/// `K` and `x` have).
+#[inline(always)]
+fn columns_times(acc: &mut [f64], k: &[f64], x: &[f64], start: Start) {
+    let mut columns = k.chunks_exact(acc.len()).zip(x);
+    if start == Start::Set {
+        match columns.next() {
+            Some((kc, &x)) => acc.iter_mut().zip(kc).for_each(|(a, &e)| *a = e * x),
+            None => acc.fill(0.0),
+        }
+    }
+    for (kc, &x) in columns {
+        for (a, &e) in acc.iter_mut().zip(kc) {
+            *a += e * x;
+        }
+    }
 }
 
 /// Below this many rows, [`largest_product`] and `|K1|` of
@@ -1620,12 +1646,7 @@ fn first_order_bound_sized<const R: usize, const F: usize, const O: usize>(
             for c in 0..dim {
                 w.copy_from_slice(&shared.correction[c * free..(c + 1) * free]);
                 qr.mul_t(w);
-                acc.fill(0.0);
-                for (qk, &wk) in q.chunks_exact(rows).zip(w.iter()) {
-                    for (a, &e) in acc.iter_mut().zip(qk) {
-                        *a += e * wk;
-                    }
-                }
+                columns_times(acc, q, w, Start::Set);
                 worst = worst.max(lsq::amax(acc));
             }
             k0.copy_from_slice(q);
@@ -1754,19 +1775,10 @@ fn first_order_bound_sized<const R: usize, const F: usize, const O: usize>(
     k2.iter_mut().for_each(|v| *v = v.abs());
     let mut worst = 0.0f64;
     for c in 0..dim {
-        acc.fill(0.0);
         let tv = &shared.through_values()[c * rows..(c + 1) * rows];
-        for (kc, &x) in k1.chunks_exact(out).zip(tv) {
-            for (a, &e) in acc.iter_mut().zip(kc) {
-                *a += e * x;
-            }
-        }
+        columns_times(acc, k1, tv, Start::Set);
         let tr = &shared.through_residual()[c * free..(c + 1) * free];
-        for (kc, &x) in k2.chunks_exact(out).zip(tr) {
-            for (a, &e) in acc.iter_mut().zip(kc) {
-                *a += e * x;
-            }
-        }
+        columns_times(acc, k2, tr, Start::Add);
         worst = worst.max(gamma * lsq::amax(acc));
     }
     Some((worst + measured + normwise, k0_norm, symmetric))
