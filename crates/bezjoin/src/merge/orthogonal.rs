@@ -281,52 +281,59 @@ fn product_into<'a, 'b>(
         out.fill(0.0);
         return;
     }
-    for (bj, oj) in b
-        .as_slice()
-        .chunks_exact(inner)
-        .zip(out.chunks_exact_mut(rows))
-    {
-        product_column(a, bj, abs, oj);
-    }
+    product_columns(a, b.as_slice(), abs, out);
 }
 
-/// `out = a b` for one column `b` (`a.ncols()` entries, at least one) as
-/// nalgebra's small `gemm` (see [`product_into`]): `a[:, 0] b_0`, then
-/// `a[:, k] b_k + out` in order; with `abs`, of `|a|` and `|b|`. The
-/// merge's small row counts as constants ([`product_column_sized`]).
+/// `out = a b` for the columns of `b` (`a.ncols()` entries each, at least
+/// one; `out` column-major with `a.nrows()` rows), each as nalgebra's
+/// small `gemm` (see [`product_into`]): `a[:, 0] b_0`, then `a[:, k] b_k +
+/// out` in order; with `abs`, of `|a|` and `|b|`. The merge's small row
+/// counts as constants ([`product_columns_sized`]), chosen once for all
+/// columns.
 #[inline(always)]
-fn product_column<'a>(a: impl Into<Columns<'a>>, b: &[f64], abs: bool, out: &mut [f64]) {
+fn product_columns<'a>(a: impl Into<Columns<'a>>, b: &[f64], abs: bool, out: &mut [f64]) {
     let a = a.into();
-    debug_assert_eq!(out.len(), a.nrows());
+    let rows = a.nrows();
+    debug_assert_eq!(out.len() * a.ncols(), b.len() * rows);
     let a = a.as_slice();
-    match out.len() {
-        4 => product_column_sized::<4>(a, b, abs, out),
-        6 => product_column_sized::<6>(a, b, abs, out),
-        8 => product_column_sized::<8>(a, b, abs, out),
-        10 => product_column_sized::<10>(a, b, abs, out),
-        12 => product_column_sized::<12>(a, b, abs, out),
-        _ => product_column_sized::<0>(a, b, abs, out),
+    match rows {
+        4 => product_columns_sized::<4>(a, rows, b, abs, out),
+        6 => product_columns_sized::<6>(a, rows, b, abs, out),
+        8 => product_columns_sized::<8>(a, rows, b, abs, out),
+        10 => product_columns_sized::<10>(a, rows, b, abs, out),
+        12 => product_columns_sized::<12>(a, rows, b, abs, out),
+        _ => product_columns_sized::<0>(a, rows, b, abs, out),
     }
 }
 
-/// [`product_column`] with `N` rows known at compile time (`N = 0`: the
-/// length of `out`): per entry the same operations in the same order.
+/// [`product_columns`] with `N` rows known at compile time (`N = 0`:
+/// `rows`): per entry the same operations in the same order.
 #[inline(always)]
-fn product_column_sized<const N: usize>(a: &[f64], b: &[f64], abs: bool, out: &mut [f64]) {
-    let rows = if N == 0 { out.len() } else { N };
-    let out = &mut out[..rows];
+fn product_columns_sized<const N: usize>(
+    a: &[f64],
+    rows: usize,
+    b: &[f64],
+    abs: bool,
+    out: &mut [f64],
+) {
+    let rows = if N == 0 { rows } else { N };
+    // At least 1 for the chunks (no inner entries: no columns of `b`).
+    let inner = (a.len() / rows).max(1);
     let value = |x: f64| if abs { x.abs() } else { x };
-    for (k, (ak, &bk)) in a.chunks_exact(rows).zip(b).enumerate() {
-        let ak = &ak[..rows];
-        let bk = value(bk);
-        if k == 0 {
-            out.iter_mut()
-                .zip(ak)
-                .for_each(|(o, &x)| *o = value(x) * bk);
-        } else {
-            out.iter_mut()
-                .zip(ak)
-                .for_each(|(o, &x)| *o += value(x) * bk);
+    for (bj, out) in b.chunks_exact(inner).zip(out.chunks_exact_mut(rows)) {
+        let out = &mut out[..rows];
+        for (k, (ak, &bk)) in a.chunks_exact(rows).zip(bj).enumerate() {
+            let ak = &ak[..rows];
+            let bk = value(bk);
+            if k == 0 {
+                out.iter_mut()
+                    .zip(ak)
+                    .for_each(|(o, &x)| *o = value(x) * bk);
+            } else {
+                out.iter_mut()
+                    .zip(ak)
+                    .for_each(|(o, &x)| *o += value(x) * bk);
+            }
         }
     }
 }
@@ -1694,7 +1701,7 @@ fn first_order_bound_sized<const R: usize, const F: usize, const O: usize>(
                 Map::Of(map) => {
                     let acc = &mut acc[..out];
                     for c in 0..dim {
-                        product_column(
+                        product_columns(
                             map,
                             &shared.correction[c * free..(c + 1) * free],
                             false,
@@ -2232,8 +2239,8 @@ mod tests {
                 let b = random_matrix(&mut values, inner, 1);
                 for abs in [false, true] {
                     let (mut sized, mut general) = (vec![0.0; rows], vec![0.0; rows]);
-                    product_column(&a, b.as_slice(), abs, &mut sized);
-                    product_column_sized::<0>(a.as_slice(), b.as_slice(), abs, &mut general);
+                    product_columns(&a, b.as_slice(), abs, &mut sized);
+                    product_columns_sized::<0>(a.as_slice(), rows, b.as_slice(), abs, &mut general);
                     let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
                     assert_eq!(bits(&sized), bits(&general), "{rows} x {inner} {abs}");
                 }
