@@ -162,7 +162,7 @@ impl<'p> Factor<'p> {
     }
 
     /// `T[i][j]`, `i <= j`.
-    #[inline]
+    #[cfg(test)]
     fn t(&self, i: usize, j: usize) -> f64 {
         if i == j {
             self.diagonal()[i]
@@ -268,11 +268,22 @@ impl<'p> Factor<'p> {
     }
 
     /// `x <- T x` (the first `cols` entries).
+    #[cfg(test)]
     pub(super) fn mul_t(&self, x: &mut [f64]) {
-        for i in 0..self.cols {
-            let mut sum = self.diagonal()[i] * x[i];
-            for (j, &xj) in x.iter().enumerate().take(self.cols).skip(i + 1) {
-                sum += self.t(i, j) * xj;
+        self.mul_t_sized::<0, 0>(x);
+    }
+
+    /// [`Self::mul_t`] with the sizes of [`Self::sizes`]: row `i` is
+    /// `T[i][i] x_i + T[i][i+1] x_(i+1) + ...` in that order.
+    #[inline(always)]
+    pub(super) fn mul_t_sized<const R: usize, const C: usize>(&self, x: &mut [f64]) {
+        let (rows, cols) = self.sizes::<R, C>();
+        let diagonal = &self.packed[rows * cols..rows * cols + cols];
+        let x = &mut x[..cols];
+        for i in 0..cols {
+            let mut sum = diagonal[i] * x[i];
+            for (j, &xj) in x.iter().enumerate().skip(i + 1) {
+                sum += self.packed[j * rows + i] * xj;
             }
             x[i] = sum;
         }

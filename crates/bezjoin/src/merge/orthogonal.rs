@@ -1652,7 +1652,7 @@ fn first_order_bound_sized<const R: usize, const F: usize, const O: usize>(
             let mut worst = 0.0f64;
             for c in 0..dim {
                 w.copy_from_slice(&shared.correction[c * free..(c + 1) * free]);
-                qr.mul_t(w);
+                qr.mul_t_sized::<R, F>(w);
                 columns_times(acc, q, w, Start::Set);
                 worst = worst.max(lsq::amax(acc));
             }
