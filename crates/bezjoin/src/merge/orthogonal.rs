@@ -1544,13 +1544,21 @@ fn largest_transposed_product(k: &[f64], inner: usize, v: &[f64], v_rows: usize)
 }
 
 /// `K T^-T` in place for a column-major `out x free` matrix `k`
-/// (column operations, from the last column).
-fn times_t_inverse_transposed(qr: &Factor, k: &mut [f64], out: usize) {
-    let free = qr.cols();
+/// (column operations, from the last column); `free = F` and `out = O`
+/// known at compile time when not `0`.
+#[inline(always)]
+fn times_t_inverse_transposed<const F: usize, const O: usize>(
+    qr: &Factor,
+    k: &mut [f64],
+    out: usize,
+) {
+    let free = if F != 0 { F } else { qr.cols() };
+    debug_assert!(free == qr.cols() && (O == 0 || O == out));
+    let out = if O != 0 { O } else { out };
     for c in (0..free).rev() {
         // K[:, c] = (K[:, c] - sum_(j > c) T[c][j] K[:, j]) / T[c][c].
         let (head, tail) = k.split_at_mut((c + 1) * out);
-        let column = &mut head[c * out..];
+        let column = &mut head[c * out..(c + 1) * out];
         for j in c + 1..free {
             let t = qr.t_column(j)[c];
             for (e, &x) in column
@@ -1768,7 +1776,7 @@ fn first_order_bound_sized<const R: usize, const F: usize, const O: usize>(
     }
     // K2 = K0 T^-T (out x free), in K0's place.
     let k2 = k0;
-    times_t_inverse_transposed(&qr, k2, out);
+    times_t_inverse_transposed::<F, O>(&qr, k2, out);
     // Householder QR's own backward error is normwise (column by column),
     // not componentwise, and refinement in working precision does not
     // remove all of it (measured: test merge_exact, degree 20, mu ~0.1,
