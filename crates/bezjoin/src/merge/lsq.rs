@@ -171,10 +171,6 @@ impl<'p> Factor<'p> {
         }
     }
 
-    fn reflector(&self, k: usize) -> &[f64] {
-        &self.packed[k * self.rows + k..(k + 1) * self.rows]
-    }
-
     /// `x <- Q^T x` (one column of length `rows`).
     #[cfg(test)]
     pub(super) fn apply_qt(&self, x: &mut [f64]) {
@@ -238,11 +234,6 @@ impl<'p> Factor<'p> {
     pub(super) fn diagonal(&self) -> &[f64] {
         let size = self.rows * self.cols;
         &self.packed[size..size + self.cols]
-    }
-
-    /// The reflectors' `beta_k`.
-    fn beta(&self) -> &[f64] {
-        &self.packed[self.rows * self.cols + self.cols..]
     }
 
     /// `y <- T^-1 y` (the first `cols` entries), column by column.
@@ -328,14 +319,23 @@ impl<'p> Factor<'p> {
     /// The thin `Q` (column-major `rows x cols`), from the reflectors, into
     /// `q` (`rows x cols` entries, all zero).
     pub(super) fn thin_q_into(&self, q: &mut [f64]) {
-        let rows = self.rows;
-        debug_assert!(q.len() == rows * self.cols && q.iter().all(|&v| v == 0.0));
-        for (k, column) in q.chunks_exact_mut(rows).enumerate() {
+        with_small_sizes!(self.rows, self.cols, |R, C| self
+            .thin_q_into_sized::<R, C>(q))
+    }
+
+    /// [`Self::thin_q_into`] with the sizes of [`Self::sizes`].
+    #[inline(always)]
+    fn thin_q_into_sized<const R: usize, const C: usize>(&self, q: &mut [f64]) {
+        let (rows, cols) = self.sizes::<R, C>();
+        debug_assert!(q.len() == rows * cols && q.iter().all(|&v| v == 0.0));
+        let beta = &self.packed[rows * cols + cols..];
+        for (k, column) in q[..rows * cols].chunks_exact_mut(rows).enumerate() {
             column[k] = 1.0;
             // Q e_k = H_0 ... H_(cols-1) e_k: H_j for j > k acts on rows
             // j.. only, where e_k is zero, so H_k is the first to apply.
             for j in (0..=k).rev() {
-                reflect(self.reflector(j), &mut column[j..], self.beta()[j]);
+                let reflector = &self.packed[j * rows + j..(j + 1) * rows];
+                reflect(reflector, &mut column[j..], beta[j]);
             }
         }
     }
