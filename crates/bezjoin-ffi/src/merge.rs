@@ -141,6 +141,7 @@ fn metric_from(value: i32, name: &str) -> FfiResult<MergeMetric> {
     }
 }
 
+#[inline]
 fn bool_from(value: u8, name: &str) -> FfiResult<bool> {
     match value {
         0 => Ok(false),
@@ -181,10 +182,18 @@ unsafe fn read_options(options: *const BzjMergeOptions) -> FfiResult<MergeOption
             .into());
         }
     };
-    // SAFETY: caller promises the counts.
-    let p_points = unsafe { input_slice(o.p_points, o.p_point_count, "options.p_points") }?;
-    // SAFETY: caller promises the counts.
-    let q_points = unsafe { input_slice(o.q_points, o.q_point_count, "options.q_points") }?;
+    // No points (`input_slice` gives none for a zero count, whatever the
+    // pointer) without the call.
+    let p_points = match o.p_point_count {
+        0 => &[],
+        // SAFETY: caller promises the counts.
+        count => unsafe { input_slice(o.p_points, count, "options.p_points") }?,
+    };
+    let q_points = match o.q_point_count {
+        0 => &[],
+        // SAFETY: caller promises the counts.
+        count => unsafe { input_slice(o.q_points, count, "options.q_points") }?,
+    };
     Ok(MergeOptions {
         metric,
         split,

@@ -162,17 +162,13 @@ impl<'p> Factor<'p> {
     }
 
     /// `T[i][j]`, `i <= j`.
-    #[inline]
+    #[cfg(test)]
     fn t(&self, i: usize, j: usize) -> f64 {
         if i == j {
             self.diagonal()[i]
         } else {
             self.packed[j * self.rows + i]
         }
-    }
-
-    fn reflector(&self, k: usize) -> &[f64] {
-        &self.packed[k * self.rows + k..(k + 1) * self.rows]
     }
 
     /// `x <- Q^T x` (one column of length `rows`).
@@ -240,11 +236,6 @@ impl<'p> Factor<'p> {
         &self.packed[size..size + self.cols]
     }
 
-    /// The reflectors' `beta_k`.
-    fn beta(&self) -> &[f64] {
-        &self.packed[self.rows * self.cols + self.cols..]
-    }
-
     /// `y <- T^-1 y` (the first `cols` entries), column by column.
     #[cfg(test)]
     pub(super) fn solve_t(&self, y: &mut [f64]) {
@@ -268,11 +259,22 @@ impl<'p> Factor<'p> {
     }
 
     /// `x <- T x` (the first `cols` entries).
+    #[cfg(test)]
     pub(super) fn mul_t(&self, x: &mut [f64]) {
-        for i in 0..self.cols {
-            let mut sum = self.diagonal()[i] * x[i];
-            for (j, &xj) in x.iter().enumerate().take(self.cols).skip(i + 1) {
-                sum += self.t(i, j) * xj;
+        self.mul_t_sized::<0, 0>(x);
+    }
+
+    /// [`Self::mul_t`] with the sizes of [`Self::sizes`]: row `i` is
+    /// `T[i][i] x_i + T[i][i+1] x_(i+1) + ...` in that order.
+    #[inline(always)]
+    pub(super) fn mul_t_sized<const R: usize, const C: usize>(&self, x: &mut [f64]) {
+        let (rows, cols) = self.sizes::<R, C>();
+        let diagonal = &self.packed[rows * cols..rows * cols + cols];
+        let x = &mut x[..cols];
+        for i in 0..cols {
+            let mut sum = diagonal[i] * x[i];
+            for (j, &xj) in x.iter().enumerate().skip(i + 1) {
+                sum += self.packed[j * rows + i] * xj;
             }
             x[i] = sum;
         }
@@ -317,14 +319,23 @@ impl<'p> Factor<'p> {
     /// The thin `Q` (column-major `rows x cols`), from the reflectors, into
     /// `q` (`rows x cols` entries, all zero).
     pub(super) fn thin_q_into(&self, q: &mut [f64]) {
-        let rows = self.rows;
-        debug_assert!(q.len() == rows * self.cols && q.iter().all(|&v| v == 0.0));
-        for (k, column) in q.chunks_exact_mut(rows).enumerate() {
+        with_small_sizes!(self.rows, self.cols, |R, C| self
+            .thin_q_into_sized::<R, C>(q))
+    }
+
+    /// [`Self::thin_q_into`] with the sizes of [`Self::sizes`].
+    #[inline(always)]
+    fn thin_q_into_sized<const R: usize, const C: usize>(&self, q: &mut [f64]) {
+        let (rows, cols) = self.sizes::<R, C>();
+        debug_assert!(q.len() == rows * cols && q.iter().all(|&v| v == 0.0));
+        let beta = &self.packed[rows * cols + cols..];
+        for (k, column) in q[..rows * cols].chunks_exact_mut(rows).enumerate() {
             column[k] = 1.0;
             // Q e_k = H_0 ... H_(cols-1) e_k: H_j for j > k acts on rows
             // j.. only, where e_k is zero, so H_k is the first to apply.
             for j in (0..=k).rev() {
-                reflect(self.reflector(j), &mut column[j..], self.beta()[j]);
+                let reflector = &self.packed[j * rows + j..(j + 1) * rows];
+                reflect(reflector, &mut column[j..], beta[j]);
             }
         }
     }

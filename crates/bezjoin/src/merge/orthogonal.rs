@@ -281,52 +281,59 @@ fn product_into<'a, 'b>(
         out.fill(0.0);
         return;
     }
-    for (bj, oj) in b
-        .as_slice()
-        .chunks_exact(inner)
-        .zip(out.chunks_exact_mut(rows))
-    {
-        product_column(a, bj, abs, oj);
-    }
+    product_columns(a, b.as_slice(), abs, out);
 }
 
-/// `out = a b` for one column `b` (`a.ncols()` entries, at least one) as
-/// nalgebra's small `gemm` (see [`product_into`]): `a[:, 0] b_0`, then
-/// `a[:, k] b_k + out` in order; with `abs`, of `|a|` and `|b|`. The
-/// merge's small row counts as constants ([`product_column_sized`]).
+/// `out = a b` for the columns of `b` (`a.ncols()` entries each, at least
+/// one; `out` column-major with `a.nrows()` rows), each as nalgebra's
+/// small `gemm` (see [`product_into`]): `a[:, 0] b_0`, then `a[:, k] b_k +
+/// out` in order; with `abs`, of `|a|` and `|b|`. The merge's small row
+/// counts as constants ([`product_columns_sized`]), chosen once for all
+/// columns.
 #[inline(always)]
-fn product_column<'a>(a: impl Into<Columns<'a>>, b: &[f64], abs: bool, out: &mut [f64]) {
+fn product_columns<'a>(a: impl Into<Columns<'a>>, b: &[f64], abs: bool, out: &mut [f64]) {
     let a = a.into();
-    debug_assert_eq!(out.len(), a.nrows());
+    let rows = a.nrows();
+    debug_assert_eq!(out.len() * a.ncols(), b.len() * rows);
     let a = a.as_slice();
-    match out.len() {
-        4 => product_column_sized::<4>(a, b, abs, out),
-        6 => product_column_sized::<6>(a, b, abs, out),
-        8 => product_column_sized::<8>(a, b, abs, out),
-        10 => product_column_sized::<10>(a, b, abs, out),
-        12 => product_column_sized::<12>(a, b, abs, out),
-        _ => product_column_sized::<0>(a, b, abs, out),
+    match rows {
+        4 => product_columns_sized::<4>(a, rows, b, abs, out),
+        6 => product_columns_sized::<6>(a, rows, b, abs, out),
+        8 => product_columns_sized::<8>(a, rows, b, abs, out),
+        10 => product_columns_sized::<10>(a, rows, b, abs, out),
+        12 => product_columns_sized::<12>(a, rows, b, abs, out),
+        _ => product_columns_sized::<0>(a, rows, b, abs, out),
     }
 }
 
-/// [`product_column`] with `N` rows known at compile time (`N = 0`: the
-/// length of `out`): per entry the same operations in the same order.
+/// [`product_columns`] with `N` rows known at compile time (`N = 0`:
+/// `rows`): per entry the same operations in the same order.
 #[inline(always)]
-fn product_column_sized<const N: usize>(a: &[f64], b: &[f64], abs: bool, out: &mut [f64]) {
-    let rows = if N == 0 { out.len() } else { N };
-    let out = &mut out[..rows];
+fn product_columns_sized<const N: usize>(
+    a: &[f64],
+    rows: usize,
+    b: &[f64],
+    abs: bool,
+    out: &mut [f64],
+) {
+    let rows = if N == 0 { rows } else { N };
+    // At least 1 for the chunks (no inner entries: no columns of `b`).
+    let inner = (a.len() / rows).max(1);
     let value = |x: f64| if abs { x.abs() } else { x };
-    for (k, (ak, &bk)) in a.chunks_exact(rows).zip(b).enumerate() {
-        let ak = &ak[..rows];
-        let bk = value(bk);
-        if k == 0 {
-            out.iter_mut()
-                .zip(ak)
-                .for_each(|(o, &x)| *o = value(x) * bk);
-        } else {
-            out.iter_mut()
-                .zip(ak)
-                .for_each(|(o, &x)| *o += value(x) * bk);
+    for (bj, out) in b.chunks_exact(inner).zip(out.chunks_exact_mut(rows)) {
+        let out = &mut out[..rows];
+        for (k, (ak, &bk)) in a.chunks_exact(rows).zip(bj).enumerate() {
+            let ak = &ak[..rows];
+            let bk = value(bk);
+            if k == 0 {
+                out.iter_mut()
+                    .zip(ak)
+                    .for_each(|(o, &x)| *o = value(x) * bk);
+            } else {
+                out.iter_mut()
+                    .zip(ak)
+                    .for_each(|(o, &x)| *o += value(x) * bk);
+            }
         }
     }
 }
@@ -1481,16 +1488,42 @@ fn largest_product<const O: usize, const I: usize>(
                 *a = sum;
             }
         } else {
-            acc.fill(0.0);
-            for (kc, &x) in k.chunks_exact(out).zip(column) {
-                for (a, &e) in acc.iter_mut().zip(kc) {
-                    *a += e * x;
-                }
-            }
+            columns_times(acc, k, column, Start::Set);
         }
         worst = worst.max(lsq::amax(acc));
     }
     worst
+}
+
+/// Where [`columns_times`] starts.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Start {
+    /// `acc` set from the first column's product (no zero fill first): the
+    /// values of summing into zeros (`0 + e x` is `e x`) but for the sign
+    /// of an entry whose every term is a zero, which the largest absolute
+    /// value that is read of it ([`lsq::amax`]) does not see.
+    Set,
+    /// Added to `acc` as it is.
+    Add,
+}
+
+/// `acc (+)= sum_k K[:, k] x_k`, `k` in order, column update by column
+/// update (`K` column-major with `acc.len()` rows; as many columns as both
+/// `K` and `x` have).
+#[inline(always)]
+fn columns_times(acc: &mut [f64], k: &[f64], x: &[f64], start: Start) {
+    let mut columns = k.chunks_exact(acc.len()).zip(x);
+    if start == Start::Set {
+        match columns.next() {
+            Some((kc, &x)) => acc.iter_mut().zip(kc).for_each(|(a, &e)| *a = e * x),
+            None => acc.fill(0.0),
+        }
+    }
+    for (kc, &x) in columns {
+        for (a, &e) in acc.iter_mut().zip(kc) {
+            *a += e * x;
+        }
+    }
 }
 
 /// Below this many rows, [`largest_product`] and `|K1|` of
@@ -1511,13 +1544,21 @@ fn largest_transposed_product(k: &[f64], inner: usize, v: &[f64], v_rows: usize)
 }
 
 /// `K T^-T` in place for a column-major `out x free` matrix `k`
-/// (column operations, from the last column).
-fn times_t_inverse_transposed(qr: &Factor, k: &mut [f64], out: usize) {
-    let free = qr.cols();
+/// (column operations, from the last column); `free = F` and `out = O`
+/// known at compile time when not `0`.
+#[inline(always)]
+fn times_t_inverse_transposed<const F: usize, const O: usize>(
+    qr: &Factor,
+    k: &mut [f64],
+    out: usize,
+) {
+    let free = if F != 0 { F } else { qr.cols() };
+    debug_assert!(free == qr.cols() && (O == 0 || O == out));
+    let out = if O != 0 { O } else { out };
     for c in (0..free).rev() {
         // K[:, c] = (K[:, c] - sum_(j > c) T[c][j] K[:, j]) / T[c][c].
         let (head, tail) = k.split_at_mut((c + 1) * out);
-        let column = &mut head[c * out..];
+        let column = &mut head[c * out..(c + 1) * out];
         for j in c + 1..free {
             let t = qr.t_column(j)[c];
             for (e, &x) in column
@@ -1619,13 +1660,8 @@ fn first_order_bound_sized<const R: usize, const F: usize, const O: usize>(
             let mut worst = 0.0f64;
             for c in 0..dim {
                 w.copy_from_slice(&shared.correction[c * free..(c + 1) * free]);
-                qr.mul_t(w);
-                acc.fill(0.0);
-                for (qk, &wk) in q.chunks_exact(rows).zip(w.iter()) {
-                    for (a, &e) in acc.iter_mut().zip(qk) {
-                        *a += e * wk;
-                    }
-                }
+                qr.mul_t_sized::<R, F>(w);
+                columns_times(acc, q, w, Start::Set);
                 worst = worst.max(lsq::amax(acc));
             }
             k0.copy_from_slice(q);
@@ -1673,7 +1709,7 @@ fn first_order_bound_sized<const R: usize, const F: usize, const O: usize>(
                 Map::Of(map) => {
                     let acc = &mut acc[..out];
                     for c in 0..dim {
-                        product_column(
+                        product_columns(
                             map,
                             &shared.correction[c * free..(c + 1) * free],
                             false,
@@ -1740,7 +1776,7 @@ fn first_order_bound_sized<const R: usize, const F: usize, const O: usize>(
     }
     // K2 = K0 T^-T (out x free), in K0's place.
     let k2 = k0;
-    times_t_inverse_transposed(&qr, k2, out);
+    times_t_inverse_transposed::<F, O>(&qr, k2, out);
     // Householder QR's own backward error is normwise (column by column),
     // not componentwise, and refinement in working precision does not
     // remove all of it (measured: test merge_exact, degree 20, mu ~0.1,
@@ -1754,19 +1790,10 @@ fn first_order_bound_sized<const R: usize, const F: usize, const O: usize>(
     k2.iter_mut().for_each(|v| *v = v.abs());
     let mut worst = 0.0f64;
     for c in 0..dim {
-        acc.fill(0.0);
         let tv = &shared.through_values()[c * rows..(c + 1) * rows];
-        for (kc, &x) in k1.chunks_exact(out).zip(tv) {
-            for (a, &e) in acc.iter_mut().zip(kc) {
-                *a += e * x;
-            }
-        }
+        columns_times(acc, k1, tv, Start::Set);
         let tr = &shared.through_residual()[c * free..(c + 1) * free];
-        for (kc, &x) in k2.chunks_exact(out).zip(tr) {
-            for (a, &e) in acc.iter_mut().zip(kc) {
-                *a += e * x;
-            }
-        }
+        columns_times(acc, k2, tr, Start::Add);
         worst = worst.max(gamma * lsq::amax(acc));
     }
     Some((worst + measured + normwise, k0_norm, symmetric))
@@ -2220,8 +2247,8 @@ mod tests {
                 let b = random_matrix(&mut values, inner, 1);
                 for abs in [false, true] {
                     let (mut sized, mut general) = (vec![0.0; rows], vec![0.0; rows]);
-                    product_column(&a, b.as_slice(), abs, &mut sized);
-                    product_column_sized::<0>(a.as_slice(), b.as_slice(), abs, &mut general);
+                    product_columns(&a, b.as_slice(), abs, &mut sized);
+                    product_columns_sized::<0>(a.as_slice(), rows, b.as_slice(), abs, &mut general);
                     let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
                     assert_eq!(bits(&sized), bits(&general), "{rows} x {inner} {abs}");
                 }

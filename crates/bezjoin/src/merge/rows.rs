@@ -62,9 +62,28 @@ impl<'p, 'a> Problem<'p, 'a> {
         let dim = pieces[0].curve.dim();
         let points_per_piece = m + 1;
         let unknowns = count * points_per_piece;
-        let mut x0 = OwnedColumns::zeros(unknowns, dim);
+        let constraint_count = 2 * usize::from(fix_ends)
+            + pieces
+                .iter()
+                .flat_map(|p| p.points.iter().map(|(_, kp)| kp.max_order + 1))
+                .sum::<usize>();
+        // Built in place (no copy of the stack-held x0 when returned), x0
+        // and the scale filled in below.
+        let mut problem = Self {
+            pieces,
+            points_per_piece,
+            unknowns,
+            dim,
+            x0: OwnedColumns::zeros(unknowns, dim),
+            scale: 0.0,
+            lengths,
+            continuity: OnceCell::new(),
+            fix_ends,
+            constraint_count,
+            constraints: OnceCell::new(),
+        };
+        let rows = problem.x0.as_mut_slice();
         for (j, p) in pieces.iter().enumerate() {
-            let rows = x0.as_mut_slice();
             // Column-major x0 from the row-major control points.
             for (i, point) in p.curve.points().chunks_exact(dim).enumerate() {
                 for (c, &v) in point.iter().enumerate() {
@@ -74,25 +93,8 @@ impl<'p, 'a> Problem<'p, 'a> {
         }
         // As nalgebra's `amax` (which differs only for an all-NaN x0, and
         // then gives NaN, which `max` passes over as well).
-        let scale = super::lsq::amax(x0.columns().as_slice()).max(f64::MIN_POSITIVE);
-        let constraint_count = 2 * usize::from(fix_ends)
-            + pieces
-                .iter()
-                .flat_map(|p| p.points.iter().map(|(_, kp)| kp.max_order + 1))
-                .sum::<usize>();
-        Self {
-            pieces,
-            points_per_piece,
-            unknowns,
-            dim,
-            x0,
-            scale,
-            lengths,
-            continuity: OnceCell::new(),
-            fix_ends,
-            constraint_count,
-            constraints: OnceCell::new(),
-        }
+        problem.scale = super::lsq::amax(problem.x0.columns().as_slice()).max(f64::MIN_POSITIVE);
+        problem
     }
 
     /// The input control points of every piece, stacked (`unknowns x

@@ -255,22 +255,19 @@ pub(crate) fn max_deviation(
     };
     let (n, d) = (first.degree(), first.dim());
     let len = (n + 1) * d;
-    // Half the difference curves, piece after piece (on the stack for
-    // small pieces).
-    let total = restrictions.len().min(originals.len()) * len;
-    let mut on_stack = [0.0f64; HALVES_ON_STACK];
+    // Half the difference curve of each piece in turn (on the stack for
+    // small pieces), its samples noted before the next piece's.
+    let mut on_stack = [0.0f64; HALF_ON_STACK];
     let mut on_heap = Vec::new();
-    let halves: &mut [f64] = if total <= HALVES_ON_STACK {
-        &mut on_stack[..total]
-    } else {
-        on_heap.resize(total, 0.0);
-        &mut on_heap
-    };
-    for ((back, c), half) in restrictions
-        .iter()
-        .zip(originals)
-        .zip(halves.chunks_exact_mut(len.max(1)))
-    {
+    let table = deviation_table(n);
+    let mut worst = Worst::default();
+    for (back, c) in restrictions.iter().zip(originals) {
+        let half: &mut [f64] = if len <= HALF_ON_STACK {
+            &mut on_stack[..len]
+        } else {
+            on_heap.resize(len, 0.0);
+            &mut on_heap
+        };
         // C_j at the working degree (n >= its degree: working_degree checks
         // it).
         let elevated;
@@ -283,59 +280,57 @@ pub(crate) fn max_deviation(
         for ((h, r), c) in half.iter_mut().zip(back.points()).zip(c_points) {
             *h = 0.5 * r - 0.5 * c;
         }
-    }
-    let halves: &[f64] = halves;
-    let mut worst = Worst::default();
-    if let Some(table) = deviation_table(n) {
-        // Per piece: the sample values accumulated coefficient by
-        // coefficient, a few contiguous samples at a time (the table is
-        // stored coefficient-major); each sample's sum is still taken in
-        // the order i = 0..n.
-        for half in halves.chunks_exact(len) {
-            match d {
-                2 => {
-                    if !deviation_screened::<2>(n, table, half, &mut worst) {
-                        deviation_fixed::<2>(table, half, &mut worst);
-                    }
-                }
-                3 => {
-                    if !deviation_screened::<3>(n, table, half, &mut worst) {
-                        deviation_fixed::<3>(table, half, &mut worst);
-                    }
-                }
-                _ => {
-                    let mut value = vec![0.0; d];
-                    for s in 0..=DEVIATION_SAMPLES {
-                        value.fill(0.0);
-                        for (i, p) in half.chunks_exact(d).enumerate() {
-                            let b = table[i * TABLE_ROW + s];
-                            for (o, x) in value.iter_mut().zip(p) {
-                                *o += b * x;
-                            }
-                        }
-                        worst.note(&value);
-                    }
-                }
-            }
-        }
-    } else {
-        let mut value = vec![0.0; d];
-        // One Horner evaluation per sample above the tabulated degrees.
-        for half in halves.chunks_exact(len) {
-            for s in 0..=DEVIATION_SAMPLES {
-                let u = s as f64 / DEVIATION_SAMPLES as f64;
-                crate::bezier::bernstein_horner_any(half, n, d, u, 1.0, &mut value);
-                worst.note(&value);
-            }
-        }
+        note_half(n, d, table, half, &mut worst);
     }
     let worst = worst.value();
     Ok(2.0 * worst)
 }
 
 /// The largest number of coordinates of [`max_deviation`]'s half
-/// differences kept on the stack (two pieces of degree 7 in space).
-const HALVES_ON_STACK: usize = 48;
+/// difference of one piece kept on the stack (degree 7 in space).
+const HALF_ON_STACK: usize = 24;
+
+/// The samples of one (half) difference curve `half` (degree `n`,
+/// dimension `d`) noted in `worst`: from the deviation table (`table`,
+/// coefficient by coefficient, a few contiguous samples at a time; each
+/// sample's sum still taken in the order `i = 0..n`), else one Horner
+/// evaluation per sample above the tabulated degrees.
+fn note_half(n: usize, d: usize, table: Option<&[f64]>, half: &[f64], worst: &mut Worst) {
+    let Some(table) = table else {
+        let mut value = vec![0.0; d];
+        for s in 0..=DEVIATION_SAMPLES {
+            let u = s as f64 / DEVIATION_SAMPLES as f64;
+            crate::bezier::bernstein_horner_any(half, n, d, u, 1.0, &mut value);
+            worst.note(&value);
+        }
+        return;
+    };
+    match d {
+        2 => {
+            if !deviation_screened::<2>(n, table, half, worst) {
+                deviation_fixed::<2>(table, half, worst);
+            }
+        }
+        3 => {
+            if !deviation_screened::<3>(n, table, half, worst) {
+                deviation_fixed::<3>(table, half, worst);
+            }
+        }
+        _ => {
+            let mut value = vec![0.0; d];
+            for s in 0..=DEVIATION_SAMPLES {
+                value.fill(0.0);
+                for (i, p) in half.chunks_exact(d).enumerate() {
+                    let b = table[i * TABLE_ROW + s];
+                    for (o, x) in value.iter_mut().zip(p) {
+                        *o += b * x;
+                    }
+                }
+                worst.note(&value);
+            }
+        }
+    }
+}
 
 /// Degrees up to which [`max_deviation`] reads the Bernstein values at its
 /// samples from a table computed once per degree ([`TABLE_ROW`]` (n + 1)`
