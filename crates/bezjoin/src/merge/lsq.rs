@@ -346,6 +346,20 @@ pub(super) fn amax(x: &[f64]) -> f64 {
     x.iter().fold(0.0f64, |m, v| m.max(v.abs()))
 }
 
+/// nalgebra's `amax` of a matrix with these entries, bit for bit: `|x_0|`
+/// (`0` for no entries), then simba's `simd_max` (`m >= a` keeps `m`, else
+/// `a`: a NaN entry replaces the maximum so far) with every further
+/// `|x_i|` in order, read from the slice. Without NaN entries it is
+/// [`amax`].
+pub(super) fn nalgebra_amax(x: &[f64]) -> f64 {
+    let mut entries = x.iter();
+    let first = entries.next().map_or(0.0, |v| v.abs());
+    entries.fold(first, |m, v| {
+        let a = v.abs();
+        if m >= a { m } else { a }
+    })
+}
+
 /// The Frobenius (2-) norm `sqrt(sum x_i^2)`.
 pub(super) fn norm(x: &[f64]) -> f64 {
     dot(x, x).sqrt()
@@ -355,6 +369,41 @@ pub(super) fn norm(x: &[f64]) -> f64 {
 mod tests {
     use super::*;
     use nalgebra::DMatrix;
+
+    /// [`nalgebra_amax`] is nalgebra's `amax` bit for bit, and so is
+    /// [`amax`] without NaN entries: random entries with signed zeros,
+    /// infinities and NaNs (also first, also all NaN), and no entries.
+    #[test]
+    fn slice_amax_is_nalgebras_to_the_bit() {
+        let mut values = crate::test_values::Values(35);
+        for len in 0..40 {
+            for round in 0..30 {
+                let m = DMatrix::from_fn(len, 1, |_, _| {
+                    let v = values.signed();
+                    match (round % 5, (v * 16.0) as i64) {
+                        (4, _) => f64::NAN,
+                        (_, 0) => 0.0 * v.signum(),
+                        (_, 1) => f64::NAN,
+                        (_, -1) => f64::INFINITY * v.signum(),
+                        _ => v * 1e3,
+                    }
+                });
+                assert_eq!(
+                    nalgebra_amax(m.as_slice()).to_bits(),
+                    m.amax().to_bits(),
+                    "{len} entries, round {round}"
+                );
+                let nan = m.iter().any(|v| v.is_nan());
+                if !nan {
+                    assert_eq!(
+                        amax(m.as_slice()).to_bits(),
+                        m.amax().to_bits(),
+                        "{len} entries, round {round}"
+                    );
+                }
+            }
+        }
+    }
 
     fn matrix(state: &mut u64, rows: usize, cols: usize) -> DMatrix<f64> {
         DMatrix::from_fn(rows, cols, |_, _| {

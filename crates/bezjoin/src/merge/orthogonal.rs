@@ -1016,11 +1016,18 @@ pub(super) fn orthogonal_solution(
     }
 
     // First-order error estimate of the pieces (see the module).
-    // nalgebra's amax differs from `lsq::amax` only for an all-NaN x
-    // (NaN against 0), which the `max` with the positive scale hides.
-    let result_scale = lsq::amax(x.as_slice()).max(problem.scale);
+    // The scale from `lsq::amax` (NaN entries passed over), the estimate
+    // from nalgebra's `amax` of x, which is the same value unless x holds
+    // a NaN (then read from the slice by `nalgebra_amax`).
+    let x_amax = lsq::amax(x.as_slice());
+    let x_amax_nalgebra = if x.as_slice().iter().fold(false, |nan, v| nan | v.is_nan()) {
+        lsq::nalgebra_amax(x.as_slice())
+    } else {
+        x_amax
+    };
+    let result_scale = x_amax.max(problem.scale);
     let eps = f64::EPSILON;
-    let mut estimate = (m as f64 + 2.0) * eps * x.amax() / result_scale;
+    let mut estimate = (m as f64 + 2.0) * eps * x_amax_nalgebra / result_scale;
     let mut reduced_gain = 0.0;
     // Either metric beyond the double solve's reach: refined in
     // double-double (module `refine`), with its own a-posteriori estimate.
