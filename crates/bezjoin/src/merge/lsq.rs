@@ -342,15 +342,20 @@ impl<'p> Factor<'p> {
 }
 
 /// `max |x_i|` (NaN passed over, as nalgebra's `amax`): the fold from `0`
-/// by `f64::max`, as `a > m` keeps `a`, else `m` (one `maxsd`; the same
-/// values: the maximum so far is never NaN, a NaN `|x_i|` compares false
-/// and is passed over, equal values are the same bits).
+/// by `f64::max`, as [`raise`] (one compare per entry).
 #[inline]
 pub(super) fn amax(x: &[f64]) -> f64 {
-    x.iter().fold(0.0f64, |m, v| {
-        let a = v.abs();
-        if a > m { a } else { m }
-    })
+    x.iter().fold(0.0f64, |m, v| raise(m, v.abs()))
+}
+
+/// `m.max(a)` for a largest value so far `m` that is not NaN and a
+/// candidate `a` that is not `-0` (an absolute value, or a product of
+/// them), as `a > m` keeps `a`, else `m` (one `maxsd`): the same value
+/// (a NaN `a` compares false and is passed over, as `f64::max` passes it
+/// over; equal values are the same bits, `+0` against `+0`).
+#[inline(always)]
+pub(super) fn raise(m: f64, a: f64) -> f64 {
+    if a > m { a } else { m }
 }
 
 /// nalgebra's `amax` of a matrix with these entries, bit for bit: `|x_0|`
@@ -377,8 +382,9 @@ mod tests {
     use super::*;
     use nalgebra::DMatrix;
 
-    /// [`amax`] is the fold from `0` by `f64::max` bit for bit: random
-    /// entries with signed zeros, infinities, NaNs and subnormals.
+    /// [`amax`] is the fold from `0` by `f64::max` bit for bit, and
+    /// [`raise`] is `f64::max` on every step of it: random entries with
+    /// signed zeros, infinities, NaNs and subnormals.
     #[test]
     fn amax_is_the_max_fold_to_the_bit() {
         let mut values = crate::test_values::Values(36);
@@ -399,6 +405,12 @@ mod tests {
                     .collect();
                 let fold = x.iter().fold(0.0f64, |m, v| m.max(v.abs()));
                 assert_eq!(amax(&x).to_bits(), fold.to_bits(), "{x:?}");
+                // `raise` against `f64::max` from every partial maximum.
+                let mut m = 0.0f64;
+                for v in &x {
+                    assert_eq!(raise(m, v.abs()).to_bits(), m.max(v.abs()).to_bits());
+                    m = m.max(v.abs());
+                }
             }
         }
     }

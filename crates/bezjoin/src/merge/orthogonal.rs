@@ -1497,7 +1497,7 @@ fn largest_product<const O: usize, const I: usize>(
         } else {
             columns_times(acc, k, column, Start::Set);
         }
-        worst = worst.max(lsq::amax(acc));
+        worst = lsq::raise(worst, lsq::amax(acc));
     }
     worst
 }
@@ -1544,7 +1544,7 @@ fn largest_transposed_product(k: &[f64], inner: usize, v: &[f64], v_rows: usize)
     let mut worst = 0.0f64;
     for column in v.chunks_exact(v_rows.max(1)) {
         for kc in k.chunks_exact(inner) {
-            worst = worst.max(lsq::dot(kc, column).abs());
+            worst = lsq::raise(worst, lsq::dot(kc, column).abs());
         }
     }
     worst
@@ -1669,7 +1669,7 @@ fn first_order_bound_sized<const R: usize, const F: usize, const O: usize>(
                 w.copy_from_slice(&shared.correction[c * free..(c + 1) * free]);
                 qr.mul_t_sized::<R, F>(w);
                 columns_times(acc, q, w, Start::Set);
-                worst = worst.max(lsq::amax(acc));
+                worst = lsq::raise(worst, lsq::amax(acc));
             }
             k0.copy_from_slice(q);
             worst
@@ -1707,7 +1707,7 @@ fn first_order_bound_sized<const R: usize, const F: usize, const O: usize>(
                     // exact), so its largest absolute value is `c`'s.
                     debug_assert_eq!(n, free);
                     for column in shared.correction.chunks_exact(free) {
-                        worst = worst.max(lsq::amax(column));
+                        worst = lsq::raise(worst, lsq::amax(column));
                     }
                 }
                 Map::Of(map) if blocked_product(out, free, dim) => {
@@ -1722,7 +1722,7 @@ fn first_order_bound_sized<const R: usize, const F: usize, const O: usize>(
                             false,
                             acc,
                         );
-                        worst = worst.max(lsq::amax(acc));
+                        worst = lsq::raise(worst, lsq::amax(acc));
                     }
                 }
                 Map::Factor => unreachable!("the thin Q's case above"),
@@ -1801,7 +1801,7 @@ fn first_order_bound_sized<const R: usize, const F: usize, const O: usize>(
         columns_times(acc, k1, tv, Start::Set);
         let tr = &shared.through_residual()[c * free..(c + 1) * free];
         columns_times(acc, k2, tr, Start::Add);
-        worst = worst.max(gamma * lsq::amax(acc));
+        worst = lsq::raise(worst, gamma * lsq::amax(acc));
     }
     Some((worst + measured + normwise, k0_norm, symmetric))
 }
