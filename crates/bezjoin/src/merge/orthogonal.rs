@@ -979,14 +979,16 @@ pub(super) fn orthogonal_solution(
         // `m - level` is final after `level` steps.
         let t = breakpoints[1];
         for (c, column) in x.as_mut_slice().chunks_exact_mut(2 * points).enumerate() {
-            let (left, right) = column.split_at_mut(points);
-            right.copy_from_slice(merged.column(c).as_slice());
-            left[0] = right[0];
-            for (level, out) in left.iter_mut().enumerate().skip(1) {
-                for i in 0..=m - level {
-                    right[i] = (1.0 - t) * right[i] + t * right[i + 1];
-                }
-                *out = right[0];
+            let from = merged.column(c);
+            match points {
+                2 => split_column_sized::<2>(column, from.as_slice(), t),
+                3 => split_column_sized::<3>(column, from.as_slice(), t),
+                4 => split_column_sized::<4>(column, from.as_slice(), t),
+                5 => split_column_sized::<5>(column, from.as_slice(), t),
+                6 => split_column_sized::<6>(column, from.as_slice(), t),
+                7 => split_column_sized::<7>(column, from.as_slice(), t),
+                8 => split_column_sized::<8>(column, from.as_slice(), t),
+                _ => split_column(column, from.as_slice(), t),
             }
         }
     } else {
@@ -1230,6 +1232,44 @@ pub(super) fn orthogonal_solution(
         slope,
         split_of_merged: count == 2,
     })
+}
+
+/// One coordinate of `R` (`from`, its `n + 1` control values) split at
+/// `t` by de Casteljau (`(1 - t) a + t b`, as `split_unchecked`) into
+/// `column`: the left half's `n + 1` values, then the right half's. The
+/// right half's storage is the triangle's working row, whose entry `n -
+/// level` is final after `level` steps.
+fn split_column(column: &mut [f64], from: &[f64], t: f64) {
+    let points = from.len();
+    let m = points - 1;
+    let (left, right) = column.split_at_mut(points);
+    right.copy_from_slice(from);
+    left[0] = right[0];
+    for (level, out) in left.iter_mut().enumerate().skip(1) {
+        for i in 0..=m - level {
+            right[i] = (1.0 - t) * right[i] + t * right[i + 1];
+        }
+        *out = right[0];
+    }
+}
+
+/// [`split_column`] for `P` control values (the same operations in the
+/// same order, the loops of a known length).
+// `level` indexes the left half and bounds the step's row.
+#[allow(clippy::needless_range_loop)]
+#[inline(always)]
+fn split_column_sized<const P: usize>(column: &mut [f64], from: &[f64], t: f64) {
+    let (left, right) = column.split_at_mut(P);
+    let left: &mut [f64; P] = left.try_into().expect("P values");
+    let right: &mut [f64; P] = right.try_into().expect("P values");
+    right.copy_from_slice(&from[..P]);
+    left[0] = right[0];
+    for level in 1..P {
+        for i in 0..P - level {
+            right[i] = (1.0 - t) * right[i] + t * right[i + 1];
+        }
+        left[level] = right[0];
+    }
 }
 
 /// From this degree on the discrete metric's solve first checks the
@@ -2239,6 +2279,39 @@ mod tests {
                         );
                     }
                 }
+            }
+        }
+    }
+
+    /// The constant-size splits of a column are the general one bit for
+    /// bit, and both are `split_unchecked`'s halves: random values, random
+    /// `t` in `[0, 1)`.
+    #[test]
+    fn constant_size_split_columns_are_the_general_one() {
+        let mut values = crate::test_values::Values(41);
+        for points in 2..=8 {
+            for _ in 0..200 {
+                let from: Vec<f64> = (0..points).map(|_| values.signed() * 1e3).collect();
+                let t = values.unit();
+                let mut general = vec![0.0; 2 * points];
+                let mut sized = vec![0.0; 2 * points];
+                split_column(&mut general, &from, t);
+                match points {
+                    2 => split_column_sized::<2>(&mut sized, &from, t),
+                    3 => split_column_sized::<3>(&mut sized, &from, t),
+                    4 => split_column_sized::<4>(&mut sized, &from, t),
+                    5 => split_column_sized::<5>(&mut sized, &from, t),
+                    6 => split_column_sized::<6>(&mut sized, &from, t),
+                    7 => split_column_sized::<7>(&mut sized, &from, t),
+                    _ => split_column_sized::<8>(&mut sized, &from, t),
+                }
+                let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                assert_eq!(bits(&general), bits(&sized), "{points} points, t = {t}");
+                // And the curve's own split, point by point.
+                let curve = BezierCurve::new(1, points - 1, from.clone()).expect("a curve");
+                let (l, r) = curve.split_unchecked(t);
+                let expected: Vec<f64> = l.points().iter().chain(r.points()).copied().collect();
+                assert_eq!(bits(&general), bits(&expected), "{points} points, t = {t}");
             }
         }
     }
