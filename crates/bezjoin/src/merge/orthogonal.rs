@@ -116,6 +116,10 @@ pub(super) struct Orthogonal {
     /// [`BezierCurve::split_unchecked`] (two pieces, the double solve), so
     /// stage 2's split of `R` gives it back bit for bit.
     pub(super) split_of_merged: bool,
+    /// `lsq::amax(x)` against the problem's scale, the larger, when it was
+    /// computed (the full check of the double solve's `x`): the result
+    /// scale stage 1 measures its residuals against.
+    pub(super) result_scale: Option<f64>,
 }
 
 /// Gauss-Legendre nodes and weights on `[0, 1]` (`count` nodes, exact for
@@ -1014,6 +1018,7 @@ pub(super) fn orthogonal_solution(
             metric_value,
             slope,
             split_of_merged: count == 2,
+            result_scale: None,
         });
     }
 
@@ -1050,6 +1055,7 @@ pub(super) fn orthogonal_solution(
             metric_value: r.metric_value,
             slope,
             split_of_merged: false,
+            result_scale: None,
         })
     };
     let mut refinement_tried = false;
@@ -1231,6 +1237,7 @@ pub(super) fn orthogonal_solution(
         metric_value,
         slope,
         split_of_merged: count == 2,
+        result_scale: Some(result_scale),
     })
 }
 

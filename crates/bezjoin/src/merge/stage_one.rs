@@ -307,6 +307,9 @@ pub(crate) fn solve_stage_one_slope(
     let problem = Problem::new(pieces, lengths, fix_ends);
     let mut found = None;
     let mut split_of_merged = false;
+    // The result scale when the orthogonal solve already measured it on
+    // this very `x` (the same `lsq::amax(x).max(problem.scale)`).
+    let mut measured_scale = None;
     let (x, estimate) = if pieces.iter().any(|p| p.keep) {
         kept_solution(&problem, breakpoints, lengths, accuracy)?
     } else {
@@ -322,6 +325,7 @@ pub(crate) fn solve_stage_one_slope(
             Ok(solved) => {
                 found = Some((solved.merged, solved.metric_value, solved.slope));
                 split_of_merged = solved.split_of_merged;
+                measured_scale = solved.result_scale;
                 (solved.x, solved.estimate)
             }
             // The orthogonal estimate can be far more pessimistic than the
@@ -343,7 +347,8 @@ pub(crate) fn solve_stage_one_slope(
     // length), relative to the coordinate scale of the input and result.
     // As nalgebra's `amax` but 0 for an all-NaN x: the same once the
     // input's scale (finite, positive) is the larger.
-    let result_scale = super::lsq::amax(x.as_slice()).max(problem.scale);
+    let result_scale =
+        measured_scale.unwrap_or_else(|| super::lsq::amax(x.as_slice()).max(problem.scale));
     let continuity_residual = problem.continuity_residual(&x) / result_scale;
     if continuity_residual.is_nan() || continuity_residual > accuracy {
         return Err(BezjoinError::IllConditioned {
