@@ -935,7 +935,7 @@ pub(super) fn orthogonal_solution(
             }
             let step = &mut *steps[taken % 2];
             qr.least_squares(remainder, step, work);
-            if step.iter().any(|v| !v.is_finite()) {
+            if !lsq::all_finite(step) {
                 break;
             }
             for (e, &d) in y.iter_mut().zip(step.iter()) {
@@ -968,7 +968,7 @@ pub(super) fn orthogonal_solution(
     // curve only for more than two pieces; for two, its construction is
     // run only where it fails (a non-finite or too high `R`), for its error.
     let curve = if count == 2 {
-        if merged.as_slice().iter().any(|v| !v.is_finite()) || m > crate::bezier::MAX_DEGREE {
+        if !lsq::all_finite(merged.as_slice()) || m > crate::bezier::MAX_DEGREE {
             BezierCurve::from_matrix(&merged)?;
         }
         None

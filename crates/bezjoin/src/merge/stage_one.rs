@@ -391,7 +391,7 @@ pub(crate) fn solve_stage_one_slope(
     // Coordinates near the top of the f64 range can overflow the squared
     // changes (or the solution itself) without any NaN in the input; the
     // optimal-`mu` search would then see no finite value at all.
-    if !metric_value.is_finite() || x.as_slice().iter().any(|v| !v.is_finite()) {
+    if !metric_value.is_finite() || !super::lsq::all_finite(x.as_slice()) {
         return Err(BezjoinError::NonFiniteScalar {
             name: format!(
                 "merge metric at mu = {} (the control-point changes overflow f64: \
