@@ -933,22 +933,14 @@ pub(super) fn orthogonal_solution(
                 r.gemm(-1.0, &a.view(), &Columns::new(y, free, dim).view(), 1.0);
                 remainder.copy_from_slice(r.as_slice());
             } else {
-                for ((r, t), yc) in remainder
-                    .chunks_exact_mut(rows)
-                    .zip(reduced_target.as_slice().chunks_exact(rows))
-                    .zip(y.chunks_exact(free))
-                {
-                    let mut columns = a.as_slice().chunks_exact(rows).zip(yc);
-                    if let Some((a0, &y0)) = columns.next() {
-                        for ((e, &x), &from) in r.iter_mut().zip(a0).zip(t) {
-                            *e = from + -x * y0;
-                        }
-                    }
-                    for (ak, &yk) in columns {
-                        for (e, &x) in r.iter_mut().zip(ak) {
-                            *e += -x * yk;
-                        }
-                    }
+                let (t, a) = (reduced_target.as_slice(), a.as_slice());
+                match rows {
+                    4 => remainder_sized::<4>(remainder, t, a, y, rows, free),
+                    6 => remainder_sized::<6>(remainder, t, a, y, rows, free),
+                    8 => remainder_sized::<8>(remainder, t, a, y, rows, free),
+                    10 => remainder_sized::<10>(remainder, t, a, y, rows, free),
+                    12 => remainder_sized::<12>(remainder, t, a, y, rows, free),
+                    _ => remainder_sized::<0>(remainder, t, a, y, rows, free),
                 }
             }
             let step = &mut *steps[taken % 2];
@@ -1257,6 +1249,40 @@ pub(super) fn orthogonal_solution(
         split_of_merged: count == 2,
         result_scale: Some(result_scale),
     })
+}
+
+/// `remainder = t - A y` (column-major, `rows` rows; `A` with `free`
+/// columns) as nalgebra's `gemm(-1, A, y, 1)` on a copy of `t`: per
+/// column, `(-a_k) y_k + r` for `k = 0..` in order, the first from `t`
+/// itself; `R` rows known at compile time (`0`: `rows`).
+#[inline(always)]
+fn remainder_sized<const R: usize>(
+    remainder: &mut [f64],
+    t: &[f64],
+    a: &[f64],
+    y: &[f64],
+    rows: usize,
+    free: usize,
+) {
+    let rows = if R == 0 { rows } else { R };
+    for ((r, t), yc) in remainder
+        .chunks_exact_mut(rows)
+        .zip(t.chunks_exact(rows))
+        .zip(y.chunks_exact(free))
+    {
+        let (r, t) = (&mut r[..rows], &t[..rows]);
+        let mut columns = a.chunks_exact(rows).zip(yc);
+        if let Some((a0, &y0)) = columns.next() {
+            for ((e, &x), &from) in r.iter_mut().zip(&a0[..rows]).zip(t) {
+                *e = from + -x * y0;
+            }
+        }
+        for (ak, &yk) in columns {
+            for (e, &x) in r.iter_mut().zip(&ak[..rows]) {
+                *e += -x * yk;
+            }
+        }
+    }
 }
 
 /// One coordinate of `R` (`from`, its `n + 1` control values) split at
@@ -2303,6 +2329,35 @@ mod tests {
                             "m {m} mu {mu}"
                         );
                     }
+                }
+            }
+        }
+    }
+
+    /// The constant-size remainders `t - A y` are the general one bit for
+    /// bit (random signed entries with zeros of both signs; the row counts
+    /// of the dispatch, 1..3 free columns and coordinates).
+    #[test]
+    fn constant_size_remainders_are_the_general_one() {
+        let mut values = crate::test_values::Values(53);
+        for rows in [4, 6, 8, 10, 12] {
+            for free in 1..=3 {
+                for dim in 1..=3 {
+                    let t = random_matrix(&mut values, rows, dim);
+                    let a = random_matrix(&mut values, rows, free);
+                    let y = random_matrix(&mut values, free, dim);
+                    let (t, a, y) = (t.as_slice(), a.as_slice(), y.as_slice());
+                    let (mut general, mut sized) = (vec![0.0; rows * dim], vec![0.0; rows * dim]);
+                    remainder_sized::<0>(&mut general, t, a, y, rows, free);
+                    match rows {
+                        4 => remainder_sized::<4>(&mut sized, t, a, y, rows, free),
+                        6 => remainder_sized::<6>(&mut sized, t, a, y, rows, free),
+                        8 => remainder_sized::<8>(&mut sized, t, a, y, rows, free),
+                        10 => remainder_sized::<10>(&mut sized, t, a, y, rows, free),
+                        _ => remainder_sized::<12>(&mut sized, t, a, y, rows, free),
+                    }
+                    let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                    assert_eq!(bits(&general), bits(&sized), "{rows} x {free}, dim {dim}");
                 }
             }
         }
