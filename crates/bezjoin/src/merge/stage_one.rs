@@ -197,10 +197,10 @@ fn leading_rows(m: DMatrix<f64>, count: usize) -> Vec<f64> {
     let mut buffer = ZeroBuffer::<LEADING_ROWS_ON_STACK>::new();
     let gathered = buffer.zeros(count * dim);
     let data = m.as_slice();
-    for (i, point) in gathered.chunks_exact_mut(dim).enumerate() {
-        for (c, v) in point.iter_mut().enumerate() {
-            *v = data[c * rows + i];
-        }
+    match dim {
+        2 => gather_rows::<2>(data, rows, dim, gathered),
+        3 => gather_rows::<3>(data, rows, dim, gathered),
+        _ => gather_rows::<0>(data, rows, dim, gathered),
     }
     let mut points = Vec::from(m.data);
     points.truncate(count * dim);
@@ -211,6 +211,20 @@ fn leading_rows(m: DMatrix<f64>, count: usize) -> Vec<f64> {
 /// Points' entries gathered on the stack by [`leading_rows`] (a piece of
 /// degree 7 in space).
 const LEADING_ROWS_ON_STACK: usize = 24;
+
+/// The leading rows of the column-major `data` (`rows` rows, `dim`
+/// columns) into the row-major `gathered` (a multiple of `dim` entries),
+/// `dim = D` known at compile time when not `0`: every entry copied as it
+/// is.
+#[inline(always)]
+fn gather_rows<const D: usize>(data: &[f64], rows: usize, dim: usize, gathered: &mut [f64]) {
+    let dim = if D == 0 { dim } else { D };
+    for (i, point) in gathered.chunks_exact_mut(dim).enumerate() {
+        for (c, v) in point[..dim].iter_mut().enumerate() {
+            *v = data[c * rows + i];
+        }
+    }
+}
 
 /// Rows `first .. first + count` of `m` as row-major points (the order
 /// `BezierCurve::from_matrix` reads them in).
@@ -410,4 +424,38 @@ pub(crate) fn solve_stage_one_slope(
         slope,
         split_of_merged,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The constant-dimension gathers of leading rows are the general one
+    /// bit for bit (random signed entries, 2 and 3 columns, every leading
+    /// row count).
+    #[test]
+    fn constant_size_gathered_rows_are_the_general_one() {
+        let mut values = crate::test_values::Values(59);
+        for dim in [2, 3] {
+            for rows in 1..=16 {
+                let data: Vec<f64> = (0..rows * dim).map(|_| values.signed()).collect();
+                for count in 0..=rows {
+                    let (mut general, mut sized) = (vec![0.0; count * dim], vec![0.0; count * dim]);
+                    gather_rows::<0>(&data, rows, dim, &mut general);
+                    match dim {
+                        2 => gather_rows::<2>(&data, rows, dim, &mut sized),
+                        _ => gather_rows::<3>(&data, rows, dim, &mut sized),
+                    }
+                    let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                    assert_eq!(bits(&general), bits(&sized), "{rows} x {dim}, {count} rows");
+                    let m = DMatrix::from_column_slice(rows, dim, &data);
+                    assert_eq!(
+                        bits(&general),
+                        bits(&rows_of(&m, 0, count)),
+                        "{rows} x {dim}, {count} rows"
+                    );
+                }
+            }
+        }
+    }
 }
