@@ -219,7 +219,7 @@ const LEADING_ROWS_ON_STACK: usize = 24;
 #[inline(always)]
 fn gather_rows<const D: usize>(data: &[f64], rows: usize, dim: usize, gathered: &mut [f64]) {
     let dim = if D == 0 { dim } else { D };
-    for (i, point) in gathered.chunks_exact_mut(dim).enumerate() {
+    for (i, point) in gathered.chunks_exact_mut(dim.max(1)).enumerate() {
         for (c, v) in point[..dim].iter_mut().enumerate() {
             *v = data[c * rows + i];
         }
@@ -230,12 +230,15 @@ fn gather_rows<const D: usize>(data: &[f64], rows: usize, dim: usize, gathered: 
 /// `BezierCurve::from_matrix` reads them in).
 fn rows_of(m: &DMatrix<f64>, first: usize, count: usize) -> Vec<f64> {
     let (rows, dim) = (m.nrows(), m.ncols());
-    let data = m.as_slice();
-    let mut out = Vec::with_capacity(count * dim);
-    for i in first..first + count {
-        for c in 0..dim {
-            out.push(data[c * rows + i]);
-        }
+    // The rows from `first` on, gathered as the leading rows of the data
+    // from `first` (column `c`'s row `i` at `c rows + i` either way): a
+    // zeroed `Vec` (`malloc` and a fill, no `calloc`) written in place.
+    let data = &m.as_slice()[first.min(rows)..];
+    let mut out: Vec<f64> = std::iter::repeat_n(0.0, count * dim).collect();
+    match dim {
+        2 => gather_rows::<2>(data, rows, dim, &mut out),
+        3 => gather_rows::<3>(data, rows, dim, &mut out),
+        _ => gather_rows::<0>(data, rows, dim, &mut out),
     }
     out
 }
@@ -431,8 +434,8 @@ mod tests {
     use super::*;
 
     /// The constant-dimension gathers of leading rows are the general one
-    /// bit for bit (random signed entries, 2 and 3 columns, every leading
-    /// row count).
+    /// bit for bit, and `rows_of` reads the rows asked for (random signed
+    /// entries, 2 and 3 columns, every row count and first row).
     #[test]
     fn constant_size_gathered_rows_are_the_general_one() {
         let mut values = crate::test_values::Values(59);
@@ -448,12 +451,22 @@ mod tests {
                     }
                     let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
                     assert_eq!(bits(&general), bits(&sized), "{rows} x {dim}, {count} rows");
+                    // rows_of from every first row, against the entries
+                    // read one by one.
                     let m = DMatrix::from_column_slice(rows, dim, &data);
-                    assert_eq!(
-                        bits(&general),
-                        bits(&rows_of(&m, 0, count)),
-                        "{rows} x {dim}, {count} rows"
-                    );
+                    for first in 0..=rows - count {
+                        let mut expected = Vec::new();
+                        for i in first..first + count {
+                            for c in 0..dim {
+                                expected.push(m[(i, c)]);
+                            }
+                        }
+                        assert_eq!(
+                            bits(&rows_of(&m, first, count)),
+                            bits(&expected),
+                            "{rows} x {dim}, rows {first}.."
+                        );
+                    }
                 }
             }
         }
