@@ -116,6 +116,10 @@ pub(super) struct Orthogonal {
     /// [`BezierCurve::split_unchecked`] (two pieces, the double solve), so
     /// stage 2's split of `R` gives it back bit for bit.
     pub(super) split_of_merged: bool,
+    /// `lsq::amax(x)` against the problem's scale, the larger, when it was
+    /// computed (the full check of the double solve's `x`): the result
+    /// scale stage 1 measures its residuals against.
+    pub(super) result_scale: Option<f64>,
 }
 
 /// Gauss-Legendre nodes and weights on `[0, 1]` (`count` nodes, exact for
@@ -217,9 +221,27 @@ fn restrictions_into(m: usize, breakpoints: &[f64], data: &mut [f64]) {
         return;
     }
     let mu = breakpoints[1];
-    let points = m + 1;
+    match m + 1 {
+        2 => restrictions_two::<2>(m, mu, data),
+        3 => restrictions_two::<3>(m, mu, data),
+        4 => restrictions_two::<4>(m, mu, data),
+        5 => restrictions_two::<5>(m, mu, data),
+        6 => restrictions_two::<6>(m, mu, data),
+        7 => restrictions_two::<7>(m, mu, data),
+        8 => restrictions_two::<8>(m, mu, data),
+        _ => restrictions_two::<0>(m, mu, data),
+    }
+}
+
+/// [`restrictions_into`] for two pieces split at `mu`, with `P = m + 1`
+/// points known at compile time (`0`: not): the same operations in the
+/// same order.
+#[inline(always)]
+fn restrictions_two<const P: usize>(m: usize, mu: f64, data: &mut [f64]) {
+    let points = if P == 0 { m + 1 } else { P };
+    let m = points - 1;
     let rows = 2 * points;
-    debug_assert_eq!(data.len(), rows * points);
+    let data = &mut data[..rows * points];
     // The triangle `B_k^i(mu)` is S_L itself: built in place in the top
     // block (column-major, entry (i, k) at `k rows + i`), no other storage.
     data[0] = 1.0;
@@ -911,27 +933,19 @@ pub(super) fn orthogonal_solution(
                 r.gemm(-1.0, &a.view(), &Columns::new(y, free, dim).view(), 1.0);
                 remainder.copy_from_slice(r.as_slice());
             } else {
-                for ((r, t), yc) in remainder
-                    .chunks_exact_mut(rows)
-                    .zip(reduced_target.as_slice().chunks_exact(rows))
-                    .zip(y.chunks_exact(free))
-                {
-                    let mut columns = a.as_slice().chunks_exact(rows).zip(yc);
-                    if let Some((a0, &y0)) = columns.next() {
-                        for ((e, &x), &from) in r.iter_mut().zip(a0).zip(t) {
-                            *e = from + -x * y0;
-                        }
-                    }
-                    for (ak, &yk) in columns {
-                        for (e, &x) in r.iter_mut().zip(ak) {
-                            *e += -x * yk;
-                        }
-                    }
+                let (t, a) = (reduced_target.as_slice(), a.as_slice());
+                match rows {
+                    4 => remainder_sized::<4>(remainder, t, a, y, rows, free),
+                    6 => remainder_sized::<6>(remainder, t, a, y, rows, free),
+                    8 => remainder_sized::<8>(remainder, t, a, y, rows, free),
+                    10 => remainder_sized::<10>(remainder, t, a, y, rows, free),
+                    12 => remainder_sized::<12>(remainder, t, a, y, rows, free),
+                    _ => remainder_sized::<0>(remainder, t, a, y, rows, free),
                 }
             }
             let step = &mut *steps[taken % 2];
             qr.least_squares(remainder, step, work);
-            if step.iter().any(|v| !v.is_finite()) {
+            if !lsq::all_finite(step) {
                 break;
             }
             for (e, &d) in y.iter_mut().zip(step.iter()) {
@@ -964,7 +978,7 @@ pub(super) fn orthogonal_solution(
     // curve only for more than two pieces; for two, its construction is
     // run only where it fails (a non-finite or too high `R`), for its error.
     let curve = if count == 2 {
-        if merged.as_slice().iter().any(|v| !v.is_finite()) || m > crate::bezier::MAX_DEGREE {
+        if !lsq::all_finite(merged.as_slice()) || m > crate::bezier::MAX_DEGREE {
             BezierCurve::from_matrix(&merged)?;
         }
         None
@@ -979,14 +993,16 @@ pub(super) fn orthogonal_solution(
         // `m - level` is final after `level` steps.
         let t = breakpoints[1];
         for (c, column) in x.as_mut_slice().chunks_exact_mut(2 * points).enumerate() {
-            let (left, right) = column.split_at_mut(points);
-            right.copy_from_slice(merged.column(c).as_slice());
-            left[0] = right[0];
-            for (level, out) in left.iter_mut().enumerate().skip(1) {
-                for i in 0..=m - level {
-                    right[i] = (1.0 - t) * right[i] + t * right[i + 1];
-                }
-                *out = right[0];
+            let from = merged.column(c);
+            match points {
+                2 => split_column_sized::<2>(column, from.as_slice(), t),
+                3 => split_column_sized::<3>(column, from.as_slice(), t),
+                4 => split_column_sized::<4>(column, from.as_slice(), t),
+                5 => split_column_sized::<5>(column, from.as_slice(), t),
+                6 => split_column_sized::<6>(column, from.as_slice(), t),
+                7 => split_column_sized::<7>(column, from.as_slice(), t),
+                8 => split_column_sized::<8>(column, from.as_slice(), t),
+                _ => split_column(column, from.as_slice(), t),
             }
         }
     } else {
@@ -1012,15 +1028,23 @@ pub(super) fn orthogonal_solution(
             metric_value,
             slope,
             split_of_merged: count == 2,
+            result_scale: None,
         });
     }
 
     // First-order error estimate of the pieces (see the module).
-    // nalgebra's amax differs from `lsq::amax` only for an all-NaN x
-    // (NaN against 0), which the `max` with the positive scale hides.
-    let result_scale = lsq::amax(x.as_slice()).max(problem.scale);
+    // The scale from `lsq::amax` (NaN entries passed over), the estimate
+    // from nalgebra's `amax` of x, which is the same value unless x holds
+    // a NaN (then read from the slice by `nalgebra_amax`).
+    let x_amax = lsq::amax(x.as_slice());
+    let x_amax_nalgebra = if x.as_slice().iter().fold(false, |nan, v| nan | v.is_nan()) {
+        lsq::nalgebra_amax(x.as_slice())
+    } else {
+        x_amax
+    };
+    let result_scale = x_amax.max(problem.scale);
     let eps = f64::EPSILON;
-    let mut estimate = (m as f64 + 2.0) * eps * x.amax() / result_scale;
+    let mut estimate = (m as f64 + 2.0) * eps * x_amax_nalgebra / result_scale;
     let mut reduced_gain = 0.0;
     // Either metric beyond the double solve's reach: refined in
     // double-double (module `refine`), with its own a-posteriori estimate.
@@ -1041,6 +1065,7 @@ pub(super) fn orthogonal_solution(
             metric_value: r.metric_value,
             slope,
             split_of_merged: false,
+            result_scale: None,
         })
     };
     let mut refinement_tried = false;
@@ -1222,7 +1247,80 @@ pub(super) fn orthogonal_solution(
         metric_value,
         slope,
         split_of_merged: count == 2,
+        result_scale: Some(result_scale),
     })
+}
+
+/// `remainder = t - A y` (column-major, `rows` rows; `A` with `free`
+/// columns) as nalgebra's `gemm(-1, A, y, 1)` on a copy of `t`: per
+/// column, `(-a_k) y_k + r` for `k = 0..` in order, the first from `t`
+/// itself; `R` rows known at compile time (`0`: `rows`).
+#[inline(always)]
+fn remainder_sized<const R: usize>(
+    remainder: &mut [f64],
+    t: &[f64],
+    a: &[f64],
+    y: &[f64],
+    rows: usize,
+    free: usize,
+) {
+    let rows = if R == 0 { rows } else { R };
+    for ((r, t), yc) in remainder
+        .chunks_exact_mut(rows)
+        .zip(t.chunks_exact(rows))
+        .zip(y.chunks_exact(free))
+    {
+        let (r, t) = (&mut r[..rows], &t[..rows]);
+        let mut columns = a.chunks_exact(rows).zip(yc);
+        if let Some((a0, &y0)) = columns.next() {
+            for ((e, &x), &from) in r.iter_mut().zip(&a0[..rows]).zip(t) {
+                *e = from + -x * y0;
+            }
+        }
+        for (ak, &yk) in columns {
+            for (e, &x) in r.iter_mut().zip(&ak[..rows]) {
+                *e += -x * yk;
+            }
+        }
+    }
+}
+
+/// One coordinate of `R` (`from`, its `n + 1` control values) split at
+/// `t` by de Casteljau (`(1 - t) a + t b`, as `split_unchecked`) into
+/// `column`: the left half's `n + 1` values, then the right half's. The
+/// right half's storage is the triangle's working row, whose entry `n -
+/// level` is final after `level` steps.
+fn split_column(column: &mut [f64], from: &[f64], t: f64) {
+    let points = from.len();
+    let m = points - 1;
+    let (left, right) = column.split_at_mut(points);
+    right.copy_from_slice(from);
+    left[0] = right[0];
+    for (level, out) in left.iter_mut().enumerate().skip(1) {
+        for i in 0..=m - level {
+            right[i] = (1.0 - t) * right[i] + t * right[i + 1];
+        }
+        *out = right[0];
+    }
+}
+
+/// [`split_column`] for `P` control values (the same operations in the
+/// same order, the loops of a known length).
+// `level` indexes the left half and bounds the step's row.
+#[allow(clippy::needless_range_loop)]
+#[inline(always)]
+fn split_column_sized<const P: usize>(column: &mut [f64], from: &[f64], t: f64) {
+    let (left, right) = column.split_at_mut(P);
+    let left: &mut [f64; P] = left.try_into().expect("P values");
+    let right: &mut [f64; P] = right.try_into().expect("P values");
+    right.copy_from_slice(&from[..P]);
+    left[0] = right[0];
+    for level in 1..P {
+        for i in 0..P - level {
+            right[i] = (1.0 - t) * right[i] + t * right[i + 1];
+        }
+        left[level] = right[0];
+    }
 }
 
 /// From this degree on the discrete metric's solve first checks the
@@ -1490,7 +1588,7 @@ fn largest_product<const O: usize, const I: usize>(
         } else {
             columns_times(acc, k, column, Start::Set);
         }
-        worst = worst.max(lsq::amax(acc));
+        worst = lsq::raise(worst, lsq::amax(acc));
     }
     worst
 }
@@ -1537,7 +1635,7 @@ fn largest_transposed_product(k: &[f64], inner: usize, v: &[f64], v_rows: usize)
     let mut worst = 0.0f64;
     for column in v.chunks_exact(v_rows.max(1)) {
         for kc in k.chunks_exact(inner) {
-            worst = worst.max(lsq::dot(kc, column).abs());
+            worst = lsq::raise(worst, lsq::dot(kc, column).abs());
         }
     }
     worst
@@ -1662,7 +1760,7 @@ fn first_order_bound_sized<const R: usize, const F: usize, const O: usize>(
                 w.copy_from_slice(&shared.correction[c * free..(c + 1) * free]);
                 qr.mul_t_sized::<R, F>(w);
                 columns_times(acc, q, w, Start::Set);
-                worst = worst.max(lsq::amax(acc));
+                worst = lsq::raise(worst, lsq::amax(acc));
             }
             k0.copy_from_slice(q);
             worst
@@ -1700,7 +1798,7 @@ fn first_order_bound_sized<const R: usize, const F: usize, const O: usize>(
                     // exact), so its largest absolute value is `c`'s.
                     debug_assert_eq!(n, free);
                     for column in shared.correction.chunks_exact(free) {
-                        worst = worst.max(lsq::amax(column));
+                        worst = lsq::raise(worst, lsq::amax(column));
                     }
                 }
                 Map::Of(map) if blocked_product(out, free, dim) => {
@@ -1715,7 +1813,7 @@ fn first_order_bound_sized<const R: usize, const F: usize, const O: usize>(
                             false,
                             acc,
                         );
-                        worst = worst.max(lsq::amax(acc));
+                        worst = lsq::raise(worst, lsq::amax(acc));
                     }
                 }
                 Map::Factor => unreachable!("the thin Q's case above"),
@@ -1794,7 +1892,7 @@ fn first_order_bound_sized<const R: usize, const F: usize, const O: usize>(
         columns_times(acc, k1, tv, Start::Set);
         let tr = &shared.through_residual()[c * free..(c + 1) * free];
         columns_times(acc, k2, tr, Start::Add);
-        worst = worst.max(gamma * lsq::amax(acc));
+        worst = lsq::raise(worst, gamma * lsq::amax(acc));
     }
     Some((worst + measured + normwise, k0_norm, symmetric))
 }
@@ -2232,6 +2330,86 @@ mod tests {
                         );
                     }
                 }
+            }
+        }
+    }
+
+    /// The constant-size remainders `t - A y` are the general one bit for
+    /// bit (random signed entries with zeros of both signs; the row counts
+    /// of the dispatch, 1..3 free columns and coordinates).
+    #[test]
+    fn constant_size_remainders_are_the_general_one() {
+        let mut values = crate::test_values::Values(53);
+        for rows in [4, 6, 8, 10, 12] {
+            for free in 1..=3 {
+                for dim in 1..=3 {
+                    let t = random_matrix(&mut values, rows, dim);
+                    let a = random_matrix(&mut values, rows, free);
+                    let y = random_matrix(&mut values, free, dim);
+                    let (t, a, y) = (t.as_slice(), a.as_slice(), y.as_slice());
+                    let (mut general, mut sized) = (vec![0.0; rows * dim], vec![0.0; rows * dim]);
+                    remainder_sized::<0>(&mut general, t, a, y, rows, free);
+                    match rows {
+                        4 => remainder_sized::<4>(&mut sized, t, a, y, rows, free),
+                        6 => remainder_sized::<6>(&mut sized, t, a, y, rows, free),
+                        8 => remainder_sized::<8>(&mut sized, t, a, y, rows, free),
+                        10 => remainder_sized::<10>(&mut sized, t, a, y, rows, free),
+                        _ => remainder_sized::<12>(&mut sized, t, a, y, rows, free),
+                    }
+                    let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                    assert_eq!(bits(&general), bits(&sized), "{rows} x {free}, dim {dim}");
+                }
+            }
+        }
+    }
+
+    /// The constant-size restriction matrices of two pieces are the
+    /// general one bit for bit (random `mu`, 2..8 points).
+    #[test]
+    fn constant_size_restrictions_are_the_general_one() {
+        let mut values = crate::test_values::Values(43);
+        for points in 2..=8 {
+            for _ in 0..100 {
+                let mu = values.unit();
+                let len = 2 * points * points;
+                let (mut general, mut sized) = (vec![0.0; len], vec![0.0; len]);
+                restrictions_two::<0>(points - 1, mu, &mut general);
+                restrictions_into(points - 1, &[0.0, mu, 1.0], &mut sized);
+                let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                assert_eq!(bits(&general), bits(&sized), "{points} points, mu = {mu}");
+            }
+        }
+    }
+
+    /// The constant-size splits of a column are the general one bit for
+    /// bit, and both are `split_unchecked`'s halves: random values, random
+    /// `t` in `[0, 1)`.
+    #[test]
+    fn constant_size_split_columns_are_the_general_one() {
+        let mut values = crate::test_values::Values(41);
+        for points in 2..=8 {
+            for _ in 0..200 {
+                let from: Vec<f64> = (0..points).map(|_| values.signed() * 1e3).collect();
+                let t = values.unit();
+                let mut general = vec![0.0; 2 * points];
+                let mut sized = vec![0.0; 2 * points];
+                split_column(&mut general, &from, t);
+                match points {
+                    2 => split_column_sized::<2>(&mut sized, &from, t),
+                    3 => split_column_sized::<3>(&mut sized, &from, t),
+                    4 => split_column_sized::<4>(&mut sized, &from, t),
+                    5 => split_column_sized::<5>(&mut sized, &from, t),
+                    6 => split_column_sized::<6>(&mut sized, &from, t),
+                    7 => split_column_sized::<7>(&mut sized, &from, t),
+                    _ => split_column_sized::<8>(&mut sized, &from, t),
+                }
+                let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                assert_eq!(bits(&general), bits(&sized), "{points} points, t = {t}");
+                // And the curve's own split, point by point.
+                let curve = BezierCurve::new(1, points - 1, from.clone()).expect("a curve");
+                let (l, r) = curve.split_unchecked(t);
+                let expected: Vec<f64> = l.points().iter().chain(r.points()).copied().collect();
+                assert_eq!(bits(&general), bits(&expected), "{points} points, t = {t}");
             }
         }
     }

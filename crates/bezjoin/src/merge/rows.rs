@@ -265,7 +265,7 @@ impl<'p, 'a> Problem<'p, 'a> {
                     for i in 0..=r {
                         sum += right[i] * next[i];
                     }
-                    worst = worst.max(sum.abs());
+                    worst = super::lsq::raise(worst, sum.abs());
                 }
             }
         }
@@ -291,9 +291,9 @@ impl<'p, 'a> Problem<'p, 'a> {
                     for (a, v) in right[..=r].iter().zip(&next[..=r]) {
                         sum += a * v;
                     }
-                    // f64::max passes over a NaN, as the row-wise amax did
+                    // f64::max (`raise`) passes over a NaN, as the row-wise amax did
                     // (non-finite pieces are refused later, as such).
-                    worst = worst.max(sum.abs());
+                    worst = super::lsq::raise(worst, sum.abs());
                 }
             }
         }

@@ -197,10 +197,10 @@ fn leading_rows(m: DMatrix<f64>, count: usize) -> Vec<f64> {
     let mut buffer = ZeroBuffer::<LEADING_ROWS_ON_STACK>::new();
     let gathered = buffer.zeros(count * dim);
     let data = m.as_slice();
-    for (i, point) in gathered.chunks_exact_mut(dim).enumerate() {
-        for (c, v) in point.iter_mut().enumerate() {
-            *v = data[c * rows + i];
-        }
+    match dim {
+        2 => gather_rows::<2>(data, rows, dim, gathered),
+        3 => gather_rows::<3>(data, rows, dim, gathered),
+        _ => gather_rows::<0>(data, rows, dim, gathered),
     }
     let mut points = Vec::from(m.data);
     points.truncate(count * dim);
@@ -212,16 +212,33 @@ fn leading_rows(m: DMatrix<f64>, count: usize) -> Vec<f64> {
 /// degree 7 in space).
 const LEADING_ROWS_ON_STACK: usize = 24;
 
+/// The leading rows of the column-major `data` (`rows` rows, `dim`
+/// columns) into the row-major `gathered` (a multiple of `dim` entries),
+/// `dim = D` known at compile time when not `0`: every entry copied as it
+/// is.
+#[inline(always)]
+fn gather_rows<const D: usize>(data: &[f64], rows: usize, dim: usize, gathered: &mut [f64]) {
+    let dim = if D == 0 { dim } else { D };
+    for (i, point) in gathered.chunks_exact_mut(dim.max(1)).enumerate() {
+        for (c, v) in point[..dim].iter_mut().enumerate() {
+            *v = data[c * rows + i];
+        }
+    }
+}
+
 /// Rows `first .. first + count` of `m` as row-major points (the order
 /// `BezierCurve::from_matrix` reads them in).
 fn rows_of(m: &DMatrix<f64>, first: usize, count: usize) -> Vec<f64> {
     let (rows, dim) = (m.nrows(), m.ncols());
-    let data = m.as_slice();
-    let mut out = Vec::with_capacity(count * dim);
-    for i in first..first + count {
-        for c in 0..dim {
-            out.push(data[c * rows + i]);
-        }
+    // The rows from `first` on, gathered as the leading rows of the data
+    // from `first` (column `c`'s row `i` at `c rows + i` either way): a
+    // zeroed `Vec` (`malloc` and a fill, no `calloc`) written in place.
+    let data = &m.as_slice()[first.min(rows)..];
+    let mut out: Vec<f64> = std::iter::repeat_n(0.0, count * dim).collect();
+    match dim {
+        2 => gather_rows::<2>(data, rows, dim, &mut out),
+        3 => gather_rows::<3>(data, rows, dim, &mut out),
+        _ => gather_rows::<0>(data, rows, dim, &mut out),
     }
     out
 }
@@ -307,6 +324,9 @@ pub(crate) fn solve_stage_one_slope(
     let problem = Problem::new(pieces, lengths, fix_ends);
     let mut found = None;
     let mut split_of_merged = false;
+    // The result scale when the orthogonal solve already measured it on
+    // this very `x` (the same `lsq::amax(x).max(problem.scale)`).
+    let mut measured_scale = None;
     let (x, estimate) = if pieces.iter().any(|p| p.keep) {
         kept_solution(&problem, breakpoints, lengths, accuracy)?
     } else {
@@ -322,6 +342,7 @@ pub(crate) fn solve_stage_one_slope(
             Ok(solved) => {
                 found = Some((solved.merged, solved.metric_value, solved.slope));
                 split_of_merged = solved.split_of_merged;
+                measured_scale = solved.result_scale;
                 (solved.x, solved.estimate)
             }
             // The orthogonal estimate can be far more pessimistic than the
@@ -343,7 +364,8 @@ pub(crate) fn solve_stage_one_slope(
     // length), relative to the coordinate scale of the input and result.
     // As nalgebra's `amax` but 0 for an all-NaN x: the same once the
     // input's scale (finite, positive) is the larger.
-    let result_scale = super::lsq::amax(x.as_slice()).max(problem.scale);
+    let result_scale =
+        measured_scale.unwrap_or_else(|| super::lsq::amax(x.as_slice()).max(problem.scale));
     let continuity_residual = problem.continuity_residual(&x) / result_scale;
     if continuity_residual.is_nan() || continuity_residual > accuracy {
         return Err(BezjoinError::IllConditioned {
@@ -386,7 +408,7 @@ pub(crate) fn solve_stage_one_slope(
     // Coordinates near the top of the f64 range can overflow the squared
     // changes (or the solution itself) without any NaN in the input; the
     // optimal-`mu` search would then see no finite value at all.
-    if !metric_value.is_finite() || x.as_slice().iter().any(|v| !v.is_finite()) {
+    if !metric_value.is_finite() || !super::lsq::all_finite(x.as_slice()) {
         return Err(BezjoinError::NonFiniteScalar {
             name: format!(
                 "merge metric at mu = {} (the control-point changes overflow f64: \
@@ -405,4 +427,48 @@ pub(crate) fn solve_stage_one_slope(
         slope,
         split_of_merged,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The constant-dimension gathers of leading rows are the general one
+    /// bit for bit, and `rows_of` reads the rows asked for (random signed
+    /// entries, 2 and 3 columns, every row count and first row).
+    #[test]
+    fn constant_size_gathered_rows_are_the_general_one() {
+        let mut values = crate::test_values::Values(59);
+        for dim in [2, 3] {
+            for rows in 1..=16 {
+                let data: Vec<f64> = (0..rows * dim).map(|_| values.signed()).collect();
+                for count in 0..=rows {
+                    let (mut general, mut sized) = (vec![0.0; count * dim], vec![0.0; count * dim]);
+                    gather_rows::<0>(&data, rows, dim, &mut general);
+                    match dim {
+                        2 => gather_rows::<2>(&data, rows, dim, &mut sized),
+                        _ => gather_rows::<3>(&data, rows, dim, &mut sized),
+                    }
+                    let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                    assert_eq!(bits(&general), bits(&sized), "{rows} x {dim}, {count} rows");
+                    // rows_of from every first row, against the entries
+                    // read one by one.
+                    let m = DMatrix::from_column_slice(rows, dim, &data);
+                    for first in 0..=rows - count {
+                        let mut expected = Vec::new();
+                        for i in first..first + count {
+                            for c in 0..dim {
+                                expected.push(m[(i, c)]);
+                            }
+                        }
+                        assert_eq!(
+                            bits(&rows_of(&m, first, count)),
+                            bits(&expected),
+                            "{rows} x {dim}, rows {first}.."
+                        );
+                    }
+                }
+            }
+        }
+    }
 }
