@@ -197,11 +197,7 @@ fn leading_rows(m: DMatrix<f64>, count: usize) -> Vec<f64> {
     let mut buffer = ZeroBuffer::<LEADING_ROWS_ON_STACK>::new();
     let gathered = buffer.zeros(count * dim);
     let data = m.as_slice();
-    match dim {
-        2 => gather_rows::<2>(data, rows, dim, gathered),
-        3 => gather_rows::<3>(data, rows, dim, gathered),
-        _ => gather_rows::<0>(data, rows, dim, gathered),
-    }
+    gather_leading_rows(data, rows, dim, gathered);
     let mut points = Vec::from(m.data);
     points.truncate(count * dim);
     points.copy_from_slice(gathered);
@@ -211,6 +207,17 @@ fn leading_rows(m: DMatrix<f64>, count: usize) -> Vec<f64> {
 /// Points' entries gathered on the stack by [`leading_rows`] (a piece of
 /// degree 7 in space).
 const LEADING_ROWS_ON_STACK: usize = 24;
+
+/// [`gather_rows`] with the dimension dispatched once: constant sizes for
+/// 2 and 3 columns, the general body otherwise.
+#[inline(always)]
+fn gather_leading_rows(data: &[f64], rows: usize, dim: usize, gathered: &mut [f64]) {
+    match dim {
+        2 => gather_rows::<2>(data, rows, dim, gathered),
+        3 => gather_rows::<3>(data, rows, dim, gathered),
+        _ => gather_rows::<0>(data, rows, dim, gathered),
+    }
+}
 
 /// The leading rows of the column-major `data` (`rows` rows, `dim`
 /// columns) into the row-major `gathered` (a multiple of `dim` entries),
@@ -235,11 +242,7 @@ fn rows_of(m: &DMatrix<f64>, first: usize, count: usize) -> Vec<f64> {
     // zeroed `Vec` (`malloc` and a fill, no `calloc`) written in place.
     let data = &m.as_slice()[first.min(rows)..];
     let mut out: Vec<f64> = std::iter::repeat_n(0.0, count * dim).collect();
-    match dim {
-        2 => gather_rows::<2>(data, rows, dim, &mut out),
-        3 => gather_rows::<3>(data, rows, dim, &mut out),
-        _ => gather_rows::<0>(data, rows, dim, &mut out),
-    }
+    gather_leading_rows(data, rows, dim, &mut out);
     out
 }
 
