@@ -81,6 +81,8 @@
 #include <string>
 #include <vector>
 
+#include "connect_floor.hpp"
+
 namespace {
 
 using bezjoin::Curve;
@@ -904,6 +906,55 @@ std::vector<double> occt_connect(const Handle(Geom_BezierCurve)& p, double u0,
     return out;
 }
 
+// The floor of the connect row (cpp-demo/connect_floor.cpp, issue 20): an
+// unchecked connect written out for the demo's case only. Its control points
+// must be bzj_connect's (a row); its time against OCCT's route, next to
+// bzj_connect's, is printed as information: how far the checked, general
+// connect is from the least any connect of this case can cost here.
+void check_connect_floor(Report& report, bool demo_case, const std::vector<double>& p_points,
+                         const std::vector<double>& q_points, double u0, double v0,
+                         const std::vector<double>& ours, const Handle(Geom_BezierCurve)& occ_p,
+                         const Handle(Geom_BezierCurve)& occ_q, const Pair& connect_pair,
+                         const Options& options) {
+    if (!demo_case) {
+        throw std::runtime_error("connect floor: written for the cubic + quartic C3/C4 case only");
+    }
+    ConnectFloor* floor = connect_floor(p_points.data(), u0, q_points.data(), v0);
+    if (floor == nullptr) {
+        throw std::runtime_error("connect floor: out of memory");
+    }
+    double gap = ours.size() == floor->count * 3 ? 0.0 : INFINITY;
+    for (std::size_t i = 0; i < std::min(ours.size(), floor->count * 3); ++i) {
+        gap = std::max(gap, std::abs(ours[i] - floor->points[i]));
+    }
+    gap /= std::max(1.0, max_abs(ours));
+    const double residual = floor->residual;
+    connect_floor_free(floor);
+    report.row(gap <= 1e-12 && residual <= 1e-12, "c.connect-floor-vs-bzj_connect", std::max(gap, residual), 1e-12,
+               "control points of the unchecked kernel written for this case (connect_floor.cpp) "
+               "against bzj_connect's, and its own largest residual");
+    const int batches = options.quick ? 1 : 11;
+    const int calls = options.quick ? 2 : 10000;
+    const Pair pair = time_pair(
+        batches, calls,
+        [&](int) {
+            ConnectFloor* f = connect_floor(p_points.data(), u0, q_points.data(), v0);
+            g_sink = g_sink + f->points[0] + f->residual;
+            connect_floor_free(f);
+        },
+        calls,
+        [&](int) {
+            const std::vector<double> x = occt_connect(occ_p, u0, occ_q, v0, 3, 4, 1.0, 1.0);
+            g_sink = g_sink + x[0];
+        });
+    report.info("timing.connect-floor",
+                format("unchecked kernel for this case only %s (%.1fx OCCT's %s); bzj_connect %s (%.1fx), "
+                       "%.1fx the floor; 20x OCCT needs %s",
+                       format_time(pair.ours_ns).c_str(), pair.ratio, format_time(pair.occt_ns).c_str(),
+                       format_time(connect_pair.ours_ns).c_str(), connect_pair.ratio,
+                       connect_pair.ours_ns / pair.ours_ns, format_time(connect_pair.occt_ns / 20.0).c_str()));
+}
+
 // c. connect: the chain P|[0,u0], R, Q|[v0,1] on knot intervals
 // (u0, alpha, (1-v0) alpha/beta) is C^kp / C^kq by OCCT's judgement.
 void check_connect(Report& report, StepScene& scene, std::vector<Timing>& timings,
@@ -1007,6 +1058,9 @@ void check_connect(Report& report, StepScene& scene, std::vector<Timing>& timing
                     });
                 timings.push_back({format("connect C3/C4 (cubic + quartic, degree %zu)", cs.kp + cs.kq + 1),
                                    "bzj_connect", "EvalBsplineBasis + DN + math_Gauss", pair});
+                check_connect_floor(report, cs.np == 3 && cs.nq == 4 && cs.kp == 3 && cs.kq == 4 &&
+                                                cs.alpha == 1.0 && cs.beta == 1.0,
+                                    p_points, q_points, cs.u0, cs.v0, ours, occ_p, occ_q, pair, options);
                 const gp_Vec offset(0.0, 0.0, 0.0);
                 scene.add(Handle(Geom_Curve)(chain.curve), offset);
             }
