@@ -1,6 +1,7 @@
 /* Every curve function of the C contract, with each error path.
  * Compiled as C11 and as C++17 by tests/tests/c_programs.rs and linked with
  * libbezjoin.a. Exits 0 when every check passes. */
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -355,6 +356,20 @@ int main(void) {
         EXPECT_STATUS(bzj_curve_length(l, 1e200, -1e200, &len), BZJ_ERR_INVALID_ARGUMENT);
         expect_message("overflows");
         CHECK(len == 42.5, "out written on an overflowing reversed length: %.17g", len);
+        {
+            /* Finite control points more than DBL_MAX apart: the default
+               accuracy (relative to the control polygon's length) is
+               infinite; the caller passed no accuracy, so the message names
+               the polygon length (reliability F3), not `accuracy`. */
+            const double far[3] = {0.0, DBL_MAX, -DBL_MAX};
+            BzjCurve* wide = NULL;
+            EXPECT_STATUS(bzj_curve_new(1, 2, far, 3, &wide), BZJ_OK);
+            EXPECT_STATUS(bzj_curve_length(wide, 0.0, 1.0, &len), BZJ_ERR_NON_FINITE);
+            CHECK(strcmp(bzj_last_error(), "the control polygon length of the curve = inf is not finite") == 0,
+                  "message '%s'", bzj_last_error());
+            CHECK(len == 42.5, "out written on an overflowing polygon: %.17g", len);
+            bzj_curve_free(wide);
+        }
         EXPECT_STATUS(bzj_curve_length(l, 0.0, 1.0, NULL), BZJ_ERR_NULL_POINTER);
         expect_message("out");
         EXPECT_STATUS(bzj_curve_length(NULL, 0.0, 1.0, &len), BZJ_ERR_NULL_POINTER);

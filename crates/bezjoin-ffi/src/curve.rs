@@ -364,7 +364,11 @@ pub unsafe extern "C" fn bzj_curve_reverse(
 /// adaptive Gauss-Kronrod on the speed.
 ///
 /// @return BZJ_ERR_NULL_POINTER if `c` or `out` is NULL;
-///         BZJ_ERR_NON_FINITE if `a` or `b` is NaN or infinite;
+///         BZJ_ERR_NON_FINITE if `a` or `b` is NaN or infinite, or (after
+///         those) the control polygon's length overflows `double` (finite
+///         points more than `DBL_MAX` apart: the accuracy above is relative
+///         to it; the message names "the control polygon length of the
+///         curve");
 ///         BZJ_ERR_INVALID_ARGUMENT if the length overflows the double range
 ///         (e.g. `a = -1e200, b = 1e200`; the message names `a, b`), or `a`
 ///         or `b` is outside a NURBS handle's domain (named);

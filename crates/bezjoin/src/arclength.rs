@@ -543,13 +543,30 @@ impl BezierCurve {
     /// Arc length with the default accuracy
     /// ([`DEFAULT_ARC_LENGTH_ACCURACY`] times the larger of 1 and the control
     /// polygon's length).
+    ///
+    /// Errors: those of [`Self::arc_length`] for `a` and `b`, and
+    /// `NonFiniteScalar` naming the control polygon's length when that
+    /// overflows `f64` (finite control points more than `f64::MAX` apart):
+    /// the default accuracy is relative to it.
     pub fn arc_length_default(&self, a: f64, b: f64) -> Result<f64> {
-        self.arc_length(a, b, self.default_length_accuracy())
+        // The caller's arguments are judged before the default they did
+        // not pass, in `arc_length`'s order.
+        check_finite_scalar("a", a)?;
+        check_finite_scalar("b", b)?;
+        self.arc_length(a, b, self.checked_default_length_accuracy("the curve")?)
     }
 
     /// The absolute accuracy used by [`Self::arc_length_default`].
     pub fn default_length_accuracy(&self) -> f64 {
         DEFAULT_ARC_LENGTH_ACCURACY * self.polygon_length().max(1.0)
+    }
+
+    /// [`Self::default_length_accuracy`], or the error of
+    /// [`finite_default_accuracy`] naming `curve`.
+    pub(crate) fn checked_default_length_accuracy(&self, curve: &str) -> Result<f64> {
+        finite_default_accuracy(curve, self.default_length_accuracy(), || {
+            self.polygon_length()
+        })
     }
 
     /// The parameter `t in [0, 1]` whose signed arc length from `start` is
@@ -561,6 +578,26 @@ impl BezierCurve {
     /// naming both lengths).
     pub fn param_at_length(&self, start: f64, length: f64, accuracy: f64) -> Result<f64> {
         ArcLengthInverse::new(self, start).param_at_length(length, accuracy)
+    }
+}
+
+/// `accuracy`, a curve's default arc-length accuracy (relative to its
+/// control polygon's length), when it is finite; otherwise
+/// `NonFiniteScalar` naming the control polygon length of `curve`, whose
+/// overflow made it infinite. The caller passed no accuracy, so the error
+/// names what the default was made of, not an argument called `accuracy`.
+pub(crate) fn finite_default_accuracy(
+    curve: &str,
+    accuracy: f64,
+    polygon_length: impl FnOnce() -> f64,
+) -> Result<f64> {
+    if accuracy.is_finite() {
+        Ok(accuracy)
+    } else {
+        Err(BezjoinError::NonFiniteScalar {
+            name: format!("the control polygon length of {curve}"),
+            value: polygon_length(),
+        })
     }
 }
 

@@ -423,6 +423,16 @@ impl CurveRef<'_> {
         }
     }
 
+    /// [`default_length_accuracy`](Self::default_length_accuracy), or
+    /// `NonFiniteScalar` naming the control polygon length of `curve` when
+    /// that overflows `f64`.
+    pub(crate) fn checked_default_length_accuracy(&self, curve: &str) -> Result<f64> {
+        match self {
+            CurveRef::Bezier(c) => c.checked_default_length_accuracy(curve),
+            CurveRef::Nurbs(c) => c.checked_default_length_accuracy(curve),
+        }
+    }
+
     /// The parameter at signed arc length `length` from `start`.
     pub fn param_at_length(&self, start: f64, length: f64, accuracy: f64) -> Result<f64> {
         match self {

@@ -2,7 +2,7 @@
 //! is checked against an independent way of computing the same thing.
 
 mod common;
-use bezjoin_core::BezierCurve;
+use bezjoin_core::{BezierCurve, Curve, NurbsCurve};
 use common::{binomial, distance};
 use proptest::prelude::*;
 
@@ -336,6 +336,51 @@ fn arc_length_errors_name_the_argument() {
             .to_string()
             .contains("longer than the arc length 0.5")
     );
+}
+
+/// Finite control points more than `f64::MAX` apart: the default accuracy
+/// (relative to the control polygon's length) is infinite. The caller of
+/// `arc_length_default` passed no accuracy, so the error names the polygon
+/// length (reliability F3: it named `accuracy`), after the caller's own
+/// arguments; the same through a NURBS curve and the `Curve` enum.
+#[test]
+fn default_length_errors_name_the_control_polygon_not_an_accuracy() {
+    let c = BezierCurve::new(1, 2, vec![0.0, f64::MAX, -f64::MAX]).unwrap();
+    assert_eq!(c.polygon_length(), f64::INFINITY);
+    let expected = "the control polygon length of the curve = inf is not finite";
+    assert_eq!(
+        c.arc_length_default(0.0, 1.0).unwrap_err().to_string(),
+        expected
+    );
+    assert_eq!(
+        c.arc_length_default(f64::NAN, 1.0).unwrap_err().to_string(),
+        "a = NaN is not finite"
+    );
+    let nurbs = NurbsCurve::from_bezier(&c);
+    assert_eq!(
+        nurbs.arc_length_default(0.0, 1.0).unwrap_err().to_string(),
+        expected
+    );
+    assert_eq!(
+        nurbs
+            .arc_length_default(0.0, f64::INFINITY)
+            .unwrap_err()
+            .to_string(),
+        "b = inf is not finite"
+    );
+    for curve in [Curve::Bezier(c.clone()), Curve::Nurbs(nurbs)] {
+        assert_eq!(
+            curve.arc_length_default(0.0, 1.0).unwrap_err().to_string(),
+            expected
+        );
+    }
+    // At 1e300 the default is finite and the length is answered: the same
+    // shape, x(t) = 1e300 (2t - 3t^2), out to 1e300 / 3 at t = 1/3 and back
+    // to -1e300, so its length is (1/3 + 1/3 + 1) 1e300.
+    let smaller = BezierCurve::new(1, 2, vec![0.0, 1e300, -1e300]).unwrap();
+    let length = smaller.arc_length_default(0.0, 1.0).unwrap();
+    let exact = 5.0 / 3.0 * 1e300;
+    assert!((length - exact).abs() <= 1e-9 * exact, "{length:e}");
 }
 
 /// A cubic with a cusp (zero speed) at a parameter that is not a dyadic

@@ -363,8 +363,16 @@ pub(crate) fn available_lengths(
     q: CurveRef,
     crossing: &Intersection,
 ) -> Result<(f64, f64)> {
-    let before = p.arc_length(p.domain().0, crossing.u, p.default_length_accuracy())?;
-    let after = q.arc_length(crossing.v, q.domain().1, q.default_length_accuracy())?;
+    let before = p.arc_length(
+        p.domain().0,
+        crossing.u,
+        p.checked_default_length_accuracy("p")?,
+    )?;
+    let after = q.arc_length(
+        crossing.v,
+        q.domain().1,
+        q.checked_default_length_accuracy("q")?,
+    )?;
     Ok((before, after))
 }
 

@@ -27,7 +27,8 @@ use std::borrow::Cow;
 use super::NurbsCurve;
 use crate::arclength::{
     ArcLengthInverse, CHEBYSHEV_MAX_N, ChebyshevSampled, DEFAULT_ARC_LENGTH_ACCURACY,
-    grade_at_near_cusps, sample_nodes, speed_bounds_away_from_zero, speed_minima,
+    finite_default_accuracy, grade_at_near_cusps, sample_nodes, speed_bounds_away_from_zero,
+    speed_minima,
 };
 use crate::basis::binomial;
 use crate::bezier::{BezierCurve, distance, norm};
@@ -1171,8 +1172,24 @@ impl NurbsCurve {
     }
 
     /// [`arc_length`](Self::arc_length) to [`default_length_accuracy`](Self::default_length_accuracy).
+    ///
+    /// Errors: those of [`arc_length`](Self::arc_length) for `a` and `b`,
+    /// and `NonFiniteScalar` naming the control polygon's length when that
+    /// overflows `f64`: the default accuracy is relative to it.
     pub fn arc_length_default(&self, a: f64, b: f64) -> Result<f64> {
-        self.arc_length(a, b, self.default_length_accuracy())
+        // The caller's arguments are judged before the default they did
+        // not pass, in `arc_length`'s order.
+        self.check_parameter("a", a)?;
+        self.check_parameter("b", b)?;
+        self.arc_length(a, b, self.checked_default_length_accuracy("the curve")?)
+    }
+
+    /// [`default_length_accuracy`](Self::default_length_accuracy), or the
+    /// error of `finite_default_accuracy` naming `curve`.
+    pub(crate) fn checked_default_length_accuracy(&self, curve: &str) -> Result<f64> {
+        finite_default_accuracy(curve, self.default_length_accuracy(), || {
+            self.polygon_length()
+        })
     }
 
     /// The parameter whose signed arc length from `start` (in the domain)
