@@ -1379,8 +1379,8 @@ BzjStatus bzj_fillet_radius_chain(const struct BzjCurve *const *curves, size_t c
  *         (nothing is written);
  *         BZJ_ERR_ILL_CONDITIONED if the result fails its own checks.
  *         On every error the first `node_count - 1` entries of `out_segments`
- *         are NULL (except BUFFER_TOO_SMALL, which writes nothing) and
- *         nothing is leaked.
+ *         are NULL when `segment_capacity` holds them (a shorter array is
+ *         not written, whatever the error) and nothing is leaked.
  *
  * # Safety
  * Every non-NULL pointer points to the number of doubles stated above;
@@ -1424,8 +1424,8 @@ BzjStatus bzj_lagrange_spline(size_t dim, size_t node_count, const double *nodes
  *         BZJ_ERR_ILL_CONDITIONED if the recurrence amplifies rounding
  *         beyond 1e-9 or the result fails its own checks.
  *         On every error the first `node_count - 1` entries of `out_segments`
- *         are NULL (except BUFFER_TOO_SMALL, which writes nothing) and
- *         nothing is leaked.
+ *         are NULL when `segment_capacity` holds them (a shorter array is
+ *         not written, whatever the error) and nothing is leaked.
  *
  * # Safety
  * Every non-NULL pointer points to the number of doubles stated above;

@@ -157,8 +157,8 @@ fn rename(error: BezjoinError, start: &str, free: &str) -> BezjoinError {
 ///         (nothing is written);
 ///         BZJ_ERR_ILL_CONDITIONED if the result fails its own checks.
 ///         On every error the first `node_count - 1` entries of `out_segments`
-///         are NULL (except BUFFER_TOO_SMALL, which writes nothing) and
-///         nothing is leaked.
+///         are NULL when `segment_capacity` holds them (a shorter array is
+///         not written, whatever the error) and nothing is leaked.
 ///
 /// # Safety
 /// Every non-NULL pointer points to the number of doubles stated above;
@@ -228,8 +228,8 @@ pub unsafe extern "C" fn bzj_lagrange_spline(
 ///         BZJ_ERR_ILL_CONDITIONED if the recurrence amplifies rounding
 ///         beyond 1e-9 or the result fails its own checks.
 ///         On every error the first `node_count - 1` entries of `out_segments`
-///         are NULL (except BUFFER_TOO_SMALL, which writes nothing) and
-///         nothing is leaked.
+///         are NULL when `segment_capacity` holds them (a shorter array is
+///         not written, whatever the error) and nothing is leaked.
 ///
 /// # Safety
 /// Every non-NULL pointer points to the number of doubles stated above;
