@@ -18,6 +18,28 @@ impl Values {
     pub(crate) fn signed(&mut self) -> f64 {
         2.0 * self.unit() - 1.0
     }
+
+    /// An entry for the bit-for-bit tests of maxima: from one `signed`
+    /// value `v`, in about one case in eight each a zero of `v`'s sign, a
+    /// NaN, an infinity of `v`'s sign, a subnormal; otherwise `1e3 v`.
+    /// Every fifth `round` is all NaN.
+    pub(crate) fn hostile(&mut self, round: usize) -> f64 {
+        let v = self.signed();
+        match (round % 5, (v * 16.0) as i64) {
+            (4, _) => f64::NAN,
+            (_, 0) => 0.0 * v.signum(),
+            (_, 1) => f64::NAN,
+            (_, -1) => f64::INFINITY * v.signum(),
+            (_, 2) => v * 1e-310,
+            _ => v * 1e3,
+        }
+    }
+}
+
+/// The bits of every value, for asserting that two routes agree bit for
+/// bit (`-0` against `+0` and NaN payloads included).
+pub(crate) fn bits(values: &[f64]) -> Vec<u64> {
+    values.iter().map(|x| x.to_bits()).collect()
 }
 
 /// [`Values::unit`] as a closure from the state `seed` (the same sequence).

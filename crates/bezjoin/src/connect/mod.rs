@@ -1701,7 +1701,7 @@ mod tests {
     /// above the degree, both ends, with signed zeros and a huge point.
     #[test]
     fn small_end_jets_equal_the_slice_end_jets() {
-        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        let bits = crate::test_values::bits;
         for n in 1..END_TABLE_SIZE {
             for dim in 1..=4 {
                 let mut points: Vec<f64> = (0..(n + 1) * dim)

@@ -887,7 +887,7 @@ mod near_tests {
             for (i, piece) in track.pieces().iter().enumerate() {
                 let poles = curve.span_poles();
                 let own = Piece::new(Cow::Borrowed(poles.span_curve(i)), true, piece.lo, piece.hi);
-                let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                let bits = crate::test_values::bits;
                 assert_eq!(
                     bits(piece.points()),
                     bits(own.points()),

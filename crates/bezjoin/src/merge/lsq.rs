@@ -398,19 +398,7 @@ mod tests {
         let mut values = crate::test_values::Values(36);
         for len in 0..40 {
             for round in 0..40 {
-                let x: Vec<f64> = (0..len)
-                    .map(|_| {
-                        let v = values.signed();
-                        match (round % 5, (v * 16.0) as i64) {
-                            (4, _) => f64::NAN,
-                            (_, 0) => 0.0 * v.signum(),
-                            (_, 1) => f64::NAN,
-                            (_, -1) => f64::INFINITY * v.signum(),
-                            (_, 2) => v * 1e-310,
-                            _ => v * 1e3,
-                        }
-                    })
-                    .collect();
+                let x: Vec<f64> = (0..len).map(|_| values.hostile(round)).collect();
                 let fold = x.iter().fold(0.0f64, |m, v| m.max(v.abs()));
                 assert_eq!(amax(&x).to_bits(), fold.to_bits(), "{x:?}");
                 // `raise` against `f64::max` from every partial maximum.
@@ -445,22 +433,14 @@ mod tests {
 
     /// [`nalgebra_amax`] is nalgebra's `amax` bit for bit, and so is
     /// [`amax`] without NaN entries: random entries with signed zeros,
-    /// infinities and NaNs (also first, also all NaN), and no entries.
+    /// infinities, NaNs (also first, also all NaN) and subnormals, and no
+    /// entries.
     #[test]
     fn slice_amax_is_nalgebras_to_the_bit() {
         let mut values = crate::test_values::Values(35);
         for len in 0..40 {
             for round in 0..30 {
-                let m = DMatrix::from_fn(len, 1, |_, _| {
-                    let v = values.signed();
-                    match (round % 5, (v * 16.0) as i64) {
-                        (4, _) => f64::NAN,
-                        (_, 0) => 0.0 * v.signum(),
-                        (_, 1) => f64::NAN,
-                        (_, -1) => f64::INFINITY * v.signum(),
-                        _ => v * 1e3,
-                    }
-                });
+                let m = DMatrix::from_fn(len, 1, |_, _| values.hostile(round));
                 assert_eq!(
                     nalgebra_amax(m.as_slice()).to_bits(),
                     m.amax().to_bits(),
@@ -568,7 +548,7 @@ mod tests {
                 let mut work = vec![0.0; rows];
                 f.least_squares(b.as_slice(), &mut fast, &mut work);
                 black_box(&f).least_squares_sized::<0, 0>(b.as_slice(), &mut general, &mut work);
-                let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                let bits = crate::test_values::bits;
                 assert_eq!(bits(&fast), bits(&general), "{rows}x{cols}");
             }
         }

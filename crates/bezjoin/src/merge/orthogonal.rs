@@ -2356,7 +2356,7 @@ mod tests {
                         10 => remainder_sized::<10>(&mut sized, t, a, y, rows, free),
                         _ => remainder_sized::<12>(&mut sized, t, a, y, rows, free),
                     }
-                    let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                    let bits = crate::test_values::bits;
                     assert_eq!(bits(&general), bits(&sized), "{rows} x {free}, dim {dim}");
                 }
             }
@@ -2375,7 +2375,7 @@ mod tests {
                 let (mut general, mut sized) = (vec![0.0; len], vec![0.0; len]);
                 restrictions_two::<0>(points - 1, mu, &mut general);
                 restrictions_into(points - 1, &[0.0, mu, 1.0], &mut sized);
-                let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                let bits = crate::test_values::bits;
                 assert_eq!(bits(&general), bits(&sized), "{points} points, mu = {mu}");
             }
         }
@@ -2403,7 +2403,7 @@ mod tests {
                     7 => split_column_sized::<7>(&mut sized, &from, t),
                     _ => split_column_sized::<8>(&mut sized, &from, t),
                 }
-                let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                let bits = crate::test_values::bits;
                 assert_eq!(bits(&general), bits(&sized), "{points} points, t = {t}");
                 // And the curve's own split, point by point.
                 let curve = BezierCurve::new(1, points - 1, from.clone()).expect("a curve");
@@ -2427,7 +2427,7 @@ mod tests {
                     let (mut sized, mut general) = (vec![0.0; rows], vec![0.0; rows]);
                     product_columns(&a, b.as_slice(), abs, &mut sized);
                     product_columns_sized::<0>(a.as_slice(), rows, b.as_slice(), abs, &mut general);
-                    let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                    let bits = crate::test_values::bits;
                     assert_eq!(bits(&sized), bits(&general), "{rows} x {inner} {abs}");
                 }
             }
@@ -2528,7 +2528,7 @@ mod tests {
             let inputs = bound_inputs(&mut values, rows, free, dim);
             let mut buffer = Vec::new();
             let shared = inputs.shared(&inputs.a, rows / 2, &inputs.correction, &mut buffer);
-            let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            let bits = crate::test_values::bits;
             assert_eq!(bits(shared.q()), bits(&shared.qr.thin_q()));
             let through_values =
                 combined_product(&inputs.target_size, &inputs.a, &inputs.y, Combine::PlusAbs);

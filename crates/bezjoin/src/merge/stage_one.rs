@@ -452,7 +452,7 @@ mod tests {
                         2 => gather_rows::<2>(&data, rows, dim, &mut sized),
                         _ => gather_rows::<3>(&data, rows, dim, &mut sized),
                     }
-                    let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                    let bits = crate::test_values::bits;
                     assert_eq!(bits(&general), bits(&sized), "{rows} x {dim}, {count} rows");
                     // rows_of from every first row, against the entries
                     // read one by one.
