@@ -295,7 +295,25 @@ static void test_new(void) {
         const double k6[] = {0, 0, 5e-324, 5e-324};
         EXPECT_STATUS(bzj_nurbs_new(2, 1, p3, 4, NULL, 0, k6, 4, &bad), BZJ_ERR_INVALID_ARGUMENT);
         expect_message("too short");
+        /* Finite knots whose span overflows (9e307 - -9e307), and a domain
+           whose ends' sum does (the map of reverse): both refused; 8.9e307
+           is answered, P(0) = (1.5, 0.5) as on [-1, 1]. */
+        const double wide[] = {-9e307, -9e307, -9e307, 0, 9e307, 9e307, 9e307};
+        const double pw[] = {0, 0, 1, 1, 2, 0, 3, 1};
+        EXPECT_STATUS(bzj_nurbs_new(2, 2, pw, 8, NULL, 0, wide, 7, &bad), BZJ_ERR_INVALID_ARGUMENT);
+        expect_message("too far apart");
+        const double high[] = {1e308, 1e308, 1e308, 1.5e308, 1.7e308, 1.7e308, 1.7e308};
+        EXPECT_STATUS(bzj_nurbs_new(2, 2, pw, 8, NULL, 0, high, 7, &bad), BZJ_ERR_INVALID_ARGUMENT);
+        expect_message("too far apart");
         CHECK(bad == NULL, "out cleared (bad knot vectors)");
+        const double fits[] = {-8.9e307, -8.9e307, -8.9e307, 0, 8.9e307, 8.9e307, 8.9e307};
+        BzjCurve* wide_ok = NULL;
+        EXPECT_STATUS(bzj_nurbs_new(2, 2, pw, 8, NULL, 0, fits, 7, &wide_ok), BZJ_OK);
+        double at0[2] = {0, 0};
+        EXPECT_STATUS(bzj_curve_eval(wide_ok, 0.0, 0, at0, 2), BZJ_OK);
+        CHECK(fabs(at0[0] - 1.5) <= 1e-12 && fabs(at0[1] - 0.5) <= 1e-12, "P(0) = (%g, %g)",
+              at0[0], at0[1]);
+        bzj_curve_free(wide_ok);
         /* weights_len == 0: no weights, `weights` not read. */
         BzjCurve* poly = NULL;
         EXPECT_STATUS(bzj_nurbs_new(2, 2, p3, 12, (const double*)&failures, 0,

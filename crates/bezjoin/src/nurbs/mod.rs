@@ -127,7 +127,7 @@ impl NurbsCurve {
     ///
     /// Errors name the argument: `dim`, `degree`, `poles`, `weights`,
     /// `knots` (count, order, multiplicities, an empty domain, an interval
-    /// too short to invert).
+    /// too short to invert, a span or domain too wide for doubles).
     pub fn new(
         dim: usize,
         degree: usize,
@@ -236,6 +236,23 @@ impl NurbsCurve {
                 format!(
                     "the domain [knots[{degree}], knots[{count}]] = [{}, {}] is empty",
                     knots[degree], knots[count]
+                ),
+            ));
+        }
+        // Every knot difference of the basis is at most the span of the
+        // vector, and `reverse` maps `u -> first + last - u`: finite knots
+        // whose span or domain sum overflows would give silent infinities.
+        let (lowest, highest) = (knots[0], knots[knots.len() - 1]);
+        let (first, last) = (knots[degree], knots[count]);
+        if !(highest - lowest).is_finite() || !(first + last).is_finite() {
+            return Err(BezjoinError::invalid(
+                "knots",
+                format!(
+                    "the knots from {lowest:e} to {highest:e} (domain [{first:e}, {last:e}]) are \
+                     too far apart for doubles: the span {:e} or the sum of the domain's ends \
+                     {:e} overflows",
+                    highest - lowest,
+                    first + last
                 ),
             ));
         }
