@@ -1261,7 +1261,10 @@ BzjStatus bzj_fillet_chain_auto_scale(const struct BzjCurve *const *curves, size
  *         BZJ_ERR_NON_FINITE if a parameter or shape value is NaN/infinite;
  *         BZJ_ERR_DIMENSION_MISMATCH if `p` and `q` differ in dimension;
  *         BZJ_ERR_ILL_CONDITIONED if the result cannot be trusted to 1e-8
- *         or no shape values give a blend with defined curvature.
+ *         or no shape values give a blend with defined curvature (so
+ *         always when `p`'s tangent at `u0` or `q`'s at `v0` is zero at an
+ *         end of order >= 1: G^k needs a regular point; the message names
+ *         the curve and the parameter).
  *
  * # Safety
  * `p`, `q` are NULL or live handles; `options` NULL or readable, its

@@ -141,6 +141,24 @@ int main(void) {
                   BZJ_ERR_INVALID_ARGUMENT);
     expect_message("u0");
     CHECK(r == NULL, "out cleared");
+    /* a zero tangent at the join (P's last two poles equal): no shape values
+       give a blend with defined curvature there, searched or given */
+    const double cusp_points[] = {0, 0, 1, 1, 2, 0, 2, 0};
+    BzjCurve* cusp = NULL;
+    EXPECT_STATUS(bzj_curve_new(2, 3, cusp_points, 8, &cusp), BZJ_OK);
+    BzjGeometricOptions fair_cusp = {2, 2, NULL, NULL};
+    r = (BzjCurve*)&failures;
+    EXPECT_STATUS(bzj_connect_geometric(cusp, 1.0, q, 0.2, &fair_cusp, &r, NULL, NULL, &report),
+                  BZJ_ERR_ILL_CONDITIONED);
+    expect_message("tangent of p at u0 = 1 is zero");
+    CHECK(r == NULL, "out cleared");
+    EXPECT_STATUS(bzj_connect_geometric(q, 0.2, cusp, 0.0, &o, &r, NULL, NULL, NULL), BZJ_OK);
+    bzj_curve_free(r);
+    r = NULL;
+    EXPECT_STATUS(bzj_connect_geometric(cusp, 1.0, q, 0.2, &o, &r, NULL, NULL, NULL),
+                  BZJ_ERR_ILL_CONDITIONED);
+    expect_message("tangent of p");
+    bzj_curve_free(cusp);
 
     /* bzj_fillet_radius at the vertex of the two edges: cut where the arc of
        radius 2 touches them (2 from the corner), G2 blend between */

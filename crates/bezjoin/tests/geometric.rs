@@ -340,6 +340,54 @@ fn shape_values_are_checked_by_name() {
     assert!(connect_geometric(&p, 1.0, &q, 0.0, &nan).is_err());
 }
 
+/// G^k needs a regular point: where the input's tangent is zero (repeated
+/// end poles) every shape value gives `R'(0) = beta_1 P'(u0) = 0`, a blend
+/// whose curvature is undefined there, so the call is IllConditioned naming
+/// the curve and the parameter, with searched and with given shapes, on the
+/// end path (given shapes, no constraints) and on the general one; G^0 at
+/// that end, or the zero tangent away from the join, is answered.
+#[test]
+fn a_zero_tangent_at_the_join_is_refused_by_name() {
+    // P'(1) = 3 (P3 - P2) = 0; Q'(0) = 3 (Q1 - Q0) = 0.
+    let p = BezierCurve::new(2, 3, vec![0.0, 0.0, 1.0, 1.0, 2.0, 0.0, 2.0, 0.0]).unwrap();
+    let q = BezierCurve::new(2, 3, vec![5.0, 3.0, 5.0, 3.0, 7.0, 2.5, 8.0, 1.0]).unwrap();
+    let regular = BezierCurve::new(2, 2, vec![5.0, 3.0, 6.0, 3.0, 7.0, 2.0]).unwrap();
+    let refused = |result: bezjoin_core::Result<bezjoin_core::GeometricConnection>,
+                   needle: &str| {
+        match result {
+            Err(BezjoinError::IllConditioned { what, .. }) => {
+                assert!(what.contains(needle), "{what}")
+            }
+            other => panic!("{needle}: {other:?}"),
+        }
+    };
+    for order in [1, 2, 3] {
+        let searched = GeometricOptions::new(order, order);
+        let shapes = vec![1.0; order];
+        let given = GeometricOptions::new(order, order).with_shapes(shapes.clone(), shapes.clone());
+        let mut constrained = given.clone();
+        constrained
+            .constraints
+            .push(bezjoin_core::PointConstraint::new(0.5, 0, vec![4.0, 2.0]));
+        for options in [&searched, &given, &constrained] {
+            refused(
+                connect_geometric(&p, 1.0, &regular, 0.0, options),
+                "tangent of p at u0 = 1 is zero",
+            );
+            refused(
+                connect_geometric(&regular, 1.0, &q, 0.0, options),
+                "tangent of q at v0 = 0 is zero",
+            );
+        }
+        // G^0 at the singular end needs no tangent; away from the join the
+        // zero tangent does not matter.
+        assert!(
+            connect_geometric(&p, 1.0, &regular, 0.0, &GeometricOptions::new(0, order)).is_ok()
+        );
+        assert!(connect_geometric(&p, 0.5, &regular, 0.0, &searched).is_ok());
+    }
+}
+
 /// The fairness energy's quadrature (4 panels of 8-point Gauss-Legendre)
 /// against a fine composite Simpson rule of the same integrand built from
 /// the judge's invariants: the two agree to 1e-6 relative on a fair blend

@@ -6,7 +6,7 @@ use std::sync::OnceLock;
 
 use crate::basis::bezier_basis_derivatives;
 use crate::bezier::BezierCurve;
-use crate::connect::{MAX_CONNECT_DEGREE, Problem};
+use crate::connect::{MAX_CONNECT_DEGREE, Problem, natural_scale};
 use crate::error::{BezjoinError, Result};
 
 use super::MAX_GEOMETRIC_ORDER;
@@ -490,6 +490,36 @@ fn shapes_from(
     (p, q)
 }
 
+/// The natural `beta_1` of each end, `|Q(v0) - P(u0)| / |P'(u0)|` and
+/// `|Q(v0) - P(u0)| / |Q'(v0)|`: the value at which that end of the blend
+/// leaves with the speed of the chord. A linear reparametrisation of an
+/// input (`P(c t)`: derivatives `c^i P^(i)`) divides its value by `c`, and
+/// the shapes that give the same blend are `beta_j / c` (the partial Bell
+/// polynomials are homogeneous), while the `gamma_j = beta_j / beta_1` stay:
+/// so the search, which starts from these values and moves `ln beta_1` and
+/// the `gamma_j`, takes the same steps for every parametrisation of the
+/// inputs and finds the same blend (up to rounding). Where a value is not a
+/// positive finite number (a zero chord or end speed), connect's common
+/// natural scale ([`natural_scale`]) stands in.
+fn natural_end_scales(problem: &Problem) -> (f64, f64) {
+    let common = natural_scale(problem);
+    let (p, q) = (&problem.p_derivatives, &problem.q_derivatives);
+    let chord = (q.row(0) - p.row(0)).norm();
+    let of = |jet: &nalgebra::DMatrix<f64>| {
+        let value = if jet.nrows() > 1 {
+            chord / jet.row(1).norm()
+        } else {
+            f64::NAN
+        };
+        if value.is_finite() && value > 0.0 {
+            value
+        } else {
+            common
+        }
+    };
+    (of(p), of(q))
+}
+
 /// The fair shape values (module documentation of `geometric`). With
 /// `checked`, a trial whose solve connect's residual check would refuse
 /// counts as infinitely bad (the search of old, kept as the fallback);
@@ -498,7 +528,6 @@ pub(super) fn fair_shapes(
     problem: &Problem,
     fixed_p: Option<&[f64]>,
     fixed_q: Option<&[f64]>,
-    natural: f64,
     checked: bool,
 ) -> Result<(Vec<f64>, Vec<f64>)> {
     let (kp, kq) = (problem.p_order, problem.q_order);
@@ -521,23 +550,25 @@ pub(super) fn fair_shapes(
     if dims == 0 {
         return Ok(shapes_from(&[], kp, fixed_p, fixed_q, kq));
     }
-    // Grid over a common ln beta_1 (gammas zero).
-    let start_of = |log_beta: f64| {
+    // Grid over a common end speed `sigma |R(1) - R(0)|` (gammas zero):
+    // `ln beta_1` of each end is its natural value ([`natural_end_scales`])
+    // plus the same offset.
+    let (natural_p, natural_q) = natural_end_scales(problem);
+    let start_of = |offset: f64| {
         let mut x = vec![0.0; dims];
         if free_p > 0 {
-            x[0] = log_beta;
+            x[0] = natural_p.ln() + offset;
         }
         if free_q > 0 {
-            x[free_p] = log_beta;
+            x[free_p] = natural_q.ln() + offset;
         }
         x
     };
-    let center = natural.ln();
     let half = GRID_DECADES * std::f64::consts::LN_10;
     let mut best: Option<(f64, Vec<f64>)> = None;
     for i in 0..GRID_POINTS {
-        let log_beta = center - half + 2.0 * half * i as f64 / (GRID_POINTS - 1) as f64;
-        let x = start_of(log_beta);
+        let offset = -half + 2.0 * half * i as f64 / (GRID_POINTS - 1) as f64;
+        let x = start_of(offset);
         let e = energy(&x);
         if e.is_finite() && best.as_ref().is_none_or(|(b, _)| e < *b) {
             best = Some((e, x));

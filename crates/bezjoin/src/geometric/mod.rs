@@ -28,9 +28,15 @@
 //! plain integral tends to zero on ever larger loops, whose curvature
 //! vanishes, so its minimisation runs away), over
 //! `ln beta_1` and `gamma_j = beta_j / beta_1` (`j >= 2`) of both ends: a
-//! grid over a common `beta_1` (four decades around connect's natural
-//! scale, the `gamma_j` zero) and then Nelder-Mead in all of them
-//! ([`fair::nelder_mead`], deterministic). Shapes whose solve fails, and
+//! grid over a common end speed (`beta_1` of each end `sigma |Q(v0) -
+//! P(u0)|` over that end's tangent length, `sigma` over four decades around
+//! 1, the `gamma_j` zero) and then Nelder-Mead in all of them
+//! ([`fair::nelder_mead`], deterministic). A linear reparametrisation of
+//! an input changes its `beta_1` by a factor and no `gamma_j`, so the search
+//! takes the same steps, and finds the same blend up to rounding, however
+//! fast the inputs run (a degree-1 line runs at its length). Where an
+//! input's tangent at the join is zero there is no G^k to meet: the call
+//! is IllConditioned. Shapes whose solve fails, and
 //! blends with a cusp (`E` infinite), count as infinitely bad. The trial
 //! solves reuse everything that does not depend on the shape values and
 //! skip connect's residual check; the winner is solved again and checked
@@ -44,10 +50,11 @@ mod trial;
 
 use nalgebra::DMatrix;
 
+use crate::basis::KnotSide;
 use crate::bezier::BezierCurve;
 use crate::connect::{
     ConnectOptions, Connection, PointConstraint, Problem, check_connect_degree, check_pair,
-    connect_ends_shaped, natural_scale, prepare, solve_structured,
+    connect_ends_shaped, prepare, solve_structured,
 };
 use crate::curve::CurveJet;
 use crate::error::{BezjoinError, Result, check_finite};
@@ -208,6 +215,33 @@ fn geometric_targets(
     (out, out_errors)
 }
 
+/// G^k at an end (`k >= 1`) is defined only where the input is regular:
+/// with `P'(u0) = 0` (or `Q'(v0) = 0`) there is no unit tangent to meet, and
+/// every shape value gives `R'(0) = beta_1 P'(u0) = 0`, a blend without
+/// defined curvature at that end: IllConditioned, as when the search finds
+/// no shape values. `(u0, P'(u0) = 0)` and `(v0, Q'(v0) = 0)`, each only
+/// for an order of at least 1; an exact zero (a tiny tangent still has a
+/// direction). Called after the arguments are validated.
+fn check_regular_ends(
+    (u0, p_zero): (f64, bool),
+    (v0, q_zero): (f64, bool),
+    options: &GeometricOptions,
+) -> Result<()> {
+    let (name, at, value, order) = match (p_zero, q_zero) {
+        (true, _) => ("p", "u0", u0, options.p_order),
+        (false, true) => ("q", "v0", v0, options.q_order),
+        (false, false) => return Ok(()),
+    };
+    Err(BezjoinError::IllConditioned {
+        what: format!(
+            "G^k connect: the tangent of {name} at {at} = {value} is zero, so no shape \
+             values give a blend with defined curvature there (G^{order} needs a regular point)"
+        ),
+        estimate: f64::INFINITY,
+        limit: crate::CONNECT_RESIDUAL_LIMIT,
+    })
+}
+
 /// Shape values given by the caller for one end: `order` values, `beta_1`
 /// finite and positive, the rest finite.
 fn check_shape(name: &str, shape: &[f64], order: usize) -> Result<()> {
@@ -254,7 +288,8 @@ fn solve_with_shapes(problem: &Problem, p_shape: &[f64], q_shape: &[f64]) -> Res
 /// returned shape values and the interior constraints with the residual
 /// guarantee of [`connect`](crate::connect) (`error_estimate <=
 /// CONNECT_RESIDUAL_LIMIT`); so it meets P and Q with G^kp and G^kq
-/// whenever `P'(u0)`, `Q'(v0)` are not zero. Without shape values the
+/// (`P'(u0)`, `Q'(v0)` are not zero: a zero tangent at an end of order at
+/// least 1 is refused, IllConditioned naming the curve and the parameter). Without shape values the
 /// returned ones minimise the curvature variation as the module says (a
 /// local minimum from a deterministic start; no global guarantee).
 ///
@@ -294,6 +329,22 @@ pub fn connect_geometric_curve<P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
         check_pair(p, u0, q, v0)?;
         check_connect_degree(options.p_order, options.q_order, [])?;
         let (kp, kq) = (options.p_order, options.q_order);
+        let zero = |jet: &dyn Fn(&mut [f64], &mut [f64]), dim: usize| {
+            let mut values = vec![0.0; 2 * dim];
+            jet(&mut values, &mut [0.0; 2]);
+            values[dim..].iter().all(|v| *v == 0.0)
+        };
+        check_regular_ends(
+            (
+                u0,
+                kp >= 1 && zero(&|v, e| p.jet_into(u0, 1, KnotSide::Left, v, e), p.dim()),
+            ),
+            (
+                v0,
+                kq >= 1 && zero(&|v, e| q.jet_into(v0, 1, KnotSide::Right, v, e), q.dim()),
+            ),
+            options,
+        )?;
         if let Some(connection) = connect_ends_shaped(p, u0, q, v0, kp, kq, ps, qs) {
             return Ok(GeometricCurve::new(ps.clone(), qs.clone(), connection?));
         }
@@ -301,6 +352,12 @@ pub fn connect_geometric_curve<P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
     let mut connect_options = ConnectOptions::new(options.p_order, options.q_order);
     connect_options.constraints = options.constraints.clone();
     let problem = prepare(p, u0, q, v0, &connect_options)?;
+    let zero = |jet: &DMatrix<f64>| jet.nrows() > 1 && jet.row(1).iter().all(|v| *v == 0.0);
+    check_regular_ends(
+        (u0, zero(&problem.p_derivatives)),
+        (v0, zero(&problem.q_derivatives)),
+        options,
+    )?;
     let (p_shape, q_shape, connection) = match (&options.p_shape, &options.q_shape) {
         (Some(ps), Some(qs)) => {
             let connection = solve_with_shapes(&problem, ps, qs)?;
@@ -312,7 +369,6 @@ pub fn connect_geometric_curve<P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
                     &problem,
                     options.p_shape.as_deref(),
                     options.q_shape.as_deref(),
-                    natural_scale(&problem),
                     checked,
                 )
             };
@@ -412,16 +468,33 @@ mod end_path_tests {
             let v0 = parameter(v_choice, draws.unit());
             let options = GeometricOptions::new(kp, kq).with_shapes(ps.clone(), qs.clone());
             let label = format!("case {case}: dim {dim} {np}/{nq} G{kp}/G{kq} {u0}/{v0}");
-            let (fast, general) = if nurbs {
+            let (fast, problem) = if nurbs {
                 let (p, q) = (NurbsCurve::from_bezier(&p), NurbsCurve::from_bezier(&q));
                 let fast = connect_geometric_curve(&p, u0, &q, v0, &options);
-                let problem = prepare(&p, u0, &q, v0, &ConnectOptions::new(kp, kq)).unwrap();
-                (fast, solve_with_shapes(&problem, &ps, &qs))
+                (
+                    fast,
+                    prepare(&p, u0, &q, v0, &ConnectOptions::new(kp, kq)).unwrap(),
+                )
             } else {
                 let fast = connect_geometric_curve(&p, u0, &q, v0, &options);
-                let problem = prepare(&p, u0, &q, v0, &ConnectOptions::new(kp, kq)).unwrap();
-                (fast, solve_with_shapes(&problem, &ps, &qs))
+                (
+                    fast,
+                    prepare(&p, u0, &q, v0, &ConnectOptions::new(kp, kq)).unwrap(),
+                )
             };
+            // A zero tangent at an end of order >= 1 (a degree-0 input) is
+            // refused before either path solves.
+            let zero = |jet: &DMatrix<f64>| jet.nrows() > 1 && jet.row(1).iter().all(|v| *v == 0.0);
+            if zero(&problem.p_derivatives) || zero(&problem.q_derivatives) {
+                match &fast {
+                    Err(BezjoinError::IllConditioned { what, .. }) => {
+                        assert!(what.contains("is zero"), "{label}: {what}")
+                    }
+                    other => panic!("{label}: {other:?}"),
+                }
+                continue;
+            }
+            let general = solve_with_shapes(&problem, &ps, &qs);
             if let Ok(g) = &fast {
                 assert_eq!((&g.p_shape, &g.q_shape), (&ps, &qs), "{label}");
             }

@@ -280,10 +280,8 @@ mod tests {
         let q =
             BezierCurve::from_rows(&[[0.5, -1.2], [0.1, -0.2], [-0.1, 0.6], [0.3, 1.4]]).unwrap();
         let problem = prepare(&p, 0.8, &q, 0.3, &ConnectOptions::new(2, 2)).unwrap();
-        let natural = crate::connect::natural_scale(&problem);
-        let search = |checked| {
-            crate::geometric::fair::fair_shapes(&problem, None, None, natural, checked).unwrap()
-        };
+        let search =
+            |checked| crate::geometric::fair::fair_shapes(&problem, None, None, checked).unwrap();
         assert_eq!(search(false), search(true));
     }
 }
