@@ -76,6 +76,20 @@ ldd "$TMP/smoke" | grep "libbezjoin.so.$MAJOR => $PREFIX/lib/" >/dev/null
 step "C consumer under valgrind memcheck"
 "${VALGRIND[@]}" "$TMP/smoke"
 
+# --- C consumer linked against the build tree ---------------------------------
+# The C contract says the library is built into target/release/; a host linked
+# there (-L target/release -lbezjoin) records the SONAME libbezjoin.so.MAJOR,
+# which the build tree must hold (crates/bezjoin-ffi/build.rs links it).
+step "C consumer linked against the build tree (target/release)"
+BUILD_TREE="${CARGO_TARGET_DIR:-target}"
+[[ "$BUILD_TREE" = /* ]] || BUILD_TREE="$ROOT/$BUILD_TREE"
+BUILD_TREE="$BUILD_TREE/release"
+[ "$(readlink "$BUILD_TREE/libbezjoin.so.$MAJOR")" = "libbezjoin.so" ]
+cc -std=c11 -Wall -Wextra -Werror -pedantic scripts/consumer/c/smoke.c -o "$TMP/smoke_tree" \
+    -Iinclude -L"$BUILD_TREE" -lbezjoin -lm -Wl,-rpath,"$BUILD_TREE"
+"$TMP/smoke_tree"
+ldd "$TMP/smoke_tree" | grep "libbezjoin.so.$MAJOR => $BUILD_TREE/" >/dev/null
+
 # --- the C programs of tests/c/ under memcheck -------------------------------
 # cargo test (tests/tests/c_programs.rs) builds them against the static
 # archive and runs them without valgrind. Here each one is built as smoke.c
