@@ -1062,7 +1062,9 @@ BzjStatus bzj_intersect_detailed(const struct BzjCurve *p, const struct BzjCurve
  *         BZJ_ERR_NON_FINITE if an option is NaN or infinite;
  *         BZJ_ERR_INVALID_ARGUMENT if a setback or scale is not positive, or
  *         a setback is not shorter than the part of the curve before / after
- *         the crossing;
+ *         the crossing by more than twice its length accuracy
+ *         (`2 relative_length_accuracy setback`: a longer one would keep a
+ *         sliver of the curve);
  *         BZJ_ERR_NO_INTERSECTION if the curves do not cross or only touch;
  *         BZJ_ERR_ILL_CONDITIONED if the connection cannot be trusted.
  *
@@ -1105,7 +1107,8 @@ BzjStatus bzj_fillet_auto_scale(const struct BzjCurve *p, const struct BzjCurve 
  *         BZJ_ERR_DIMENSION_MISMATCH if the curves' dimensions differ;
  *         BZJ_ERR_NON_FINITE if an option or `gap` is NaN or infinite;
  *         BZJ_ERR_INVALID_ARGUMENT if a setback or scale is not positive,
- *         `gap` is negative, or a setback is not shorter than the curve;
+ *         `gap` is negative, or a setback is not shorter than the curve by
+ *         more than twice its length accuracy;
  *         BZJ_ERR_NO_INTERSECTION if P's end and Q's start are more than
  *         `gap` apart (the message gives the distance);
  *         BZJ_ERR_ILL_CONDITIONED if the connection cannot be trusted.
@@ -1206,7 +1209,7 @@ BzjStatus bzj_fillet_deviation_auto_scale(const struct BzjCurve *p, const struct
  *         BZJ_ERR_INVALID_ARGUMENT if `closed` is not 0 or 1, fewer than 2
  *         curves are given, an option is out of range, a setback is too long
  *         at a corner ("corner i ..."), or two cuts pass each other on a
- *         curve;
+ *         curve or leave at most 1e-9 of its length (naming `curves[i]`);
  *         BZJ_ERR_DIMENSION_MISMATCH if the curves' dimensions differ;
  *         BZJ_ERR_NON_FINITE if an option is NaN or infinite;
  *         BZJ_ERR_NO_INTERSECTION if consecutive curves do not cross or meet
@@ -1339,7 +1342,8 @@ BzjStatus bzj_fillet_radius_detailed(const struct BzjCurve *p, const struct BzjC
  *         BZJ_ERR_INVALID_ARGUMENT if `closed` is not 0 or 1, fewer than 2
  *         curves are given, `radius` is not > 0, `order` is 0 or above 6,
  *         the arc does not fit a corner ("corner i radius"), or the arcs
- *         at the two ends of a curve overlap (naming `curves[i]`);
+ *         at the two ends of a curve overlap or leave at most 1e-9 of its
+ *         length (naming `curves[i]`);
  *         BZJ_ERR_NON_FINITE if `radius` is NaN or infinite;
  *         BZJ_ERR_DIMENSION_MISMATCH if the curves' dimensions differ;
  *         BZJ_ERR_NO_INTERSECTION if a corner has no vertex or crossing, or
@@ -1550,10 +1554,13 @@ BzjStatus bzj_merge_chain(const struct BzjCurve *const *curves, size_t curve_cou
  *         maximum degree 4096, `poles_len` is not a multiple of `dim` or
  *         gives fewer than `degree + 1` poles, `weights_len` is neither 0
  *         nor the pole count, `knots_len` is not `pole_count + degree + 1`,
- *         a length is larger than any array can be, a weight is `<= 0`
- *         (named, `weights[i]`), or the knots decrease, have a multiplicity
- *         above the limits, an empty domain or an interval too short to
- *         invert (the message names `knots` and says which);
+ *         a length is larger than any array can be, a weight is `<= 0` or
+ *         below the smallest normal double 2.2e-308 (its reciprocal
+ *         overflows), or a weight times the largest pole coordinate
+ *         overflows (named, `weights[i]`), or the knots decrease, have a
+ *         multiplicity above the limits, an empty domain, an interval too
+ *         short to invert, or a span (or domain-end sum) that overflows
+ *         (the message names `knots` and says which);
  *         BZJ_ERR_NON_FINITE if a pole coordinate, weight or knot is NaN or
  *         infinite (named with its index).
  *         On any error `*out` is set to NULL.

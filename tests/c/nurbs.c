@@ -232,8 +232,10 @@ static void test_new(void) {
         {2, 2, 10, 4, 8, "weights"},     /* weights_len neither 0 nor 5 */
         {2, 2, 10, 5, 7, "knots"},       /* knots_len not 5 + 2 + 1 */
         {2, 2, 10, 5, 9, "knots"},
-        {1, 1, SIZE_MAX, 0, 8, "knots"}, /* from the numbers alone */
-        {1, 1, SIZE_MAX / 4, 0, SIZE_MAX / 4 + 2, "length of poles"},
+        {1, 1, SIZE_MAX, 0, 8, "values are more than any array of doubles"},
+        {1, 1, SIZE_MAX / 4, 0, SIZE_MAX / 4 + 2, "poles: "}, /* from the numbers alone */
+        {2, 2, 10, 4, 7, "poles has 10 values, expected 8"}, /* weights and knots agree */
+        {2, 2, SIZE_MAX - 1, 4, 7, "poles: "},
         {SIZE_MAX, 2, 10, 5, 8, "poles"},
     };
     for (size_t i = 0; i < sizeof shapes / sizeof shapes[0]; i++) {

@@ -343,7 +343,9 @@ pub unsafe extern "C" fn bzj_intersect_detailed(
 ///         BZJ_ERR_NON_FINITE if an option is NaN or infinite;
 ///         BZJ_ERR_INVALID_ARGUMENT if a setback or scale is not positive, or
 ///         a setback is not shorter than the part of the curve before / after
-///         the crossing;
+///         the crossing by more than twice its length accuracy
+///         (`2 relative_length_accuracy setback`: a longer one would keep a
+///         sliver of the curve);
 ///         BZJ_ERR_NO_INTERSECTION if the curves do not cross or only touch;
 ///         BZJ_ERR_ILL_CONDITIONED if the connection cannot be trusted.
 ///
@@ -508,7 +510,8 @@ fn write_fillet([p_out, blend_out, q_out]: [CheckedOut; 3], result: Fillet) {
 ///         BZJ_ERR_DIMENSION_MISMATCH if the curves' dimensions differ;
 ///         BZJ_ERR_NON_FINITE if an option or `gap` is NaN or infinite;
 ///         BZJ_ERR_INVALID_ARGUMENT if a setback or scale is not positive,
-///         `gap` is negative, or a setback is not shorter than the curve;
+///         `gap` is negative, or a setback is not shorter than the curve by
+///         more than twice its length accuracy;
 ///         BZJ_ERR_NO_INTERSECTION if P's end and Q's start are more than
 ///         `gap` apart (the message gives the distance);
 ///         BZJ_ERR_ILL_CONDITIONED if the connection cannot be trusted.
@@ -741,7 +744,7 @@ unsafe fn fillet_deviation_with_scale(
 ///         BZJ_ERR_INVALID_ARGUMENT if `closed` is not 0 or 1, fewer than 2
 ///         curves are given, an option is out of range, a setback is too long
 ///         at a corner ("corner i ..."), or two cuts pass each other on a
-///         curve;
+///         curve or leave at most 1e-9 of its length (naming `curves[i]`);
 ///         BZJ_ERR_DIMENSION_MISMATCH if the curves' dimensions differ;
 ///         BZJ_ERR_NON_FINITE if an option is NaN or infinite;
 ///         BZJ_ERR_NO_INTERSECTION if consecutive curves do not cross or meet

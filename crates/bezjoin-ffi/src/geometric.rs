@@ -346,7 +346,8 @@ unsafe fn fillet_radius_with(
 ///         BZJ_ERR_INVALID_ARGUMENT if `closed` is not 0 or 1, fewer than 2
 ///         curves are given, `radius` is not > 0, `order` is 0 or above 6,
 ///         the arc does not fit a corner ("corner i radius"), or the arcs
-///         at the two ends of a curve overlap (naming `curves[i]`);
+///         at the two ends of a curve overlap or leave at most 1e-9 of its
+///         length (naming `curves[i]`);
 ///         BZJ_ERR_NON_FINITE if `radius` is NaN or infinite;
 ///         BZJ_ERR_DIMENSION_MISMATCH if the curves' dimensions differ;
 ///         BZJ_ERR_NO_INTERSECTION if a corner has no vertex or crossing, or

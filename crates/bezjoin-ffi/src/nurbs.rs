@@ -30,10 +30,13 @@ use crate::status::{BzjStatus, FfiError, FfiResult};
 ///         maximum degree 4096, `poles_len` is not a multiple of `dim` or
 ///         gives fewer than `degree + 1` poles, `weights_len` is neither 0
 ///         nor the pole count, `knots_len` is not `pole_count + degree + 1`,
-///         a length is larger than any array can be, a weight is `<= 0`
-///         (named, `weights[i]`), or the knots decrease, have a multiplicity
-///         above the limits, an empty domain or an interval too short to
-///         invert (the message names `knots` and says which);
+///         a length is larger than any array can be, a weight is `<= 0` or
+///         below the smallest normal double 2.2e-308 (its reciprocal
+///         overflows), or a weight times the largest pole coordinate
+///         overflows (named, `weights[i]`), or the knots decrease, have a
+///         multiplicity above the limits, an empty domain, an interval too
+///         short to invert, or a span (or domain-end sum) that overflows
+///         (the message names `knots` and says which);
 ///         BZJ_ERR_NON_FINITE if a pole coordinate, weight or knot is NaN or
 ///         infinite (named with its index).
 ///         On any error `*out` is set to NULL.
@@ -460,6 +463,7 @@ mod tests {
             )
         };
         assert_eq!(s, BzjStatus::BZJ_ERR_INVALID_ARGUMENT, "{}", last_error());
+        assert!(last_error().starts_with("poles: "), "{}", last_error());
         assert!(out.is_null());
         // SAFETY: as above; knots_len matches the pole count but no array has it.
         let s = unsafe {
@@ -476,7 +480,12 @@ mod tests {
             )
         };
         assert_eq!(s, BzjStatus::BZJ_ERR_INVALID_ARGUMENT, "{}", last_error());
-        assert!(last_error().contains("length of poles"), "{}", last_error());
+        assert!(
+            last_error().starts_with("poles: ")
+                && last_error().contains("more than any array of doubles holds"),
+            "{}",
+            last_error()
+        );
     }
 
     #[test]

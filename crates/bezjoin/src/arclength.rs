@@ -48,7 +48,7 @@ use std::hash::{BuildHasherDefault, DefaultHasher};
 
 use crate::basis::binomial;
 use crate::bezier::{BezierCurve, bernstein_horner, norm};
-use crate::error::{BezjoinError, Result, check_finite_scalar};
+use crate::error::{BezjoinError, Compact, Result, check_finite_scalar};
 
 /// Default absolute accuracy factor: lengths are computed to
 /// `DEFAULT_ARC_LENGTH_ACCURACY * max(1, polygon length)`.
@@ -534,7 +534,11 @@ impl BezierCurve {
         if !length.is_finite() {
             return Err(BezjoinError::invalid(
                 "a, b",
-                format!("the arc length from a = {a} to b = {b} overflows the f64 range"),
+                format!(
+                    "the arc length from a = {} to b = {} overflows the f64 range",
+                    Compact(a),
+                    Compact(b)
+                ),
             ));
         }
         Ok(length)
@@ -718,7 +722,8 @@ impl<'a> ArcLengthInverse<'a> {
             // (`inf - inf`): no length to invert.
             return Err(BezjoinError::NonFiniteScalar {
                 name: format!(
-                    "arc length from t = {start} to t = {} (the curve's speed overflows f64)",
+                    "arc length from t = {} to t = {} (the curve's speed overflows f64)",
+                    Compact(start),
                     if forward { 1 } else { 0 }
                 ),
                 value: available,

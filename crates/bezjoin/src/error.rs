@@ -47,7 +47,7 @@ pub enum BezjoinError {
     /// let err = line.split_at(1.5).unwrap_err();
     /// assert_eq!(err.to_string(), "t = 1.5 is outside [0, 1]");
     /// ```
-    #[error("{name} = {value} is outside {range}")]
+    #[error("{name} = {} is outside {range}", Compact(*.value))]
     ParameterOutOfRange {
         /// Name of the argument as the caller knows it.
         name: String,
@@ -243,4 +243,68 @@ pub(crate) fn check_positive(name: &str, value: f64) -> Result<()> {
         return Err(BezjoinError::out_of_range(name, value, "> 0"));
     }
     Ok(())
+}
+
+/// A number for a message: as Rust writes it (the shortest string that
+/// reads back to the same double) between 1e-5 and 1e16, where that is a
+/// plain decimal, and in exponent form outside, where the plain decimal of
+/// a value like 1e-300 runs to hundreds of digits.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Compact(pub f64);
+
+impl std::fmt::Display for Compact {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let magnitude = self.0.abs();
+        if magnitude == 0.0 || !magnitude.is_finite() || (1e-5..1e16).contains(&magnitude) {
+            write!(f, "{}", self.0)
+        } else {
+            write!(f, "{:e}", self.0)
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Out-of-range values read back exactly and stay short at every
+    /// magnitude: plain decimals in the middle, exponent form at the ends
+    /// (a tiny or huge parameter used to print as hundreds of digits).
+    #[test]
+    fn out_of_range_messages_are_short_and_exact_at_every_magnitude() {
+        for value in [
+            -1e-300,
+            5e-324,
+            1e-6,
+            2.5e-5,
+            0.0,
+            -0.0,
+            1.5,
+            123_456.789,
+            9.9e15,
+            1e16,
+            -3.7e200,
+            f64::MAX,
+        ] {
+            let message = BezjoinError::out_of_range("ts[0]", value, "[0, 1]").to_string();
+            let written = message
+                .strip_prefix("ts[0] = ")
+                .and_then(|rest| rest.strip_suffix(" is outside [0, 1]"))
+                .unwrap_or_else(|| panic!("{message}"));
+            assert!(written.len() <= 24, "{value:e}: {message}");
+            assert_eq!(
+                written.parse::<f64>().map(f64::to_bits),
+                Ok(value.to_bits()),
+                "{message}"
+            );
+        }
+        assert_eq!(
+            BezjoinError::out_of_range("t", 1.5, "[0, 1]").to_string(),
+            "t = 1.5 is outside [0, 1]"
+        );
+        assert_eq!(
+            BezjoinError::out_of_range("ts[0]", -1e-300, "[0, 1]").to_string(),
+            "ts[0] = -1e-300 is outside [0, 1]"
+        );
+    }
 }

@@ -790,3 +790,45 @@ fn chain_intersection_errors_name_the_corner() {
         "{e}"
     );
 }
+
+fn whole_length(c: &bezjoin_core::Curve) -> f64 {
+    let (a, b) = c.domain();
+    c.arc_length_default(a, b).unwrap()
+}
+
+/// A setback as long as its curve (within the setback's accuracy) is
+/// refused by name whatever the rounding: it used to be accepted with a
+/// kept piece 1.8e-15 long at one end (an edge no CAD kernel takes) and
+/// refused at the other with "10 is not shorter than the arc length
+/// 10.000000000000002". A setback 1e-9 shorter is answered and keeps that
+/// much of the curve.
+#[test]
+fn a_setback_as_long_as_its_curve_is_refused_not_left_as_a_sliver() {
+    let bent_p = BezierCurve::new(2, 2, vec![0.0, 0.0, 5.0, 0.0, 10.0, 0.0]).unwrap();
+    let bent_q = BezierCurve::new(2, 2, vec![10.0, 0.0, 10.0, 4.0, 10.0, 8.0]).unwrap();
+    let line_p = BezierCurve::new(2, 1, vec![0.0, 0.0, 10.0, 0.0]).unwrap();
+    let line_q = BezierCurve::new(2, 1, vec![10.0, 0.0, 10.0, 8.0]).unwrap();
+    for (p, q) in [(&bent_p, &bent_q), (&line_p, &line_q), (&bent_p, &line_q)] {
+        for (dp, dq, name) in [(10.0, 1.0, "p_setback"), (1.0, 8.0, "q_setback")] {
+            for order in [1, 2] {
+                let options = FilletOptions::new(dp, dq, order, order);
+                match bezjoin_core::fillet_vertex(p, q, &options, 0.0) {
+                    Err(BezjoinError::InvalidArgument { name: got, reason }) => {
+                        assert_eq!(got, name, "{reason}");
+                        assert!(reason.contains("by more than"), "{reason}");
+                    }
+                    Ok(f) => panic!(
+                        "{name}: answered, kept pieces of length {} and {}",
+                        whole_length(&f.p_trimmed),
+                        whole_length(&f.q_trimmed)
+                    ),
+                    Err(other) => panic!("{name}: {other}"),
+                }
+            }
+        }
+        let options = FilletOptions::new(1.0, 8.0 * (1.0 - 1e-9), 2, 2);
+        let f = bezjoin_core::fillet_vertex(p, q, &options, 0.0).unwrap();
+        let kept = whole_length(&f.q_trimmed);
+        assert!((kept - 8e-9).abs() <= 1e-11, "kept {kept}");
+    }
+}

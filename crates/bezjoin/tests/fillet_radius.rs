@@ -368,3 +368,96 @@ fn a_radius_too_large_for_a_wire_is_refused_by_name() {
         other => panic!("{other:?}"),
     }
 }
+
+/// A radius that uses a whole side exactly (a 300-long side between two
+/// 90-degree corners of radius 150) used to keep a piece of that side 6e-14
+/// long, an edge no CAD kernel takes; it is refused naming the side, with
+/// what the cuts leave. A radius 1e-7 shorter keeps 2e-5 of the side; the
+/// C^k chain whose setbacks add up to a side is refused the same way.
+#[test]
+fn a_radius_that_uses_a_whole_side_is_refused_not_left_as_a_sliver() {
+    let line = |a: [f64; 2], b: [f64; 2]| BezierCurve::from_rows(&[a, b]).unwrap();
+    let plate = [
+        line([0.0, 0.0], [500.0, 0.0]),
+        line([500.0, 0.0], [500.0, 300.0]),
+        line([500.0, 300.0], [0.0, 300.0]),
+        line([0.0, 300.0], [0.0, 0.0]),
+    ];
+    for order in [2, 3] {
+        match fillet_radius_chain(&plate, 150.0, order, true) {
+            Err(BezjoinError::InvalidArgument { name, reason }) => {
+                assert!(
+                    name == "curves[1]" || name == "curves[3]",
+                    "{name}: {reason}"
+                );
+                assert!(reason.contains("use the whole curve"), "{reason}");
+            }
+            Ok(rounded) => panic!(
+                "answered: pieces {:?}",
+                rounded.pieces.iter().map(Curve::domain).collect::<Vec<_>>()
+            ),
+            Err(other) => panic!("{other}"),
+        }
+        let rounded = fillet_radius_chain(&plate, 150.0 - 1e-5, order, true).unwrap();
+        let side = &rounded.pieces[2];
+        let (a, b) = side.domain();
+        let kept = side.arc_length_default(a, b).unwrap();
+        assert!((kept - 2e-5).abs() <= 1e-9, "kept {kept}");
+    }
+    let setbacks = bezjoin_core::ChainFilletOptions::closed(bezjoin_core::FilletOptions::new(
+        150.0, 150.0, 2, 2,
+    ));
+    match bezjoin_core::fillet_chain(&plate, &setbacks) {
+        Err(BezjoinError::InvalidArgument { name, reason }) => {
+            assert!(
+                name == "curves[1]" || name == "curves[3]",
+                "{name}: {reason}"
+            );
+        }
+        other => panic!("{other:?}"),
+    }
+}
+
+/// Ends that miss each other by a little (50 um at the origin, where the
+/// vertex tolerance is 1e-9 of the coordinate scale 0.5) and do not cross:
+/// the refusal says how far apart they are and what a shared vertex needs,
+/// for one corner and for a wire (it used to say only "the curves do not
+/// cross").
+#[test]
+fn ends_that_just_miss_are_refused_with_their_distance() {
+    let a = BezierCurve::from_rows(&[[0.0, 0.0], [0.5, 0.0]]).unwrap();
+    let b = BezierCurve::from_rows(&[[0.5, 5e-5], [0.5, 0.3]]).unwrap();
+    let gap_in = |reason: &str| -> f64 {
+        let rest = reason
+            .split("P ends ")
+            .nth(1)
+            .unwrap_or_else(|| panic!("{reason}"));
+        let gap: f64 = rest.split(' ').next().unwrap().parse().unwrap();
+        assert!(
+            rest.contains("from Q's start; a shared vertex needs at most"),
+            "{reason}"
+        );
+        gap
+    };
+    match fillet_radius(&a, &b, 0.02, 2) {
+        Err(BezjoinError::NoIntersection { reason }) => {
+            assert!((gap_in(&reason) - 5e-5).abs() <= 1e-12, "{reason}")
+        }
+        other => panic!("{other:?}"),
+    }
+    match fillet_radius_chain(&[a.clone(), b.clone()], 0.02, 2, false) {
+        Err(BezjoinError::NoIntersection { reason }) => {
+            assert!(reason.starts_with("corner 0: "), "{reason}");
+            assert!((gap_in(&reason) - 5e-5).abs() <= 1e-12, "{reason}")
+        }
+        other => panic!("{other:?}"),
+    }
+    // Far apart, no note: the ends are not meant to meet.
+    let far = BezierCurve::from_rows(&[[3.0, 5.0], [3.0, 6.0]]).unwrap();
+    match fillet_radius(&a, &far, 0.02, 2) {
+        Err(BezjoinError::NoIntersection { reason }) => {
+            assert!(!reason.contains("P ends"), "{reason}")
+        }
+        other => panic!("{other:?}"),
+    }
+}

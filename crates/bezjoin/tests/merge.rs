@@ -931,7 +931,15 @@ fn bad_keep_point_parameters_and_mu_are_named() {
                 format!("{side}[1].param = {bad} is not finite")
             );
         }
-        for bad in [-0.1, -1e-300, 1.0 + f64::EPSILON, 1.5, 1e300] {
+        // The value as written in the message: plain decimals in the middle,
+        // exponent form for the tiny and the huge.
+        for (bad, written) in [
+            (-0.1, "-0.1"),
+            (-1e-300, "-1e-300"),
+            (1.0 + f64::EPSILON, "1.0000000000000002"),
+            (1.5, "1.5"),
+            (1e300, "1e300"),
+        ] {
             let e = merge(&p, &q, &with(vec![point(bad)])).unwrap_err();
             assert!(
                 matches!(&e, BezjoinError::ParameterOutOfRange { name, value, .. }
@@ -940,13 +948,19 @@ fn bad_keep_point_parameters_and_mu_are_named() {
             );
             assert_eq!(
                 e.to_string(),
-                format!("{side}[0].param = {bad} is outside [0, 1]")
+                format!("{side}[0].param = {written} is outside [0, 1]")
             );
         }
     }
     // mu <= 0 with a given split (mu = 1 is in `errors_name_the_problem`),
     // and infinite mu.
-    for mu in [0.0, -0.0, -1e-300, -0.5, -1e300] {
+    for (mu, written) in [
+        (0.0, "0"),
+        (-0.0, "-0"),
+        (-1e-300, "-1e-300"),
+        (-0.5, "-0.5"),
+        (-1e300, "-1e300"),
+    ] {
         let e = merge(
             &p,
             &q,
@@ -957,7 +971,7 @@ fn bad_keep_point_parameters_and_mu_are_named() {
             matches!(&e, BezjoinError::ParameterOutOfRange { name, .. } if name == "mu"),
             "{mu}: {e:?}"
         );
-        assert_eq!(e.to_string(), format!("mu = {mu} is outside (0, 1)"));
+        assert_eq!(e.to_string(), format!("mu = {written} is outside (0, 1)"));
     }
     for mu in [f64::NEG_INFINITY, f64::INFINITY] {
         let e = merge(

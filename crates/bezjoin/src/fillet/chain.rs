@@ -21,7 +21,7 @@ use rayon::prelude::*;
 
 use crate::bezier::BezierCurve;
 use crate::curve::{AsCurveRef, Curve, CurveRef};
-use crate::error::{BezjoinError, Result};
+use crate::error::{BezjoinError, Compact, Result};
 use crate::intersect::{IntersectOptions, Intersection, IntersectionKind, intersect};
 
 use super::{Fillet, FilletOptions, fillet_at_validated, validate};
@@ -168,12 +168,49 @@ pub(crate) fn chain_refs<C: AsCurveRef>(curves: &[C]) -> Result<Vec<CurveRef<'_>
     Ok(curves)
 }
 
+/// Largest part of a curve's length that a kept piece of a chain may have
+/// and still be refused as a sliver: cuts this close have met up to the
+/// rounding of their arc-length and tangent-point solves (the same
+/// relative tolerance as a shared vertex).
+const SLIVER: f64 = 1e-9;
+
+/// InvalidArgument naming `curves[i]` when its kept piece `[start, end]`
+/// is at most [`SLIVER`] of its length: the corners' cuts use the whole
+/// curve (a radius or setbacks that fit exactly), and the few ulps left
+/// would be an edge no CAD kernel takes. The lengths are measured only when
+/// the piece is within 1e-6 of the domain in parameter.
+fn check_not_a_sliver(
+    curve: CurveRef,
+    i: usize,
+    (first, last): (f64, f64),
+    (start, end): (f64, f64),
+) -> Result<()> {
+    if end - start > 1e-6 * (last - first) {
+        return Ok(());
+    }
+    let name = format!("curves[{i}]");
+    let accuracy = curve.checked_default_length_accuracy(&name)?;
+    let whole = curve.arc_length(first, last, accuracy)?;
+    let kept = curve.arc_length(start, end, accuracy)?;
+    if kept > SLIVER * whole {
+        return Ok(());
+    }
+    Err(BezjoinError::invalid(
+        name,
+        format!(
+            "the cuts of its two corners leave {kept:e} of its length {} (at most \
+             {SLIVER:e} of it): the setbacks (or the radius) use the whole curve",
+            Compact(whole)
+        ),
+    ))
+}
+
 /// The pieces of a rounded chain in path order: curve `i` between the cut
 /// `v0` of corner `i - 1` and the cut `u0` of corner `i` (`cuts[i] = (u0,
 /// v0)`), each followed by its corner's blend ([`ChainFillet::pieces`]).
 ///
-/// Errors: two cuts on one curve that pass each other (InvalidArgument
-/// naming the curve).
+/// Errors: two cuts on one curve that pass each other, or leave at most
+/// [`SLIVER`] of its length (InvalidArgument naming the curve).
 pub(crate) fn chain_pieces(
     curves: &[CurveRef],
     closed: bool,
@@ -202,6 +239,7 @@ pub(crate) fn chain_pieces(
                 ),
             ));
         }
+        check_not_a_sliver(curves[i], i, (first, last), (start, end))?;
         pieces.push(curves[i].segment(start, end)?);
         if i < corner_count {
             pieces.push(Curve::Bezier(blends[i].clone()));

@@ -459,8 +459,10 @@ pub(crate) fn blend_at(
         Ok(BezjoinError::invalid(
             "p_setback",
             format!(
-                "{dp} is not shorter than the arc length {before} of P before the crossing at u = {}",
-                crossing.u
+                "{dp} is not shorter than the arc length {before} of P before the crossing at \
+                 u = {} by more than {:e} (twice the setback's length accuracy)",
+                crossing.u,
+                2.0 * accuracy * dp
             ),
         ))
     };
@@ -469,20 +471,46 @@ pub(crate) fn blend_at(
         Ok(BezjoinError::invalid(
             "q_setback",
             format!(
-                "{dq} is not shorter than the arc length {after} of Q after the crossing at v = {}",
-                crossing.v
+                "{dq} is not shorter than the arc length {after} of Q after the crossing at \
+                 v = {} by more than {:e} (twice the setback's length accuracy)",
+                crossing.v,
+                2.0 * accuracy * dq
             ),
         ))
     };
     let (p_first, _) = p.domain();
     let (_, q_last) = q.domain();
+    // A setback within its accuracy of the whole length would leave a
+    // sliver of the curve (a few ulps long, or none, as rounding falls): the
+    // piece kept must be longer than twice the setback's accuracy. Its
+    // length is measured only when the cut is within 1e-6 of the curve's
+    // end in parameter.
+    let sliver = |c: CurveRef, a: f64, b: f64, whole: f64, setback: f64, name| -> Result<bool> {
+        if b - a > 1e-6 * whole {
+            return Ok(false);
+        }
+        let kept = c.arc_length(a, b, c.checked_default_length_accuracy(name)?)?;
+        Ok(kept <= 2.0 * accuracy * setback)
+    };
     let u0 = match inverses.p.param_at_length(-dp, accuracy * dp) {
-        Ok(u0) if u0 > p_first && u0 < crossing.u => u0,
+        Ok(u0)
+            if u0 > p_first
+                && u0 < crossing.u
+                && !sliver(p, p_first, u0, crossing.u - p_first, dp, "p")? =>
+        {
+            u0
+        }
         Ok(_) | Err(BezjoinError::InvalidArgument { .. }) => return Err(too_long_p()?),
         Err(e) => return Err(e),
     };
     let v0 = match inverses.q.param_at_length(dq, accuracy * dq) {
-        Ok(v0) if v0 < q_last && v0 > crossing.v => v0,
+        Ok(v0)
+            if v0 < q_last
+                && v0 > crossing.v
+                && !sliver(q, v0, q_last, q_last - crossing.v, dq, "q")? =>
+        {
+            v0
+        }
         Ok(_) | Err(BezjoinError::InvalidArgument { .. }) => return Err(too_long_q()?),
         Err(e) => return Err(e),
     };

@@ -138,8 +138,9 @@ pub fn fillet_radius<'a>(
     let (p, q) = (p.into(), q.into());
     let scale = check_arguments(p, q, radius, order)?;
     let corner = match vertex_corner(p, q, scale) {
-        Some(corner) => corner,
-        None => first_crossing(&intersect(p, q, &IntersectOptions::default())?)?,
+        Ok(corner) => corner,
+        Err(gap) => first_crossing(&intersect(p, q, &IntersectOptions::default())?)
+            .map_err(|e| note_near_vertex(e, gap, scale))?,
     };
     let (rounded, blend) = round_radius_corner(p, q, corner, radius, order, scale)?;
     let (p_first, _) = p.domain();
@@ -193,20 +194,44 @@ fn check_arguments(p: CurveRef, q: CurveRef, radius: f64, order: usize) -> Resul
 }
 
 /// The shared vertex as the corner, when P's last point is Q's first
-/// (within [`VERTEX_TOLERANCE`] of `scale`).
-fn vertex_corner(p: CurveRef, q: CurveRef, scale: f64) -> Option<Intersection> {
+/// (within [`VERTEX_TOLERANCE`] of `scale`); otherwise the distance
+/// between them.
+fn vertex_corner(p: CurveRef, q: CurveRef, scale: f64) -> std::result::Result<Intersection, f64> {
     let (_, p_last) = p.domain();
     let (q_first, _) = q.domain();
     let end = p.eval(p_last);
     let start = q.eval(q_first);
     let gap = crate::bezier::distance(&end, &start);
-    (gap <= VERTEX_TOLERANCE * scale).then_some(Intersection {
-        u: p_last,
-        v: q_first,
-        point: end,
-        distance: gap,
-        kind: IntersectionKind::Crossing,
-    })
+    if gap <= VERTEX_TOLERANCE * scale {
+        Ok(Intersection {
+            u: p_last,
+            v: q_first,
+            point: end,
+            distance: gap,
+            kind: IntersectionKind::Crossing,
+        })
+    } else {
+        Err(gap)
+    }
+}
+
+/// A corner without a crossing whose P ends near Q's start (within 1e-3 of
+/// the coordinate scale) but farther than the vertex tolerance: the
+/// NoIntersection message says how far apart the ends are and what a
+/// shared vertex needs (a sketch's ends that missed by a little).
+fn note_near_vertex(error: BezjoinError, gap: f64, scale: f64) -> BezjoinError {
+    match error {
+        BezjoinError::NoIntersection { reason } if gap <= 1e-3 * scale => {
+            BezjoinError::NoIntersection {
+                reason: format!(
+                    "{reason} (P ends {gap:e} from Q's start; a shared vertex needs at most \
+                     {:e}, {VERTEX_TOLERANCE:e} of the coordinate scale {scale:e})",
+                    VERTEX_TOLERANCE * scale
+                ),
+            }
+        }
+        other => other,
+    }
 }
 
 /// Round `corner` of `p` and `q` (module documentation): the corner's data
@@ -429,8 +454,9 @@ pub fn fillet_radius_chain<C: AsCurveRef + Sync>(
             .max(q.coordinate_scale())
             .max(f64::MIN_POSITIVE);
         let corner = match vertex_corner(p, q, scale) {
-            Some(corner) => corner,
-            None => chain_crossing(i, p, q, &IntersectOptions::default())?,
+            Ok(corner) => corner,
+            Err(gap) => chain_crossing(i, p, q, &IntersectOptions::default())
+                .map_err(|e| note_near_vertex(e, gap, scale))?,
         };
         round_radius_corner(p, q, corner, radius, order, scale).map_err(|e| in_corner(e, i))
     };

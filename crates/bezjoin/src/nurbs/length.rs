@@ -33,7 +33,7 @@ use crate::arclength::{
 use crate::basis::binomial;
 use crate::bezier::{BezierCurve, distance, norm};
 use crate::bezier::{point_and_tangent_fixed, point_and_tangent_rows};
-use crate::error::{BezjoinError, Result, check_finite_scalar};
+use crate::error::{BezjoinError, Compact, Result, check_finite_scalar};
 
 /// Speed evaluations one rational-span length may spend (about 1,000
 /// Gauss-Kronrod panels: a smooth span needs a few dozen).
@@ -1003,7 +1003,11 @@ fn rational_length_adaptive(span: &RationalSpan<'_>, a: f64, b: f64, accuracy: f
     }
     if !total.is_finite() {
         return Err(BezjoinError::NonFiniteScalar {
-            name: format!("arc length from u = {a} to u = {b} (the speed overflows f64)"),
+            name: format!(
+                "arc length from u = {} to u = {} (the speed overflows f64)",
+                Compact(a),
+                Compact(b)
+            ),
             value: total,
         });
     }

@@ -35,7 +35,7 @@ pub use length::MAX_RATIONAL_EVALUATIONS;
 use crate::basis::{BasisLayout, KnotSide, basis_derivatives_inline, basis_scratch_len, find_span};
 use crate::bezier::{BezierCurve, MAX_DEGREE};
 use crate::curve::CurveRef;
-use crate::error::{BezjoinError, Result, check_finite, check_finite_scalar};
+use crate::error::{BezjoinError, Compact, Result, check_finite, check_finite_scalar};
 
 /// A NURBS curve of degree `p >= 1`: poles, weights (`None`: all 1, a
 /// polynomial B-spline) and the flat knot vector.
@@ -89,6 +89,19 @@ impl NurbsCurve {
                 format!("{degree} is above the supported maximum {MAX_DEGREE}"),
             ));
         }
+        let largest = isize::MAX as usize / std::mem::size_of::<f64>();
+        for (name, len) in [
+            ("poles", poles_len),
+            ("weights", weights_len),
+            ("knots", knots_len),
+        ] {
+            if len > largest {
+                return Err(BezjoinError::invalid(
+                    name,
+                    format!("{len} values are more than any array of doubles holds ({largest})"),
+                ));
+            }
+        }
         let order = degree + 1;
         if poles_len % dim != 0 || poles_len / dim < order {
             return Err(BezjoinError::invalid(
@@ -97,6 +110,20 @@ impl NurbsCurve {
             ));
         }
         let count = poles_len / dim;
+        // Weights and knots that agree on another pole count: the poles are
+        // the odd one out, so they are named (not the two that agree).
+        if let Some(from_knots) = knots_len.checked_sub(order)
+            && weights_len != 0
+            && weights_len == from_knots
+            && from_knots != count
+            && let Some(expected) = from_knots.checked_mul(dim)
+        {
+            return Err(BezjoinError::LengthMismatch {
+                name: "poles".into(),
+                expected,
+                actual: poles_len,
+            });
+        }
         if weights_len != 0 && weights_len != count {
             return Err(BezjoinError::LengthMismatch {
                 name: "weights".into(),
@@ -521,7 +548,11 @@ impl NurbsCurve {
         check_finite_scalar(name, u)?;
         let (a, b) = self.domain();
         if u < a || u > b {
-            return Err(BezjoinError::out_of_range(name, u, format!("[{a}, {b}]")));
+            return Err(BezjoinError::out_of_range(
+                name,
+                u,
+                format!("[{}, {}]", Compact(a), Compact(b)),
+            ));
         }
         Ok(())
     }
@@ -1248,8 +1279,9 @@ impl NurbsCurve {
             let name = name();
             return Err(BezjoinError::NonFiniteScalar {
                 name: format!(
-                    "derivative of order {} at {name} = {u} (it overflows f64)",
-                    i / self.dim
+                    "derivative of order {} at {name} = {} (it overflows f64)",
+                    i / self.dim,
+                    Compact(u)
                 ),
                 value: out[i],
             });
