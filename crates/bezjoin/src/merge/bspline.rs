@@ -545,12 +545,13 @@ impl<'a> SplineProblem<'a> {
     /// where the KKT estimate refuses the metric's own minimum, it needs
     /// three times the trials of the value search.)
     fn optimal(&self) -> Result<(f64, Solved)> {
-        if self.slope_search_applies()
-            && let Ok(mu) = self.optimal_mu_on_slopes()
-        {
-            match self.solve(&[0.0, mu, 1.0]) {
-                Err(BezjoinError::IllConditioned { .. }) => {}
-                solved => return Ok((mu, solved?)),
+        // (Nested, not a let chain: the crate's rust-version is 1.85.)
+        if self.slope_search_applies() {
+            if let Ok(mu) = self.optimal_mu_on_slopes() {
+                match self.solve(&[0.0, mu, 1.0]) {
+                    Err(BezjoinError::IllConditioned { .. }) => {}
+                    solved => return Ok((mu, solved?)),
+                }
             }
         }
         let mu = self.optimal_mu_on_values()?;

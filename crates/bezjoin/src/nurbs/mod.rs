@@ -112,17 +112,15 @@ impl NurbsCurve {
         let count = poles_len / dim;
         // Weights and knots that agree on another pole count: the poles are
         // the odd one out, so they are named (not the two that agree).
-        if let Some(from_knots) = knots_len.checked_sub(order)
-            && weights_len != 0
-            && weights_len == from_knots
-            && from_knots != count
-            && let Some(expected) = from_knots.checked_mul(dim)
-        {
-            return Err(BezjoinError::LengthMismatch {
-                name: "poles".into(),
-                expected,
-                actual: poles_len,
-            });
+        let from_knots = knots_len.checked_sub(order);
+        if weights_len != 0 && from_knots == Some(weights_len) && weights_len != count {
+            if let Some(expected) = weights_len.checked_mul(dim) {
+                return Err(BezjoinError::LengthMismatch {
+                    name: "poles".into(),
+                    expected,
+                    actual: poles_len,
+                });
+            }
         }
         if weights_len != 0 && weights_len != count {
             return Err(BezjoinError::LengthMismatch {
