@@ -1469,7 +1469,9 @@ BzjStatus bzj_lagrange_spline_degree(size_t dim, size_t degree, size_t continuit
  *         ([0, 1] for a Bezier), an order is above the degree, an enum or
  *         bool field holds an invalid value, a control polygon has zero
  *         length or is too short next to the other for BZJ_SPLIT_POLYGON,
- *         or `p` or `q` is a rational NURBS handle (the message names it);
+ *         `p` or `q` is a rational NURBS handle (the message names it), or
+ *         B-spline inputs have more than 8194 poles together (after
+ *         elevation to the common degree; the merge's systems are dense);
  *         BZJ_ERR_NON_FINITE if `mu` or a keep-point parameter is NaN/infinite;
  *         BZJ_ERR_DIMENSION_MISMATCH if `p` and `q` differ in dimension;
  *         BZJ_ERR_INCONSISTENT if the constraints contradict each other or are

@@ -86,8 +86,8 @@ pub use lagrange::{
     bezier_from_lagrange_points, chord_length_params, lagrange_points_of_bezier, lagrange_spline,
 };
 pub use merge::{
-    BSplineChainMerge, BSplineMerge, CurveChainMerge, CurveMerge, merge_bspline_chain,
-    merge_bsplines, merge_bsplines_metric_at, merge_curve_chain, merge_curves,
+    BSplineChainMerge, BSplineMerge, CurveChainMerge, CurveMerge, MAX_MERGE_POLES,
+    merge_bspline_chain, merge_bsplines, merge_bsplines_metric_at, merge_curve_chain, merge_curves,
 };
 pub use merge::{
     Breakpoints, CONSISTENCY_TOLERANCE, CONTRADICTION_MARGIN, ChainKeepPoint, ChainMerge,

@@ -1262,3 +1262,88 @@ fn optimal_mu_is_the_minimum_of_a_dense_scan() {
         }
     }
 }
+
+/// Contradictory constraints are contradictory wherever the curves sit.
+/// The tolerance of a dependent condition was 1e-8 times the largest
+/// absolute coordinate, so moving the data 1e6 away from the origin let a
+/// contradiction pass as rounding: the merge answered, and what it was told
+/// to keep was off (a kept P''(1) by 6 %, R's pieces 2.4e-4 from the kept
+/// P and Q). Now the tolerance is relative to the data's size (the largest
+/// range of one coordinate): at translations 0, 1e3 and 1e6, for the Bezier
+/// merge and the B-spline merge,
+/// - `fix_ends` with P's point and derivatives up to order 3 kept at its
+///   end, optimal split (the derivatives of order 2 and 3 contradict the
+///   continuity there) is Inconsistent;
+/// - keeping P and Q, the two halves of one cubic split at 0.4 with Q's
+///   later points moved by 1e-3, at mu = 0.4, is Inconsistent;
+/// - the same halves unmoved are answered: P^ and Q^ are P and Q, and R
+///   split at mu is P and Q to 1e-9 of the size.
+#[test]
+fn contradictions_are_found_wherever_the_curves_sit() {
+    use bezjoin_core::{Curve, NurbsCurve, merge_curves};
+    let shifted = |rows: &[[f64; 2]], t: f64| {
+        let moved: Vec<[f64; 2]> = rows.iter().map(|[x, y]| [x + t, y + t]).collect();
+        BezierCurve::from_rows(&moved).unwrap()
+    };
+    for t in [0.0, 1e3, 1e6] {
+        let p = shifted(
+            &[[0.0, 0.0], [1.125, 1.8], [2.351, 1.676], [3.588, 1.269]],
+            t,
+        );
+        let q = shifted(
+            &[[3.648, 1.219], [5.219, 0.921], [6.475, -0.05], [8.0, 1.5]],
+            t,
+        );
+        let cubic = shifted(&[[0.0, 0.0], [3.0, 6.0], [7.0, 2.0], [10.0, 5.0]], t);
+        let (first, second) = cubic.split_at(0.4).unwrap();
+        let mut moved = second.points().to_vec();
+        for v in &mut moved[2..] {
+            *v += 1e-3;
+        }
+        let moved = BezierCurve::new(2, 3, moved).unwrap();
+        let end_kept = MergeOptions {
+            fix_ends: true,
+            p_points: vec![KeepPoint {
+                param: 1.0,
+                max_order: 3,
+            }],
+            ..MergeOptions::default()
+                .with_metric(MergeMetric::Integral)
+                .with_split(Breakpoints::Optimal)
+        };
+        let both_kept = MergeOptions {
+            keep_p: true,
+            keep_q: true,
+            ..MergeOptions::default().with_split(Breakpoints::Given(vec![0.4]))
+        };
+        let as_bezier = |c: &BezierCurve| Curve::Bezier(c.clone());
+        let as_bspline = |c: &BezierCurve| Curve::Nurbs(NurbsCurve::from_bezier(c));
+        for (kind, wrap) in [
+            ("Bezier", &as_bezier as &dyn Fn(&BezierCurve) -> Curve),
+            ("B-spline", &as_bspline),
+        ] {
+            for (label, a, b, options) in [
+                ("end kept", &p, &q, &end_kept),
+                ("both kept, Q moved", &first, &moved, &both_kept),
+            ] {
+                match merge_curves(&wrap(a), &wrap(b), options) {
+                    Err(BezjoinError::Inconsistent { .. }) => {}
+                    Ok(m) => panic!(
+                        "{kind}, {label}, shifted {t}: answered (split check {:e})",
+                        m.report.split_check_error
+                    ),
+                    Err(other) => panic!("{kind}, {label}, shifted {t}: {other}"),
+                }
+            }
+            let m = merge_curves(&wrap(&first), &wrap(&second), &both_kept)
+                .unwrap_or_else(|e| panic!("{kind}, both kept, shifted {t}: {e}"));
+            assert_eq!(m.p_hat.points(), first.points(), "{kind}, shifted {t}");
+            assert_eq!(m.q_hat.points(), second.points(), "{kind}, shifted {t}");
+            assert!(
+                m.report.split_check_error * (10.0 + t) <= 1e-9 * 10.0,
+                "{kind}, shifted {t}: split check {:e}",
+                m.report.split_check_error
+            );
+        }
+    }
+}

@@ -786,3 +786,34 @@ fn optimal_mu_is_the_minimum_of_a_dense_scan() {
         }
     }
 }
+
+/// B-splines with more poles than the merge takes are refused by name
+/// before any dense matrix is formed: two curves of 1e5 poles used to abort
+/// the process ("memory allocation of 80000000000 bytes failed"). Two
+/// curves of 4,100 poles (above `MAX_MERGE_POLES` = 8,194 together) are
+/// refused at once, naming the second; the same curves cut to 60 poles
+/// each merge.
+#[test]
+fn too_many_poles_are_refused_before_any_work() {
+    use bezjoin_core::{MAX_MERGE_POLES, MergeOptions, NurbsCurve, merge_bsplines};
+    let polyline = |count: usize, x0: f64| {
+        let poles: Vec<f64> = (0..count)
+            .flat_map(|i| [x0 + i as f64, ((i % 7) as f64).sin()])
+            .collect();
+        let mut knots = vec![0.0];
+        knots.extend((0..count).map(|i| i as f64));
+        knots.push((count - 1) as f64);
+        NurbsCurve::new(2, 1, poles, None, knots).unwrap()
+    };
+    let count = MAX_MERGE_POLES / 2 + 3;
+    let (p, q) = (polyline(count, 0.0), polyline(count, (count - 1) as f64));
+    match merge_bsplines(&p, &q, &MergeOptions::default()) {
+        Err(BezjoinError::InvalidArgument { name, reason }) => {
+            assert_eq!(name, "q", "{reason}");
+            assert!(reason.contains("more than 8194 poles"), "{reason}");
+        }
+        other => panic!("{other:?}"),
+    }
+    let (p, q) = (polyline(60, 0.0), polyline(60, 59.0));
+    merge_bsplines(&p, &q, &MergeOptions::default()).unwrap();
+}

@@ -69,7 +69,7 @@ pub(super) fn kept_solution(
     // bound, plus the data's own rounding (half an ulp of every control
     // point) magnified by the extension, `eps |blossom|`, plus the rounding
     // of e itself: what rounding explains.
-    let tolerance = CONSISTENCY_TOLERANCE.max(accuracy) * result_scale;
+    let tolerance = CONSISTENCY_TOLERANCE.max(accuracy) * problem.extent;
     let explained_point =
         |i: usize| bound.row(i).amax() + sensitivity.row(i).amax() + f64::EPSILON * result_scale;
     let explained_at = |coefficients: &DVector<f64>| {

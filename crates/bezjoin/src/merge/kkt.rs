@@ -109,7 +109,7 @@ pub(super) fn kkt_solution(
     // rounding of the row (`N` eps x scale). Missed by more than
     // CONTRADICTION_MARGIN times that (and the tolerance): contradictory.
     let result_scale = (x0 + &e).amax().max(problem.scale);
-    let tolerance = CONSISTENCY_TOLERANCE.max(accuracy) * result_scale;
+    let tolerance = CONSISTENCY_TOLERANCE.max(accuracy) * problem.extent;
     let root = (unknowns as f64).sqrt();
     let explained = root * (estimate + unknowns as f64 * f64::EPSILON) * result_scale;
     let undecided = check_dependent_rows(

@@ -60,8 +60,9 @@
 //!   remainder at the rounding level, [`RANK_TOLERANCE`] `sqrt(N)`, means
 //!   linearly dependent; any larger remainder keeps the row and its
 //!   ill-conditioning goes into the estimate). A dependent row that the
-//!   solution satisfies (to [`CONSISTENCY_TOLERANCE`] times the coordinate
-//!   scale of input and result) is *redundant but consistent* and accepted
+//!   solution satisfies (to [`CONSISTENCY_TOLERANCE`] times the size of the
+//!   input, the largest range of one coordinate: unchanged by a
+//!   translation) is *redundant but consistent* and accepted
 //!   (for example three points with first derivatives on a cubic `P`); one
 //!   that it misses by more than [`CONTRADICTION_MARGIN`] times what the
 //!   rounding explains (`sqrt(N)` times the error estimate, plus the rows'
@@ -114,8 +115,8 @@ use crate::error::{
 use crate::minimize::{minimize_on_grid_then_brent, minimize_with_slope};
 
 pub use bspline::{
-    BSplineChainMerge, BSplineMerge, CurveChainMerge, CurveMerge, merge_bspline_chain,
-    merge_bsplines, merge_bsplines_metric_at, merge_curve_chain, merge_curves,
+    BSplineChainMerge, BSplineMerge, CurveChainMerge, CurveMerge, MAX_MERGE_POLES,
+    merge_bspline_chain, merge_bsplines, merge_bsplines_metric_at, merge_curve_chain, merge_curves,
 };
 
 pub use stage_one::{

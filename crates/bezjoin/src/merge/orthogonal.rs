@@ -1204,7 +1204,7 @@ pub(super) fn orthogonal_solution(
     } else {
         &x - x0.view()
     };
-    let tolerance = CONSISTENCY_TOLERANCE.max(accuracy) * result_scale;
+    let tolerance = CONSISTENCY_TOLERANCE.max(accuracy) * problem.extent;
     let unknowns = problem.unknowns;
     let root = (unknowns as f64).sqrt();
     let explained = root * (estimate + unknowns as f64 * eps) * result_scale;

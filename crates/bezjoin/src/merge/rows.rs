@@ -41,6 +41,13 @@ pub(super) struct Problem<'p, 'a> {
     x0: OwnedColumns,
     /// Coordinate scale of the input.
     pub(super) scale: f64,
+    /// Size of the input: the largest range of one coordinate over all
+    /// control points (at least the smallest positive double). A
+    /// translation of the data leaves it unchanged, so the tolerance of the
+    /// dependent conditions (`CONSISTENCY_TOLERANCE` times it) does too;
+    /// the coordinate scale would grow with the distance from the origin and
+    /// let a contradiction pass as rounding.
+    pub(super) extent: f64,
     /// The piece lengths `h_j` (the continuity rows' weights).
     lengths: &'p [f64],
     /// The continuity rows as [`Row`]s, built on first use (the KKT
@@ -76,6 +83,7 @@ impl<'p, 'a> Problem<'p, 'a> {
             dim,
             x0: OwnedColumns::zeros(unknowns, dim),
             scale: 0.0,
+            extent: 0.0,
             lengths,
             continuity: OnceCell::new(),
             fix_ends,
@@ -94,6 +102,7 @@ impl<'p, 'a> Problem<'p, 'a> {
         // As nalgebra's `amax` (which differs only for an all-NaN x0, and
         // then gives NaN, which `max` passes over as well).
         problem.scale = super::lsq::amax(problem.x0.columns().as_slice()).max(f64::MIN_POSITIVE);
+        problem.extent = coordinate_extent(problem.x0.columns().as_slice(), unknowns);
         problem
     }
 
@@ -469,6 +478,23 @@ fn continuity_row_small(
         on_left[m - k] = if k % 2 == 0 { wl * c } else { -wl * c };
         on_right[k] = if (r - k) % 2 == 0 { -wr * c } else { wr * c };
     }
+}
+
+/// The largest range `max - min` of one coordinate over column-major
+/// points (`rows` points a column), at least the smallest positive double
+/// (NaN entries are passed over, as by `f64::max`).
+pub(super) fn coordinate_extent(columns: &[f64], rows: usize) -> f64 {
+    columns
+        .chunks_exact(rows.max(1))
+        .map(|column| {
+            let (low, high) = column
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &v| {
+                    (l.min(v), h.max(v))
+                });
+            high - low
+        })
+        .fold(f64::MIN_POSITIVE, f64::max)
 }
 
 /// How a dependent condition stands, given its residual at the solution,
