@@ -1,7 +1,8 @@
 //! Reading JSON jobs with messages that name the field.
 //!
 //! A job is parsed in two steps: `serde_json` turns the text into a
-//! [`serde_json::Value`] (its syntax errors carry line and column), then the
+//! [`serde_json::Value`] (its syntax errors, and a key given twice in one
+//! object, carry line and column), then the
 //! readers here walk that value and report every problem with the JSON path
 //! of the offending field (`p[2][1]`, `constraints[0].t`) and the reason.
 //! Unknown fields are errors too, so a typo (`p_ordr`) is never silently
@@ -59,19 +60,94 @@ pub fn decode_text(source_name: &str, bytes: Vec<u8>) -> JobResult<String> {
     })
 }
 
-/// Parse the text of a job; syntax errors name the line and column.
+/// Parse the text of a job; syntax errors name the line and column, and so
+/// does a key given twice in one object (JSON allows it and `Value` would
+/// keep the last silently: `"keep_p": true, "keep_p": false` would drop a
+/// constraint the job states).
 pub fn parse_text(source_name: &str, text: &str) -> JobResult<Value> {
-    serde_json::from_str(text).map_err(|e| {
-        JobError::new(
-            source_name,
-            format!(
-                "invalid JSON: {e} (line {}, column {})",
-                e.line(),
-                e.column()
-            ),
-        )
-        .without_duplicated_position()
-    })
+    serde_json::from_str::<StrictValue>(text)
+        .map(|strict| strict.0)
+        .map_err(|e| {
+            JobError::new(
+                source_name,
+                format!(
+                    "invalid JSON: {e} (line {}, column {})",
+                    e.line(),
+                    e.column()
+                ),
+            )
+            .without_duplicated_position()
+        })
+}
+
+/// A JSON value read with every object's keys checked for repeats.
+struct StrictValue(Value);
+
+impl<'de> serde::Deserialize<'de> for StrictValue {
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        deserializer.deserialize_any(StrictVisitor).map(StrictValue)
+    }
+}
+
+struct StrictVisitor;
+
+impl<'de> serde::de::Visitor<'de> for StrictVisitor {
+    type Value = Value;
+
+    fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str("a JSON value")
+    }
+
+    fn visit_bool<E>(self, v: bool) -> Result<Value, E> {
+        Ok(Value::Bool(v))
+    }
+
+    fn visit_i64<E>(self, v: i64) -> Result<Value, E> {
+        Ok(Value::from(v))
+    }
+
+    fn visit_u64<E>(self, v: u64) -> Result<Value, E> {
+        Ok(Value::from(v))
+    }
+
+    fn visit_f64<E>(self, v: f64) -> Result<Value, E> {
+        // JSON text has no NaN or infinity, so `from` never gives Null here.
+        Ok(Value::from(v))
+    }
+
+    fn visit_str<E>(self, v: &str) -> Result<Value, E> {
+        Ok(Value::String(v.to_owned()))
+    }
+
+    fn visit_string<E>(self, v: String) -> Result<Value, E> {
+        Ok(Value::String(v))
+    }
+
+    fn visit_unit<E>(self) -> Result<Value, E> {
+        Ok(Value::Null)
+    }
+
+    fn visit_seq<A: serde::de::SeqAccess<'de>>(self, mut seq: A) -> Result<Value, A::Error> {
+        let mut items = Vec::new();
+        while let Some(StrictValue(item)) = seq.next_element()? {
+            items.push(item);
+        }
+        Ok(Value::Array(items))
+    }
+
+    fn visit_map<A: serde::de::MapAccess<'de>>(self, mut map: A) -> Result<Value, A::Error> {
+        let mut object = serde_json::Map::new();
+        while let Some(key) = map.next_key::<String>()? {
+            if object.contains_key(&key) {
+                return Err(serde::de::Error::custom(format!(
+                    "the key \"{key}\" is given twice in one object"
+                )));
+            }
+            let StrictValue(value) = map.next_value()?;
+            object.insert(key, value);
+        }
+        Ok(Value::Object(object))
+    }
 }
 
 impl JobError {

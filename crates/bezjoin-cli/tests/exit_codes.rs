@@ -106,3 +106,43 @@ fn a_panic_is_one_line_and_exit_3() {
     assert!(!stderr.contains("RUST_BACKTRACE"), "{stderr}");
     assert!(out.stdout.is_empty());
 }
+
+/// A key given twice in one object is a bad job naming the key and where
+/// (JSON allows it, and reading the last silently dropped a constraint the
+/// job states: `"keep_p": true, "keep_p": false` merged with nothing kept);
+/// also inside a nested object. Control: the job with the key once is
+/// answered.
+#[test]
+fn a_key_given_twice_exits_2_naming_it() {
+    let job = |keep: &str| {
+        format!(
+            "{{\"p\": [[0, 0], [1, 2], [2, 2], [3, 1]],\n \"q\": [[3.1, 1], [4, 0], [5, 1], [6, 3]],\n {keep}}}"
+        )
+    };
+    let out = bezjoin(
+        &["merge", "-"],
+        job("\"keep_p\": true, \"keep_p\": false").as_bytes(),
+        None,
+    );
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("the key \"keep_p\" is given twice in one object (line 3"),
+        "{stderr}"
+    );
+    let nested = job("\"p_points\": [{\"param\": 0.5, \"param\": 0.25, \"max_order\": 0}]");
+    let out = bezjoin(&["merge", "-"], nested.as_bytes(), None);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("the key \"param\" is given twice"),
+        "{stderr}"
+    );
+    let out = bezjoin(&["merge", "-"], job("\"keep_p\": true").as_bytes(), None);
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}

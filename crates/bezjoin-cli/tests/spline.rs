@@ -177,6 +177,28 @@ fn check_result(job: &Value, result: &Value) {
     assert_eq!(mult[0] as usize, n + 1);
     assert_eq!(*mult.last().unwrap() as usize, n + 1);
     assert!(mult[1..mult.len() - 1].iter().all(|&m| m as usize == n - k));
+    // ... with its poles: the B-spline built from them is the spline, each
+    // segment on its knot interval (local u = (t - t_i) / (t_(i+1) - t_i)).
+    let poles = points(&result["bspline"]["poles"]);
+    let dim = poles[0].len();
+    let flat_knots: Vec<f64> = knots
+        .iter()
+        .zip(&mult)
+        .flat_map(|(&t, &m)| std::iter::repeat_n(t, m as usize))
+        .collect();
+    let whole = bezjoin_core::NurbsCurve::new(dim, n, poles.concat(), None, flat_knots)
+        .expect("the bspline of the result is a valid B-spline");
+    for (i, segment) in segments.iter().enumerate() {
+        for j in 0..=8 {
+            let u = j as f64 / 8.0;
+            let t = knots[i] + u * (knots[i + 1] - knots[i]);
+            let (a, b) = (whole.eval(t), eval(segment, u));
+            assert!(
+                dist(&a, &b) < 1e-12 * scale,
+                "segment {i}, u = {u}: {a:?} vs {b:?}"
+            );
+        }
+    }
     // the tool's own report agrees with what we measured
     assert!(
         result["report"]["max_given_point_distance"]

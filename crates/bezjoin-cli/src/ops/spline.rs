@@ -320,6 +320,7 @@ fn outcome(job: &SplineJob, spline: &LagrangeSpline) -> Result<Outcome, CliError
             "degree": n,
             "knots": knots,
             "multiplicities": multiplicities,
+            "poles": bspline.points().chunks(bspline.dim()).map(|c| c.to_vec()).collect::<Vec<_>>(),
         },
         "report": {
             "measured_continuity": checks.iter().map(JoinCheck::to_json).collect::<Vec<_>>(),
