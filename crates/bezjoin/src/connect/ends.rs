@@ -190,6 +190,9 @@ fn connect_fixed<const D: usize, const CAP: usize, P: CurveJet + ?Sized, Q: Curv
         p.jet_into(u0, kp, KnotSide::Left, p_rows.as_flattened_mut(), p_errors);
         q.jet_into(v0, kq, KnotSide::Right, q_rows.as_flattened_mut(), q_errors);
         if let Some((p_shape, q_shape)) = shapes {
+            // G^k needs a regular point at each end of order >= 1.
+            let zero = |rows: &[[f64; D]]| rows.len() > 1 && rows[1].iter().all(|v| *v == 0.0);
+            crate::geometric::check_regular_ends((u0, zero(p_rows)), (v0, zero(q_rows)), (kp, kq))?;
             bell_targets_in_place(p_rows, p_errors, p_shape);
             bell_targets_in_place(q_rows, q_errors, q_shape);
         }

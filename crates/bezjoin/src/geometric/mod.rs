@@ -50,7 +50,6 @@ mod trial;
 
 use nalgebra::DMatrix;
 
-use crate::basis::KnotSide;
 use crate::bezier::BezierCurve;
 use crate::connect::{
     ConnectOptions, Connection, PointConstraint, Problem, check_connect_degree, check_pair,
@@ -221,25 +220,35 @@ fn geometric_targets(
 /// defined curvature at that end: IllConditioned, as when the search finds
 /// no shape values. `(u0, P'(u0) = 0)` and `(v0, Q'(v0) = 0)`, each only
 /// for an order of at least 1; an exact zero (a tiny tangent still has a
-/// direction). Called after the arguments are validated.
-fn check_regular_ends(
+/// direction). Called after the arguments are validated, with the jets the
+/// solve computes anyway (the end path's fixed rows, the general path's
+/// `Problem`): no evaluation of its own.
+#[inline]
+pub(crate) fn check_regular_ends(
     (u0, p_zero): (f64, bool),
     (v0, q_zero): (f64, bool),
-    options: &GeometricOptions,
+    (p_order, q_order): (usize, usize),
 ) -> Result<()> {
-    let (name, at, value, order) = match (p_zero, q_zero) {
-        (true, _) => ("p", "u0", u0, options.p_order),
-        (false, true) => ("q", "v0", v0, options.q_order),
-        (false, false) => return Ok(()),
-    };
-    Err(BezjoinError::IllConditioned {
+    match (p_zero, q_zero) {
+        (true, _) => Err(zero_tangent_error("p", "u0", u0, p_order)),
+        (false, true) => Err(zero_tangent_error("q", "v0", v0, q_order)),
+        (false, false) => Ok(()),
+    }
+}
+
+/// The error of [`check_regular_ends`], out of line: the end path stays
+/// small where the check passes.
+#[cold]
+#[inline(never)]
+fn zero_tangent_error(name: &str, at: &str, value: f64, order: usize) -> BezjoinError {
+    BezjoinError::IllConditioned {
         what: format!(
             "G^k connect: the tangent of {name} at {at} = {value} is zero, so no shape \
              values give a blend with defined curvature there (G^{order} needs a regular point)"
         ),
         estimate: f64::INFINITY,
         limit: crate::CONNECT_RESIDUAL_LIMIT,
-    })
+    }
 }
 
 /// Shape values given by the caller for one end: `order` values, `beta_1`
@@ -329,22 +338,6 @@ pub fn connect_geometric_curve<P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
         check_pair(p, u0, q, v0)?;
         check_connect_degree(options.p_order, options.q_order, [])?;
         let (kp, kq) = (options.p_order, options.q_order);
-        let zero = |jet: &dyn Fn(&mut [f64], &mut [f64]), dim: usize| {
-            let mut values = vec![0.0; 2 * dim];
-            jet(&mut values, &mut [0.0; 2]);
-            values[dim..].iter().all(|v| *v == 0.0)
-        };
-        check_regular_ends(
-            (
-                u0,
-                kp >= 1 && zero(&|v, e| p.jet_into(u0, 1, KnotSide::Left, v, e), p.dim()),
-            ),
-            (
-                v0,
-                kq >= 1 && zero(&|v, e| q.jet_into(v0, 1, KnotSide::Right, v, e), q.dim()),
-            ),
-            options,
-        )?;
         if let Some(connection) = connect_ends_shaped(p, u0, q, v0, kp, kq, ps, qs) {
             return Ok(GeometricCurve::new(ps.clone(), qs.clone(), connection?));
         }
@@ -356,7 +349,7 @@ pub fn connect_geometric_curve<P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
     check_regular_ends(
         (u0, zero(&problem.p_derivatives)),
         (v0, zero(&problem.q_derivatives)),
-        options,
+        (options.p_order, options.q_order),
     )?;
     let (p_shape, q_shape, connection) = match (&options.p_shape, &options.q_shape) {
         (Some(ps), Some(qs)) => {
