@@ -24,7 +24,7 @@ use crate::curve::{AsCurveRef, Curve, CurveRef};
 use crate::error::{BezjoinError, Compact, Result};
 use crate::intersect::{IntersectOptions, Intersection, IntersectionKind, intersect};
 
-use super::{Fillet, FilletOptions, fillet_at_validated, validate};
+use super::{Fillet, FilletOptions, fillet_at_validated, short_piece_length, validate};
 
 /// Default of [`ChainFilletOptions::parallel_threshold`].
 pub const DEFAULT_PARALLEL_THRESHOLD: usize = 64;
@@ -178,20 +178,20 @@ const SLIVER: f64 = 1e-9;
 /// is at most [`SLIVER`] of its length: the corners' cuts use the whole
 /// curve (a radius or setbacks that fit exactly), and the few ulps left
 /// would be an edge no CAD kernel takes. The lengths are measured only when
-/// the piece is within 1e-6 of the domain in parameter.
+/// the piece is within 1e-6 of the domain in parameter
+/// ([`short_piece_length`]).
 fn check_not_a_sliver(
     curve: CurveRef,
     i: usize,
     (first, last): (f64, f64),
     (start, end): (f64, f64),
 ) -> Result<()> {
-    if end - start > 1e-6 * (last - first) {
+    let name = || format!("curves[{i}]");
+    let Some(kept) = short_piece_length(curve, (start, end), last - first, name)? else {
         return Ok(());
-    }
-    let name = format!("curves[{i}]");
-    let accuracy = curve.checked_default_length_accuracy(&name)?;
-    let whole = curve.arc_length(first, last, accuracy)?;
-    let kept = curve.arc_length(start, end, accuracy)?;
+    };
+    let name = name();
+    let whole = curve.arc_length(first, last, curve.checked_default_length_accuracy(&name)?)?;
     if kept > SLIVER * whole {
         return Ok(());
     }

@@ -485,13 +485,11 @@ pub(crate) fn blend_at(
     // piece kept must be longer than twice the setback's accuracy. Its
     // length is measured only when the cut is within 1e-6 of the curve's
     // end in parameter.
-    let sliver = |c: CurveRef, a: f64, b: f64, whole: f64, setback: f64, name| -> Result<bool> {
-        if b - a > 1e-6 * whole {
-            return Ok(false);
-        }
-        let kept = c.arc_length(a, b, c.checked_default_length_accuracy(name)?)?;
-        Ok(kept <= 2.0 * accuracy * setback)
-    };
+    let sliver =
+        |c: CurveRef, a: f64, b: f64, whole: f64, setback: f64, name: &str| -> Result<bool> {
+            Ok(short_piece_length(c, (a, b), whole, || name.to_owned())?
+                .is_some_and(|kept| kept <= 2.0 * accuracy * setback))
+        };
     let u0 = match inverses.p.param_at_length(-dp, accuracy * dp) {
         Ok(u0)
             if u0 > p_first
@@ -518,6 +516,25 @@ pub(crate) fn blend_at(
     connect_options.scale = options.scale;
     let connection = connect(&p, u0, &q, v0, &connect_options)?;
     Ok(Blend { u0, v0, connection })
+}
+
+/// The arc length of `c` on `[a, b]` (to the curve's default accuracy)
+/// when that piece spans at most 1e-6 of `whole` in parameter: a candidate
+/// sliver, which the fillets (a setback as long as its curve) and the
+/// chains (cuts that use a whole curve) refuse. `None` for a longer piece,
+/// whose length is not needed. `name` (of the curve, for the error of an
+/// overflowing control polygon) is formed only for a candidate.
+pub(crate) fn short_piece_length(
+    c: CurveRef,
+    (a, b): (f64, f64),
+    whole: f64,
+    name: impl FnOnce() -> String,
+) -> Result<Option<f64>> {
+    if b - a > 1e-6 * whole {
+        return Ok(None);
+    }
+    let accuracy = c.checked_default_length_accuracy(&name())?;
+    Ok(Some(c.arc_length(a, b, accuracy)?))
 }
 
 /// The [`Fillet`] of a [`Blend`]: `P` trimmed to `[first, u0]`, `Q` to

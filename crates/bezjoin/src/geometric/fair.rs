@@ -502,7 +502,6 @@ fn shapes_from(
 /// positive finite number (a zero chord or end speed), connect's common
 /// natural scale ([`natural_scale`]) stands in.
 fn natural_end_scales(problem: &Problem) -> (f64, f64) {
-    let common = natural_scale(problem);
     let (p, q) = (&problem.p_derivatives, &problem.q_derivatives);
     let chord = (q.row(0) - p.row(0)).norm();
     let of = |jet: &nalgebra::DMatrix<f64>| {
@@ -514,7 +513,7 @@ fn natural_end_scales(problem: &Problem) -> (f64, f64) {
         if value.is_finite() && value > 0.0 {
             value
         } else {
-            common
+            natural_scale(problem)
         }
     };
     (of(p), of(q))

@@ -236,6 +236,13 @@ pub(crate) fn check_regular_ends(
     }
 }
 
+/// Whether a jet (rows `P, P', ...`) has a first derivative, all of whose
+/// coordinates are exactly zero: the `Problem` form of the test of
+/// [`check_regular_ends`].
+fn zero_tangent(jet: &DMatrix<f64>) -> bool {
+    jet.nrows() > 1 && jet.row(1).iter().all(|v| *v == 0.0)
+}
+
 /// The error of [`check_regular_ends`], out of line: the end path stays
 /// small where the check passes.
 #[cold]
@@ -345,10 +352,9 @@ pub fn connect_geometric_curve<P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
     let mut connect_options = ConnectOptions::new(options.p_order, options.q_order);
     connect_options.constraints = options.constraints.clone();
     let problem = prepare(p, u0, q, v0, &connect_options)?;
-    let zero = |jet: &DMatrix<f64>| jet.nrows() > 1 && jet.row(1).iter().all(|v| *v == 0.0);
     check_regular_ends(
-        (u0, zero(&problem.p_derivatives)),
-        (v0, zero(&problem.q_derivatives)),
+        (u0, zero_tangent(&problem.p_derivatives)),
+        (v0, zero_tangent(&problem.q_derivatives)),
         (options.p_order, options.q_order),
     )?;
     let (p_shape, q_shape, connection) = match (&options.p_shape, &options.q_shape) {
@@ -477,8 +483,7 @@ mod end_path_tests {
             };
             // A zero tangent at an end of order >= 1 (a degree-0 input) is
             // refused before either path solves.
-            let zero = |jet: &DMatrix<f64>| jet.nrows() > 1 && jet.row(1).iter().all(|v| *v == 0.0);
-            if zero(&problem.p_derivatives) || zero(&problem.q_derivatives) {
+            if zero_tangent(&problem.p_derivatives) || zero_tangent(&problem.q_derivatives) {
                 match &fast {
                     Err(BezjoinError::IllConditioned { what, .. }) => {
                         assert!(what.contains("is zero"), "{label}: {what}")

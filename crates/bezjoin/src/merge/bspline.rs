@@ -532,17 +532,10 @@ impl<'a> SplineProblem<'a> {
             .iter()
             .map(|p| p.poles.amax())
             .fold(f64::MIN_POSITIVE, f64::max);
-        let extent = (0..dim)
-            .map(|c| {
-                let (low, high) = pieces
-                    .iter()
-                    .flat_map(|p| p.poles.column(c).iter().copied().collect::<Vec<_>>())
-                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| {
-                        (l.min(v), h.max(v))
-                    });
-                high - low
-            })
-            .fold(f64::MIN_POSITIVE, f64::max);
+        let extent = super::rows::coordinate_extent(
+            pieces.iter().map(|p| (p.poles.as_slice(), p.poles.nrows())),
+            dim,
+        );
         let rates = match pieces.as_slice() {
             [first, second] => Some(knot_rates(degree, &first.curve, &second.curve)),
             _ => None,

@@ -102,7 +102,7 @@ impl<'p, 'a> Problem<'p, 'a> {
         // As nalgebra's `amax` (which differs only for an all-NaN x0, and
         // then gives NaN, which `max` passes over as well).
         problem.scale = super::lsq::amax(problem.x0.columns().as_slice()).max(f64::MIN_POSITIVE);
-        problem.extent = coordinate_extent(problem.x0.columns().as_slice(), unknowns);
+        problem.extent = coordinate_extent([(problem.x0.columns().as_slice(), unknowns)], dim);
         problem
     }
 
@@ -480,20 +480,26 @@ fn continuity_row_small(
     }
 }
 
-/// The largest range `max - min` of one coordinate over column-major
-/// points (`rows` points a column), at least the smallest positive double
-/// (NaN entries are passed over, as by `f64::max`).
-pub(super) fn coordinate_extent(columns: &[f64], rows: usize) -> f64 {
-    columns
-        .chunks_exact(rows.max(1))
-        .map(|column| {
-            let (low, high) = column
-                .iter()
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &v| {
-                    (l.min(v), h.max(v))
-                });
-            high - low
-        })
+/// The largest range `max - min` of one coordinate over blocks of
+/// column-major points (each `(entries, rows)`: `rows` points a column,
+/// `dim` columns), at least the smallest positive double (NaN entries are
+/// passed over, as by `f64::max`). The Bezier merge has one block (its
+/// stacked `x0`), the B-spline merge one per piece.
+pub(super) fn coordinate_extent<'c>(
+    blocks: impl IntoIterator<Item = (&'c [f64], usize)>,
+    dim: usize,
+) -> f64 {
+    let mut ranges = vec![(f64::INFINITY, f64::NEG_INFINITY); dim];
+    for (entries, rows) in blocks {
+        for (column, (low, high)) in entries.chunks_exact(rows.max(1)).zip(&mut ranges) {
+            for &v in column {
+                (*low, *high) = (low.min(v), high.max(v));
+            }
+        }
+    }
+    ranges
+        .iter()
+        .map(|(low, high)| high - low)
         .fold(f64::MIN_POSITIVE, f64::max)
 }
 
