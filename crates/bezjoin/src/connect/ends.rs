@@ -126,6 +126,7 @@ fn bell_targets_in_place<const D: usize>(rows: &mut [[f64; D]], errors: &mut [f6
         3 => bell_targets_order::<D>(3, rows, errors, shape),
         4 => bell_targets_order::<D>(4, rows, errors, shape),
         5 => bell_targets_order::<D>(5, rows, errors, shape),
+        6 => bell_targets_order::<D>(6, rows, errors, shape),
         k => bell_targets_order::<D>(k, rows, errors, shape),
     }
 }
@@ -146,10 +147,11 @@ fn bell_targets_order<const D: usize>(
     for (norm, row) in norms.iter_mut().zip(rows.iter()) {
         *norm = row.iter().map(|v| v * v).sum::<f64>().sqrt();
     }
-    for j in (1..=k).rev() {
+    // Exclusive ranges, which unroll with `k` a constant.
+    for j in (1..k + 1).rev() {
         let mut target = [0.0f64; D];
         let mut bound = 0.0;
-        for i in 1..=k {
+        for i in 1..k + 1 {
             if i <= j {
                 let coefficient = bell[j][i];
                 for c in 0..D {

@@ -159,15 +159,56 @@ pub fn partial_bell(x: &[f64], order: usize) -> DMatrix<f64> {
 
 /// [`partial_bell`] for `order <= MAX_GEOMETRIC_ORDER` in a fixed array
 /// (row `j`, column `i`; the entries outside `i <= j <= order` zero): the
-/// same recurrence, the same numbers bit for bit.
+/// same recurrence with the binomials from [`BELL_BINOMIALS`], the same
+/// numbers bit for bit (`order` at most [`MAX_GEOMETRIC_ORDER`], as the
+/// callers check). Inlined, so that where
+/// the caller's `order` is a constant (the end path's targets) every loop
+/// has constant bounds and unrolls.
+#[inline(always)]
 pub(crate) fn partial_bell_small(
     x: &[f64],
     order: usize,
 ) -> [[f64; MAX_GEOMETRIC_ORDER + 1]; MAX_GEOMETRIC_ORDER + 1] {
-    let mut b = [[0.0; MAX_GEOMETRIC_ORDER + 1]; MAX_GEOMETRIC_ORDER + 1];
-    partial_bell_into(x, order, b.as_flattened_mut(), MAX_GEOMETRIC_ORDER + 1);
+    const N: usize = MAX_GEOMETRIC_ORDER + 1;
+    let mut b = [[0.0; N]; N];
+    debug_assert!(order <= MAX_GEOMETRIC_ORDER);
+    let mut xs = [0.0; MAX_GEOMETRIC_ORDER];
+    xs[..order].copy_from_slice(&x[..order]);
+    b[0][0] = 1.0;
+    // Exclusive ranges: they unroll where `order` is a constant (inclusive
+    // ones keep a flag that stops it).
+    for j in 1..order.min(MAX_GEOMETRIC_ORDER) + 1 {
+        for i in 1..j + 1 {
+            let mut sum = 0.0;
+            for m in 1..j - i + 2 {
+                sum += BELL_BINOMIALS[j - 1][m - 1] * xs[m - 1] * b[j - m][i - 1];
+            }
+            b[j][i] = sum;
+        }
+    }
     b
 }
+
+/// `BELL_BINOMIALS[j][m] = C(j, m)` for `j, m < MAX_GEOMETRIC_ORDER` (zero
+/// for `m > j`): the coefficients `C(j-1, m-1)` of the Bell recurrence for
+/// the geometric orders. Exact integers, so the same doubles as the
+/// recurrence's running product `C(j-1, m-2) (j-m+1) / (m-1)` (whose
+/// product is the exact integer `C(j-1, m-1) (m-1)`).
+const BELL_BINOMIALS: [[f64; MAX_GEOMETRIC_ORDER]; MAX_GEOMETRIC_ORDER] = {
+    let mut table = [[0.0; MAX_GEOMETRIC_ORDER]; MAX_GEOMETRIC_ORDER];
+    let mut j = 0;
+    while j < MAX_GEOMETRIC_ORDER {
+        let mut binomial: u64 = 1;
+        let mut m = 0;
+        while m <= j {
+            table[j][m] = binomial as f64;
+            binomial = binomial * (j - m) as u64 / (m + 1) as u64;
+            m += 1;
+        }
+        j += 1;
+    }
+    table
+};
 
 /// The recurrence of [`partial_bell`] into the row-major `b` (row stride
 /// `stride`), whose entries must be zero on entry.

@@ -16,28 +16,6 @@ use crate::connect::{
 
 use super::MAX_GEOMETRIC_ORDER;
 
-/// `B_(j,i)` of [`partial_bell`](super::partial_bell) for `j, i <= order`
-/// into a fixed array (the same recurrence and operation order).
-fn bell_into(x: &[f64], order: usize, b: &mut [[f64; MAX_GEOMETRIC_ORDER + 1]]) {
-    for row in b.iter_mut().take(order + 1) {
-        row.fill(0.0);
-    }
-    b[0][0] = 1.0;
-    for j in 1..=order {
-        for i in 1..=j {
-            let mut sum = 0.0;
-            let mut binomial = 1.0; // C(j-1, m-1)
-            for m in 1..=(j - i + 1) {
-                if m > 1 {
-                    binomial = binomial * (j - m + 1) as f64 / (m - 1) as f64;
-                }
-                sum += binomial * x[m - 1] * b[j - m][i - 1];
-            }
-            b[j][i] = sum;
-        }
-    }
-}
-
 /// Reusable state of the trial solves of one problem.
 pub(super) struct TrialSolver<'a> {
     problem: &'a Problem,
@@ -102,7 +80,7 @@ impl<'a> TrialSolver<'a> {
             (&self.p_jet, 0)
         };
         let k = jet.len() / dim - 1;
-        bell_into(shape, k, &mut self.bell);
+        self.bell = super::partial_bell_small(shape, k);
         let targets = &mut self.targets[first * dim..(first + k + 1) * dim];
         targets[..dim].copy_from_slice(&jet[..dim]);
         for j in 1..=k {
