@@ -173,18 +173,10 @@ fn index_html(ran: &[Ran]) -> String {
         let n = escape(r.scenario.name);
         let _ = writeln!(
             s,
-            "<figure id=\"{n}\">\n<h2>{t}</h2>\n<img src=\"{n}.svg\" alt=\"{t}\">\n<figcaption><p>{d}</p><p>{c}</p>\n\
+            "<figure id=\"{n}\">\n<h2>{t}</h2>\n<img src=\"{n}.svg\" alt=\"{t}\">\n<figcaption><p>{d}</p>\n\
              <p>Reproduce: <code>bezjoin {op} {n}.job.json --svg {n}.svg</code> (<a href=\"{n}.job.json\">job</a>, <a href=\"{n}.result.json\">result</a>)</p></figcaption>\n</figure>",
             t = escape(r.scenario.title),
             d = escape(r.scenario.description),
-            c = r
-                .outcome
-                .figure
-                .caption
-                .iter()
-                .map(|l| escape(l))
-                .collect::<Vec<_>>()
-                .join("<br>\n"),
             op = r.scenario.operation.name(),
         );
     }

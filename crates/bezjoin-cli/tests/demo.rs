@@ -406,6 +406,34 @@ fn assert_same_json(a: &Value, b: &Value, at: &str) {
     }
 }
 
+/// The picture's caption lines after its title (degree, continuity
+/// measured, the library's residual, ...) are in the SVG, which the page
+/// shows: the page's figure does not print them a second time.
+fn assert_caption_not_repeated(name: &str, index: &str, svg: &str) {
+    let open = format!("<figure id=\"{name}\">");
+    let start = index
+        .find(&open)
+        .unwrap_or_else(|| panic!("{name}: no figure"));
+    let figure = &index[start..start + index[start..].find("</figure>").unwrap()];
+    let group_start = svg.find("<g id=\"caption\"").expect("a caption group");
+    let group = &svg[group_start..group_start + svg[group_start..].find("</g>").unwrap()];
+    let mut lines = Vec::new();
+    let mut rest = group;
+    while let Some(i) = rest.find("<text") {
+        let begin = i + rest[i..].find('>').unwrap() + 1;
+        let end = begin + rest[begin..].find("</text>").unwrap();
+        lines.push(&rest[begin..end]);
+        rest = &rest[end..];
+    }
+    assert!(lines.len() > 1, "{name}: the picture has caption lines");
+    for line in &lines[1..] {
+        assert!(
+            !figure.contains(line),
+            "{name}: the page repeats the picture's caption line {line:?}"
+        );
+    }
+}
+
 #[test]
 fn demo_writes_every_listed_scenario() {
     let out = out_dir();
@@ -425,6 +453,10 @@ fn demo_writes_every_listed_scenario() {
     let names = listed_scenarios(&index);
     // Every scenario of the papers (issue 8, item 3), once each, in order.
     assert_eq!(names, SCENARIOS, "the scenarios index.html lists");
+    for name in &names {
+        let svg = std::fs::read_to_string(out.join(format!("{name}.svg"))).unwrap();
+        assert_caption_not_repeated(name, &index, &svg);
+    }
     let table = String::from_utf8_lossy(&run.stdout);
     assert_summary_table(&table, &out);
     for name in names.iter().filter(|n| n.starts_with("fillet-")) {
