@@ -534,6 +534,25 @@ fn spline_picture_shows_polygons_combs_nodes_and_caption() {
     assert!(!caption(&svg).contains(TOP_VIEW_NOTE));
 }
 
+/// A 4D job is answered (any dimension is) and its picture names its
+/// dimension in the top-view note (not "3D").
+#[test]
+fn four_dimensional_connection_names_its_dimension_in_the_note() {
+    let job = json!({
+        "p": [[0.0, 0.0, 0.0, 0.0], [1.0, 2.0, 1.0, 0.5]],
+        "q": [[7.0, 2.0, 3.0, 1.0], [8.0, 3.0, 1.0, 2.0]],
+        "p_order": 1,
+        "q_order": 1
+    });
+    let (result, svg) = run("connect", &job);
+    assert_eq!(result["curve"]["dim"], 4);
+    assert_caption_has(
+        &svg,
+        &["4D curves shown in top view (x-y projection)".to_string()],
+    );
+    assert!(!caption(&svg).contains("3D curves"));
+}
+
 #[test]
 fn three_dimensional_connection_is_drawn_in_top_view_with_a_note() {
     let job = json!({

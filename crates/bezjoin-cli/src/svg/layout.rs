@@ -89,14 +89,13 @@ impl Layout {
 
 /// The figure's caption lines followed by the picture's own notes.
 fn caption_lines(figure: &Figure, combs: &Combs) -> Vec<String> {
-    let projected = figure.curves.iter().any(|c| c.shape.dim() >= 3);
+    let largest_dim = figure.curves.iter().map(|c| c.shape.dim()).max();
     let graph = figure.curves.iter().any(|c| c.shape.dim() == 1);
     let mut caption = figure.caption.clone();
-    if projected {
-        caption.push(
-            "3D curves shown in top view (x-y projection); combs show the curvature of the projection."
-                .into(),
-        );
+    if let Some(dim) = largest_dim.filter(|d| *d >= 3) {
+        caption.push(format!(
+            "{dim}D curves shown in top view (x-y projection); combs show the curvature of the projection."
+        ));
     }
     if graph {
         caption.push("1D curves shown as graphs (t, x(t)).".into());
