@@ -111,6 +111,67 @@ class RoundWireByRadius(unittest.TestCase, CommandDriver):
             self.assertEqual(report.curvature_extrema, 1)
             self.assertLess(report.arc_deviation, 1.5)
 
+    def slot_edges(self):
+        """A slot-like profile: a line, a half circle of radius 150 tangent to it and to
+        the next line (two smooth joins), the next line, and a closing line with two
+        right-angle corners."""
+        arc = Part.ArcOfCircle(Part.Circle(V(800, 150, 0), V(0, 0, 1), 150.0),
+                               -0.5 * math.pi, 0.5 * math.pi).toShape()
+        return [Part.makeLine(V(0, 0, 0), V(800, 0, 0)), arc,
+                Part.makeLine(V(800, 300, 0), V(0, 300, 0)),
+                Part.makeLine(V(0, 300, 0), V(0, 0, 0))]
+
+    def test_smooth_joins_are_left_as_they_are(self):
+        edges = self.slot_edges()
+        rounded = operations.round_wire_by_radius(edges, 20.0)
+        self.assertTrue(rounded.closed)
+        # The two right-angle corners rounded, the two tangent joins (after edge 1 and
+        # after edge 2 along the path) kept.
+        self.assertEqual(len(rounded.reports), 2)
+        self.assertEqual(sorted(rounded.smooth_joins), [1, 2])
+        self.assertIn("2 smooth joins left as they are", rounded.describe())
+        shape = rounded.shape
+        self.assertTrue(shape.isValid() and shape.isClosed())
+        self.assertEqual(len(shape.Edges), 6)
+        Part.Face(shape)
+        # The half circle is kept whole and the sharp corners are cut off.
+        arcs = [e for e in shape.Edges if abs(e.Length - 150.0 * math.pi) < 1e-9]
+        self.assertEqual(len(arcs), 1)
+        # G2 at the four joins of the blends; the smooth joins stay what they were:
+        # the same tangent, the curvature stepping from the line's 0 to the arc's 1/150.
+        ordered = shape.OrderedEdges
+        for left, right in zip(ordered, ordered[1:] + ordered[:1]):
+            a, b = left.LastParameter, right.FirstParameter
+            self.assertLessEqual(gap(left.valueAt(a), right.valueAt(b)), 1e-9)
+            self.assertLessEqual(gap(left.tangentAt(a), right.tangentAt(b)), 1e-8)
+            step = abs(left.curvatureAt(a) - right.curvatureAt(b))
+            if arcs[0].isSame(left) or arcs[0].isSame(right):
+                self.assertAlmostEqual(step, 1 / 150.0, delta=1e-9)
+            else:
+                self.assertLessEqual(step, 1e-6)
+        for corner in ((0, 0), (0, 300)):
+            self.assertGreater(shape.distToShape(Part.Vertex(V(*corner, 0)))[0], 1.0)
+        for point in ((400, 0), (800, 0), (950, 150), (800, 300), (400, 300)):
+            self.assertLess(shape.distToShape(Part.Vertex(V(*point, 0)))[0], 1e-9)
+        # By setback too (C^k blends, the automatic scale), and on the path started
+        # elsewhere and run the other way.
+        for path in (edges, edges[2:] + edges[:2], list(reversed(edges))):
+            for wire in (operations.round_wire(path, setback=10.0),
+                         operations.round_wire(path, radius=20.0)):
+                self.assertTrue(wire.isValid() and wire.isClosed())
+                self.assertEqual(len(wire.Edges), 6)
+                self.assertTrue(any(abs(e.Length - 150.0 * math.pi) < 1e-9
+                                    for e in wire.Edges))
+
+    def test_a_wire_with_only_smooth_joins_has_no_corner_to_round(self):
+        top = Part.ArcOfCircle(Part.Circle(V(0, 0, 0), V(0, 0, 1), 5.0), 0.0,
+                               math.pi).toShape()
+        bottom = Part.ArcOfCircle(Part.Circle(V(0, 0, 0), V(0, 0, 1), 5.0), math.pi,
+                                  2 * math.pi).toShape()
+        with self.assertRaises(bezjoin.BezjoinError) as caught:
+            operations.round_wire_by_radius([top, bottom], 1.0)
+        self.assertIn("every join of the wire is smooth", str(caught.exception))
+
     def test_open_sketch_path_with_an_arc_and_reversed_edges(self):
         # line -> quarter arc (radius 3, tangent to neither line) -> line, edges in
         # mixed directions as a sketch may store them.

@@ -269,6 +269,25 @@ pub(crate) fn bezier_basis_derivatives_into(
     basis_derivatives_into(knot, degree, degree, t, max_order, layout, ders, scratch);
 }
 
+/// Pascal's triangle as a square table: `C(r, k)` at `[r][k]` for
+/// `r, k < N`, zero for `k > r` (exact integers for the sizes used, far
+/// below `2^53`).
+pub(crate) const fn pascal_square<const N: usize>() -> [[f64; N]; N] {
+    let mut table = [[0.0; N]; N];
+    let mut r = 0;
+    while r < N {
+        let mut c = 1u64;
+        let mut k = 0;
+        while k <= r {
+            table[r][k] = c as f64;
+            c = c * (r - k) as u64 / (k + 1) as u64;
+            k += 1;
+        }
+        r += 1;
+    }
+    table
+}
+
 /// Binomial coefficient `C(n, k)` as `f64` (exact while it is below 2^53).
 pub(crate) fn binomial(n: usize, k: usize) -> f64 {
     if k > n {

@@ -33,6 +33,13 @@ MAX_BEZIER_DEGREE = 25
 #: refused (:func:`merge_edges`, keyword ``max_angle``): one edge cannot follow a corner.
 MAX_MERGE_ANGLE_DEGREES = 30.0
 
+#: A join of a wire whose tangents turn by less than this many degrees is smooth (a
+#: line running tangentially into an arc, two collinear lines): :func:`round_wire` and
+#: :func:`round_wire_by_radius` leave it as it is and round the wire's other corners.
+#: Above the library's own "tangential" limit (a sine of 1e-6, 5.7e-5 degrees), so no
+#: join the library would refuse as smooth is passed to it.
+SMOOTH_JOIN_DEGREES = 1e-3
+
 #: The default setback of :func:`round_corner` (and of the command's form): this
 #: fraction of the shorter edge's length, so it scales with the model.
 DEFAULT_SETBACK_FRACTION = 0.1
@@ -406,14 +413,17 @@ def round_corner(first_edge, second_edge, *, setback=None, second_setback=None, 
 
 class RoundedWire:
     """A wire with every corner rounded by radius (:func:`round_wire_by_radius`):
-    the ``shape`` (a ``Part.Wire``), whether it is ``closed``, and one
-    :class:`bezjoin.RadiusCornerReport` per corner in ``reports`` (corner ``i``
-    between edge ``i`` and the next one, in the wire's order)."""
+    the ``shape`` (a ``Part.Wire``), whether it is ``closed``, one
+    :class:`bezjoin.RadiusCornerReport` per rounded corner in ``reports`` (in path
+    order), and ``smooth_joins``: the joins left as they are because they are smooth
+    (join ``i`` between edge ``i + 1`` and the next one along the path, edges numbered
+    from 1; the closing join of a closed wire is the last one)."""
 
-    def __init__(self, shape, closed, reports):
+    def __init__(self, shape, closed, reports, smooth_joins=()):
         self.shape = shape
         self.closed = closed
         self.reports = reports
+        self.smooth_joins = list(smooth_joins)
 
     @property
     def max_arc_deviation(self):
@@ -423,8 +433,67 @@ class RoundedWire:
     def describe(self):
         """One line for the report view."""
         kind = "closed" if self.closed else "open"
-        return (f"{len(self.reports)} corners of the {kind} wire rounded; largest distance "
-                f"of a blend from its arc {self.max_arc_deviation:.6g}")
+        smooth = (f" ({len(self.smooth_joins)} smooth joins left as they are)"
+                  if self.smooth_joins else "")
+        return (f"{len(self.reports)} corners of the {kind} wire rounded{smooth}; largest "
+                f"distance of a blend from its arc {self.max_arc_deviation:.6g}")
+
+
+def _corner_runs(curves, closed):
+    """The path ``curves`` (oriented, see :func:`_path_curves`) cut at its smooth joins
+    (tangents turning by less than ``SMOOTH_JOIN_DEGREES``): ``(runs, closes, smooth)``.
+    ``runs`` are lists of curve indices along the path, each rounded as one chain (a
+    run of one curve is kept whole); ``closes``: whether the single run is closed (only
+    when ``closed`` and no join is smooth); ``smooth``: the indices ``i`` of the smooth
+    joins (between curve ``i`` and the next, the last one closing a closed path). A
+    closed path with a smooth join is opened there: its runs start after that join."""
+    count = len(curves)
+    joins = count if closed else count - 1
+    smooth = [i for i in range(joins)
+              if _angle_at_join(curves[i], curves[(i + 1) % count]) < SMOOTH_JOIN_DEGREES]
+    if not smooth:
+        return [list(range(count))], closed, []
+    start = (smooth[0] + 1) % count if closed else 0
+    order = [(start + k) % count for k in range(count)]
+    runs = [[order[0]]]
+    for index in order[1:]:
+        if runs[-1][-1] in smooth:
+            runs.append([index])
+        else:
+            runs[-1].append(index)
+    return runs, False, smooth
+
+
+def _round_runs(curves, closed, round_chain):
+    """Every corner of the path ``curves`` rounded by ``round_chain(run_curves,
+    closed)`` (a library chain call, whose result has ``pieces`` and may have
+    ``reports``), run by run between the smooth joins (:func:`_corner_runs`), which are
+    left as they are. Returns ``(wire, reports, smooth)``; a run's error is re-raised
+    with the edges it concerns named."""
+    runs, closes, smooth = _corner_runs(curves, closed)
+    if all(len(run) == 1 for run in runs):
+        raise _invalid(
+            f"every join of the wire is smooth (its tangents turn by less than "
+            f"{SMOOTH_JOIN_DEGREES:g} degrees): there is no corner to round")
+    edges, reports = [], []
+    for run in runs:
+        if len(run) == 1:
+            edges.append(curves[run[0]].to_edge())
+            continue
+        try:
+            result = round_chain([curves[i] for i in run], closes)
+        except bezjoin.BezjoinError as error:
+            if not smooth:
+                raise
+            raise bezjoin.BezjoinError(
+                error.status, error.status_name,
+                f"edges {run[0] + 1} to {run[-1] + 1} along the path (between smooth joins; "
+                f"corner i of what follows is the corner after the (i + 1)-th of these "
+                f"edges): {error.message}") from error
+        with result:
+            edges.extend(piece.to_edge() for piece in result.pieces)
+            reports.extend(getattr(result, "reports", []))
+    return Part.Wire(edges), reports, [i + 1 for i in smooth]
 
 
 def _path_curves(edges):
@@ -492,9 +561,11 @@ def round_wire_by_radius(edges, radius, *, order=2, closed=None):
     curves, path_closes = _path_curves(list(edges))
     closed = path_closes if closed is None else closed
     try:
-        with bezjoin.fillet_radius_chain(curves, radius, order=order,
-                                         closed=bool(closed)) as result:
-            return RoundedWire(_wire(result.pieces), bool(closed), list(result.reports))
+        wire, reports, smooth = _round_runs(
+            curves, bool(closed),
+            lambda run, closes: bezjoin.fillet_radius_chain(run, radius, order=order,
+                                                            closed=closes))
+        return RoundedWire(wire, bool(closed), list(reports), smooth)
     finally:
         for curve in curves:
             curve.close()
@@ -542,12 +613,13 @@ def round_wire(shape, *, radius=None, setback=None, continuity="G2", closed=None
     closed = bool(path_closes if closed is None else closed)
     try:
         if radius is not None:
-            result = bezjoin.fillet_radius_chain(curves, radius, order=order, closed=closed)
+            def round_chain(run, closes):
+                return bezjoin.fillet_radius_chain(run, radius, order=order, closed=closes)
         else:
-            result = bezjoin.fillet_chain(curves, setback=setback, p_order=order,
-                                          q_order=order, closed=closed)
-        with result:
-            wire = _wire(result.pieces)
+            def round_chain(run, closes):
+                return bezjoin.fillet_chain(run, setback=setback, p_order=order,
+                                            q_order=order, closed=closes)
+        wire, _, _ = _round_runs(curves, closed, round_chain)
     finally:
         for curve in curves:
             curve.close()

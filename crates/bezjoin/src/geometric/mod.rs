@@ -194,21 +194,8 @@ pub(crate) fn partial_bell_small(
 /// the geometric orders. Exact integers, so the same doubles as the
 /// recurrence's running product `C(j-1, m-2) (j-m+1) / (m-1)` (whose
 /// product is the exact integer `C(j-1, m-1) (m-1)`).
-const BELL_BINOMIALS: [[f64; MAX_GEOMETRIC_ORDER]; MAX_GEOMETRIC_ORDER] = {
-    let mut table = [[0.0; MAX_GEOMETRIC_ORDER]; MAX_GEOMETRIC_ORDER];
-    let mut j = 0;
-    while j < MAX_GEOMETRIC_ORDER {
-        let mut binomial: u64 = 1;
-        let mut m = 0;
-        while m <= j {
-            table[j][m] = binomial as f64;
-            binomial = binomial * (j - m) as u64 / (m + 1) as u64;
-            m += 1;
-        }
-        j += 1;
-    }
-    table
-};
+const BELL_BINOMIALS: [[f64; MAX_GEOMETRIC_ORDER]; MAX_GEOMETRIC_ORDER] =
+    crate::basis::pascal_square();
 
 /// The recurrence of [`partial_bell`] into the row-major `b` (row stride
 /// `stride`), whose entries must be zero on entry.

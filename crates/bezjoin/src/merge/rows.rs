@@ -427,21 +427,7 @@ fn continuity_row_nonzero(
 const SMALL_ROWS: usize = 16;
 
 /// `C(r, k)` for `r, k < SMALL_ROWS` (exact integers).
-const PASCAL: [[f64; SMALL_ROWS]; SMALL_ROWS] = {
-    let mut table = [[0.0; SMALL_ROWS]; SMALL_ROWS];
-    let mut r = 0;
-    while r < SMALL_ROWS {
-        let mut c = 1u64;
-        let mut k = 0;
-        while k <= r {
-            table[r][k] = c as f64;
-            c = c * (r - k) as u64 / (k + 1) as u64;
-            k += 1;
-        }
-        r += 1;
-    }
-    table
-};
+const PASCAL: [[f64; SMALL_ROWS]; SMALL_ROWS] = crate::basis::pascal_square();
 
 /// `C(2r, r)` for `r < SMALL_ROWS` (exact integers).
 const CENTRAL: [f64; SMALL_ROWS] = {
