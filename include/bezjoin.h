@@ -1110,7 +1110,11 @@ BzjStatus bzj_fillet_auto_scale(const struct BzjCurve *p, const struct BzjCurve 
  *         `gap` is negative, or a setback is not shorter than the curve by
  *         more than twice its length accuracy;
  *         BZJ_ERR_NO_INTERSECTION if P's end and Q's start are more than
- *         `gap` apart (the message gives the distance);
+ *         `gap` apart (the message gives the distance), or if the path
+ *         doubles back at the vertex (Q leaves along P's arrival direction
+ *         reversed, the sine of the tangents' angle at most 1e-6, the
+ *         default tangent tolerance of `BzjIntersectOptions`): a cusp, no
+ *         corner to round;
  *         BZJ_ERR_ILL_CONDITIONED if the connection cannot be trusted.
  *
  * # Safety

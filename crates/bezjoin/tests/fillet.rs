@@ -832,3 +832,35 @@ fn a_setback_as_long_as_its_curve_is_refused_not_left_as_a_sliver() {
         assert!((kept - 8e-9).abs() <= 1e-11, "kept {kept}");
     }
 }
+
+/// A path that doubles back at the vertex (a line and the same line run
+/// back) has no corner, only a cusp: refused by name, as the chains and the
+/// radius fillet refuse it, instead of a blend that runs out along the line
+/// and back. A sharp but real corner (179 degrees of turn) and a smooth joint
+/// (collinear lines, smoothed by a C^k blend) are still answered.
+#[test]
+fn a_path_that_doubles_back_at_the_vertex_is_refused() {
+    let out = BezierCurve::new(2, 1, vec![0.0, 0.0, 10.0, 0.0]).unwrap();
+    let back = BezierCurve::new(2, 1, vec![10.0, 0.0, 0.0, 0.0]).unwrap();
+    let options = FilletOptions::new(1.0, 1.0, 2, 2);
+    for (p, q) in [(&out, &back), (&back, &out)] {
+        match bezjoin_core::fillet_vertex(p, q, &options, 0.0) {
+            Err(BezjoinError::NoIntersection { reason }) => {
+                assert!(reason.contains("double back"), "{reason}")
+            }
+            other => panic!("{other:?}"),
+        }
+    }
+    // 179 degrees of turn: a real (very sharp) corner.
+    let angle = 179.0f64.to_radians();
+    let sharp = BezierCurve::new(
+        2,
+        1,
+        vec![10.0, 0.0, 10.0 + 10.0 * angle.cos(), 10.0 * angle.sin()],
+    )
+    .unwrap();
+    let f = bezjoin_core::fillet_vertex(&out, &sharp, &options, 0.0).unwrap();
+    assert_eq!(f.blend.degree(), 5);
+    let ahead = BezierCurve::new(2, 1, vec![10.0, 0.0, 20.0, 0.0]).unwrap();
+    assert!(bezjoin_core::fillet_vertex(&out, &ahead, &options, 0.0).is_ok());
+}

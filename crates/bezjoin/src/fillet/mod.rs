@@ -74,7 +74,9 @@ use crate::arclength::ArcLengthInverse;
 use crate::bezier::BezierCurve;
 use crate::connect::{ConnectOptions, Connection, ShapeScale, connect};
 use crate::curve::{Curve, CurveRef};
-use crate::error::{BezjoinError, Result, check_finite_scalar, check_positive};
+use crate::basis::KnotSide;
+use crate::curve::CurveJet;
+use crate::error::{BezjoinError, Compact, Result, check_finite_scalar, check_positive};
 use crate::intersect::{IntersectOptions, Intersection, IntersectionKind, intersect};
 use crate::nurbs::NurbsCurve;
 
@@ -258,8 +260,12 @@ pub fn fillet_at<'a>(
 /// corner point is `P(last)`, and the setbacks are measured back from P's
 /// end and on from Q's start. `gap >= 0` (absolute) is how far apart P's
 /// last point and Q's first point may be (sketch solvers leave 1e-7 and
-/// more); a larger gap is NoIntersection naming it. The pieces keep the
-/// inputs' kinds; everything else is as in [`fillet`].
+/// more); a larger gap is NoIntersection naming it. A path that doubles
+/// back at the vertex (Q leaves along P's arrival direction reversed: the
+/// sine of the tangents' angle at most `options.intersect.tangent_tolerance`
+/// and their cosine negative) has no corner to round, only a cusp: also
+/// NoIntersection. The pieces keep the inputs' kinds; everything else is as
+/// in [`fillet`].
 pub fn fillet_vertex<'a>(
     p: impl Into<CurveRef<'a>>,
     q: impl Into<CurveRef<'a>>,
@@ -285,6 +291,7 @@ pub fn fillet_vertex<'a>(
             ),
         });
     }
+    check_not_doubling_back(p, u, q, v, options.intersect.tangent_tolerance)?;
     let crossing = Intersection {
         u,
         v,
@@ -293,6 +300,42 @@ pub fn fillet_vertex<'a>(
         kind: IntersectionKind::Crossing,
     };
     fillet_at_validated(p, q, crossing, options)
+}
+
+/// NoIntersection when P's tangent arriving at `u` (from the left) and Q's
+/// leaving `v` (from the right) point in opposite directions, within
+/// `tangent_tolerance` (the sine of their angle): the path turns back on
+/// itself there. Zero tangents are left to the fillet's own checks.
+fn check_not_doubling_back(
+    p: CurveRef,
+    u: f64,
+    q: CurveRef,
+    v: f64,
+    tangent_tolerance: f64,
+) -> Result<()> {
+    let (p_jet, _) = p.jet(u, 1, KnotSide::Left);
+    let (q_jet, _) = q.jet(v, 1, KnotSide::Right);
+    let (a, b) = (p_jet.row(1), q_jet.row(1));
+    let (na, nb) = (a.norm(), b.norm());
+    if !(na > 0.0 && nb > 0.0 && na.is_finite() && nb.is_finite()) {
+        return Ok(());
+    }
+    let cos = a.dot(&b) / (na * nb);
+    let sin = (1.0 - cos * cos).max(0.0).sqrt();
+    if cos < 0.0 && sin <= tangent_tolerance {
+        return Err(BezjoinError::NoIntersection {
+            reason: format!(
+                "P and Q double back at the vertex (P(u = {}) then Q(v = {}): their tangents \
+                 are opposite, the sine of their angle {} is within tangent_tolerance = {}): \
+                 there is no corner to round, only a cusp",
+                Compact(u),
+                Compact(v),
+                Compact(sin),
+                Compact(tangent_tolerance)
+            ),
+        });
+    }
+    Ok(())
 }
 
 /// The first crossing, or the error that says what was found instead.
