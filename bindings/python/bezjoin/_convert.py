@@ -24,7 +24,26 @@ def index_argument(value, name):
         raise TypeError(f"{name} must be an integer, not bool")
     if number < 0:
         raise BezjoinError.invalid_argument(f"{name} = {number} is negative")
+    if number > SIZE_MAX:
+        # ctypes would wrap it around silently (2**64 becomes 0).
+        raise BezjoinError.invalid_argument(
+            f"{name} = {number} is larger than the largest size_t {SIZE_MAX}")
     return number
+
+
+#: The largest ``size_t``.
+SIZE_MAX = 2 ** (8 * ctypes.sizeof(ctypes.c_size_t)) - 1
+
+
+def double_buffer(length, name):
+    """A zeroed ``double[length]`` for the library to fill, whose size follows from the
+    argument ``name``; a size Python cannot allocate is an error naming it."""
+    try:
+        return (ctypes.c_double * length)()
+    except (OverflowError, MemoryError):
+        raise BezjoinError.invalid_argument(
+            f"{name}: the result would take {length} doubles, more than can be "
+            "allocated") from None
 
 
 def real_argument(value, name):

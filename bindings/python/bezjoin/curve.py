@@ -6,7 +6,8 @@ import math
 import threading
 
 from . import _freecad
-from ._convert import double_array, flat, index_argument, point_rows, real_argument, rows_of
+from ._convert import (double_array, double_buffer, flat, index_argument, point_rows,
+                       real_argument, rows_of)
 from ._library import CurvePointer, library, register_prototype
 from .errors import BezjoinError
 
@@ -434,7 +435,7 @@ class Curve:
         max_order = index_argument(max_order, "max_order")
         dim = self.dim
         length = (max_order + 1) * dim
-        buffer = (ctypes.c_double * length)()
+        buffer = double_buffer(length, "max_order")
         library().call("bzj_curve_eval", handle, t, max_order, buffer, length)
         return rows_of(buffer, max_order + 1, dim)
 
@@ -452,7 +453,7 @@ class Curve:
         block = (max_order + 1) * dim
         length = len(ts) * block
         params = (ctypes.c_double * len(ts))(*ts)
-        buffer = (ctypes.c_double * length)()
+        buffer = double_buffer(length, "max_order")
         library().call("bzj_curve_eval_many", handle, params, len(ts), max_order, buffer, length)
         rows = rows_of(buffer, len(ts) * (max_order + 1), dim)
         return [rows[i * (max_order + 1):(i + 1) * (max_order + 1)] for i in range(len(ts))]

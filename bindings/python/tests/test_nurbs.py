@@ -451,3 +451,28 @@ def test_merge_of_bsplines(rational):
             with bezjoin.merge_chain([whole, bezier, whole]) as chain:
                 assert chain.merged.is_nurbs and all(c.is_nurbs for c in chain.pieces)
                 assert chain.pieces[0].knots == whole.knots
+
+
+def test_sizes_beyond_size_t_or_memory_are_errors_naming_the_argument():
+    """A size ctypes would wrap around (2**64 becomes 0) or Python cannot allocate is a
+    BezjoinError naming the argument, not another argument's complaint, an
+    OverflowError or a MemoryError."""
+    arc = Curve.ellipse_arc((0, 0), (1, 0), (0, 1), 5, 5, 0, 2)
+    expect_error("BZJ_ERR_INVALID_ARGUMENT",
+                 lambda: Curve.nurbs([(0, 0), (1, 0)], [0, 0, 1, 1], 2 ** 64),
+                 "degree = 18446744073709551616", "largest size_t")
+    expect_error("BZJ_ERR_INVALID_ARGUMENT", lambda: arc.derivatives(1.0, 2 ** 64),
+                 "max_order = 18446744073709551616")
+    expect_error("BZJ_ERR_INVALID_ARGUMENT", lambda: arc.derivatives(1.0, 2 ** 62),
+                 "max_order", "more than can be allocated")
+    expect_error("BZJ_ERR_INVALID_ARGUMENT", lambda: arc.derivatives_many([0.5, 1.0], 2 ** 62),
+                 "max_order", "more than can be allocated")
+
+
+def test_a_rational_curve_refuses_an_overflowing_order_without_quadratic_work():
+    """Orders far above the degree on a rational curve: the quotient rule's terms above
+    the degree are zero and skipped, so order 10**6 fails by name (the first order
+    that overflows) after linear work; it used to take minutes."""
+    arc = Curve.ellipse_arc((0, 0), (1, 0), (0, 1), 5, 5, 0, 2)
+    expect_error("BZJ_ERR_NON_FINITE", lambda: arc.derivatives(1.0, 10 ** 6),
+                 "derivative of order")

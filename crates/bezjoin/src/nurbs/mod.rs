@@ -1186,7 +1186,10 @@ impl NurbsCurve {
                 // integer times an integer, divided exactly): the same
                 // values.
                 let mut choose = 1.0;
-                for i in 1..=k {
+                // w^(i) = 0 above the basis orders `n` (at most the degree):
+                // those terms are skipped, so a row costs O(n d), not O(k d)
+                // (orders far above the degree stay linear in cost).
+                for i in 1..=k.min(n) {
                     choose = if k <= eval::SPAN_FAST_MAX_DEGREE {
                         eval::BINOMIALS[k * (k + 1) / 2 + i]
                     } else {
