@@ -215,6 +215,12 @@ class RoundCornerFeatureTest(FeatureCase):
         corner.Radius = 4.0
         self.recompute(corner)
 
+    def test_a_deleted_linked_edge_is_named(self):
+        sketch, corner = self.make(Method="Radius", Radius=3.0)
+        sketch.delGeometry(1)  # Edge2 is gone
+        status = self.assert_invalid(corner, "second edge", "Edge2", "no longer has")
+        self.assertNotEqual(status.strip(), f"{corner.Label}: Index out of bound")
+
     def test_corner_follows_a_moved_vertex(self):
         sketch, corner = self.make(Setback=2.0)
         sketch.movePoint(1, 2, V(40, 30, 0))  # Edge2's far end

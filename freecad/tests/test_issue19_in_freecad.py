@@ -202,6 +202,32 @@ class MergeDefaults(unittest.TestCase):
                          "Edge")
 
 
+    def test_edges_that_do_not_meet_are_refused_with_their_gap(self):
+        # Two lines 566 mm apart used to be bridged by one 781 mm edge (deviation 320 mm).
+        first = Part.makeLine(V(0, 0, 0), V(500, 0, 0))
+        far = Part.makeLine(V(900, 400, 0), V(1400, 400, 0))
+        near = Part.makeLine(V(510, 0, 0), V(1000, 0, 0))
+        for second, distance in ((far, math.hypot(400, 400)), (near, 10.0)):
+            with self.assertRaises(bezjoin.BezjoinError) as caught:
+                operations.merge_edges(first, second)
+            message = str(caught.exception)
+            self.assertIn("do not meet", message)
+            found = re.search(r"ends are ([0-9.e+-]+) apart", message)
+            self.assertIsNotNone(found, message)
+            self.assertAlmostEqual(float(found.group(1)), distance, delta=1e-3)
+            self.assertIn("max_gap", message)
+        # The limit is a keyword: a length, or None for any gap.
+        self.assertEqual(operations.merge_edges(first, near, max_gap=10.5).shape.ShapeType,
+                         "Edge")
+        with self.assertRaises(bezjoin.BezjoinError):
+            operations.merge_edges(first, near, max_gap=9.5)
+        self.assertEqual(operations.merge_edges(first, far, max_gap=None).shape.ShapeType,
+                         "Edge")
+        # A sketch solver's gap (1e-9 of the size) still merges.
+        touching = Part.makeLine(V(500, 1e-7, 0), V(900, 1e-7, 0))
+        self.assertEqual(operations.merge_edges(first, touching).shape.ShapeType, "Edge")
+
+
 class SharedVertices(unittest.TestCase):
     def test_blend_of_edges_sharing_a_vertex_is_refused(self):
         first = Part.makeLine(V(0, 0, 0), V(10, 0, 0))

@@ -107,7 +107,13 @@ def _link_edge(value, what):
     if names:
         if len(names) != 1:
             raise FeatureError(f"the {what} links {len(names)} elements, not one edge")
-        shape = operations.model_shape(obj, names[0])
+        try:
+            shape = operations.model_shape(obj, names[0])
+        except (IndexError, ValueError, RuntimeError) as error:
+            # FreeCAD's own words for a missing element are "Index out of bound".
+            raise FeatureError(
+                f"the {what} links {obj.Label}.{names[0]}, which {obj.Label} no longer has "
+                f"({error}): link another edge") from None
         if shape.ShapeType != "Edge":
             raise FeatureError(f"the {what} ({obj.Label}.{names[0]}) is not an edge")
         return shape

@@ -656,7 +656,7 @@ def _angle_at_join(p, q):
 
 def merge_edges(first_edge, second_edge, *, metric="discrete", mu="optimal", fix_ends=True,
                 keep_first=False, keep_second=False, orient=True,
-                max_angle=MAX_MERGE_ANGLE_DEGREES):
+                max_angle=MAX_MERGE_ANGLE_DEGREES, max_gap="touching"):
     """One edge replacing two consecutive edges (:func:`bezjoin.merge`): a Bezier
     edge for two Bezier edges; for B-spline edges (lines and other polynomial
     curves too) one B-spline edge with both edges' knots mapped and none at the
@@ -670,7 +670,10 @@ def merge_edges(first_edge, second_edge, *, metric="discrete", mu="optimal", fix
     is the optimal one. Edges whose tangents turn by more than ``max_angle`` degrees
     at the join (default ``MAX_MERGE_ANGLE_DEGREES``, 30) are refused with the angle
     in the message: one smooth edge cannot follow such a corner (``max_angle=None``
-    or 180 allows any).
+    or 180 allows any). Edges that do not meet are refused with their gap in the
+    message: the merge would bridge it, moving geometry nobody asked to move.
+    ``max_gap``: ``"touching"`` (default: the ends within ``TOUCH_TOLERANCE`` of the
+    edges' size, as for wires), a length in model units, or ``None`` for any gap.
     """
     if same_edge(first_edge, second_edge):
         raise _invalid("the first and the second edge are the same edge: select two "
@@ -680,6 +683,16 @@ def merge_edges(first_edge, second_edge, *, metric="discrete", mu="optimal", fix
             p, q = orient_end_to_start(p, q)
         else:
             p, q = p.copy(), q.copy()
+        gap = _distance(_ends(p)[1], _ends(q)[0])
+        limit = (TOUCH_TOLERANCE * max(1.0, p.length(), q.length())
+                 if max_gap == "touching" else max_gap)
+        if limit is not None and not gap <= limit:
+            p.close()
+            q.close()
+            raise _invalid(
+                f"the edges do not meet: their nearest ends are {gap:.6g} apart, more than "
+                f"max_gap = {limit:.6g}; merging them would bridge the gap (pass a larger "
+                "max_gap, or None, to merge them anyway)")
         angle = _angle_at_join(p, q)
         if max_angle is not None and angle > max_angle:
             p.close()
