@@ -341,6 +341,15 @@ class ChecksBeforeTheForm(unittest.TestCase):
             self.assertLess(blend.Length, 2 * values["setback"])
         self.assertAlmostEqual(defaults[1], 10 * defaults[0], delta=1e-12)
         self.assertLess(defaults[0], 20.0)
+        # The wire command's radius too (it started at 1 whatever the model's size),
+        # and the wire rounds with it.
+        for scale in (1.0, 100.0):
+            path = lines(scale) + [Part.makeLine(V(40 * scale, 20 * scale, 0),
+                                                 V(0, 20 * scale, 0))]
+            fields = commands.RoundWireByRadiusCommand().fields_for(path)
+            radius = {key: default for key, _l, _k, default, _e in fields}["radius"]
+            self.assertAlmostEqual(radius, 2.0 * scale, delta=1e-12 * scale)
+            self.assertEqual(len(operations.round_wire_by_radius(path, radius).reports), 2)
 
     def test_orders_above_the_bezier_limit_are_refused_before_building(self):
         first = Part.makeLine(V(0, 0, 0), V(2, 0, 0))

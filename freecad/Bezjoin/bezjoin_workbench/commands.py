@@ -328,6 +328,13 @@ class RoundWireByRadiusCommand(Command):
     def inputs(self):
         return selected_path(links=self.links)
 
+    def fields_for(self, inputs):
+        """The radius starts at ``operations.DEFAULT_SETBACK_FRACTION`` of the shortest
+        edge (as the corner's setback and radius do), so it fits the model's size."""
+        radius = operations.default_setback(getattr(inputs, "Edges", inputs))
+        return [(key, label, kind, radius if key == "radius" else default, extra)
+                for key, label, kind, default, extra in self.fields]
+
     def run(self, document, inputs, parameters):
         parameters = dict(parameters)
         closed_choice = parameters.pop("closed")
