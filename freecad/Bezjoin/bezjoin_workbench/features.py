@@ -19,8 +19,11 @@ document root, as FreeCAD's own Part workbench tools do. Its shape is stored in 
 container's coordinates, so it shows where the sources are.
 
 ``execute`` reads the sources in model (global) coordinates
-(:func:`operations.model_shape`, as the commands' selection readers do) and calls the
-plain operation of :mod:`operations`, so changing a parameter, editing or moving a
+(:func:`operations.model_shape`, as the commands' selection readers do), or, when all
+of them come from one object (a sketch), in that object's own coordinates, placing the
+result afterwards: moving a Body or Part then moves the result rigidly instead of
+rebuilding it from other coordinates (where the fair G^k search rounds differently). It
+calls the plain operation of :mod:`operations`, so changing a parameter, editing or moving a
 source and then ``doc.recompute()`` updates the result. When the operation fails the
 shape is emptied and the error raised: FreeCAD marks the object invalid and shows the
 library's message (``obj.getStatusString()``), no stale shape is left behind.
@@ -108,7 +111,7 @@ def _link_edge(value, what):
         if len(names) != 1:
             raise FeatureError(f"the {what} links {len(names)} elements, not one edge")
         try:
-            shape = operations.model_shape(obj, names[0])
+            shape = _source_shape(obj, names[0])
         except (IndexError, ValueError, RuntimeError) as error:
             # FreeCAD's own words for a missing element are "Index out of bound".
             raise FeatureError(
@@ -117,7 +120,7 @@ def _link_edge(value, what):
         if shape.ShapeType != "Edge":
             raise FeatureError(f"the {what} ({obj.Label}.{names[0]}) is not an edge")
         return shape
-    edges = operations.model_shape(obj).Edges
+    edges = _source_shape(obj).Edges
     if len(edges) != 1:
         raise FeatureError(f"the {what} ({obj.Label}) has {len(edges)} edges: link one edge "
                            "(object and edge name)")
@@ -190,6 +193,43 @@ def containers(obj):
             if group not in found and group not in own:
                 found.append(group)
     return found
+
+
+#: The one object a feature being built takes all its sources from (a sketch), or
+#: ``None``: set by ``_Feature.execute`` around ``build`` (FreeCAD recomputes one
+#: feature at a time). Its shapes are read in its own coordinates (:func:`_source_shape`)
+#: and the result is placed afterwards (:func:`_placed_shape`), so that moving the
+#: containers (a Body, an ``App::Part``) moves the result rigidly instead of rebuilding
+#: it from other coordinates: the fair G^k search rounds differently at other
+#: coordinates and can stop at a blend 0.03 mm away.
+_LOCAL_SOURCE = None
+
+
+def _source_shape(obj, name=""):
+    """``obj``'s shape, or its element ``name``: in ``obj``'s own coordinates (its
+    shape's placement left out) when ``obj`` is the feature's only source
+    (``_LOCAL_SOURCE``), else in model coordinates (:func:`operations.model_shape`)."""
+    if obj is not None and obj is _LOCAL_SOURCE:
+        shape = obj.Shape.copy()
+        shape.Placement = FreeCAD.Placement()
+        return shape.getElement(name) if name else shape
+    return operations.model_shape(obj, name) if name else operations.model_shape(obj)
+
+
+def _placed_shape(obj, shape, source):
+    """``shape``, built in ``source``'s own coordinates, in the coordinates of ``obj``'s
+    containers: moved by ``source``'s shape placement, and by the containers' placements
+    only where ``source`` and ``obj`` have different containers."""
+    if _chain_of_containers(obj) == _chain_of_containers(source):
+        placement = source.Shape.Placement
+    else:
+        placement = operations.placement_to_model(obj).inverse().multiply(
+            operations.placement_to_model(source).multiply(source.Shape.Placement))
+    if placement.isIdentity():
+        return shape
+    placed = shape.copy()
+    placed.transformShape(placement.toMatrix(), True)
+    return placed
 
 
 def _local_shape(obj, shape):
@@ -280,13 +320,21 @@ class _Feature:
     def execute(self, obj):  # noqa: D102 (FreeCAD's name)
         try:
             _update_containers(obj)  # e.g. a source moved into a Body since
-            shape = self.build(obj)
+            sources = source_objects(obj)
+            source = sources[0] if len(sources) == 1 else None
+            global _LOCAL_SOURCE
+            _LOCAL_SOURCE = source
+            try:
+                shape = self.build(obj)
+            finally:
+                _LOCAL_SOURCE = None
         except (FeatureError, bezjoin.BezjoinError, bezjoin.UnsupportedGeometryError,
                 bezjoin.LibraryNotFoundError, TypeError, ValueError, Part.OCCError) as error:
             obj.Shape = Part.Shape()  # no stale result behind the error
             message = operations.with_articles(f"{obj.Label}: {error}")
             raise FeatureError(message) from None
-        obj.Shape = _local_shape(obj, shape)
+        obj.Shape = (_local_shape(obj, shape) if source is None
+                     else _placed_shape(obj, shape, source))
 
     def build(self, obj):
         """The result's shape from the current sources and parameters."""
@@ -412,10 +460,10 @@ def _linked_path(value):
     if not pairs:
         raise FeatureError("no source wire or edges are linked")
     if len(pairs) == 1 and not pairs[0][1]:
-        return operations.path_edges(operations.model_shape(pairs[0][0]))
+        return operations.path_edges(_source_shape(pairs[0][0]))
     edges = []
     for obj, name in pairs:
-        shape = operations.model_shape(obj, name) if name else operations.model_shape(obj)
+        shape = _source_shape(obj, name)
         edges.extend(shape.Edges)
     return operations.path_edges(Part.Compound(edges))
 
@@ -505,13 +553,13 @@ def _linked_points(value):
     if not pairs:
         raise FeatureError("no source points are linked")
     if len(pairs) == 1 and not pairs[0][1]:
-        wires = operations.model_shape(pairs[0][0]).Wires
+        wires = _source_shape(pairs[0][0]).Wires
         if len(wires) != 1:
             raise FeatureError(f"{pairs[0][0].Label} is not one polyline: link its vertices")
         return [vertex.Point for vertex in wires[0].OrderedVertexes]
     points = []
     for obj, name in pairs:
-        shape = operations.model_shape(obj, name) if name else operations.model_shape(obj)
+        shape = _source_shape(obj, name)
         points.extend(vertex.Point for vertex in shape.Vertexes)
     return points
 
