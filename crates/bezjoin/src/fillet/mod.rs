@@ -71,11 +71,11 @@ pub use radius::{
 };
 
 use crate::arclength::ArcLengthInverse;
+use crate::basis::KnotSide;
 use crate::bezier::BezierCurve;
 use crate::connect::{ConnectOptions, Connection, ShapeScale, connect};
-use crate::curve::{Curve, CurveRef};
-use crate::basis::KnotSide;
 use crate::curve::CurveJet;
+use crate::curve::{Curve, CurveRef};
 use crate::error::{BezjoinError, Compact, Result, check_finite_scalar, check_positive};
 use crate::intersect::{IntersectOptions, Intersection, IntersectionKind, intersect};
 use crate::nurbs::NurbsCurve;
