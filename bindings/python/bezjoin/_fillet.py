@@ -220,7 +220,8 @@ def fillet_vertex(p, q, *, setback=None, p_setback=None, q_setback=None, p_order
 
     Raises:
         BezjoinError: ``BZJ_ERR_NO_INTERSECTION`` when the ends are more
-            than ``gap`` apart (the message gives the distance),
+            than ``gap`` apart (the message gives the distance) or the path
+            doubles back at the vertex (opposite tangents: a cusp, no corner),
             ``BZJ_ERR_INVALID_ARGUMENT`` for a setback longer than a curve.
     """
     p_handle, q_handle = handle_of(p, "p"), handle_of(q, "q")
