@@ -6,6 +6,7 @@ parameter that cannot work marks the object invalid with the library's message."
 
 import math
 import os
+import re
 import shutil
 import tempfile
 import unittest
@@ -290,7 +291,11 @@ class RoundWireFeatureTest(FeatureCase):
     def test_radius_too_large_names_the_corner(self):
         _sketch, _width, wire = self.make(Radius=2.0)
         wire.Radius = 50.0
-        self.assert_invalid(wire, "corner", "radius")
+        status = self.assert_invalid(wire, "corner", "radius")
+        # The corner is also named by the sketch's edges it joins.
+        corner = re.search(r"corner (\d+) is (Sketch\.Edge\d) -> (Sketch\.Edge\d)", status)
+        self.assertIsNotNone(corner, status)
+        self.assertNotEqual(corner.group(2), corner.group(3))
         wire.Radius = 2.0
         self.recompute(wire)
         self.check_closed(wire, self.model_corners())

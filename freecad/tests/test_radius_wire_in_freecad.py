@@ -163,6 +163,17 @@ class RoundWireByRadius(unittest.TestCase, CommandDriver):
                 self.assertTrue(any(abs(e.Length - 150.0 * math.pi) < 1e-9
                                     for e in wire.Edges))
 
+    def test_errors_number_corners_and_edges_along_the_whole_path(self):
+        # The slot is rounded in one run (edges 3, 4, 1 along the path after its
+        # smooth joins); the library's run-local numbers are given as path numbers.
+        edges = self.slot_edges()
+        with self.assertRaises(bezjoin.BezjoinError) as caught:
+            operations.round_wire_by_radius(edges, 200.0)  # two arcs of 200 on a 300 side
+        self.assertIn("curves[3]", str(caught.exception))
+        with self.assertRaises(bezjoin.BezjoinError) as caught:
+            operations.round_wire_by_radius(edges, 900.0)
+        self.assertIn("corner 2 radius", str(caught.exception))
+
     def test_a_wire_with_only_smooth_joins_has_no_corner_to_round(self):
         top = Part.ArcOfCircle(Part.Circle(V(0, 0, 0), V(0, 0, 1), 5.0), 0.0,
                                math.pi).toShape()

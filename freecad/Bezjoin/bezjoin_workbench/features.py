@@ -44,6 +44,8 @@ object (its whole shape; one edge for the two-edge features) or ``(object,
 "Edge3")`` / ``(object, ["Edge1", "Edge2"])``.
 """
 
+import re
+
 import FreeCAD
 import Part
 
@@ -454,18 +456,51 @@ class RoundCornerFeature(_Feature):
                                        **_orders_and_scales(obj), **reverse)
 
 
-def _linked_path(value):
-    """The edges of the linked path: one whole object (its wire) or linked edges."""
+def _linked_path(value, names=None):
+    """The edges of the linked path: one whole object (its wire) or linked edges. When
+    ``names`` is a list, it receives each path edge's source element, in path order
+    ("Sketch.Edge3"), for messages."""
     pairs = _pairs(value)
     if not pairs:
         raise FeatureError("no source wire or edges are linked")
+    labelled = []
     if len(pairs) == 1 and not pairs[0][1]:
-        return operations.path_edges(_source_shape(pairs[0][0]))
-    edges = []
-    for obj, name in pairs:
-        shape = _source_shape(obj, name)
-        edges.extend(shape.Edges)
-    return operations.path_edges(Part.Compound(edges))
+        source = pairs[0][0]
+        shape = _source_shape(source)
+        path = operations.path_edges(shape)
+        labelled = [(f"{source.Label}.Edge{k + 1}", edge) for k, edge in enumerate(shape.Edges)]
+    else:
+        for obj, name in pairs:
+            shape = _source_shape(obj, name)
+            if name:
+                labelled.append((f"{obj.Label}.{name}", shape))
+            else:
+                labelled.extend((f"{obj.Label}.Edge{k + 1}", edge)
+                                for k, edge in enumerate(shape.Edges))
+        path = operations.path_edges(Part.Compound([edge for _, edge in labelled]))
+    if names is not None:
+        names.extend(next((label for label, edge in labelled if edge.isSame(p)), "?")
+                     for p in path)
+    return path
+
+
+#: ``corner i`` and ``curves[i]`` in the library's messages about a path.
+_PATH_INDEX = re.compile(r"\b(corner |curves\[)(\d+)\]?")
+
+
+def _with_source_names(message, names):
+    """``message`` followed by the source elements its ``corner i`` (between path edges
+    ``i`` and ``i + 1``) and ``curves[i]`` (path edge ``i``) are, from ``names``."""
+    notes = []
+    for kind, index in dict.fromkeys(_PATH_INDEX.findall(message)):
+        i = int(index)
+        if i >= len(names):
+            continue
+        if kind == "corner ":
+            notes.append(f"corner {i} is {names[i]} -> {names[(i + 1) % len(names)]}")
+        else:
+            notes.append(f"curves[{i}] is {names[i]}")
+    return f"{message} ({'; '.join(notes)})" if notes else message
 
 
 class RoundWireFeature(_Feature):
@@ -493,17 +528,22 @@ class RoundWireFeature(_Feature):
                          "Largest distance of a blend from its corner's arc (Method Radius)")
 
     def build(self, obj):
-        edges = _linked_path(obj.Sources)
+        names = []
+        edges = _linked_path(obj.Sources, names)
         closed = {"auto": None, "yes": True, "no": False}[obj.Closed]
-        if obj.Method == "Radius":
-            order = int(obj.Continuity[1:])
-            rounded = operations.round_wire_by_radius(edges, _length(obj.Radius),
-                                                      order=order, closed=closed)
-            obj.MaxArcDeviation = rounded.max_arc_deviation
-            return rounded.shape
-        obj.MaxArcDeviation = 0.0
-        return operations.round_wire(edges, setback=_length(obj.Setback),
-                                     continuity=obj.Continuity, closed=closed)
+        try:
+            if obj.Method == "Radius":
+                order = int(obj.Continuity[1:])
+                rounded = operations.round_wire_by_radius(edges, _length(obj.Radius),
+                                                          order=order, closed=closed)
+                obj.MaxArcDeviation = rounded.max_arc_deviation
+                return rounded.shape
+            obj.MaxArcDeviation = 0.0
+            return operations.round_wire(edges, setback=_length(obj.Setback),
+                                         continuity=obj.Continuity, closed=closed)
+        except bezjoin.BezjoinError as error:
+            raise bezjoin.BezjoinError(error.status, error.status_name,
+                                       _with_source_names(error.message, names)) from None
 
 
 class MergeFeature(_Feature):

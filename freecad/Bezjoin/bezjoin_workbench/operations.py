@@ -464,12 +464,17 @@ def _corner_runs(curves, closed):
     return runs, False, smooth
 
 
+#: ``corner i`` and ``curves[i]`` in a chain function's message.
+_PATH_INDEX = re.compile(r"(corner |curves\[)(\d+)(\]?)")
+
+
 def _round_runs(curves, closed, round_chain):
     """Every corner of the path ``curves`` rounded by ``round_chain(run_curves,
     closed)`` (a library chain call, whose result has ``pieces`` and may have
     ``reports``), run by run between the smooth joins (:func:`_corner_runs`), which are
     left as they are. Returns ``(wire, reports, smooth)``; a run's error is re-raised
-    with the edges it concerns named."""
+    with its ``corner i`` / ``curves[i]`` numbered along the whole path, as a call on
+    the whole path would number them."""
     runs, closes, smooth = _corner_runs(curves, closed)
     if all(len(run) == 1 for run in runs):
         raise _invalid(
@@ -485,11 +490,11 @@ def _round_runs(curves, closed, round_chain):
         except bezjoin.BezjoinError as error:
             if not smooth:
                 raise
-            raise bezjoin.BezjoinError(
-                error.status, error.status_name,
-                f"edges {run[0] + 1} to {run[-1] + 1} along the path (between smooth joins; "
-                f"corner i of what follows is the corner after the (i + 1)-th of these "
-                f"edges): {error.message}") from error
+            # The run's corner j and curves[j] are the path's corner / curve run[j]:
+            # say them as a call on the whole path would.
+            message = _PATH_INDEX.sub(
+                lambda m: f"{m.group(1)}{run[int(m.group(2))]}{m.group(3)}", error.message)
+            raise bezjoin.BezjoinError(error.status, error.status_name, message) from error
         with result:
             edges.extend(piece.to_edge() for piece in result.pieces)
             reports.extend(getattr(result, "reports", []))
