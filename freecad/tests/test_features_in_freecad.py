@@ -348,6 +348,17 @@ class MergeFeatureTest(FeatureCase):
         merged.MaxAngle = 30.0
         self.recompute(merged)
 
+    def test_a_gap_is_bridged_only_up_to_max_gap(self):
+        sketch, merged = self.make()
+        self.assertEqual(merged.MaxGap, 0.0)  # the ends must touch
+        sketch.movePoint(1, 1, V(10.5, 0, 0))  # Edge2 now starts 0.5 after Edge1 ends
+        status = self.assert_invalid(merged, "do not meet", "0.5 apart", "MaxGap")
+        self.assertIn("max_gap", status)
+        merged.MaxGap = 0.6
+        self.recompute(merged)
+        merged.MaxGap = 0.4
+        self.assert_invalid(merged, "do not meet")
+
 
 class SplineFeatureTest(FeatureCase):
     points = [V(0, 0, 0), V(3, 4, 0), V(7, 5, 0), V(10, 0, 0)]
@@ -420,6 +431,38 @@ class MovingTheContainer(FeatureCase):
                 self.assertEqual(len(after), len(before[obj.Name]))
                 worst = max(math.dist(a, b) for a, b in zip(after, before[obj.Name]))
                 self.assertLessEqual(worst, 1e-9, obj.Name)
+
+
+    def test_moving_the_part_does_not_change_a_wire_from_two_sketches(self):
+        # Sources in two objects that share their container: built in the container's
+        # coordinates (in model coordinates the G3 blends moved by up to 0.24 mm).
+        part = self.document.addObject("App::Part", "Part")
+        first = lines_sketch(self.document, part, [((0, 0, 0), (1500, 0, 0)),
+                                                   ((1500, 0, 0), (1500, 600, 0))], "A")
+        second = lines_sketch(self.document, part, [((1500, 600, 0), (0, 600, 0)),
+                                                    ((0, 600, 0), (0, 900, 0))], "B")
+        wire = features.make_round_wire(self.document, [(first, ["Edge1", "Edge2"]),
+                                                        (second, ["Edge1", "Edge2"])],
+                                        Method="Radius", Radius=100.0, Continuity="G3")
+        self.recompute(wire)
+        self.assertIs(wire.getParentGeoFeatureGroup(), part)
+
+        def poles():
+            return [tuple(p) for edge in wire.Shape.Edges
+                    for p in getattr(edge.Curve, "getPoles", lambda: [])()]
+
+        before = poles()
+        self.assertTrue(before)
+        for placement in (FreeCAD.Placement(V(1000, 0, 0), FreeCAD.Rotation()),
+                          FreeCAD.Placement(V(0, 0, 0), FreeCAD.Rotation(V(0, 0, 1), 90)),
+                          FreeCAD.Placement(V(333.3, -71.9, 12.5),
+                                            FreeCAD.Rotation(V(0.3, 0.2, 1), 37))):
+            part.Placement = placement
+            wire.touch()
+            self.recompute(wire)
+            after = poles()
+            self.assertEqual(len(after), len(before))
+            self.assertLessEqual(max(math.dist(a, b) for a, b in zip(after, before)), 1e-9)
 
 
 class SaveAndReopen(FeatureCase):

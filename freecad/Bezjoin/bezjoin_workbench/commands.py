@@ -363,6 +363,8 @@ class MergeCommand(Command):
         ("fix_ends", "Keep the outer end points", "bool", True, None),
         ("max_angle", "Largest angle between the edges at the join (degrees)", "float",
          operations.MAX_MERGE_ANGLE_DEGREES, (0.0, 180.0)),
+        ("max_gap", "Largest gap between the edges' ends that the merge bridges (0: the "
+                    "ends must touch)", "float", 0.0, (0.0, 1e9)),
         ("keep_first", "Keep the first edge unchanged", "bool", False, None),
         ("keep_second", "Keep the second edge unchanged", "bool", False, None),
     ]
@@ -370,8 +372,9 @@ class MergeCommand(Command):
     def run(self, document, inputs, parameters):
         parameters = dict(parameters)
         mode, mu = parameters.pop("mu_mode"), parameters.pop("mu")
+        max_gap = parameters.pop("max_gap", 0.0) or 0.0
         merged = operations.merge_edges(inputs[0], inputs[1], mu=mu if mode == "given" else mode,
-                                        **parameters)
+                                        max_gap=max_gap or "touching", **parameters)
         FreeCAD.Console.PrintMessage(f"{self.title}: {merged.describe()}\n")
         links = _links(self, document)
         if links is None:
@@ -382,7 +385,7 @@ class MergeCommand(Command):
         return features.make_merge(
             document, links[0], links[1], Metric=parameters.get("metric", "discrete"),
             MuMode=mode, Mu=mu, FixEnds=parameters.get("fix_ends", True),
-            MaxAngle=180.0 if max_angle is None else max_angle,
+            MaxAngle=180.0 if max_angle is None else max_angle, MaxGap=max_gap,
             KeepFirst=parameters.get("keep_first", False),
             KeepSecond=parameters.get("keep_second", False))
 

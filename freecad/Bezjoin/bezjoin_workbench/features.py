@@ -20,8 +20,9 @@ container's coordinates, so it shows where the sources are.
 
 ``execute`` reads the sources in model (global) coordinates
 (:func:`operations.model_shape`, as the commands' selection readers do), or, when all
-of them come from one object (a sketch), in that object's own coordinates, placing the
-result afterwards: moving a Body or Part then moves the result rigidly instead of
+of them come from one object (a sketch), in that object's own coordinates, or when they
+sit in the same containers, in those containers' coordinates, placing the result
+afterwards: moving a Body or Part then moves the result rigidly instead of
 rebuilding it from other coordinates (where the fair G^k search rounds differently). It
 calls the plain operation of :mod:`operations`, so changing a parameter, editing or moving a
 source and then ``doc.recompute()`` updates the result. When the operation fails the
@@ -197,36 +198,74 @@ def containers(obj):
     return found
 
 
-#: The one object a feature being built takes all its sources from (a sketch), or
-#: ``None``: set by ``_Feature.execute`` around ``build`` (FreeCAD recomputes one
-#: feature at a time). Its shapes are read in its own coordinates (:func:`_source_shape`)
-#: and the result is placed afterwards (:func:`_placed_shape`), so that moving the
-#: containers (a Body, an ``App::Part``) moves the result rigidly instead of rebuilding
-#: it from other coordinates: the fair G^k search rounds differently at other
-#: coordinates and can stop at a blend 0.03 mm away.
-_LOCAL_SOURCE = None
+#: The frame a feature is being built in, set by ``_Feature.execute`` around ``build``
+#: (FreeCAD recomputes one feature at a time), from :func:`_build_frame`: the sources'
+#: shapes are read in it (:func:`_source_shape`) and the result placed from it
+#: afterwards (:func:`_placed_shape`). So moving the containers (a Body, an
+#: ``App::Part``) that hold all the sources moves the result rigidly instead of
+#: rebuilding it from other coordinates: the fair G^k search rounds differently at
+#: other coordinates and can stop at a blend 0.03-0.3 mm away.
+_FRAME = None
+
+
+class _Frame:
+    """A build frame: one source object's own coordinates (``source`` set: its shape's
+    placement left out), or the coordinates of the containers ``chain`` that hold every
+    source (``source`` ``None``; ``example`` one of the sources)."""
+
+    def __init__(self, chain, source=None, example=None):
+        self.chain = chain
+        self.source = source
+        self.example = example if example is not None else source
+
+    def holds(self, obj):
+        if self.source is not None:
+            return obj is self.source
+        return obj is not None and _chain_of_containers(obj) == self.chain
+
+    def to_model(self):
+        """The placement from this frame to model coordinates."""
+        to_model = operations.placement_to_model(self.example)
+        return to_model.multiply(self.source.Shape.Placement) if self.source is not None \
+            else to_model
+
+
+def _build_frame(feature):
+    """The frame to build ``feature`` in: its one source object's own coordinates, or the
+    coordinates of the containers holding all its sources when they share them, or
+    ``None`` (model coordinates)."""
+    sources = source_objects(feature)
+    if not sources:
+        return None
+    if len(sources) == 1:
+        return _Frame(_chain_of_containers(sources[0]), source=sources[0])
+    chains = [_chain_of_containers(source) for source in sources]
+    if all(chain == chains[0] for chain in chains):
+        return _Frame(chains[0], example=sources[0])
+    return None
 
 
 def _source_shape(obj, name=""):
-    """``obj``'s shape, or its element ``name``: in ``obj``'s own coordinates (its
-    shape's placement left out) when ``obj`` is the feature's only source
-    (``_LOCAL_SOURCE``), else in model coordinates (:func:`operations.model_shape`)."""
-    if obj is not None and obj is _LOCAL_SOURCE:
-        shape = obj.Shape.copy()
-        shape.Placement = FreeCAD.Placement()
+    """``obj``'s shape, or its element ``name``, in the build frame (``_FRAME``) when it
+    holds ``obj``, else in model coordinates (:func:`operations.model_shape`)."""
+    frame = _FRAME
+    if frame is not None and frame.holds(obj):
+        shape = obj.Shape.copy()  # in its containers' coordinates
+        if frame.source is not None:
+            shape.Placement = FreeCAD.Placement()  # in its own
         return shape.getElement(name) if name else shape
     return operations.model_shape(obj, name) if name else operations.model_shape(obj)
 
 
-def _placed_shape(obj, shape, source):
-    """``shape``, built in ``source``'s own coordinates, in the coordinates of ``obj``'s
-    containers: moved by ``source``'s shape placement, and by the containers' placements
-    only where ``source`` and ``obj`` have different containers."""
-    if _chain_of_containers(obj) == _chain_of_containers(source):
-        placement = source.Shape.Placement
+def _placed_shape(obj, shape, frame):
+    """``shape``, built in ``frame``, in the coordinates of ``obj``'s containers: moved by
+    the source's shape placement (a one-object frame), and by the containers'
+    placements only where the frame's containers are not ``obj``'s."""
+    if _chain_of_containers(obj) == frame.chain:
+        placement = frame.source.Shape.Placement if frame.source is not None \
+            else FreeCAD.Placement()
     else:
-        placement = operations.placement_to_model(obj).inverse().multiply(
-            operations.placement_to_model(source).multiply(source.Shape.Placement))
+        placement = operations.placement_to_model(obj).inverse().multiply(frame.to_model())
     if placement.isIdentity():
         return shape
     placed = shape.copy()
@@ -322,21 +361,20 @@ class _Feature:
     def execute(self, obj):  # noqa: D102 (FreeCAD's name)
         try:
             _update_containers(obj)  # e.g. a source moved into a Body since
-            sources = source_objects(obj)
-            source = sources[0] if len(sources) == 1 else None
-            global _LOCAL_SOURCE
-            _LOCAL_SOURCE = source
+            frame = _build_frame(obj)
+            global _FRAME
+            _FRAME = frame
             try:
                 shape = self.build(obj)
             finally:
-                _LOCAL_SOURCE = None
+                _FRAME = None
         except (FeatureError, bezjoin.BezjoinError, bezjoin.UnsupportedGeometryError,
                 bezjoin.LibraryNotFoundError, TypeError, ValueError, Part.OCCError) as error:
             obj.Shape = Part.Shape()  # no stale result behind the error
             message = operations.with_articles(f"{obj.Label}: {error}")
             raise FeatureError(message) from None
-        obj.Shape = (_local_shape(obj, shape) if source is None
-                     else _placed_shape(obj, shape, source))
+        obj.Shape = (_local_shape(obj, shape) if frame is None
+                     else _placed_shape(obj, shape, frame))
 
     def build(self, obj):
         """The result's shape from the current sources and parameters."""
@@ -564,6 +602,9 @@ class MergeFeature(_Feature):
         self._add(obj, "App::PropertyAngle", "MaxAngle",
                   "Largest angle between the edges at the join",
                   operations.MAX_MERGE_ANGLE_DEGREES)
+        self._add(obj, "App::PropertyLength", "MaxGap",
+                  "Largest gap between the edges' ends that the merge bridges (0: the ends "
+                  "must touch, within the wires' tolerance)", 0.0)
         self._add(obj, "App::PropertyBool", "KeepFirst", "Keep the first edge unchanged",
                   False)
         self._add(obj, "App::PropertyBool", "KeepSecond", "Keep the second edge unchanged",
@@ -579,7 +620,9 @@ class MergeFeature(_Feature):
         merged = operations.merge_edges(first, second, metric=obj.Metric, mu=mu,
                                         fix_ends=obj.FixEnds, keep_first=obj.KeepFirst,
                                         keep_second=obj.KeepSecond,
-                                        max_angle=_length(obj.MaxAngle))
+                                        max_angle=_length(obj.MaxAngle),
+                                        max_gap=_length(getattr(obj, "MaxGap", 0.0))
+                                        or "touching")
         obj.MergeMu = merged.mu
         obj.MergeMetric = merged.metric_value
         obj.MergeMaxDeviation = merged.max_deviation

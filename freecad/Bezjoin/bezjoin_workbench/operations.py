@@ -696,8 +696,8 @@ def merge_edges(first_edge, second_edge, *, metric="discrete", mu="optimal", fix
             q.close()
             raise _invalid(
                 f"the edges do not meet: their nearest ends are {gap:.6g} apart, more than "
-                f"max_gap = {limit:.6g}; merging them would bridge the gap (pass a larger "
-                "max_gap, or None, to merge them anyway)")
+                f"max_gap = {limit:.6g}; merging them would bridge the gap (a larger "
+                "MaxGap in the feature or the form, max_gap in Python, merges them anyway)")
         angle = _angle_at_join(p, q)
         if max_angle is not None and angle > max_angle:
             p.close()
