@@ -174,6 +174,18 @@ class RoundWireByRadius(unittest.TestCase, CommandDriver):
             operations.round_wire_by_radius(edges, 900.0)
         self.assertIn("corner 2 radius", str(caught.exception))
 
+    def test_a_zero_tangent_join_is_not_taken_for_a_smooth_one(self):
+        # A Bezier edge with a repeated first pole has no tangent at its start: that
+        # join has no direction to compare, so the library judges it (and refuses it
+        # by name) instead of the workbench leaving it unrounded.
+        cusp = Part.BezierCurve()
+        cusp.setPoles([V(10, 0, 0), V(10, 0, 0), V(10, 5, 0), V(10, 10, 0)])
+        edges = [Part.makeLine(V(0, 0, 0), V(10, 0, 0)), cusp.toShape(),
+                 Part.makeLine(V(10, 10, 0), V(0, 10, 0))]
+        with self.assertRaises(bezjoin.BezjoinError) as caught:
+            operations.round_wire_by_radius(edges, 1.0)
+        self.assertIn("tangent is zero", str(caught.exception))
+
     def test_a_wire_with_only_smooth_joins_has_no_corner_to_round(self):
         top = Part.ArcOfCircle(Part.Circle(V(0, 0, 0), V(0, 0, 1), 5.0), 0.0,
                                math.pi).toShape()

@@ -450,7 +450,7 @@ def _corner_runs(curves, closed):
     count = len(curves)
     joins = count if closed else count - 1
     smooth = [i for i in range(joins)
-              if _angle_at_join(curves[i], curves[(i + 1) % count]) < SMOOTH_JOIN_DEGREES]
+              if _is_smooth_join(curves[i], curves[(i + 1) % count])]
     if not smooth:
         return [list(range(count))], closed, []
     start = (smooth[0] + 1) % count if closed else 0
@@ -462,6 +462,16 @@ def _corner_runs(curves, closed):
         else:
             runs[-1].append(index)
     return runs, False, smooth
+
+
+def _is_smooth_join(p, q):
+    """Whether ``p``'s end tangent and ``q``'s start tangent turn by less than
+    ``SMOOTH_JOIN_DEGREES``; a zero tangent is no smooth join (the library judges it)."""
+    a = p.derivatives(p.domain[1], 1)[1]
+    b = q.derivatives(q.domain[0], 1)[1]
+    if not any(a) or not any(b):
+        return False
+    return _angle_at_join(p, q) < SMOOTH_JOIN_DEGREES
 
 
 #: ``corner i`` and ``curves[i]`` in a chain function's message.
@@ -492,8 +502,12 @@ def _round_runs(curves, closed, round_chain):
                 raise
             # The run's corner j and curves[j] are the path's corner / curve run[j]:
             # say them as a call on the whole path would.
-            message = _PATH_INDEX.sub(
-                lambda m: f"{m.group(1)}{run[int(m.group(2))]}{m.group(3)}", error.message)
+            def path_index(m):
+                local = int(m.group(2))
+                index = run[local] if local < len(run) else local
+                return f"{m.group(1)}{index}{m.group(3)}"
+
+            message = _PATH_INDEX.sub(path_index, error.message)
             raise bezjoin.BezjoinError(error.status, error.status_name, message) from error
         with result:
             edges.extend(piece.to_edge() for piece in result.pieces)
