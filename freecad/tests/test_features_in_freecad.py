@@ -465,6 +465,20 @@ class MovingTheContainer(FeatureCase):
             self.assertLessEqual(max(math.dist(a, b) for a, b in zip(after, before)), 1e-9)
 
 
+    def test_a_linked_face_gives_its_edges(self):
+        # A face as the source of a wire: its boundary's edges, as before the build
+        # frames (a linked element is read for its edges, whatever its kind).
+        part = self.document.addObject("App::Part", "Part")
+        box = self.document.addObject("Part::Box", "Box")
+        part.addObject(box)
+        self.document.recompute()
+        wire = features.make_round_wire(self.document, [(box, ["Face1"])], Method="Radius",
+                                        Radius=1.0)
+        self.recompute(wire)
+        self.assertEqual(len(wire.Shape.Edges), 8)
+        self.assertTrue(wire.Shape.isClosed())
+
+
 class SaveAndReopen(FeatureCase):
     def test_every_feature_survives_save_and_reopen(self):
         sketch, _width = constrained_rectangle(self.document, self.body, 40.0, 20.0)

@@ -510,8 +510,8 @@ def _linked_path(value, names=None):
     else:
         for obj, name in pairs:
             shape = _source_shape(obj, name)
-            if name:
-                labelled.append((f"{obj.Label}.{name}", shape))
+            if name:  # an edge, or the edges of a linked face or wire
+                labelled.extend((f"{obj.Label}.{name}", edge) for edge in shape.Edges)
             else:
                 labelled.extend((f"{obj.Label}.Edge{k + 1}", edge)
                                 for k, edge in enumerate(shape.Edges))
