@@ -407,6 +407,24 @@ impl CurveRef<'_> {
         out
     }
 
+    /// The point and the first derivative at `u` (`dim` values each; a
+    /// NURBS curve from the right at an interior knot, so at the domain's
+    /// ends from inside): de Casteljau's or de Boor's scheme without a
+    /// rounding bound and, for small sizes, without a heap allocation.
+    pub(crate) fn point_and_tangent_into(&self, u: f64, point: &mut [f64], tangent: &mut [f64]) {
+        match self {
+            CurveRef::Bezier(c) => crate::bezier::point_and_tangent_rows(
+                c.points(),
+                c.dim(),
+                c.degree(),
+                u,
+                point,
+                tangent,
+            ),
+            CurveRef::Nurbs(c) => c.point_and_tangent(u, point, Some(tangent)),
+        }
+    }
+
     /// Arc length from `a` to `b` (signed) to the absolute `accuracy`.
     pub fn arc_length(&self, a: f64, b: f64, accuracy: f64) -> Result<f64> {
         match self {

@@ -71,10 +71,8 @@ pub use radius::{
 };
 
 use crate::arclength::ArcLengthInverse;
-use crate::basis::KnotSide;
 use crate::bezier::BezierCurve;
 use crate::connect::{ConnectOptions, Connection, ShapeScale, connect};
-use crate::curve::CurveJet;
 use crate::curve::{Curve, CurveRef};
 use crate::error::{BezjoinError, Compact, Result, check_finite_scalar, check_positive};
 use crate::intersect::{IntersectOptions, Intersection, IntersectionKind, intersect};
@@ -280,9 +278,24 @@ pub fn fillet_vertex<'a>(
     }
     let (_, u) = p.domain();
     let (v, _) = q.domain();
-    let end = p.eval(u);
-    let start = q.eval(v);
-    let distance = crate::bezier::distance(&end, &start);
+    // P's end and Q's start with their tangents, in one pass each (at a
+    // domain's end the point is `eval`'s, bit for bit); on the stack up to
+    // dimension 8.
+    let dim = p.dim();
+    let mut stack = [0.0f64; 32];
+    let mut heap = Vec::new();
+    let work: &mut [f64] = if 4 * dim <= stack.len() {
+        &mut stack[..4 * dim]
+    } else {
+        heap.resize(4 * dim, 0.0);
+        &mut heap
+    };
+    let (p_rows, q_rows) = work.split_at_mut(2 * dim);
+    let (end, p_tangent) = p_rows.split_at_mut(dim);
+    let (start, q_tangent) = q_rows.split_at_mut(dim);
+    p.point_and_tangent_into(u, end, p_tangent);
+    q.point_and_tangent_into(v, start, q_tangent);
+    let distance = crate::bezier::distance(end, start);
     if distance.is_nan() || distance > gap {
         return Err(BezjoinError::NoIntersection {
             reason: format!(
@@ -291,36 +304,37 @@ pub fn fillet_vertex<'a>(
             ),
         });
     }
-    check_not_doubling_back(p, u, q, v, options.intersect.tangent_tolerance)?;
+    check_not_doubling_back(
+        (u, p_tangent),
+        (v, q_tangent),
+        options.intersect.tangent_tolerance,
+    )?;
     let crossing = Intersection {
         u,
         v,
-        point: end,
+        point: end.to_vec(),
         distance,
         kind: IntersectionKind::Crossing,
     };
     fillet_at_validated(p, q, crossing, options)
 }
 
-/// NoIntersection when P's tangent arriving at `u` (from the left) and Q's
-/// leaving `v` (from the right) point in opposite directions, within
-/// `tangent_tolerance` (the sine of their angle): the path turns back on
-/// itself there. Zero tangents are left to the fillet's own checks.
+/// NoIntersection when P's tangent `a` arriving at `u` (the end of its
+/// domain) and Q's `b` leaving `v` (the start of its) point in opposite
+/// directions, within `tangent_tolerance` (the sine of their angle): the
+/// path turns back on itself there. Zero tangents are left to the fillet's
+/// own checks.
 fn check_not_doubling_back(
-    p: CurveRef,
-    u: f64,
-    q: CurveRef,
-    v: f64,
+    (u, a): (f64, &[f64]),
+    (v, b): (f64, &[f64]),
     tangent_tolerance: f64,
 ) -> Result<()> {
-    let (p_jet, _) = p.jet(u, 1, KnotSide::Left);
-    let (q_jet, _) = q.jet(v, 1, KnotSide::Right);
-    let (a, b) = (p_jet.row(1), q_jet.row(1));
-    let (na, nb) = (a.norm(), b.norm());
+    let (na, nb) = (crate::bezier::norm(a), crate::bezier::norm(b));
     if !(na > 0.0 && nb > 0.0 && na.is_finite() && nb.is_finite()) {
         return Ok(());
     }
-    let cos = a.dot(&b) / (na * nb);
+    let dot: f64 = a.iter().zip(b.iter()).map(|(x, y)| x * y).sum();
+    let cos = dot / (na * nb);
     let sin = (1.0 - cos * cos).max(0.0).sqrt();
     if cos < 0.0 && sin <= tangent_tolerance {
         return Err(BezjoinError::NoIntersection {
