@@ -45,8 +45,6 @@ object (its whole shape; one edge for the two-edge features) or ``(object,
 "Edge3")`` / ``(object, ["Edge1", "Edge2"])``.
 """
 
-import re
-
 import FreeCAD
 import Part
 
@@ -522,15 +520,11 @@ def _linked_path(value, names=None):
     return path
 
 
-#: ``corner i`` and ``curves[i]`` in the library's messages about a path.
-_PATH_INDEX = re.compile(r"\b(corner |curves\[)(\d+)\]?")
-
-
 def _with_source_names(message, names):
     """``message`` followed by the source elements its ``corner i`` (between path edges
     ``i`` and ``i + 1``) and ``curves[i]`` (path edge ``i``) are, from ``names``."""
     notes = []
-    for kind, index in dict.fromkeys(_PATH_INDEX.findall(message)):
+    for kind, index, _ in dict.fromkeys(operations.PATH_INDEX.findall(message)):
         i = int(index)
         if i >= len(names):
             continue

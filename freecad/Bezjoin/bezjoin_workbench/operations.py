@@ -467,15 +467,13 @@ def _corner_runs(curves, closed):
 def _is_smooth_join(p, q):
     """Whether ``p``'s end tangent and ``q``'s start tangent turn by less than
     ``SMOOTH_JOIN_DEGREES``; a zero tangent is no smooth join (the library judges it)."""
-    a = p.derivatives(p.domain[1], 1)[1]
-    b = q.derivatives(q.domain[0], 1)[1]
-    if not any(a) or not any(b):
-        return False
-    return _angle_at_join(p, q) < SMOOTH_JOIN_DEGREES
+    angle = _turn_at_join(p, q)
+    return angle is not None and angle < SMOOTH_JOIN_DEGREES
 
 
-#: ``corner i`` and ``curves[i]`` in a chain function's message.
-_PATH_INDEX = re.compile(r"(corner |curves\[)(\d+)(\]?)")
+#: ``corner i`` and ``curves[i]`` in a chain function's message (also read by the
+#: features, which name the sketch edges behind them).
+PATH_INDEX = re.compile(r"\b(corner |curves\[)(\d+)(\]?)")
 
 
 def _round_runs(curves, closed, round_chain):
@@ -507,7 +505,7 @@ def _round_runs(curves, closed, round_chain):
                 index = run[local] if local < len(run) else local
                 return f"{m.group(1)}{index}{m.group(3)}"
 
-            message = _PATH_INDEX.sub(path_index, error.message)
+            message = PATH_INDEX.sub(path_index, error.message)
             raise bezjoin.BezjoinError(error.status, error.status_name, message) from error
         with result:
             edges.extend(piece.to_edge() for piece in result.pieces)
@@ -662,15 +660,22 @@ class MergedEdge:
                 f"largest deviation from the two edges {self.max_deviation:.6g}")
 
 
-def _angle_at_join(p, q):
-    """The angle in degrees between ``p``'s tangent at its end and ``q``'s at its start."""
+def _turn_at_join(p, q):
+    """The angle in degrees between ``p``'s tangent at its end and ``q``'s at its start,
+    ``None`` when either tangent is zero."""
     a = p.derivatives(p.domain[1], 1)[1]
     b = q.derivatives(q.domain[0], 1)[1]
     na, nb = math.sqrt(sum(x * x for x in a)), math.sqrt(sum(x * x for x in b))
     if na == 0.0 or nb == 0.0:
-        return 0.0
+        return None
     cosine = max(-1.0, min(1.0, sum(x * y for x, y in zip(a, b)) / (na * nb)))
     return math.degrees(math.acos(cosine))
+
+
+def _angle_at_join(p, q):
+    """:func:`_turn_at_join`, 0 for a zero tangent (the merge's limit then passes)."""
+    angle = _turn_at_join(p, q)
+    return 0.0 if angle is None else angle
 
 
 def merge_edges(first_edge, second_edge, *, metric="discrete", mu="optimal", fix_ends=True,
