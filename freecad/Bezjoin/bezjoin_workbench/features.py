@@ -264,11 +264,18 @@ def _placed_shape(obj, shape, frame):
             else FreeCAD.Placement()
     else:
         placement = operations.placement_to_model(obj).inverse().multiply(frame.to_model())
+    return _moved(shape, placement)
+
+
+def _moved(shape, placement):
+    """``shape``'s geometry moved by ``placement`` (a copy; ``shape`` itself when the
+    placement is the identity): ``transformShape``, because a feature's own
+    ``Placement`` replaces a shape's placement on recompute."""
     if placement.isIdentity():
         return shape
-    placed = shape.copy()
-    placed.transformShape(placement.toMatrix(), True)
-    return placed
+    moved = shape.copy()
+    moved.transformShape(placement.toMatrix(), True)
+    return moved
 
 
 def _local_shape(obj, shape):
@@ -276,12 +283,7 @@ def _local_shape(obj, shape):
     so that FreeCAD's display (the containers' placements applied on top) shows it
     where the sources are. The geometry is moved (``transformShape`` with a copy): a
     feature's own ``Placement`` replaces a shape's placement on recompute."""
-    to_model = operations.placement_to_model(obj)
-    if to_model.isIdentity():
-        return shape
-    local = shape.copy()
-    local.transformShape(to_model.inverse().toMatrix(), True)
-    return local
+    return _moved(shape, operations.placement_to_model(obj).inverse())
 
 
 def _update_containers(obj):
