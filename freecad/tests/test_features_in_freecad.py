@@ -392,6 +392,25 @@ class SplineFeatureTest(FeatureCase):
         spline.Points = [(polyline, ["Vertex1", "Vertex2", "Vertex3"])]
         self.assert_invalid(spline, "3 points given")
 
+    def test_a_closed_polyline_is_refused_not_opened(self):
+        # A closed square gave an open spline without its closing side (user testing,
+        # session 39): OrderedVertexes does not repeat the first vertex.
+        square = self.document.addObject("Part::Feature", "Square")
+        square.Shape = Part.makePolygon([V(0, 0, 0), V(10, 0, 0), V(10, 10, 0), V(0, 10, 0),
+                                         V(0, 0, 0)])
+        spline = features.make_spline(self.document, square)
+        self.assert_invalid(spline, "Square is a closed polyline", "link its vertices")
+
+    def test_a_deleted_linked_vertex_is_named(self):
+        polyline = self.document.addObject("Part::Feature", "Polyline")
+        polyline.Shape = Part.makePolygon(self.points)
+        spline = features.make_spline(
+            self.document, [(polyline, ["Vertex1", "Vertex2", "Vertex3", "Vertex4"])])
+        self.recompute(spline)
+        polyline.Shape = Part.makePolygon(self.points[:3])  # Vertex4 is gone
+        status = self.assert_invalid(spline, "Polyline.Vertex4", "no longer has")
+        self.assertNotEqual(status.strip(), f"{spline.Label}: Index out of bound")
+
 
 class MovingTheContainer(FeatureCase):
     """A feature whose sources are one sketch is built in the sketch's coordinates and

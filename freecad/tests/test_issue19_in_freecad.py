@@ -227,6 +227,25 @@ class MergeDefaults(unittest.TestCase):
         touching = Part.makeLine(V(500, 1e-7, 0), V(900, 1e-7, 0))
         self.assertEqual(operations.merge_edges(first, touching).shape.ShapeType, "Edge")
 
+    def test_limits_that_are_not_numbers_are_refused_by_name(self):
+        # MaxAngle = NaN passed every comparison and merged two lines at 90 degrees into
+        # their chord (deviation 7.07 mm); a negative angle or gap was stored and used.
+        first = Part.makeLine(V(0, 0, 0), V(10, 0, 0))
+        second = Part.makeLine(V(10, 0, 0), V(10, 10, 0))
+        with self.assertRaises(bezjoin.BezjoinError):
+            operations.merge_edges(first, second)
+        for keyword, value, name in (("max_angle", float("nan"), "MaxAngle"),
+                                     ("max_angle", -10.0, "MaxAngle"),
+                                     ("max_gap", float("nan"), "MaxGap"),
+                                     ("max_gap", -1.0, "MaxGap")):
+            with self.assertRaises(bezjoin.BezjoinError) as caught:
+                operations.merge_edges(first, second, **{keyword: value})
+            self.assertIn(name, str(caught.exception))
+            self.assertIn(keyword, str(caught.exception))
+        straight = Part.makeLine(V(10, 0, 0), V(20, 0, 0))
+        self.assertEqual(operations.merge_edges(first, straight, max_angle=0.0).shape.ShapeType,
+                         "Edge")
+
 
 class SharedVertices(unittest.TestCase):
     def test_blend_of_edges_sharing_a_vertex_is_refused(self):

@@ -563,6 +563,35 @@ mod tests {
         let s = unsafe { bzj_curve_new(2, usize::MAX, pts.as_ptr(), 4, &mut c) };
         assert_eq!(s, BzjStatus::BZJ_ERR_INVALID_ARGUMENT);
         assert!(last_error().contains("degree"), "{}", last_error());
+        // A degree above the cap with the length that degree would need:
+        // refused by the cap before the 8,194 doubles are read (the copy
+        // used to come first and read past the 4 given; user testing,
+        // session 39).
+        // `points` is a page that may not be read: reading it would kill
+        // this test process.
+        // SAFETY: an anonymous private mapping of one page, unmapped below.
+        let page = unsafe {
+            libc::mmap(
+                std::ptr::null_mut(),
+                4096,
+                libc::PROT_NONE,
+                libc::MAP_PRIVATE | libc::MAP_ANONYMOUS,
+                -1,
+                0,
+            )
+        };
+        assert_ne!(page, libc::MAP_FAILED);
+        // SAFETY: the library must refuse from the numbers alone.
+        let s = unsafe { bzj_curve_new(2, 4097, page.cast(), 2 * 4098, &mut c) };
+        assert_eq!(s, BzjStatus::BZJ_ERR_INVALID_ARGUMENT);
+        assert!(c.is_null());
+        assert!(
+            last_error().contains("degree: 4097 is above"),
+            "{}",
+            last_error()
+        );
+        // SAFETY: the mapping made above.
+        assert_eq!(unsafe { libc::munmap(page, 4096) }, 0);
     }
 
     #[test]

@@ -186,15 +186,20 @@ pub unsafe extern "C" fn bzj_connect_geometric(
 ///
 /// @return BZJ_ERR_NULL_POINTER if `p`, `q` or an output handle pointer is
 ///         NULL;
-///         BZJ_ERR_INVALID_ARGUMENT if `radius` is not > 0, `order` is 0 or
-///         above 6, or the arc of that radius does not fit on the curves
-///         (`radius` named);
+///         BZJ_ERR_INVALID_ARGUMENT if `radius` is not > 0 or at most 1e-9 of
+///         the curves' coordinate size, `order` is 0 or above 6, or the arc
+///         of that radius does not fit on the curves (`radius` named), or
+///         its touching point leaves at most 1e-9 of P's or Q's length (`p`
+///         or `q` named);
 ///         BZJ_ERR_NON_FINITE if `radius` is NaN or infinite;
 ///         BZJ_ERR_DIMENSION_MISMATCH if the dimensions differ;
 ///         BZJ_ERR_NO_INTERSECTION if there is no corner (no shared vertex and
 ///         no crossing, or parallel tangents there);
 ///         BZJ_ERR_ILL_CONDITIONED if the touching points or the blend cannot
-///         be trusted.
+///         be trusted, or the blend is not sized like the arc: it strays more
+///         than `radius` from it, or its curvature exceeds 4 times the larger
+///         of `1/radius` and its end curvatures (a second crossing near the
+///         corner, or a turn of more than 180 degrees).
 ///
 /// # Safety
 /// `p`, `q` are NULL or live handles; the three handle pointers are NULL or

@@ -54,13 +54,10 @@ pub struct BezierCurve {
 impl BezierCurve {
     /// A curve from `(degree + 1) * dim` row-major coordinates.
     ///
-    /// Errors: `dim == 0` (InvalidArgument), `degree` above [`MAX_DEGREE`]
-    /// (InvalidArgument), then the size checks of
-    /// [`check_shape`](Self::check_shape), NaN/infinity (NonFinite, naming
-    /// the first bad index).
+    /// Errors: those of [`check_shape`](Self::check_shape) (`dim == 0`,
+    /// `degree` above [`MAX_DEGREE`], the sizes), then NaN/infinity
+    /// (NonFinite, naming the first bad index).
     pub fn new(dim: usize, degree: usize, points: Vec<f64>) -> Result<Self> {
-        check_dim(dim)?;
-        check_degree_supported("degree", degree)?;
         Self::check_shape(dim, degree, points.len())?;
         check_finite("points", &points)?;
         Ok(Self {
@@ -72,13 +69,14 @@ impl BezierCurve {
 
     /// The size checks of [`new`](Self::new) from the numbers alone, for
     /// callers that must refuse a bad size before reading the coordinates
-    /// (the C ABI): `dim >= 1` (InvalidArgument naming `dim`),
+    /// (the C ABI): `dim >= 1` (InvalidArgument naming `dim`), `degree` at
+    /// most [`MAX_DEGREE`] (InvalidArgument naming `degree`),
     /// `(degree + 1) * dim` representable (InvalidArgument naming
     /// `degree, dim`) and `len` equal to it (LengthMismatch naming `points`),
-    /// in this order. Returns `(degree + 1) * dim`. The degree cap
-    /// [`MAX_DEGREE`] is not part of it (`new` checks it).
+    /// in this order. Returns `(degree + 1) * dim`.
     pub fn check_shape(dim: usize, degree: usize, len: usize) -> Result<usize> {
         check_dim(dim)?;
+        check_degree_supported("degree", degree)?;
         let expected = degree
             .checked_add(1)
             .and_then(|n| n.checked_mul(dim))
@@ -1222,7 +1220,14 @@ mod tests {
     #[test]
     fn check_shape_gives_the_size_errors_of_new() {
         assert_eq!(BezierCurve::check_shape(2, 3, 8).unwrap(), 8);
-        for (dim, degree, len) in [(0, 3, 8), (usize::MAX, 3, 8), (2, 3, 7)] {
+        // The degree cap too: the C ABI must refuse it before reading
+        // `(degree + 1) * dim` coordinates the caller may not have.
+        for (dim, degree, len) in [
+            (0, 3, 8),
+            (usize::MAX, 3, 8),
+            (2, 3, 7),
+            (2, MAX_DEGREE + 1, 8194),
+        ] {
             let shape = BezierCurve::check_shape(dim, degree, len).unwrap_err();
             let new = BezierCurve::new(dim, degree, vec![0.0; len]).unwrap_err();
             assert_eq!(shape.to_string(), new.to_string());

@@ -62,8 +62,8 @@ pub use connect::{
 pub use curve::{AsCurveRef, Curve, CurveJet, CurveRef};
 pub use error::{BezjoinError, Result};
 pub use fillet::{
-    ARC_DEVIATION_SAMPLES, RadiusChainFillet, RadiusCorner, RadiusFillet, VERTEX_TOLERANCE,
-    fillet_radius, fillet_radius_chain,
+    ARC_DEVIATION_SAMPLES, MAX_ARC_DEVIATION, MAX_CURVATURE_RATIO, RadiusChainFillet, RadiusCorner,
+    RadiusFillet, VERTEX_TOLERANCE, fillet_radius, fillet_radius_chain,
 };
 pub use fillet::{
     ChainCorner, ChainFillet, ChainFilletOptions, DEFAULT_PARALLEL_THRESHOLD,
@@ -86,7 +86,7 @@ pub use lagrange::{
     bezier_from_lagrange_points, chord_length_params, lagrange_points_of_bezier, lagrange_spline,
 };
 pub use merge::{
-    BSplineChainMerge, BSplineMerge, CurveChainMerge, CurveMerge, MAX_MERGE_POLES,
+    BSplineChainMerge, BSplineMerge, CurveChainMerge, CurveMerge, MAX_MERGE_POLES, MIN_SPLIT,
     merge_bspline_chain, merge_bsplines, merge_bsplines_metric_at, merge_curve_chain, merge_curves,
 };
 pub use merge::{

@@ -461,3 +461,99 @@ fn ends_that_just_miss_are_refused_with_their_distance() {
         other => panic!("{other:?}"),
     }
 }
+
+/// A corner at a shared vertex where P also crosses Q close to it (user
+/// testing, session 39): the arc's touching points lie inside the small
+/// loop the crossing makes, and the G2 blend between them strayed 18.9 r
+/// from the arc while the kept pieces still crossed each other, reported as
+/// a valid fillet. It is IllConditioned now, naming the arc and how far the
+/// blend strays; lines at every angle stay within the bounds (0.503 r and
+/// 1.53 / r at most, for turns of 1 to 179 degrees).
+#[test]
+fn a_blend_that_does_not_follow_its_arc_is_refused() {
+    let p = BezierCurve::new(2, 3, vec![6.54, 2.93, 1.48, -2.72, -8.49, 1.09, 0.0, 0.0]).unwrap();
+    let q = BezierCurve::new(2, 1, vec![0.0, 0.0, -9.133, -4.008]).unwrap();
+    let crossings = bezjoin_core::intersect(&p, &q, &Default::default()).unwrap();
+    assert!(
+        crossings.iter().any(|c| c.u < 0.9),
+        "a crossing besides the vertex: {crossings:?}"
+    );
+    for order in [2, 3] {
+        match fillet_radius(&p, &q, 1.0, order) {
+            Err(BezjoinError::IllConditioned {
+                what,
+                estimate,
+                limit,
+            }) => {
+                assert!(what.contains("does not follow the arc of radius"), "{what}");
+                assert!(estimate > limit, "{estimate} {limit}");
+            }
+            other => panic!("G{order}: {other:?}"),
+        }
+    }
+    let mut answered = 0;
+    for degrees in (1..180).step_by(2) {
+        let turn = f64::from(degrees).to_radians();
+        let a = BezierCurve::new(2, 1, vec![-100.0, 0.0, 0.0, 0.0]).unwrap();
+        let b =
+            BezierCurve::new(2, 1, vec![0.0, 0.0, 100.0 * turn.cos(), 100.0 * turn.sin()]).unwrap();
+        for order in [2, 3] {
+            match fillet_radius(&a, &b, 1.0, order) {
+                Ok(f) => {
+                    answered += 1;
+                    assert!(
+                        f.arc_deviation <= 0.51,
+                        "{degrees} deg G{order}: {}",
+                        f.arc_deviation
+                    );
+                }
+                // Turns near 180 degrees: the arc's setback exceeds the lines.
+                Err(BezjoinError::InvalidArgument { name, .. }) if degrees > 170 => {
+                    assert_eq!(name, "radius");
+                }
+                Err(e) => panic!("{degrees} degrees G{order}: {e}"),
+            }
+        }
+    }
+    assert!(answered >= 170, "{answered}");
+}
+
+/// An L of lines 40 and 30 long: at 90 degrees the arc of radius 30 touches
+/// the short line at its far end. The kept piece of it was an edge of
+/// 3.55e-15 mm, reported as a valid fillet that FreeCAD's shape check then
+/// refused (user testing, session 39); the chains already refused it. It is
+/// refused by name now, and a radius just below still rounds the corner.
+#[test]
+fn a_radius_that_uses_a_whole_side_of_one_corner_is_refused() {
+    let long = BezierCurve::new(2, 1, vec![0.0, 0.0, 40.0, 0.0]).unwrap();
+    let short = BezierCurve::new(2, 1, vec![40.0, 0.0, 40.0, 30.0]).unwrap();
+    for order in [2, 3] {
+        match fillet_radius(&long, &short, 30.0, order) {
+            Err(BezjoinError::InvalidArgument { name, reason }) => {
+                assert_eq!(name, "q", "{reason}");
+                assert!(
+                    reason.contains("leaves") && reason.contains("of its length 30"),
+                    "{reason}"
+                );
+            }
+            other => panic!("G{order}: {other:?}"),
+        }
+        // A radius within the vertex tolerance of the coordinates (1e-9 of
+        // 40): its blend was an edge of 1.65e-12.
+        match fillet_radius(&long, &short, 1e-12, order) {
+            Err(BezjoinError::InvalidArgument { name, reason }) => {
+                assert_eq!(name, "radius", "{reason}");
+                assert!(
+                    reason.contains("could not be told from the corner"),
+                    "{reason}"
+                );
+            }
+            other => panic!("G{order}: {other:?}"),
+        }
+        assert!(fillet_radius(&long, &short, 1e-6, order).is_ok());
+        let f = fillet_radius(&long, &short, 29.9, order).unwrap();
+        // The kept piece of the short line is 0.1 long: from (40, 29.9) to (40, 30).
+        let start = short.eval(f.v0);
+        assert!((start[1] - 29.9).abs() < 1e-9, "{start:?}");
+    }
+}

@@ -8,8 +8,8 @@ mod common;
 use bezjoin_core::BezierCurve;
 use bezjoin_core::BezjoinError;
 use bezjoin_core::{
-    Breakpoints, ChainKeepPoint, ChainMergeOptions, KeepPoint, MergeMetric, MergeOptions, merge,
-    merge_chain, merge_metric_at,
+    Breakpoints, ChainKeepPoint, ChainMergeOptions, KeepPoint, MIN_SPLIT, MergeMetric,
+    MergeOptions, merge, merge_chain, merge_metric_at,
 };
 use common::{
     Random, bezier_basis_derivatives, control_matrix, curve_from_matrix, max_abs_gap, rows_matrix,
@@ -803,6 +803,26 @@ fn errors_name_the_problem() {
     )
     .unwrap_err();
     assert!(matches!(e, BezjoinError::NonFiniteScalar { .. }), "{e}");
+    // A split that leaves a piece below MIN_SPLIT of the parameter range:
+    // refused (it was answered with a wrong curve, or a NaN length at
+    // 1e-200; user testing, session 39); MIN_SPLIT itself is answered.
+    for mu in [1e-200, 1e-9, 1.0 - 1e-9] {
+        let e = merge(
+            &p,
+            &q,
+            &MergeOptions::default().with_split(Breakpoints::Given(vec![mu])),
+        )
+        .unwrap_err();
+        let text = e.to_string();
+        assert!(
+            text.starts_with("mu = ") && text.ends_with("is outside [0.000001, 0.999999]"),
+            "{text}"
+        );
+        let e = merge_metric_at(&p, &q, &MergeOptions::default(), mu).unwrap_err();
+        assert!(e.to_string().contains("[0.000001, 0.999999]"), "{e}");
+    }
+    let at_limit = MergeOptions::default().with_split(Breakpoints::Given(vec![MIN_SPLIT]));
+    assert!(merge(&p, &q, &at_limit).is_ok());
     let o = MergeOptions {
         q_points: vec![KeepPoint {
             param: 1.5,

@@ -635,10 +635,23 @@ def _linked_points(value):
         wires = _source_shape(pairs[0][0]).Wires
         if len(wires) != 1:
             raise FeatureError(f"{pairs[0][0].Label} is not one polyline: link its vertices")
+        if wires[0].isClosed():
+            # Its ordered vertices do not repeat the first: the closing side would be
+            # dropped without a word (user testing, session 39).
+            raise FeatureError(
+                f"{pairs[0][0].Label} is a closed polyline, and the spline through on-curve "
+                "points is open: link its vertices in order instead, the first again at the "
+                "end to come back to it")
         return [vertex.Point for vertex in wires[0].OrderedVertexes]
     points = []
     for obj, name in pairs:
-        shape = _source_shape(obj, name)
+        try:
+            shape = _source_shape(obj, name)
+        except (IndexError, ValueError, RuntimeError) as error:
+            # FreeCAD's own words for a missing element are "Index out of bound".
+            raise FeatureError(
+                f"the points link {obj.Label}.{name}, which {obj.Label} no longer has "
+                f"({error}): link another vertex") from None
         points.extend(vertex.Point for vertex in shape.Vertexes)
     return points
 

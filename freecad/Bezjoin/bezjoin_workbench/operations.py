@@ -702,6 +702,13 @@ def merge_edges(first_edge, second_edge, *, metric="discrete", mu="optimal", fix
     if same_edge(first_edge, second_edge):
         raise _invalid("the first and the second edge are the same edge: select two "
                        "different edges")
+    # A NaN limit would pass every comparison below and switch the guard off.
+    if max_angle is not None and not 0.0 <= max_angle <= 180.0:
+        raise _invalid(f"max_angle (MaxAngle) must be an angle from 0 to 180 degrees, "
+                       f"not {max_angle:.6g}; None (Python) allows any angle")
+    if max_gap not in (None, "touching") and not 0.0 <= max_gap < math.inf:
+        raise _invalid(f"max_gap (MaxGap) must be a length of 0 or more, not {max_gap:.6g}; "
+                       "None (Python) allows any gap")
     with edge_curve(first_edge, "first edge") as p, edge_curve(second_edge, "second edge") as q:
         if orient:
             p, q = orient_end_to_start(p, q)

@@ -168,38 +168,56 @@ pub(crate) fn chain_refs<C: AsCurveRef>(curves: &[C]) -> Result<Vec<CurveRef<'_>
     Ok(curves)
 }
 
-/// Largest part of a curve's length that a kept piece of a chain may have
-/// and still be refused as a sliver: cuts this close have met up to the
-/// rounding of their arc-length and tangent-point solves (the same
-/// relative tolerance as a shared vertex).
-const SLIVER: f64 = 1e-9;
+/// Largest part of a curve's length that a kept piece of a chain (or of a
+/// single rounded corner) may have and still be refused as a sliver: cuts
+/// this close have met up to the rounding of their arc-length and
+/// tangent-point solves (the same relative tolerance as a shared vertex).
+pub(crate) const SLIVER: f64 = 1e-9;
 
 /// InvalidArgument naming `curves[i]` when its kept piece `[start, end]`
 /// is at most [`SLIVER`] of its length: the corners' cuts use the whole
 /// curve (a radius or setbacks that fit exactly), and the few ulps left
-/// would be an edge no CAD kernel takes. The lengths are measured only when
-/// the piece is within 1e-6 of the domain in parameter
-/// ([`short_piece_length`]).
+/// would be an edge no CAD kernel takes ([`check_kept_piece`]).
 fn check_not_a_sliver(
     curve: CurveRef,
     i: usize,
+    domain: (f64, f64),
+    piece: (f64, f64),
+) -> Result<()> {
+    check_kept_piece(
+        curve,
+        &format!("curves[{i}]"),
+        "the cuts of its two corners leave",
+        domain,
+        piece,
+    )
+}
+
+/// InvalidArgument naming `name` when the kept piece `[start, end]` of
+/// `curve` (domain `(first, last)`) is at most [`SLIVER`] of its length;
+/// the message starts with `what` (the cut or cuts that leave it). The
+/// lengths are measured only when the piece is within 1e-6 of the domain
+/// in parameter ([`short_piece_length`]).
+pub(crate) fn check_kept_piece(
+    curve: CurveRef,
+    name: &str,
+    what: &str,
     (first, last): (f64, f64),
     (start, end): (f64, f64),
 ) -> Result<()> {
-    let name = || format!("curves[{i}]");
-    let Some(kept) = short_piece_length(curve, (start, end), last - first, name)? else {
+    let Some(kept) = short_piece_length(curve, (start, end), last - first, || name.to_string())?
+    else {
         return Ok(());
     };
-    let name = name();
-    let whole = curve.arc_length(first, last, curve.checked_default_length_accuracy(&name)?)?;
+    let whole = curve.arc_length(first, last, curve.checked_default_length_accuracy(name)?)?;
     if kept > SLIVER * whole {
         return Ok(());
     }
     Err(BezjoinError::invalid(
         name,
         format!(
-            "the cuts of its two corners leave {kept:e} of its length {} (at most \
-             {SLIVER:e} of it): the setbacks (or the radius) use the whole curve",
+            "{what} {kept:e} of its length {} (at most {SLIVER:e} of it): the setbacks (or the \
+             radius) use the whole curve",
             Compact(whole)
         ),
     ))

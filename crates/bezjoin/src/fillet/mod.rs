@@ -66,8 +66,8 @@ pub use deviation::{
     DeviationFillet, DeviationFilletOptions, distance_to_curve, fillet_within_deviation,
 };
 pub use radius::{
-    ARC_DEVIATION_SAMPLES, RadiusChainFillet, RadiusCorner, RadiusFillet, VERTEX_TOLERANCE,
-    fillet_radius, fillet_radius_chain,
+    ARC_DEVIATION_SAMPLES, MAX_ARC_DEVIATION, MAX_CURVATURE_RATIO, RadiusChainFillet, RadiusCorner,
+    RadiusFillet, VERTEX_TOLERANCE, fillet_radius, fillet_radius_chain,
 };
 
 use crate::arclength::ArcLengthInverse;

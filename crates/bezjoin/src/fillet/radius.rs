@@ -38,6 +38,14 @@ pub const VERTEX_TOLERANCE: f64 = 1e-9;
 /// Samples of the blend behind [`RadiusFillet::arc_deviation`].
 pub const ARC_DEVIATION_SAMPLES: usize = 256;
 
+/// Largest distance of a blend by radius from its arc, in units of `r`
+/// ([`RadiusFillet::arc_deviation`]); beyond, the corner is refused.
+pub const MAX_ARC_DEVIATION: f64 = 1.0;
+
+/// Largest curvature of a blend by radius, in units of the larger of `1/r`
+/// and the blend's end curvatures; beyond, the corner is refused.
+pub const MAX_CURVATURE_RATIO: f64 = 4.0;
+
 /// A corner rounded like the arc of radius `r`, with a G^k blend.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RadiusFillet {
@@ -145,6 +153,11 @@ pub fn fillet_radius<'a>(
     let (rounded, blend) = round_radius_corner(p, q, corner, radius, order, scale)?;
     let (p_first, _) = p.domain();
     let (_, q_last) = q.domain();
+    // A radius whose arc uses a whole side leaves a few ulps of it: refused,
+    // as in a chain (user testing, session 39: a 3.55e-15 mm edge).
+    let what = "the arc's touching point leaves";
+    super::chain::check_kept_piece(p, "p", what, p.domain(), (p_first, rounded.u0))?;
+    super::chain::check_kept_piece(q, "q", what, q.domain(), (rounded.v0, q_last))?;
     Ok(RadiusFillet {
         p_trimmed: p.segment(p_first, rounded.u0)?,
         blend,
@@ -188,9 +201,24 @@ fn check_arguments(p: CurveRef, q: CurveRef, radius: f64, order: usize) -> Resul
             format!("{order} is not a geometric order 1..={MAX_GEOMETRIC_ORDER}"),
         ));
     }
-    Ok(p.coordinate_scale()
+    let scale = p
+        .coordinate_scale()
         .max(q.coordinate_scale())
-        .max(f64::MIN_POSITIVE))
+        .max(f64::MIN_POSITIVE);
+    // A radius within the vertex tolerance of the coordinates cannot be
+    // told from the corner itself; its blend was an edge of 1.65e-12 mm
+    // (user testing, session 39).
+    if radius <= VERTEX_TOLERANCE * scale {
+        return Err(BezjoinError::invalid(
+            "radius",
+            format!(
+                "{radius:e} is at most {VERTEX_TOLERANCE:e} of the curves' coordinate size \
+                 {scale:e}: the arc could not be told from the corner (its blend would be an \
+                 edge no CAD kernel takes)"
+            ),
+        ));
+    }
+    Ok(scale)
 }
 
 /// The shared vertex as the corner, when P's last point is Q's first
@@ -356,6 +384,7 @@ fn round_radius_corner(
         .chunks_exact(g.curve.dim())
         .map(|x| (crate::bezier::distance(x, &arc_centre) - radius).abs())
         .fold(0.0f64, f64::max);
+    check_blend_follows_the_arc(&g, radius, arc_deviation)?;
     Ok((
         RadiusCorner {
             corner,
@@ -369,6 +398,59 @@ fn round_radius_corner(
         },
         g.curve,
     ))
+}
+
+/// A blend "sized like the arc" strays from it by at most
+/// [`MAX_ARC_DEVIATION`] `r` (lines at every angle: 0.503 r at most, for a
+/// 177-degree turn) and bends at most [`MAX_CURVATURE_RATIO`] times the
+/// larger of `1/r` and its own end curvatures (those of the inputs, for
+/// G2 and above; lines at every angle: 1.53 at most). A blend beyond
+/// either is not a rounded corner: a loop around a second crossing of the
+/// curves near the vertex (18.9 r away), or a turn of more than 180 degrees
+/// through a curvature peak of 17.6 / r (user testing, session 39). Such a
+/// corner is IllConditioned, with the larger of the two ratios as the
+/// estimate, instead of an answer that looks valid.
+fn check_blend_follows_the_arc(
+    g: &crate::geometric::GeometricConnection,
+    radius: f64,
+    arc_deviation: f64,
+) -> Result<()> {
+    let curve = &g.curve;
+    let d = curve.dim();
+    let end_curvature = |t: f64| {
+        let jet = curve.eval_derivatives(t, 2);
+        let (a, b) = (&jet[d..2 * d], &jet[2 * d..3 * d]);
+        let dot = |x: &[f64], y: &[f64]| x.iter().zip(y).map(|(p, q)| p * q).sum::<f64>();
+        let s2 = dot(a, a);
+        ((s2 * dot(b, b) - dot(a, b).powi(2)).max(0.0)).sqrt() / (s2 * s2.sqrt())
+    };
+    let reference = (1.0 / radius)
+        .max(end_curvature(0.0))
+        .max(end_curvature(1.0));
+    let peak = g
+        .report
+        .curvature_max
+        .abs()
+        .max(g.report.curvature_min.abs());
+    let bending = peak / (MAX_CURVATURE_RATIO * reference);
+    let straying = arc_deviation / (MAX_ARC_DEVIATION * radius);
+    let worst = bending.max(straying);
+    if worst <= 1.0 {
+        return Ok(());
+    }
+    Err(BezjoinError::IllConditioned {
+        what: format!(
+            "fillet by radius: the blend does not follow the arc of radius {radius:.6e}: it strays \
+             {arc_deviation:.3e} from it ({:.3} r, at most {MAX_ARC_DEVIATION} r) and bends to \
+             curvature {peak:.3e} ({:.3} times the larger of 1/r and its end curvatures, at \
+             most {MAX_CURVATURE_RATIO}); the curves may cross again near the corner or turn \
+             by more than 180 degrees there (a smaller radius may fit)",
+            arc_deviation / radius,
+            peak / reference,
+        ),
+        estimate: worst,
+        limit: 1.0,
+    })
 }
 
 /// One corner of a chain rounded by radius ([`fillet_radius_chain`]).

@@ -79,7 +79,7 @@ use nalgebra::{DMatrix, DVector};
 use crate::basis::{KnotSide, basis_derivatives, find_span};
 use crate::bezier::{BezierCurve, MAX_DEGREE};
 use crate::curve::Curve;
-use crate::error::{BezjoinError, Result, check_open_range, check_positive};
+use crate::error::{BezjoinError, Result, check_positive};
 use crate::linalg::solve_checked;
 use crate::minimize::minimize_with_slope;
 use crate::nurbs::NurbsCurve;
@@ -157,7 +157,7 @@ pub fn merge_bsplines(
                     actual: inner.len(),
                 });
             };
-            check_open_range("mu", mu, 0.0, 1.0)?;
+            super::check_split(mu)?;
             given(mu)?
         }
         Breakpoints::Uniform => given(0.5)?,
@@ -192,7 +192,7 @@ pub fn merge_bsplines_metric_at(
     options: &MergeOptions,
     mu: f64,
 ) -> Result<f64> {
-    check_open_range("mu", mu, 0.0, 1.0)?;
+    super::check_split(mu)?;
     let problem = pair_problem(p, q, options)?;
     Ok(problem
         .stage_one(&[0.0, mu, 1.0], Check::Full)?

@@ -256,6 +256,20 @@ pub struct Merge {
     pub report: MergeReport,
 }
 
+/// The smallest piece a given split `mu` may leave, as a part of the
+/// merged curve's parameter range: the continuity conditions at the join
+/// scale like `mu^-n`, and below this a merge was answered with a wrong
+/// curve (`mu = 1e-6 .. 1e-100`: 3.18 mm off on 20 mm B-splines) or a NaN
+/// length (`1e-200`), user testing, session 39. The FreeCAD form's limit.
+pub const MIN_SPLIT: f64 = 1e-6;
+
+/// `mu` in `(0, 1)` (ParameterOutOfRange, as before), then in
+/// `[MIN_SPLIT, 1 - MIN_SPLIT]` (ParameterOutOfRange naming that range).
+pub(crate) fn check_split(mu: f64) -> Result<()> {
+    check_open_range("mu", mu, 0.0, 1.0)?;
+    check_closed_range("mu", mu, MIN_SPLIT, 1.0 - MIN_SPLIT)
+}
+
 /// Merge `P` and `Q` into one Bezier curve `R` (docs/mathematics.md#merge;
 /// Ganchuk et al. 2024 with the `mu`-scaled continuity conditions).
 ///
@@ -273,7 +287,8 @@ pub struct Merge {
 /// assert!(result.report.max_deviation < 1e-9);
 /// ```
 ///
-/// Errors: dimensions differ (DimensionMismatch); `mu` outside `(0, 1)`,
+/// Errors: dimensions differ (DimensionMismatch); `mu` outside `(0, 1)` or
+/// `[MIN_SPLIT, 1 - MIN_SPLIT]`,
 /// a keep-point parameter outside `[0, 1]` (ParameterOutOfRange); an order
 /// above the working degree (OrderAboveDegree); a degree below the curves'
 /// or, for [`Breakpoints::PolygonLength`], a control polygon of zero
@@ -292,7 +307,7 @@ pub fn merge(p: &BezierCurve, q: &BezierCurve, options: &MergeOptions) -> Result
                     actual: inner.len(),
                 });
             };
-            check_open_range("mu", mu, 0.0, 1.0)?;
+            check_split(mu)?;
             (mu, problem.solve_given(mu)?)
         }
         Breakpoints::Uniform => (0.5, problem.solve_given(0.5)?),
@@ -368,7 +383,7 @@ pub fn merge_metric_at(
     mu: f64,
 ) -> Result<f64> {
     let problem = PairProblem::new(p, q, options)?;
-    check_open_range("mu", mu, 0.0, 1.0)?;
+    check_split(mu)?;
     problem.solve_given(mu).map(|s| s.metric_value)
 }
 
