@@ -55,7 +55,7 @@ impl BezierCurve {
     /// A curve from `(degree + 1) * dim` row-major coordinates.
     ///
     /// Errors: those of [`check_shape`](Self::check_shape) (`dim == 0`,
-    /// `degree` above [`MAX_DEGREE`], the sizes), then NaN/infinity
+    /// the sizes, `degree` above [`MAX_DEGREE`]), then NaN/infinity
     /// (NonFinite, naming the first bad index).
     pub fn new(dim: usize, degree: usize, points: Vec<f64>) -> Result<Self> {
         Self::check_shape(dim, degree, points.len())?;
@@ -69,14 +69,14 @@ impl BezierCurve {
 
     /// The size checks of [`new`](Self::new) from the numbers alone, for
     /// callers that must refuse a bad size before reading the coordinates
-    /// (the C ABI): `dim >= 1` (InvalidArgument naming `dim`), `degree` at
-    /// most [`MAX_DEGREE`] (InvalidArgument naming `degree`),
+    /// (the C ABI): `dim >= 1` (InvalidArgument naming `dim`),
     /// `(degree + 1) * dim` representable (InvalidArgument naming
-    /// `degree, dim`) and `len` equal to it (LengthMismatch naming `points`),
-    /// in this order. Returns `(degree + 1) * dim`.
+    /// `degree, dim`), `degree` at most [`MAX_DEGREE`] (InvalidArgument
+    /// naming `degree`) and `len` equal to `(degree + 1) * dim`
+    /// (LengthMismatch naming `points`), in this order. Returns
+    /// `(degree + 1) * dim`.
     pub fn check_shape(dim: usize, degree: usize, len: usize) -> Result<usize> {
         check_dim(dim)?;
-        check_degree_supported("degree", degree)?;
         let expected = degree
             .checked_add(1)
             .and_then(|n| n.checked_mul(dim))
@@ -86,6 +86,7 @@ impl BezierCurve {
                     format!("(degree + 1) * dim = ({degree} + 1) * {dim} overflows"),
                 )
             })?;
+        check_degree_supported("degree", degree)?;
         if len != expected {
             return Err(BezjoinError::LengthMismatch {
                 name: "points".into(),
