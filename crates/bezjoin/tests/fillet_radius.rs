@@ -557,3 +557,18 @@ fn a_radius_that_uses_a_whole_side_of_one_corner_is_refused() {
         assert!((start[1] - 29.9).abs() < 1e-9, "{start:?}");
     }
 }
+
+/// A huge radius is refused with the number as it reads, not as 301 digits
+/// (user testing, session 39: Radius = 1e300 printed in full).
+#[test]
+fn a_huge_radius_is_named_in_a_short_message() {
+    let long = BezierCurve::new(2, 1, vec![0.0, 0.0, 40.0, 0.0]).unwrap();
+    let short = BezierCurve::new(2, 1, vec![40.0, 0.0, 40.0, 30.0]).unwrap();
+    match fillet_radius(&long, &short, 1e300, 2) {
+        Err(BezjoinError::InvalidArgument { name, reason }) => {
+            assert_eq!(name, "radius", "{reason}");
+            assert!(reason.contains("1e300") && reason.len() < 200, "{reason}");
+        }
+        other => panic!("{other:?}"),
+    }
+}

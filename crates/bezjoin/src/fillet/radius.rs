@@ -17,7 +17,7 @@
 use crate::basis::KnotSide;
 use crate::bezier::BezierCurve;
 use crate::curve::{AsCurveRef, Curve, CurveJet, CurveRef};
-use crate::error::{BezjoinError, Result, check_finite_scalar};
+use crate::error::{BezjoinError, Compact, Result, check_finite_scalar};
 use crate::geometric::{FairnessReport, GeometricOptions, MAX_GEOMETRIC_ORDER, connect_geometric};
 use crate::intersect::{IntersectOptions, Intersection, IntersectionKind, intersect};
 
@@ -192,7 +192,7 @@ fn check_arguments(p: CurveRef, q: CurveRef, radius: f64, order: usize) -> Resul
     if radius <= 0.0 {
         return Err(BezjoinError::invalid(
             "radius",
-            format!("{radius} must be positive"),
+            format!("{} must be positive", Compact(radius)),
         ));
     }
     if order == 0 || order > MAX_GEOMETRIC_ORDER {
@@ -272,6 +272,8 @@ fn round_radius_corner(
     order: usize,
     scale: f64,
 ) -> Result<(RadiusCorner, BezierCurve)> {
+    // The radius as messages print it (1e300 in exponent form, not 301 digits).
+    let shown = Compact(radius);
     let (p_first, _) = p.domain();
     let (_, q_last) = q.domain();
     // The corner's plane: P's arriving tangent and Q's leaving one.
@@ -334,7 +336,7 @@ fn round_radius_corner(
         return Err(BezjoinError::invalid(
             "radius",
             format!(
-                "the arc of radius {radius} does not fit: its touching point would lie beyond \
+                "the arc of radius {shown} does not fit: its touching point would lie beyond \
                  {} (the search stopped at u = {u}, v = {v})",
                 if u <= p_first { "P's start" } else { "Q's end" }
             ),
@@ -343,7 +345,7 @@ fn round_radius_corner(
     if !converged {
         return Err(BezjoinError::IllConditioned {
             what: format!(
-                "fillet by radius: the touching points of the arc of radius {radius} were not \
+                "fillet by radius: the touching points of the arc of radius {shown} were not \
                  found (Newton on the offset curves did not converge; the arc may not fit)"
             ),
             estimate: f64::INFINITY,
@@ -354,7 +356,7 @@ fn round_radius_corner(
         return Err(BezjoinError::invalid(
             "radius",
             format!(
-                "the arc of radius {radius} would touch P at u = {u}, outside (first = \
+                "the arc of radius {shown} would touch P at u = {u}, outside (first = \
                  {p_first}, corner = {}): it does not fit",
                 corner.u
             ),
@@ -364,7 +366,7 @@ fn round_radius_corner(
         return Err(BezjoinError::invalid(
             "radius",
             format!(
-                "the arc of radius {radius} would touch Q at v = {v}, outside (corner = {}, \
+                "the arc of radius {shown} would touch Q at v = {v}, outside (corner = {}, \
                  last = {q_last}): it does not fit",
                 corner.v
             ),
