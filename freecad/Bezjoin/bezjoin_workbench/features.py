@@ -102,6 +102,18 @@ def _pairs(value):
     return pairs
 
 
+def _linked_element(obj, name, links, kind):
+    """The element ``name`` of ``obj`` in model coordinates; a FeatureError naming the
+    link (``links``: "the first edge links", ...) when ``obj`` no longer has it."""
+    try:
+        return _source_shape(obj, name)
+    except (IndexError, ValueError, RuntimeError) as error:
+        # FreeCAD's own words for a missing element are "Index out of bound".
+        raise FeatureError(
+            f"{links} {obj.Label}.{name}, which {obj.Label} no longer has ({error}): "
+            f"link another {kind}") from None
+
+
 def _link_edge(value, what):
     """The edge a ``PropertyLinkSub`` value names, in model coordinates."""
     if not value or value[0] is None:
@@ -111,13 +123,7 @@ def _link_edge(value, what):
     if names:
         if len(names) != 1:
             raise FeatureError(f"the {what} links {len(names)} elements, not one edge")
-        try:
-            shape = _source_shape(obj, names[0])
-        except (IndexError, ValueError, RuntimeError) as error:
-            # FreeCAD's own words for a missing element are "Index out of bound".
-            raise FeatureError(
-                f"the {what} links {obj.Label}.{names[0]}, which {obj.Label} no longer has "
-                f"({error}): link another edge") from None
+        shape = _linked_element(obj, names[0], f"the {what} links", "edge")
         if shape.ShapeType != "Edge":
             raise FeatureError(f"the {what} ({obj.Label}.{names[0]}) is not an edge")
         return shape
@@ -645,13 +651,7 @@ def _linked_points(value):
         return [vertex.Point for vertex in wires[0].OrderedVertexes]
     points = []
     for obj, name in pairs:
-        try:
-            shape = _source_shape(obj, name)
-        except (IndexError, ValueError, RuntimeError) as error:
-            # FreeCAD's own words for a missing element are "Index out of bound".
-            raise FeatureError(
-                f"the points link {obj.Label}.{name}, which {obj.Label} no longer has "
-                f"({error}): link another vertex") from None
+        shape = _linked_element(obj, name, "the points link", "vertex")
         points.extend(vertex.Point for vertex in shape.Vertexes)
     return points
 

@@ -172,7 +172,7 @@ pub(crate) fn chain_refs<C: AsCurveRef>(curves: &[C]) -> Result<Vec<CurveRef<'_>
 /// single rounded corner) may have and still be refused as a sliver: cuts
 /// this close have met up to the rounding of their arc-length and
 /// tangent-point solves (the same relative tolerance as a shared vertex).
-pub(crate) const SLIVER: f64 = 1e-9;
+const SLIVER: f64 = 1e-9;
 
 /// InvalidArgument naming `curves[i]` when its kept piece `[start, end]`
 /// is at most [`SLIVER`] of its length: the corners' cuts use the whole

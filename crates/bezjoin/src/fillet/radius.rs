@@ -417,15 +417,7 @@ fn check_blend_follows_the_arc(
     radius: f64,
     arc_deviation: f64,
 ) -> Result<()> {
-    let curve = &g.curve;
-    let d = curve.dim();
-    let end_curvature = |t: f64| {
-        let jet = curve.eval_derivatives(t, 2);
-        let (a, b) = (&jet[d..2 * d], &jet[2 * d..3 * d]);
-        let dot = |x: &[f64], y: &[f64]| x.iter().zip(y).map(|(p, q)| p * q).sum::<f64>();
-        let s2 = dot(a, a);
-        ((s2 * dot(b, b) - dot(a, b).powi(2)).max(0.0)).sqrt() / (s2 * s2.sqrt())
-    };
+    let end_curvature = |t: f64| crate::geometric::curvature_at(&g.curve, t);
     let reference = (1.0 / radius)
         .max(end_curvature(0.0))
         .max(end_curvature(1.0));

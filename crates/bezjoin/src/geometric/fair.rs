@@ -101,6 +101,16 @@ fn kappa_from(a: &[f64], b: &[f64], c: &[f64]) -> (f64, f64, f64) {
     (kappa, first - 3.0 * kappa * ab / s2, speed)
 }
 
+/// The unsigned curvature of `curve` at `t` ([`kappa_from`] on its jet).
+pub(crate) fn curvature_at(curve: &BezierCurve, t: f64) -> f64 {
+    let d = curve.dim();
+    let jet = curve.eval_derivatives(t, 2);
+    // The third derivative only enters dkappa/dt, unused here.
+    kappa_from(&jet[d..2 * d], &jet[2 * d..], &jet[2 * d..])
+        .0
+        .abs()
+}
+
 /// Nodes whose jets are formed together.
 const BLOCK: usize = 32;
 

@@ -58,6 +58,7 @@ use crate::connect::{
 use crate::curve::CurveJet;
 use crate::error::{BezjoinError, Result, check_finite};
 
+pub(crate) use fair::curvature_at;
 pub use fair::{
     CURVATURE_SAMPLES, ENERGY_PANELS, FairnessReport, curvature_variation, fairness_report,
 };
