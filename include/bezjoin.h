@@ -202,7 +202,8 @@ enum BzjChainSplit
  {
   /**
    * Use `options.breakpoints` (`curve_count - 1` interior values,
-   * strictly increasing in (0, 1)).
+   * strictly increasing in (0, 1), every piece at least 1e-6 of the
+   * range).
    */
   BZJ_CHAIN_SPLIT_GIVEN = 0,
   /**
@@ -1062,9 +1063,9 @@ BzjStatus bzj_intersect_detailed(const struct BzjCurve *p, const struct BzjCurve
  *         BZJ_ERR_NON_FINITE if an option is NaN or infinite;
  *         BZJ_ERR_INVALID_ARGUMENT if a setback or scale is not positive, or
  *         a setback is not shorter than the part of the curve before / after
- *         the crossing by more than twice its length accuracy
- *         (`2 relative_length_accuracy setback`: a longer one would keep a
- *         sliver of the curve);
+ *         the crossing by more than the larger of twice its length
+ *         accuracy (`2 relative_length_accuracy setback`) and 1e-9 of the
+ *         curve's length (a longer one would keep a sliver of the curve);
  *         BZJ_ERR_NO_INTERSECTION if the curves do not cross or only touch;
  *         BZJ_ERR_ILL_CONDITIONED if the connection cannot be trusted.
  *
@@ -1108,7 +1109,8 @@ BzjStatus bzj_fillet_auto_scale(const struct BzjCurve *p, const struct BzjCurve 
  *         BZJ_ERR_NON_FINITE if an option or `gap` is NaN or infinite;
  *         BZJ_ERR_INVALID_ARGUMENT if a setback or scale is not positive,
  *         `gap` is negative, or a setback is not shorter than the curve by
- *         more than twice its length accuracy;
+ *         more than the larger of twice its length accuracy and 1e-9 of the
+ *         curve's length;
  *         BZJ_ERR_NO_INTERSECTION if P's end and Q's start are more than
  *         `gap` apart (the message gives the distance), or if the path
  *         doubles back at the vertex (Q leaves along P's arrival direction
@@ -1529,7 +1531,8 @@ BzjStatus bzj_merge_to_degree(const struct BzjCurve *p, const struct BzjCurve *q
  *         BZJ_ERR_BUFFER_TOO_SMALL if `piece_capacity < curve_count` or
  *         `breakpoints_len < curve_count + 1` (their pointers non-NULL);
  *         BZJ_ERR_INVALID_ARGUMENT if `curve_count < 2`, breakpoints are not
- *         strictly increasing in (0, 1) or not `curve_count - 1` of them,
+ *         strictly increasing in (0, 1), leave a piece shorter than 1e-6
+ *         of the range (`MIN_SPLIT`) or are not `curve_count - 1` of them,
  *         a keep point names a curve that does not exist, its parameter is
  *         outside that curve's domain or its order above the degree,
  *         `degree` is below a curve's degree, an enum/bool field is

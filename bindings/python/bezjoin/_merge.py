@@ -250,7 +250,8 @@ def merge_chain(curves, *, metric="discrete", breakpoints="uniform", degree=None
         metric: ``"discrete"`` or ``"l2"``, summed over the pieces.
         breakpoints: ``"uniform"`` (``t_j = j / N``), ``"polygon"`` (proportional
             to the control-polygon lengths) or the ``N - 1`` interior values,
-            strictly increasing in ``(0, 1)``.
+            strictly increasing in ``(0, 1)``, every piece at least ``1e-6`` of the
+            range.
         degree: the degree of ``R`` (``None``: the highest degree of the curves).
         fix_ends: keep the first point of the first curve and the last point of
             the last.

@@ -343,9 +343,9 @@ pub unsafe extern "C" fn bzj_intersect_detailed(
 ///         BZJ_ERR_NON_FINITE if an option is NaN or infinite;
 ///         BZJ_ERR_INVALID_ARGUMENT if a setback or scale is not positive, or
 ///         a setback is not shorter than the part of the curve before / after
-///         the crossing by more than twice its length accuracy
-///         (`2 relative_length_accuracy setback`: a longer one would keep a
-///         sliver of the curve);
+///         the crossing by more than the larger of twice its length
+///         accuracy (`2 relative_length_accuracy setback`) and 1e-9 of the
+///         curve's length (a longer one would keep a sliver of the curve);
 ///         BZJ_ERR_NO_INTERSECTION if the curves do not cross or only touch;
 ///         BZJ_ERR_ILL_CONDITIONED if the connection cannot be trusted.
 ///
@@ -511,7 +511,8 @@ fn write_fillet([p_out, blend_out, q_out]: [CheckedOut; 3], result: Fillet) {
 ///         BZJ_ERR_NON_FINITE if an option or `gap` is NaN or infinite;
 ///         BZJ_ERR_INVALID_ARGUMENT if a setback or scale is not positive,
 ///         `gap` is negative, or a setback is not shorter than the curve by
-///         more than twice its length accuracy;
+///         more than the larger of twice its length accuracy and 1e-9 of the
+///         curve's length;
 ///         BZJ_ERR_NO_INTERSECTION if P's end and Q's start are more than
 ///         `gap` apart (the message gives the distance), or if the path
 ///         doubles back at the vertex (Q leaves along P's arrival direction

@@ -365,7 +365,8 @@ pub unsafe extern "C" fn bzj_merge_to_degree(
 #[allow(non_camel_case_types)]
 pub enum BzjChainSplit {
     /// Use `options.breakpoints` (`curve_count - 1` interior values,
-    /// strictly increasing in (0, 1)).
+    /// strictly increasing in (0, 1), every piece at least 1e-6 of the
+    /// range).
     BZJ_CHAIN_SPLIT_GIVEN = 0,
     /// `t_j = j / N`.
     BZJ_CHAIN_SPLIT_UNIFORM = 1,
@@ -467,7 +468,8 @@ pub struct BzjChainMergeReport {
 ///         BZJ_ERR_BUFFER_TOO_SMALL if `piece_capacity < curve_count` or
 ///         `breakpoints_len < curve_count + 1` (their pointers non-NULL);
 ///         BZJ_ERR_INVALID_ARGUMENT if `curve_count < 2`, breakpoints are not
-///         strictly increasing in (0, 1) or not `curve_count - 1` of them,
+///         strictly increasing in (0, 1), leave a piece shorter than 1e-6
+///         of the range (`MIN_SPLIT`) or are not `curve_count - 1` of them,
 ///         a keep point names a curve that does not exist, its parameter is
 ///         outside that curve's domain or its order above the degree,
 ///         `degree` is below a curve's degree, an enum/bool field is

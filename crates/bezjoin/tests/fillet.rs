@@ -800,8 +800,10 @@ fn whole_length(c: &bezjoin_core::Curve) -> f64 {
 /// refused by name whatever the rounding: it used to be accepted with a
 /// kept piece 1.8e-15 long at one end (an edge no CAD kernel takes) and
 /// refused at the other with "10 is not shorter than the arc length
-/// 10.000000000000002". A setback 1e-9 shorter is answered and keeps that
-/// much of the curve.
+/// 10.000000000000002". The rule is the chains' and the radius fillets'
+/// (user testing, session 39): a setback 1e-10 shorter, which kept 8e-10 of
+/// an 8-long curve, is refused too; one 1e-8 shorter is answered and keeps
+/// that much of the curve.
 #[test]
 fn a_setback_as_long_as_its_curve_is_refused_not_left_as_a_sliver() {
     let bent_p = BezierCurve::new(2, 2, vec![0.0, 0.0, 5.0, 0.0, 10.0, 0.0]).unwrap();
@@ -826,10 +828,18 @@ fn a_setback_as_long_as_its_curve_is_refused_not_left_as_a_sliver() {
                 }
             }
         }
-        let options = FilletOptions::new(1.0, 8.0 * (1.0 - 1e-9), 2, 2);
+        let options = FilletOptions::new(1.0, 8.0 * (1.0 - 1e-10), 2, 2);
+        match bezjoin_core::fillet_vertex(p, q, &options, 0.0) {
+            Err(BezjoinError::InvalidArgument { name, reason }) => {
+                assert_eq!(name, "q_setback", "{reason}");
+                assert!(reason.contains("1e-9 of Q's length"), "{reason}");
+            }
+            other => panic!("{other:?}"),
+        }
+        let options = FilletOptions::new(1.0, 8.0 * (1.0 - 1e-8), 2, 2);
         let f = bezjoin_core::fillet_vertex(p, q, &options, 0.0).unwrap();
         let kept = whole_length(&f.q_trimmed);
-        assert!((kept - 8e-9).abs() <= 1e-11, "kept {kept}");
+        assert!((kept - 8e-8).abs() <= 1e-11, "kept {kept}");
     }
 }
 
@@ -863,4 +873,41 @@ fn a_path_that_doubles_back_at_the_vertex_is_refused() {
     assert_eq!(f.blend.degree(), 5);
     let ahead = BezierCurve::new(2, 1, vec![10.0, 0.0, 20.0, 0.0]).unwrap();
     assert!(bezjoin_core::fillet_vertex(&out, &ahead, &options, 0.0).is_ok());
+}
+
+/// A huge setback is named in a short message, as a huge radius is: the
+/// setback and the arc length it exceeds read in exponent form (1e300 used
+/// to print as its 301 digits), for a vertex fillet, a crossing and a
+/// chain, and for the Q end.
+#[test]
+fn a_huge_setback_is_named_in_a_short_message() {
+    let along = BezierCurve::new(2, 1, vec![0.0, 0.0, 40.0, 0.0]).unwrap();
+    let up = BezierCurve::new(2, 1, vec![40.0, 0.0, 40.0, 30.0]).unwrap();
+    let through = BezierCurve::new(2, 1, vec![40.0, -10.0, 40.0, 30.0]).unwrap();
+    let check = |result: Result<(), BezjoinError>, named: &str| match result {
+        Err(BezjoinError::InvalidArgument { name, reason }) => {
+            assert_eq!(name, named, "{reason}");
+            assert!(reason.contains("1e300") && reason.len() < 200, "{reason}");
+        }
+        other => panic!("{other:?}"),
+    };
+    for (p_setback, q_setback, named) in [(1e300, 1.0, "p_setback"), (1.0, 1e300, "q_setback")] {
+        let options = FilletOptions::new(p_setback, q_setback, 2, 2);
+        check(
+            bezjoin_core::fillet_vertex(&along, &up, &options, 0.0).map(|_| ()),
+            named,
+        );
+        check(
+            bezjoin_core::fillet(&along, &through, &options).map(|_| ()),
+            named,
+        );
+        let chain = ChainFilletOptions::open(options.clone());
+        let got = bezjoin_core::fillet_chain(&[along.clone(), up.clone()], &chain).map(|_| ());
+        match got {
+            Err(BezjoinError::InvalidArgument { reason, .. }) => {
+                assert!(reason.contains("1e300") && reason.len() < 300, "{reason}")
+            }
+            other => panic!("{other:?}"),
+        }
+    }
 }

@@ -169,10 +169,11 @@ pub(crate) fn chain_refs<C: AsCurveRef>(curves: &[C]) -> Result<Vec<CurveRef<'_>
 }
 
 /// Largest part of a curve's length that a kept piece of a chain (or of a
-/// single rounded corner) may have and still be refused as a sliver: cuts
+/// single rounded corner, by radius or by setbacks) may have and still be
+/// refused as a sliver: cuts
 /// this close have met up to the rounding of their arc-length and
 /// tangent-point solves (the same relative tolerance as a shared vertex).
-const SLIVER: f64 = 1e-9;
+pub(super) const SLIVER: f64 = 1e-9;
 
 /// InvalidArgument naming `curves[i]` when its kept piece `[start, end]`
 /// is at most [`SLIVER`] of its length: the corners' cuts use the whole
@@ -193,6 +194,17 @@ fn check_not_a_sliver(
     )
 }
 
+/// The length of `curve` (over its whole domain, to its default accuracy;
+/// `name` for the error of an overflowing control polygon) and the
+/// longest piece of it that is still a sliver, [`SLIVER`] of that length:
+/// the one rule for the pieces that chains, radius fillets and setbacks
+/// keep.
+pub(crate) fn sliver_length(curve: CurveRef, name: &str) -> Result<(f64, f64)> {
+    let (first, last) = curve.domain();
+    let whole = curve.arc_length(first, last, curve.checked_default_length_accuracy(name)?)?;
+    Ok((whole, SLIVER * whole))
+}
+
 /// InvalidArgument naming `name` when the kept piece `[start, end]` of
 /// `curve` (domain `(first, last)`) is at most [`SLIVER`] of its length;
 /// the message starts with `what` (the cut or cuts that leave it). The
@@ -209,8 +221,8 @@ pub(crate) fn check_kept_piece(
     else {
         return Ok(());
     };
-    let whole = curve.arc_length(first, last, curve.checked_default_length_accuracy(name)?)?;
-    if kept > SLIVER * whole {
+    let (whole, sliver) = sliver_length(curve, name)?;
+    if kept > sliver {
         return Ok(());
     }
     Err(BezjoinError::invalid(

@@ -39,8 +39,9 @@
 //! search's target) tends to `-eps` as `dp -> 0` (the blend shrinks onto
 //! `X`). The search starts at `dp = eps / 2` and doubles `dp` (halves it, if
 //! the first deviation is already above the target) until `h` changes sign,
-//! never beyond the longest setbacks the curves allow, `dp_max = (1 - 1e-9)
-//! min(len(P before X), len(Q after X) / rho)`; if the deviation is still
+//! never beyond the longest setbacks the curves allow, `dp_max =
+//! min(len(P before X) - 2e-9 len(P), (len(Q after X) - 2e-9 len(Q)) / rho)`
+//! (twice the sliver a setback may not leave); if the deviation is still
 //! below the window there, that is an error. The root in the bracket is then
 //! found by the Illinois variant of false position (bisection when a step
 //! would leave the bracket), at most 100 steps; the end of the bracket on
@@ -63,7 +64,7 @@
 
 use crate::bezier::BezierCurve;
 use crate::curve::CurveRef;
-use crate::error::{BezjoinError, Result, check_positive};
+use crate::error::{BezjoinError, Compact, Result, check_positive};
 use crate::intersect::{intersect, project};
 
 use super::{
@@ -293,7 +294,11 @@ fn within_deviation(
     let crossing = first_crossing(&hits)?;
     let corner = crossing.point.clone();
     let (before, after) = available_lengths(p, q, &crossing)?;
-    let longest = (1.0 - 1e-9) * before.min(after / ratio);
+    // Leave each curve twice the sliver a setback may not leave
+    // ([`super::chain::sliver_length`], the rule of `blend_at`).
+    let p_kept = 2.0 * super::chain::sliver_length(p, "p")?.1;
+    let q_kept = 2.0 * super::chain::sliver_length(q, "q")?.1;
+    let longest = (before - p_kept).min((after - q_kept) / ratio);
 
     // The two arc-length inversions are kept across the trials: each trial
     // inverts the same ranges from the crossing (to another accuracy), and
@@ -356,7 +361,9 @@ fn within_deviation(
                     format!(
                         "{eps} cannot be reached: the longest setbacks possible (p_setback = {}, \
                          q_setback = {}) give a deviation of only {}",
-                        trial.p_setback, trial.q_setback, trial.deviation
+                        Compact(trial.p_setback),
+                        Compact(trial.q_setback),
+                        Compact(trial.deviation)
                     ),
                 ));
             }

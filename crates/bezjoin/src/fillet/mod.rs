@@ -55,6 +55,7 @@
 //! ```
 
 mod chain;
+use chain::SLIVER;
 mod deviation;
 mod radius;
 
@@ -509,6 +510,11 @@ pub(crate) fn blend_at(
 ) -> Result<Blend> {
     let (dp, dq) = (options.p_setback, options.q_setback);
     let accuracy = options.relative_length_accuracy;
+    // What a setback must leave of its curve: more than its own accuracy
+    // allows for, and more than a sliver by the chains' rule.
+    let shortest_kept = |c: CurveRef, setback: f64, name: &str| -> Result<f64> {
+        Ok((2.0 * accuracy * setback).max(chain::sliver_length(c, name)?.1))
+    };
     // The inversion itself refuses a length beyond the curve's end; the
     // lengths for the message are computed only on that path.
     let too_long_p = || -> Result<BezjoinError> {
@@ -516,10 +522,13 @@ pub(crate) fn blend_at(
         Ok(BezjoinError::invalid(
             "p_setback",
             format!(
-                "{dp} is not shorter than the arc length {before} of P before the crossing at \
-                 u = {} by more than {:e} (twice the setback's length accuracy)",
+                "{} is not shorter than the arc length {} of P before the crossing at \
+                 u = {} by more than {:e} (the larger of twice the \
+                 setback's length accuracy and {SLIVER:e} of P's length)",
+                Compact(dp),
+                Compact(before),
                 crossing.u,
-                2.0 * accuracy * dp
+                shortest_kept(p, dp, "p")?
             ),
         ))
     };
@@ -528,10 +537,13 @@ pub(crate) fn blend_at(
         Ok(BezjoinError::invalid(
             "q_setback",
             format!(
-                "{dq} is not shorter than the arc length {after} of Q after the crossing at \
-                 v = {} by more than {:e} (twice the setback's length accuracy)",
+                "{} is not shorter than the arc length {} of Q after the crossing at \
+                 v = {} by more than {:e} (the larger of twice the \
+                 setback's length accuracy and {SLIVER:e} of Q's length)",
+                Compact(dq),
+                Compact(after),
                 crossing.v,
-                2.0 * accuracy * dq
+                shortest_kept(q, dq, "q")?
             ),
         ))
     };
@@ -539,13 +551,15 @@ pub(crate) fn blend_at(
     let (_, q_last) = q.domain();
     // A setback within its accuracy of the whole length would leave a
     // sliver of the curve (a few ulps long, or none, as rounding falls): the
-    // piece kept must be longer than twice the setback's accuracy. Its
-    // length is measured only when the cut is within 1e-6 of the curve's
-    // end in parameter.
+    // piece kept must be longer than `shortest_kept`. Its length is
+    // measured only when the cut is within 1e-6 of the curve's end in
+    // parameter.
     let sliver =
         |c: CurveRef, a: f64, b: f64, whole: f64, setback: f64, name: &str| -> Result<bool> {
-            Ok(short_piece_length(c, (a, b), whole, || name.to_owned())?
-                .is_some_and(|kept| kept <= 2.0 * accuracy * setback))
+            match short_piece_length(c, (a, b), whole, || name.to_owned())? {
+                Some(kept) => Ok(kept <= shortest_kept(c, setback, name)?),
+                None => Ok(false),
+            }
         };
     let u0 = match inverses.p.param_at_length(-dp, accuracy * dp) {
         Ok(u0)

@@ -643,7 +643,8 @@ pub struct ChainMerge {
 /// lengths; an optimal choice (an `(N-1)`-dimensional search) is not offered.
 ///
 /// Errors: as [`merge`]; fewer than two curves, `keep` of the wrong length,
-/// breakpoints not strictly increasing inside `(0, 1)` or of the wrong count
+/// breakpoints not strictly increasing inside `(0, 1)`, leaving a piece
+/// shorter than [`MIN_SPLIT`] of the range, or of the wrong count
 /// (InvalidArgument / ParameterOutOfRange / LengthMismatch).
 pub fn merge_chain(curves: &[BezierCurve], options: &ChainMergeOptions) -> Result<ChainMerge> {
     let count = curves.len();
@@ -725,14 +726,15 @@ pub fn merge_chain(curves: &[BezierCurve], options: &ChainMergeOptions) -> Resul
 
 /// The breakpoints `0 = t_0 < ... < t_N = 1` of a chain merge of curves
 /// with these control-polygon lengths: the caller's (validated), uniform
-/// or proportional to the lengths; [`Breakpoints::Optimal`] is refused.
+/// or proportional to the lengths, every piece at least [`MIN_SPLIT`]
+/// ([`check_pieces`]); [`Breakpoints::Optimal`] is refused.
 fn chain_breakpoints(
     breakpoints: &Breakpoints,
     lengths: &[f64],
     names: &[&str],
 ) -> Result<Vec<f64>> {
     let count = lengths.len();
-    Ok(match breakpoints {
+    let all = match breakpoints {
         Breakpoints::Given(inner) => {
             if inner.len() != count - 1 {
                 return Err(BezjoinError::LengthMismatch {
@@ -765,6 +767,42 @@ fn chain_breakpoints(
             ));
         }
         Breakpoints::PolygonLength => polygon_breakpoints(lengths, names)?,
+    };
+    check_pieces(&all, breakpoints, names)?;
+    Ok(all)
+}
+
+/// Every piece `[t_j, t_(j+1)]` of `all` (`0 = t_0 < ... < t_N = 1`) spans
+/// at least [`MIN_SPLIT`] of the range, the rule of a given `mu` for each
+/// join of a chain: the join conditions scale like `h_j^-n` (user testing,
+/// session 39: a pair split at `mu = 1e-6 .. 1e-100` was answered with a
+/// curve 3.18 mm off). A given breakpoint is named (the first one that
+/// ends a short piece, or the last one before a short final piece);
+/// breakpoints proportional to polygon lengths name the short curve.
+fn check_pieces(all: &[f64], breakpoints: &Breakpoints, names: &[&str]) -> Result<()> {
+    let Some(j) = (0..all.len() - 1).find(|&j| all[j + 1] - all[j] < MIN_SPLIT) else {
+        return Ok(());
+    };
+    let (from, to) = (all[j], all[j + 1]);
+    let part = format!(
+        "leaves {} the piece [{from}, {to}], {:e} of the merged curve's range, below the \
+         smallest piece {MIN_SPLIT:e}",
+        names[j],
+        to - from
+    );
+    Err(match breakpoints {
+        Breakpoints::Given(_) => {
+            // Breakpoint k is all[k + 1]; the last piece ends at 1.
+            let k = if j + 1 < all.len() - 1 { j } else { j - 1 };
+            BezjoinError::invalid(
+                format!("breakpoints[{k}]"),
+                format!("{} {part}", all[k + 1]),
+            )
+        }
+        _ => BezjoinError::invalid(
+            "breakpoints",
+            format!("the split proportional to polygon lengths {part}; give the split explicitly"),
+        ),
     })
 }
 
