@@ -68,6 +68,67 @@ def parallel(test, a, b, same_direction=True):
         test.assertGreater(a.dot(b), 0.0, (a, b))
 
 
+def report_properties(obj):
+    """The names of ``obj``'s report properties (group "Bezjoin report")."""
+    return [name for name in obj.PropertiesList
+            if obj.getGroupOfProperty(name) == features.REPORT_GROUP]
+
+
+def cubic_pieces(document, split, name="Cubic"):
+    """Two ``Part::Feature`` objects holding the two pieces of one cubic Bezier curve
+    split at ``split``."""
+    curve = Part.BezierCurve()
+    curve.setPoles([V(0, 0, 0), V(3, 6, 0), V(8, -2, 0), V(12, 4, 0)])
+    pieces = []
+    for suffix, (start, end) in (("A", (0.0, split)), ("B", (split, 1.0))):
+        piece = curve.copy()
+        piece.segment(start, end)
+        obj = document.addObject("Part::Feature", name + suffix)
+        obj.Shape = Part.Edge(piece)
+        pieces.append(obj)
+    return pieces
+
+
+def merge_sources(merged):
+    """The two source edges of a merge feature, in the feature's coordinates."""
+    return [operations.model_shape(obj, names[0]) if names else obj.Shape.Edges[0]
+            for obj, names in (merged.FirstEdge, merged.SecondEdge)]
+
+
+def sampled_deviation(merged, samples=200):
+    """The largest distance between the merged edge and its two sources, both ways, at
+    ``samples`` points along each, equal in parameter (not arc length as in the
+    workbench), each found by minimising the distance along the other edges (golden
+    section search from the nearest of 400 parameter samples), not by distToShape."""
+    result = merged.Shape.Edges[0]
+    sources = merge_sources(merged)
+
+    def along(edge):
+        first, last = edge.FirstParameter, edge.LastParameter
+        return [edge.valueAt(first + (last - first) * k / (samples - 1))
+                for k in range(samples)]
+
+    def distance(point, edge):
+        first, last = edge.FirstParameter, edge.LastParameter
+        grid = [first + (last - first) * k / 400 for k in range(401)]
+        gaps = [(edge.valueAt(u) - point).Length for u in grid]
+        best = min(range(401), key=gaps.__getitem__)
+        low, high = grid[max(best - 1, 0)], grid[min(best + 1, 400)]
+        ratio = (math.sqrt(5.0) - 1.0) / 2.0
+        for _ in range(100):
+            a, b = high - ratio * (high - low), low + ratio * (high - low)
+            if (edge.valueAt(a) - point).Length < (edge.valueAt(b) - point).Length:
+                high = b
+            else:
+                low = a
+        return min(gaps[best], (edge.valueAt(0.5 * (low + high)) - point).Length)
+
+    worst = max(min(distance(point, edge) for edge in sources) for point in along(result))
+    for edge in sources:
+        worst = max(worst, max(distance(point, result) for point in along(edge)))
+    return worst
+
+
 class FeatureCase(unittest.TestCase):
     def setUp(self):
         self.document = FreeCAD.newDocument("BezjoinFeatureTest")
@@ -290,8 +351,12 @@ class RoundWireFeatureTest(FeatureCase):
 
     def test_radius_too_large_names_the_corner(self):
         _sketch, _width, wire = self.make(Radius=2.0)
+        self.assertEqual(report_properties(wire), ["MaxArcDeviation"])
+        self.assertFalse(math.isnan(wire.MaxArcDeviation))
         wire.Radius = 50.0
         status = self.assert_invalid(wire, "corner", "radius")
+        # no report of the last good wire behind the error
+        self.assertTrue(math.isnan(wire.MaxArcDeviation), wire.MaxArcDeviation)
         # The corner is also named by the sketch's edges it joins.
         corner = re.search(r"corner (\d+) is (Sketch\.Edge\d) -> (Sketch\.Edge\d)", status)
         self.assertIsNotNone(corner, status)
@@ -358,6 +423,93 @@ class MergeFeatureTest(FeatureCase):
         self.recompute(merged)
         merged.MaxGap = 0.4
         self.assert_invalid(merged, "do not meet")
+
+    def test_a_failed_recompute_clears_the_report(self):
+        """The report of the last good result does not outlive it (user testing,
+        session 40): every report property is NaN while the feature is invalid."""
+        _sketch, merged = self.make()
+        names = report_properties(merged)
+        self.assertEqual(sorted(names), ["MergeMaxDeviation", "MergeMetric", "MergeMu"])
+        for name in names:
+            self.assertFalse(math.isnan(getattr(merged, name)), name)
+        merged.MaxAngle = 1.0  # the edges turn by 11.3 degrees
+        self.assert_invalid(merged, "degrees")
+        for name in names:
+            self.assertTrue(math.isnan(getattr(merged, name)), (name, getattr(merged, name)))
+        merged.MaxAngle = 30.0
+        self.recompute(merged)
+        for name in names:
+            self.assertFalse(math.isnan(getattr(merged, name)), name)
+
+    def test_max_deviation_is_the_geometric_distance_to_the_edges(self):
+        """MergeMaxDeviation is the distance a CAD user measures between the merged
+        edge and the two edges, not the library's parametric distance |R(mu t) -
+        P(t)| (user testing, session 40: 2.4 times too large here). Two lines merge
+        into the chord from (0, 0) to (25, 3) (degree 1); the farthest point is the
+        corner (10, 0), 30 / sqrt(634) from the chord."""
+        _sketch, merged = self.make()
+        merged.MuMode = "half"
+        self.recompute(merged)
+        chord = 30.0 / math.sqrt(634.0)
+        self.assertAlmostEqual(merged.MergeMaxDeviation, chord, delta=1e-9 * chord)
+        first, second = merge_sources(merged)
+        parametric = operations.merge_edges(first, second, mu="half").parametric_deviation
+        self.assertGreater(parametric, 2.4 * chord)  # the library's measure: 2.92
+        self.assertAlmostEqual(merged.MergeMaxDeviation, sampled_deviation(merged),
+                               delta=1e-9 * chord)
+
+    def test_an_older_document_does_not_show_the_parametric_value(self):
+        """A document saved before session 40 holds the parametric deviation under the
+        old tooltip: reopened, the tooltip is the new one, the old number is NaN and
+        the feature waits for a recompute, which stores the distance."""
+        _sketch, merged = self.make()
+        merged.setDocumentationOfProperty(
+            "MergeMaxDeviation", "Largest deviation of the merged edge from the two edges")
+        merged.MergeMaxDeviation = 2.9154759474226504  # what the library reports
+        name = merged.Name
+        folder = tempfile.mkdtemp(prefix="bezjoin-features-")
+        try:
+            path = os.path.join(folder, "old.FCStd")
+            self.document.saveAs(path)
+            FreeCAD.closeDocument(self.document.Name)
+            self.document = FreeCAD.openDocument(path)
+            merged = self.document.getObject(name)
+            self.assertEqual(merged.getDocumentationOfProperty("MergeMaxDeviation"),
+                             features.MERGE_MAX_DEVIATION_TOOLTIP)
+            self.assertTrue(math.isnan(merged.MergeMaxDeviation), merged.MergeMaxDeviation)
+            self.assertIn("Touched", merged.State)
+            self.recompute(merged)
+            self.assertLess(merged.MergeMaxDeviation, 2.0)
+        finally:
+            shutil.rmtree(folder, ignore_errors=True)
+
+    def test_max_deviation_against_dense_sampling(self):
+        """Curved edges of very different lengths (a cubic split at 0.15): the
+        property agrees with an independent, ten times denser sampling both ways to
+        the sampling error, and the parametric measure is 2.5 times larger."""
+        first, second = cubic_pieces(self.document, 0.15)
+        merged = features.make_merge(self.document, first, second, MuMode="polygon")
+        self.recompute(merged)
+        dense = sampled_deviation(merged, 2000)
+        self.assertGreater(dense, 0.05)
+        self.assertLessEqual(merged.MergeMaxDeviation, dense * (1 + 1e-7))
+        self.assertGreater(merged.MergeMaxDeviation, dense * (1 - 1e-4))
+        parametric = operations.merge_edges(first.Shape, second.Shape,
+                                            mu="polygon").parametric_deviation
+        self.assertGreater(parametric, 2.0 * dense)
+
+    def test_halves_of_one_cubic_merge_with_no_deviation(self):
+        """Two halves of one cubic merge back into it: the distance is rounding only."""
+        first, second = cubic_pieces(self.document, 0.5)
+        merged = features.make_merge(self.document, first, second)
+        self.recompute(merged)
+        size = first.Shape.Length + second.Shape.Length
+        self.assertLess(merged.MergeMaxDeviation, 1e-9 * size)
+        # an uneven split too, with mu = the split's own (optimal)
+        uneven = features.make_merge(self.document, *cubic_pieces(self.document, 0.3, "Uneven"))
+        self.recompute(uneven)
+        self.assertAlmostEqual(uneven.MergeMu, 0.3, delta=1e-9)
+        self.assertLess(uneven.MergeMaxDeviation, 1e-9 * size)
 
 
 class SplineFeatureTest(FeatureCase):
@@ -496,6 +648,50 @@ class MovingTheContainer(FeatureCase):
         self.recompute(wire)
         self.assertEqual(len(wire.Shape.Edges), 8)
         self.assertTrue(wire.Shape.isClosed())
+
+
+class HidingTheSources(FeatureCase):
+    """Which sources a consuming feature hides (``features.consumed_sources``; the GUI
+    hides exactly those): the ones it uses every edge of, so a feature on two edges of
+    a larger sketch leaves the sketch's other edges in view (user testing, session 40).
+    Headless, the decision only; freecad/tests/gui/gui_commands.py checks the views."""
+
+    def test_a_sketch_is_consumed_only_when_every_edge_is_used(self):
+        three = lines_sketch(self.document, self.body,
+                             [((0, 0, 0), (10, 0, 0)), ((10, 0, 0), (25, 3, 0)),
+                              ((25, 3, 0), (25, 20, 0))], "Three")
+        pair = lines_sketch(self.document, self.body,
+                            [((0, 30, 0), (10, 30, 0)), ((10, 30, 0), (25, 33, 0))], "Pair")
+        merged = features.make_merge(self.document, (three, "Edge1"), (three, "Edge2"))
+        self.assertEqual(features.consumed_sources(merged), [])
+        corner = features.make_round_corner(self.document, (three, "Edge2"), (three, "Edge3"))
+        self.assertEqual(features.consumed_sources(corner), [])
+        merged = features.make_merge(self.document, (pair, "Edge1"), (pair, "Edge2"))
+        self.assertEqual(features.consumed_sources(merged), [pair])
+        corner = features.make_round_corner(self.document, (pair, "Edge2"), (pair, "Edge1"))
+        self.assertEqual(features.consumed_sources(corner), [pair])
+        # a whole object, all its edges picked, or some of them
+        for sources, consumed in ((three, [three]),
+                                  ([(three, ["Edge1", "Edge2", "Edge3"])], [three]),
+                                  ([(three, ["Edge1", "Edge2"])], []),
+                                  ([(three, ["Edge1"]), (pair, ["Edge1", "Edge2"])], [pair])):
+            wire = features.make_round_wire(self.document, sources, Radius=1.0)
+            self.assertEqual(features.consumed_sources(wire), consumed, sources)
+        # a linked face uses the edges of its boundary
+        box = self.document.addObject("Part::Box", "Box")
+        self.document.recompute()
+        wire = features.make_round_wire(self.document, [(box, ["Face1"])], Radius=1.0)
+        self.assertEqual(features.consumed_sources(wire), [])
+
+    def test_whole_one_edge_objects_are_consumed(self):
+        first = self.document.addObject("Part::Feature", "First")
+        first.Shape = Part.makeLine(V(0, 0, 0), V(10, 0, 0))
+        second = self.document.addObject("Part::Feature", "Second")
+        second.Shape = Part.makeLine(V(10, 0, 0), V(20, 2, 0))
+        merged = features.make_merge(self.document, first, second)
+        self.assertEqual(features.consumed_sources(merged), [first, second])
+        merged.ConsumeSources = False
+        self.assertEqual(features.consumed_sources(merged), [])
 
 
 class SaveAndReopen(FeatureCase):

@@ -27,13 +27,17 @@ rebuilding it from other coordinates (where the fair G^k search rounds different
 calls the plain operation of :mod:`operations`, so changing a parameter, editing or moving a
 source and then ``doc.recompute()`` updates the result. When the operation fails the
 shape is emptied and the error raised: FreeCAD marks the object invalid and shows the
-library's message (``obj.getStatusString()``), no stale shape is left behind.
+library's message (``obj.getStatusString()``), no stale shape is left behind, and every
+report property is set to NaN: the numbers of the last good result would describe a
+shape that is gone.
 
 ``ConsumeSources`` (default True for round corner, round wire and merge, which replace
-their sources, False for blend and spline): the source objects are hidden in the GUI
-when the feature is made or the property is set, and shown again when it is cleared,
-as FreeCAD's own fillet hides its base. Headless (no ``ViewObject``) it does nothing.
-Nothing is deleted or moved in the tree.
+their sources, False for blend and spline): a source object whose every edge the
+feature uses (:func:`consumed_sources`: the whole object, or all its edges picked) is
+hidden in the GUI when the feature is made, a link changes or the property is set, as
+FreeCAD's own fillet hides its base; a sketch of which it uses only some edges stays in
+view, with its other edges. Clearing the property shows the sources again. Headless (no
+``ViewObject``) it does nothing. Nothing is deleted or moved in the tree.
 
 The proxies keep no state of their own (``dumps``/``loads`` and
 ``__getstate__``/``__setstate__`` return None), so a saved document reopens with
@@ -44,6 +48,8 @@ Make features with :func:`make_blend`, :func:`make_round_corner`,
 object (its whole shape; one edge for the two-edge features) or ``(object,
 "Edge3")`` / ``(object, ["Edge1", "Edge2"])``.
 """
+
+import math
 
 import FreeCAD
 import Part
@@ -300,11 +306,62 @@ def _update_containers(obj):
         obj.Containers = wanted
 
 
+def _linked_names(obj):
+    """Every element ``obj`` (a bezjoin feature) links, as ``(object, name)`` pairs in
+    order; the name is "" for a whole object."""
+    pairs = []
+    for property_name in getattr(obj.Proxy, "LINKS", ()):
+        value = getattr(obj, property_name, None)
+        if not value:
+            continue
+        if property_name in obj.Proxy.SINGLE_LINKS:
+            source, names = value
+            names = [name for name in ([names] if isinstance(names, str) else names) if name]
+            if source is not None:
+                pairs.extend((source, name) for name in names or [""])
+        else:
+            pairs.extend(_pairs(value))
+    return pairs
+
+
+def _uses_every_edge(source, names):
+    """Whether the elements ``names`` of ``source`` ("" = the whole object) cover each of
+    its edges: named edges, and the edges of named faces and wires. A name ``source``
+    no longer has covers nothing."""
+    if "" in names:
+        return True
+    shape = getattr(source, "Shape", None)
+    if shape is None or not shape.Edges:
+        return False
+    used = []
+    for name in names:
+        try:
+            used.extend(shape.getElement(name).Edges)
+        except (IndexError, ValueError, RuntimeError, Part.OCCError):
+            continue
+    return all(any(edge.isSame(other) for other in used) for edge in shape.Edges)
+
+
+def consumed_sources(obj):
+    """The source objects ``obj`` (a bezjoin feature) replaces, to be hidden in the GUI:
+    those whose every edge it uses (see :func:`_uses_every_edge`), none when its
+    ``ConsumeSources`` is off. Hiding a sketch of which the feature uses two edges out of
+    ten would hide the eight others with them (user testing, session 40), so such a
+    sketch stays in view."""
+    if not getattr(obj, "ConsumeSources", False):
+        return []
+    pairs = _linked_names(obj)
+    return [source for source in source_objects(obj)
+            if _uses_every_edge(source, [name for other, name in pairs if other == source])]
+
+
 def _set_sources_visible(obj, visible):
-    """Show or hide the source objects in the GUI (nothing headless)."""
+    """Show every source object in the GUI (``visible``), or hide those ``obj`` consumes
+    (:func:`consumed_sources`), leaving the others as they are: another feature may have
+    hidden them, or the user (nothing headless)."""
     if not FreeCAD.GuiUp:
         return
-    for source in source_objects(obj):
+    for source in source_objects(obj) if visible else consumed_sources(obj):
         view = getattr(source, "ViewObject", None)
         if view is not None:
             view.Visibility = visible
@@ -314,6 +371,17 @@ def _restoring(obj):
     """Whether ``obj`` (or its document) is being read from a file."""
     document = getattr(obj, "Document", None)
     return "Restore" in getattr(obj, "State", ()) or bool(getattr(document, "Restoring", False))
+
+
+def _clear_report(obj):
+    """Set every report property of ``obj`` (group ``REPORT_GROUP``) to NaN, after a
+    failed recompute: the numbers of the last good result would describe a shape that
+    is gone (user testing, session 40). FreeCAD 0.20's ``App::PropertyFloat`` holds NaN
+    and saves and reopens it (``<Float value="nan"/>``); a NaN cannot be read as a
+    result, where 0 or -1 could."""
+    for name in obj.PropertiesList:
+        if obj.getGroupOfProperty(name) == REPORT_GROUP:
+            setattr(obj, name, math.nan)
 
 
 def _length(value):
@@ -377,8 +445,12 @@ class _Feature:
         except (FeatureError, bezjoin.BezjoinError, bezjoin.UnsupportedGeometryError,
                 bezjoin.LibraryNotFoundError, TypeError, ValueError, Part.OCCError) as error:
             obj.Shape = Part.Shape()  # no stale result behind the error
+            _clear_report(obj)  # nor a stale report of it
             message = operations.with_articles(f"{obj.Label}: {error}")
             raise FeatureError(message) from None
+        except Exception:
+            _clear_report(obj)  # an unexpected error: no stale report either
+            raise
         obj.Shape = (_local_shape(obj, shape) if frame is None
                      else _placed_shape(obj, shape, frame))
 
@@ -586,6 +658,16 @@ class RoundWireFeature(_Feature):
                                        _with_source_names(error.message, names)) from None
 
 
+#: The tooltip of ``MergeFeature.MergeMaxDeviation`` (:func:`operations.edge_deviation`).
+#: Until session 40 the property held the library's parametric deviation, under the
+#: tooltip "Largest deviation of the merged edge from the two edges".
+MERGE_MAX_DEVIATION_TOOLTIP = (
+    "Largest distance between the merged edge and the two edges, both ways: from each "
+    f"of {operations.DEVIATION_SAMPLES} points along the merged edge to the nearest point "
+    f"of the two edges, and from {operations.DEVIATION_SAMPLES} points along each edge "
+    "to the nearest point of the merged edge")
+
+
 class MergeFeature(_Feature):
     """:func:`operations.merge_edges` of two linked edges: one edge."""
 
@@ -613,8 +695,7 @@ class MergeFeature(_Feature):
                   False)
         self._add_report(obj, "MergeMu", "The split mu used")
         self._add_report(obj, "MergeMetric", "The metric's value")
-        self._add_report(obj, "MergeMaxDeviation",
-                         "Largest deviation of the merged edge from the two edges")
+        self._add_report(obj, "MergeMaxDeviation", MERGE_MAX_DEVIATION_TOOLTIP)
 
     def build(self, obj):
         first, second = _two_edges(obj)
@@ -629,6 +710,18 @@ class MergeFeature(_Feature):
         obj.MergeMetric = merged.metric_value
         obj.MergeMaxDeviation = merged.max_deviation
         return merged.shape
+
+    def onDocumentRestored(self, obj):  # noqa: N802 (FreeCAD's name)
+        # A document saved before session 40 holds the library's parametric deviation
+        # under the old tooltip: the number is another measure than the tooltip now
+        # says, so it is cleared (NaN) and the feature marked for recompute, which
+        # stores the geometric one.
+        if hasattr(obj, "MergeMaxDeviation") and \
+                obj.getDocumentationOfProperty("MergeMaxDeviation") != \
+                MERGE_MAX_DEVIATION_TOOLTIP:
+            obj.setDocumentationOfProperty("MergeMaxDeviation", MERGE_MAX_DEVIATION_TOOLTIP)
+            obj.MergeMaxDeviation = math.nan
+            obj.touch()
 
 
 def _linked_points(value):

@@ -40,6 +40,10 @@ MAX_MERGE_ANGLE_DEGREES = 30.0
 #: join the library would refuse as smooth is passed to it.
 SMOOTH_JOIN_DEGREES = 1e-3
 
+#: Points sampled along each edge (the merged edge and both sources) for the merge's
+#: geometric deviation (:func:`edge_deviation`, :class:`MergedEdge`).
+DEVIATION_SAMPLES = 200
+
 #: The default setback of :func:`round_corner` (and of the command's form): this
 #: fraction of the shorter edge's length, so it scales with the model.
 DEFAULT_SETBACK_FRACTION = 0.1
@@ -645,19 +649,64 @@ def round_wire(shape, *, radius=None, setback=None, continuity="G2", closed=None
     return wire
 
 
-class MergedEdge:
-    """The merged edge and the merge report (``mu``, ``metric_value``, ``max_deviation``)."""
+def edge_deviation(edge, others, samples=DEVIATION_SAMPLES):
+    """The largest distance between ``edge`` and the edges ``others``, both ways: from
+    ``samples`` points along ``edge`` (:func:`_points_along`: equally spaced in arc length)
+    to the nearest point of any of ``others``, and from as many points along each of
+    ``others`` to the nearest point of ``edge``: the Hausdorff distance, sampled.
 
-    def __init__(self, shape, mu, metric_value, max_deviation):
+    Each distance is exact at its point (``distToShape``: OCCT's extrema on the edge's
+    own range, ends included; it agreed with a golden-section search along the edge to
+    about 1e-14), so only a bulge between two samples can be missed: with 200 samples
+    the maximum came out within 1e-5 (relative) of 2000 samples on curved test edges."""
+    target = Part.Compound(list(others))
+    worst = max(target.distToShape(Part.Vertex(point))[0]
+                for point in _points_along(edge, samples))
+    for other in others:
+        worst = max(worst, max(edge.distToShape(Part.Vertex(point))[0]
+                               for point in _points_along(other, samples)))
+    return worst
+
+
+def _points_along(edge, count):
+    """``count`` points along ``edge``, its ends included: equally spaced in arc length,
+    or in parameter where OCCT's arc length sampler refuses the edge ("Discretization of
+    edge failed" for a 1e-9 mm edge, which the merge takes)."""
+    try:
+        return edge.discretize(Number=count)
+    except Part.OCCError:
+        first, last = edge.FirstParameter, edge.LastParameter
+        return [edge.valueAt(first + (last - first) * k / (count - 1)) for k in range(count)]
+
+
+def _as_edge(source):
+    """``source`` (an edge, a shape of one edge or a bounded Part curve, as
+    :meth:`bezjoin.Curve.from_freecad` takes them) as an edge."""
+    if isinstance(source, Part.Shape):
+        return source if source.ShapeType == "Edge" else source.Edges[0]
+    return source.toShape()
+
+
+class MergedEdge:
+    """The merged edge and the merge report: ``mu``, ``metric_value``, ``max_deviation``
+    (the geometric distance between the merged edge and the two edges, both ways:
+    :func:`edge_deviation`) and ``parametric_deviation`` (the library's
+    ``max_deviation``: the largest ``|R(mu t) - P(t)|``, ``|R(mu + (1 - mu) t) - Q(t)|``,
+    point against point at the same parameter; it also counts how the points slide
+    along the curve, so it is often several times the geometric distance, and it is
+    not what a CAD user measures)."""
+
+    def __init__(self, shape, mu, metric_value, max_deviation, parametric_deviation=None):
         self.shape = shape
         self.mu = mu
         self.metric_value = metric_value
         self.max_deviation = max_deviation
+        self.parametric_deviation = parametric_deviation
 
     def describe(self):
         """One line for the report view."""
         return (f"merged at mu = {self.mu:.6g}; metric {self.metric_value:.6g}; "
-                f"largest deviation from the two edges {self.max_deviation:.6g}")
+                f"largest distance from the two edges {self.max_deviation:.6g}")
 
 
 def _turn_at_join(p, q):
@@ -734,8 +783,11 @@ def merge_edges(first_edge, second_edge, *, metric="discrete", mu="optimal", fix
                 "would lose that corner")
         with p, q, bezjoin.merge(p, q, metric=metric, mu=mu, fix_ends=fix_ends,
                                  keep_p=keep_first, keep_q=keep_second) as result:
-            return MergedEdge(result.merged.to_edge(), result.mu, result.metric_value,
-                              result.max_deviation)
+            shape = result.merged.to_edge()
+            return MergedEdge(shape, result.mu, result.metric_value,
+                              edge_deviation(shape, [_as_edge(first_edge),
+                                                     _as_edge(second_edge)]),
+                              parametric_deviation=result.max_deviation)
 
 
 def spline_through_points(points, params=None):

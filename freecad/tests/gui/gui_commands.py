@@ -25,6 +25,10 @@ What it does, as a user would:
   x >= 100, z = 5, its ends where they must be (on the source edges' ends as placed
   by the Body), and that it recomputes when a parameter changes and when the Body
   moves;
+* checks which sketches a consuming feature hides: one whose every edge it uses (the
+  two-edge corner and merge sketches, the frame), and not one of which it uses some
+  edges only (a merge of two edges of a three-edge sketch), whose other edges must
+  stay in view;
 * writes screenshots with ``ActiveView.saveImage`` into the folder named by
   ``BEZJOIN_GUI_OUTPUT`` (default ``/tmp/bezjoin-gui``) and checks they are not blank;
 * then rounds a corner of a sketch in a rotated, placed ``App::Part``: the feature must
@@ -137,6 +141,9 @@ def build_model(doc):
                                                 arc]),
         "Points": add_sketch(body, "Points", polyline([(0, 70, 0), (15, 80, 0), (30, 70, 0),
                                                        (45, 80, 0)])),
+        "MergeOfThree": add_sketch(body, "MergeOfThree",
+                                   polyline([(60, 70, 0), (75, 70, 0), (95, 72, 0),
+                                             (95, 85, 0)])),
     }
     doc.recompute()
     for sketch in sketches.values():
@@ -343,6 +350,8 @@ def test_round_corner(doc, sketches):
     check(farther > distance + 0.5, f"Setback 8 passes {farther} from the corner (4: "
                                     f"{distance})")
     log(f"round corner: {distance:.3f} from the corner with setback 4, {farther:.3f} with 8")
+    check(not sketch.ViewObject.Visibility,
+          "the rounded corner did not hide its sketch (it uses both its edges)")
     return obj
 
 
@@ -357,6 +366,29 @@ def test_merge(doc, sketches):
     deviation = obj.Shape.distToShape(Part.Vertex(model((20, 50, 0))))[0]
     check(deviation < 2.0, f"the merged edge passes {deviation} from the join")
     log(f"merge: ends kept, {deviation:.3f} from the join, MergeMu {obj.MergeMu:.4f}")
+    check(not sketch.ViewObject.Visibility,
+          "the merge did not hide its sketch (it uses both its edges)")
+    return obj
+
+
+def test_merge_of_part_of_a_sketch(doc, sketches):
+    """A merge of two of a sketch's three edges leaves the sketch in view: hiding it
+    would hide its third edge too (user testing, session 40)."""
+    sketch = sketches["MergeOfThree"]
+    first = edge_name(sketch, (60, 70, 0), (75, 70, 0))
+    second = edge_name(sketch, (75, 70, 0), (95, 72, 0))
+    obj = run_command(doc, "Bezjoin_Merge", [(sketch, first), (sketch, second)], {})
+    check_feature(obj, "MergeFeature")
+    check(obj.ConsumeSources, f"{obj.Name} does not consume its sources")
+    check(sketch.ViewObject.Visibility,
+          "the merge of two of three edges hid its sketch, and the third edge with it")
+    # Switching ConsumeSources off and on again keeps it in view too.
+    obj.ConsumeSources = False
+    check(sketch.ViewObject.Visibility, "ConsumeSources off did not show the sketch")
+    obj.ConsumeSources = True
+    check(sketch.ViewObject.Visibility,
+          "ConsumeSources on hid a sketch the merge uses two of three edges of")
+    log("merge of two of three edges: the sketch stays visible")
     return obj
 
 
@@ -500,6 +532,7 @@ def main():
     test_blend(doc, sketches)
     test_round_corner(doc, sketches)
     test_merge(doc, sketches)
+    test_merge_of_part_of_a_sketch(doc, sketches)
     test_round_wire(doc, body, sketches)
     doc.recompute()
     for obj in doc.Objects:
