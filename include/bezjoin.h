@@ -1061,7 +1061,9 @@ BzjStatus bzj_intersect_detailed(const struct BzjCurve *p, const struct BzjCurve
  * @return BZJ_ERR_NULL_POINTER if a pointer is NULL;
  *         BZJ_ERR_DIMENSION_MISMATCH if the curves' dimensions differ;
  *         BZJ_ERR_NON_FINITE if an option is NaN or infinite;
- *         BZJ_ERR_INVALID_ARGUMENT if a setback or scale is not positive, or
+ *         BZJ_ERR_INVALID_ARGUMENT if a setback or scale is not positive, a
+ *         setback is at most 1e-9 of the curves' coordinate size (the cut
+ *         could not be told from the corner), or
  *         a setback is not shorter than the part of the curve before / after
  *         the crossing by more than the larger of twice its length
  *         accuracy (`2 relative_length_accuracy setback`) and 1e-9 of the
@@ -1108,7 +1110,8 @@ BzjStatus bzj_fillet_auto_scale(const struct BzjCurve *p, const struct BzjCurve 
  *         BZJ_ERR_DIMENSION_MISMATCH if the curves' dimensions differ;
  *         BZJ_ERR_NON_FINITE if an option or `gap` is NaN or infinite;
  *         BZJ_ERR_INVALID_ARGUMENT if a setback or scale is not positive,
- *         `gap` is negative, or a setback is not shorter than the curve by
+ *         `gap` is negative, a setback is at most 1e-9 of the curves'
+ *         coordinate size, or a setback is not shorter than the curve by
  *         more than the larger of twice its length accuracy and 1e-9 of the
  *         curve's length;
  *         BZJ_ERR_NO_INTERSECTION if P's end and Q's start are more than
@@ -1265,8 +1268,11 @@ BzjStatus bzj_fillet_chain_auto_scale(const struct BzjCurve *const *curves, size
  *
  * @return BZJ_ERR_NULL_POINTER if `p`, `q`, `options` or `out` is NULL;
  *         BZJ_ERR_INVALID_ARGUMENT if an order is above 6, `u0`/`v0` is
- *         outside its curve's domain, or a given beta_1 is not > 0
- *         (`options.p_shape[0]` named);
+ *         outside its curve's domain, a given beta_1 is not > 0
+ *         (`options.p_shape[0]` named), or shape values are to be chosen
+ *         for fairness while `q(v0)` is within 1e-9 of the coordinate scale
+ *         of `p(u0)` (`v0` named: a blend between coincident points is a
+ *         loop, which has no fairest size; give both shapes);
  *         BZJ_ERR_NON_FINITE if a parameter or shape value is NaN/infinite;
  *         BZJ_ERR_DIMENSION_MISMATCH if `p` and `q` differ in dimension;
  *         BZJ_ERR_ILL_CONDITIONED if the result cannot be trusted to 1e-8

@@ -738,7 +738,9 @@ def fillet_radius_chain(curves, radius, *, order=2, closed=False):
             corner (naming the corner and ``radius``), the arcs at a curve's two
             ends overlap (naming ``curves[i]``), fewer than two curves are
             given or ``order`` is out of range; ``BZJ_ERR_NO_INTERSECTION``
-            naming a corner without vertex or crossing, ...
+            naming a corner without vertex or crossing, or one where the curves
+            meet tangent (nothing to round: round a wire with tangent joins in
+            its runs between them, as the FreeCAD workbench does), ...
     """
     curves, array, curve_count = _chain_handles(curves, closed)
     radius = real_argument(radius, "radius")

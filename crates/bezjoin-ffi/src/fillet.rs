@@ -341,7 +341,9 @@ pub unsafe extern "C" fn bzj_intersect_detailed(
 /// @return BZJ_ERR_NULL_POINTER if a pointer is NULL;
 ///         BZJ_ERR_DIMENSION_MISMATCH if the curves' dimensions differ;
 ///         BZJ_ERR_NON_FINITE if an option is NaN or infinite;
-///         BZJ_ERR_INVALID_ARGUMENT if a setback or scale is not positive, or
+///         BZJ_ERR_INVALID_ARGUMENT if a setback or scale is not positive, a
+///         setback is at most 1e-9 of the curves' coordinate size (the cut
+///         could not be told from the corner), or
 ///         a setback is not shorter than the part of the curve before / after
 ///         the crossing by more than the larger of twice its length
 ///         accuracy (`2 relative_length_accuracy setback`) and 1e-9 of the
@@ -510,7 +512,8 @@ fn write_fillet([p_out, blend_out, q_out]: [CheckedOut; 3], result: Fillet) {
 ///         BZJ_ERR_DIMENSION_MISMATCH if the curves' dimensions differ;
 ///         BZJ_ERR_NON_FINITE if an option or `gap` is NaN or infinite;
 ///         BZJ_ERR_INVALID_ARGUMENT if a setback or scale is not positive,
-///         `gap` is negative, or a setback is not shorter than the curve by
+///         `gap` is negative, a setback is at most 1e-9 of the curves'
+///         coordinate size, or a setback is not shorter than the curve by
 ///         more than the larger of twice its length accuracy and 1e-9 of the
 ///         curve's length;
 ///         BZJ_ERR_NO_INTERSECTION if P's end and Q's start are more than

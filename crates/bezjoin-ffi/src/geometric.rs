@@ -70,8 +70,11 @@ impl From<FairnessReport> for BzjFairnessReport {
 ///
 /// @return BZJ_ERR_NULL_POINTER if `p`, `q`, `options` or `out` is NULL;
 ///         BZJ_ERR_INVALID_ARGUMENT if an order is above 6, `u0`/`v0` is
-///         outside its curve's domain, or a given beta_1 is not > 0
-///         (`options.p_shape[0]` named);
+///         outside its curve's domain, a given beta_1 is not > 0
+///         (`options.p_shape[0]` named), or shape values are to be chosen
+///         for fairness while `q(v0)` is within 1e-9 of the coordinate scale
+///         of `p(u0)` (`v0` named: a blend between coincident points is a
+///         loop, which has no fairest size; give both shapes);
 ///         BZJ_ERR_NON_FINITE if a parameter or shape value is NaN/infinite;
 ///         BZJ_ERR_DIMENSION_MISMATCH if `p` and `q` differ in dimension;
 ///         BZJ_ERR_ILL_CONDITIONED if the result cannot be trusted to 1e-8

@@ -911,3 +911,41 @@ fn a_huge_setback_is_named_in_a_short_message() {
         }
     }
 }
+
+/// A setback at most 1e-9 of the curves' coordinate size is refused by name,
+/// as such a radius is: a setback of 1e-300 was answered with a blend 4e-15
+/// long (user testing, session 40), an edge no CAD kernel takes. For the
+/// vertex fillet, at a crossing and along a chain, at either end; twice that
+/// is answered.
+#[test]
+fn a_setback_too_small_to_tell_from_the_corner_is_refused_by_name() {
+    let along = BezierCurve::new(2, 1, vec![0.0, 0.0, 10.0, 0.0]).unwrap();
+    let up = BezierCurve::new(2, 1, vec![10.0, 0.0, 10.0, 10.0]).unwrap();
+    let through = BezierCurve::new(2, 1, vec![5.0, -5.0, 5.0, 5.0]).unwrap();
+    for tiny in [1e-300, 1e-9 * 10.0] {
+        for (p_setback, q_setback, named) in [(tiny, 1.0, "p_setback"), (1.0, tiny, "q_setback")] {
+            let options = FilletOptions::new(p_setback, q_setback, 2, 2);
+            let chain = ChainFilletOptions::open(options.clone());
+            let results = [
+                bezjoin_core::fillet_vertex(&along, &up, &options, 0.0).map(|_| ()),
+                bezjoin_core::fillet(&along, &through, &options).map(|_| ()),
+                bezjoin_core::fillet_chain(&[along.clone(), up.clone()], &chain).map(|_| ()),
+            ];
+            for result in results {
+                match result {
+                    Err(BezjoinError::InvalidArgument { name, reason }) => {
+                        assert_eq!(name, named, "{reason}");
+                        assert!(
+                            reason.contains("could not be told from the corner"),
+                            "{reason}"
+                        );
+                    }
+                    other => panic!("{tiny:e} as {named}: {other:?}"),
+                }
+            }
+        }
+    }
+    let options = FilletOptions::new(2e-8, 2e-8, 2, 2);
+    let f = bezjoin_core::fillet_vertex(&along, &up, &options, 0.0).unwrap();
+    assert_eq!(f.blend.degree(), 5);
+}

@@ -572,3 +572,23 @@ fn a_huge_radius_is_named_in_a_short_message() {
         other => panic!("{other:?}"),
     }
 }
+
+/// A chain whose curves meet tangent at a join (a slot's line into its arc)
+/// has no corner there: the chain is refused naming that corner, as its
+/// documentation says (user testing, session 40, found the slot and the
+/// rounded rectangle refused), and the run after the join is rounded.
+#[test]
+fn a_tangent_join_of_a_chain_is_refused_naming_its_corner() {
+    let line = BezierCurve::new(2, 1, vec![0.0, 0.0, 10.0, 0.0]).unwrap();
+    let bend = BezierCurve::new(2, 3, vec![10.0, 0.0, 12.0, 0.0, 14.0, 1.0, 15.0, 3.0]).unwrap();
+    let up = BezierCurve::new(2, 1, vec![15.0, 3.0, 15.0, 13.0]).unwrap();
+    let chain = [line, bend.clone(), up.clone()];
+    match fillet_radius_chain(&chain, 0.5, 2, false) {
+        Err(BezjoinError::NoIntersection { reason }) => {
+            assert!(reason.starts_with("corner 0"), "{reason}");
+            assert!(reason.contains("parallel"), "{reason}");
+        }
+        other => panic!("{other:?}"),
+    }
+    assert!(fillet_radius_chain(&[bend, up], 0.5, 2, false).is_ok());
+}

@@ -590,3 +590,49 @@ fn the_fair_blend_of_generic_inputs_moves_with_them() {
     }
     assert!(worst > 0.0, "every motion changed the rounding somewhere");
 }
+
+/// Fair shape values between coincident ends are refused by name: the blend
+/// is a loop, whose scale-free energy falls as it grows, and the search ran
+/// away (user testing, session 40: a G0/G2 blend from a corner back to it
+/// had coordinates of 1.35e68 on a part 10 across and reported energy 0; G1
+/// stopped at the edge of its range with a loop to 343). Ends 1e-12 apart
+/// (of a coordinate scale 10) are the same; with both shapes given the loop
+/// is the caller's choice and is answered; ends apart give a blend within
+/// the size of the part.
+#[test]
+fn fair_shapes_between_coincident_ends_are_refused_by_name() {
+    let along = BezierCurve::new(2, 1, vec![0.0, 0.0, 10.0, 0.0]).unwrap();
+    let up = BezierCurve::new(2, 1, vec![10.0, 0.0, 10.0, 10.0]).unwrap();
+    let nearly = BezierCurve::new(2, 1, vec![10.0, 1e-11, 10.0, 10.0]).unwrap();
+    for q in [&up, &nearly] {
+        for (kp, kq) in [(0, 2), (1, 1), (2, 2), (3, 3)] {
+            let options = GeometricOptions::new(kp, kq);
+            match connect_geometric(&along, 1.0, q, 0.0, &options) {
+                Err(BezjoinError::InvalidArgument { name, reason }) => {
+                    assert_eq!(name, "v0", "{reason}");
+                    assert!(reason.contains("coincident"), "{reason}");
+                }
+                Ok(g) => panic!("G{kp}/G{kq}: answered {:?}", g.curve.points()),
+                Err(other) => panic!("G{kp}/G{kq}: {other}"),
+            }
+        }
+        // One end given, the other searched: still refused.
+        let mut one = GeometricOptions::new(2, 2);
+        one.p_shape = Some(vec![1.0, 0.0]);
+        assert!(matches!(
+            connect_geometric(&along, 1.0, q, 0.0, &one),
+            Err(BezjoinError::InvalidArgument { .. })
+        ));
+        let given = GeometricOptions::new(2, 2).with_shapes(vec![1.0, 0.0], vec![1.0, 0.0]);
+        let g = connect_geometric(&along, 1.0, q, 0.0, &given).unwrap();
+        assert!(g.curve.points().iter().all(|v| v.abs() <= 20.0));
+    }
+    // Ends apart by a thousandth of the part: a blend, no larger than it.
+    let apart = BezierCurve::new(2, 1, vec![10.0, 0.01, 10.0, 10.0]).unwrap();
+    for (kp, kq) in [(0, 2), (1, 1), (2, 2), (3, 3)] {
+        let g = connect_geometric(&along, 1.0, &apart, 0.0, &GeometricOptions::new(kp, kq));
+        let g = g.unwrap_or_else(|e| panic!("G{kp}/G{kq}: {e}"));
+        let largest = g.curve.points().iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        assert!(largest <= 20.0, "G{kp}/G{kq}: coordinates up to {largest}");
+    }
+}

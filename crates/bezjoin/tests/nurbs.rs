@@ -1333,3 +1333,24 @@ fn reverse_keeps_the_knot_vector_ordered_when_the_mirror_rounds() {
         }
     }
 }
+
+/// A weight or knot of extreme magnitude is named in a short message, in
+/// exponent form (user testing, session 40: a weight of 1e308 gave a message
+/// of 399 characters, a knot of 1e-300 one of 364).
+#[test]
+fn extreme_weights_and_knots_are_named_in_short_messages() {
+    let poles = vec![0.0, 0.0, 1.0, 2.0, 2.0, 0.0];
+    let knots = vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0];
+    let e = NurbsCurve::new(2, 2, poles.clone(), Some(vec![1.0, 1e308, 1.0]), knots).unwrap_err();
+    let text = e.to_string();
+    assert!(
+        text.contains("weights[1]") && text.contains("1e308"),
+        "{text}"
+    );
+    assert!(text.len() < 120, "{} characters: {text}", text.len());
+    let knots = vec![0.0, 0.0, 1.0, 1e-300, 2.0, 2.0];
+    let e = NurbsCurve::new(2, 2, poles, None, knots).unwrap_err();
+    let text = e.to_string();
+    assert!(text.contains("knots") && text.contains("1e-300"), "{text}");
+    assert!(text.len() < 120, "{} characters: {text}", text.len());
+}

@@ -396,9 +396,39 @@ pub(crate) fn validate(p: CurveRef, q: CurveRef, options: &FilletOptions) -> Res
             actual: q.dim(),
         });
     }
-    check_positive("p_setback", options.p_setback)?;
-    check_positive("q_setback", options.q_setback)?;
+    let scale = p.coordinate_scale().max(q.coordinate_scale());
+    for (name, setback) in [
+        ("p_setback", options.p_setback),
+        ("q_setback", options.q_setback),
+    ] {
+        check_positive(name, setback)?;
+        // A setback of 1e-300 gave a blend 4e-15 long (user testing,
+        // session 40): the rule of a radius too small.
+        if setback <= VERTEX_TOLERANCE * scale {
+            return Err(below_vertex_tolerance(name, setback, scale, "the cut"));
+        }
+    }
     validate_shape(options)
+}
+
+/// InvalidArgument naming `name` (a radius or setback, `value`) at most
+/// [`VERTEX_TOLERANCE`] of the curves' coordinate size `scale`: `what` (the
+/// arc, the cut) could not be told from the corner.
+#[cold]
+pub(crate) fn below_vertex_tolerance(
+    name: &str,
+    value: f64,
+    scale: f64,
+    what: &str,
+) -> BezjoinError {
+    BezjoinError::invalid(
+        name,
+        format!(
+            "{value:e} is at most {VERTEX_TOLERANCE:e} of the curves' coordinate size \
+             {scale:e}: {what} could not be told from the corner (its blend would be an edge \
+             no CAD kernel takes)"
+        ),
+    )
 }
 
 /// Everything but the curves and the setbacks (shared with the deviation mode).

@@ -209,13 +209,8 @@ fn check_arguments(p: CurveRef, q: CurveRef, radius: f64, order: usize) -> Resul
     // told from the corner itself; its blend was an edge of 1.65e-12 mm
     // (user testing, session 39).
     if radius <= VERTEX_TOLERANCE * scale {
-        return Err(BezjoinError::invalid(
-            "radius",
-            format!(
-                "{radius:e} is at most {VERTEX_TOLERANCE:e} of the curves' coordinate size \
-                 {scale:e}: the arc could not be told from the corner (its blend would be an \
-                 edge no CAD kernel takes)"
-            ),
+        return Err(super::below_vertex_tolerance(
+            "radius", radius, scale, "the arc",
         ));
     }
     Ok(scale)
@@ -496,7 +491,11 @@ pub struct RadiusChainFillet {
 /// the errors of [`fillet_radius`] at a corner (InvalidArgument names
 /// `corner i radius`, the other messages start with `corner i`); two
 /// touching points on one curve that pass each other (InvalidArgument
-/// naming the curve: the radius is too large for it).
+/// naming the curve: the radius is too large for it). Every join must be a
+/// corner: one where the curves meet tangent (a slot's line into its arc)
+/// has nothing to round and is NoIntersection naming it, so a wire with
+/// tangent joins is rounded in its runs between them (the FreeCAD
+/// workbench does so, leaving joins that turn by less than 1e-3 degrees).
 ///
 /// ```
 /// use bezjoin_core::{BezierCurve, fillet_radius_chain};

@@ -56,7 +56,7 @@ use crate::connect::{
     connect_ends_shaped, prepare, solve_structured,
 };
 use crate::curve::CurveJet;
-use crate::error::{BezjoinError, Result, check_finite};
+use crate::error::{BezjoinError, Compact, Result, check_finite};
 
 pub(crate) use fair::curvature_at;
 pub use fair::{
@@ -287,6 +287,36 @@ fn zero_tangent_error(name: &str, at: &str, value: f64, order: usize) -> Bezjoin
     }
 }
 
+/// Ends closer than this part of the coordinate scale cannot be told apart
+/// (the rule of a radius too small to tell from its corner).
+const COINCIDENT_ENDS: f64 = 1e-9;
+
+/// The fair search needs `P(u0) != Q(v0)`: between coincident ends a blend
+/// is a loop, and a loop has no fairest size (the scale-free energy falls
+/// as the loop grows: user testing, session 40, answered blends with
+/// coordinates of 1e68 on a part 10 across and reported energy 0). Ends
+/// within [`COINCIDENT_ENDS`] of the coordinate scale are InvalidArgument
+/// naming `v0`; with shape values given, such a blend is the caller's
+/// choice and is answered.
+fn check_ends_apart(problem: &Problem, u0: f64, v0: f64) -> Result<()> {
+    let gap = (problem.q_derivatives.row(0) - problem.p_derivatives.row(0)).norm();
+    if gap > COINCIDENT_ENDS * problem.data_scale {
+        return Ok(());
+    }
+    Err(BezjoinError::invalid(
+        "v0",
+        format!(
+            "Q(v0 = {}) is {} from P(u0 = {}), within {COINCIDENT_ENDS:e} of the coordinate \
+             scale {}: a G^k blend between coincident points is a loop, which has no fairest \
+             size; give p_shape and q_shape, or ends apart",
+            Compact(v0),
+            Compact(gap),
+            Compact(u0),
+            Compact(problem.data_scale)
+        ),
+    ))
+}
+
 /// Shape values given by the caller for one end: `order` values, `beta_1`
 /// finite and positive, the rest finite.
 fn check_shape(name: &str, shape: &[f64], order: usize) -> Result<()> {
@@ -392,6 +422,7 @@ pub fn connect_geometric_curve<P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
             (ps.clone(), qs.clone(), connection)
         }
         _ => {
+            check_ends_apart(&problem, u0, v0)?;
             let search = |checked: bool| {
                 fair::fair_shapes(
                     &problem,

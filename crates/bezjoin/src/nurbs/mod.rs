@@ -201,7 +201,7 @@ impl NurbsCurve {
                     format!("weights[{i}]"),
                     format!(
                         "{} times the largest pole coordinate {largest:e} overflows f64",
-                        w[i]
+                        Compact(w[i])
                     ),
                 ));
             }
@@ -213,8 +213,8 @@ impl NurbsCurve {
                 format!(
                     "decrease at index {}: {} after {}",
                     i + 1,
-                    knots[i + 1],
-                    knots[i]
+                    Compact(knots[i + 1]),
+                    Compact(knots[i])
                 ),
             ));
         }
