@@ -1257,7 +1257,10 @@ BzjStatus bzj_fillet_chain_auto_scale(const struct BzjCurve *const *curves, size
  * the partial Bell polynomials; the same at `t = 1` with Q). The degree of
  * `out` is `kp + kq + 1`. With `options->p_shape` / `q_shape` NULL the
  * shape values of that end are chosen by minimising the blend's fairness
- * energy `L^3 integral (d kappa / ds)^2 ds` (deterministic search); they
+ * energy `L^3 integral (d kappa / ds)^2 ds` among blends at most 10 times
+ * the chord `|q(v0) - p(u0)|` long (deterministic search: where the ends
+ * face away from each other every blend loops, and the energy would grow
+ * the loop without end); they
  * are written to `p_shape_out` (kp doubles) and `q_shape_out` (kq
  * doubles) when those are not NULL, and the blend's energy, curvature
  * range and number of curvature extrema to `report` when it is not NULL.
@@ -1276,7 +1279,8 @@ BzjStatus bzj_fillet_chain_auto_scale(const struct BzjCurve *const *curves, size
  *         BZJ_ERR_NON_FINITE if a parameter or shape value is NaN/infinite;
  *         BZJ_ERR_DIMENSION_MISMATCH if `p` and `q` differ in dimension;
  *         BZJ_ERR_ILL_CONDITIONED if the result cannot be trusted to 1e-8
- *         or no shape values give a blend with defined curvature (so
+ *         or no shape values give a blend with defined curvature and at
+ *         most 10 chords long (so
  *         always when `p`'s tangent at `u0` or `q`'s at `v0` is zero at an
  *         end of order >= 1: G^k needs a regular point; the message names
  *         the curve and the parameter).

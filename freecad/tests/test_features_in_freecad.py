@@ -283,6 +283,29 @@ class RoundCornerFeatureTest(FeatureCase):
         status = self.assert_invalid(corner, "second edge", "Edge2", "no longer has")
         self.assertNotEqual(status.strip(), f"{corner.Label}: Index out of bound")
 
+    def test_errors_name_the_features_properties(self):
+        # The library names its arguments (p_setback, q_setback, radius, p_order) and
+        # the curves P and Q; the feature's status names its own properties and the
+        # edges instead (user testing, session 39).
+        sketch, corner = self.make(Setback=2.0)
+        for setback, second, named in [(1e300, 0.0, "Setback"), (50.0, 0.0, "Setback"),
+                                       (2.0, 30.0, "SecondSetback")]:
+            corner.Setback, corner.SecondSetback = setback, second
+            status = self.assert_invalid(corner, named)
+            for internal in ("p_setback", "q_setback", " of P ", " of Q "):
+                self.assertNotIn(internal, status)
+            self.assertTrue(" of the first edge " in status or " of the second edge " in status,
+                            status)
+        corner.Setback, corner.SecondSetback = 2.0, 0.0
+        corner.POrder = 40  # the blend would be above the largest connect degree
+        status = self.assert_invalid(corner, "POrder")
+        self.assertNotIn("p_order", status)
+        corner.POrder = -1
+        corner.Method, corner.Radius = "Radius", 1e-12
+        status = self.assert_invalid(corner, "Radius")
+        corner.Radius = 3.0
+        self.recompute(corner)
+
     def test_corner_follows_a_moved_vertex(self):
         sketch, corner = self.make(Setback=2.0)
         sketch.movePoint(1, 2, V(40, 30, 0))  # Edge2's far end

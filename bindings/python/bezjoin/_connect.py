@@ -402,8 +402,11 @@ def connect_geometric(p, u0, q, v0, *, p_order=2, q_order=2, p_shape=None, q_sha
         p_order, q_order: geometric continuity orders (up to 6; default G2).
         p_shape, q_shape: ``p_order`` / ``q_order`` shape values per end;
             ``None`` (the default): chosen by the library to minimise the
-            blend's fairness energy, so the default never loops on a corner
-            between long edges.
+            blend's fairness energy among blends at most ``MAX_LENGTH_RATIO``
+            (10) times the gap ``|Q(v0) - P(u0)|`` long, so the default never
+            loops on a corner between long edges, and where the ends face away
+            from each other (every blend must turn around) the loop stays
+            within ten gaps.
         report: compute the fairness report (energy, curvature range and
             extrema, sampled along the blend); ``False`` skips it (the
             report costs far more than a solve with given shapes) and

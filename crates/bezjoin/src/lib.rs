@@ -73,8 +73,8 @@ pub use fillet::{
 };
 pub use geometric::{
     CURVATURE_SAMPLES, ENERGY_PANELS, FairnessReport, GeometricConnection, GeometricCurve,
-    GeometricOptions, MAX_GEOMETRIC_ORDER, connect_geometric, connect_geometric_curve,
-    curvature_variation, fairness_report, partial_bell,
+    GeometricOptions, MAX_GEOMETRIC_ORDER, MAX_LENGTH_RATIO, connect_geometric,
+    connect_geometric_curve, curvature_variation, fairness_report, partial_bell,
 };
 pub use intersect::{
     DEFAULT_MAX_BOX_PAIRS, DEFAULT_MAX_DEPTH, DEFAULT_MAX_HITS,

@@ -49,7 +49,9 @@ object (its whole shape; one edge for the two-edge features) or ``(object,
 "Edge3")`` / ``(object, ["Edge1", "Edge2"])``.
 """
 
+import contextlib
 import math
+import re
 
 import FreeCAD
 import Part
@@ -506,6 +508,48 @@ def _add_orders_and_scales(obj):
                   "Shape scale at the second edge (when AutoScale is off)", 1.0)
 
 
+#: The library's names of the options :func:`_orders_and_scales` passes, and the
+#: properties they come from.
+_ORDER_AND_SCALE_PROPERTIES = dict(p_order="POrder", q_order="QOrder", p_scale="PScale",
+                                   q_scale="QScale")
+
+#: The library's argument name at the head of a message ("p_setback: ...",
+#: "p_order = 7 is ...").
+_ARGUMENT_AT_HEAD = re.compile(r"^(\w+)(?=: | = )")
+
+#: How the library's messages name the two curves of a corner, and the edges they are.
+_CURVE_PHRASES = ((" of P ", " of the first edge "), (" of P's ", " of the first edge's "),
+                  (" of Q ", " of the second edge "), (" of Q's ", " of the second edge's "))
+
+
+@contextlib.contextmanager
+def _in_feature_terms(properties):
+    """Re-raise a library error of the block in the terms of a two-edge feature
+    (:func:`_feature_message`)."""
+    try:
+        yield
+    except bezjoin.BezjoinError as error:
+        raise bezjoin.BezjoinError(error.status, error.status_name,
+                                   _feature_message(error.message, properties)) from None
+
+
+def _feature_message(message, properties):
+    """A library message in the terms of a two-edge feature: the argument names
+    (``properties``: library name to property name) as the properties they come from,
+    those with an underscore (``p_setback``) wherever they stand, plain words
+    (``radius``) only where the message starts with its argument, and the curves P and
+    Q as the first and the second edge (user testing, session 39: the status named
+    ``q_setback`` for the Setback)."""
+    message = _ARGUMENT_AT_HEAD.sub(lambda m: properties.get(m.group(1), m.group(1)),
+                                    message)
+    for name, prop in properties.items():
+        if "_" in name:
+            message = re.sub(rf"\b{name}\b", prop, message)
+    for phrase, edge in _CURVE_PHRASES:
+        message = message.replace(phrase, edge)
+    return message
+
+
 def _orders_and_scales(obj):
     options = dict(p_order=_order(obj.POrder), q_order=_order(obj.QOrder))
     if obj.AutoScale:
@@ -530,8 +574,11 @@ class BlendFeature(_Feature):
 
     def build(self, obj):
         first, second = _two_edges(obj)
-        return operations.blend_edges(first, second, u0=obj.U0, v0=obj.V0,
-                                      **_orders_and_scales(obj))
+        # U0 and V0 are fractions of the edges' ranges, the library's u0 and v0 their
+        # parameters: only the orders and scales are named as properties.
+        with _in_feature_terms(_ORDER_AND_SCALE_PROPERTIES):
+            return operations.blend_edges(first, second, u0=obj.U0, v0=obj.V0,
+                                          **_orders_and_scales(obj))
 
 
 class RoundCornerFeature(_Feature):
@@ -563,13 +610,17 @@ class RoundCornerFeature(_Feature):
     def build(self, obj):
         first, second = _two_edges(obj)
         reverse = dict(reverse_first=obj.ReverseFirst, reverse_second=obj.ReverseSecond)
-        if obj.Method == "Radius":
-            return operations.round_corner(first, second, radius=_length(obj.Radius),
-                                           order=obj.Order, **reverse)
-        second_setback = _length(obj.SecondSetback) or None
-        return operations.round_corner(first, second, setback=_length(obj.Setback),
-                                       second_setback=second_setback,
-                                       **_orders_and_scales(obj), **reverse)
+        properties = dict(_ORDER_AND_SCALE_PROPERTIES, radius="Radius", order="Order",
+                          p_setback="Setback",
+                          q_setback="SecondSetback" if obj.SecondSetback else "Setback")
+        with _in_feature_terms(properties):
+            if obj.Method == "Radius":
+                return operations.round_corner(first, second, radius=_length(obj.Radius),
+                                               order=obj.Order, **reverse)
+            second_setback = _length(obj.SecondSetback) or None
+            return operations.round_corner(first, second, setback=_length(obj.Setback),
+                                           second_setback=second_setback,
+                                           **_orders_and_scales(obj), **reverse)
 
 
 def _linked_path(value, names=None):

@@ -60,7 +60,8 @@ use crate::error::{BezjoinError, Compact, Result, check_finite};
 
 pub(crate) use fair::curvature_at;
 pub use fair::{
-    CURVATURE_SAMPLES, ENERGY_PANELS, FairnessReport, curvature_variation, fairness_report,
+    CURVATURE_SAMPLES, ENERGY_PANELS, FairnessReport, MAX_LENGTH_RATIO, curvature_variation,
+    fairness_report,
 };
 
 /// Largest order of geometric continuity per end (the spec asks for 4).
