@@ -4,6 +4,7 @@ model coordinates: a parameter change or a moved / edited source followed by
 ``recompute`` updates the result, the document survives save and reopen, and a
 parameter that cannot work marks the object invalid with the library's message."""
 
+import contextlib
 import math
 import os
 import re
@@ -159,6 +160,20 @@ class FeatureCase(unittest.TestCase):
 
     def model(self, sketch, name):
         return operations.model_shape(sketch, name)
+
+    @contextlib.contextmanager
+    def saved_and_reopened(self, filename):
+        """Save the document as ``filename`` in a temporary folder, close it and open the
+        file again as ``self.document``; the folder is removed after the block."""
+        folder = tempfile.mkdtemp(prefix="bezjoin-features-")
+        try:
+            path = os.path.join(folder, filename)
+            self.document.saveAs(path)
+            FreeCAD.closeDocument(self.document.Name)
+            self.document = FreeCAD.openDocument(path)
+            yield
+        finally:
+            shutil.rmtree(folder, ignore_errors=True)
 
     def near(self, a, b, tolerance=TOLERANCE):
         self.assertLessEqual((V(a) - V(b)).Length, tolerance, (a, b))
@@ -490,12 +505,7 @@ class MergeFeatureTest(FeatureCase):
             "MergeMaxDeviation", "Largest deviation of the merged edge from the two edges")
         merged.MergeMaxDeviation = 2.9154759474226504  # what the library reports
         name = merged.Name
-        folder = tempfile.mkdtemp(prefix="bezjoin-features-")
-        try:
-            path = os.path.join(folder, "old.FCStd")
-            self.document.saveAs(path)
-            FreeCAD.closeDocument(self.document.Name)
-            self.document = FreeCAD.openDocument(path)
+        with self.saved_and_reopened("old.FCStd"):
             merged = self.document.getObject(name)
             self.assertEqual(merged.getDocumentationOfProperty("MergeMaxDeviation"),
                              features.MERGE_MAX_DEVIATION_TOOLTIP)
@@ -503,8 +513,6 @@ class MergeFeatureTest(FeatureCase):
             self.assertIn("Touched", merged.State)
             self.recompute(merged)
             self.assertLess(merged.MergeMaxDeviation, 2.0)
-        finally:
-            shutil.rmtree(folder, ignore_errors=True)
 
     def test_max_deviation_against_dense_sampling(self):
         """Curved edges of very different lengths (a cubic split at 0.15): the
@@ -735,12 +743,7 @@ class SaveAndReopen(FeatureCase):
         ]
         self.recompute(*made)
         before = {obj.Name: (type(obj.Proxy), obj.Shape.copy()) for obj in made}
-        folder = tempfile.mkdtemp(prefix="bezjoin-features-")
-        try:
-            path = os.path.join(folder, "features.FCStd")
-            self.document.saveAs(path)
-            FreeCAD.closeDocument(self.document.Name)
-            self.document = FreeCAD.openDocument(path)
+        with self.saved_and_reopened("features.FCStd"):
             reopened = [self.document.getObject(name) for name in before]
             for obj in reopened:
                 obj.touch()
@@ -758,8 +761,6 @@ class SaveAndReopen(FeatureCase):
             wire.Radius = 4.0
             self.recompute(wire)
             self.assertLess(wire.Shape.Length, length)  # a larger radius cuts the corners more
-        finally:
-            shutil.rmtree(folder, ignore_errors=True)
 
 
 class Picked:

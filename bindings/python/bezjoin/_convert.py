@@ -7,11 +7,13 @@ parameter ranges, orders above the degree...) is left to the library, whose
 messages name the argument.
 """
 
+import contextlib
 import ctypes
 import operator
+import re
 import struct
 
-from .errors import BezjoinError
+from .errors import STATUS_NON_FINITE, BezjoinError
 
 
 def index_argument(value, name):
@@ -100,6 +102,24 @@ def point_rows(points, name):
                 f"{name}[{i}] has {len(row)} coordinates but {name}[0] has {dim}"
             )
     return rows, dim
+
+
+@contextlib.contextmanager
+def point_indices(dim, *names):
+    """Name a non-finite coordinate by point and coordinate: the library sees the points
+    of ``names`` as one flat array and says ``points[7]``; the caller gave rows of
+    ``dim`` numbers, so the message says ``points[2][1]`` (user testing, session 40).
+    Only the failing call pays for it."""
+    try:
+        yield
+    except BezjoinError as error:
+        match = re.match(r"(\w+)\[(\d+)\]", error.message)
+        if error.status != STATUS_NON_FINITE or not match or match.group(1) not in names:
+            raise
+        index = int(match.group(2))
+        message = (f"{match.group(1)}[{index // dim}][{index % dim}]"
+                   f"{error.message[match.end():]}")
+        raise BezjoinError(error.status, error.status_name, message) from None
 
 
 _ARRAY_TYPES = {}

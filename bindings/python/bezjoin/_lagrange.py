@@ -7,7 +7,8 @@ curve" (mathematics.md section 4).
 
 import ctypes
 
-from ._convert import double_array, flat, index_argument, point_rows, real_argument
+from ._convert import (double_array, flat, index_argument, point_indices, point_rows,
+                       real_argument)
 from ._library import CurvePointer, library, register_prototype
 from .curve import Curve
 from .errors import BezjoinError
@@ -80,8 +81,9 @@ def lagrange_spline(nodes, first_inner, second_inner, params=None):
     second_array, _ = double_array(flat(second_rows))
     capacity = max(node_count - 1, 1)
     segments = (CurvePointer * capacity)()
-    library().call("bzj_lagrange_spline", dim, node_count, node_array, parameter_array,
-                   first_array, second_array, segments, node_count - 1)
+    with point_indices(dim, "nodes", "first_inner", "second_inner"):
+        library().call("bzj_lagrange_spline", dim, node_count, node_array, parameter_array,
+                       first_array, second_array, segments, node_count - 1)
     return [Curve._adopt(segments[i]) for i in range(node_count - 1)]
 
 
@@ -147,9 +149,10 @@ def lagrange_spline_degree(nodes, start_inner, free_inner, *, degree, continuity
     free_array, free_length = double_array(flat(free_rows))
     capacity = max(node_count - 1, 1)
     segments = (CurvePointer * capacity)()
-    library().call("bzj_lagrange_spline_degree", dim, degree, continuity, flags, node_count,
-                   node_array, parameter_array, start_array, free_array if free_length else None,
-                   segments, node_count - 1)
+    with point_indices(dim, "nodes", "start_inner", "free_inner"):
+        library().call("bzj_lagrange_spline_degree", dim, degree, continuity, flags,
+                       node_count, node_array, parameter_array, start_array,
+                       free_array if free_length else None, segments, node_count - 1)
     return [Curve._adopt(segments[i]) for i in range(node_count - 1)]
 
 

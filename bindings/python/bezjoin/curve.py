@@ -6,8 +6,8 @@ import math
 import threading
 
 from . import _freecad
-from ._convert import (double_array, double_buffer, flat, index_argument, point_rows,
-                       real_argument, rows_of)
+from ._convert import (double_array, double_buffer, flat, index_argument, point_indices,
+                       point_rows, real_argument, rows_of)
 from ._library import CurvePointer, library, register_prototype
 from .errors import BezjoinError
 
@@ -74,7 +74,9 @@ class Curve:
         rows, dim = point_rows(points, "points")
         array, length = double_array(flat(rows))
         handle = CurvePointer()
-        library().call("bzj_curve_new", dim, len(rows) - 1, array, length, ctypes.byref(handle))
+        with point_indices(dim, "points"):
+            library().call("bzj_curve_new", dim, len(rows) - 1, array, length,
+                           ctypes.byref(handle))
         self._handle = handle
         self._bezier_shape = (len(rows) - 1, dim)
 
@@ -125,10 +127,11 @@ class Curve:
                 )
             weight_array, weight_length = double_array(weight_values)
         handle = CurvePointer()
-        library().call(
-            "bzj_nurbs_new", dim, degree, pole_array, pole_length, weight_array, weight_length,
-            knot_array, knot_length, ctypes.byref(handle),
-        )
+        with point_indices(dim, "poles"):
+            library().call(
+                "bzj_nurbs_new", dim, degree, pole_array, pole_length, weight_array,
+                weight_length, knot_array, knot_length, ctypes.byref(handle),
+            )
         return cls._adopt(handle)
 
     @classmethod

@@ -194,6 +194,17 @@ def test_construction_errors():
     expect_error("BZJ_ERR_INVALID_ARGUMENT", lambda: Curve([(0, 0), (1, 1, 1)]), "points[1]")
     expect_error("BZJ_ERR_NON_FINITE", lambda: Curve([(0, 0), (math.nan, 1)]), "NaN")
     expect_error("BZJ_ERR_NON_FINITE", lambda: Curve([(0, math.inf)]))
+    # A bad coordinate is named by point and coordinate, as the caller gave it, not by
+    # its index in the flat array the library sees (user testing, session 40).
+    expect_error("BZJ_ERR_NON_FINITE", lambda: Curve([(0, 0, 0), (1, 1, 1), (2, math.nan, 0)]),
+                 "points[2][1] = NaN")
+    expect_error("BZJ_ERR_NON_FINITE",
+                 lambda: Curve.nurbs([(0, 0), (1, math.inf), (2, 0)], [0, 0, 0, 1, 1, 1], 2),
+                 "poles[1][1] = inf")
+    expect_error("BZJ_ERR_NON_FINITE",
+                 lambda: bezjoin.lagrange_spline([(0, 0), (1, math.nan), (2, 0)],
+                                                 [(0.3, 0.1), (0.6, 0.1)], [(1.6, 0.1)]),
+                 "nodes[1][1] = NaN")
     with pytest.raises(TypeError, match="sequence of points"):
         Curve([(0, "x")])
     with pytest.raises(TypeError):

@@ -233,7 +233,11 @@ fn bad_jobs_exit_2_naming_the_field() {
     assert_job_error(&variant(json!({"split": "given"})), "mu: is required");
     assert_job_error(
         &variant(json!({"split": "given", "mu": 1.5})),
-        "mu: 1.5 is outside",
+        "mu: 1.5 is outside [0.000001, 0.999999]",
+    );
+    assert_job_error(
+        &variant(json!({"split": "given", "mu": 1e-7})),
+        "mu: 0.0000001 is outside [0.000001, 0.999999]",
     );
     assert_job_error(
         &variant(json!({"p_points": [{"param": 1.5, "max_order": 1}]})),

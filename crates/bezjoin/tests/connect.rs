@@ -530,6 +530,14 @@ fn too_high_a_degree_is_refused_with_an_estimate() {
             e => panic!("expected IllConditioned, got {e}"),
         }
     }
+    // An order so large that the degree overflows names the orders given
+    // (user testing, session 40: it said only "result degree (overflow)").
+    let huge = ConnectOptions::new(usize::MAX, 3);
+    let e = connect(&p, 0.3, &q, 0.6, &huge).unwrap_err().to_string();
+    assert!(
+        e.contains("(overflow)") && e.contains(&format!("p_order {}", usize::MAX)),
+        "{e}"
+    );
 }
 
 /// Two constraint points 1e-4 apart with positions 2 apart and equal

@@ -1414,3 +1414,33 @@ fn contradictions_are_found_wherever_the_curves_sit() {
         }
     }
 }
+
+/// A requested degree above the supported maximum is refused naming the
+/// caller's `degree`, for Bezier and B-spline merges (it was named
+/// `new_degree`, after the elevation that refused it: user testing,
+/// session 40); the maximum itself is not refused for that reason.
+#[test]
+fn a_degree_above_the_maximum_is_refused_naming_degree() {
+    let p = BezierCurve::from_rows(&[[0.0, 0.0], [1.0, 1.0], [2.0, 0.0], [3.0, 0.0]]).unwrap();
+    let q = BezierCurve::from_rows(&[[3.0, 0.0], [4.0, -1.0], [5.0, 1.0], [6.0, 0.0]]).unwrap();
+    let (pb, qb) = (NurbsCurve::from_bezier(&p), NurbsCurve::from_bezier(&q));
+    for degree in [bezjoin_core::MAX_DEGREE + 1, usize::MAX] {
+        let options = MergeOptions {
+            degree: Some(degree),
+            ..MergeOptions::default()
+        };
+        let errors = [
+            merge(&p, &q, &options).unwrap_err(),
+            bezjoin_core::merge_bsplines(&pb, &qb, &options).unwrap_err(),
+        ];
+        for error in errors {
+            match error {
+                BezjoinError::InvalidArgument { name, reason } => {
+                    assert_eq!(name, "degree", "{reason}");
+                    assert!(reason.contains("supported maximum"), "{reason}");
+                }
+                other => panic!("{degree}: {other}"),
+            }
+        }
+    }
+}

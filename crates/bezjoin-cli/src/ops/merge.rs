@@ -20,8 +20,8 @@
 //! `[0, mu]` for `P`, `[mu, 1]` for `Q`).
 
 use bezjoin_core::{
-    Breakpoints, Curve, CurveMerge, KeepPoint, KnotSide, MergeMetric, MergeOptions, merge_curves,
-    relative_jump,
+    Breakpoints, Curve, CurveMerge, KeepPoint, KnotSide, MIN_SPLIT, MergeMetric, MergeOptions,
+    merge_curves, relative_jump,
 };
 use serde_json::{Value, json};
 
@@ -84,7 +84,9 @@ pub fn parse(job: &Located) -> Result<MergeJob, JobError> {
     options.split = match split {
         "given" => {
             let f = obj.required("mu")?;
-            Breakpoints::Given(vec![f.number_in(0.0, 1.0)?])
+            // The library's rule for a given split (it said "[0, 1]" before:
+            // user testing, session 40).
+            Breakpoints::Given(vec![f.number_in(MIN_SPLIT, 1.0 - MIN_SPLIT)?])
         }
         other => {
             if let Some(f) = mu {

@@ -136,7 +136,9 @@ pub fn check_connect_degree(
         Some(d) if d <= MAX_CONNECT_DEGREE => Ok(d),
         _ => Err(BezjoinError::IllConditioned {
             what: format!(
-                "connect: result degree {} is above the supported maximum {MAX_CONNECT_DEGREE}",
+                "connect: result degree {} is above the supported maximum {MAX_CONNECT_DEGREE} \
+                 (p_order {p_order} + q_order {q_order} + 1, plus one more than each \
+                 constraint's order)",
                 degree.map_or_else(|| "(overflow)".to_string(), |d| d.to_string())
             ),
             estimate: f64::INFINITY,

@@ -471,16 +471,7 @@ impl<'a> SplineProblem<'a> {
             }
         }
         let highest = curves.iter().map(|c| c.degree()).max().unwrap_or(0);
-        let degree = match settings.degree {
-            None => highest,
-            Some(m) if m >= highest => m,
-            Some(m) => {
-                return Err(BezjoinError::invalid(
-                    "degree",
-                    format!("{m} is below the highest degree {highest} of the curves to merge"),
-                ));
-            }
-        };
+        let degree = super::checked_working_degree(highest, settings.degree)?;
         let mut pieces = Vec::with_capacity(curves.len());
         let mut total_poles = 0usize;
         for (j, ((c, (points_name, points)), &keep)) in
