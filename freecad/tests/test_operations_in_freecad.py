@@ -270,6 +270,37 @@ class RoundCornerJudgedByFreeCAD(unittest.TestCase, CommandDriver):
                 self.assertLessEqual(gap(left.tangentAt(left.LastParameter),
                                          right.tangentAt(right.FirstParameter)), 1e-9)
 
+    def test_auto_scale_does_not_depend_on_how_fast_the_edges_run(self):
+        # FreeCAD's lines run at their length and arcs at their radius. With one scale
+        # for both ends, a 90 degree corner of lines 1000 and 10 long (setback 1, the
+        # default orders 1 and 1) got a blend whose curvature peaked at 1.29e4, and a
+        # line into an arc of radius 500 one at 26 times the G1 arc's (user testing,
+        # session 40). The blend leaves both edges at one speed: the corner of lines
+        # 1000 / 10 is the corner of lines 10 / 10, and the blends bend at most twice
+        # as much as the G1 arc of the same setback.
+        def peak(wire):
+            blend = wire.OrderedEdges[1]
+            first, last = blend.FirstParameter, blend.LastParameter
+            return max(blend.curvatureAt(first + (last - first) * i / 400)
+                       for i in range(401))
+
+        corner = V(0, 0, 0)
+        peaks = []
+        for a, b in ((10, 10), (1000, 10), (10, 1000)):
+            wire = operations.round_corner(Part.makeLine(V(-a, 0, 0), corner),
+                                           Part.makeLine(corner, V(0, b, 0)), setback=1.0)
+            peaks.append(peak(wire))
+        self.assertLessEqual(peaks[0], 2.0)  # the G1 arc: curvature 1
+        for other in peaks[1:]:
+            self.assertAlmostEqual(other, peaks[0], delta=1e-6 * peaks[0])
+        circle = Part.Circle(V(0, 500, 0), V(0, 0, 1), 500)
+        arc = Part.ArcOfCircle(circle, math.radians(-60), math.radians(-30)).toShape()
+        arc.translate(corner - arc.Vertexes[0].Point)  # it turns 30 degrees off the line
+        for setback in (1.0, 5.0):
+            wire = operations.round_corner(Part.makeLine(V(-100, 0, 0), corner), arc,
+                                           setback=setback)
+            self.assertLessEqual(peak(wire), 2.0 * math.tan(math.radians(15)) / setback)
+
     def test_round_corner_command(self):
         first = Part.makeLine(V(0, 0, 0), V(2, 0, 0))
         second = Part.makeLine(V(2, 0, 0), V(2, 2, 0))
