@@ -301,6 +301,27 @@ class RoundCornerJudgedByFreeCAD(unittest.TestCase, CommandDriver):
                                            setback=setback)
             self.assertLessEqual(peak(wire), 2.0 * math.tan(math.radians(15)) / setback)
 
+    def test_round_wire_by_setback_does_not_depend_on_the_sides_lengths(self):
+        # The same defect in a chain: a 1000 x 10 rectangle rounded by setback 1 (G2)
+        # peaked at curvature 521 at every corner, a 10 x 10 square at 1.19 (user
+        # testing, session 40). The curves go to the library at unit speed; the kept
+        # parts of the lines are still lines.
+        def peaks(width, height):
+            corners = [V(0, 0, 0), V(width, 0, 0), V(width, height, 0), V(0, height, 0)]
+            wire = operations.round_wire(Part.makePolygon(corners + corners[:1]),
+                                         setback=1.0, continuity="G2")
+            self.assertTrue(wire.isClosed() and wire.isValid())
+            lines = [e for e in wire.Edges if e.Curve.TypeId == "Part::GeomLine"]
+            blends = [e for e in wire.Edges if e.Curve.TypeId != "Part::GeomLine"]
+            self.assertEqual((len(lines), len(blends)), (4, 4))
+            return [max(e.curvatureAt(e.FirstParameter + (e.LastParameter - e.FirstParameter)
+                                      * i / 200) for i in range(201)) for e in blends]
+
+        square = peaks(10, 10)
+        self.assertLessEqual(max(square), 2.0)  # the G1 arc: curvature 1
+        for peak in peaks(1000, 10) + peaks(10, 1000):
+            self.assertAlmostEqual(peak, square[0], delta=1e-6 * square[0])
+
     def test_round_corner_command(self):
         first = Part.makeLine(V(0, 0, 0), V(2, 0, 0))
         second = Part.makeLine(V(2, 0, 0), V(2, 2, 0))
