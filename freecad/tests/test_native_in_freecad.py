@@ -247,15 +247,29 @@ class BlendEdgesFastPath(unittest.TestCase):
                     self.assertEqual(described(fast, edge_state), described(general, edge_state))
 
     def test_fast_path_is_taken(self):
-        """For two facing whole Bezier edges blend_edges is connect_edges' curve."""
+        """For two facing whole Bezier edges blend_edges is connect_edges' curve: with
+        given scales, and with the automatic scale when the blend leaves both edges at
+        the same speed. With the automatic scale and different speeds the general path
+        balances them (:func:`operations._balanced`, session 40), so the fast path
+        declines."""
         a = bezier_edge([(0, 0, 0), (1, 1, 0.2), (2, 1, 0.1), (3, 0, 0)])
         b = bezier_edge([(4, 0.5, 0), (5, 0, 0.3), (6, 1, 0.2), (7, 0, 0)])
-        taken = operations._blend_bezier_edges(a, b, 1.0, 0.0, None, None, None, None, None,
+        given = dict(p_scale=1.5, q_scale=0.5, auto_scale=False)
+        taken = operations._blend_bezier_edges(a, b, 1.0, 0.0, None, None, 1.5, 0.5, False,
                                                True)
         self.assertIsNotNone(taken)
-        self.assertEqual(edge_state(taken),
-                         edge_state(Part.Edge(bezjoin.connect_edges(a, 1.0, b, 0.0), 0.0, 1.0)))
+        self.assertEqual(edge_state(taken), edge_state(
+            Part.Edge(bezjoin.connect_edges(a, 1.0, b, 0.0, **given), 0.0, 1.0)))
         self.assertTrue(math.isclose(taken.valueAt(0.0).x, 3.0, abs_tol=1e-12))
+        self.assertIsNone(operations._blend_bezier_edges(a, b, 1.0, 0.0, None, None, None,
+                                                         None, None, True))
+        # b's first leg as long as a's last one: the same speed at both ends
+        same = bezier_edge([(4, 0.5, 0), (5, -0.5, -0.1), (6, 1, 0.2), (7, 0, 0)])
+        taken = operations._blend_bezier_edges(a, same, 1.0, 0.0, None, None, None, None,
+                                               None, True)
+        self.assertIsNotNone(taken)
+        self.assertEqual(edge_state(taken), edge_state(
+            Part.Edge(bezjoin.connect_edges(a, 1.0, same, 0.0), 0.0, 1.0)))
 
 
 if __name__ == "__main__":

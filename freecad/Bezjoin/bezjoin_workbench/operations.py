@@ -247,6 +247,9 @@ def _blend_bezier_edges(first_edge, second_edge, u0, v0, p_order, q_order, p_sca
                       for i in (0, 1) for j in (0, 1))
         if pairing[2:] != (1, 0):
             return None
+    if _automatic(p_scale, q_scale, auto_scale) and _speeds_differ(
+            _bezier_speed(p_values, p_degree, u), _bezier_speed(q_values, q_degree, v), 1.0):
+        return None  # the general path balances the end speeds (:func:`_balanced`)
     try:
         curve = bezjoin.connect_edges(first_edge, u, second_edge, v, p_order=orders[0],
                                       q_order=orders[1], p_scale=p_scale, q_scale=q_scale,
@@ -262,6 +265,17 @@ def _blend_bezier_edges(first_edge, second_edge, u0, v0, p_order, q_order, p_sca
     if not _distance(start, end) > TOUCH_TOLERANCE * size * (1.0 + 1e-9) + 1e-12 * reach:
         return None
     return Part.Edge(curve, 0.0, 1.0)
+
+
+def _bezier_speed(values, degree, t):
+    """``|P'(t)|`` of the Bezier curve with the flat 3D poles ``values``: ``degree``
+    times the de Casteljau point of the pole differences."""
+    points = [values[3 * i:3 * i + 3] for i in range(degree + 1)]
+    level = [[b - a for a, b in zip(points[i], points[i + 1])] for i in range(degree)]
+    while len(level) > 1:
+        level = [[(1.0 - t) * a + t * b for a, b in zip(level[i], level[i + 1])]
+                 for i in range(len(level) - 1)]
+    return degree * _norm(level[0]) if level else 0.0
 
 
 def blend_edges(first_edge, second_edge, *, u0=1.0, v0=0.0, p_order=None, q_order=None,
@@ -307,6 +321,21 @@ def blend_edges(first_edge, second_edge, *, u0=1.0, v0=0.0, p_order=None, q_orde
                     f"({', '.join(f'{x:.6g}' for x in start)}): the edges share a vertex "
                     "there. Use Round corner to round that corner, or choose positions "
                     "u0/v0 apart")
+            if _automatic(p_scale, q_scale, auto_scale):
+                # The blend leaves both edges at one speed (:func:`_balanced`): lines
+                # 1000 and 10 long, blended across a gap of 2 at 90 degrees, peaked at
+                # curvature 6472, lines 10 and 10 at 0.67 (user testing, session 40).
+                p_speed = _norm(p.derivatives(u, 1)[1])
+                q_speed = _norm(q.derivatives(v, 1)[1])
+                chord = _distance(start, end)
+                if _speeds_differ(p_speed, q_speed, chord):
+                    def solve(ps, qs):
+                        return bezjoin.connect(p, u, q, v, p_order=p_order, q_order=q_order,
+                                               p_scale=ps, q_scale=qs, auto_scale=False)
+                    best = _balanced(solve, lambda blend: blend, p_speed, q_speed, chord)
+                    if best is not None:
+                        with best:
+                            return best.to_edge()
             with bezjoin.connect(p, u, q, v, p_order=p_order, q_order=q_order,
                                  p_scale=p_scale, q_scale=q_scale,
                                  auto_scale=auto_scale) as blend:
@@ -404,8 +433,7 @@ def round_corner(first_edge, second_edge, *, setback=None, second_setback=None, 
             touching = _distance(_ends(p_oriented)[1], _ends(q_oriented)[0]) <= gap
             options = dict(p_setback=setback, q_setback=second_setback, p_order=p_order,
                            q_order=q_order)
-            automatic = auto_scale or (auto_scale is None and p_scale is None
-                                       and q_scale is None)
+            automatic = _automatic(p_scale, q_scale, auto_scale)
             scales = dict(p_scale=p_scale, q_scale=q_scale, auto_scale=auto_scale)
             if touching:
                 # The vertex itself, whatever other crossings the edges have.
@@ -422,45 +450,65 @@ def round_corner(first_edge, second_edge, *, setback=None, second_setback=None, 
                 return _wire(result.curves())
 
 
-#: Grid of the end-speed search of :func:`_balanced_fillet`: points over two decades
+def _automatic(p_scale, q_scale, auto_scale):
+    """Whether the library would choose the scale (the bindings' rule): asked for, or
+    nothing said and no scale given."""
+    return bool(auto_scale) or (auto_scale is None and p_scale is None and q_scale is None)
+
+
+#: Grid of the end-speed search of :func:`_balanced`: points over two decades
 #: either side of the chord, as the library's automatic scale searches.
 BALANCED_GRID = 33
 
 
 def _balanced_fillet(fillet):
     """The C^k fillet ``fillet(**scales)`` with the automatic scale, made independent of
-    how fast each edge runs in its own parameter.
+    how fast each edge runs in its own parameter (:func:`_balanced`).
 
     The library's automatic scale is one ``s`` for both ends (``R^(k)(0) = s^k
     P^(k)(u0)``, the same at Q), so the blend leaves each edge at ``s`` times that edge's
     speed. FreeCAD's lines run at their length and arcs at their radius: a corner of
     lines 1000 and 10 long (setback 1, 90 degrees) got a blend whose curvature peaked at
     1.29e4, where the same corner of lines 10 and 10 peaks at 1.33 (user testing,
-    session 40). Here the blend leaves both edges at the same speed ``sigma``: the
-    scales are ``sigma / |P'(u0)|`` and ``sigma / |Q'(v0)|``, and ``sigma`` minimises
-    the library's energy ``int |R''|^2 dt`` (a grid of :data:`BALANCED_GRID` values over
-    two decades either side of the chord, then golden sections). The speeds come from
-    the library's own automatic fillet: ``|R'(0)| / s`` and ``|R'(1)| / s``. When they
-    are equal that fillet is already this one and is returned."""
+    session 40). The speeds at the cuts come from the library's own automatic fillet,
+    ``|R'(0)| / s`` and ``|R'(1)| / s``; when they are equal that fillet is already the
+    balanced one and is returned."""
     first = fillet(auto_scale=True)
     s = first.scale
     r = first.blend
     p_speed = _norm(r.derivatives(0.0, 1)[1]) / s
     q_speed = _norm(r.derivatives(1.0, 1)[1]) / s
     chord = _distance(r.evaluate(0.0), r.evaluate(1.0))
-    if not (p_speed > 0 and q_speed > 0 and chord > 0 and math.isfinite(p_speed * q_speed)) \
-            or abs(p_speed - q_speed) <= 1e-9 * max(p_speed, q_speed):
+    if not _speeds_differ(p_speed, q_speed, chord):
         return first
     first.close()
+    best = _balanced(lambda ps, qs: fillet(p_scale=ps, q_scale=qs, auto_scale=False),
+                     lambda result: result.blend, p_speed, q_speed, chord)
+    return best if best is not None else fillet(auto_scale=True)
 
+
+def _speeds_differ(p_speed, q_speed, chord):
+    """Whether :func:`_balanced` has work to do: finite positive speeds and chord, and
+    speeds more than 1e-9 apart (relative)."""
+    return (p_speed > 0 and q_speed > 0 and chord > 0 and math.isfinite(p_speed * q_speed)
+            and abs(p_speed - q_speed) > 1e-9 * max(p_speed, q_speed))
+
+
+def _balanced(solve, blend_of, p_speed, q_speed, chord):
+    """The C^k blend that leaves both curves at one speed ``sigma``: ``solve(p_scale,
+    q_scale)`` with the scales ``sigma / p_speed`` and ``sigma / q_speed`` (the curves'
+    speeds at the blend's ends), ``sigma`` minimising the library's automatic-scale
+    energy ``int |R''|^2 dt`` of ``blend_of(result)``: a grid of :data:`BALANCED_GRID`
+    values over two decades either side of the chord, then golden sections between the
+    best one's neighbours. Returns the best result (the caller closes it), or ``None``
+    when no trial solved; every other result is closed."""
     def energy(log_sigma):
         sigma = math.exp(log_sigma)
         try:
-            result = fillet(p_scale=sigma / p_speed, q_scale=sigma / q_speed,
-                            auto_scale=False)
+            result = solve(sigma / p_speed, sigma / q_speed)
         except bezjoin.BezjoinError:
             return math.inf, None
-        return _bending(result.blend), result
+        return _bending(blend_of(result)), result
 
     half = 2.0 * math.log(10.0)
     centre = math.log(chord)
@@ -475,8 +523,7 @@ def _balanced_fillet(fillet):
         elif result is not None:
             result.close()
     if best_result is None:
-        return fillet(auto_scale=True)  # no balanced trial solved: the library's own
-    # Golden sections between the best grid point's neighbours.
+        return None
     lo, hi = grid[max(best - 1, 0)], grid[min(best + 1, BALANCED_GRID - 1)]
     ratio = (math.sqrt(5.0) - 1.0) / 2.0
     for _ in range(40):
@@ -488,7 +535,7 @@ def _balanced_fillet(fillet):
             if result is not None and value < best_value:
                 best_result.close()
                 best_value, best_result = value, result
-            elif result is not None and result is not best_result:
+            elif result is not None:
                 result.close()
         if va <= vb:
             hi = b
