@@ -766,12 +766,16 @@ void time_evaluation(Report& report, std::vector<Timing>& timings, const Options
             }
             double buffer[3];
             gp_Pnt p;
-            const Pair pair = time_pair(
-                batches, calls,
-                [&](int i) {
-                    curve.eval_into(params[i & 1023], 0, buffer, 3);
+            // One value of `c` per call, at the i-th of the 1024 parameters.
+            const auto value_of = [&](const Curve& c) {
+                return [&, handle = &c](int i) {
+                    handle->eval_into(params[i & 1023], 0, buffer, 3);
                     g_sink = g_sink + buffer[0];
-                },
+                };
+            };
+            const auto bezier_value = value_of(curve);
+            const Pair pair = time_pair(
+                batches, calls, bezier_value,
                 calls,
                 [&](int i) {
                     occ->D0(params[i & 1023], p);
@@ -814,12 +818,9 @@ void time_evaluation(Report& report, std::vector<Timing>& timings, const Options
             }
             report.row(worst <= 1e-12, format("b.nurbs-eval-vs-BSpline-D0[deg %zu]", degree), worst, 1e-12,
                        "the Bezier as a one-span NURBS handle, 1000 parameters, relative");
+            const auto nurbs_value = value_of(nurbs);
             const Pair nurbs_pair = time_pair(
-                batches, calls,
-                [&](int i) {
-                    nurbs.eval_into(params[i & 1023], 0, buffer, 3);
-                    g_sink = g_sink + buffer[0];
-                },
+                batches, calls, nurbs_value,
                 calls,
                 [&](int i) {
                     occ_nurbs->D0(params[i & 1023], p);
@@ -832,17 +833,7 @@ void time_evaluation(Report& report, std::vector<Timing>& timings, const Options
             // ratios, as every TIME row (the times of the two rows above come
             // from different minutes, and a noisy machine moved their quotient
             // from 1.7x to 2.1x for the same library, session 40).
-            const Pair versus = time_pair(
-                batches, calls,
-                [&](int i) {
-                    curve.eval_into(params[i & 1023], 0, buffer, 3);
-                    g_sink = g_sink + buffer[0];
-                },
-                calls,
-                [&](int i) {
-                    nurbs.eval_into(params[i & 1023], 0, buffer, 3);
-                    g_sink = g_sink + buffer[0];
-                });
+            const Pair versus = time_pair(batches, calls, bezier_value, calls, nurbs_value);
             report.info(format("timing.nurbs-vs-bezier[deg %zu]", degree),
                         format("our NURBS handle %s, our Bezier handle %s per value: %.2fx the Bezier time "
                                "(median over %d alternating batches)",
