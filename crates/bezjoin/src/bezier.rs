@@ -22,7 +22,7 @@ use crate::error::{BezjoinError, Result, check_closed_range, check_finite, check
 pub const MAX_DEGREE: usize = 4096;
 
 /// `InvalidArgument` naming `name` when `degree > MAX_DEGREE`.
-fn check_degree_supported(name: &str, degree: usize) -> Result<()> {
+pub(crate) fn check_degree_supported(name: &str, degree: usize) -> Result<()> {
     if degree > MAX_DEGREE {
         return Err(BezjoinError::invalid(
             name,

@@ -145,15 +145,9 @@ def _link_edge(value, what):
 def source_objects(obj):
     """The objects ``obj`` (a bezjoin feature) takes its sources from, without repeats."""
     found = []
-    for name in getattr(obj.Proxy, "LINKS", ()):
-        value = getattr(obj, name, None)
-        if not value:
-            continue
-        objects = [value[0]] if name in obj.Proxy.SINGLE_LINKS else \
-            [source for source, _names in value]
-        for source in objects:
-            if source is not None and source not in found:
-                found.append(source)
+    for source, _name in _linked_names(obj):
+        if source is not None and source not in found:
+            found.append(source)
     return found
 
 
@@ -314,15 +308,9 @@ def _linked_names(obj):
     pairs = []
     for property_name in getattr(obj.Proxy, "LINKS", ()):
         value = getattr(obj, property_name, None)
-        if not value:
-            continue
-        if property_name in obj.Proxy.SINGLE_LINKS:
-            source, names = value
-            names = [name for name in ([names] if isinstance(names, str) else names) if name]
-            if source is not None:
-                pairs.extend((source, name) for name in names or [""])
-        else:
-            pairs.extend(_pairs(value))
+        if value:
+            # A single link is one (object, names) entry of a link list.
+            pairs.extend(_pairs([value] if property_name in obj.Proxy.SINGLE_LINKS else value))
     return pairs
 
 

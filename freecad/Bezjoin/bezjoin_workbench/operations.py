@@ -14,7 +14,6 @@ an edge are given here as fractions of that range (0 = start, 1 = end).
 import math
 import re
 
-import FreeCAD
 import Part
 
 from . import ensure_bindings_importable
@@ -247,8 +246,9 @@ def _blend_bezier_edges(first_edge, second_edge, u0, v0, p_order, q_order, p_sca
                       for i in (0, 1) for j in (0, 1))
         if pairing[2:] != (1, 0):
             return None
+    # Both edges run on [0, 1] (verbatim), so ``u``, ``v`` are their parameters.
     if _automatic(p_scale, q_scale, auto_scale) and _speeds_differ(
-            _bezier_speed(p_values, p_degree, u), _bezier_speed(q_values, q_degree, v), 1.0):
+            first_edge.derivative1At(u).Length, second_edge.derivative1At(v).Length, 1.0):
         return None  # the general path balances the end speeds (:func:`_balanced`)
     try:
         curve = bezjoin.connect_edges(first_edge, u, second_edge, v, p_order=orders[0],
@@ -265,17 +265,6 @@ def _blend_bezier_edges(first_edge, second_edge, u0, v0, p_order, q_order, p_sca
     if not _distance(start, end) > TOUCH_TOLERANCE * size * (1.0 + 1e-9) + 1e-12 * reach:
         return None
     return Part.Edge(curve, 0.0, 1.0)
-
-
-def _bezier_speed(values, degree, t):
-    """``|P'(t)|`` of the Bezier curve with the flat 3D poles ``values``: ``degree``
-    times the de Casteljau point of the pole differences."""
-    points = [values[3 * i:3 * i + 3] for i in range(degree + 1)]
-    level = [[b - a for a, b in zip(points[i], points[i + 1])] for i in range(degree)]
-    while len(level) > 1:
-        level = [[(1.0 - t) * a + t * b for a, b in zip(level[i], level[i + 1])]
-                 for i in range(len(level) - 1)]
-    return degree * _norm(level[0]) if level else 0.0
 
 
 def blend_edges(first_edge, second_edge, *, u0=1.0, v0=0.0, p_order=None, q_order=None,
@@ -325,8 +314,8 @@ def blend_edges(first_edge, second_edge, *, u0=1.0, v0=0.0, p_order=None, q_orde
                 # The blend leaves both edges at one speed (:func:`_balanced`): lines
                 # 1000 and 10 long, blended across a gap of 2 at 90 degrees, peaked at
                 # curvature 6472, lines 10 and 10 at 0.67 (user testing, session 40).
-                p_speed = _norm(p.derivatives(u, 1)[1])
-                q_speed = _norm(q.derivatives(v, 1)[1])
+                p_speed = math.hypot(*p.derivatives(u, 1)[1])
+                q_speed = math.hypot(*q.derivatives(v, 1)[1])
                 chord = _distance(start, end)
                 if _speeds_differ(p_speed, q_speed, chord):
                     def solve(ps, qs):
@@ -476,8 +465,8 @@ def _balanced_fillet(fillet):
     first = fillet(auto_scale=True)
     s = first.scale
     r = first.blend
-    p_speed = _norm(r.derivatives(0.0, 1)[1]) / s
-    q_speed = _norm(r.derivatives(1.0, 1)[1]) / s
+    p_speed = math.hypot(*r.derivatives(0.0, 1)[1]) / s
+    q_speed = math.hypot(*r.derivatives(1.0, 1)[1]) / s
     chord = _distance(r.evaluate(0.0), r.evaluate(1.0))
     if not _speeds_differ(p_speed, q_speed, chord):
         return first
@@ -563,39 +552,14 @@ def _at_unit_speed(curve):
     return bezjoin.Curve.nurbs(curve.points, knots, degree, weights)
 
 
-class _LinesStayLines:
-    """A chain result whose ``pieces`` give edges with ``to_edge()`` as the result's do,
-    except that a straight piece (degree 1, two poles, the piece of a line given at unit
-    speed by :func:`_at_unit_speed`) is a line segment again, not a B-spline."""
-
-    def __init__(self, result):
-        self._result = result
-        self.pieces = [_LineOrPiece(piece) for piece in result.pieces]
-        self.reports = getattr(result, "reports", [])
-
-    def __enter__(self):
-        return self
-
-    def __exit__(self, *exc):
-        self._result.close()
-        return False
-
-
-class _LineOrPiece:
-    def __init__(self, piece):
-        self._piece = piece
-
-    def to_edge(self):
-        piece = self._piece
-        if piece.degree == 1 and piece.pole_count == 2 and not piece.is_rational:
-            start, end = piece.points
-            return Part.LineSegment(FreeCAD.Vector(*_xyz(start)),
-                                    FreeCAD.Vector(*_xyz(end))).toShape()
-        return piece.to_edge()
-
-
-def _xyz(point):
-    return tuple(point) + (0.0,) * (3 - len(point))
+def _unit_piece_edge(piece):
+    """The edge of a chain piece cut from a curve given at unit speed
+    (:func:`_at_unit_speed`): a straight piece (degree 1, two poles: a line's) as a line
+    segment again, not a B-spline; any other as :meth:`bezjoin.Curve.to_edge` makes it.
+    The curves of FreeCAD edges are 3D."""
+    if piece.degree == 1 and piece.pole_count == 2 and not piece.is_rational:
+        return Part.makeLine(*(tuple(point) for point in piece.points))
+    return piece.to_edge()
 
 
 def _bending(curve):
@@ -615,10 +579,6 @@ def _bending(curve):
             gram = math.comb(m, i) * math.comb(m, j) / ((2 * m + 1) * math.comb(2 * m, i + j))
             total += gram * sum(x * y for x, y in zip(second[i], second[j]))
     return total
-
-
-def _norm(vector):
-    return math.sqrt(sum(x * x for x in vector))
 
 
 class RoundedWire:
@@ -686,11 +646,12 @@ def _is_smooth_join(p, q):
 PATH_INDEX = re.compile(r"\b(corner |curves\[)(\d+)(\]?)")
 
 
-def _round_runs(curves, closed, round_chain):
+def _round_runs(curves, closed, round_chain, edge_of=None):
     """Every corner of the path ``curves`` rounded by ``round_chain(run_curves,
     closed)`` (a library chain call, whose result has ``pieces`` and may have
     ``reports``), run by run between the smooth joins (:func:`_corner_runs`), which are
-    left as they are. Returns ``(wire, reports, smooth)``; a run's error is re-raised
+    left as they are; ``edge_of(piece)`` makes each piece's edge (default
+    :meth:`bezjoin.Curve.to_edge`). Returns ``(wire, reports, smooth)``; a run's error is re-raised
     with its ``corner i`` / ``curves[i]`` numbered along the whole path, as a call on
     the whole path would number them."""
     runs, closes, smooth = _corner_runs(curves, closed)
@@ -718,7 +679,8 @@ def _round_runs(curves, closed, round_chain):
             message = PATH_INDEX.sub(path_index, error.message)
             raise bezjoin.BezjoinError(error.status, error.status_name, message) from error
         with result:
-            edges.extend(piece.to_edge() for piece in result.pieces)
+            edges.extend(piece.to_edge() if edge_of is None else edge_of(piece)
+                         for piece in result.pieces)
             reports.extend(getattr(result, "reports", []))
     return Part.Wire(edges), reports, [i + 1 for i in smooth]
 
@@ -850,12 +812,13 @@ def round_wire(shape, *, radius=None, setback=None, continuity="G2", closed=None
                 # corners, a 10 x 10 square at 1.19 (user testing, session 40).
                 unit = [_at_unit_speed(curve) for curve in run]
                 try:
-                    return _LinesStayLines(bezjoin.fillet_chain(
-                        unit, setback=setback, p_order=order, q_order=order, closed=closes))
+                    return bezjoin.fillet_chain(unit, setback=setback, p_order=order,
+                                                q_order=order, closed=closes)
                 finally:
                     for curve in unit:
                         curve.close()
-        wire, _, _ = _round_runs(curves, closed, round_chain)
+        wire, _, _ = _round_runs(curves, closed, round_chain,
+                                 edge_of=None if radius is not None else _unit_piece_edge)
     finally:
         for curve in curves:
             curve.close()

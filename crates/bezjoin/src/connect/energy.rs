@@ -58,7 +58,7 @@ pub fn fairness_energy(curve: &BezierCurve) -> f64 {
 pub(crate) fn natural_scale(problem: &Problem) -> f64 {
     let p = &problem.p_derivatives;
     let q = &problem.q_derivatives;
-    let gap = (q.row(0) - p.row(0)).norm();
+    let gap = problem.chord();
     let mut speeds = Vec::new();
     if p.nrows() > 1 {
         speeds.push(p.row(1).norm());

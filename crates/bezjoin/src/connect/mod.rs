@@ -325,6 +325,11 @@ pub(crate) struct Problem {
 }
 
 impl Problem {
+    /// The chord `|Q(v0) - P(u0)|` between the blend's ends.
+    pub(crate) fn chord(&self) -> f64 {
+        (self.q_derivatives.row(0) - self.p_derivatives.row(0)).norm()
+    }
+
     /// `M = sum (K_j + 1)`.
     pub(crate) fn middle_count(&self) -> usize {
         self.constraints.iter().map(|(_, d)| d.nrows()).sum()

@@ -528,7 +528,7 @@ fn shapes_from(
 /// natural scale ([`natural_scale`]) stands in.
 fn natural_end_scales(problem: &Problem) -> (f64, f64) {
     let (p, q) = (&problem.p_derivatives, &problem.q_derivatives);
-    let chord = (q.row(0) - p.row(0)).norm();
+    let chord = problem.chord();
     let of = |jet: &nalgebra::DMatrix<f64>| {
         let value = if jet.nrows() > 1 {
             chord / jet.row(1).norm()
@@ -564,8 +564,7 @@ pub(super) fn fair_shapes(
     let mut q_buffer = [0.0; MAX_GEOMETRIC_ORDER];
     let (natural_p, natural_q) = natural_end_scales(problem);
     let half = GRID_DECADES * std::f64::consts::LN_10;
-    let chord = (problem.q_derivatives.row(0) - problem.p_derivatives.row(0)).norm();
-    let longest = MAX_LENGTH_RATIO * chord;
+    let longest = MAX_LENGTH_RATIO * problem.chord();
     // The search stays in the grid's range of `ln beta_1` at each end.
     let inside = |x: &[f64]| {
         let within = |at: usize, natural: f64| (x[at] - natural.ln()).abs() <= half;

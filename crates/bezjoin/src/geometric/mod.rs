@@ -300,7 +300,7 @@ const COINCIDENT_ENDS: f64 = 1e-9;
 /// naming `v0`; with shape values given, such a blend is the caller's
 /// choice and is answered.
 fn check_ends_apart(problem: &Problem, u0: f64, v0: f64) -> Result<()> {
-    let gap = (problem.q_derivatives.row(0) - problem.p_derivatives.row(0)).norm();
+    let gap = problem.chord();
     if gap > COINCIDENT_ENDS * problem.data_scale {
         return Ok(());
     }

@@ -108,7 +108,7 @@ mod stage_one;
 mod stage_two;
 mod trial;
 
-use crate::bezier::{BezierCurve, MAX_DEGREE};
+use crate::bezier::{BezierCurve, check_degree_supported};
 use crate::error::{
     BezjoinError, Result, check_closed_range, check_finite_scalar, check_open_range, check_positive,
 };
@@ -834,16 +834,15 @@ fn working_degree(curves: &[&BezierCurve], requested: Option<usize>) -> Result<u
 
 /// The merge's working degree: the `requested` one (the caller's `degree`)
 /// or else `highest`, the highest degree of the curves to merge. A requested
-/// degree below `highest` or above [`MAX_DEGREE`] is InvalidArgument naming
+/// degree below `highest` or above [`crate::MAX_DEGREE`] is InvalidArgument naming
 /// `degree` (the latter used to be named `new_degree`, after the elevation
 /// that refused it: user testing, session 40).
 pub(super) fn checked_working_degree(highest: usize, requested: Option<usize>) -> Result<usize> {
+    if let Some(m) = requested {
+        check_degree_supported("degree", m)?;
+    }
     match requested {
         None => Ok(highest),
-        Some(m) if m > MAX_DEGREE => Err(BezjoinError::invalid(
-            "degree",
-            format!("{m} is above the supported maximum degree {MAX_DEGREE}"),
-        )),
         Some(m) if m >= highest => Ok(m),
         Some(m) => Err(BezjoinError::invalid(
             "degree",
