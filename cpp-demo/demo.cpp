@@ -3683,6 +3683,59 @@ void check_radius_wire(Report& report) {
                           "chain s %.4g, deviation s %.4g, setback %.4f) by at most %.1e",
                           paper, v.scale, c.scales.at(0), s, dev.report.p_setback, std::max(worst, 0.0)));
     });
+    // The balanced scales: lines 1000 and 10 long at a right angle, setback 1, cut at the
+    // same points as lines 10 and 10; only the edges' speeds differ. The balanced blend
+    // is the same curve (peak curvature by OCCT's GeomLProp), both its ends at one speed
+    // (OCCT's DN); the one-s automatic scale makes a near-kink at the short edge.
+    guarded(report, "w.balanced-scale-ignores-edge-length", [&] {
+        const Curve long_edge(2, 1, {-1000.0, 0.0, 0.0, 0.0});
+        const Curve short_edge(2, 1, {-10.0, 0.0, 0.0, 0.0});
+        const Curve up(2, 1, {0.0, 0.0, 0.0, 10.0});
+        bezjoin::FilletOptions o;
+        o.p_setback = 1.0;
+        o.q_setback = 1.0;
+        o.p_order = 2;
+        o.q_order = 2;
+        auto peak = [](const Curve& blend) {
+            const Handle(Geom_BezierCurve) occ = occ_bezier(blend);
+            double most = 0.0;
+            for (int i = 0; i <= 400; ++i) {
+                most = std::max(most, curvature(Handle(Geom_Curve)(occ), i / 400.0));
+            }
+            return most;
+        };
+        const bezjoin::BalancedFillet equal = bezjoin::fillet_vertex_balanced_scale(short_edge, up, o, 0.0);
+        const bezjoin::BalancedFillet unequal = bezjoin::fillet_vertex_balanced_scale(long_edge, up, o, 0.0);
+        const bezjoin::AutoScaledFillet automatic = bezjoin::fillet_vertex_auto_scale(long_edge, up, o, 0.0);
+        const Handle(Geom_BezierCurve) occ = occ_bezier(unequal.blend);
+        const double start = occ->DN(0.0, 1).Magnitude();
+        const double end = occ->DN(1.0, 1).Magnitude();
+        const double speeds = std::abs(start - end) / std::max(start, end);
+        const double peaks = std::abs(peak(unequal.blend) - peak(equal.blend)) / peak(equal.blend);
+        // The same through connect and the crossing fillet: the blend of the cut lines.
+        bezjoin::ConnectOptions c;
+        c.p_order = 2;
+        c.q_order = 2;
+        const bezjoin::BalancedConnection joined =
+            bezjoin::connect_balanced_scale(long_edge, 0.999, up, 0.1, c);
+        const Curve crossing_p(2, 1, {-1000.0, 0.0, 5.0, 0.0});
+        const Curve crossing_q(2, 1, {0.0, -5.0, 0.0, 10.0});
+        const bezjoin::BalancedFillet crossing = bezjoin::fillet_balanced_scale(crossing_p, crossing_q, o);
+        double apart = 0.0;
+        const std::vector<double> a = joined.curve.points();
+        const std::vector<double> b = crossing.blend.points();
+        const std::vector<double> e = equal.blend.points();
+        for (std::size_t i = 0; i < e.size(); ++i) {
+            apart = std::max({apart, std::abs(a[i] - e[i]), std::abs(b[i] - e[i])});
+        }
+        const double worst = std::max({speeds, peaks, apart});
+        const double kink = peak(automatic.blend) / peak(equal.blend);
+        report.row(worst <= 1e-9 && kink > 10.0, "w.balanced-scale-ignores-edge-length", worst, 1e-9,
+                   format("peak curvature: balanced %.4f on lines 1000/10, %.4f on 10/10; one-s automatic "
+                          "%.4g (%.0fx); end speeds %.6f / %.6f; connect and crossing fillet give the same blend "
+                          "to %.1e",
+                          peak(unequal.blend), peak(equal.blend), peak(automatic.blend), kink, start, end, apart));
+    });
 }
 
 void check_fillet_chain(Report& report, StepScene& scene) {

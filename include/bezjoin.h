@@ -735,6 +735,31 @@ BzjStatus bzj_connect(const struct BzjCurve *p, double u0, const struct BzjCurve
 BzjStatus bzj_connect_auto_scale(const struct BzjCurve *p, double u0, const struct BzjCurve *q, double v0, const struct BzjConnectOptions *options, struct BzjCurve **out, double *scale_out);
 
 /**
+ * [`bzj_connect`] with the blend leaving both curves at one speed `sigma`:
+ * `alpha = sigma / |P'(u0)|`, `beta = sigma / |Q'(v0)|`, `sigma` chosen as
+ * [`bzj_connect_auto_scale`] chooses `s` (least fairness energy
+ * `integral_0^1 |R''(t)|^2 dt` over two decades either side of the chord
+ * `|Q(v0) - P(u0)|`). `alpha^k P^(k)(u0)` is the jet of P reparametrised to
+ * unit speed at `u0`, so the result does not depend on how fast either
+ * curve runs in its own parameter: a line given on `[0, 1]` or on
+ * `[0, length]` gives the same blend (with [`bzj_connect_auto_scale`]'s
+ * one `s` it does not, and a fast curve next to a slow one gets a
+ * near-kink at the slow end). An end of order 0, or whose first derivative
+ * vanishes, takes the other end's speed; two such ends give
+ * [`bzj_connect_auto_scale`]'s answer. `options->p_scale` and
+ * `options->q_scale` are ignored; `alpha` and `beta` are written to
+ * `p_scale_out`, `q_scale_out` when not NULL. Same guarantee as
+ * [`bzj_connect`].
+ *
+ * @return the statuses of [`bzj_connect`] (except for the scales, which are
+ *         not read).
+ *
+ * # Safety
+ * As [`bzj_connect`]; `p_scale_out`, `q_scale_out` are NULL or writable.
+ */
+BzjStatus bzj_connect_balanced_scale(const struct BzjCurve *p, double u0, const struct BzjCurve *q, double v0, const struct BzjConnectOptions *options, struct BzjCurve **out, double *p_scale_out, double *q_scale_out);
+
+/**
  * [`bzj_connect`] of the Bezier curves `P` and `Q` given by their control
  * points, without handles: `R` from `P(u0)` to `Q(v0)` with
  * `R^(k)(0) = p_scale^k P^(k)(u0)` (k = 0..p_order) and
@@ -1097,6 +1122,28 @@ BzjStatus bzj_fillet(const struct BzjCurve *p, const struct BzjCurve *q, const s
 BzjStatus bzj_fillet_auto_scale(const struct BzjCurve *p, const struct BzjCurve *q, const struct BzjFilletOptions *options, struct BzjCurve **p_trimmed, struct BzjCurve **blend, struct BzjCurve **q_trimmed, double *scale_out);
 
 /**
+ * [`bzj_fillet`] with the blend leaving both curves at one speed `sigma`:
+ * `alpha = sigma / |P'(u0)|`, `beta = sigma / |Q'(v0)|`, `sigma` chosen as
+ * [`bzj_fillet_auto_scale`] chooses `s` (least fairness energy
+ * `integral_0^1 |R''(t)|^2 dt`, two decades either side of the chord
+ * `|Q(v0) - P(u0)|`). The blend then does not depend on how fast either
+ * curve runs in its own parameter (a line given on `[0, 1]` or on
+ * `[0, length]`), which the one `s` of [`bzj_fillet_auto_scale`] does not:
+ * there a corner of lines 1000 and 10 long (setback 1) peaks at curvature
+ * 1.29e4 where lines 10 and 10 peak at 1.33. An end whose first
+ * derivative vanishes takes the other end's speed. `options->p_scale` and
+ * `options->q_scale` are ignored (not read for validity); `alpha`, `beta`
+ * are written to `p_scale_out`, `q_scale_out` when not NULL. Same
+ * guarantee as [`bzj_fillet`].
+ *
+ * @return the statuses of [`bzj_fillet`] (except for the scales).
+ *
+ * # Safety
+ * As [`bzj_fillet`]; `p_scale_out`, `q_scale_out` are NULL or writable.
+ */
+BzjStatus bzj_fillet_balanced_scale(const struct BzjCurve *p, const struct BzjCurve *q, const struct BzjFilletOptions *options, struct BzjCurve **p_trimmed, struct BzjCurve **blend, struct BzjCurve **q_trimmed, double *p_scale_out, double *q_scale_out);
+
+/**
  * Round the corner at the vertex where `p` ends and `q` starts (a wire's
  * or a sketch's vertex), whatever other crossings P and Q have (for those,
  * `bzj_fillet` keeps its first-crossing rule): P's last point and Q's first
@@ -1143,6 +1190,24 @@ BzjStatus bzj_fillet_vertex(const struct BzjCurve *p, const struct BzjCurve *q, 
  * As [`bzj_fillet_vertex`]; `scale_out` is NULL or writable.
  */
 BzjStatus bzj_fillet_vertex_auto_scale(const struct BzjCurve *p, const struct BzjCurve *q, const struct BzjFilletOptions *options, double gap, struct BzjCurve **p_trimmed, struct BzjCurve **blend, struct BzjCurve **q_trimmed, double *scale_out);
+
+/**
+ * [`bzj_fillet_vertex`] with the blend leaving both curves at one speed, as
+ * [`bzj_fillet_balanced_scale`] chooses it (`options->p_scale` and
+ * `options->q_scale` are ignored, not read for validity); `alpha`, `beta`
+ * are written to `p_scale_out`, `q_scale_out` when not NULL. The default
+ * to prefer for a CAD corner: the blend depends on the corner's geometry
+ * and the setbacks only, not on the lengths or parametrisations of the
+ * edges (with [`bzj_fillet_vertex_auto_scale`] a corner of lines 1000 and
+ * 10 long gets a near-kink at the short edge's end).
+ *
+ * @return the statuses of [`bzj_fillet_vertex`] (except for the scales).
+ *
+ * # Safety
+ * As [`bzj_fillet_vertex`]; `p_scale_out`, `q_scale_out` are NULL or
+ * writable.
+ */
+BzjStatus bzj_fillet_vertex_balanced_scale(const struct BzjCurve *p, const struct BzjCurve *q, const struct BzjFilletOptions *options, double gap, struct BzjCurve **p_trimmed, struct BzjCurve **blend, struct BzjCurve **q_trimmed, double *p_scale_out, double *q_scale_out);
 
 /**
  * Round the corner at the first crossing so that the blend passes within

@@ -422,6 +422,28 @@ inline AutoScaledConnection connect_auto_scale(const Curve& p, double u0, const 
     return AutoScaledConnection{Curve(out), scale};
 }
 
+/// connect() with the blend leaving both curves at one speed sigma.
+struct BalancedConnection {
+    Curve curve;
+    double p_scale = 0.0;  // alpha = sigma / |P'(u0)|
+    double q_scale = 0.0;  // beta = sigma / |Q'(v0)|
+};
+
+/// connect() with alpha = sigma / |P'(u0)|, beta = sigma / |Q'(v0)|, sigma
+/// chosen as connect_auto_scale() chooses s (bzj_connect_balanced_scale): the
+/// blend does not depend on how fast P or Q runs in its own parameter.
+/// options.p_scale and options.q_scale are ignored.
+inline BalancedConnection connect_balanced_scale(const Curve& p, double u0, const Curve& q,
+                                                 double v0, const ConnectOptions& options) {
+    const detail::RawConnectOptions raw(options);
+    BzjCurve* out = nullptr;
+    double alpha = 0.0;
+    double beta = 0.0;
+    check(bzj_connect_balanced_scale(p.get(), u0, q.get(), v0, raw.raw(), &out, &alpha, &beta),
+          "bzj_connect_balanced_scale");
+    return BalancedConnection{Curve(out), alpha, beta};
+}
+
 /// connect() of the Bezier curves with control points `p_points` and
 /// `q_points` (row-major, dim coordinates each) without handles
 /// (bzj_connect_points): the (p_order + q_order + 2) * dim control points of
@@ -650,6 +672,50 @@ inline AutoScaledFillet fillet_vertex_auto_scale(const Curve& p, const Curve& q,
                                        &q_trimmed, &scale),
           "bzj_fillet_vertex_auto_scale");
     return AutoScaledFillet{Curve(p_trimmed), Curve(blend), Curve(q_trimmed), scale};
+}
+
+/// fillet() with the blend leaving both curves at one speed sigma.
+struct BalancedFillet {
+    Curve p_trimmed;
+    Curve blend;
+    Curve q_trimmed;
+    double p_scale = 0.0;  // alpha = sigma / |P'(u0)|
+    double q_scale = 0.0;  // beta = sigma / |Q'(v0)|
+};
+
+/// fillet() with alpha = sigma / |P'(u0)|, beta = sigma / |Q'(v0)|, sigma
+/// chosen as fillet_auto_scale() chooses s (bzj_fillet_balanced_scale): the
+/// blend does not depend on how fast either curve runs in its own parameter.
+/// options.p_scale and options.q_scale are ignored.
+inline BalancedFillet fillet_balanced_scale(const Curve& p, const Curve& q,
+                                            const FilletOptions& options) {
+    const BzjFilletOptions raw = detail::raw_fillet_options(options);
+    BzjCurve* p_trimmed = nullptr;
+    BzjCurve* blend = nullptr;
+    BzjCurve* q_trimmed = nullptr;
+    double alpha = 0.0;
+    double beta = 0.0;
+    check(bzj_fillet_balanced_scale(p.get(), q.get(), &raw, &p_trimmed, &blend, &q_trimmed,
+                                    &alpha, &beta),
+          "bzj_fillet_balanced_scale");
+    return BalancedFillet{Curve(p_trimmed), Curve(blend), Curve(q_trimmed), alpha, beta};
+}
+
+/// fillet_vertex() with the scales of fillet_balanced_scale()
+/// (bzj_fillet_vertex_balanced_scale): the blend depends on the corner and
+/// the setbacks only, not on the edges' lengths or parametrisations.
+inline BalancedFillet fillet_vertex_balanced_scale(const Curve& p, const Curve& q,
+                                                   const FilletOptions& options, double gap) {
+    const BzjFilletOptions raw = detail::raw_fillet_options(options);
+    BzjCurve* p_trimmed = nullptr;
+    BzjCurve* blend = nullptr;
+    BzjCurve* q_trimmed = nullptr;
+    double alpha = 0.0;
+    double beta = 0.0;
+    check(bzj_fillet_vertex_balanced_scale(p.get(), q.get(), &raw, gap, &p_trimmed, &blend,
+                                           &q_trimmed, &alpha, &beta),
+          "bzj_fillet_vertex_balanced_scale");
+    return BalancedFillet{Curve(p_trimmed), Curve(blend), Curve(q_trimmed), alpha, beta};
 }
 
 /// Options of fillet_deviation(): the largest distance of the blend from the

@@ -250,7 +250,7 @@ class BlendEdgesFastPath(unittest.TestCase):
         """For two facing whole Bezier edges blend_edges is connect_edges' curve: with
         given scales, and with the automatic scale when the blend leaves both edges at
         the same speed. With the automatic scale and different speeds the general path
-        balances them (:func:`operations._balanced`, session 40), so the fast path
+        balances them (the library's balanced scale, session 41), so the fast path
         declines."""
         a = bezier_edge([(0, 0, 0), (1, 1, 0.2), (2, 1, 0.1), (3, 0, 0)])
         b = bezier_edge([(4, 0.5, 0), (5, 0, 0.3), (6, 1, 0.2), (7, 0, 0)])

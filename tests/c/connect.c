@@ -1,4 +1,5 @@
-/* bzj_connect and bzj_connect_auto_scale through the C ABI: continuity
+/* bzj_connect, bzj_connect_auto_scale and bzj_connect_balanced_scale
+ * through the C ABI: continuity
  * checked by evaluating both curves with bzj_curve_eval, and every error
  * path (null pointers, bad parameters, bad constraints, an ill-posed
  * problem refused by its residual check, a degree above 31); orders above
@@ -103,6 +104,64 @@ int main(void) {
     EXPECT_STATUS(bzj_connect_auto_scale(p, 0.8, q, 0.1, &options, &r, NULL), BZJ_OK);
     bzj_curve_free(r);
     r = NULL;
+
+    /* Balanced scale: each end matched with its own scale, both ends of R
+       at one speed, and the same R when P is given on [0, 50] instead of
+       [0, 1] (a NURBS with the same poles: P' divided by 50). */
+    {
+        double alpha = -1.0, beta = -1.0;
+        EXPECT_STATUS(bzj_connect_balanced_scale(p, 0.8, q, 0.1, &options, &r, &alpha, &beta),
+                      BZJ_OK);
+        CHECK(alpha > 0.0 && beta > 0.0 && isfinite(alpha * beta), "scales %g %g", alpha, beta);
+        check_match(r, 0.0, p, 0.8, 3, alpha, 3, "balanced P end");
+        check_match(r, 1.0, q, 0.1, 3, beta, 3, "balanced Q end");
+        double ends[2][2 * 3];
+        EXPECT_STATUS(bzj_curve_eval(r, 0.0, 1, ends[0], 6), BZJ_OK);
+        EXPECT_STATUS(bzj_curve_eval(r, 1.0, 1, ends[1], 6), BZJ_OK);
+        double speed0 = sqrt(ends[0][3] * ends[0][3] + ends[0][4] * ends[0][4] +
+                             ends[0][5] * ends[0][5]);
+        double speed1 = sqrt(ends[1][3] * ends[1][3] + ends[1][4] * ends[1][4] +
+                             ends[1][5] * ends[1][5]);
+        CHECK(close_to(speed0, speed1, 1e-9), "balanced speeds %g and %g", speed0, speed1);
+        size_t count = 0;
+        EXPECT_STATUS(bzj_curve_degree(r, &count), BZJ_OK);
+        double first[10 * 3], second[10 * 3];
+        EXPECT_STATUS(bzj_curve_points(r, first, (count + 1) * 3), BZJ_OK);
+        bzj_curve_free(r);
+        r = NULL;
+        const double knots[] = {0, 0, 0, 0, 50, 50, 50, 50};
+        BzjCurve* slow = NULL;
+        EXPECT_STATUS(bzj_nurbs_new(3, 3, p_points, 12, NULL, 0, knots, 8, &slow), BZJ_OK);
+        double alpha50 = -1.0;
+        EXPECT_STATUS(bzj_connect_balanced_scale(slow, 40.0, q, 0.1, &options, &r, &alpha50, NULL),
+                      BZJ_OK);
+        CHECK(close_to(alpha50, 50.0 * alpha, 1e-9), "alpha %g on [0, 50], %g on [0, 1]",
+              alpha50, alpha);
+        EXPECT_STATUS(bzj_curve_points(r, second, (count + 1) * 3), BZJ_OK);
+        for (size_t i = 0; i < (count + 1) * 3; i++) {
+            CHECK(close_to(second[i], first[i], 1e-9), "point coordinate %zu: %g vs %g", i,
+                  second[i], first[i]);
+        }
+        bzj_curve_free(r);
+        r = NULL;
+        /* The one-s automatic scale is not independent of P's speed. */
+        EXPECT_STATUS(bzj_connect_auto_scale(slow, 40.0, q, 0.1, &options, &r, NULL), BZJ_OK);
+        EXPECT_STATUS(bzj_curve_points(r, second, (count + 1) * 3), BZJ_OK);
+        double moved = 0.0;
+        for (size_t i = 0; i < (count + 1) * 3; i++) {
+            moved = fmax(moved, fabs(second[i] - first[i]));
+        }
+        CHECK(moved > 1e-3, "the automatic scale moved R by only %g", moved);
+        bzj_curve_free(r);
+        r = NULL;
+        bzj_curve_free(slow);
+        EXPECT_STATUS(bzj_connect_balanced_scale(p, 0.5, q, 0.5, &options, NULL, NULL, NULL),
+                      BZJ_ERR_NULL_POINTER);
+        EXPECT_STATUS(bzj_connect_balanced_scale(p, 0.5, q, 1.5, &options, &r, NULL, NULL),
+                      BZJ_ERR_INVALID_ARGUMENT);
+        CHECK(strstr(bzj_last_error(), "v0") != NULL, "message: %s", bzj_last_error());
+        CHECK(r == NULL, "out not cleared");
+    }
 
     /* Error paths: each leaves *out NULL. */
     BzjCurve* sentinel = (BzjCurve*)&failures; /* non-NULL garbage to be cleared */

@@ -1,6 +1,7 @@
 /* Intersection and corner rounding through the C contract: bzj_intersect,
  * bzj_intersect_detailed, bzj_intersect_options_default, bzj_fillet,
- * bzj_fillet_auto_scale, bzj_fillet_vertex_auto_scale, bzj_fillet_deviation,
+ * bzj_fillet_auto_scale, bzj_fillet_vertex_auto_scale, bzj_fillet_balanced_scale,
+ * bzj_fillet_vertex_balanced_scale, bzj_fillet_deviation,
  * bzj_fillet_deviation_auto_scale,
  * bzj_fillet_chain and bzj_fillet_chain_auto_scale (closed
  * and open chains, one above the parallel threshold of 64 corners, checked
@@ -426,6 +427,98 @@ static void test_fillet_auto_scale(void) {
     bzj_curve_free(r);
     bzj_curve_free(qt);
     bzj_curve_free(p);
+    bzj_curve_free(q);
+}
+
+/* The balanced scale at a vertex: lines 1000 and 10 long meeting at a right
+ * angle, setback 1, give the blend of lines 10 and 10 (the cuts are the
+ * same points, only the edges' speeds differ), with both ends of the blend
+ * at one speed; the one-s automatic scale does not. bzj_fillet_balanced_scale
+ * at a crossing: the scales written, errors as bzj_fillet's. */
+/* |a - b| <= tol * max(1, |b|) */
+static int close_to(double a, double b, double tol) {
+    return fabs(a - b) <= tol * fmax(1.0, fabs(b));
+}
+
+static void test_fillet_balanced_scale(void) {
+    const double long_edge[] = {-1000.0, 0.0, 0.0, 0.0};
+    const double short_edge[] = {-10.0, 0.0, 0.0, 0.0};
+    const double up[] = {0.0, 0.0, 0.0, 10.0};
+    BzjCurve* p_long = make(1, long_edge);
+    BzjCurve* p_short = make(1, short_edge);
+    BzjCurve* q = make(1, up);
+    BzjCurve *pt = NULL, *r = NULL, *qt = NULL;
+    BzjFilletOptions o = fillet_options(1.0, 1.0, 2, 2);
+    o.p_scale = NAN; /* ignored, not validated */
+    double equal[12], unequal[12];
+    double alpha = -1.0, beta = -1.0;
+    EXPECT_STATUS(bzj_fillet_vertex_balanced_scale(p_short, q, &o, 0.0, &pt, &r, &qt, &alpha,
+                                                   &beta), BZJ_OK);
+    CHECK(close_to(alpha, beta, 1e-12), "equal speeds, scales %g and %g", alpha, beta);
+    EXPECT_STATUS(bzj_curve_points(r, equal, 12), BZJ_OK);
+    bzj_curve_free(pt);
+    bzj_curve_free(r);
+    bzj_curve_free(qt);
+    EXPECT_STATUS(bzj_fillet_vertex_balanced_scale(p_long, q, &o, 0.0, &pt, &r, &qt, &alpha,
+                                                   &beta), BZJ_OK);
+    CHECK(close_to(alpha * 1000.0, beta * 10.0, 1e-12), "speeds %g and %g", alpha * 1000.0,
+          beta * 10.0);
+    EXPECT_STATUS(bzj_curve_points(r, unequal, 12), BZJ_OK);
+    for (int i = 0; i < 12; i++) {
+        CHECK(fabs(unequal[i] - equal[i]) < 1e-12, "control coordinate %d: %g vs %g", i,
+              unequal[i], equal[i]);
+    }
+    double a[4], b[4];
+    eval1(r, 0.0, a);
+    eval1(r, 1.0, b);
+    CHECK(close_to(hypot(a[2], a[3]), hypot(b[2], b[3]), 1e-12), "end speeds %g and %g",
+          hypot(a[2], a[3]), hypot(b[2], b[3]));
+    bzj_curve_free(pt);
+    bzj_curve_free(r);
+    bzj_curve_free(qt);
+    EXPECT_STATUS(bzj_fillet_vertex_auto_scale(p_long, q, &o, 0.0, &pt, &r, &qt, NULL), BZJ_OK);
+    EXPECT_STATUS(bzj_curve_points(r, unequal, 12), BZJ_OK);
+    double moved = 0.0;
+    for (int i = 0; i < 12; i++) moved = fmax(moved, fabs(unequal[i] - equal[i]));
+    CHECK(moved > 1e-2, "the automatic scale moved the blend by only %g", moved);
+    bzj_curve_free(pt);
+    bzj_curve_free(r);
+    bzj_curve_free(qt);
+    /* Errors as bzj_fillet_vertex's, NULL scale outputs allowed. */
+    EXPECT_STATUS(bzj_fillet_vertex_balanced_scale(p_long, q, &o, -1.0, &pt, &r, &qt, NULL,
+                                                   NULL), BZJ_ERR_INVALID_ARGUMENT);
+    expect_message("gap");
+    CHECK(pt == NULL && r == NULL && qt == NULL, "outputs not NULL after an error");
+    EXPECT_STATUS(bzj_fillet_vertex_balanced_scale(p_long, q, &o, 0.0, &pt, NULL, &qt, NULL,
+                                                   NULL), BZJ_ERR_NULL_POINTER);
+    expect_message("blend");
+
+    /* At a crossing: two crossing cubics (lines), scales written. */
+    const double pl[] = {-4.0, 0.0, -4.0 / 3.0, 0.0, 4.0 / 3.0, 0.0, 4.0, 0.0};
+    const double ql[] = {0.0, -4.0, 0.0, -2.0, 0.0, 2.0, 0.0, 4.0};
+    BzjCurve* p = make(3, pl);
+    BzjCurve* qc = make(3, ql);
+    BzjFilletOptions c = fillet_options(0.5, 0.5, 3, 3);
+    EXPECT_STATUS(bzj_fillet_balanced_scale(p, qc, &c, &pt, &r, &qt, &alpha, &beta), BZJ_OK);
+    CHECK(alpha > 0.0 && beta > 0.0 && isfinite(alpha * beta), "scales %g and %g", alpha, beta);
+    eval1(r, 0.0, a);
+    eval1(r, 1.0, b);
+    CHECK(close_to(hypot(a[2], a[3]), hypot(b[2], b[3]), 1e-12), "end speeds %g and %g",
+          hypot(a[2], a[3]), hypot(b[2], b[3]));
+    bzj_curve_free(pt);
+    bzj_curve_free(r);
+    bzj_curve_free(qt);
+    EXPECT_STATUS(bzj_fillet_balanced_scale(p, qc, NULL, &pt, &r, &qt, NULL, NULL),
+                  BZJ_ERR_NULL_POINTER);
+    expect_message("options");
+    BzjFilletOptions bad = fillet_options(9.0, 0.5, 3, 3);
+    EXPECT_STATUS(bzj_fillet_balanced_scale(p, qc, &bad, &pt, &r, &qt, NULL, NULL),
+                  BZJ_ERR_INVALID_ARGUMENT);
+    expect_message("p_setback");
+    bzj_curve_free(p);
+    bzj_curve_free(qc);
+    bzj_curve_free(p_long);
+    bzj_curve_free(p_short);
     bzj_curve_free(q);
 }
 
@@ -856,6 +949,7 @@ int main(void) {
     test_fillet();
     test_fillet_auto_scale();
     test_fillet_vertex_auto_scale();
+    test_fillet_balanced_scale();
     test_fillet_deviation_auto_scale();
     test_chain();
     test_chain_auto_scale();

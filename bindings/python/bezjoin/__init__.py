@@ -20,9 +20,11 @@ from ._library import (
 )
 from ._connect import (
     AutoScaledConnection,
+    BalancedConnection,
     GeometricConnection,
     connect,
     connect_auto_scale,
+    connect_balanced_scale,
     connect_edges,
     connect_geometric,
     connect_points,
@@ -54,6 +56,7 @@ from .errors import STATUS_NAMES, BezjoinError, LibraryNotFoundError, Unsupporte
 
 __all__ = [
     "AutoScaledConnection",
+    "BalancedConnection",
     "ENVIRONMENT_VARIABLE",
     "STATUS_NAMES",
     "BezjoinError",
@@ -74,6 +77,7 @@ __all__ = [
     "candidate_paths",
     "connect",
     "connect_auto_scale",
+    "connect_balanced_scale",
     "connect_edges",
     "connect_geometric",
     "connect_points",

@@ -8,8 +8,8 @@ section 1).
 import ctypes
 
 from . import _freecad
-from ._convert import (_array_type, automatic_scale, double_array, flat, index_argument,
-                       point_rows, real_argument)
+from ._convert import (BALANCED, _array_type, automatic_scale, double_array, flat,
+                       index_argument, point_rows, real_argument)
 from ._library import CurvePointer, function, library, register_prototype
 from .curve import Curve, handle_of
 from .errors import BezjoinError
@@ -45,6 +45,13 @@ register_prototype(
     [CurvePointer, ctypes.c_double, CurvePointer, ctypes.c_double,
      ctypes.POINTER(ConnectOptionsStruct), ctypes.POINTER(CurvePointer),
      ctypes.POINTER(ctypes.c_double)],
+)
+register_prototype(
+    "bzj_connect_balanced_scale",
+    ctypes.c_int32,
+    [CurvePointer, ctypes.c_double, CurvePointer, ctypes.c_double,
+     ctypes.POINTER(ConnectOptionsStruct), ctypes.POINTER(CurvePointer),
+     ctypes.POINTER(ctypes.c_double), ctypes.POINTER(ctypes.c_double)],
 )
 register_prototype(
     "bzj_connect",
@@ -90,16 +97,22 @@ def connect(p, u0, q, v0, *, p_order=None, q_order=None, p_scale=None, q_scale=N
             ``(0, 1)`` with ``R^(k)(t) = derivatives[k]``, ``k = 0..K``.
         auto_scale: ``None`` (default): automatic unless a scale is given;
             ``True``: automatic, given scales are ignored; ``False``: the given
-            scales (1.0 when none are given).
+            scales (1.0 when none are given); ``"balanced"``: the blend leaves
+            both curves at one speed (:func:`connect_balanced_scale`), the same
+            blend however fast either curve runs in its own parameter.
 
     Raises:
         BezjoinError: with the library's status and message.
     """
     p_handle, q_handle = handle_of(p, "p"), handle_of(q, "q")
-    automatic, p_scale, q_scale = automatic_scale(auto_scale, p_scale, q_scale)
+    automatic, p_scale, q_scale = automatic_scale(auto_scale, p_scale, q_scale, balanced=True)
     options, _keep_alive = _options(p, q, p_order, q_order, p_scale, q_scale, constraints)
     out = CurvePointer()
-    if automatic:
+    if automatic == BALANCED:
+        library().call("bzj_connect_balanced_scale", p_handle, real_argument(u0, "u0"),
+                       q_handle, real_argument(v0, "v0"), ctypes.byref(options),
+                       ctypes.byref(out), None, None)
+    elif automatic:
         library().call("bzj_connect_auto_scale", p_handle, real_argument(u0, "u0"), q_handle,
                        real_argument(v0, "v0"), ctypes.byref(options), ctypes.byref(out), None)
     else:
@@ -143,6 +156,43 @@ def connect_auto_scale(p, u0, q, v0, *, p_order=None, q_order=None, constraints=
                    real_argument(v0, "v0"), ctypes.byref(options), ctypes.byref(out),
                    ctypes.byref(scale))
     return AutoScaledConnection(Curve._adopt(out), scale.value)
+
+
+class BalancedConnection(CurveGroup):
+    """The connecting ``curve`` and the scales ``p_scale = sigma / |P'(u0)|``,
+    ``q_scale = sigma / |Q'(v0)|`` chosen for it (both ends at the speed ``sigma``)."""
+
+    _curve_fields = ("curve",)
+
+    def __init__(self, curve, p_scale, q_scale):
+        self.curve = curve
+        self.p_scale = p_scale
+        self.q_scale = q_scale
+
+    def _fields(self):
+        return self._curve_fields + ("p_scale", "q_scale")
+
+
+def connect_balanced_scale(p, u0, q, v0, *, p_order=None, q_order=None, constraints=()):
+    """:func:`connect` with the blend leaving both curves at one speed ``sigma``
+    (``bzj_connect_balanced_scale``): ``p_scale = sigma / |P'(u0)|``, ``q_scale =
+    sigma / |Q'(v0)|``, ``sigma`` minimising the fairness energy ``integral_0^1
+    |R''(t)|^2 dt`` over two decades either side of the chord ``|Q(v0) - P(u0)|``.
+    The blend does not depend on how fast either curve runs in its own parameter
+    (a line on ``[0, 1]`` or on ``[0, length]``); with :func:`connect_auto_scale`'s one
+    ``s`` a fast curve next to a slow one gets a near-kink at the slow end.
+
+    Returns:
+        :class:`BalancedConnection` (``curve``, ``p_scale``, ``q_scale``).
+    """
+    p_handle, q_handle = handle_of(p, "p"), handle_of(q, "q")
+    options, _keep_alive = _options(p, q, p_order, q_order, 1.0, 1.0, constraints)
+    out = CurvePointer()
+    alpha, beta = ctypes.c_double(), ctypes.c_double()
+    library().call("bzj_connect_balanced_scale", p_handle, real_argument(u0, "u0"), q_handle,
+                   real_argument(v0, "v0"), ctypes.byref(options), ctypes.byref(out),
+                   ctypes.byref(alpha), ctypes.byref(beta))
+    return BalancedConnection(Curve._adopt(out), alpha.value, beta.value)
 
 
 def _options(p, q, p_order, q_order, p_scale, q_scale, constraints):

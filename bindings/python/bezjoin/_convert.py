@@ -58,7 +58,10 @@ def real_argument(value, name):
         raise TypeError(f"{name} must be a real number, not {type(value).__name__}") from None
 
 
-def automatic_scale(auto_scale, p_scale, q_scale):
+BALANCED = "balanced"
+
+
+def automatic_scale(auto_scale, p_scale, q_scale, *, balanced=False):
     """Whether an operation uses the automatic scale, and the explicit scales otherwise.
 
     The rule of every entry with scales (:func:`bezjoin.connect`, :func:`bezjoin.fillet`,
@@ -66,10 +69,16 @@ def automatic_scale(auto_scale, p_scale, q_scale):
     default) means automatic unless ``p_scale`` or ``q_scale`` is given;
     ``auto_scale=True`` is automatic (given scales are ignored, as before);
     ``auto_scale=False`` uses the given scales, a missing one being 1.0 (the
-    paper). Returns ``(automatic, p_scale, q_scale)`` with the scales as floats.
+    paper). Where the entry offers it (``balanced=True``), ``auto_scale="balanced"``
+    is the automatic scale with both ends of the blend at one speed (given scales
+    are ignored). Returns ``(automatic, p_scale, q_scale)`` with the scales as
+    floats; ``automatic`` is ``False``, ``True`` or ``"balanced"``.
     """
-    if auto_scale is not None and not isinstance(auto_scale, bool):
-        raise TypeError(f"auto_scale must be None or a bool, not {type(auto_scale).__name__}")
+    if balanced and auto_scale == BALANCED:
+        pass
+    elif auto_scale is not None and not isinstance(auto_scale, bool):
+        allowed = 'None, a bool or "balanced"' if balanced else "None or a bool"
+        raise TypeError(f"auto_scale must be {allowed}, not {auto_scale!r}")
     if auto_scale is None:
         auto_scale = p_scale is None and q_scale is None
     p_scale = 1.0 if p_scale is None else real_argument(p_scale, "p_scale")

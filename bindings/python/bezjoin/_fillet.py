@@ -11,7 +11,7 @@ joining and corner rounding", Omsk Scientific Bulletin, 2025, Fig. 2
 import ctypes
 from collections import namedtuple
 
-from ._convert import automatic_scale, index_argument, real_argument
+from ._convert import BALANCED, automatic_scale, index_argument, real_argument
 from ._library import CurvePointer, library, register_prototype
 from .curve import Curve, handle_of
 from .errors import BezjoinError
@@ -55,6 +55,19 @@ register_prototype(
     ctypes.c_int32,
     [CurvePointer, CurvePointer, ctypes.POINTER(FilletOptionsStruct), ctypes.c_double,
      _curve_out, _curve_out, _curve_out, ctypes.POINTER(ctypes.c_double)],
+)
+register_prototype(
+    "bzj_fillet_balanced_scale",
+    ctypes.c_int32,
+    [CurvePointer, CurvePointer, ctypes.POINTER(FilletOptionsStruct), _curve_out, _curve_out,
+     _curve_out, ctypes.POINTER(ctypes.c_double), ctypes.POINTER(ctypes.c_double)],
+)
+register_prototype(
+    "bzj_fillet_vertex_balanced_scale",
+    ctypes.c_int32,
+    [CurvePointer, CurvePointer, ctypes.POINTER(FilletOptionsStruct), ctypes.c_double,
+     _curve_out, _curve_out, _curve_out, ctypes.POINTER(ctypes.c_double),
+     ctypes.POINTER(ctypes.c_double)],
 )
 register_prototype(
     "bzj_intersect",
@@ -123,7 +136,9 @@ class FilletResult(CurveGroup):
     each over ``[0, 1]``; together a C^min(p_order, q_order) B-spline with knot
     intervals ``(u0, p_scale, (1 - v0) p_scale / q_scale)``. ``scale`` is the
     ``s = p_scale = q_scale`` the library chose when the scale was automatic (the
-    default, see :func:`fillet`), else ``None`` (explicit scales).
+    default, see :func:`fillet`), else ``None`` (explicit or balanced scales).
+    ``scales`` is ``(p_scale, q_scale)`` as used: the given ones, ``(s, s)``, or the
+    balanced scales ``(sigma / |P'(u0)|, sigma / |Q'(v0)|)``.
 
     ``u0`` and ``v0`` are not reported by the C function; they are the
     parameters where the kept parts end/start, recoverable from the setbacks.
@@ -131,11 +146,43 @@ class FilletResult(CurveGroup):
 
     _curve_fields = ("p_trimmed", "blend", "q_trimmed")
 
-    def __init__(self, p_trimmed, blend, q_trimmed, scale=None):
+    def __init__(self, p_trimmed, blend, q_trimmed, scale=None, scales=None):
         self.p_trimmed = p_trimmed
         self.blend = blend
         self.q_trimmed = q_trimmed
         self.scale = scale
+        self.scales = (scale, scale) if scales is None and scale is not None else scales
+
+
+def _corner(automatic, handles, options, gap, given):
+    """``bzj_fillet`` (``gap`` None) or ``bzj_fillet_vertex``, or their automatic or
+    balanced variant, as a :class:`FilletResult`."""
+    p_trimmed, blend, q_trimmed = CurvePointer(), CurvePointer(), CurvePointer()
+    arguments = [*handles, ctypes.byref(options)] + ([] if gap is None else [gap])
+    arguments += [ctypes.byref(p_trimmed), ctypes.byref(blend), ctypes.byref(q_trimmed)]
+    call = library().call
+    scale, scales = None, given
+    if automatic == BALANCED:
+        alpha, beta = ctypes.c_double(), ctypes.c_double()
+        outs = (ctypes.byref(alpha), ctypes.byref(beta))
+        if gap is None:
+            call("bzj_fillet_balanced_scale", *arguments, *outs)
+        else:
+            call("bzj_fillet_vertex_balanced_scale", *arguments, *outs)
+        scales = (alpha.value, beta.value)
+    elif automatic:
+        s = ctypes.c_double()
+        if gap is None:
+            call("bzj_fillet_auto_scale", *arguments, ctypes.byref(s))
+        else:
+            call("bzj_fillet_vertex_auto_scale", *arguments, ctypes.byref(s))
+        scale, scales = s.value, (s.value, s.value)
+    elif gap is None:
+        call("bzj_fillet", *arguments)
+    else:
+        call("bzj_fillet_vertex", *arguments)
+    return FilletResult(Curve._adopt(p_trimmed), Curve._adopt(blend), Curve._adopt(q_trimmed),
+                        scale, scales)
 
 
 def _fillet_options(function, p, q, setback, p_setback, q_setback, p_order, q_order, p_scale,
@@ -182,27 +229,22 @@ def fillet(p, q, *, setback=None, p_setback=None, q_setback=None, p_order=None, 
             either turns the automatic scale off.
         auto_scale: ``None`` (default): automatic unless a scale is given;
             ``True``: automatic, given scales are ignored; ``False``: the
-            given scales (1.0 when none are given).
+            given scales (1.0 when none are given); ``"balanced"``: the blend
+            leaves both curves at one speed (``bzj_fillet_balanced_scale``,
+            ``result.scales``), so it does not depend on how fast either curve
+            runs in its own parameter (lines 1000 and 10 long get the blend of
+            lines 10 and 10; with ``True`` the short one's end is a near-kink).
 
     Raises:
         BezjoinError: ``BZJ_ERR_NO_INTERSECTION`` when the curves do not cross
             (or only touch), ``BZJ_ERR_INVALID_ARGUMENT`` for a setback longer
             than the curve part, ...
     """
-    p_handle, q_handle = handle_of(p, "p"), handle_of(q, "q")
-    automatic, p_scale, q_scale = automatic_scale(auto_scale, p_scale, q_scale)
+    handles = (handle_of(p, "p"), handle_of(q, "q"))
+    automatic, p_scale, q_scale = automatic_scale(auto_scale, p_scale, q_scale, balanced=True)
     options = _fillet_options("fillet", p, q, setback, p_setback, q_setback, p_order, q_order,
                               p_scale, q_scale)
-    p_trimmed, blend, q_trimmed = CurvePointer(), CurvePointer(), CurvePointer()
-    outputs = (ctypes.byref(p_trimmed), ctypes.byref(blend), ctypes.byref(q_trimmed))
-    if automatic:
-        scale = ctypes.c_double()
-        library().call("bzj_fillet_auto_scale", p_handle, q_handle, ctypes.byref(options),
-                       *outputs, ctypes.byref(scale))
-        return FilletResult(Curve._adopt(p_trimmed), Curve._adopt(blend),
-                            Curve._adopt(q_trimmed), scale.value)
-    library().call("bzj_fillet", p_handle, q_handle, ctypes.byref(options), *outputs)
-    return FilletResult(Curve._adopt(p_trimmed), Curve._adopt(blend), Curve._adopt(q_trimmed))
+    return _corner(automatic, handles, options, None, (p_scale, q_scale))
 
 
 def fillet_vertex(p, q, *, setback=None, p_setback=None, q_setback=None, p_order=None,
@@ -215,7 +257,10 @@ def fillet_vertex(p, q, *, setback=None, p_setback=None, q_setback=None, p_order
     ``q``'s start; the other arguments are those of :func:`fillet`, with the
     same default: the automatic scale (``bzj_fillet_vertex_auto_scale``,
     ``result.scale``), which never loops, unless ``p_scale``/``q_scale`` are
-    given (or ``auto_scale=False``). NURBS inputs give NURBS pieces with their
+    given (or ``auto_scale=False``); ``auto_scale="balanced"``
+    (``bzj_fillet_vertex_balanced_scale``) leaves both edges at one speed, so the
+    blend depends on the corner and the setbacks only, not on the edges' lengths
+    or parametrisations. NURBS inputs give NURBS pieces with their
     own parameters; the blend is a Bezier curve.
 
     Raises:
@@ -224,21 +269,12 @@ def fillet_vertex(p, q, *, setback=None, p_setback=None, q_setback=None, p_order
             doubles back at the vertex (opposite tangents: a cusp, no corner),
             ``BZJ_ERR_INVALID_ARGUMENT`` for a setback longer than a curve.
     """
-    p_handle, q_handle = handle_of(p, "p"), handle_of(q, "q")
-    automatic, p_scale, q_scale = automatic_scale(auto_scale, p_scale, q_scale)
+    handles = (handle_of(p, "p"), handle_of(q, "q"))
+    automatic, p_scale, q_scale = automatic_scale(auto_scale, p_scale, q_scale, balanced=True)
     options = _fillet_options("fillet_vertex", p, q, setback, p_setback, q_setback, p_order,
                               q_order, p_scale, q_scale)
     gap = real_argument(gap, "gap")
-    p_trimmed, blend, q_trimmed = CurvePointer(), CurvePointer(), CurvePointer()
-    outputs = (ctypes.byref(p_trimmed), ctypes.byref(blend), ctypes.byref(q_trimmed))
-    if automatic:
-        scale = ctypes.c_double()
-        library().call("bzj_fillet_vertex_auto_scale", p_handle, q_handle,
-                       ctypes.byref(options), gap, *outputs, ctypes.byref(scale))
-        return FilletResult(Curve._adopt(p_trimmed), Curve._adopt(blend),
-                            Curve._adopt(q_trimmed), scale.value)
-    library().call("bzj_fillet_vertex", p_handle, q_handle, ctypes.byref(options), gap, *outputs)
-    return FilletResult(Curve._adopt(p_trimmed), Curve._adopt(blend), Curve._adopt(q_trimmed))
+    return _corner(automatic, handles, options, gap, (p_scale, q_scale))
 
 
 def intersect(p, q):

@@ -139,3 +139,33 @@ def test_auto_scale_errors():
                      lambda: bezjoin.connect_auto_scale(p, math.inf, q, 0.0), "u0")
         with pytest.raises(TypeError, match="q must be a bezjoin.Curve"):
             bezjoin.connect_auto_scale(p, 1.0, "q", 0.0)
+
+
+def test_balanced_connect_does_not_depend_on_the_inputs_parametrisation():
+    """P given on [0, 1] (Bezier) and on [0, 50] (the same poles as a NURBS): the balanced
+    blend is the same curve, its scales absorb the factor 50 and both its ends run at one
+    speed; the one-s automatic scale gives another curve."""
+    p_points = [(0, 0, 0), (1, 2, 1), (2, 2, 0), (3, 0, 1)]
+    q_points = [(6, 0, 0), (7, -2, 1), (8, -2, 0), (9, 0, 2)]
+    knots = [0.0] * 4 + [50.0] * 4
+    with Curve(p_points) as p, Curve(q_points) as q, \
+            Curve.nurbs(p_points, knots, 3) as slow:
+        with bezjoin.connect_balanced_scale(p, 0.8, q, 0.1, p_order=2, q_order=3) as fast, \
+                bezjoin.connect_balanced_scale(slow, 40.0, q, 0.1, p_order=2,
+                                               q_order=3) as other, \
+                bezjoin.connect(slow, 40.0, q, 0.1, p_order=2, q_order=3,
+                                auto_scale="balanced") as plain, \
+                bezjoin.connect(slow, 40.0, q, 0.1, p_order=2, q_order=3) as automatic, \
+                bezjoin.connect(p, 0.8, q, 0.1, p_order=2, q_order=3) as automatic_fast:
+            assert math.isclose(other.p_scale, 50 * fast.p_scale, rel_tol=1e-12)
+            assert math.isclose(other.q_scale, fast.q_scale, rel_tol=1e-12)
+            size = max(norm(x) for x in fast.curve.points)
+            for a, b, c in zip(other.curve.points, fast.curve.points, plain.points):
+                assert distance(a, b) <= 1e-12 * size
+                assert distance(c, b) <= 1e-12 * size
+            start = norm(fast.curve.derivatives(0.0, 1)[1])
+            end = norm(fast.curve.derivatives(1.0, 1)[1])
+            assert math.isclose(start, end, rel_tol=1e-12)
+            moved = max(distance(a, b)
+                        for a, b in zip(automatic.points, automatic_fast.points))
+            assert moved > 1e-3 * size

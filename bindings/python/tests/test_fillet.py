@@ -139,3 +139,51 @@ def test_fillet_errors():
             bezjoin.fillet(p, q, p_setback=0.5)
         with pytest.raises(TypeError, match="p must be a bezjoin.Curve"):
             bezjoin.intersect(None, q)
+
+
+def test_balanced_scale_gives_a_corner_of_unequal_lines_the_blend_of_equal_ones():
+    """Lines 1000 and 10 long at a right angle, setback 1, are cut at the points where
+    lines 10 and 10 are: the balanced blend is the same curve, both its ends run at one
+    speed, and ``scales`` are that speed over each edge's speed. The one-s automatic
+    scale leaves the short edge at 1/100 of the long one's speed: a near-kink."""
+    with Curve([(-1000, 0), (0, 0)]) as long, Curve([(-10, 0), (0, 0)]) as short, \
+            Curve([(0, 0), (0, 10)]) as up:
+        with bezjoin.fillet_vertex(short, up, setback=1, p_order=2, q_order=2,
+                                   auto_scale="balanced", gap=0.0) as equal, \
+                bezjoin.fillet_vertex(long, up, setback=1, p_order=2, q_order=2,
+                                      auto_scale="balanced", gap=0.0) as unequal, \
+                bezjoin.fillet_vertex(long, up, setback=1, p_order=2, q_order=2,
+                                      auto_scale=True, gap=0.0) as automatic:
+            assert unequal.scale is None
+            alpha, beta = unequal.scales
+            assert math.isclose(alpha * 1000, beta * 10, rel_tol=1e-12)
+            for a, b in zip(unequal.blend.points, equal.blend.points):
+                assert distance(a, b) <= 1e-12
+            start = norm(unequal.blend.derivatives(0.0, 1)[1])
+            end = norm(unequal.blend.derivatives(1.0, 1)[1])
+            assert math.isclose(start, end, rel_tol=1e-12)
+            assert math.isclose(start, alpha * 1000, rel_tol=1e-12)
+            moved = max(distance(a, b)
+                        for a, b in zip(automatic.blend.points, equal.blend.points))
+            assert moved > 1e-2
+            assert automatic.scales == (automatic.scale, automatic.scale)
+            reference = equal.blend.points
+        # At a crossing, through bzj_fillet_balanced_scale: both ends at one speed.
+        with Curve([(-1000, 0), (5, 0)]) as p, Curve([(0, -5), (0, 10)]) as q, \
+                bezjoin.fillet(p, q, setback=1, p_order=2, q_order=2,
+                               auto_scale="balanced") as crossing:
+            for a, b in zip(crossing.blend.points, reference):
+                assert distance(a, b) <= 1e-12
+        with bezjoin.fillet(long, up, setback=1, p_scale=2.0) as given:
+            assert given.scale is None and given.scales == (2.0, 1.0)
+
+
+def test_auto_scale_takes_balanced_only_where_offered():
+    with Curve([(-10, 0), (0, 0)]) as p, Curve([(0, 0), (0, 10)]) as q:
+        with pytest.raises(TypeError, match="auto_scale"):
+            bezjoin.fillet_vertex(p, q, setback=1, auto_scale="fair")
+        with pytest.raises(TypeError, match="auto_scale"):
+            bezjoin.fillet_chain([p, q], setback=1, auto_scale="balanced")
+        expect_error("BZJ_ERR_INVALID_ARGUMENT",
+                     lambda: bezjoin.fillet_vertex(p, q, setback=20, auto_scale="balanced"),
+                     "p_setback")

@@ -163,7 +163,7 @@ impl JobError {
 }
 
 /// Short description of a JSON value for messages.
-fn describe(value: &Value) -> String {
+pub(crate) fn describe(value: &Value) -> String {
     match value {
         Value::Null => "null".into(),
         Value::Bool(b) => format!("the boolean {b}"),
@@ -193,7 +193,7 @@ impl<'a> Located<'a> {
         }
     }
 
-    fn error(&self, reason: impl Into<String>) -> JobError {
+    pub(crate) fn error(&self, reason: impl Into<String>) -> JobError {
         JobError::new(self.path.clone(), reason)
     }
 

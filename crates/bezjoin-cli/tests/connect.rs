@@ -233,6 +233,52 @@ fn auto_scale_from_stdin_keeps_the_joins() {
 }
 
 #[test]
+fn balanced_scale_leaves_both_curves_at_one_speed() {
+    // P runs about 4 times faster than Q at the ends used; the balanced scales
+    // make R leave both at one speed: alpha |P'(u0)| = beta |Q'(v0)| = |R'(0)| = |R'(1)|.
+    let job = json!({
+        "p": [[0.0, 0.0], [4.0, 3.0], [8.0, 0.0], [12.0, 2.0]],
+        "q": [[14.0, 1.0], [14.5, 0.0], [15.0, 1.5]],
+        "u0": 1.0,
+        "v0": 0.0,
+        "p_order": 2,
+        "q_order": 2,
+        "auto_scale": "balanced",
+    });
+    let result = success_json(&run_with_stdin(&job.to_string()));
+    check_connection(&job, &result);
+    assert_eq!(result["report"]["auto_scale"], json!(true));
+    assert_eq!(result["report"]["balanced_scale"], json!(true));
+    let alpha = result["report"]["p_scale"].as_f64().unwrap();
+    let beta = result["report"]["q_scale"].as_f64().unwrap();
+    let points: Vec<Vec<f64>> = result["curve"]["points"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| {
+            p.as_array()
+                .unwrap()
+                .iter()
+                .map(|x| x.as_f64().unwrap())
+                .collect()
+        })
+        .collect();
+    let n = (points.len() - 1) as f64;
+    let speed = |a: &[f64], b: &[f64]| n * ((b[0] - a[0]).powi(2) + (b[1] - a[1]).powi(2)).sqrt();
+    let start = speed(&points[0], &points[1]);
+    let end = speed(&points[points.len() - 2], &points[points.len() - 1]);
+    assert!(
+        (start - end).abs() <= 1e-12 * start,
+        "|R'(0)| = {start}, |R'(1)| = {end}"
+    );
+    // |P'(1)| = 3 |(4, 2)|, |Q'(0)| = 2 |(0.5, -1)|.
+    let (p_speed, q_speed) = (3.0 * 20f64.sqrt(), 2.0 * 1.25f64.sqrt());
+    assert!((alpha * p_speed - start).abs() <= 1e-12 * start);
+    assert!((beta * q_speed - start).abs() <= 1e-12 * start);
+    assert!((alpha / beta - q_speed / p_speed).abs() <= 1e-12 * alpha / beta);
+}
+
+#[test]
 fn the_check_detects_a_broken_join() {
     // The re-check is not vacuous: a result whose R is moved away fails it.
     let job_path = example("connect.json");
@@ -300,6 +346,14 @@ fn bad_jobs_exit_2_naming_the_field() {
     assert_rejected(
         &format!("{{\"p\": {p}, \"q\": {q}, \"auto_scale\": true, \"q_scale\": 2}}"),
         "q_scale",
+    );
+    assert_rejected(
+        &format!("{{\"p\": {p}, \"q\": {q}, \"auto_scale\": \"balanced\", \"p_scale\": 2}}"),
+        "p_scale",
+    );
+    assert_rejected(
+        &format!("{{\"p\": {p}, \"q\": {q}, \"auto_scale\": \"fair\"}}"),
+        "auto_scale: expected true, false or \"balanced\"",
     );
     assert_rejected(
         &format!("{{\"p\": {p}, \"q\": {q}, \"constraints\": [{{\"t\": 0.5}}]}}"),

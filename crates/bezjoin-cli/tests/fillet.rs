@@ -117,6 +117,12 @@ fn check_fillet_output(job: &Value, out: &Value, setbacks: Option<(f64, f64)>) {
     let (alpha, beta) = if job["auto_scale"].as_bool() == Some(false) {
         // The paper's scale 1 where none is given.
         (given_p.unwrap_or(1.0), given_q.unwrap_or(1.0))
+    } else if job["auto_scale"].as_str() == Some("balanced") {
+        // Chosen by the library, one speed at both ends: the reported scales.
+        (
+            out["report"]["p_scale"].as_f64().unwrap(),
+            out["report"]["q_scale"].as_f64().unwrap(),
+        )
     } else if given_p.is_some() || given_q.is_some() {
         // One given scale stands for both.
         (given_p.or(given_q).unwrap(), given_q.or(given_p).unwrap())
@@ -258,6 +264,60 @@ fn fillet_auto_scale_keeps_the_blend_in_the_corner() {
     assert_eq!(code, 0, "{stderr}");
     let out: Value = serde_json::from_str(&stdout).unwrap();
     check_fillet_output(&curved, &out, Some((0.5, 0.5)));
+}
+
+#[test]
+fn balanced_fillet_gives_unequal_lines_the_blend_of_equal_ones() {
+    // Lines 1000 and 10 long meeting at a right angle, setback 1: cut at the same
+    // points as lines 10 and 10, so the balanced blend is the same; the checks of
+    // `check_fillet_output` hold with its two scales.
+    let job = |p_start: f64| {
+        serde_json::json!({
+            "p": [[p_start, 0.0], [0.0, 0.0]],
+            "q": [[0.0, 0.0], [0.0, 10.0]],
+            "p_setback": 1.0, "p_order": 2, "q_order": 2, "vertex": true,
+            "auto_scale": "balanced"
+        })
+    };
+    let mut blends = Vec::new();
+    for p_start in [-10.0, -1000.0] {
+        let job = job(p_start);
+        let (code, stdout, stderr) = run("fillet", &job.to_string(), None);
+        assert_eq!(code, 0, "{stderr}");
+        let out: Value = serde_json::from_str(&stdout).unwrap();
+        assert_eq!(out["report"]["balanced_scale"], Value::Bool(true));
+        let (alpha, beta) = (
+            out["report"]["p_scale"].as_f64().unwrap(),
+            out["report"]["q_scale"].as_f64().unwrap(),
+        );
+        assert!((alpha * -p_start - beta * 10.0).abs() <= 1e-12 * beta * 10.0);
+        blends.push(curve(&out["blend"]));
+    }
+    for (a, b) in blends[0].points().iter().zip(blends[1].points()) {
+        assert!((a - b).abs() <= 1e-12, "{a} vs {b}");
+    }
+    // Curved cubics of different speeds: the chain is C^2 with the two scales.
+    let curved = serde_json::json!({
+        "p": [[-8.0, -0.6], [-2.0, 0.3], [4.0, 0.3], [10.0, -0.6]],
+        "q": [[0.6, -1.0], [-0.3, -0.2], [-0.3, 0.5], [0.6, 1.2]],
+        "p_setback": 0.3, "p_order": 2, "q_order": 2, "auto_scale": "balanced"
+    });
+    let (code, stdout, stderr) = run("fillet", &curved.to_string(), None);
+    assert_eq!(code, 0, "{stderr}");
+    let out: Value = serde_json::from_str(&stdout).unwrap();
+    check_fillet_output(&curved, &out, Some((0.3, 0.3)));
+    let r = curve(&out["blend"]);
+    let (start, end) = (
+        norm(&r.derivative_at(0.0, 1)),
+        norm(&r.derivative_at(1.0, 1)),
+    );
+    assert!((start - end).abs() <= 1e-12 * start, "{start} vs {end}");
+    // Where it is not offered, the field is named.
+    let mut deviation = job(-10.0);
+    deviation["max_deviation"] = serde_json::json!(0.1);
+    deviation.as_object_mut().unwrap().remove("p_setback");
+    deviation.as_object_mut().unwrap().remove("vertex");
+    assert_exit_2_naming("fillet", &deviation.to_string(), "auto_scale");
 }
 
 #[test]

@@ -2,7 +2,7 @@
 //! (mathematics.md, section 1; `bezjoin_core::connect`).
 
 use bezjoin_core::{BezjoinError, Curve};
-use bezjoin_core::{ConnectOptions, PointConstraint, check_connect_degree, connect};
+use bezjoin_core::{ConnectOptions, PointConstraint, ShapeScale, check_connect_degree, connect};
 
 use crate::guard::guard;
 use crate::handles::{BzjCurve, HandleOut};
@@ -154,15 +154,80 @@ pub unsafe extern "C" fn bzj_connect_auto_scale(
     out: *mut *mut BzjCurve,
     scale_out: *mut f64,
 ) -> BzjStatus {
+    let scales = [scale_out, std::ptr::null_mut()];
+    // SAFETY: caller contract.
+    unsafe { connect_chosen_scale(p, u0, q, v0, options, out, ShapeScale::Auto, scales) }
+}
+
+/// [`bzj_connect`] with the blend leaving both curves at one speed `sigma`:
+/// `alpha = sigma / |P'(u0)|`, `beta = sigma / |Q'(v0)|`, `sigma` chosen as
+/// [`bzj_connect_auto_scale`] chooses `s` (least fairness energy
+/// `integral_0^1 |R''(t)|^2 dt` over two decades either side of the chord
+/// `|Q(v0) - P(u0)|`). `alpha^k P^(k)(u0)` is the jet of P reparametrised to
+/// unit speed at `u0`, so the result does not depend on how fast either
+/// curve runs in its own parameter: a line given on `[0, 1]` or on
+/// `[0, length]` gives the same blend (with [`bzj_connect_auto_scale`]'s
+/// one `s` it does not, and a fast curve next to a slow one gets a
+/// near-kink at the slow end). An end of order 0, or whose first derivative
+/// vanishes, takes the other end's speed; two such ends give
+/// [`bzj_connect_auto_scale`]'s answer. `options->p_scale` and
+/// `options->q_scale` are ignored; `alpha` and `beta` are written to
+/// `p_scale_out`, `q_scale_out` when not NULL. Same guarantee as
+/// [`bzj_connect`].
+///
+/// @return the statuses of [`bzj_connect`] (except for the scales, which are
+///         not read).
+///
+/// # Safety
+/// As [`bzj_connect`]; `p_scale_out`, `q_scale_out` are NULL or writable.
+#[unsafe(no_mangle)]
+#[allow(clippy::too_many_arguments)]
+pub unsafe extern "C" fn bzj_connect_balanced_scale(
+    p: *const BzjCurve,
+    u0: f64,
+    q: *const BzjCurve,
+    v0: f64,
+    options: *const BzjConnectOptions,
+    out: *mut *mut BzjCurve,
+    p_scale_out: *mut f64,
+    q_scale_out: *mut f64,
+) -> BzjStatus {
+    let scales = [p_scale_out, q_scale_out];
+    let balanced = ShapeScale::Balanced;
+    // SAFETY: caller contract.
+    unsafe { connect_chosen_scale(p, u0, q, v0, options, out, balanced, scales) }
+}
+
+/// The body of [`bzj_connect_auto_scale`] and [`bzj_connect_balanced_scale`]:
+/// [`bzj_connect`] with the scale `scale` chosen by the library, `alpha` and
+/// `beta` written to `scales_out[0]`, `scales_out[1]` where not NULL.
+///
+/// # Safety
+/// As [`bzj_connect`]; each of `scales_out` is NULL or writable.
+#[allow(clippy::too_many_arguments)]
+unsafe fn connect_chosen_scale(
+    p: *const BzjCurve,
+    u0: f64,
+    q: *const BzjCurve,
+    v0: f64,
+    options: *const BzjConnectOptions,
+    out: *mut *mut BzjCurve,
+    scale: ShapeScale,
+    [p_scale_out, q_scale_out]: [*mut f64; 2],
+) -> BzjStatus {
     // SAFETY: `out` is null or writable (caller contract).
     let out = unsafe { HandleOut::cleared(out, "out") };
     guard(|| {
         let out = out.require()?;
         // SAFETY: caller contract for every pointer.
-        let (p, q, options) = unsafe { read_inputs(p, q, options) }?;
-        let connection = connect(p, u0, q, v0, &options.with_auto_scale())?;
+        let (p, q, mut options) = unsafe { read_inputs(p, q, options) }?;
+        options.scale = scale;
+        let connection = connect(p, u0, q, v0, &options)?;
         // SAFETY: NULL or writable by the caller contract.
-        unsafe { write_optional(scale_out, connection.p_scale) };
+        unsafe {
+            write_optional(p_scale_out, connection.p_scale);
+            write_optional(q_scale_out, connection.q_scale);
+        }
         out.write(connection.curve);
         Ok(())
     })

@@ -363,17 +363,15 @@ pub unsafe extern "C" fn bzj_fillet(
     blend: *mut *mut BzjCurve,
     q_trimmed: *mut *mut BzjCurve,
 ) -> BzjStatus {
-    // SAFETY: caller contract (`scale_out` NULL is allowed).
+    // SAFETY: caller contract.
     unsafe {
-        fillet_with_scale(
+        corner_fillet(
             p,
             q,
             options,
-            false,
-            p_trimmed,
-            blend,
-            q_trimmed,
-            std::ptr::null_mut(),
+            None,
+            ScaleOut::Given,
+            [p_trimmed, blend, q_trimmed],
         )
     }
 }
@@ -403,8 +401,55 @@ pub unsafe extern "C" fn bzj_fillet_auto_scale(
     q_trimmed: *mut *mut BzjCurve,
     scale_out: *mut f64,
 ) -> BzjStatus {
+    let scale = ScaleOut::Auto(scale_out);
     // SAFETY: caller contract.
-    unsafe { fillet_with_scale(p, q, options, true, p_trimmed, blend, q_trimmed, scale_out) }
+    unsafe { corner_fillet(p, q, options, None, scale, [p_trimmed, blend, q_trimmed]) }
+}
+
+/// [`bzj_fillet`] with the blend leaving both curves at one speed `sigma`:
+/// `alpha = sigma / |P'(u0)|`, `beta = sigma / |Q'(v0)|`, `sigma` chosen as
+/// [`bzj_fillet_auto_scale`] chooses `s` (least fairness energy
+/// `integral_0^1 |R''(t)|^2 dt`, two decades either side of the chord
+/// `|Q(v0) - P(u0)|`). The blend then does not depend on how fast either
+/// curve runs in its own parameter (a line given on `[0, 1]` or on
+/// `[0, length]`), which the one `s` of [`bzj_fillet_auto_scale`] does not:
+/// there a corner of lines 1000 and 10 long (setback 1) peaks at curvature
+/// 1.29e4 where lines 10 and 10 peak at 1.33. An end whose first
+/// derivative vanishes takes the other end's speed. `options->p_scale` and
+/// `options->q_scale` are ignored (not read for validity); `alpha`, `beta`
+/// are written to `p_scale_out`, `q_scale_out` when not NULL. Same
+/// guarantee as [`bzj_fillet`].
+///
+/// @return the statuses of [`bzj_fillet`] (except for the scales).
+///
+/// # Safety
+/// As [`bzj_fillet`]; `p_scale_out`, `q_scale_out` are NULL or writable.
+#[unsafe(no_mangle)]
+#[allow(clippy::too_many_arguments)]
+pub unsafe extern "C" fn bzj_fillet_balanced_scale(
+    p: *const BzjCurve,
+    q: *const BzjCurve,
+    options: *const BzjFilletOptions,
+    p_trimmed: *mut *mut BzjCurve,
+    blend: *mut *mut BzjCurve,
+    q_trimmed: *mut *mut BzjCurve,
+    p_scale_out: *mut f64,
+    q_scale_out: *mut f64,
+) -> BzjStatus {
+    let scale = ScaleOut::Balanced(p_scale_out, q_scale_out);
+    // SAFETY: caller contract.
+    unsafe { corner_fillet(p, q, options, None, scale, [p_trimmed, blend, q_trimmed]) }
+}
+
+/// How a corner fillet's scales are chosen, and where the chosen ones go.
+#[derive(Clone, Copy)]
+enum ScaleOut {
+    /// `options->p_scale`, `options->q_scale`.
+    Given,
+    /// `ShapeScale::Auto`; `s` to the pointer when it is not NULL.
+    Auto(*mut f64),
+    /// `ShapeScale::Balanced`; `alpha`, `beta` to the pointers when not NULL.
+    Balanced(*mut f64, *mut f64),
 }
 
 /// The three handle outputs of a fillet, cleared.
@@ -426,46 +471,19 @@ pub(crate) unsafe fn fillet_outputs(
     }
 }
 
-/// The body of `bzj_fillet` and `bzj_fillet_auto_scale`.
-///
-/// # Safety
-/// As [`bzj_fillet_auto_scale`].
-#[allow(clippy::too_many_arguments)]
-unsafe fn fillet_with_scale(
-    p: *const BzjCurve,
-    q: *const BzjCurve,
-    options: *const BzjFilletOptions,
-    auto_scale: bool,
-    p_trimmed: *mut *mut BzjCurve,
-    blend: *mut *mut BzjCurve,
-    q_trimmed: *mut *mut BzjCurve,
-    scale_out: *mut f64,
-) -> BzjStatus {
-    // SAFETY: caller contract.
-    unsafe {
-        corner_fillet(
-            p, q, options, None, auto_scale, p_trimmed, blend, q_trimmed, scale_out,
-        )
-    }
-}
-
 /// One corner rounded: at the first crossing (`gap` None, `bzj_fillet`) or
-/// at the shared vertex within `gap` (`bzj_fillet_vertex`), with the given
-/// or the automatic scale (written to `scale_out` when not NULL).
+/// at the shared vertex within `gap` (`bzj_fillet_vertex`), with the scales
+/// `scale` says (the chosen ones written where it says).
 ///
 /// # Safety
-/// As [`bzj_fillet_vertex_auto_scale`].
-#[allow(clippy::too_many_arguments)]
+/// As [`bzj_fillet_vertex_balanced_scale`].
 unsafe fn corner_fillet(
     p: *const BzjCurve,
     q: *const BzjCurve,
     options: *const BzjFilletOptions,
     gap: Option<f64>,
-    auto_scale: bool,
-    p_trimmed: *mut *mut BzjCurve,
-    blend: *mut *mut BzjCurve,
-    q_trimmed: *mut *mut BzjCurve,
-    scale_out: *mut f64,
+    scale: ScaleOut,
+    [p_trimmed, blend, q_trimmed]: [*mut *mut BzjCurve; 3],
 ) -> BzjStatus {
     // SAFETY: caller contract.
     let outs = unsafe { fillet_outputs(p_trimmed, blend, q_trimmed) };
@@ -476,16 +494,26 @@ unsafe fn corner_fillet(
         let options = unsafe { input_ref(options, "options") }?;
         let outs = require_all(outs)?;
         let mut core_options = options.to_core();
-        if auto_scale {
-            core_options.scale = ShapeScale::Auto;
+        match scale {
+            ScaleOut::Given => {}
+            ScaleOut::Auto(_) => core_options.scale = ShapeScale::Auto,
+            ScaleOut::Balanced(..) => core_options.scale = ShapeScale::Balanced,
         }
         let result = match gap {
             Some(gap) => fillet_vertex(p, q, &core_options, gap)?,
             None => fillet(p, q, &core_options)?,
         };
-        if auto_scale {
+        match scale {
+            ScaleOut::Given => {}
             // SAFETY: NULL or writable by the caller contract.
-            unsafe { write_optional(scale_out, result.p_scale) };
+            ScaleOut::Auto(out) => unsafe { write_optional(out, result.p_scale) },
+            ScaleOut::Balanced(p_out, q_out) => {
+                // SAFETY: NULL or writable by the caller contract.
+                unsafe {
+                    write_optional(p_out, result.p_scale);
+                    write_optional(q_out, result.q_scale);
+                }
+            }
         }
         write_fillet(outs, result);
         Ok(())
@@ -537,20 +565,9 @@ pub unsafe extern "C" fn bzj_fillet_vertex(
     blend: *mut *mut BzjCurve,
     q_trimmed: *mut *mut BzjCurve,
 ) -> BzjStatus {
-    // SAFETY: caller contract (`scale_out` NULL is allowed).
-    unsafe {
-        corner_fillet(
-            p,
-            q,
-            options,
-            Some(gap),
-            false,
-            p_trimmed,
-            blend,
-            q_trimmed,
-            std::ptr::null_mut(),
-        )
-    }
+    let outs = [p_trimmed, blend, q_trimmed];
+    // SAFETY: caller contract.
+    unsafe { corner_fillet(p, q, options, Some(gap), ScaleOut::Given, outs) }
 }
 
 /// [`bzj_fillet_vertex`] with `alpha = beta = s` chosen automatically as
@@ -577,20 +594,42 @@ pub unsafe extern "C" fn bzj_fillet_vertex_auto_scale(
     q_trimmed: *mut *mut BzjCurve,
     scale_out: *mut f64,
 ) -> BzjStatus {
+    let outs = [p_trimmed, blend, q_trimmed];
     // SAFETY: caller contract.
-    unsafe {
-        corner_fillet(
-            p,
-            q,
-            options,
-            Some(gap),
-            true,
-            p_trimmed,
-            blend,
-            q_trimmed,
-            scale_out,
-        )
-    }
+    unsafe { corner_fillet(p, q, options, Some(gap), ScaleOut::Auto(scale_out), outs) }
+}
+
+/// [`bzj_fillet_vertex`] with the blend leaving both curves at one speed, as
+/// [`bzj_fillet_balanced_scale`] chooses it (`options->p_scale` and
+/// `options->q_scale` are ignored, not read for validity); `alpha`, `beta`
+/// are written to `p_scale_out`, `q_scale_out` when not NULL. The default
+/// to prefer for a CAD corner: the blend depends on the corner's geometry
+/// and the setbacks only, not on the lengths or parametrisations of the
+/// edges (with [`bzj_fillet_vertex_auto_scale`] a corner of lines 1000 and
+/// 10 long gets a near-kink at the short edge's end).
+///
+/// @return the statuses of [`bzj_fillet_vertex`] (except for the scales).
+///
+/// # Safety
+/// As [`bzj_fillet_vertex`]; `p_scale_out`, `q_scale_out` are NULL or
+/// writable.
+#[unsafe(no_mangle)]
+#[allow(clippy::too_many_arguments)]
+pub unsafe extern "C" fn bzj_fillet_vertex_balanced_scale(
+    p: *const BzjCurve,
+    q: *const BzjCurve,
+    options: *const BzjFilletOptions,
+    gap: f64,
+    p_trimmed: *mut *mut BzjCurve,
+    blend: *mut *mut BzjCurve,
+    q_trimmed: *mut *mut BzjCurve,
+    p_scale_out: *mut f64,
+    q_scale_out: *mut f64,
+) -> BzjStatus {
+    let outs = [p_trimmed, blend, q_trimmed];
+    let scale = ScaleOut::Balanced(p_scale_out, q_scale_out);
+    // SAFETY: caller contract.
+    unsafe { corner_fillet(p, q, options, Some(gap), scale, outs) }
 }
 
 /// Round the corner at the first crossing so that the blend passes within

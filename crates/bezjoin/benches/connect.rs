@@ -42,6 +42,10 @@ fn bench_connect(c: &mut Criterion) {
         c.bench_function(&format!("connect_auto_scale/c3/{dim}d"), |b| {
             b.iter(|| connect(black_box(&p), 1.0, black_box(&q), 0.0, &auto).unwrap())
         });
+        let balanced = plain.clone().with_balanced_scale();
+        c.bench_function(&format!("connect_balanced_scale/c3/{dim}d"), |b| {
+            b.iter(|| connect(black_box(&p), 1.0, black_box(&q), 0.0, &balanced).unwrap())
+        });
         for (label, options) in [("c3", &plain), ("c3_k2", &constrained)] {
             c.bench_function(&format!("connect_structured/{label}/{dim}d"), |b| {
                 b.iter(|| connect(black_box(&p), 1.0, black_box(&q), 0.0, options).unwrap())

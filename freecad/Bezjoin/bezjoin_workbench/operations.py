@@ -249,7 +249,7 @@ def _blend_bezier_edges(first_edge, second_edge, u0, v0, p_order, q_order, p_sca
     # Both edges run on [0, 1] (verbatim), so ``u``, ``v`` are their parameters.
     if _automatic(p_scale, q_scale, auto_scale) and _speeds_differ(
             first_edge.derivative1At(u).Length, second_edge.derivative1At(v).Length, 1.0):
-        return None  # the general path balances the end speeds (:func:`_balanced`)
+        return None  # the general path balances the end speeds (auto_scale="balanced")
     try:
         curve = bezjoin.connect_edges(first_edge, u, second_edge, v, p_order=orders[0],
                                       q_order=orders[1], p_scale=p_scale, q_scale=q_scale,
@@ -310,24 +310,20 @@ def blend_edges(first_edge, second_edge, *, u0=1.0, v0=0.0, p_order=None, q_orde
                     f"({', '.join(f'{x:.6g}' for x in start)}): the edges share a vertex "
                     "there. Use Round corner to round that corner, or choose positions "
                     "u0/v0 apart")
-            if _automatic(p_scale, q_scale, auto_scale):
-                # The blend leaves both edges at one speed (:func:`_balanced`): lines
-                # 1000 and 10 long, blended across a gap of 2 at 90 degrees, peaked at
-                # curvature 6472, lines 10 and 10 at 0.67 (user testing, session 40).
-                p_speed = math.hypot(*p.derivatives(u, 1)[1])
-                q_speed = math.hypot(*q.derivatives(v, 1)[1])
-                chord = _distance(start, end)
-                if _speeds_differ(p_speed, q_speed, chord):
-                    def solve(ps, qs):
-                        return bezjoin.connect(p, u, q, v, p_order=p_order, q_order=q_order,
-                                               p_scale=ps, q_scale=qs, auto_scale=False)
-                    best = _balanced(solve, lambda blend: blend, p_speed, q_speed, chord)
-                    if best is not None:
-                        with best:
-                            return best.to_edge()
+            # The automatic scale leaves both edges at one speed (the library's
+            # balanced scale): with one s for both, lines 1000 and 10 long blended
+            # across a gap of 2 at 90 degrees peaked at curvature 6472, lines 10 and
+            # 10 at 0.67 (user testing, session 40).
+            # Where the speeds are equal that is the one-s scale, whose bits the fast
+            # path (connect_edges) gives: it is kept there.
+            balanced = auto_scale
+            if _automatic(p_scale, q_scale, auto_scale) and _speeds_differ(
+                    math.hypot(*p.derivatives(u, 1)[1]), math.hypot(*q.derivatives(v, 1)[1]),
+                    _distance(start, end)):
+                balanced = "balanced"
             with bezjoin.connect(p, u, q, v, p_order=p_order, q_order=q_order,
                                  p_scale=p_scale, q_scale=q_scale,
-                                 auto_scale=auto_scale) as blend:
+                                 auto_scale=balanced) as blend:
                 return blend.to_edge()
 
 
@@ -422,20 +418,20 @@ def round_corner(first_edge, second_edge, *, setback=None, second_setback=None, 
             touching = _distance(_ends(p_oriented)[1], _ends(q_oriented)[0]) <= gap
             options = dict(p_setback=setback, q_setback=second_setback, p_order=p_order,
                            q_order=q_order)
-            automatic = _automatic(p_scale, q_scale, auto_scale)
-            scales = dict(p_scale=p_scale, q_scale=q_scale, auto_scale=auto_scale)
+            # The automatic scale leaves both edges at one speed (the library's
+            # balanced scale): with one s for both, a 90-degree corner of lines
+            # 1000 and 10 long (setback 1) peaked at curvature 1.29e4, lines 10 and
+            # 10 at 1.33 (user testing, session 40).
+            balanced = "balanced" if _automatic(p_scale, q_scale, auto_scale) else auto_scale
+            scales = dict(p_scale=p_scale, q_scale=q_scale, auto_scale=balanced)
             if touching:
                 # The vertex itself, whatever other crossings the edges have.
-                def fillet(**given):
-                    return bezjoin.fillet_vertex(p_oriented, q_oriented, gap=gap, **options,
-                                                 **given)
-                with (_balanced_fillet(fillet) if automatic else fillet(**scales)) as result:
+                with bezjoin.fillet_vertex(p_oriented, q_oriented, gap=gap, **options,
+                                           **scales) as result:
                     return _wire(result.curves())
         with (p.reverse() if reverse_first else p.copy()) as p_work, \
                 (q.reverse() if reverse_second else q.copy()) as q_work:
-            def fillet(**given):
-                return bezjoin.fillet(p_work, q_work, **options, **given)
-            with (_balanced_fillet(fillet) if automatic else fillet(**scales)) as result:
+            with bezjoin.fillet(p_work, q_work, **options, **scales) as result:
                 return _wire(result.curves())
 
 
@@ -445,92 +441,11 @@ def _automatic(p_scale, q_scale, auto_scale):
     return bool(auto_scale) or (auto_scale is None and p_scale is None and q_scale is None)
 
 
-#: Grid of the end-speed search of :func:`_balanced`: points over two decades
-#: either side of the chord, as the library's automatic scale searches.
-BALANCED_GRID = 33
-
-
-def _balanced_fillet(fillet):
-    """The C^k fillet ``fillet(**scales)`` with the automatic scale, made independent of
-    how fast each edge runs in its own parameter (:func:`_balanced`).
-
-    The library's automatic scale is one ``s`` for both ends (``R^(k)(0) = s^k
-    P^(k)(u0)``, the same at Q), so the blend leaves each edge at ``s`` times that edge's
-    speed. FreeCAD's lines run at their length and arcs at their radius: a corner of
-    lines 1000 and 10 long (setback 1, 90 degrees) got a blend whose curvature peaked at
-    1.29e4, where the same corner of lines 10 and 10 peaks at 1.33 (user testing,
-    session 40). The speeds at the cuts come from the library's own automatic fillet,
-    ``|R'(0)| / s`` and ``|R'(1)| / s``; when they are equal that fillet is already the
-    balanced one and is returned."""
-    first = fillet(auto_scale=True)
-    s = first.scale
-    r = first.blend
-    p_speed = math.hypot(*r.derivatives(0.0, 1)[1]) / s
-    q_speed = math.hypot(*r.derivatives(1.0, 1)[1]) / s
-    chord = _distance(r.evaluate(0.0), r.evaluate(1.0))
-    if not _speeds_differ(p_speed, q_speed, chord):
-        return first
-    first.close()
-    best = _balanced(lambda ps, qs: fillet(p_scale=ps, q_scale=qs, auto_scale=False),
-                     lambda result: result.blend, p_speed, q_speed, chord)
-    return best if best is not None else fillet(auto_scale=True)
-
-
 def _speeds_differ(p_speed, q_speed, chord):
-    """Whether :func:`_balanced` has work to do: finite positive speeds and chord, and
-    speeds more than 1e-9 apart (relative)."""
+    """Whether the balanced scale differs from the one-s automatic scale: finite
+    positive speeds and chord, and speeds more than 1e-9 apart (relative)."""
     return (p_speed > 0 and q_speed > 0 and chord > 0 and math.isfinite(p_speed * q_speed)
             and abs(p_speed - q_speed) > 1e-9 * max(p_speed, q_speed))
-
-
-def _balanced(solve, blend_of, p_speed, q_speed, chord):
-    """The C^k blend that leaves both curves at one speed ``sigma``: ``solve(p_scale,
-    q_scale)`` with the scales ``sigma / p_speed`` and ``sigma / q_speed`` (the curves'
-    speeds at the blend's ends), ``sigma`` minimising the library's automatic-scale
-    energy ``int |R''|^2 dt`` of ``blend_of(result)``: a grid of :data:`BALANCED_GRID`
-    values over two decades either side of the chord, then golden sections between the
-    best one's neighbours. Returns the best result (the caller closes it), or ``None``
-    when no trial solved; every other result is closed."""
-    def energy(log_sigma):
-        sigma = math.exp(log_sigma)
-        try:
-            result = solve(sigma / p_speed, sigma / q_speed)
-        except bezjoin.BezjoinError:
-            return math.inf, None
-        return _bending(blend_of(result)), result
-
-    half = 2.0 * math.log(10.0)
-    centre = math.log(chord)
-    grid = [centre - half + 2.0 * half * i / (BALANCED_GRID - 1) for i in range(BALANCED_GRID)]
-    best, best_value, best_result = None, math.inf, None
-    for i, x in enumerate(grid):
-        value, result = energy(x)
-        if value < best_value:
-            if best_result is not None:
-                best_result.close()
-            best, best_value, best_result = i, value, result
-        elif result is not None:
-            result.close()
-    if best_result is None:
-        return None
-    lo, hi = grid[max(best - 1, 0)], grid[min(best + 1, BALANCED_GRID - 1)]
-    ratio = (math.sqrt(5.0) - 1.0) / 2.0
-    for _ in range(40):
-        if hi - lo <= 1e-10 * max(1.0, abs(centre)):
-            break
-        a, b = hi - ratio * (hi - lo), lo + ratio * (hi - lo)
-        (va, ra), (vb, rb) = energy(a), energy(b)
-        for value, result in ((va, ra), (vb, rb)):
-            if result is not None and value < best_value:
-                best_result.close()
-                best_value, best_result = value, result
-            elif result is not None:
-                result.close()
-        if va <= vb:
-            hi = b
-        else:
-            lo = a
-    return best_result
 
 
 def _at_unit_speed(curve):
@@ -560,25 +475,6 @@ def _unit_piece_edge(piece):
     if piece.degree == 1 and piece.pole_count == 2 and not piece.is_rational:
         return Part.makeLine(*(tuple(point) for point in piece.points))
     return piece.to_edge()
-
-
-def _bending(curve):
-    """``int_0^1 |R''(t)|^2 dt`` of a Bezier curve, exactly: ``R''`` is the Bezier curve of
-    degree ``m = n - 2`` with points ``n (n - 1) (P_(i+2) - 2 P_(i+1) + P_i)``, and the
-    Bernstein Gram entries are ``C(m, i) C(m, j) / ((2m + 1) C(2m, i + j))``."""
-    points = curve.points
-    n = len(points) - 1
-    if n < 2:
-        return 0.0
-    m = n - 2
-    second = [[n * (n - 1) * (a - 2.0 * b + c) for a, b, c in zip(*points[i:i + 3])]
-              for i in range(m + 1)]
-    total = 0.0
-    for i in range(m + 1):
-        for j in range(m + 1):
-            gram = math.comb(m, i) * math.comb(m, j) / ((2 * m + 1) * math.comb(2 * m, i + j))
-            total += gram * sum(x * y for x, y in zip(second[i], second[j]))
-    return total
 
 
 class RoundedWire:
@@ -807,7 +703,7 @@ def round_wire(shape, *, radius=None, setback=None, continuity="G2", closed=None
         else:
             def round_chain(run, closes):
                 # Every curve at unit speed, so that each corner's automatic scale sees
-                # the same speed on both sides (as `_balanced_fillet` does for one
+                # the same speed on both sides (as the balanced scale does for one
                 # corner): a 1000 x 10 rectangle peaked at curvature 521 at its
                 # corners, a 10 x 10 square at 1.19 (user testing, session 40).
                 unit = [_at_unit_speed(curve) for curve in run]

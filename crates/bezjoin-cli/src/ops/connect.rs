@@ -7,7 +7,7 @@
 
 use bezjoin_core::{
     BezierCurve, BezjoinError, ConnectOptions, Connection, Curve, GeometricOptions, KnotSide,
-    PointConstraint, connect, connect_geometric, relative_jump,
+    PointConstraint, ShapeScale, connect, connect_geometric, relative_jump,
 };
 use serde_json::json;
 
@@ -47,8 +47,9 @@ pub struct ConnectJob {
     /// Orders, scales and interior constraints (the scales are not used
     /// with geometric continuity).
     pub options: ConnectOptions,
-    /// Choose the scale automatically (`ShapeScale::Auto` in `options`):
-    /// asked for, or the default when the job gives no scale.
+    /// The library chooses the scale (`ShapeScale::Auto` or
+    /// `ShapeScale::Balanced` in `options`): asked for, or the default when
+    /// the job gives no scale.
     pub auto_scale: bool,
     /// Parametric or geometric continuity, with the shape values.
     pub continuity: Continuity,
@@ -62,36 +63,53 @@ pub struct ConnectJob {
 pub const DEFAULT_GEOMETRIC_ORDER: usize = 2;
 
 /// How the scales of a job are chosen: `auto_scale` (`true`: automatic;
-/// `false`: the given scales, 1 where missing) or, without it, the given
-/// scales, the missing one equal to the given one, and automatic when
-/// neither is given (scale 1 makes a blend between long or fast curves
-/// loop; shared with `bezjoin fillet` and `bezjoin fillet-chain`). Returns
-/// `None` for automatic, else `(alpha, beta)`.
+/// `"balanced"`, where `balanced` allows it: both ends of the blend at one
+/// speed, [`ShapeScale::Balanced`]; `false`: the given scales, 1 where
+/// missing) or, without it, the given scales, the missing one equal to the
+/// given one, and automatic when neither is given (scale 1 makes a blend
+/// between long or fast curves loop; shared with `bezjoin fillet` and
+/// `bezjoin fillet-chain`).
 pub(crate) fn read_scale_choice(
     p_scale: Option<Located>,
     q_scale: Option<Located>,
     auto_scale: Option<Located>,
-) -> Result<Option<(f64, f64)>, JobError> {
-    let auto = auto_scale.as_ref().map(|f| f.boolean()).transpose()?;
+    balanced: bool,
+) -> Result<ShapeScale, JobError> {
+    let mut auto = None;
+    let mut chosen = ShapeScale::Auto;
+    if let Some(f) = &auto_scale {
+        if balanced && f.value.as_str() == Some("balanced") {
+            auto = Some(true);
+            chosen = ShapeScale::Balanced;
+        } else if f.value.is_boolean() || !balanced {
+            auto = Some(f.boolean()?);
+        } else {
+            return Err(f.error(format!(
+                "expected true, false or \"balanced\", found {}",
+                crate::job::describe(f.value)
+            )));
+        }
+    }
     if auto == Some(true) {
         if let Some(f) = p_scale.as_ref().or(q_scale.as_ref()) {
             return Err(JobError::new(
                 f.path.clone(),
-                "cannot be given together with \"auto_scale\": true",
+                "cannot be given together with an automatic \"auto_scale\"",
             ));
         }
-        return Ok(None);
+        return Ok(chosen);
     }
     let p = p_scale.map(|f| f.positive()).transpose()?;
     let q = q_scale.map(|f| f.positive()).transpose()?;
+    let given = |p, q| ShapeScale::Given { p, q };
     Ok(match (p, q, auto) {
-        (Some(a), Some(b), _) => Some((a, b)),
-        (None, None, Some(false)) => Some((1.0, 1.0)),
-        (Some(a), None, Some(false)) => Some((a, 1.0)),
-        (None, Some(b), Some(false)) => Some((1.0, b)),
-        (Some(a), None, _) => Some((a, a)),
-        (None, Some(b), _) => Some((b, b)),
-        (None, None, _) => None,
+        (Some(a), Some(b), _) => given(a, b),
+        (None, None, Some(false)) => given(1.0, 1.0),
+        (Some(a), None, Some(false)) => given(a, 1.0),
+        (None, Some(b), Some(false)) => given(1.0, b),
+        (Some(a), None, _) => given(a, a),
+        (None, Some(b), _) => given(b, b),
+        (None, None, _) => ShapeScale::Auto,
     })
 }
 
@@ -160,13 +178,8 @@ pub fn parse(job: &Located) -> Result<ConnectJob, JobError> {
                 "is only used with \"continuity\": \"geometric\"",
             ));
         }
-        match read_scale_choice(p_scale, q_scale, auto_scale_field)? {
-            None => {
-                auto_scale = true;
-                options = options.with_auto_scale();
-            }
-            Some((a, b)) => options = options.with_scales(a, b),
-        }
+        options.scale = read_scale_choice(p_scale, q_scale, auto_scale_field, true)?;
+        auto_scale = !matches!(options.scale, ShapeScale::Given { .. });
         Continuity::Parametric
     };
     let mut empty_constraints = Vec::new();
@@ -311,6 +324,7 @@ fn outcome(job: &ConnectJob, c: &Connection) -> Outcome {
             "continuity": "parametric",
             "degree": r.degree(),
             "auto_scale": job.auto_scale,
+            "balanced_scale": job.options.scale == ShapeScale::Balanced,
             "p_scale": c.p_scale,
             "q_scale": c.q_scale,
             "max_residual": c.max_residual,
@@ -340,7 +354,11 @@ fn outcome(job: &ConnectJob, c: &Connection) -> Outcome {
         sum_k,
         c.p_scale,
         c.q_scale,
-        if job.auto_scale { " (automatic)" } else { "" }
+        match job.options.scale {
+            ShapeScale::Balanced => " (automatic, balanced: one speed at both ends)",
+            ShapeScale::Auto => " (automatic)",
+            ShapeScale::Given { .. } => "",
+        }
     ));
     for check in &checks {
         figure.line(check.describe());

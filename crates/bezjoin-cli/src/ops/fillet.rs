@@ -92,20 +92,20 @@ pub struct FilletJob {
 /// `bezjoin fillet-chain`): without any of them the scale is chosen
 /// automatically (scale 1 makes the blend loop on long or fast curves);
 /// one scale given stands for both; `"auto_scale": false` keeps the
-/// paper's scale 1 for a missing one ([`read_scale_choice`]).
+/// paper's scale 1 for a missing one; `"auto_scale": "balanced"` where
+/// `balanced` allows it ([`read_scale_choice`]).
 pub(crate) fn read_scales(
     obj: &ObjectReader,
-    options: FilletOptions,
+    mut options: FilletOptions,
+    balanced: bool,
 ) -> Result<FilletOptions, JobError> {
-    let choice = read_scale_choice(
+    options.scale = read_scale_choice(
         obj.optional("p_scale"),
         obj.optional("q_scale"),
         obj.optional("auto_scale"),
+        balanced,
     )?;
-    Ok(match choice {
-        None => options.with_auto_scale(),
-        Some((a, b)) => options.with_scales(a, b),
-    })
+    Ok(options)
 }
 
 /// Read a fillet job.
@@ -204,7 +204,10 @@ pub fn parse(job: &Located) -> Result<FilletJob, JobError> {
         }
         FilletMode::Deviation { .. } | FilletMode::Radius { .. } => (1.0, 1.0),
     };
-    let options = read_scales(&obj, FilletOptions::new(dp, dq, p_order, q_order))?;
+    // The balanced scale for one corner by setbacks; the deviation mode's
+    // automatic scale is one s (a fixed point of its setback search).
+    let balanced = matches!(mode, FilletMode::Setbacks | FilletMode::Vertex { .. });
+    let options = read_scales(&obj, FilletOptions::new(dp, dq, p_order, q_order), balanced)?;
     obj.finish()?;
     Ok(FilletJob {
         p,
@@ -376,7 +379,9 @@ fn outcome(job: &FilletJob, f: &Fillet, max_deviation: Option<f64>) -> Outcome {
             "blend_degree": f.blend.degree(),
             "p_order": kp,
             "q_order": kq,
-            "auto_scale": job.options.scale == ShapeScale::Auto,
+            "auto_scale": job.options.scale == ShapeScale::Auto
+                || job.options.scale == ShapeScale::Balanced,
+            "balanced_scale": job.options.scale == ShapeScale::Balanced,
             "p_scale": f.p_scale,
             "q_scale": f.q_scale,
             "chain_knot_intervals": [a, b, c],

@@ -132,7 +132,7 @@ pub fn parse(job: &Located) -> Result<ChainJob, JobError> {
         .map(|f| f.count())
         .transpose()?
         .unwrap_or(p_order);
-    let fillet = read_scales(&obj, FilletOptions::new(dp, dq, p_order, q_order))?;
+    let fillet = read_scales(&obj, FilletOptions::new(dp, dq, p_order, q_order), false)?;
     obj.finish()?;
     let options = if closed {
         ChainFilletOptions::closed(fillet)

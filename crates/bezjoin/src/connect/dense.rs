@@ -22,7 +22,10 @@ pub fn connect_dense_reference<P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
 ) -> Result<Connection> {
     let problem = prepare(p, u0, q, v0, options)?;
     let (alpha, beta) = options.scale.checked()?.ok_or_else(|| {
-        BezjoinError::invalid("scale", "the dense reference takes given scales, not Auto")
+        BezjoinError::invalid(
+            "scale",
+            "the dense reference takes given scales, not Auto or Balanced",
+        )
     })?;
     let conditions = condition_rows(&problem, alpha, beta);
     let size = conditions.rows.nrows();

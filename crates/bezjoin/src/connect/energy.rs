@@ -54,17 +54,60 @@ pub fn fairness_energy(curve: &BezierCurve) -> f64 {
     energy
 }
 
+/// The factors of the automatic scale at each end: `alpha = s * p`,
+/// `beta = s * q`. [`ShapeScale::Auto`](super::ShapeScale::Auto) is
+/// [`EQUAL_WEIGHTS`]; [`ShapeScale::Balanced`](super::ShapeScale::Balanced)
+/// the reciprocal speeds ([`balanced_weights`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct ScaleWeights {
+    pub(crate) p: f64,
+    pub(crate) q: f64,
+}
+
+/// `alpha = beta = s`.
+pub(crate) const EQUAL_WEIGHTS: ScaleWeights = ScaleWeights { p: 1.0, q: 1.0 };
+
+/// `|P'(u0)|` when P's end has order at least 1 and that speed is finite
+/// and positive.
+fn end_speed(derivatives: &DMatrix<f64>) -> Option<f64> {
+    let speed = (derivatives.nrows() > 1).then(|| derivatives.row(1).norm())?;
+    (speed.is_finite() && speed > 0.0).then_some(speed)
+}
+
+/// The weights of [`ShapeScale::Balanced`](super::ShapeScale::Balanced):
+/// `1 / |P'(u0)|`, `1 / |Q'(v0)|`; an end without a usable speed (order 0,
+/// a vanishing or overflowing first derivative) takes the other end's, and
+/// with neither [`EQUAL_WEIGHTS`].
+pub(crate) fn balanced_weights(problem: &Problem) -> ScaleWeights {
+    match (
+        end_speed(&problem.p_derivatives),
+        end_speed(&problem.q_derivatives),
+    ) {
+        (Some(p), Some(q)) => ScaleWeights {
+            p: 1.0 / p,
+            q: 1.0 / q,
+        },
+        (Some(v), None) | (None, Some(v)) => ScaleWeights {
+            p: 1.0 / v,
+            q: 1.0 / v,
+        },
+        (None, None) => EQUAL_WEIGHTS,
+    }
+}
+
 /// `s0 = |Q(v0) - P(u0)| / mean(|P'(u0)|, |Q'(v0)|)`, 1 when undefined.
-pub(crate) fn natural_scale(problem: &Problem) -> f64 {
+/// With `weights`, the speeds are those of the weighted jets,
+/// `p |P'(u0)|` and `q |Q'(v0)|`.
+pub(crate) fn natural_scale(problem: &Problem, weights: ScaleWeights) -> f64 {
     let p = &problem.p_derivatives;
     let q = &problem.q_derivatives;
     let gap = problem.chord();
     let mut speeds = Vec::new();
     if p.nrows() > 1 {
-        speeds.push(p.row(1).norm());
+        speeds.push(weights.p * p.row(1).norm());
     }
     if q.nrows() > 1 {
-        speeds.push(q.row(1).norm());
+        speeds.push(weights.q * q.row(1).norm());
     }
     let speed = speeds.iter().sum::<f64>() / speeds.len().max(1) as f64;
     let s0 = gap / speed;
@@ -87,7 +130,7 @@ const POLYNOMIAL_GRID_PER_DEGREE: usize = 16;
 /// Returns `(e_j s0^j)_j` (the polynomial in `sigma = s / s0`), or `None`
 /// when a component cannot be solved or a coefficient is not finite (the
 /// caller then searches by full solves).
-fn energy_polynomial(problem: &Problem, s0: f64) -> Option<Vec<f64>> {
+fn energy_polynomial(problem: &Problem, s0: f64, weights: ScaleWeights) -> Option<Vec<f64>> {
     let n = problem.degree;
     if n < 2 {
         return None;
@@ -120,9 +163,16 @@ fn energy_polynomial(problem: &Problem, s0: f64) -> Option<Vec<f64>> {
             };
             // Interior targets belong to the scale-free component k = 0.
             let keep = row_order.map_or(k == 0, |o| o == k);
+            // Row k of an end is scaled by (s w)^k: s^k is the polynomial's,
+            // w^k the component's.
+            let weight = match row_order {
+                Some(o) if r < p_rows => weights.p.powi(o as i32),
+                Some(o) => weights.q.powi(o as i32),
+                None => 1.0,
+            };
             for c in 0..dim {
                 part.targets[(r, c)] = if keep {
-                    conditions.targets[(r, c)]
+                    weight * conditions.targets[(r, c)]
                 } else {
                     0.0
                 };
@@ -230,36 +280,49 @@ fn polynomial_minimum(coefficients: &[f64], lo: f64, hi: f64) -> Option<f64> {
 /// by full solves ([`auto_scale_by_search`]), which skips scales whose
 /// connection is refused.
 pub(crate) fn auto_scale(problem: &Problem) -> Result<Connection> {
+    weighted_auto_scale(problem, EQUAL_WEIGHTS)
+}
+
+/// [`ShapeScale::Balanced`](super::ShapeScale::Balanced): the automatic
+/// scale with the weights of [`balanced_weights`], so
+/// `alpha = sigma / |P'(u0)|`, `beta = sigma / |Q'(v0)|`.
+pub(crate) fn balanced_scale(problem: &Problem) -> Result<Connection> {
+    weighted_auto_scale(problem, balanced_weights(problem))
+}
+
+/// [`auto_scale`] with `alpha = s * weights.p`, `beta = s * weights.q`.
+fn weighted_auto_scale(problem: &Problem, weights: ScaleWeights) -> Result<Connection> {
     if problem.p_order == 0 && problem.q_order == 0 {
         return solve_structured(problem, 1.0, 1.0);
     }
-    let s0 = natural_scale(problem);
+    let s0 = natural_scale(problem, weights);
     let half_width = AUTO_SCALE_SEARCH_DECADES * std::f64::consts::LN_10;
-    if let Some(coefficients) = energy_polynomial(problem, s0) {
+    if let Some(coefficients) = energy_polynomial(problem, s0, weights) {
         if let Some(sigma) = polynomial_minimum(&coefficients, -half_width, half_width) {
             let s = s0 * sigma;
-            if let Ok(result) = solve_structured(problem, s, s) {
+            if let Ok(result) = solve_structured(problem, s * weights.p, s * weights.q) {
                 if result.curve.points().iter().all(|v| v.is_finite()) {
                     return Ok(result);
                 }
             }
         }
     }
-    auto_scale_by_search(problem)
+    auto_scale_by_search(problem, weights)
 }
 
 /// The automatic scale by full solves: a grid of [`GRID_POINTS`] in `log s`,
 /// then Brent's method; a refused scale counts as infinite energy.
-pub(crate) fn auto_scale_by_search(problem: &Problem) -> Result<Connection> {
+pub(crate) fn auto_scale_by_search(problem: &Problem, weights: ScaleWeights) -> Result<Connection> {
     if problem.p_order == 0 && problem.q_order == 0 {
         return solve_structured(problem, 1.0, 1.0);
     }
-    let center = natural_scale(problem).ln();
+    let center = natural_scale(problem, weights).ln();
     let half_width = AUTO_SCALE_SEARCH_DECADES * std::f64::consts::LN_10;
     let (lo, hi) = (center - half_width, center + half_width);
+    let solve_at = |s: f64| solve_structured(problem, s * weights.p, s * weights.q);
     let energy_at = |log_s: f64| -> f64 {
         let s = log_s.exp();
-        match solve_structured(problem, s, s) {
+        match solve_at(s) {
             Ok(c) => fairness_energy(&c.curve),
             Err(_) => f64::INFINITY,
         }
@@ -273,11 +336,9 @@ pub(crate) fn auto_scale_by_search(problem: &Problem) -> Result<Connection> {
         REFINEMENT_STEPS,
     ) else {
         // No scale in the range gives a trustworthy answer: report the one at s0.
-        let s = center.exp();
-        return solve_structured(problem, s, s);
+        return solve_at(center.exp());
     };
-    let s = minimum.x.exp();
-    let result = solve_structured(problem, s, s)?;
+    let result = solve_at(minimum.x.exp())?;
     if !result.curve.points().iter().all(|v| v.is_finite()) {
         return Err(BezjoinError::Singular {
             what: "connect_auto_scale".into(),
@@ -334,8 +395,9 @@ mod tests {
     #[test]
     fn energy_polynomial_is_the_energy_of_the_connection() {
         for problem in problems(40) {
-            let s0 = natural_scale(&problem);
-            let coefficients = energy_polynomial(&problem, s0).expect("components solve");
+            let s0 = natural_scale(&problem, EQUAL_WEIGHTS);
+            let coefficients =
+                energy_polynomial(&problem, s0, EQUAL_WEIGHTS).expect("components solve");
             for sigma in [0.01, 0.1, 0.7, 1.0, 3.0, 40.0, 100.0] {
                 let s = s0 * sigma;
                 let direct = solve_structured(&problem, s, s).map(|c| fairness_energy(&c.curve));
@@ -358,7 +420,12 @@ mod tests {
     #[test]
     fn log_slope_is_the_derivative_of_the_energy() {
         for problem in problems(12) {
-            let coefficients = energy_polynomial(&problem, natural_scale(&problem)).unwrap();
+            let coefficients = energy_polynomial(
+                &problem,
+                natural_scale(&problem, EQUAL_WEIGHTS),
+                EQUAL_WEIGHTS,
+            )
+            .unwrap();
             for x in [-3.0f64, -0.5, 0.0, 1.2, 4.0] {
                 let h = 1e-5;
                 let (plus, _) = energy_and_log_slope(&coefficients, (x + h).exp());
@@ -384,7 +451,7 @@ mod tests {
                 continue;
             };
             let best = fairness_energy(&auto.curve);
-            let center = natural_scale(&problem).ln();
+            let center = natural_scale(&problem, EQUAL_WEIGHTS).ln();
             let mut scan = f64::INFINITY;
             for i in 0..=800 {
                 let s = (center - half_width + 2.0 * half_width * i as f64 / 800.0).exp();
@@ -392,7 +459,7 @@ mod tests {
                     scan = scan.min(fairness_energy(&c.curve));
                 }
             }
-            let searched = auto_scale_by_search(&problem)
+            let searched = auto_scale_by_search(&problem, EQUAL_WEIGHTS)
                 .map(|c| fairness_energy(&c.curve))
                 .unwrap_or(f64::INFINITY);
             let slack = 1e-9 * best.abs() + 1e-300;

@@ -96,8 +96,8 @@ use crate::error::{BezjoinError, Result, check_finite, check_open_range, check_p
 use crate::linalg::solve_checked;
 
 pub use dense::connect_dense_reference;
-pub(crate) use energy::natural_scale;
 pub use energy::{AUTO_SCALE_SEARCH_DECADES, fairness_energy};
+pub(crate) use energy::{EQUAL_WEIGHTS, natural_scale};
 
 /// The promised worst relative residual of (1') and (2) (see the module
 /// documentation for the definition). Answers whose error estimate exceeds
@@ -211,6 +211,13 @@ impl ConnectOptions {
         self
     }
 
+    /// The same options with both ends left at one fair speed
+    /// ([`ShapeScale::Balanced`]).
+    pub fn with_balanced_scale(mut self) -> Self {
+        self.scale = ShapeScale::Balanced;
+        self
+    }
+
     /// The same options with one more interior constraint.
     pub fn with_constraint(mut self, constraint: PointConstraint) -> Self {
         self.constraints.push(constraint);
@@ -260,6 +267,22 @@ pub enum ShapeScale {
     /// looping, which scale 1 does not. The chosen `s` is reported in
     /// [`Connection::p_scale`] and [`Connection::q_scale`].
     Auto,
+    /// `alpha = sigma / |P'(u0)|`, `beta = sigma / |Q'(v0)|`: the blend
+    /// leaves both curves at one speed `sigma`, chosen as [`ShapeScale::Auto`]
+    /// chooses `s` (the same energy, search and fallback, with the natural
+    /// value `sigma0 = |Q(v0) - P(u0)|`). `alpha^k P^(k)(u0)` is then the jet of
+    /// `P` reparametrised to unit speed at `u0`, so the blend does not depend
+    /// on how fast either curve runs in its own parameter: reparametrising `P`
+    /// or `Q` linearly (a line of length 1000 given on `[0, 1]` or on
+    /// `[0, 1000]`) gives the same blend, which [`ShapeScale::Auto`] does not
+    /// (its one `s` leaves a curve that runs 100 times faster at 100 times the
+    /// other's speed, a near-kink at the slow end). An end without a speed to
+    /// match (order 0, or a first derivative that vanishes or overflows)
+    /// takes the other end's weight `1 / speed`, and two such ends make this
+    /// [`ShapeScale::Auto`]. Not offered by
+    /// [`crate::fillet_within_deviation`] (its automatic scale is a fixed point
+    /// of one `s`).
+    Balanced,
 }
 
 impl Default for ShapeScale {
@@ -279,7 +302,7 @@ impl ShapeScale {
                 check_positive("q_scale", q)?;
                 Ok(Some((p, q)))
             }
-            ShapeScale::Auto => Ok(None),
+            ShapeScale::Auto | ShapeScale::Balanced => Ok(None),
         }
     }
 }
@@ -1339,6 +1362,7 @@ pub fn connect<P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
     let problem = prepare(p, u0, q, v0, options)?;
     match options.scale.checked()? {
         Some((alpha, beta)) => solve_structured(&problem, alpha, beta),
+        None if options.scale == ShapeScale::Balanced => energy::balanced_scale(&problem),
         None => energy::auto_scale(&problem),
     }
 }
@@ -1360,7 +1384,10 @@ pub fn connect_unchecked<P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
 ) -> Result<Connection> {
     let problem = prepare(p, u0, q, v0, options)?;
     let (alpha, beta) = options.scale.checked()?.ok_or_else(|| {
-        BezjoinError::invalid("scale", "connect_unchecked takes given scales, not Auto")
+        BezjoinError::invalid(
+            "scale",
+            "connect_unchecked takes given scales, not Auto or Balanced",
+        )
     })?;
     let (conditions, points, constraint_condition) = structured_points(&problem, alpha, beta)?;
     let (max_residual, error_estimate) = check_residuals(&problem, &conditions, &points);

@@ -203,6 +203,11 @@ pub fn fillet_within_deviation<'a>(
     match options.shape.scale {
         ShapeScale::Auto => within_deviation_auto_scale(p, q, options),
         ShapeScale::Given { .. } => within_deviation(p, q, options),
+        ShapeScale::Balanced => Err(BezjoinError::invalid(
+            "scale",
+            "the balanced scale is not offered within a deviation (its automatic scale is \
+             one s, a fixed point of the setback search): use Auto or given scales",
+        )),
     }
 }
 

@@ -142,6 +142,14 @@ impl FilletOptions {
         self.scale = ShapeScale::Auto;
         self
     }
+
+    /// The same options with both ends of the blend at one fair speed
+    /// ([`ShapeScale::Balanced`]): the blend does not depend on how fast
+    /// either curve runs in its own parameter.
+    pub fn with_balanced_scale(mut self) -> Self {
+        self.scale = ShapeScale::Balanced;
+        self
+    }
 }
 
 /// A rounded corner: `P|[a,u0]`, the blend `R`, `Q|[v0,b]`.
