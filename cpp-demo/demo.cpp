@@ -3728,12 +3728,36 @@ void check_radius_wire(Report& report) {
         for (std::size_t i = 0; i < e.size(); ++i) {
             apart = std::max({apart, std::abs(a[i] - e[i]), std::abs(b[i] - e[i])});
         }
+        // A closed 1000 x 10 rectangle (fillet_chain_balanced_scale): each corner's
+        // blend is the 10 x 10 square's at that corner.
+        auto rectangle = [](double w, double h) {
+            const double c[4][2] = {{0.0, 0.0}, {w, 0.0}, {w, h}, {0.0, h}};
+            std::vector<Curve> sides;
+            for (int i = 0; i < 4; ++i) {
+                sides.emplace_back(2, 1, std::vector<double>{c[i][0], c[i][1], c[(i + 1) % 4][0],
+                                                             c[(i + 1) % 4][1]});
+            }
+            return sides;
+        };
+        const std::vector<Curve> long_sides = rectangle(1000.0, 10.0);
+        const std::vector<Curve> square_sides = rectangle(10.0, 10.0);
+        const bezjoin::BalancedFilletChain long_chain = bezjoin::fillet_chain_balanced_scale(long_sides, o, true);
+        const bezjoin::BalancedFilletChain square_chain = bezjoin::fillet_chain_balanced_scale(square_sides, o, true);
+        for (int i = 0; i < 4; ++i) {
+            const std::vector<double> lp = long_chain.pieces.at(2 * i + 1).points();
+            const std::vector<double> sp = square_chain.pieces.at(2 * i + 1).points();
+            const std::vector<double> lc = long_sides[(i + 1) % 4].points();
+            const std::vector<double> sc = square_sides[(i + 1) % 4].points();
+            for (std::size_t k = 0; k < lp.size(); ++k) {
+                apart = std::max(apart, std::abs((lp[k] - lc[k % 2]) - (sp[k] - sc[k % 2])));
+            }
+        }
         const double worst = std::max({speeds, peaks, apart});
         const double kink = peak(automatic.blend) / peak(equal.blend);
         report.row(worst <= 1e-9 && kink > 10.0, "w.balanced-scale-ignores-edge-length", worst, 1e-9,
                    format("peak curvature: balanced %.4f on lines 1000/10, %.4f on 10/10; one-s automatic "
-                          "%.4g (%.0fx); end speeds %.6f / %.6f; connect and crossing fillet give the same blend "
-                          "to %.1e",
+                          "%.4g (%.0fx); end speeds %.6f / %.6f; connect, crossing fillet and the 1000 x 10 "
+                          "rectangle's chain give the same blend to %.1e",
                           peak(unequal.blend), peak(equal.blend), peak(automatic.blend), kink, start, end, apart));
     });
 }

@@ -744,8 +744,11 @@ BzjStatus bzj_connect_auto_scale(const struct BzjCurve *p, double u0, const stru
  * curve runs in its own parameter: a line given on `[0, 1]` or on
  * `[0, length]` gives the same blend (with [`bzj_connect_auto_scale`]'s
  * one `s` it does not, and a fast curve next to a slow one gets a
- * near-kink at the slow end). An end of order 0, or whose first derivative
- * vanishes, takes the other end's speed; two such ends give
+ * near-kink at the slow end). An end that turns or accelerates on a scale
+ * below 1 % of the chord is balanced at a higher speed than its `|P'|`
+ * (`BALANCED_SPEED_FLOOR`, docs/mathematics.md), which keeps the blend in
+ * size where an end is nearly stationary; an end of order 0, or whose
+ * derivatives all vanish, takes the other end's speed; two such ends give
  * [`bzj_connect_auto_scale`]'s answer. `options->p_scale` and
  * `options->q_scale` are ignored; `alpha` and `beta` are written to
  * `p_scale_out`, `q_scale_out` when not NULL. Same guarantee as
@@ -1130,8 +1133,8 @@ BzjStatus bzj_fillet_auto_scale(const struct BzjCurve *p, const struct BzjCurve 
  * curve runs in its own parameter (a line given on `[0, 1]` or on
  * `[0, length]`), which the one `s` of [`bzj_fillet_auto_scale`] does not:
  * there a corner of lines 1000 and 10 long (setback 1) peaks at curvature
- * 1.29e4 where lines 10 and 10 peak at 1.33. An end whose first
- * derivative vanishes takes the other end's speed. `options->p_scale` and
+ * 1.29e4 where lines 10 and 10 peak at 1.33. Near-stationary ends as in
+ * [`bzj_connect_balanced_scale`]. `options->p_scale` and
  * `options->q_scale` are ignored (not read for validity); `alpha`, `beta`
  * are written to `p_scale_out`, `q_scale_out` when not NULL. Same
  * guarantee as [`bzj_fillet`].
@@ -1313,6 +1316,26 @@ BzjStatus bzj_fillet_chain(const struct BzjCurve *const *curves, size_t curve_co
  * count of writable doubles.
  */
 BzjStatus bzj_fillet_chain_auto_scale(const struct BzjCurve *const *curves, size_t curve_count, const struct BzjFilletOptions *options, int32_t closed, struct BzjCurve **out_pieces, size_t capacity, size_t *count, double *scales_out);
+
+/**
+ * [`bzj_fillet_chain`] with every corner's blend leaving both its curves at
+ * one speed, as [`bzj_fillet_balanced_scale`] chooses it (`options->p_scale`
+ * and `options->q_scale` are ignored, not read for validity): the blends
+ * do not depend on how fast the curves run in their own parameters (a
+ * 1000 x 10 rectangle of lines gets the corners of a 10 x 10 square, where
+ * [`bzj_fillet_chain_auto_scale`]'s one `s` a corner gives near-kinks).
+ * When `scales_out` is not NULL it receives twice the corner count of
+ * doubles, `alpha` and `beta` of corner i at indices `2 i` and `2 i + 1`
+ * (the corner count: `curve_count - 1` for an open chain, `curve_count`
+ * for a closed one); it is not written by a "count only" query or on error.
+ *
+ * @return the statuses of [`bzj_fillet_chain`] (except for the scales).
+ *
+ * # Safety
+ * As [`bzj_fillet_chain`]; `scales_out` is NULL or points to twice the
+ * corner count of writable doubles.
+ */
+BzjStatus bzj_fillet_chain_balanced_scale(const struct BzjCurve *const *curves, size_t curve_count, const struct BzjFilletOptions *options, int32_t closed, struct BzjCurve **out_pieces, size_t capacity, size_t *count, double *scales_out);
 
 /**
  * The Bezier curve `R` connecting `p` at `u0` to `q` at `v0` with

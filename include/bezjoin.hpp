@@ -881,6 +881,41 @@ inline AutoScaledFilletChain fillet_chain_auto_scale(std::initializer_list<const
     return fillet_chain_auto_scale(std::vector<const Curve*>(curves), options, closed);
 }
 
+/// fillet_chain() with every corner's blend leaving both its curves at one speed.
+struct BalancedFilletChain {
+    std::vector<Curve> pieces;  // path order, as fillet_chain()
+    std::vector<double> scales;  // alpha, beta of corner i at 2 i, 2 i + 1
+};
+
+/// fillet_chain() with the scales of fillet_balanced_scale() at every corner
+/// (bzj_fillet_chain_balanced_scale); options.p_scale and options.q_scale are
+/// ignored.
+inline BalancedFilletChain fillet_chain_balanced_scale(const std::vector<const Curve*>& curves,
+                                                       const FilletOptions& options,
+                                                       bool closed = false) {
+    const std::vector<const BzjCurve*> handles = detail::handles(curves);
+    const BzjFilletOptions raw = detail::raw_fillet_options(options);
+    const int32_t closed_flag = closed ? 1 : 0;
+    std::size_t count = 0;
+    check(bzj_fillet_chain_balanced_scale(handles.data(), handles.size(), &raw, closed_flag,
+                                          nullptr, 0, &count, nullptr),
+          "bzj_fillet_chain_balanced_scale");
+    std::vector<BzjCurve*> pieces(count, nullptr);
+    std::vector<double> scales(2 * detail::corner_count(handles.size(), closed));
+    const BzjStatus status = bzj_fillet_chain_balanced_scale(
+        handles.data(), handles.size(), &raw, closed_flag, pieces.data(), pieces.size(), &count,
+        scales.empty() ? nullptr : scales.data());
+    return BalancedFilletChain{
+        detail::adopt_all(pieces, status, "bzj_fillet_chain_balanced_scale"), std::move(scales)};
+}
+
+/// fillet_chain_balanced_scale() of curves held in a vector.
+inline BalancedFilletChain fillet_chain_balanced_scale(const std::vector<Curve>& curves,
+                                                       const FilletOptions& options,
+                                                       bool closed = false) {
+    return fillet_chain_balanced_scale(detail::pointers(curves), options, closed);
+}
+
 /// Every corner of a chain rounded by radius, with one report per corner.
 struct RadiusFilletChain {
     std::vector<Curve> pieces;  // path order, as fillet_chain()

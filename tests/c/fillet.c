@@ -1,7 +1,7 @@
 /* Intersection and corner rounding through the C contract: bzj_intersect,
  * bzj_intersect_detailed, bzj_intersect_options_default, bzj_fillet,
  * bzj_fillet_auto_scale, bzj_fillet_vertex_auto_scale, bzj_fillet_balanced_scale,
- * bzj_fillet_vertex_balanced_scale, bzj_fillet_deviation,
+ * bzj_fillet_vertex_balanced_scale, bzj_fillet_chain_balanced_scale, bzj_fillet_deviation,
  * bzj_fillet_deviation_auto_scale,
  * bzj_fillet_chain and bzj_fillet_chain_auto_scale (closed
  * and open chains, one above the parallel threshold of 64 corners, checked
@@ -595,12 +595,22 @@ static void test_fillet_vertex_auto_scale(void) {
  * (cubics of speed 3x the edge): every corner gets its own positive scale,
  * written in corner order, the pieces close up with matching tangents,
  * and the count query and errors are bzj_fillet_chain's. */
-static void test_chain_auto_scale(void) {
+/* The closed triangle (0,0), (4,0), (0,3) of cubic edges of speeds 4, 5 and 3:
+ * `owned` gets the handles, `curves` the same as const pointers. */
+static void fast_triangle(BzjCurve* owned[3], const BzjCurve* curves[3]) {
     const double ab[] = {0.0, 0.0, 4.0 / 3.0, 0.0, 8.0 / 3.0, 0.0, 4.0, 0.0};
     const double bc[] = {4.0, 0.0, 8.0 / 3.0, 1.0, 4.0 / 3.0, 2.0, 0.0, 3.0};
     const double ca[] = {0.0, 3.0, 0.0, 2.0, 0.0, 1.0, 0.0, 0.0};
-    BzjCurve* owned[3] = {make(3, ab), make(3, bc), make(3, ca)};
-    const BzjCurve* curves[3] = {owned[0], owned[1], owned[2]};
+    owned[0] = make(3, ab);
+    owned[1] = make(3, bc);
+    owned[2] = make(3, ca);
+    for (int i = 0; i < 3; i++) curves[i] = owned[i];
+}
+
+static void test_chain_auto_scale(void) {
+    BzjCurve* owned[3];
+    const BzjCurve* curves[3];
+    fast_triangle(owned, curves);
     BzjFilletOptions o = fillet_options(0.5, 0.5, 2, 2);
     o.p_scale = NAN; /* ignored */
     size_t count = 0;
@@ -640,6 +650,62 @@ static void test_chain_auto_scale(void) {
                   BZJ_ERR_INVALID_ARGUMENT);
     expect_message("closed");
     EXPECT_STATUS(bzj_fillet_chain_auto_scale(curves, 3, NULL, 1, pieces, 6, &count, scales),
+                  BZJ_ERR_NULL_POINTER);
+    expect_message("options");
+    for (int i = 0; i < 3; i++) bzj_curve_free(owned[i]);
+}
+
+/* bzj_fillet_chain_balanced_scale on the triangle of test_chain_auto_scale
+ * (cubic edges of different speeds): alpha, beta of corner i at 2i, 2i+1, each
+ * corner's pair equal to bzj_fillet_vertex_balanced_scale's, every blend
+ * leaving both its edges at one speed, the pieces closed up; the count query
+ * and errors as bzj_fillet_chain's. */
+static void test_chain_balanced_scale(void) {
+    BzjCurve* owned[3];
+    const BzjCurve* curves[3];
+    fast_triangle(owned, curves);
+    BzjFilletOptions o = fillet_options(0.5, 0.5, 2, 2);
+    o.q_scale = NAN; /* ignored */
+    size_t count = 0;
+    double scales[6] = {-1.0, -1.0, -1.0, -1.0, -1.0, -1.0};
+    EXPECT_STATUS(bzj_fillet_chain_balanced_scale(curves, 3, &o, 1, NULL, 0, &count, scales),
+                  BZJ_OK);
+    CHECK(count == 6 && scales[0] == -1.0, "count query: %zu pieces, scales[0] %g", count,
+          scales[0]);
+    BzjCurve* pieces[6];
+    EXPECT_STATUS(bzj_fillet_chain_balanced_scale(curves, 3, &o, 1, pieces, 6, &count, scales),
+                  BZJ_OK);
+    for (int i = 0; i < 6; i++) {
+        double a[4], b[4];
+        eval1(pieces[i], 1.0, a);
+        eval1(pieces[(i + 1) % 6], 0.0, b);
+        CHECK(dist(a, b) < 1e-13, "pieces %d and %d are %g apart", i, (i + 1) % 6, dist(a, b));
+    }
+    for (int corner = 0; corner < 3; corner++) {
+        double a[4], b[4];
+        eval1(pieces[2 * corner + 1], 0.0, a);
+        eval1(pieces[2 * corner + 1], 1.0, b);
+        CHECK(close_to(hypot(a[2], a[3]), hypot(b[2], b[3]), 1e-12),
+              "corner %d: end speeds %g and %g", corner, hypot(a[2], a[3]), hypot(b[2], b[3]));
+        BzjCurve *pt = NULL, *r = NULL, *qt = NULL;
+        double alpha = 0.0, beta = 0.0;
+        EXPECT_STATUS(bzj_fillet_vertex_balanced_scale(owned[corner], owned[(corner + 1) % 3], &o,
+                                                       1e-12, &pt, &r, &qt, &alpha, &beta),
+                      BZJ_OK);
+        CHECK(close_to(alpha, scales[2 * corner], 1e-12) &&
+                  close_to(beta, scales[2 * corner + 1], 1e-12),
+              "corner %d: chain (%g, %g), pair (%g, %g)", corner, scales[2 * corner],
+              scales[2 * corner + 1], alpha, beta);
+        bzj_curve_free(pt);
+        bzj_curve_free(r);
+        bzj_curve_free(qt);
+    }
+    CHECK(!close_to(scales[0], scales[1], 1e-3), "corner 0: the edges' speeds differ, scales %g %g",
+          scales[0], scales[1]);
+    for (int i = 0; i < 6; i++) bzj_curve_free(pieces[i]);
+    EXPECT_STATUS(bzj_fillet_chain_balanced_scale(curves, 3, &o, 1, pieces, 5, &count, scales),
+                  BZJ_ERR_BUFFER_TOO_SMALL);
+    EXPECT_STATUS(bzj_fillet_chain_balanced_scale(curves, 3, NULL, 1, pieces, 6, &count, NULL),
                   BZJ_ERR_NULL_POINTER);
     expect_message("options");
     for (int i = 0; i < 3; i++) bzj_curve_free(owned[i]);
@@ -950,6 +1016,7 @@ int main(void) {
     test_fillet_auto_scale();
     test_fillet_vertex_auto_scale();
     test_fillet_balanced_scale();
+    test_chain_balanced_scale();
     test_fillet_deviation_auto_scale();
     test_chain();
     test_chain_auto_scale();

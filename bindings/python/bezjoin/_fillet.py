@@ -396,6 +396,13 @@ register_prototype(
      ctypes.c_int32, ctypes.POINTER(CurvePointer), ctypes.c_size_t,
      ctypes.POINTER(ctypes.c_size_t), ctypes.POINTER(ctypes.c_double)],
 )
+register_prototype(
+    "bzj_fillet_chain_balanced_scale",
+    ctypes.c_int32,
+    [ctypes.POINTER(CurvePointer), ctypes.c_size_t, ctypes.POINTER(FilletOptionsStruct),
+     ctypes.c_int32, ctypes.POINTER(CurvePointer), ctypes.c_size_t,
+     ctypes.POINTER(ctypes.c_size_t), ctypes.POINTER(ctypes.c_double)],
+)
 
 
 class DeviationFilletResult(FilletResult):
@@ -486,15 +493,20 @@ class FilletChainResult(CurveGroup):
     open chain of ``n`` curves, ``2n`` for a closed one, ending with the blend back
     to the start). ``trimmed`` and ``blends`` are the two kinds, each in order.
     ``scales``: the scale ``s`` chosen at every corner (corner ``i`` at index ``i``)
-    when the scale was automatic (the default), else ``None``.
-    ``close()`` releases them all."""
+    when the scale was automatic (the default), else ``None``. ``corner_scales``:
+    ``(p_scale, q_scale)`` used at every corner, whatever chose them (given, ``(s,
+    s)``, or the balanced ``(sigma / |P'(u0)|, sigma / |Q'(v0)|)`` of
+    ``auto_scale="balanced"``). ``close()`` releases them all."""
 
     _curve_fields = ("pieces",)
 
-    def __init__(self, pieces, closed, scales=None):
+    def __init__(self, pieces, closed, scales=None, corner_scales=None):
         self.pieces = pieces
         self.closed = closed
         self.scales = scales
+        if corner_scales is None and scales is not None:
+            corner_scales = [(s, s) for s in scales]
+        self.corner_scales = corner_scales
 
     @property
     def trimmed(self):
@@ -538,6 +550,9 @@ def fillet_chain(curves, *, setback=None, p_setback=None, q_setback=None, p_orde
     (``bzj_fillet_chain_auto_scale``; ``result.scales``), which never loops;
     giving ``p_scale``/``q_scale`` (or ``auto_scale=False``) uses those scales
     at every corner, exactly as before (see :func:`fillet`).
+    ``auto_scale="balanced"`` (``bzj_fillet_chain_balanced_scale``;
+    ``result.corner_scales``) leaves both curves of every corner at one speed,
+    so a 1000 x 10 rectangle of lines gets the corners of a 10 x 10 square.
 
     Args:
         curves: at least two :class:`Curve` objects of one dimension.
@@ -562,7 +577,7 @@ def fillet_chain(curves, *, setback=None, p_setback=None, q_setback=None, p_orde
         p_setback = q_setback = setback
     if p_setback is None or q_setback is None:
         raise TypeError("fillet_chain needs setback, or both p_setback and q_setback")
-    automatic, p_scale, q_scale = automatic_scale(auto_scale, p_scale, q_scale)
+    automatic, p_scale, q_scale = automatic_scale(auto_scale, p_scale, q_scale, balanced=True)
     lowest = min((c.degree for c in curves), default=0)
     p_order = lowest if p_order is None else index_argument(p_order, "p_order")
     q_order = lowest if q_order is None else index_argument(q_order, "q_order")
@@ -571,6 +586,19 @@ def fillet_chain(curves, *, setback=None, p_setback=None, q_setback=None, p_orde
         p_order, q_order, p_scale, q_scale,
     )
     count = ctypes.c_size_t()
+    corners = _corner_count(curve_count, closed)
+    if automatic == BALANCED:
+        # The count-only query first, as below.
+        library().call("bzj_fillet_chain_balanced_scale", array, curve_count,
+                       ctypes.byref(options), int(closed), None, 0, ctypes.byref(count), None)
+        pieces = (CurvePointer * max(count.value, 1))()
+        scales = (ctypes.c_double * max(2 * corners, 1))()
+        library().call("bzj_fillet_chain_balanced_scale", array, curve_count,
+                       ctypes.byref(options), int(closed), pieces, count.value,
+                       ctypes.byref(count), scales)
+        pairs = [(scales[2 * i], scales[2 * i + 1]) for i in range(corners)]
+        return FilletChainResult([Curve._adopt(pieces[i]) for i in range(count.value)], closed,
+                                 corner_scales=pairs)
     name = "bzj_fillet_chain_auto_scale" if automatic else "bzj_fillet_chain"
     extra = (None,) if automatic else ()
     # The count-only query checks the curves and `closed` the way the real call does.
@@ -585,7 +613,8 @@ def fillet_chain(curves, *, setback=None, p_setback=None, q_setback=None, p_orde
                                  list(scales)[:_corner_count(curve_count, closed)])
     library().call("bzj_fillet_chain", array, curve_count, ctypes.byref(options), int(closed),
                    pieces, count.value, ctypes.byref(count))
-    return FilletChainResult([Curve._adopt(pieces[i]) for i in range(count.value)], closed)
+    return FilletChainResult([Curve._adopt(pieces[i]) for i in range(count.value)], closed,
+                             corner_scales=[(p_scale, q_scale)] * corners)
 
 
 from ._connect import FairnessReportStruct  # noqa: E402  (defined with connect_geometric)

@@ -183,7 +183,49 @@ def test_auto_scale_takes_balanced_only_where_offered():
         with pytest.raises(TypeError, match="auto_scale"):
             bezjoin.fillet_vertex(p, q, setback=1, auto_scale="fair")
         with pytest.raises(TypeError, match="auto_scale"):
-            bezjoin.fillet_chain([p, q], setback=1, auto_scale="balanced")
+            bezjoin.fillet_deviation(p, q, max_deviation=0.1, auto_scale="balanced")
         expect_error("BZJ_ERR_INVALID_ARGUMENT",
                      lambda: bezjoin.fillet_vertex(p, q, setback=20, auto_scale="balanced"),
                      "p_setback")
+
+
+def test_balanced_chain_rounds_a_long_rectangle_as_a_square():
+    """A closed 1000 x 10 rectangle of lines and a 10 x 10 square, setback 1, orders 2:
+    every balanced corner blend of the rectangle is the square's blend moved to that
+    corner (the cuts are the same points relative to the corner; only the sides' speeds
+    differ), and ``corner_scales`` are that speed over each side's speed. With one s a
+    corner the long sides' corners are different curves."""
+    def rectangle(width, height):
+        corners = [(0, 0), (width, 0), (width, height), (0, height)]
+        return [Curve([corners[i], corners[(i + 1) % 4]]) for i in range(4)]
+
+    def blends(curves, mode):
+        with bezjoin.fillet_chain(curves, setback=1, p_order=2, q_order=2, closed=True,
+                                  auto_scale=mode) as result:
+            shapes = []
+            for i, blend in enumerate(result.blends):
+                # The corner after curve i is the start of curve i + 1.
+                corner = curves[(i + 1) % 4].points[0]
+                shapes.append([tuple(x - c for x, c in zip(point, corner))
+                               for point in blend.points])
+            return shapes, result.corner_scales, result.scales
+
+    square, long = rectangle(10, 10), rectangle(1000, 10)
+    try:
+        square_shapes, _, _ = blends(square, "balanced")
+        long_shapes, pairs, scales = blends(long, "balanced")
+        auto_shapes, auto_pairs, auto_scales = blends(long, True)
+    finally:
+        for curve in square + long:
+            curve.close()
+    assert scales is None and len(pairs) == 4
+    lengths = [1000, 10, 1000, 10]
+    for i, (alpha, beta) in enumerate(pairs):
+        # alpha |P'| = beta |Q'|: side i before the corner, side i + 1 after it.
+        assert math.isclose(alpha * lengths[i], beta * lengths[(i + 1) % 4], rel_tol=1e-12)
+    for a, b in zip(long_shapes, square_shapes):
+        for x, y in zip(a, b):
+            assert distance(x, y) <= 1e-9
+    assert auto_pairs == [(s, s) for s in auto_scales]
+    moved = max(distance(x, y) for a, b in zip(auto_shapes, square_shapes) for x, y in zip(a, b))
+    assert moved > 1e-2

@@ -322,3 +322,68 @@ fn the_checks_are_not_vacuous() {
     let broken = std::panic::catch_unwind(|| assert_corner(&wrong, &curves, 0, 1.0));
     assert!(broken.is_err(), "a wrong curvature range must fail");
 }
+
+/// `"auto_scale": "balanced"` by setbacks: a closed 1000 x 10 rectangle of
+/// lines gets, at every corner, the blend of a 10 x 10 square moved to that
+/// corner (the cuts lie at the same places relative to the corner; only the
+/// sides' speeds differ), and the reported scales are one speed over each
+/// side's length.
+#[test]
+fn balanced_setback_chain_rounds_a_long_rectangle_as_a_square() {
+    let rectangle = |w: f64, h: f64| {
+        json!({
+            "curves": [[[0.0, 0.0], [w, 0.0]], [[w, 0.0], [w, h]], [[w, h], [0.0, h]],
+                       [[0.0, h], [0.0, 0.0]]],
+            "closed": true, "p_setback": 1.0, "p_order": 2, "auto_scale": "balanced"
+        })
+    };
+    let corners = |job: &Value| {
+        let out = common::job_result(OP, job);
+        let corners_at: Vec<Vec<f64>> = job["curves"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|c| numbers(&c[0]))
+            .collect();
+        let pieces: Vec<BezierCurve> = out["pieces"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(bezier)
+            .collect();
+        let shapes: Vec<Vec<f64>> = (0..4)
+            .map(|i| {
+                let corner = &corners_at[(i + 1) % 4];
+                let blend = &pieces[2 * i + 1];
+                (0..=blend.degree())
+                    .flat_map(|k| (0..2).map(move |c| blend.point(k)[c] - corner[c]))
+                    .collect()
+            })
+            .collect();
+        (shapes, out)
+    };
+    let (square, _) = corners(&rectangle(10.0, 10.0));
+    let (long, out) = corners(&rectangle(1000.0, 10.0));
+    for (i, (a, b)) in long.iter().zip(&square).enumerate() {
+        let apart = a
+            .iter()
+            .zip(b)
+            .map(|(x, y)| (x - y).abs())
+            .fold(0.0, f64::max);
+        assert!(apart <= 1e-9, "corner {i}: {apart}");
+    }
+    assert_eq!(out["report"]["balanced_scale"], json!(true));
+    assert_eq!(out["report"]["auto_scale"], json!(true));
+    let lengths = [1000.0, 10.0, 1000.0, 10.0];
+    for (i, corner) in out["corners"].as_array().unwrap().iter().enumerate() {
+        let (alpha, beta) = (
+            corner["p_scale"].as_f64().unwrap(),
+            corner["q_scale"].as_f64().unwrap(),
+        );
+        let (before, after) = (alpha * lengths[i], beta * lengths[(i + 1) % 4]);
+        assert!(
+            (before - after).abs() <= 1e-12 * after,
+            "corner {i}: speeds {before}, {after}"
+        );
+    }
+}

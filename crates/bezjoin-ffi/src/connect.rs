@@ -168,8 +168,11 @@ pub unsafe extern "C" fn bzj_connect_auto_scale(
 /// curve runs in its own parameter: a line given on `[0, 1]` or on
 /// `[0, length]` gives the same blend (with [`bzj_connect_auto_scale`]'s
 /// one `s` it does not, and a fast curve next to a slow one gets a
-/// near-kink at the slow end). An end of order 0, or whose first derivative
-/// vanishes, takes the other end's speed; two such ends give
+/// near-kink at the slow end). An end that turns or accelerates on a scale
+/// below 1 % of the chord is balanced at a higher speed than its `|P'|`
+/// (`BALANCED_SPEED_FLOOR`, docs/mathematics.md), which keeps the blend in
+/// size where an end is nearly stationary; an end of order 0, or whose
+/// derivatives all vanish, takes the other end's speed; two such ends give
 /// [`bzj_connect_auto_scale`]'s answer. `options->p_scale` and
 /// `options->q_scale` are ignored; `alpha` and `beta` are written to
 /// `p_scale_out`, `q_scale_out` when not NULL. Same guarantee as

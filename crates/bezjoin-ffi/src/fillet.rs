@@ -7,8 +7,8 @@
 
 use bezjoin_core::BezjoinError;
 use bezjoin_core::{
-    ChainFilletOptions, Curve, DeviationFilletOptions, Fillet, FilletOptions, ShapeScale, fillet,
-    fillet_chain, fillet_vertex, fillet_within_deviation,
+    ChainCorner, ChainFilletOptions, Curve, DeviationFilletOptions, Fillet, FilletOptions,
+    ShapeScale, fillet, fillet_chain, fillet_vertex, fillet_within_deviation,
 };
 use bezjoin_core::{IntersectOptions, Intersection, IntersectionKind, intersect};
 
@@ -414,8 +414,8 @@ pub unsafe extern "C" fn bzj_fillet_auto_scale(
 /// curve runs in its own parameter (a line given on `[0, 1]` or on
 /// `[0, length]`), which the one `s` of [`bzj_fillet_auto_scale`] does not:
 /// there a corner of lines 1000 and 10 long (setback 1) peaks at curvature
-/// 1.29e4 where lines 10 and 10 peak at 1.33. An end whose first
-/// derivative vanishes takes the other end's speed. `options->p_scale` and
+/// 1.29e4 where lines 10 and 10 peak at 1.33. Near-stationary ends as in
+/// [`bzj_connect_balanced_scale`]. `options->p_scale` and
 /// `options->q_scale` are ignored (not read for validity); `alpha`, `beta`
 /// are written to `p_scale_out`, `q_scale_out` when not NULL. Same
 /// guarantee as [`bzj_fillet`].
@@ -812,20 +812,9 @@ pub unsafe extern "C" fn bzj_fillet_chain(
     capacity: usize,
     count: *mut usize,
 ) -> BzjStatus {
-    // SAFETY: caller contract (`scales_out` NULL is allowed).
-    unsafe {
-        fillet_chain_with_scale(
-            curves,
-            curve_count,
-            options,
-            closed,
-            false,
-            out_pieces,
-            capacity,
-            count,
-            std::ptr::null_mut(),
-        )
-    }
+    let (pieces, scale) = ((out_pieces, capacity, count), ChainScale::Given);
+    // SAFETY: caller contract.
+    unsafe { fillet_chain_with_scale(curves, curve_count, options, closed, pieces, scale) }
 }
 
 /// [`bzj_fillet_chain`] with `alpha = beta = s` chosen automatically at
@@ -853,37 +842,70 @@ pub unsafe extern "C" fn bzj_fillet_chain_auto_scale(
     count: *mut usize,
     scales_out: *mut f64,
 ) -> BzjStatus {
+    let (pieces, scale) = ((out_pieces, capacity, count), ChainScale::Auto(scales_out));
     // SAFETY: caller contract.
-    unsafe {
-        fillet_chain_with_scale(
-            curves,
-            curve_count,
-            options,
-            closed,
-            true,
-            out_pieces,
-            capacity,
-            count,
-            scales_out,
-        )
-    }
+    unsafe { fillet_chain_with_scale(curves, curve_count, options, closed, pieces, scale) }
 }
 
-/// The body of `bzj_fillet_chain` and `bzj_fillet_chain_auto_scale`.
+/// [`bzj_fillet_chain`] with every corner's blend leaving both its curves at
+/// one speed, as [`bzj_fillet_balanced_scale`] chooses it (`options->p_scale`
+/// and `options->q_scale` are ignored, not read for validity): the blends
+/// do not depend on how fast the curves run in their own parameters (a
+/// 1000 x 10 rectangle of lines gets the corners of a 10 x 10 square, where
+/// [`bzj_fillet_chain_auto_scale`]'s one `s` a corner gives near-kinks).
+/// When `scales_out` is not NULL it receives twice the corner count of
+/// doubles, `alpha` and `beta` of corner i at indices `2 i` and `2 i + 1`
+/// (the corner count: `curve_count - 1` for an open chain, `curve_count`
+/// for a closed one); it is not written by a "count only" query or on error.
+///
+/// @return the statuses of [`bzj_fillet_chain`] (except for the scales).
 ///
 /// # Safety
-/// As [`bzj_fillet_chain_auto_scale`].
+/// As [`bzj_fillet_chain`]; `scales_out` is NULL or points to twice the
+/// corner count of writable doubles.
+#[unsafe(no_mangle)]
 #[allow(clippy::too_many_arguments)]
+pub unsafe extern "C" fn bzj_fillet_chain_balanced_scale(
+    curves: *const *const BzjCurve,
+    curve_count: usize,
+    options: *const BzjFilletOptions,
+    closed: i32,
+    out_pieces: *mut *mut BzjCurve,
+    capacity: usize,
+    count: *mut usize,
+    scales_out: *mut f64,
+) -> BzjStatus {
+    let (pieces, scale) = (
+        (out_pieces, capacity, count),
+        ChainScale::Balanced(scales_out),
+    );
+    // SAFETY: caller contract.
+    unsafe { fillet_chain_with_scale(curves, curve_count, options, closed, pieces, scale) }
+}
+
+/// How a chain fillet's scales are chosen, and where the chosen ones go.
+#[derive(Clone, Copy)]
+enum ChainScale {
+    /// `options->p_scale`, `options->q_scale` at every corner.
+    Given,
+    /// `ShapeScale::Auto`; corner i's `s` at index i (NULL: not written).
+    Auto(*mut f64),
+    /// `ShapeScale::Balanced`; corner i's `alpha`, `beta` at `2 i`, `2 i + 1`.
+    Balanced(*mut f64),
+}
+
+/// The body of `bzj_fillet_chain` and its automatic and balanced variants;
+/// `(out_pieces, capacity, count)` as they take them.
+///
+/// # Safety
+/// As [`bzj_fillet_chain_balanced_scale`].
 unsafe fn fillet_chain_with_scale(
     curves: *const *const BzjCurve,
     curve_count: usize,
     options: *const BzjFilletOptions,
     closed: i32,
-    auto_scale: bool,
-    out_pieces: *mut *mut BzjCurve,
-    capacity: usize,
-    count: *mut usize,
-    scales_out: *mut f64,
+    (out_pieces, capacity, count): (*mut *mut BzjCurve, usize, *mut usize),
+    scale: ChainScale,
 ) -> BzjStatus {
     // SAFETY: caller promises NULL or `capacity` writable handle pointers.
     let pieces = unsafe { chain_pieces_out(out_pieces, capacity) };
@@ -905,13 +927,22 @@ unsafe fn fillet_chain_with_scale(
         };
         let mut core = ChainFilletOptions::open(options.to_core());
         core.closed = closed;
-        if auto_scale {
-            core.fillet.scale = ShapeScale::Auto;
-        }
+        let (scales_out, scales): (_, fn(&ChainCorner) -> Vec<f64>) = match scale {
+            ChainScale::Given => (std::ptr::null_mut(), |_| Vec::new()),
+            ChainScale::Auto(out) => {
+                core.fillet.scale = ShapeScale::Auto;
+                (out, |c| vec![c.scales.0])
+            }
+            ChainScale::Balanced(out) => {
+                core.fillet.scale = ShapeScale::Balanced;
+                (out, |c| vec![c.scales.0, c.scales.1])
+            }
+        };
         let rounded = fillet_chain(&owned, &core)?;
         if !scales_out.is_null() {
-            let scales: Vec<f64> = rounded.corners.iter().map(|c| c.scales.0).collect();
-            // SAFETY: caller promises room for the corner count of doubles.
+            let scales: Vec<f64> = rounded.corners.iter().flat_map(scales).collect();
+            // SAFETY: caller promises room for the corner count of doubles
+            // (twice that for the balanced scales).
             unsafe { output_slice(scales_out, scales.len(), scales.len(), "scales_out") }?
                 .copy_from_slice(&scales);
         }

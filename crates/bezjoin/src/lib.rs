@@ -55,8 +55,8 @@ pub use arclength::DEFAULT_ARC_LENGTH_ACCURACY;
 pub use basis::KnotSide;
 pub use bezier::{BezierCurve, MAX_DEGREE, distance};
 pub use connect::{
-    AUTO_SCALE_SEARCH_DECADES, CONNECT_RESIDUAL_LIMIT, ConnectOptions, Connection,
-    MAX_CONNECT_DEGREE, PointConstraint, ShapeScale, check_connect_degree, connect,
+    AUTO_SCALE_SEARCH_DECADES, BALANCED_SPEED_FLOOR, CONNECT_RESIDUAL_LIMIT, ConnectOptions,
+    Connection, MAX_CONNECT_DEGREE, PointConstraint, ShapeScale, check_connect_degree, connect,
     connect_dense_reference, connect_unchecked, fairness_energy,
 };
 pub use curve::{AsCurveRef, Curve, CurveJet, CurveRef};

@@ -8,11 +8,11 @@
 mod common;
 
 use bezjoin_core::{
-    AUTO_SCALE_SEARCH_DECADES, BezierCurve, BezjoinError, ConnectOptions, Connection,
-    DeviationFilletOptions, FilletOptions, NurbsCurve, ShapeScale, connect, fairness_energy,
-    fillet_vertex, fillet_within_deviation,
+    AUTO_SCALE_SEARCH_DECADES, BALANCED_SPEED_FLOOR, BezierCurve, BezjoinError, ChainFilletOptions,
+    ConnectOptions, Connection, DeviationFilletOptions, FilletOptions, NurbsCurve, ShapeScale,
+    connect, fairness_energy, fillet_chain, fillet_vertex, fillet_within_deviation,
 };
-use common::Random;
+use common::{Random, distance};
 
 fn norm(v: &[f64]) -> f64 {
     v.iter().map(|x| x * x).sum::<f64>().sqrt()
@@ -119,6 +119,10 @@ fn the_balanced_blend_does_not_depend_on_the_inputs_parametrisation() {
 
 #[test]
 fn both_ends_of_the_balanced_blend_run_at_one_speed() {
+    // The blend leaves each end at sigma |X'| / speed(X), speed(X) = max(|X'|,
+    // the floor terms): at one speed sigma where no floor applies.
+    let mut floored = 0;
+    let mut compared = 0;
     for (i, (p, u0, q, v0, kp, kq)) in pairs(40).into_iter().enumerate() {
         let options = ConnectOptions::new(kp, kq).with_balanced_scale();
         let Ok(c) = connect(&p, u0, &q, v0, &options) else {
@@ -126,30 +130,87 @@ fn both_ends_of_the_balanced_blend_run_at_one_speed() {
         };
         let start = norm(&c.curve.derivative_at(0.0, 1));
         let end = norm(&c.curve.derivative_at(1.0, 1));
+        let chord = distance(&p.eval(u0), &q.eval(v0));
+        let (p_speed, p_floor) = speed_and_floor(&p, u0, kp, chord);
+        let (q_speed, q_floor) = speed_and_floor(&q, v0, kq, chord);
+        // alpha = sigma / max(|P'|, floor), beta = sigma / max(|Q'|, floor).
+        let sigma = c.p_scale * p_speed.max(p_floor);
         assert!(
-            (start - end).abs() <= 1e-9 * start.max(end),
-            "pair {i}: |R'(0)| = {start}, |R'(1)| = {end}"
+            (c.q_scale * q_speed.max(q_floor) - sigma).abs() <= 1e-12 * sigma,
+            "pair {i}: the scales are not one sigma"
         );
-        // ... and that speed is alpha |P'(u0)| = beta |Q'(v0)|.
-        let p_speed = norm(&p.derivative_at(u0, 1));
         assert!(
-            (c.p_scale * p_speed - start).abs() <= 1e-9 * start,
+            (start - c.p_scale * p_speed).abs() <= 1e-9 * start,
             "pair {i}"
+        );
+        assert!((end - c.q_scale * q_speed).abs() <= 1e-9 * end, "pair {i}");
+        if p_floor <= p_speed && q_floor <= q_speed {
+            assert!(
+                (start - end).abs() <= 1e-9 * start.max(end),
+                "pair {i}: |R'(0)| = {start}, |R'(1)| = {end}"
+            );
+            compared += 1;
+        } else {
+            floored += 1;
+        }
+    }
+    // Random cubics with chords of 1 to 3: the floor is the exception.
+    assert!(
+        compared >= 30 && floored <= 5,
+        "{compared} compared, {floored} floored"
+    );
+}
+
+/// `|X'(u)|` and the largest floor term `((BALANCED_SPEED_FLOOR c)^(j-1)
+/// |X^(j)(u)|)^(1/j)`, `j = 2..=order`, of the balanced scale.
+fn speed_and_floor(x: &BezierCurve, u: f64, order: usize, chord: f64) -> (f64, f64) {
+    let floor = (2..=order)
+        .map(|j| {
+            ((BALANCED_SPEED_FLOOR * chord).powi(j as i32 - 1) * norm(&x.derivative_at(u, j)))
+                .powf(1.0 / j as f64)
+        })
+        .fold(0.0, f64::max);
+    (norm(&x.derivative_at(u, 1)), floor)
+}
+
+#[test]
+fn an_end_that_turns_within_the_floor_keeps_the_blend_in_size() {
+    // User testing, session 41: P ends at (6 + eps, 1) with its last two poles
+    // eps apart (|P'(1)| = 3 eps, a near-stationary end), Q runs up x = 10.
+    // Without the floor alpha = sigma / (3 eps) made control points of 1.2e26
+    // (eps = 1e-15) to 164 (eps = 1e-3) on a shape 10 wide. The blend now stays
+    // within a few times the shape, continuous at both ends, and the same when
+    // P is reparametrised (also for eps = 0, an exactly stationary end).
+    let q = BezierCurve::from_rows(&[[10.0, -2.0], [10.0, 3.0], [10.0, 8.0]]).unwrap();
+    for eps in [0.0, 1e-15, 1e-12, 1e-9, 1e-6, 1e-3] {
+        let p = BezierCurve::from_rows(&[[0.0, 0.0], [3.0, 0.0], [6.0, 1.0], [6.0 + eps, 1.0]])
+            .unwrap();
+        let options = ConnectOptions::new(2, 2).with_balanced_scale();
+        let c = connect(&p, 1.0, &q, 0.2, &options).unwrap();
+        let size = c.curve.coordinate_scale();
+        assert!(size < 30.0, "eps {eps:e}: control points up to {size}");
+        let slow = on_domain(&p, 1e-3);
+        let moved = connect(&slow, 1e-3, &q, 0.2, &options).unwrap();
+        let difference = relative_difference(&moved.curve, &c.curve);
+        assert!(
+            difference < 1e-9,
+            "eps {eps:e}: reparametrised, moved by {difference:e}"
         );
     }
 }
 
-/// The connection with the balanced scales of speed `sigma`.
+/// The connection with the balanced scales of speed `sigma`:
+/// `sigma / max(|X'|, floor)` at each end.
 fn at_speed(
-    p: &BezierCurve,
-    u0: f64,
-    q: &BezierCurve,
-    v0: f64,
+    (p, u0, q, v0): (&BezierCurve, f64, &BezierCurve, f64),
     options: &ConnectOptions,
     sigma: f64,
 ) -> Option<Connection> {
-    let alpha = sigma / norm(&p.derivative_at(u0, 1));
-    let beta = sigma / norm(&q.derivative_at(v0, 1));
+    let chord = distance(&p.eval(u0), &q.eval(v0));
+    let (p_speed, p_floor) = speed_and_floor(p, u0, options.p_order, chord);
+    let (q_speed, q_floor) = speed_and_floor(q, v0, options.q_order, chord);
+    let alpha = sigma / p_speed.max(p_floor);
+    let beta = sigma / q_speed.max(q_floor);
     connect(p, u0, q, v0, &options.clone().with_scales(alpha, beta)).ok()
 }
 
@@ -171,7 +232,7 @@ fn the_balanced_speed_minimises_the_fairness_energy_over_the_range() {
         );
         for j in 0..=400 {
             let sigma = (chord.ln() - half_width + 2.0 * half_width * j as f64 / 400.0).exp();
-            if let Some(other) = at_speed(&p, u0, &q, v0, &options, sigma) {
+            if let Some(other) = at_speed((&p, u0, &q, v0), &options, sigma) {
                 let energy = fairness_energy(&other.curve);
                 assert!(
                     best <= energy * (1.0 + 1e-9) + 1e-12,
@@ -230,5 +291,45 @@ fn the_deviation_fillet_refuses_the_balanced_scale_naming_it() {
     match fillet_within_deviation(&p, &q, &options) {
         Err(BezjoinError::InvalidArgument { name, .. }) => assert_eq!(name, "scale"),
         other => panic!("expected InvalidArgument(scale), got {other:?}"),
+    }
+}
+
+#[test]
+fn a_chain_takes_the_balanced_scale_at_every_corner() {
+    // A closed 1000 x 10 rectangle: every corner's blend is the 10 x 10
+    // square's blend at that corner, and each corner's scales are those of
+    // the corner rounded alone.
+    let rectangle = |w: f64, h: f64| {
+        let c = [[0.0, 0.0], [w, 0.0], [w, h], [0.0, h]];
+        (0..4)
+            .map(|i| BezierCurve::from_rows(&[c[i], c[(i + 1) % 4]]).unwrap())
+            .collect::<Vec<_>>()
+    };
+    let options =
+        ChainFilletOptions::closed(FilletOptions::new(1.0, 1.0, 2, 2).with_balanced_scale());
+    let square = fillet_chain(&rectangle(10.0, 10.0), &options).unwrap();
+    let long_sides = rectangle(1000.0, 10.0);
+    let long = fillet_chain(&long_sides, &options).unwrap();
+    for i in 0..4 {
+        let corner = long_sides[(i + 1) % 4].point(0);
+        let square_corner = rectangle(10.0, 10.0)[(i + 1) % 4].point(0).to_vec();
+        let (a, b) = (&long.pieces[2 * i + 1], &square.pieces[2 * i + 1]);
+        let (Some(a), Some(b)) = (a.as_bezier(), b.as_bezier()) else {
+            panic!("corner {i}: the blends are Bezier curves");
+        };
+        for k in 0..=a.degree() {
+            for c in 0..2 {
+                let moved = (a.point(k)[c] - corner[c]) - (b.point(k)[c] - square_corner[c]);
+                assert!(moved.abs() <= 1e-9, "corner {i}, point {k}: {moved:e}");
+            }
+        }
+        let alone = fillet_vertex(
+            &long_sides[i],
+            &long_sides[(i + 1) % 4],
+            &FilletOptions::new(1.0, 1.0, 2, 2).with_balanced_scale(),
+            0.0,
+        )
+        .unwrap();
+        assert_eq!(long.corners[i].scales, (alone.p_scale, alone.q_scale));
     }
 }

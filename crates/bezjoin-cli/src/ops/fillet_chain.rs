@@ -27,7 +27,7 @@
 
 use bezjoin_core::{
     BezjoinError, ChainFillet, ChainFilletOptions, Curve, CurveRef, FilletOptions, NurbsCurve,
-    RadiusChainFillet, fillet_chain, fillet_radius_chain,
+    RadiusChainFillet, ShapeScale, fillet_chain, fillet_radius_chain,
 };
 use serde_json::{Value, json};
 
@@ -132,7 +132,7 @@ pub fn parse(job: &Located) -> Result<ChainJob, JobError> {
         .map(|f| f.count())
         .transpose()?
         .unwrap_or(p_order);
-    let fillet = read_scales(&obj, FilletOptions::new(dp, dq, p_order, q_order), false)?;
+    let fillet = read_scales(&obj, FilletOptions::new(dp, dq, p_order, q_order), true)?;
     obj.finish()?;
     let options = if closed {
         ChainFilletOptions::closed(fillet)
@@ -314,6 +314,8 @@ fn outcome(curves: &[Curve], options: &ChainFilletOptions, chain: &ChainFillet) 
             "q_order": kq,
             "requested_p_setback": options.fillet.p_setback,
             "requested_q_setback": options.fillet.q_setback,
+            "auto_scale": !matches!(options.fillet.scale, ShapeScale::Given { .. }),
+            "balanced_scale": options.fillet.scale == ShapeScale::Balanced,
             "chain_knot_intervals": intervals,
             "measured_continuity": checks.iter().map(JoinCheck::to_json).collect::<Vec<_>>(),
         }

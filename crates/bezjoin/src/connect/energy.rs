@@ -67,21 +67,51 @@ pub(crate) struct ScaleWeights {
 /// `alpha = beta = s`.
 pub(crate) const EQUAL_WEIGHTS: ScaleWeights = ScaleWeights { p: 1.0, q: 1.0 };
 
-/// `|P'(u0)|` when P's end has order at least 1 and that speed is finite
-/// and positive.
-fn end_speed(derivatives: &DMatrix<f64>) -> Option<f64> {
-    let speed = (derivatives.nrows() > 1).then(|| derivatives.row(1).norm())?;
-    (speed.is_finite() && speed > 0.0).then_some(speed)
+/// The floor of [`end_speed`] relative to the chord `c`: an end whose
+/// unit-speed jet has a derivative `j >= 2` above `(BALANCED_SPEED_FLOOR c)^(1-j)`
+/// (its length scale of order `j`, `(|X'|^j / |X^(j)|)^(1/(j-1))`, is below 1 %
+/// of the chord: it turns or accelerates within that) is balanced at a higher
+/// speed than `|X'|`, so that the blend's `R^(j)` at that end stays within
+/// `sigma^j (BALANCED_SPEED_FLOOR c)^(1-j)` (user testing, session 41: a
+/// cubic whose last two poles are 1e-9 apart gave `alpha = 1.4e7` and
+/// control points of 1.7e14).
+pub const BALANCED_SPEED_FLOOR: f64 = 1e-2;
+
+/// The speed an end of the blend is balanced at: `|X'|` (`X^(j)` the end's jet,
+/// `c` the chord `|Q(v0) - P(u0)|`), raised to
+/// `((BALANCED_SPEED_FLOOR c)^(j-1) |X^(j)|)^(1/j)` for every order `j = 2..=k`
+/// when larger ([`BALANCED_SPEED_FLOOR`]). Every term scales by `c'` when the
+/// curve is reparametrised by `u = c' v`, so the weights `1 / speed` keep the
+/// blend independent of linear reparametrisations, also at an end whose first
+/// derivative vanishes. `None` when no term is positive and finite (order 0,
+/// or a jet that vanishes or overflows).
+fn end_speed(derivatives: &DMatrix<f64>, chord: f64) -> Option<f64> {
+    let mut speed = 0.0f64;
+    for j in 1..derivatives.nrows() {
+        let size = derivatives.row(j).norm();
+        let term = if j == 1 {
+            size
+        } else {
+            ((BALANCED_SPEED_FLOOR * chord).powi(j as i32 - 1) * size).powf(1.0 / j as f64)
+        };
+        if !term.is_finite() {
+            return None;
+        }
+        speed = speed.max(term);
+    }
+    (speed > 0.0).then_some(speed)
 }
 
 /// The weights of [`ShapeScale::Balanced`](super::ShapeScale::Balanced):
-/// `1 / |P'(u0)|`, `1 / |Q'(v0)|`; an end without a usable speed (order 0,
-/// a vanishing or overflowing first derivative) takes the other end's, and
-/// with neither [`EQUAL_WEIGHTS`].
+/// `1 / speed` at each end ([`end_speed`], `|P'(u0)|` and `|Q'(v0)|` unless
+/// an end turns or accelerates within 1 % of the chord); an end without a
+/// usable speed (order 0, a jet that vanishes or overflows) takes the other
+/// end's, and with neither [`EQUAL_WEIGHTS`].
 pub(crate) fn balanced_weights(problem: &Problem) -> ScaleWeights {
+    let chord = problem.chord();
     match (
-        end_speed(&problem.p_derivatives),
-        end_speed(&problem.q_derivatives),
+        end_speed(&problem.p_derivatives, chord),
+        end_speed(&problem.q_derivatives, chord),
     ) {
         (Some(p), Some(q)) => ScaleWeights {
             p: 1.0 / p,

@@ -96,7 +96,7 @@ use crate::error::{BezjoinError, Result, check_finite, check_open_range, check_p
 use crate::linalg::solve_checked;
 
 pub use dense::connect_dense_reference;
-pub use energy::{AUTO_SCALE_SEARCH_DECADES, fairness_energy};
+pub use energy::{AUTO_SCALE_SEARCH_DECADES, BALANCED_SPEED_FLOOR, fairness_energy};
 pub(crate) use energy::{EQUAL_WEIGHTS, natural_scale};
 
 /// The promised worst relative residual of (1') and (2) (see the module
@@ -276,9 +276,13 @@ pub enum ShapeScale {
     /// or `Q` linearly (a line of length 1000 given on `[0, 1]` or on
     /// `[0, 1000]`) gives the same blend, which [`ShapeScale::Auto`] does not
     /// (its one `s` leaves a curve that runs 100 times faster at 100 times the
-    /// other's speed, a near-kink at the slow end). An end without a speed to
-    /// match (order 0, or a first derivative that vanishes or overflows)
-    /// takes the other end's weight `1 / speed`, and two such ends make this
+    /// other's speed, a near-kink at the slow end). An end that turns or
+    /// accelerates on a scale below 1 % of the chord is balanced at a higher
+    /// speed than `|P'(u0)|` ([`BALANCED_SPEED_FLOOR`]; that end then leaves
+    /// slower than `sigma`), which keeps the blend in size at near-stationary
+    /// ends and keeps the reparametrisation guarantee where `P'(u0) = 0`. An
+    /// end without a speed (order 0, a jet that vanishes or overflows) takes
+    /// the other end's weight, and two such ends make this
     /// [`ShapeScale::Auto`]. Not offered by
     /// [`crate::fillet_within_deviation`] (its automatic scale is a fixed point
     /// of one `s`).
