@@ -251,22 +251,10 @@ fn balanced_scale_leaves_both_curves_at_one_speed() {
     assert_eq!(result["report"]["balanced_scale"], json!(true));
     let alpha = result["report"]["p_scale"].as_f64().unwrap();
     let beta = result["report"]["q_scale"].as_f64().unwrap();
-    let points: Vec<Vec<f64>> = result["curve"]["points"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|p| {
-            p.as_array()
-                .unwrap()
-                .iter()
-                .map(|x| x.as_f64().unwrap())
-                .collect()
-        })
-        .collect();
-    let n = (points.len() - 1) as f64;
-    let speed = |a: &[f64], b: &[f64]| n * ((b[0] - a[0]).powi(2) + (b[1] - a[1]).powi(2)).sqrt();
-    let start = speed(&points[0], &points[1]);
-    let end = speed(&points[points.len() - 2], &points[points.len() - 1]);
+    let r = common::bezier_of(&result["curve"]);
+    let norm = |v: Vec<f64>| v.iter().map(|x| x * x).sum::<f64>().sqrt();
+    let start = norm(r.derivative_at(0.0, 1));
+    let end = norm(r.derivative_at(1.0, 1));
     assert!(
         (start - end).abs() <= 1e-12 * start,
         "|R'(0)| = {start}, |R'(1)| = {end}"
