@@ -747,9 +747,9 @@ BzjStatus bzj_connect_auto_scale(const struct BzjCurve *p, double u0, const stru
  * near-kink at the slow end). An end that turns or accelerates on a scale
  * below 1 % of the chord is balanced at a higher speed than its `|P'|`
  * (`BALANCED_SPEED_FLOOR`, docs/mathematics.md), which keeps the blend in
- * size where an end is nearly stationary; an end of order 0, or whose
- * derivatives all vanish, takes the other end's speed; two such ends give
- * [`bzj_connect_auto_scale`]'s answer. `options->p_scale` and
+ * size where an end is nearly stationary. Where the two speeds agree to
+ * 1e-9, or an end has none (order 0, or derivatives that all vanish), the
+ * answer is [`bzj_connect_auto_scale`]'s, the same bits. `options->p_scale` and
  * `options->q_scale` are ignored; `alpha` and `beta` are written to
  * `p_scale_out`, `q_scale_out` when not NULL. Same guarantee as
  * [`bzj_connect`].

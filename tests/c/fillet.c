@@ -440,6 +440,15 @@ static int close_to(double a, double b, double tol) {
     return fabs(a - b) <= tol * fmax(1.0, fabs(b));
 }
 
+/* The plane blend r leaves its two ends at one speed: |r'(0)| = |r'(1)|. */
+static void check_one_speed(const BzjCurve* r, const char* what) {
+    double a[4], b[4];
+    eval1(r, 0.0, a);
+    eval1(r, 1.0, b);
+    CHECK(close_to(hypot(a[2], a[3]), hypot(b[2], b[3]), 1e-12), "%s: end speeds %g and %g",
+          what, hypot(a[2], a[3]), hypot(b[2], b[3]));
+}
+
 static void test_fillet_balanced_scale(void) {
     const double long_edge[] = {-1000.0, 0.0, 0.0, 0.0};
     const double short_edge[] = {-10.0, 0.0, 0.0, 0.0};
@@ -468,11 +477,7 @@ static void test_fillet_balanced_scale(void) {
         CHECK(fabs(unequal[i] - equal[i]) < 1e-12, "control coordinate %d: %g vs %g", i,
               unequal[i], equal[i]);
     }
-    double a[4], b[4];
-    eval1(r, 0.0, a);
-    eval1(r, 1.0, b);
-    CHECK(close_to(hypot(a[2], a[3]), hypot(b[2], b[3]), 1e-12), "end speeds %g and %g",
-          hypot(a[2], a[3]), hypot(b[2], b[3]));
+    check_one_speed(r, "vertex, lines 1000 and 10");
     bzj_curve_free(pt);
     bzj_curve_free(r);
     bzj_curve_free(qt);
@@ -501,10 +506,7 @@ static void test_fillet_balanced_scale(void) {
     BzjFilletOptions c = fillet_options(0.5, 0.5, 3, 3);
     EXPECT_STATUS(bzj_fillet_balanced_scale(p, qc, &c, &pt, &r, &qt, &alpha, &beta), BZJ_OK);
     CHECK(alpha > 0.0 && beta > 0.0 && isfinite(alpha * beta), "scales %g and %g", alpha, beta);
-    eval1(r, 0.0, a);
-    eval1(r, 1.0, b);
-    CHECK(close_to(hypot(a[2], a[3]), hypot(b[2], b[3]), 1e-12), "end speeds %g and %g",
-          hypot(a[2], a[3]), hypot(b[2], b[3]));
+    check_one_speed(r, "crossing");
     bzj_curve_free(pt);
     bzj_curve_free(r);
     bzj_curve_free(qt);
@@ -682,11 +684,7 @@ static void test_chain_balanced_scale(void) {
         CHECK(dist(a, b) < 1e-13, "pieces %d and %d are %g apart", i, (i + 1) % 6, dist(a, b));
     }
     for (int corner = 0; corner < 3; corner++) {
-        double a[4], b[4];
-        eval1(pieces[2 * corner + 1], 0.0, a);
-        eval1(pieces[2 * corner + 1], 1.0, b);
-        CHECK(close_to(hypot(a[2], a[3]), hypot(b[2], b[3]), 1e-12),
-              "corner %d: end speeds %g and %g", corner, hypot(a[2], a[3]), hypot(b[2], b[3]));
+        check_one_speed(pieces[2 * corner + 1], "chain corner");
         BzjCurve *pt = NULL, *r = NULL, *qt = NULL;
         double alpha = 0.0, beta = 0.0;
         EXPECT_STATUS(bzj_fillet_vertex_balanced_scale(owned[corner], owned[(corner + 1) % 3], &o,

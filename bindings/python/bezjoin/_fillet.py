@@ -587,34 +587,30 @@ def fillet_chain(curves, *, setback=None, p_setback=None, q_setback=None, p_orde
     )
     count = ctypes.c_size_t()
     corners = _corner_count(curve_count, closed)
-    if automatic == BALANCED:
-        # The count-only query first, as below.
-        library().call("bzj_fillet_chain_balanced_scale", array, curve_count,
-                       ctypes.byref(options), int(closed), None, 0, ctypes.byref(count), None)
-        pieces = (CurvePointer * max(count.value, 1))()
-        scales = (ctypes.c_double * max(2 * corners, 1))()
-        library().call("bzj_fillet_chain_balanced_scale", array, curve_count,
-                       ctypes.byref(options), int(closed), pieces, count.value,
-                       ctypes.byref(count), scales)
-        pairs = [(scales[2 * i], scales[2 * i + 1]) for i in range(corners)]
-        return FilletChainResult([Curve._adopt(pieces[i]) for i in range(count.value)], closed,
-                                 corner_scales=pairs)
-    name = "bzj_fillet_chain_auto_scale" if automatic else "bzj_fillet_chain"
-    extra = (None,) if automatic else ()
+    names = {False: "bzj_fillet_chain", True: "bzj_fillet_chain_auto_scale",
+             BALANCED: "bzj_fillet_chain_balanced_scale"}
+    extra = () if automatic is False else (None,)
     # The count-only query checks the curves and `closed` the way the real call does.
-    library().call(name, array, curve_count, ctypes.byref(options), int(closed), None, 0,
-                   ctypes.byref(count), *extra)
+    library().call(names[automatic], array, curve_count, ctypes.byref(options), int(closed),
+                   None, 0, ctypes.byref(count), *extra)
     pieces = (CurvePointer * max(count.value, 1))()
-    if automatic:
-        scales = (ctypes.c_double * max(_corner_count(curve_count, closed), 1))()
-        library().call("bzj_fillet_chain_auto_scale", array, curve_count, ctypes.byref(options),
-                       int(closed), pieces, count.value, ctypes.byref(count), scales)
+    arguments = (array, curve_count, ctypes.byref(options), int(closed), pieces, count.value,
+                 ctypes.byref(count))
+
+    def result(**scales):
         return FilletChainResult([Curve._adopt(pieces[i]) for i in range(count.value)], closed,
-                                 list(scales)[:_corner_count(curve_count, closed)])
-    library().call("bzj_fillet_chain", array, curve_count, ctypes.byref(options), int(closed),
-                   pieces, count.value, ctypes.byref(count))
-    return FilletChainResult([Curve._adopt(pieces[i]) for i in range(count.value)], closed,
-                             corner_scales=[(p_scale, q_scale)] * corners)
+                                 **scales)
+
+    if automatic == BALANCED:
+        scales = (ctypes.c_double * max(2 * corners, 1))()
+        library().call("bzj_fillet_chain_balanced_scale", *arguments, scales)
+        return result(corner_scales=[(scales[2 * i], scales[2 * i + 1]) for i in range(corners)])
+    if automatic:
+        scales = (ctypes.c_double * max(corners, 1))()
+        library().call("bzj_fillet_chain_auto_scale", *arguments, scales)
+        return result(scales=list(scales)[:corners])
+    library().call("bzj_fillet_chain", *arguments)
+    return result(corner_scales=[(p_scale, q_scale)] * corners)
 
 
 from ._connect import FairnessReportStruct  # noqa: E402  (defined with connect_geometric)

@@ -37,12 +37,7 @@ fn rounded(job: &Value) -> (Vec<BezierCurve>, Value) {
 /// (and its derivative); with order 2 the slope of the curvature jumps
 /// (the check can tell G2 from G3). Returns the number of joins.
 fn assert_geometric_chain(out: &Value, order: usize, closed: bool) -> usize {
-    let pieces: Vec<BezierCurve> = out["pieces"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(bezier)
-        .collect();
+    let pieces = printed_pieces(out);
     // A closed chain also joins its last piece to its first.
     let joins = pieces.len() - usize::from(!closed);
     for j in 0..joins {
@@ -53,6 +48,16 @@ fn assert_geometric_chain(out: &Value, order: usize, closed: bool) -> usize {
         assert_geometric_join(&format!("join {j}"), a, b, blend, order);
     }
     joins
+}
+
+/// The printed chain's pieces, in path order.
+fn printed_pieces(out: &Value) -> Vec<BezierCurve> {
+    out["pieces"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(bezier)
+        .collect()
 }
 
 /// Signed curvature of a plane curve at `t`.
@@ -345,12 +350,7 @@ fn balanced_setback_chain_rounds_a_long_rectangle_as_a_square() {
             .iter()
             .map(|c| numbers(&c[0]))
             .collect();
-        let pieces: Vec<BezierCurve> = out["pieces"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .map(bezier)
-            .collect();
+        let pieces = printed_pieces(&out);
         let shapes: Vec<Vec<f64>> = (0..4)
             .map(|i| {
                 let corner = &corners_at[(i + 1) % 4];

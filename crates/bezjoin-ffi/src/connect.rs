@@ -6,7 +6,7 @@ use bezjoin_core::{ConnectOptions, PointConstraint, ShapeScale, check_connect_de
 
 use crate::guard::guard;
 use crate::handles::{BzjCurve, HandleOut};
-use crate::pointers::{curve_ref, input_ref, input_slice, write_optional};
+use crate::pointers::{curve_ref, input_ref, input_slice, write_scales};
 use crate::status::{BzjStatus, FfiError, FfiResult};
 
 /// An interior constraint: `R^(k)(t) = values[k*dim .. (k+1)*dim]`, `k = 0..=max_order`.
@@ -171,9 +171,9 @@ pub unsafe extern "C" fn bzj_connect_auto_scale(
 /// near-kink at the slow end). An end that turns or accelerates on a scale
 /// below 1 % of the chord is balanced at a higher speed than its `|P'|`
 /// (`BALANCED_SPEED_FLOOR`, docs/mathematics.md), which keeps the blend in
-/// size where an end is nearly stationary; an end of order 0, or whose
-/// derivatives all vanish, takes the other end's speed; two such ends give
-/// [`bzj_connect_auto_scale`]'s answer. `options->p_scale` and
+/// size where an end is nearly stationary. Where the two speeds agree to
+/// 1e-9, or an end has none (order 0, or derivatives that all vanish), the
+/// answer is [`bzj_connect_auto_scale`]'s, the same bits. `options->p_scale` and
 /// `options->q_scale` are ignored; `alpha` and `beta` are written to
 /// `p_scale_out`, `q_scale_out` when not NULL. Same guarantee as
 /// [`bzj_connect`].
@@ -216,7 +216,7 @@ unsafe fn connect_chosen_scale(
     options: *const BzjConnectOptions,
     out: *mut *mut BzjCurve,
     scale: ShapeScale,
-    [p_scale_out, q_scale_out]: [*mut f64; 2],
+    scales_out: [*mut f64; 2],
 ) -> BzjStatus {
     // SAFETY: `out` is null or writable (caller contract).
     let out = unsafe { HandleOut::cleared(out, "out") };
@@ -226,11 +226,9 @@ unsafe fn connect_chosen_scale(
         let (p, q, mut options) = unsafe { read_inputs(p, q, options) }?;
         options.scale = scale;
         let connection = connect(p, u0, q, v0, &options)?;
+        let scales = (connection.p_scale, connection.q_scale);
         // SAFETY: NULL or writable by the caller contract.
-        unsafe {
-            write_optional(p_scale_out, connection.p_scale);
-            write_optional(q_scale_out, connection.q_scale);
-        }
+        unsafe { write_scales(scales_out, scales) };
         out.write(connection.curve);
         Ok(())
     })

@@ -7,8 +7,8 @@
 
 use bezjoin_core::BezjoinError;
 use bezjoin_core::{
-    ChainCorner, ChainFilletOptions, Curve, DeviationFilletOptions, Fillet, FilletOptions,
-    ShapeScale, fillet, fillet_chain, fillet_vertex, fillet_within_deviation,
+    ChainFilletOptions, Curve, DeviationFilletOptions, Fillet, FilletOptions, ShapeScale, fillet,
+    fillet_chain, fillet_vertex, fillet_within_deviation,
 };
 use bezjoin_core::{IntersectOptions, Intersection, IntersectionKind, intersect};
 
@@ -17,7 +17,7 @@ use crate::handles::{
     BzjCurve, CheckedOut, HandleArray, HandleOut, HandleSlots, ShortArray, require_all,
 };
 use crate::pointers::{
-    curve_ref, input_ref, input_slice, output_slice, require_out, write_optional,
+    curve_ref, input_ref, input_slice, output_slice, require_out, write_optional, write_scales,
 };
 use crate::status::{BzjStatus, FfiError, FfiResult};
 
@@ -364,16 +364,7 @@ pub unsafe extern "C" fn bzj_fillet(
     q_trimmed: *mut *mut BzjCurve,
 ) -> BzjStatus {
     // SAFETY: caller contract.
-    unsafe {
-        corner_fillet(
-            p,
-            q,
-            options,
-            None,
-            ScaleOut::Given,
-            [p_trimmed, blend, q_trimmed],
-        )
-    }
+    unsafe { corner_fillet(p, q, options, None, None, [p_trimmed, blend, q_trimmed]) }
 }
 
 /// [`bzj_fillet`] with `alpha = beta = s` chosen automatically, as
@@ -401,9 +392,9 @@ pub unsafe extern "C" fn bzj_fillet_auto_scale(
     q_trimmed: *mut *mut BzjCurve,
     scale_out: *mut f64,
 ) -> BzjStatus {
-    let scale = ScaleOut::Auto(scale_out);
+    let chosen = Some((ShapeScale::Auto, [scale_out, std::ptr::null_mut()]));
     // SAFETY: caller contract.
-    unsafe { corner_fillet(p, q, options, None, scale, [p_trimmed, blend, q_trimmed]) }
+    unsafe { corner_fillet(p, q, options, None, chosen, [p_trimmed, blend, q_trimmed]) }
 }
 
 /// [`bzj_fillet`] with the blend leaving both curves at one speed `sigma`:
@@ -436,20 +427,9 @@ pub unsafe extern "C" fn bzj_fillet_balanced_scale(
     p_scale_out: *mut f64,
     q_scale_out: *mut f64,
 ) -> BzjStatus {
-    let scale = ScaleOut::Balanced(p_scale_out, q_scale_out);
+    let chosen = Some((ShapeScale::Balanced, [p_scale_out, q_scale_out]));
     // SAFETY: caller contract.
-    unsafe { corner_fillet(p, q, options, None, scale, [p_trimmed, blend, q_trimmed]) }
-}
-
-/// How a corner fillet's scales are chosen, and where the chosen ones go.
-#[derive(Clone, Copy)]
-enum ScaleOut {
-    /// `options->p_scale`, `options->q_scale`.
-    Given,
-    /// `ShapeScale::Auto`; `s` to the pointer when it is not NULL.
-    Auto(*mut f64),
-    /// `ShapeScale::Balanced`; `alpha`, `beta` to the pointers when not NULL.
-    Balanced(*mut f64, *mut f64),
+    unsafe { corner_fillet(p, q, options, None, chosen, [p_trimmed, blend, q_trimmed]) }
 }
 
 /// The three handle outputs of a fillet, cleared.
@@ -472,8 +452,9 @@ pub(crate) unsafe fn fillet_outputs(
 }
 
 /// One corner rounded: at the first crossing (`gap` None, `bzj_fillet`) or
-/// at the shared vertex within `gap` (`bzj_fillet_vertex`), with the scales
-/// `scale` says (the chosen ones written where it says).
+/// at the shared vertex within `gap` (`bzj_fillet_vertex`), with the
+/// options' scales (`chosen` None) or the scale the library chooses, its
+/// `alpha`, `beta` written through the two pointers ([`write_scales`]).
 ///
 /// # Safety
 /// As [`bzj_fillet_vertex_balanced_scale`].
@@ -482,7 +463,7 @@ unsafe fn corner_fillet(
     q: *const BzjCurve,
     options: *const BzjFilletOptions,
     gap: Option<f64>,
-    scale: ScaleOut,
+    chosen: Option<(ShapeScale, [*mut f64; 2])>,
     [p_trimmed, blend, q_trimmed]: [*mut *mut BzjCurve; 3],
 ) -> BzjStatus {
     // SAFETY: caller contract.
@@ -494,26 +475,16 @@ unsafe fn corner_fillet(
         let options = unsafe { input_ref(options, "options") }?;
         let outs = require_all(outs)?;
         let mut core_options = options.to_core();
-        match scale {
-            ScaleOut::Given => {}
-            ScaleOut::Auto(_) => core_options.scale = ShapeScale::Auto,
-            ScaleOut::Balanced(..) => core_options.scale = ShapeScale::Balanced,
+        if let Some((scale, _)) = chosen {
+            core_options.scale = scale;
         }
         let result = match gap {
             Some(gap) => fillet_vertex(p, q, &core_options, gap)?,
             None => fillet(p, q, &core_options)?,
         };
-        match scale {
-            ScaleOut::Given => {}
+        if let Some((_, scales_out)) = chosen {
             // SAFETY: NULL or writable by the caller contract.
-            ScaleOut::Auto(out) => unsafe { write_optional(out, result.p_scale) },
-            ScaleOut::Balanced(p_out, q_out) => {
-                // SAFETY: NULL or writable by the caller contract.
-                unsafe {
-                    write_optional(p_out, result.p_scale);
-                    write_optional(q_out, result.q_scale);
-                }
-            }
+            unsafe { write_scales(scales_out, (result.p_scale, result.q_scale)) };
         }
         write_fillet(outs, result);
         Ok(())
@@ -567,7 +538,7 @@ pub unsafe extern "C" fn bzj_fillet_vertex(
 ) -> BzjStatus {
     let outs = [p_trimmed, blend, q_trimmed];
     // SAFETY: caller contract.
-    unsafe { corner_fillet(p, q, options, Some(gap), ScaleOut::Given, outs) }
+    unsafe { corner_fillet(p, q, options, Some(gap), None, outs) }
 }
 
 /// [`bzj_fillet_vertex`] with `alpha = beta = s` chosen automatically as
@@ -596,7 +567,9 @@ pub unsafe extern "C" fn bzj_fillet_vertex_auto_scale(
 ) -> BzjStatus {
     let outs = [p_trimmed, blend, q_trimmed];
     // SAFETY: caller contract.
-    unsafe { corner_fillet(p, q, options, Some(gap), ScaleOut::Auto(scale_out), outs) }
+    let chosen = Some((ShapeScale::Auto, [scale_out, std::ptr::null_mut()]));
+    // SAFETY: caller contract.
+    unsafe { corner_fillet(p, q, options, Some(gap), chosen, outs) }
 }
 
 /// [`bzj_fillet_vertex`] with the blend leaving both curves at one speed, as
@@ -627,9 +600,9 @@ pub unsafe extern "C" fn bzj_fillet_vertex_balanced_scale(
     q_scale_out: *mut f64,
 ) -> BzjStatus {
     let outs = [p_trimmed, blend, q_trimmed];
-    let scale = ScaleOut::Balanced(p_scale_out, q_scale_out);
+    let chosen = Some((ShapeScale::Balanced, [p_scale_out, q_scale_out]));
     // SAFETY: caller contract.
-    unsafe { corner_fillet(p, q, options, Some(gap), scale, outs) }
+    unsafe { corner_fillet(p, q, options, Some(gap), chosen, outs) }
 }
 
 /// Round the corner at the first crossing so that the blend passes within
@@ -812,9 +785,9 @@ pub unsafe extern "C" fn bzj_fillet_chain(
     capacity: usize,
     count: *mut usize,
 ) -> BzjStatus {
-    let (pieces, scale) = ((out_pieces, capacity, count), ChainScale::Given);
+    let (pieces, chosen) = ((out_pieces, capacity, count), None);
     // SAFETY: caller contract.
-    unsafe { fillet_chain_with_scale(curves, curve_count, options, closed, pieces, scale) }
+    unsafe { fillet_chain_with_scale(curves, curve_count, options, closed, pieces, chosen) }
 }
 
 /// [`bzj_fillet_chain`] with `alpha = beta = s` chosen automatically at
@@ -842,9 +815,10 @@ pub unsafe extern "C" fn bzj_fillet_chain_auto_scale(
     count: *mut usize,
     scales_out: *mut f64,
 ) -> BzjStatus {
-    let (pieces, scale) = ((out_pieces, capacity, count), ChainScale::Auto(scales_out));
+    let pieces = (out_pieces, capacity, count);
+    let chosen = Some((ShapeScale::Auto, scales_out));
     // SAFETY: caller contract.
-    unsafe { fillet_chain_with_scale(curves, curve_count, options, closed, pieces, scale) }
+    unsafe { fillet_chain_with_scale(curves, curve_count, options, closed, pieces, chosen) }
 }
 
 /// [`bzj_fillet_chain`] with every corner's blend leaving both its curves at
@@ -875,27 +849,17 @@ pub unsafe extern "C" fn bzj_fillet_chain_balanced_scale(
     count: *mut usize,
     scales_out: *mut f64,
 ) -> BzjStatus {
-    let (pieces, scale) = (
-        (out_pieces, capacity, count),
-        ChainScale::Balanced(scales_out),
-    );
+    let pieces = (out_pieces, capacity, count);
+    let chosen = Some((ShapeScale::Balanced, scales_out));
     // SAFETY: caller contract.
-    unsafe { fillet_chain_with_scale(curves, curve_count, options, closed, pieces, scale) }
-}
-
-/// How a chain fillet's scales are chosen, and where the chosen ones go.
-#[derive(Clone, Copy)]
-enum ChainScale {
-    /// `options->p_scale`, `options->q_scale` at every corner.
-    Given,
-    /// `ShapeScale::Auto`; corner i's `s` at index i (NULL: not written).
-    Auto(*mut f64),
-    /// `ShapeScale::Balanced`; corner i's `alpha`, `beta` at `2 i`, `2 i + 1`.
-    Balanced(*mut f64),
+    unsafe { fillet_chain_with_scale(curves, curve_count, options, closed, pieces, chosen) }
 }
 
 /// The body of `bzj_fillet_chain` and its automatic and balanced variants;
-/// `(out_pieces, capacity, count)` as they take them.
+/// `(out_pieces, capacity, count)` as they take them; `chosen`: the options'
+/// scales (None) or the scale the library chooses at every corner and the
+/// caller's array for it (NULL: not written): corner i's `s` at index i
+/// (automatic), its `alpha`, `beta` at `2 i`, `2 i + 1` (balanced).
 ///
 /// # Safety
 /// As [`bzj_fillet_chain_balanced_scale`].
@@ -905,7 +869,7 @@ unsafe fn fillet_chain_with_scale(
     options: *const BzjFilletOptions,
     closed: i32,
     (out_pieces, capacity, count): (*mut *mut BzjCurve, usize, *mut usize),
-    scale: ChainScale,
+    chosen: Option<(ShapeScale, *mut f64)>,
 ) -> BzjStatus {
     // SAFETY: caller promises NULL or `capacity` writable handle pointers.
     let pieces = unsafe { chain_pieces_out(out_pieces, capacity) };
@@ -927,20 +891,15 @@ unsafe fn fillet_chain_with_scale(
         };
         let mut core = ChainFilletOptions::open(options.to_core());
         core.closed = closed;
-        let (scales_out, scales): (_, fn(&ChainCorner) -> Vec<f64>) = match scale {
-            ChainScale::Given => (std::ptr::null_mut(), |_| Vec::new()),
-            ChainScale::Auto(out) => {
-                core.fillet.scale = ShapeScale::Auto;
-                (out, |c| vec![c.scales.0])
-            }
-            ChainScale::Balanced(out) => {
-                core.fillet.scale = ShapeScale::Balanced;
-                (out, |c| vec![c.scales.0, c.scales.1])
-            }
-        };
+        let (scale, scales_out) = chosen.unwrap_or((core.fillet.scale, std::ptr::null_mut()));
+        core.fillet.scale = scale;
         let rounded = fillet_chain(&owned, &core)?;
         if !scales_out.is_null() {
-            let scales: Vec<f64> = rounded.corners.iter().flat_map(scales).collect();
+            // One `s` a corner (alpha = beta), or both scales.
+            let per_corner = if scale == ShapeScale::Balanced { 2 } else { 1 };
+            let scales: Vec<f64> = (rounded.corners.iter())
+                .flat_map(|c| [c.scales.0, c.scales.1].into_iter().take(per_corner))
+                .collect();
             // SAFETY: caller promises room for the corner count of doubles
             // (twice that for the balanced scales).
             unsafe { output_slice(scales_out, scales.len(), scales.len(), "scales_out") }?

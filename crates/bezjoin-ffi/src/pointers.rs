@@ -107,3 +107,17 @@ pub(crate) unsafe fn write_optional<T>(ptr: *mut T, value: T) {
         unsafe { ptr.write(value) };
     }
 }
+
+/// The scales a library-chosen scale used, `alpha` and `beta`, through two
+/// optional out-pointers (the automatic scale's single `s` passes NULL as
+/// the second: `alpha = beta = s`).
+///
+/// # Safety
+/// Each pointer is null or valid for writes.
+pub(crate) unsafe fn write_scales([p_out, q_out]: [*mut f64; 2], (alpha, beta): (f64, f64)) {
+    // SAFETY: forwarded.
+    unsafe {
+        write_optional(p_out, alpha);
+        write_optional(q_out, beta);
+    }
+}

@@ -333,3 +333,30 @@ fn a_chain_takes_the_balanced_scale_at_every_corner() {
         assert_eq!(long.corners[i].scales, (alone.p_scale, alone.q_scale));
     }
 }
+
+#[test]
+fn equal_speeds_give_the_automatic_scales_answer_bit_for_bit() {
+    // Lines 10 and 10 (one speed at the cut) and an end of order 0: the
+    // balanced blend is the automatic one, the same bits; lines 1000 and 10
+    // are not (the property has a contrast).
+    let options = FilletOptions::new(1.0, 1.0, 2, 2);
+    let (p, q) = corner(10.0, 10.0);
+    let balanced = fillet_vertex(&p, &q, &options.clone().with_balanced_scale(), 0.0).unwrap();
+    let auto = fillet_vertex(&p, &q, &options.clone().with_auto_scale(), 0.0).unwrap();
+    assert_eq!(balanced.blend.points(), auto.blend.points());
+    let (long, _) = corner(1000.0, 10.0);
+    let order_zero = ConnectOptions::new(0, 2);
+    let balanced = connect(
+        &long,
+        0.5,
+        &q,
+        0.5,
+        &order_zero.clone().with_balanced_scale(),
+    )
+    .unwrap();
+    let auto = connect(&long, 0.5, &q, 0.5, &order_zero.with_auto_scale()).unwrap();
+    assert_eq!(balanced.curve.points(), auto.curve.points());
+    let balanced = fillet_vertex(&long, &q, &options.clone().with_balanced_scale(), 0.0).unwrap();
+    let auto = fillet_vertex(&long, &q, &options.with_auto_scale(), 0.0).unwrap();
+    assert_ne!(balanced.blend.points(), auto.blend.points());
+}

@@ -248,7 +248,7 @@ def _blend_bezier_edges(first_edge, second_edge, u0, v0, p_order, q_order, p_sca
             return None
     # Both edges run on [0, 1] (verbatim), so ``u``, ``v`` are their parameters.
     if _automatic(p_scale, q_scale, auto_scale) and _speeds_differ(
-            first_edge.derivative1At(u).Length, second_edge.derivative1At(v).Length, 1.0):
+            first_edge.derivative1At(u).Length, second_edge.derivative1At(v).Length):
         return None  # the general path balances the end speeds (auto_scale="balanced")
     try:
         curve = bezjoin.connect_edges(first_edge, u, second_edge, v, p_order=orders[0],
@@ -313,14 +313,9 @@ def blend_edges(first_edge, second_edge, *, u0=1.0, v0=0.0, p_order=None, q_orde
             # The automatic scale leaves both edges at one speed (the library's
             # balanced scale): with one s for both, lines 1000 and 10 long blended
             # across a gap of 2 at 90 degrees peaked at curvature 6472, lines 10 and
-            # 10 at 0.67 (user testing, session 40).
-            # Where the speeds are equal that is the one-s scale, whose bits the fast
-            # path (connect_edges) gives: it is kept there.
-            balanced = auto_scale
-            if _automatic(p_scale, q_scale, auto_scale) and _speeds_differ(
-                    math.hypot(*p.derivatives(u, 1)[1]), math.hypot(*q.derivatives(v, 1)[1]),
-                    _distance(start, end)):
-                balanced = "balanced"
+            # 10 at 0.67 (user testing, session 40). Where the speeds agree it is the
+            # one-s scale, the bits of the fast path (connect_edges).
+            balanced = "balanced" if _automatic(p_scale, q_scale, auto_scale) else auto_scale
             with bezjoin.connect(p, u, q, v, p_order=p_order, q_order=q_order,
                                  p_scale=p_scale, q_scale=q_scale,
                                  auto_scale=balanced) as blend:
@@ -441,10 +436,10 @@ def _automatic(p_scale, q_scale, auto_scale):
     return bool(auto_scale) or (auto_scale is None and p_scale is None and q_scale is None)
 
 
-def _speeds_differ(p_speed, q_speed, chord):
+def _speeds_differ(p_speed, q_speed):
     """Whether the balanced scale differs from the one-s automatic scale: finite
-    positive speeds and chord, and speeds more than 1e-9 apart (relative)."""
-    return (p_speed > 0 and q_speed > 0 and chord > 0 and math.isfinite(p_speed * q_speed)
+    positive speeds more than 1e-9 apart (relative), the library's rule."""
+    return (p_speed > 0 and q_speed > 0 and math.isfinite(p_speed * q_speed)
             and abs(p_speed - q_speed) > 1e-9 * max(p_speed, q_speed))
 
 

@@ -45,12 +45,10 @@ pub struct ConnectJob {
     /// Parameter on Q where R ends (in Q's domain).
     pub v0: f64,
     /// Orders, scales and interior constraints (the scales are not used
-    /// with geometric continuity).
+    /// with geometric continuity, which leaves them given). The library
+    /// chooses the scale (`ShapeScale::Auto` or `ShapeScale::Balanced`) when
+    /// the job asks for it or gives no scale.
     pub options: ConnectOptions,
-    /// The library chooses the scale (`ShapeScale::Auto` or
-    /// `ShapeScale::Balanced` in `options`): asked for, or the default when
-    /// the job gives no scale.
-    pub auto_scale: bool,
     /// Parametric or geometric continuity, with the shape values.
     pub continuity: Continuity,
     /// Indices of the constraints whose `"derivatives"` list is empty: the
@@ -153,7 +151,6 @@ pub fn parse(job: &Located) -> Result<ConnectJob, JobError> {
     let auto_scale_field = obj.optional("auto_scale");
     let p_shape = obj.optional("p_shape");
     let q_shape = obj.optional("q_shape");
-    let mut auto_scale = false;
     let continuity = if geometric {
         if let Some(f) = p_scale
             .iter()
@@ -179,7 +176,6 @@ pub fn parse(job: &Located) -> Result<ConnectJob, JobError> {
             ));
         }
         options.scale = read_scale_choice(p_scale, q_scale, auto_scale_field, true)?;
-        auto_scale = !matches!(options.scale, ShapeScale::Given { .. });
         Continuity::Parametric
     };
     let mut empty_constraints = Vec::new();
@@ -208,7 +204,6 @@ pub fn parse(job: &Located) -> Result<ConnectJob, JobError> {
         q,
         v0,
         options,
-        auto_scale,
         continuity,
         empty_constraints,
     })
@@ -323,7 +318,7 @@ fn outcome(job: &ConnectJob, c: &Connection) -> Outcome {
         "report": {
             "continuity": "parametric",
             "degree": r.degree(),
-            "auto_scale": job.auto_scale,
+            "auto_scale": !matches!(job.options.scale, ShapeScale::Given { .. }),
             "balanced_scale": job.options.scale == ShapeScale::Balanced,
             "p_scale": c.p_scale,
             "q_scale": c.q_scale,

@@ -379,8 +379,7 @@ fn outcome(job: &FilletJob, f: &Fillet, max_deviation: Option<f64>) -> Outcome {
             "blend_degree": f.blend.degree(),
             "p_order": kp,
             "q_order": kq,
-            "auto_scale": job.options.scale == ShapeScale::Auto
-                || job.options.scale == ShapeScale::Balanced,
+            "auto_scale": !matches!(job.options.scale, ShapeScale::Given { .. }),
             "balanced_scale": job.options.scale == ShapeScale::Balanced,
             "p_scale": f.p_scale,
             "q_scale": f.q_scale,

@@ -102,26 +102,27 @@ fn end_speed(derivatives: &DMatrix<f64>, chord: f64) -> Option<f64> {
     (speed > 0.0).then_some(speed)
 }
 
+/// Balanced speeds this close (relative) count as equal.
+const SAME_SPEED: f64 = 1e-9;
+
 /// The weights of [`ShapeScale::Balanced`](super::ShapeScale::Balanced):
 /// `1 / speed` at each end ([`end_speed`], `|P'(u0)|` and `|Q'(v0)|` unless
-/// an end turns or accelerates within 1 % of the chord); an end without a
-/// usable speed (order 0, a jet that vanishes or overflows) takes the other
-/// end's, and with neither [`EQUAL_WEIGHTS`].
+/// an end turns or accelerates within 1 % of the chord). Where the two
+/// speeds agree to [`SAME_SPEED`], or an end has none (order 0, a jet that
+/// vanishes or overflows: its weight does not matter), the weights are
+/// equal, and equal weights give the automatic scale's own answer, the same
+/// bits: [`EQUAL_WEIGHTS`].
 pub(crate) fn balanced_weights(problem: &Problem) -> ScaleWeights {
     let chord = problem.chord();
     match (
         end_speed(&problem.p_derivatives, chord),
         end_speed(&problem.q_derivatives, chord),
     ) {
-        (Some(p), Some(q)) => ScaleWeights {
+        (Some(p), Some(q)) if (p - q).abs() > SAME_SPEED * p.max(q) => ScaleWeights {
             p: 1.0 / p,
             q: 1.0 / q,
         },
-        (Some(v), None) | (None, Some(v)) => ScaleWeights {
-            p: 1.0 / v,
-            q: 1.0 / v,
-        },
-        (None, None) => EQUAL_WEIGHTS,
+        _ => EQUAL_WEIGHTS,
     }
 }
 

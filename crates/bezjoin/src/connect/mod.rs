@@ -280,10 +280,10 @@ pub enum ShapeScale {
     /// accelerates on a scale below 1 % of the chord is balanced at a higher
     /// speed than `|P'(u0)|` ([`BALANCED_SPEED_FLOOR`]; that end then leaves
     /// slower than `sigma`), which keeps the blend in size at near-stationary
-    /// ends and keeps the reparametrisation guarantee where `P'(u0) = 0`. An
-    /// end without a speed (order 0, a jet that vanishes or overflows) takes
-    /// the other end's weight, and two such ends make this
-    /// [`ShapeScale::Auto`]. Not offered by
+    /// ends and keeps the reparametrisation guarantee where `P'(u0) = 0`.
+    /// Where the two speeds agree to 1e-9, or an end has none (order 0, a jet
+    /// that vanishes or overflows), this is [`ShapeScale::Auto`], the same
+    /// bits. Not offered by
     /// [`crate::fillet_within_deviation`] (its automatic scale is a fixed point
     /// of one `s`).
     Balanced,
