@@ -196,6 +196,18 @@ fn an_end_that_turns_within_the_floor_keeps_the_blend_in_size() {
             difference < 1e-9,
             "eps {eps:e}: reparametrised, moved by {difference:e}"
         );
+        // Both ends nearly stationary (review, session 41: the search was
+        // centred on the chord over the raw speeds, 1e9 chords for eps =
+        // 1e-9, and gave control points of 2.4e14).
+        let q_slow =
+            BezierCurve::from_rows(&[[10.0 - eps, -1.0], [10.0, -1.0], [10.0, 3.0], [11.0, 8.0]])
+                .unwrap();
+        let both = connect(&p, 1.0, &q_slow, 0.0, &options).unwrap();
+        let size = both.curve.coordinate_scale();
+        assert!(
+            size < 30.0,
+            "eps {eps:e}, both ends: control points up to {size}"
+        );
     }
 }
 

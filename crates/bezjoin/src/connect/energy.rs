@@ -59,13 +59,13 @@ pub fn fairness_energy(curve: &BezierCurve) -> f64 {
 /// [`EQUAL_WEIGHTS`]; [`ShapeScale::Balanced`](super::ShapeScale::Balanced)
 /// the reciprocal speeds ([`balanced_weights`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct ScaleWeights {
-    pub(crate) p: f64,
-    pub(crate) q: f64,
+struct ScaleWeights {
+    p: f64,
+    q: f64,
 }
 
 /// `alpha = beta = s`.
-pub(crate) const EQUAL_WEIGHTS: ScaleWeights = ScaleWeights { p: 1.0, q: 1.0 };
+const EQUAL_WEIGHTS: ScaleWeights = ScaleWeights { p: 1.0, q: 1.0 };
 
 /// The floor of [`end_speed`] relative to the chord `c`: an end whose
 /// unit-speed jet has a derivative `j >= 2` above `(BALANCED_SPEED_FLOOR c)^(1-j)`
@@ -107,42 +107,43 @@ const SAME_SPEED: f64 = 1e-9;
 
 /// The weights of [`ShapeScale::Balanced`](super::ShapeScale::Balanced):
 /// `1 / speed` at each end ([`end_speed`], `|P'(u0)|` and `|Q'(v0)|` unless
-/// an end turns or accelerates within 1 % of the chord). Where the two
-/// speeds agree to [`SAME_SPEED`], or an end has none (order 0, a jet that
-/// vanishes or overflows: its weight does not matter), the weights are
-/// equal, and equal weights give the automatic scale's own answer, the same
-/// bits: [`EQUAL_WEIGHTS`].
-pub(crate) fn balanced_weights(problem: &Problem) -> ScaleWeights {
+/// an end turns or accelerates within 1 % of the chord). `None` where the
+/// two speeds agree to [`SAME_SPEED`] or an end has none (order 0, a jet that
+/// vanishes or overflows: its weight does not matter): equal weights, and
+/// the balanced scale is the automatic scale, the same bits.
+fn balanced_weights(problem: &Problem) -> Option<ScaleWeights> {
     let chord = problem.chord();
-    match (
-        end_speed(&problem.p_derivatives, chord),
-        end_speed(&problem.q_derivatives, chord),
-    ) {
-        (Some(p), Some(q)) if (p - q).abs() > SAME_SPEED * p.max(q) => ScaleWeights {
-            p: 1.0 / p,
-            q: 1.0 / q,
-        },
-        _ => EQUAL_WEIGHTS,
-    }
+    let p = end_speed(&problem.p_derivatives, chord)?;
+    let q = end_speed(&problem.q_derivatives, chord)?;
+    ((p - q).abs() > SAME_SPEED * p.max(q)).then(|| ScaleWeights {
+        p: 1.0 / p,
+        q: 1.0 / q,
+    })
 }
 
 /// `s0 = |Q(v0) - P(u0)| / mean(|P'(u0)|, |Q'(v0)|)`, 1 when undefined.
-/// With `weights`, the speeds are those of the weighted jets,
-/// `p |P'(u0)|` and `q |Q'(v0)|`.
-pub(crate) fn natural_scale(problem: &Problem, weights: ScaleWeights) -> f64 {
+pub(crate) fn natural_scale(problem: &Problem) -> f64 {
     let p = &problem.p_derivatives;
     let q = &problem.q_derivatives;
     let gap = problem.chord();
     let mut speeds = Vec::new();
     if p.nrows() > 1 {
-        speeds.push(weights.p * p.row(1).norm());
+        speeds.push(p.row(1).norm());
     }
     if q.nrows() > 1 {
-        speeds.push(weights.q * q.row(1).norm());
+        speeds.push(q.row(1).norm());
     }
     let speed = speeds.iter().sum::<f64>() / speeds.len().max(1) as f64;
-    let s0 = gap / speed;
-    if s0.is_finite() && s0 > 0.0 { s0 } else { 1.0 }
+    positive_or_one(gap / speed)
+}
+
+/// `value` when finite and positive, else 1.
+fn positive_or_one(value: f64) -> f64 {
+    if value.is_finite() && value > 0.0 {
+        value
+    } else {
+        1.0
+    }
 }
 
 /// Log-spaced samples of the closed-form energy over the search range, per
@@ -311,22 +312,30 @@ fn polynomial_minimum(coefficients: &[f64], lo: f64, hi: f64) -> Option<f64> {
 /// by full solves ([`auto_scale_by_search`]), which skips scales whose
 /// connection is refused.
 pub(crate) fn auto_scale(problem: &Problem) -> Result<Connection> {
-    weighted_auto_scale(problem, EQUAL_WEIGHTS)
+    weighted_auto_scale(problem, EQUAL_WEIGHTS, natural_scale(problem))
 }
 
 /// [`ShapeScale::Balanced`](super::ShapeScale::Balanced): the automatic
 /// scale with the weights of [`balanced_weights`], so
-/// `alpha = sigma / |P'(u0)|`, `beta = sigma / |Q'(v0)|`.
+/// `alpha = sigma / v_P`, `beta = sigma / v_Q`, searched around
+/// `sigma0 = |Q(v0) - P(u0)|` (the weighted speeds are 1 by design; a
+/// natural scale from the raw speeds `|P'|` would put the whole range out of
+/// reach where both ends are nearly stationary: control points of 2.4e14
+/// for two cubics whose end poles are 1e-9 apart). Equal speeds: the
+/// automatic scale itself.
 pub(crate) fn balanced_scale(problem: &Problem) -> Result<Connection> {
-    weighted_auto_scale(problem, balanced_weights(problem))
+    match balanced_weights(problem) {
+        Some(weights) => weighted_auto_scale(problem, weights, positive_or_one(problem.chord())),
+        None => auto_scale(problem),
+    }
 }
 
-/// [`auto_scale`] with `alpha = s * weights.p`, `beta = s * weights.q`.
-fn weighted_auto_scale(problem: &Problem, weights: ScaleWeights) -> Result<Connection> {
+/// [`auto_scale`] with `alpha = s * weights.p`, `beta = s * weights.q`, `s`
+/// searched over [`AUTO_SCALE_SEARCH_DECADES`] either side of `s0`.
+fn weighted_auto_scale(problem: &Problem, weights: ScaleWeights, s0: f64) -> Result<Connection> {
     if problem.p_order == 0 && problem.q_order == 0 {
         return solve_structured(problem, 1.0, 1.0);
     }
-    let s0 = natural_scale(problem, weights);
     let half_width = AUTO_SCALE_SEARCH_DECADES * std::f64::consts::LN_10;
     if let Some(coefficients) = energy_polynomial(problem, s0, weights) {
         if let Some(sigma) = polynomial_minimum(&coefficients, -half_width, half_width) {
@@ -338,16 +347,16 @@ fn weighted_auto_scale(problem: &Problem, weights: ScaleWeights) -> Result<Conne
             }
         }
     }
-    auto_scale_by_search(problem, weights)
+    auto_scale_by_search(problem, weights, s0)
 }
 
 /// The automatic scale by full solves: a grid of [`GRID_POINTS`] in `log s`,
 /// then Brent's method; a refused scale counts as infinite energy.
-pub(crate) fn auto_scale_by_search(problem: &Problem, weights: ScaleWeights) -> Result<Connection> {
+fn auto_scale_by_search(problem: &Problem, weights: ScaleWeights, s0: f64) -> Result<Connection> {
     if problem.p_order == 0 && problem.q_order == 0 {
         return solve_structured(problem, 1.0, 1.0);
     }
-    let center = natural_scale(problem, weights).ln();
+    let center = s0.ln();
     let half_width = AUTO_SCALE_SEARCH_DECADES * std::f64::consts::LN_10;
     let (lo, hi) = (center - half_width, center + half_width);
     let solve_at = |s: f64| solve_structured(problem, s * weights.p, s * weights.q);
@@ -426,7 +435,7 @@ mod tests {
     #[test]
     fn energy_polynomial_is_the_energy_of_the_connection() {
         for problem in problems(40) {
-            let s0 = natural_scale(&problem, EQUAL_WEIGHTS);
+            let s0 = natural_scale(&problem);
             let coefficients =
                 energy_polynomial(&problem, s0, EQUAL_WEIGHTS).expect("components solve");
             for sigma in [0.01, 0.1, 0.7, 1.0, 3.0, 40.0, 100.0] {
@@ -451,12 +460,8 @@ mod tests {
     #[test]
     fn log_slope_is_the_derivative_of_the_energy() {
         for problem in problems(12) {
-            let coefficients = energy_polynomial(
-                &problem,
-                natural_scale(&problem, EQUAL_WEIGHTS),
-                EQUAL_WEIGHTS,
-            )
-            .unwrap();
+            let coefficients =
+                energy_polynomial(&problem, natural_scale(&problem), EQUAL_WEIGHTS).unwrap();
             for x in [-3.0f64, -0.5, 0.0, 1.2, 4.0] {
                 let h = 1e-5;
                 let (plus, _) = energy_and_log_slope(&coefficients, (x + h).exp());
@@ -482,7 +487,7 @@ mod tests {
                 continue;
             };
             let best = fairness_energy(&auto.curve);
-            let center = natural_scale(&problem, EQUAL_WEIGHTS).ln();
+            let center = natural_scale(&problem).ln();
             let mut scan = f64::INFINITY;
             for i in 0..=800 {
                 let s = (center - half_width + 2.0 * half_width * i as f64 / 800.0).exp();
@@ -490,7 +495,7 @@ mod tests {
                     scan = scan.min(fairness_energy(&c.curve));
                 }
             }
-            let searched = auto_scale_by_search(&problem, EQUAL_WEIGHTS)
+            let searched = auto_scale_by_search(&problem, EQUAL_WEIGHTS, natural_scale(&problem))
                 .map(|c| fairness_energy(&c.curve))
                 .unwrap_or(f64::INFINITY);
             let slack = 1e-9 * best.abs() + 1e-300;

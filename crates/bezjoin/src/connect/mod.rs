@@ -96,8 +96,8 @@ use crate::error::{BezjoinError, Result, check_finite, check_open_range, check_p
 use crate::linalg::solve_checked;
 
 pub use dense::connect_dense_reference;
+pub(crate) use energy::natural_scale;
 pub use energy::{AUTO_SCALE_SEARCH_DECADES, BALANCED_SPEED_FLOOR, fairness_energy};
-pub(crate) use energy::{EQUAL_WEIGHTS, natural_scale};
 
 /// The promised worst relative residual of (1') and (2) (see the module
 /// documentation for the definition). Answers whose error estimate exceeds

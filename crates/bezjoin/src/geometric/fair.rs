@@ -6,7 +6,7 @@ use std::sync::OnceLock;
 
 use crate::basis::bezier_basis_derivatives;
 use crate::bezier::BezierCurve;
-use crate::connect::{EQUAL_WEIGHTS, MAX_CONNECT_DEGREE, Problem, natural_scale};
+use crate::connect::{MAX_CONNECT_DEGREE, Problem, natural_scale};
 use crate::error::{BezjoinError, Result};
 
 use super::MAX_GEOMETRIC_ORDER;
@@ -538,7 +538,7 @@ fn natural_end_scales(problem: &Problem) -> (f64, f64) {
         if value.is_finite() && value > 0.0 {
             value
         } else {
-            natural_scale(problem, EQUAL_WEIGHTS)
+            natural_scale(problem)
         }
     };
     (of(p), of(q))
