@@ -722,8 +722,10 @@ BzjStatus bzj_connect(const struct BzjCurve *p, double u0, const struct BzjCurve
  * [`bzj_connect`] with `alpha = beta = s` chosen automatically to minimise
  * the fairness energy `integral_0^1 |R''(t)|^2 dt` (exact, Bernstein Gram
  * matrix) by a bounded search over two decades either side of
- * `s0 = |Q(v0) - P(u0)| / mean(|P'(u0)|, |Q'(v0)|)`; `options->p_scale` and
- * `options->q_scale` are ignored. The chosen `s` is written to `scale_out`
+ * `s0 = |Q(v0) - P(u0)| / mean(|P'(u0)|, |Q'(v0)|)` (each speed raised to
+ * its floor where the end turns within 1 % of the chord,
+ * docs/mathematics.md); `options->p_scale` and `options->q_scale` are
+ * ignored. The chosen `s` is written to `scale_out`
  * when it is not NULL. Same guarantee as [`bzj_connect`].
  *
  * @return the statuses of [`bzj_connect`] (except for the scales, which are
@@ -1109,7 +1111,9 @@ BzjStatus bzj_fillet(const struct BzjCurve *p, const struct BzjCurve *q, const s
  * [`bzj_fillet`] with `alpha = beta = s` chosen automatically, as
  * `bzj_connect_auto_scale` chooses it: `s` minimises the blend's fairness
  * energy `integral_0^1 |R''(t)|^2 dt` over two decades either side of
- * `s0 = |Q(v0) - P(u0)| / mean(|P'(u0)|, |Q'(v0)|)`. `options->p_scale`
+ * `s0 = |Q(v0) - P(u0)| / mean(|P'(u0)|, |Q'(v0)|)` (each speed raised to
+ * its floor where the end turns within 1 % of the chord,
+ * docs/mathematics.md). `options->p_scale`
  * and `options->q_scale` are ignored (not read for validity). The chosen
  * `s` is written to `scale_out` when it is not NULL. With the paper's
  * scale 1 a blend whose ends move fast against the setback puts its inner

@@ -143,7 +143,8 @@ class AutoScaledConnection(CurveGroup):
 def connect_auto_scale(p, u0, q, v0, *, p_order=None, q_order=None, constraints=()):
     """:func:`connect` with ``p_scale = q_scale = s`` chosen by the library to minimise
     the fairness energy ``integral_0^1 |R''(t)|^2 dt`` (bounded search over two
-    decades either side of ``|Q(v0) - P(u0)| / mean(|P'(u0)|, |Q'(v0)|)``).
+    decades either side of ``|Q(v0) - P(u0)| / mean(|P'(u0)|, |Q'(v0)|)``, each speed raised
+    to its floor where the end turns within 1 % of the chord).
 
     Returns:
         :class:`AutoScaledConnection` (``curve``, ``scale``).

@@ -144,6 +144,29 @@ def test_default_connect_is_the_automatic_scale():
             assert forced.points == automatic_points(p, q)
 
 
+def test_default_connect_of_nearly_stationary_ends_stays_in_size():
+    # Reliability R1: cubics whose end poles are eps apart (|P'| = |Q'| = 3 eps).
+    # The default's search was centred on chord / mean(|P'|, |Q'|), 1e10 for
+    # eps = 1e-9, and gave control points of 2.7e14 on a shape 11 wide.
+    for eps in (0.0, 1e-12, 1e-9, 1e-6, 1e-3):
+        p_poles = [(0.0, 0.0), (3.0, 0.0), (6.0, 1.0), (6.0 + eps, 1.0)]
+        q_poles = [(10.0 - eps, -1.0), (10.0, -1.0), (10.0, 3.0), (11.0, 8.0)]
+        with Curve(p_poles) as p, Curve(q_poles) as q:
+            with bezjoin.connect(p, 1.0, q, 0.0, p_order=2, q_order=2) as blend, \
+                    bezjoin.connect_auto_scale(p, 1.0, q, 0.0, p_order=2,
+                                               q_order=2) as automatic:
+                assert blend.points == automatic.curve.points
+                size = max(abs(x) for point in blend.points for x in point)
+                assert size < 12.0, (eps, size)
+                # C^2 with one scale s: R^(k)(0) = s^k P^(k)(1), R^(k)(1) = s^k Q^(k)(0).
+                s = automatic.scale
+                for k in (0, 1, 2):
+                    for t, poles, at in ((0.0, p_poles, 1.0), (1.0, q_poles, 0.0)):
+                        want = [s ** k * x for x in derivative(poles, at, k)]
+                        got = derivative(blend.points, t, k)
+                        assert distance(got, want) <= 1e-9 * max(1.0, norm(want)), (eps, k, t)
+
+
 def automatic_points(p, q):
     with bezjoin.connect_auto_scale(p, 0.95, q, 0.1) as automatic:
         return automatic.curve.points

@@ -135,8 +135,10 @@ pub unsafe extern "C" fn bzj_connect(
 /// [`bzj_connect`] with `alpha = beta = s` chosen automatically to minimise
 /// the fairness energy `integral_0^1 |R''(t)|^2 dt` (exact, Bernstein Gram
 /// matrix) by a bounded search over two decades either side of
-/// `s0 = |Q(v0) - P(u0)| / mean(|P'(u0)|, |Q'(v0)|)`; `options->p_scale` and
-/// `options->q_scale` are ignored. The chosen `s` is written to `scale_out`
+/// `s0 = |Q(v0) - P(u0)| / mean(|P'(u0)|, |Q'(v0)|)` (each speed raised to
+/// its floor where the end turns within 1 % of the chord,
+/// docs/mathematics.md); `options->p_scale` and `options->q_scale` are
+/// ignored. The chosen `s` is written to `scale_out`
 /// when it is not NULL. Same guarantee as [`bzj_connect`].
 ///
 /// @return the statuses of [`bzj_connect`] (except for the scales, which are

@@ -8,11 +8,11 @@
 mod common;
 
 use bezjoin_core::{
-    AUTO_SCALE_SEARCH_DECADES, BALANCED_SPEED_FLOOR, BezierCurve, BezjoinError, ChainFilletOptions,
-    ConnectOptions, Connection, DeviationFilletOptions, FilletOptions, NurbsCurve, ShapeScale,
-    connect, fairness_energy, fillet_chain, fillet_vertex, fillet_within_deviation,
+    AUTO_SCALE_SEARCH_DECADES, BezierCurve, BezjoinError, ChainFilletOptions, ConnectOptions,
+    Connection, DeviationFilletOptions, FilletOptions, NurbsCurve, ShapeScale, connect,
+    fairness_energy, fillet_chain, fillet_vertex, fillet_within_deviation,
 };
-use common::{Random, distance};
+use common::{Random, distance, speed_and_floor};
 
 fn norm(v: &[f64]) -> f64 {
     v.iter().map(|x| x * x).sum::<f64>().sqrt()
@@ -159,18 +159,6 @@ fn both_ends_of_the_balanced_blend_run_at_one_speed() {
         compared >= 30 && floored <= 5,
         "{compared} compared, {floored} floored"
     );
-}
-
-/// `|X'(u)|` and the largest floor term `((BALANCED_SPEED_FLOOR c)^(j-1)
-/// |X^(j)(u)|)^(1/j)`, `j = 2..=order`, of the balanced scale.
-fn speed_and_floor(x: &BezierCurve, u: f64, order: usize, chord: f64) -> (f64, f64) {
-    let floor = (2..=order)
-        .map(|j| {
-            ((BALANCED_SPEED_FLOOR * chord).powi(j as i32 - 1) * norm(&x.derivative_at(u, j)))
-                .powf(1.0 / j as f64)
-        })
-        .fold(0.0, f64::max);
-    (norm(&x.derivative_at(u, 1)), floor)
 }
 
 #[test]

@@ -22,7 +22,7 @@ use bezjoin_core::{
     connect_unchecked, fairness_energy,
 };
 use bezjoin_core::{BSplineCurve, BezierCurve, BezjoinError, KnotSide};
-use common::{Random, bezier_basis_derivatives};
+use common::{Random, bezier_basis_derivatives, speed_and_floor};
 use proptest::prelude::*;
 
 /// The residual the issue asks for (issue 3, item 5).
@@ -437,14 +437,16 @@ proptest! {
         assert_conditions(&checked, &c);
         let best = fairness_energy(&c.curve);
         // The documented search range: AUTO_SCALE_SEARCH_DECADES either side
-        // of s0 = |Q(v0) - P(u0)| / mean(|P'(u0)|, |Q'(v0)|) (1 if undefined).
+        // of s0 = |Q(v0) - P(u0)| / mean(v_P, v_Q) (1 if undefined), v the
+        // end's speed |X'| raised to its floor terms
+        // ((BALANCED_SPEED_FLOOR c)^(j-1) |X^(j)|)^(1/j) when larger.
         let gap = norm(&case.q.eval(case.v0).iter().zip(case.p.eval(case.u0)).map(|(a, b)| a - b).collect::<Vec<_>>());
         let mut speeds = Vec::new();
-        if case.options.p_order > 0 {
-            speeds.push(norm(&case.p.derivative_at(case.u0, 1)));
-        }
-        if case.options.q_order > 0 {
-            speeds.push(norm(&case.q.derivative_at(case.v0, 1)));
+        for (x, at, order) in [(&case.p, case.u0, case.options.p_order), (&case.q, case.v0, case.options.q_order)] {
+            if order > 0 {
+                let (speed, floor) = speed_and_floor(x, at, order, gap);
+                speeds.push(speed.max(floor));
+            }
         }
         let s0 = gap / (speeds.iter().sum::<f64>() / speeds.len().max(1) as f64);
         let s0 = if s0.is_finite() && s0 > 0.0 { s0 } else { 1.0 };
@@ -864,4 +866,45 @@ fn connect_without_constraints_agrees_with_the_dense_reference() {
         assert!(gap <= 1e-11, "case {case}: {gap:e} ({options:?})");
     }
     eprintln!("structured vs dense reference: worst relative gap {worst:e}");
+}
+
+#[test]
+fn automatic_scale_of_nearly_stationary_ends_keeps_the_blend_in_size() {
+    // Reliability R1: P ends at (6 + eps, 1) and Q starts at (10 - eps, -1),
+    // each with its end poles eps apart (|P'| = |Q'| = 3 eps), on a shape 11
+    // wide. The search was centred on s0 = chord / mean(|P'|, |Q'|), two
+    // decades either side of 1e10 for eps = 1e-9, and every OK answer had
+    // control points of 265 (eps = 1e-3) to 5e37 (eps = 1e-15, orders 3/3).
+    // With each end's speed raised to its floor, the blend stays within the
+    // shape and meets both conditions (1') to the residual promise.
+    for eps in [0.0, 1e-15, 1e-12, 1e-9, 1e-6, 1e-3] {
+        let p = BezierCurve::from_rows(&[[0.0, 0.0], [3.0, 0.0], [6.0, 1.0], [6.0 + eps, 1.0]])
+            .unwrap();
+        let q =
+            BezierCurve::from_rows(&[[10.0 - eps, -1.0], [10.0, -1.0], [10.0, 3.0], [11.0, 8.0]])
+                .unwrap();
+        for (kp, kq) in [(2, 2), (3, 3), (2, 3)] {
+            let options = ConnectOptions::new(kp, kq).with_auto_scale();
+            let c = connect(&p, 1.0, &q, 0.0, &options)
+                .unwrap_or_else(|e| panic!("eps {eps:e}, orders {kp}/{kq}: {e}"));
+            let size = c.curve.coordinate_scale();
+            assert!(
+                size < 12.0,
+                "eps {eps:e}, orders {kp}/{kq}: control points up to {size}"
+            );
+            let given = options.with_scales(c.p_scale, c.q_scale);
+            let case = Case {
+                p: p.clone(),
+                q: q.clone(),
+                u0: 1.0,
+                v0: 0.0,
+                options: given,
+            };
+            let worst = worst_residual(&case, &c);
+            assert!(
+                worst <= CONNECT_RESIDUAL_LIMIT,
+                "eps {eps:e}, orders {kp}/{kq}: relative residual {worst:e}"
+            );
+        }
+    }
 }

@@ -702,3 +702,48 @@ fn a_fair_blend_between_ends_facing_away_is_at_most_ten_chords_long() {
         }
     }
 }
+
+#[test]
+fn fair_blends_of_nearly_stationary_ends_are_answered_in_size() {
+    // Reliability R1: P ends at (6 + eps, 1), Q starts at (10 - eps, -1), each
+    // with its end poles eps apart (|P'| = |Q'| = 3 eps). The search's grid
+    // was centred on beta_1 = chord / |P'| per end (3e3 chords for eps =
+    // 1e-3), where every trial blend is over ten chords long, and G^2 was
+    // refused for every eps up to 1e-3. With the ends' speeds raised to
+    // their floor (BALANCED_SPEED_FLOOR) the fair blends are answered, at
+    // most ten chords long, and meet both ends with G^k.
+    for eps in [1e-12, 1e-9, 1e-6, 1e-4, 1e-3] {
+        let p = BezierCurve::from_rows(&[[0.0, 0.0], [3.0, 0.0], [6.0, 1.0], [6.0 + eps, 1.0]])
+            .unwrap();
+        let q =
+            BezierCurve::from_rows(&[[10.0 - eps, -1.0], [10.0, -1.0], [10.0, 3.0], [11.0, 8.0]])
+                .unwrap();
+        for k in [2, 3] {
+            let g = connect_geometric(&p, 1.0, &q, 0.0, &GeometricOptions::new(k, k))
+                .unwrap_or_else(|e| panic!("eps {eps:e}, G{k}: {e}"));
+            let chord = gap(&p.eval(1.0), &q.eval(0.0));
+            let length = g.curve.arc_length(0.0, 1.0, 1e-9).unwrap();
+            assert!(
+                length <= 1.02 * MAX_LENGTH_RATIO * chord,
+                "eps {eps:e}, G{k}: length {length} for the chord {chord}"
+            );
+            if eps >= 1e-6 {
+                // Below, |R'| at the ends is a difference of poles 1e-11 of
+                // their size, and the curvature (1e22) is only known to 1e-4.
+                let mismatch = geometric_mismatch(
+                    &p.eval_derivatives(1.0, 3),
+                    &g.curve.eval_derivatives(0.0, 3),
+                    2,
+                    k,
+                )
+                .max(geometric_mismatch(
+                    &q.eval_derivatives(0.0, 3),
+                    &g.curve.eval_derivatives(1.0, 3),
+                    2,
+                    k,
+                ));
+                assert!(mismatch <= 1e-6, "eps {eps:e}, G{k}: mismatch {mismatch:e}");
+            }
+        }
+    }
+}

@@ -85,7 +85,7 @@ pub const BALANCED_SPEED_FLOOR: f64 = 1e-2;
 /// blend independent of linear reparametrisations, also at an end whose first
 /// derivative vanishes. `None` when no term is positive and finite (order 0,
 /// or a jet that vanishes or overflows).
-fn end_speed(derivatives: &DMatrix<f64>, chord: f64) -> Option<f64> {
+pub(crate) fn end_speed(derivatives: &DMatrix<f64>, chord: f64) -> Option<f64> {
     let mut speed = 0.0f64;
     for j in 1..derivatives.nrows() {
         let size = derivatives.row(j).norm();
@@ -121,17 +121,25 @@ fn balanced_weights(problem: &Problem) -> Option<ScaleWeights> {
     })
 }
 
-/// `s0 = |Q(v0) - P(u0)| / mean(|P'(u0)|, |Q'(v0)|)`, 1 when undefined.
+/// `s0 = |Q(v0) - P(u0)| / mean(v_P, v_Q)`, 1 when undefined: the mean over
+/// the ends of order at least 1 of the speed [`end_speed`] gives them,
+/// `|P'(u0)|` unless the end turns or accelerates within
+/// [`BALANCED_SPEED_FLOOR`] of the chord (then its floor), and `|P'(u0)|`
+/// where that speed is undefined (a jet that vanishes or overflows). Where
+/// no floor applies this is `chord / mean(|P'|, |Q'|)` bit for bit. With
+/// the raw speeds alone, two ends that are nearly stationary put the whole
+/// search range at 1e7 to 1e11 chords (cubics whose end poles are 1e-9
+/// apart, orders 2/2): control points of 2.7e14 (reliability.md, R1).
 pub(crate) fn natural_scale(problem: &Problem) -> f64 {
-    let p = &problem.p_derivatives;
-    let q = &problem.q_derivatives;
     let gap = problem.chord();
+    let speed_of = |derivatives: &DMatrix<f64>| {
+        end_speed(derivatives, gap).unwrap_or_else(|| derivatives.row(1).norm())
+    };
     let mut speeds = Vec::new();
-    if p.nrows() > 1 {
-        speeds.push(p.row(1).norm());
-    }
-    if q.nrows() > 1 {
-        speeds.push(q.row(1).norm());
+    for derivatives in [&problem.p_derivatives, &problem.q_derivatives] {
+        if derivatives.nrows() > 1 {
+            speeds.push(speed_of(derivatives));
+        }
     }
     let speed = speeds.iter().sum::<f64>() / speeds.len().max(1) as f64;
     positive_or_one(gap / speed)

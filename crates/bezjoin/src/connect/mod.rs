@@ -96,8 +96,8 @@ use crate::error::{BezjoinError, Result, check_finite, check_open_range, check_p
 use crate::linalg::solve_checked;
 
 pub use dense::connect_dense_reference;
-pub(crate) use energy::natural_scale;
 pub use energy::{AUTO_SCALE_SEARCH_DECADES, BALANCED_SPEED_FLOOR, fairness_energy};
+pub(crate) use energy::{end_speed, natural_scale};
 
 /// The promised worst relative residual of (1') and (2) (see the module
 /// documentation for the definition). Answers whose error estimate exceeds
@@ -254,8 +254,10 @@ pub enum ShapeScale {
     /// `E(s) = integral_0^1 |R_s''(t)|^2 dt` (computed exactly,
     /// [`fairness_energy`]) by a bounded 1-D search on `log s` over
     /// [`AUTO_SCALE_SEARCH_DECADES`] decades either side of the natural scale
-    /// `s0 = |Q(v0) - P(u0)| / mean(|P'(u0)|, |Q'(v0)|)` (1 when the gap or
-    /// the speeds vanish). `R_s` is linear in the scaled jets, so `E` is a
+    /// `s0 = |Q(v0) - P(u0)| / mean(v_P, v_Q)` (1 when the gap or the speeds
+    /// vanish; `v_P = |P'(u0)|` raised to the floor of the balanced scale,
+    /// [`BALANCED_SPEED_FLOOR`], where the end turns or accelerates within
+    /// 1 % of the chord). `R_s` is linear in the scaled jets, so `E` is a
     /// polynomial of degree `2 max(kp, kq)` in `s`, formed from
     /// `max(kp, kq) + 1` triangular solves: its global minimum on the range
     /// (every sign change of its slope on a log-spaced grid, refined by

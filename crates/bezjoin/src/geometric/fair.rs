@@ -6,7 +6,7 @@ use std::sync::OnceLock;
 
 use crate::basis::bezier_basis_derivatives;
 use crate::bezier::BezierCurve;
-use crate::connect::{MAX_CONNECT_DEGREE, Problem, natural_scale};
+use crate::connect::{MAX_CONNECT_DEGREE, Problem, end_speed, natural_scale};
 use crate::error::{BezjoinError, Result};
 
 use super::MAX_GEOMETRIC_ORDER;
@@ -515,23 +515,30 @@ fn shapes_from(
     (p, q)
 }
 
-/// The natural `beta_1` of each end, `|Q(v0) - P(u0)| / |P'(u0)|` and
-/// `|Q(v0) - P(u0)| / |Q'(v0)|`: the value at which that end of the blend
-/// leaves with the speed of the chord. A linear reparametrisation of an
-/// input (`P(c t)`: derivatives `c^i P^(i)`) divides its value by `c`, and
+/// The natural `beta_1` of each end, `c / v_P` and `c / v_Q` (`c` the chord
+/// `|Q(v0) - P(u0)|`, `v` the end's speed of connect's balanced scale,
+/// [`end_speed`]: `|P'(u0)|` unless the end turns or accelerates within
+/// [`crate::BALANCED_SPEED_FLOOR`] of the chord): the value at which that end
+/// of the blend leaves with the speed of the chord (slower where a floor
+/// wins). A linear reparametrisation of an input (`P(c t)`: derivatives
+/// `c^i P^(i)`, every term of `v` times `c`) divides its value by `c`, and
 /// the shapes that give the same blend are `beta_j / c` (the partial Bell
 /// polynomials are homogeneous), while the `gamma_j = beta_j / beta_1` stay:
 /// so the search, which starts from these values and moves `ln beta_1` and
 /// the `gamma_j`, takes the same steps for every parametrisation of the
 /// inputs and finds the same blend (up to rounding). Where a value is not a
 /// positive finite number (a zero chord or end speed), connect's common
-/// natural scale ([`natural_scale`]) stands in.
+/// natural scale ([`natural_scale`]) stands in. Without the floor a
+/// nearly stationary end (a cubic whose last two poles are `1e-3` apart)
+/// centred the grid at `beta_1 = c / (3e-3)`, where every trial blend was
+/// over [`MAX_LENGTH_RATIO`] chords long, and G^2 was refused
+/// (reliability.md, R1).
 fn natural_end_scales(problem: &Problem) -> (f64, f64) {
     let (p, q) = (&problem.p_derivatives, &problem.q_derivatives);
     let chord = problem.chord();
     let of = |jet: &nalgebra::DMatrix<f64>| {
         let value = if jet.nrows() > 1 {
-            chord / jet.row(1).norm()
+            end_speed(jet, chord).map_or(f64::NAN, |speed| chord / speed)
         } else {
             f64::NAN
         };

@@ -161,3 +161,17 @@ pub fn dense_scan_minimum(metric: impl Fn(f64) -> f64) -> (f64, f64) {
     }
     (scan_mu, scan_best)
 }
+
+/// The documented speed of an end for the automatic and balanced scales:
+/// `|X'(u)|` and the largest floor term `((BALANCED_SPEED_FLOOR c)^(j-1)
+/// |X^(j)(u)|)^(1/j)`, `j = 2..=order` (0 when there is none), `c` the chord.
+pub fn speed_and_floor(x: &BezierCurve, u: f64, order: usize, chord: f64) -> (f64, f64) {
+    let floor = (2..=order)
+        .map(|j| {
+            ((bezjoin_core::BALANCED_SPEED_FLOOR * chord).powi(j as i32 - 1)
+                * norm(&x.derivative_at(u, j)))
+            .powf(1.0 / j as f64)
+        })
+        .fold(0.0, f64::max);
+    (norm(&x.derivative_at(u, 1)), floor)
+}
