@@ -61,6 +61,18 @@ def real_argument(value, name):
 BALANCED = "balanced"
 
 
+def _plain_bool(value):
+    """``value`` as a Python bool when it is a bool (also numpy's ``bool_``, what a
+    comparison of numpy values gives), else ``None`` (``1``, ``"yes"``, arrays: refused,
+    so that a mistyped argument is not read as a flag)."""
+    if isinstance(value, bool):
+        return value
+    kind = type(value)
+    if kind.__module__ == "numpy" and kind.__name__ in ("bool_", "bool"):
+        return bool(value)
+    return None
+
+
 def automatic_scale(auto_scale, p_scale, q_scale, *, balanced=False):
     """Whether an operation uses the automatic scale, and the explicit scales otherwise.
 
@@ -74,11 +86,14 @@ def automatic_scale(auto_scale, p_scale, q_scale, *, balanced=False):
     are ignored). Returns ``(automatic, p_scale, q_scale)`` with the scales as
     floats; ``automatic`` is ``False``, ``True`` or ``"balanced"``.
     """
-    if balanced and auto_scale == BALANCED:
+    if balanced and isinstance(auto_scale, str) and auto_scale == BALANCED:
         pass
-    elif auto_scale is not None and not isinstance(auto_scale, bool):
-        allowed = 'None, a bool or "balanced"' if balanced else "None or a bool"
-        raise TypeError(f"auto_scale must be {allowed}, not {auto_scale!r}")
+    elif auto_scale is not None:
+        flag = _plain_bool(auto_scale)
+        if flag is None:
+            allowed = 'None, a bool or "balanced"' if balanced else "None or a bool"
+            raise TypeError(f"auto_scale must be {allowed}, not {auto_scale!r}")
+        auto_scale = flag
     if auto_scale is None:
         auto_scale = p_scale is None and q_scale is None
     p_scale = 1.0 if p_scale is None else real_argument(p_scale, "p_scale")

@@ -208,6 +208,20 @@ def test_auto_scale_must_be_a_bool_or_none():
                      lambda: bezjoin.fillet_vertex(q, p, setback=1.0, gap=1e-9), "gap")
 
 
+def test_auto_scale_takes_numpy_bools_and_refuses_arrays_by_name():
+    # Reliability F6: a numpy bool (what comparing numpy values gives) was refused,
+    # and a numpy array met numpy's own ValueError instead of the argument's name.
+    np = pytest.importorskip("numpy")
+    with Curve(LONG) as p, Curve(SHORT) as q:
+        for flag in (True, False):
+            with bezjoin.connect(p, 0.95, q, 0.1, auto_scale=flag) as plain, \
+                    bezjoin.connect(p, 0.95, q, 0.1, auto_scale=np.bool_(flag)) as numpy_flag:
+                assert numpy_flag.points == plain.points
+        for bad in (np.array([True]), np.array(["balanced"]), np.int64(1)):
+            with pytest.raises(TypeError, match="auto_scale"):
+                bezjoin.connect(p, 0.95, q, 0.1, auto_scale=bad)
+
+
 # -- fillet by radius: detailed ------------------------------------------------------
 
 
