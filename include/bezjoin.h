@@ -1375,7 +1375,11 @@ BzjStatus bzj_fillet_chain_balanced_scale(const struct BzjCurve *const *curves, 
  *         most 10 chords long (so
  *         always when `p`'s tangent at `u0` or `q`'s at `v0` is zero at an
  *         end of order >= 1: G^k needs a regular point; the message names
- *         the curve and the parameter).
+ *         the curve and the parameter), or if an end's tangent and
+ *         curvature are not known to 1e-6 of themselves (an end within a
+ *         few thousand roundings of stationary, or next to a cusp; the
+ *         message names the end and gives the estimate; docs/mathematics.md,
+ *         "Numerically stationary ends").
  *
  * # Safety
  * `p`, `q` are NULL or live handles; `options` NULL or readable, its

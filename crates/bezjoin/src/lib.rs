@@ -72,9 +72,9 @@ pub use fillet::{
     distance_to_curve, fillet, fillet_at, fillet_chain, fillet_vertex, fillet_within_deviation,
 };
 pub use geometric::{
-    CURVATURE_SAMPLES, ENERGY_PANELS, FairnessReport, GeometricConnection, GeometricCurve,
-    GeometricOptions, MAX_GEOMETRIC_ORDER, MAX_LENGTH_RATIO, connect_geometric,
-    connect_geometric_curve, curvature_variation, fairness_report, partial_bell,
+    CURVATURE_SAMPLES, ENERGY_PANELS, FairnessReport, GEOMETRIC_CONDITION_LIMIT,
+    GeometricConnection, GeometricCurve, GeometricOptions, MAX_GEOMETRIC_ORDER, MAX_LENGTH_RATIO,
+    connect_geometric, connect_geometric_curve, curvature_variation, fairness_report, partial_bell,
 };
 pub use intersect::{
     DEFAULT_MAX_BOX_PAIRS, DEFAULT_MAX_DEPTH, DEFAULT_MAX_HITS,

@@ -197,6 +197,21 @@ fn connect_fixed<const D: usize, const CAP: usize, P: CurveJet + ?Sized, Q: Curv
             crate::geometric::check_regular_ends((u0, zero(p_rows)), (v0, zero(q_rows)), (kp, kq))?;
             bell_targets_in_place(p_rows, p_errors, p_shape);
             bell_targets_in_place(q_rows, q_errors, q_shape);
+            // The ends' tangents and curvatures must be known to the
+            // promise, as the general path checks them (the same numbers).
+            use crate::geometric::{
+                GEOMETRIC_CONDITION_LIMIT, chord_between, end_condition, geometric_condition_error,
+            };
+            let chord = chord_between(&p_rows[0], &q_rows[0]);
+            let p = end_condition(p_rows, p_errors, kp, chord, p_shape);
+            let q = end_condition(q_rows, q_errors, kq, chord, q_shape);
+            if p.0.max(q.0) > GEOMETRIC_CONDITION_LIMIT {
+                return Err(geometric_condition_error(
+                    (p.0, u0, p.1, p.2),
+                    (q.0, v0, q.1, q.2),
+                    (kp, kq),
+                ));
+            }
         }
     }
     // Targets and their bounds in place, their norms, and the data scale

@@ -67,7 +67,7 @@ struct ScaleWeights {
 /// `alpha = beta = s`.
 const EQUAL_WEIGHTS: ScaleWeights = ScaleWeights { p: 1.0, q: 1.0 };
 
-/// The floor of [`end_speed`] relative to the chord `c`: an end whose
+/// The floor of the balanced speed (`end_speed`) relative to the chord `c`: an end whose
 /// unit-speed jet has a derivative `j >= 2` above `(BALANCED_SPEED_FLOOR c)^(1-j)`
 /// (its length scale of order `j`, `(|X'|^j / |X^(j)|)^(1/(j-1))`, is below 1 %
 /// of the chord: it turns or accelerates within that) is balanced at a higher

@@ -242,7 +242,7 @@ mod tests {
             for s in [0.05, 0.3, 1.7] {
                 let ps: Vec<f64> = (0..kp).map(|j| s * (1.0 - 0.4 * j as f64)).collect();
                 let qs: Vec<f64> = (0..kq).map(|j| s * (0.8 + 0.3 * j as f64)).collect();
-                let reference = solve_with_shapes(&problem, &ps, &qs).unwrap();
+                let reference = solve_with_shapes(&problem, (0.8, 0.3), &ps, &qs).unwrap();
                 let points = trial.solve(&ps, &qs, true).unwrap();
                 assert_eq!(points, reference.curve.points(), "kp {kp} kq {kq} s {s}");
             }
