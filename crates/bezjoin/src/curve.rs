@@ -261,10 +261,10 @@ impl CurveJet for NurbsCurve {
 
     /// A clamped one-span polynomial curve (a Bezier curve as a NURBS
     /// handle): the Bezier curve's de Casteljau jet of its poles, scaled to
-    /// the domain ([`NurbsCurve::bezier_span_jet_into`]; on `[0, 1]` the
+    /// the domain (`NurbsCurve::bezier_span_jet_into`; on `[0, 1]` the
     /// jet of the Bezier curve itself). A polynomial curve of several
     /// spans: the same from its span's poles in the kept decomposition,
-    /// with their rounding in the bound ([`NurbsCurve::spans_jet_into`]).
+    /// with their rounding in the bound (`NurbsCurve::spans_jet_into`).
     /// Any other curve: A2.3
     /// (the rows and bounds of `NurbsCurve::eval_derivatives_into`).
     fn jet_into(

@@ -9,10 +9,11 @@
 //!   [`intersect`] and [`connect`];
 //! * [`merge`] — the smallest change of two curves' control points that makes
 //!   them one curve (Ganchuk, Krivosheev, Mavrin, Ryzhov 2024; Hu et al. 2001);
-//! * [`lagrange`] — cubic splines whose control points lie on the curve (Kovtun).
+//! * `lagrange` ([`lagrange_spline`]) — cubic splines whose control points
+//!   lie on the curve (Kovtun).
 //!
 //! The ground they stand on: [`BezierCurve`] with exact evaluation,
-//! derivatives (The NURBS Book A2.3 in [`basis`]), degree elevation,
+//! derivatives (The NURBS Book A2.3, module `basis`), degree elevation,
 //! subdivision, segments and arc length; [`BSplineCurve`] for chains.
 //!
 //! # The public surface

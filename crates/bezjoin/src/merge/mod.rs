@@ -540,7 +540,7 @@ pub enum Breakpoints {
     /// curves and keep points, the metric and its slope `d metric / d mu`
     /// (closed form, by the envelope theorem: the derivative of the
     /// least-squares norm at the optimal, fixed `R`) are sampled at
-    /// [`MU_SEARCH_SLOPE_SAMPLES`] + degree evenly spaced values (at most
+    /// `MU_SEARCH_SLOPE_SAMPLES` + degree evenly spaced values (at most
     /// [`MU_SEARCH_SAMPLES`] + 1) and every interval whose cubic Hermite
     /// model may hold a minimum is searched on the slope (safeguarded cubic
     /// interpolation, [`MU_SEARCH_TOLERANCE`]); the trials skip the error
