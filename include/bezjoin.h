@@ -1377,7 +1377,8 @@ BzjStatus bzj_fillet_chain_balanced_scale(const struct BzjCurve *const *curves, 
  *         end of order >= 1: G^k needs a regular point; the message names
  *         the curve and the parameter), or if an end's tangent and
  *         curvature are not known to 1e-6 of themselves (an end within a
- *         few thousand roundings of stationary, or next to a cusp; the
+ *         few thousand roundings of stationary, next to a cusp, or whose
+ *         blend's stored poles cannot hold its curvature; the
  *         message names the end and gives the estimate; docs/mathematics.md,
  *         "Numerically stationary ends").
  *

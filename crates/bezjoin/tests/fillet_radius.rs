@@ -8,8 +8,8 @@
 mod common;
 
 use bezjoin_core::{
-    BezierCurve, BezjoinError, Curve, KnotSide, NurbsCurve, ellipse_arc, fillet_radius,
-    fillet_radius_chain,
+    BezierCurve, BezjoinError, Curve, GEOMETRIC_CONDITION_LIMIT, KnotSide, NurbsCurve, ellipse_arc,
+    fillet_radius, fillet_radius_chain,
 };
 
 fn dot(a: &[f64], b: &[f64]) -> f64 {
@@ -550,7 +550,23 @@ fn a_radius_that_uses_a_whole_side_of_one_corner_is_refused() {
             }
             other => panic!("G{order}: {other:?}"),
         }
-        assert!(fillet_radius(&long, &short, 1e-6, order).is_ok());
+        // A radius of 2.5e-8 of the coordinates: G2 holds to the promise;
+        // the G3 blend's curvature is not known to GEOMETRIC_CONDITION_LIMIT
+        // there (the same L turned by 0.5 rad gave dK/ds off by 3.5e-6,
+        // session 42) and is refused with its estimate; 1e-4 is answered.
+        match (order, fillet_radius(&long, &short, 1e-6, order)) {
+            (2, Ok(_)) => {}
+            (
+                3,
+                Err(BezjoinError::IllConditioned {
+                    estimate, limit, ..
+                }),
+            ) => {
+                assert!(estimate > limit && limit == GEOMETRIC_CONDITION_LIMIT);
+                assert!(fillet_radius(&long, &short, 1e-4, order).is_ok());
+            }
+            (_, other) => panic!("G{order}, radius 1e-6: {other:?}"),
+        }
         let f = fillet_radius(&long, &short, 29.9, order).unwrap();
         // The kept piece of the short line is 0.1 long: from (40, 29.9) to (40, 30).
         let start = short.eval(f.v0);

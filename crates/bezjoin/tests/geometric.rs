@@ -850,3 +850,52 @@ fn a_numerically_stationary_end_is_refused_and_every_answer_meets_gk() {
         "{answered} answered, {refused} refused"
     );
 }
+
+#[test]
+fn a_blend_whose_poles_cannot_hold_its_curvature_is_refused() {
+    // User testing, session 42: the same cubics as B-splines on [0, D]. With
+    // D = 1e6 and shape values [1, 0.5] the blend's first control-point steps
+    // are 5e-7 on coordinates of 3, and its stored poles cannot hold the
+    // curvature: answered with the curvature at q off by 1.4e-3. The
+    // estimate now counts the stored blend's own rounding: refused; every
+    // answer meets G^2 to the limit, judged from the inputs' own jets.
+    let p_poles = [0.0, 0.0, 1.0, 0.8, 2.2, 1.1, 3.0, 0.9];
+    let q_poles = [4.0, 0.2, 4.8, -0.6, 5.5, -1.7, 7.0, -2.0];
+    for domain in [1.0, 1e3, 1e6] {
+        let knots = |d: f64| vec![0.0, 0.0, 0.0, 0.0, d, d, d, d];
+        let p = NurbsCurve::new(2, 3, p_poles.to_vec(), None, knots(domain)).unwrap();
+        let q = NurbsCurve::new(2, 3, q_poles.to_vec(), None, knots(domain)).unwrap();
+        let options = GeometricOptions::new(2, 2).with_shapes(vec![1.0, 0.5], vec![1.0, 0.5]);
+        match connect_geometric_curve(&p, domain, &q, 0.0, &options) {
+            Ok(g) => {
+                let left = p
+                    .jet(domain, 3, KnotSide::Left)
+                    .0
+                    .transpose()
+                    .as_slice()
+                    .to_vec();
+                let right = q
+                    .jet(0.0, 3, KnotSide::Right)
+                    .0
+                    .transpose()
+                    .as_slice()
+                    .to_vec();
+                let mismatch =
+                    geometric_mismatch(&left, &g.curve.eval_derivatives(0.0, 3), 2, 2).max(
+                        geometric_mismatch(&right, &g.curve.eval_derivatives(1.0, 3), 2, 2),
+                    );
+                assert!(
+                    mismatch <= GEOMETRIC_CONDITION_LIMIT,
+                    "domain {domain:e}: mismatch {mismatch:e}"
+                );
+                assert!(domain < 1e6, "domain {domain:e} was answered");
+            }
+            Err(BezjoinError::IllConditioned {
+                estimate, limit, ..
+            }) => {
+                assert!(estimate > limit && domain > 1.0, "domain {domain:e}");
+            }
+            Err(e) => panic!("domain {domain:e}: {e}"),
+        }
+    }
+}

@@ -280,30 +280,30 @@ pub(crate) fn check_regular_ends(
 pub const GEOMETRIC_CONDITION_LIMIT: f64 = 1e-6;
 
 /// How well the geometric invariants of one end are known, relative to
-/// themselves: the unit tangent and (for `order >= 2`, in two dimensions and
-/// more) the curvature vector, from the targets `R^(j)(end) = T_j` of the
-/// beta-constraints (`rows[j] = T_j`, `errors[j]` their rounding bounds,
-/// which carry the input's own rounding, `j = 0..=order`) and the chord `c`:
+/// themselves: the unit tangent and (in two dimensions and more) the
+/// curvature vector `K`, from the targets `T_j = R^(j)(end)` of the
+/// beta-constraints (`rows[j]`, `j = 0..=order`) and the chord `c`. The
+/// error `e_j` of `T_j` is its rounding bound (`errors[j]`) plus that of the
+/// stored blend's own `R^(j)`, `2^j n!/(n-j)! u S` (`(n, S)` =
+/// `(degree, coordinates)`: the blend's degree and the ends' largest
+/// coordinate; far from the origin, or where the blend's first control-point
+/// steps are tiny against its coordinates, the stored poles cannot hold the
+/// curvature better). To first order:
+/// - the tangent: `2 e_1 / |T_1|`;
+/// - `K = T_2^perp / |T_1|^2`: `(e_2 + 2 |T_2| e_1 / |T_1|) / |T_1|^2`
+///   against `max(|K|, 1 / c)`.
 ///
-/// `max_(j = 1..=min(order, 2)) (e_j + j |T_j| e_1 / |T_1|) / max(|T_1|^j / c^(j-1), |T_j^perp|)`
-///
-/// with `T_j^perp` the part of `T_j` across the tangent. To first order an
-/// error `e_j` in `R^(j)` moves the order-`j` invariant by `e_j / |R'|^j`,
-/// an error `e_1` in `R'` by `j |R^(j)| e_1 / |R'|^(j+1)`; the invariant's
-/// size is that of `T_j^perp / |R'|^j` (the curvature vector is
-/// `T_2^perp / |T_1|^2`), or `c^(1-j)` where that is smaller. The higher
-/// invariants are not estimated: they inherit the tangent's conditioning,
-/// and their size is no simple function of the targets. With `T_1 = 0`
-/// the tangent is undefined: infinite. At an end that is nearly stationary
-/// (`|P'|` within a few thousand roundings of the coordinates) the term
-/// `2 e_1 / |T_1|` dominates; next to a cusp (`P'` and `P''` nearly
-/// parallel) the curvature term does: the curvature is then a small
+/// The larger of the two; the curvature's derivative (G^3) is not
+/// estimated. With `T_1 = 0` the tangent is undefined: infinite. At an end
+/// that is nearly stationary the tangent's term dominates; next to a cusp
+/// (`P'` and `P''` nearly parallel) the curvature's: it is then a small
 /// difference of large numbers.
 pub(crate) fn geometric_end_condition<R: AsRef<[f64]>>(
     rows: &[R],
     errors: &[f64],
     order: usize,
     chord: f64,
+    (degree, coordinates): (usize, f64),
 ) -> f64 {
     let order = order.min(rows.len().saturating_sub(1));
     if order == 0 {
@@ -311,30 +311,35 @@ pub(crate) fn geometric_end_condition<R: AsRef<[f64]>>(
     }
     let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
     let first = rows[1].as_ref();
-    // The tangent and the curvature vector: the higher invariants inherit
-    // their conditioning; a line (dimension 1) has no curvature to lose.
+    // The tangent and the curvature vector (the curvature's derivative is
+    // not estimated: a first-order bound of it refused G3 fillets whose
+    // blends were exact to 1e-14, session 42); a line (dimension 1) has no
+    // curvature to lose.
     let order = if first.len() == 1 { 1 } else { order.min(2) };
-    let speed_squared = dot(first, first);
-    let speed = speed_squared.sqrt();
+    let speed = dot(first, first).sqrt();
     if speed == 0.0 {
         return f64::INFINITY;
     }
-    let tangent = errors[1] / speed;
+    // The target's bound plus the rounding of the stored blend's own
+    // R^(j)(end): a j-th difference of control points of size
+    // `coordinates`, times n!/(n-j)!.
+    let bound = |j: usize| {
+        let stored: f64 = (0..j).map(|i| 2.0 * (degree - i) as f64).product();
+        errors[j] + stored * 0.5 * f64::EPSILON * coordinates
+    };
+    let tangent = bound(1) / speed;
     let mut worst = 2.0 * tangent;
-    for j in 2..=order {
-        let row = rows[j].as_ref();
-        let size = dot(row, row).sqrt();
-        let along = dot(row, first) / speed;
+    if order >= 2 {
+        // The curvature vector K = T_2^perp / |T_1|^2: error (e_2 + 2 |T_2|
+        // e_1 / |T_1|) / |T_1|^2, against max(|K|, 1 / c).
+        let second = rows[2].as_ref();
+        let size = dot(second, second).sqrt();
+        let along = dot(second, first) / speed;
         let across = (size * size - along * along).max(0.0).sqrt();
-        let scale = (speed.powi(j as i32) / chord.powi(j as i32 - 1)).max(across);
-        let estimate = (errors[j] + j as f64 * size * tangent) / scale;
-        // NaN (a zero chord, 0/0) counts as unknown.
-        worst = if estimate.is_nan() {
-            f64::INFINITY
-        } else {
-            worst.max(estimate)
-        };
+        let scale = (speed * speed / chord).max(across);
+        worst = worst.max((bound(2) + 2.0 * size * tangent) / scale);
     }
+    // NaN (a zero chord, 0/0) counts as unknown.
     if worst.is_nan() { f64::INFINITY } else { worst }
 }
 
@@ -370,26 +375,27 @@ pub(crate) fn geometric_condition_error(
     }
 }
 
-/// [`geometric_end_condition`] of the targets of both ends (`(rows, their
-/// bounds, the end's parameter, its shape values)`, the chord from rows 0),
-/// as the end path forms them: IllConditioned
-/// ([`geometric_condition_error`]) above [`GEOMETRIC_CONDITION_LIMIT`].
-/// Without shape values (before the fair search) pass the jets with unit
-/// shapes: the tangent's term `2 e_1 / |P'|` does not depend on them.
+/// [`end_condition`] of both ends (`(jet, its bounds, the targets, the
+/// end's parameter)`, the chord from the jets' rows 0), as the end path
+/// forms it: IllConditioned ([`geometric_condition_error`]) above
+/// [`GEOMETRIC_CONDITION_LIMIT`]. Before the fair search pass the jets as
+/// their own targets (orders at most 1): the tangent's terms do not depend
+/// on the shape values.
 fn check_targets_condition(
-    (p, p_errors, u0, p_shape): (&DMatrix<f64>, &[f64], f64, &[f64]),
-    (q, q_errors, v0, q_shape): (&DMatrix<f64>, &[f64], f64, &[f64]),
-    (kp, kq): (usize, usize),
+    (p, p_errors, p_targets, u0): (&DMatrix<f64>, &[f64], &DMatrix<f64>, f64),
+    (q, q_errors, q_targets, v0): (&DMatrix<f64>, &[f64], &DMatrix<f64>, f64),
+    (kp, kq, degree): (usize, usize, usize),
 ) -> Result<()> {
     let rows = |m: &DMatrix<f64>| -> Vec<Vec<f64>> {
         m.row_iter()
             .map(|row| row.iter().copied().collect())
             .collect()
     };
-    let (p_rows, q_rows) = (rows(p), rows(q));
-    let chord = chord_between(&p_rows[0], &q_rows[0]);
-    let p_end = end_condition(&p_rows, p_errors, kp, chord, p_shape);
-    let q_end = end_condition(&q_rows, q_errors, kq, chord, q_shape);
+    let (p_jet, q_jet) = (rows(p), rows(q));
+    let chord = chord_between(&p_jet[0], &q_jet[0]);
+    let stored = (degree, largest_coordinate(&p_jet[0], &q_jet[0]));
+    let p_end = end_condition((&p_jet, p_errors), &rows(p_targets), (kp, chord, stored));
+    let q_end = end_condition((&q_jet, q_errors), &rows(q_targets), (kq, chord, stored));
     if p_end.0.max(q_end.0) <= GEOMETRIC_CONDITION_LIMIT {
         return Ok(());
     }
@@ -398,6 +404,12 @@ fn check_targets_condition(
         (q_end.0, v0, q_end.1, q_end.2),
         (kp, kq),
     ))
+}
+
+/// The largest coordinate of two points (in absolute value): the size of
+/// the stored blend's poles both paths measure the condition with.
+pub(crate) fn largest_coordinate(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().chain(b).fold(0.0f64, |m, x| m.max(x.abs()))
 }
 
 /// `|b - a|`, summed left to right: the chord both paths measure the
@@ -410,24 +422,27 @@ pub(crate) fn chord_between(a: &[f64], b: &[f64]) -> f64 {
         .sqrt()
 }
 
-/// One end's `(estimate, |X'|, its bound)` for the message: the estimate of
-/// [`geometric_end_condition`] on the targets, the speed and bound of `T_1 =
-/// beta_1 X'` divided by `beta_1` (0 at an end of order 0).
-pub(crate) fn end_condition<R: AsRef<[f64]>>(
-    rows: &[R],
-    errors: &[f64],
-    order: usize,
-    chord: f64,
-    shape: &[f64],
+/// One end's `(estimate, |X'|, its bound)` (the last two for the message):
+/// [`geometric_end_condition`] of the input's own jet `X^(j)` with its
+/// rounding bounds (the invariants are the same in every parametrisation,
+/// and an error of `X'` turns the shape values' terms `beta_j X'` of the
+/// targets with the tangent, so it is counted here once), plus that of the
+/// targets `T_j` with the stored blend's rounding alone (independent in
+/// every `R^(j)`, so the targets' full size counts). 0 at an end of order 0.
+pub(crate) fn end_condition<J: AsRef<[f64]>, T: AsRef<[f64]>>(
+    (jet, jet_errors): (&[J], &[f64]),
+    targets: &[T],
+    (order, chord, stored): (usize, f64, (usize, f64)),
 ) -> (f64, f64, f64) {
-    let estimate = geometric_end_condition(rows, errors, order, chord);
-    if order == 0 || rows.len() < 2 {
-        return (estimate, 0.0, 0.0);
+    if order == 0 || jet.len() < 2 {
+        return (0.0, 0.0, 0.0);
     }
-    let first = rows[1].as_ref();
+    let zero = [0.0; MAX_GEOMETRIC_ORDER + 1];
+    let input = geometric_end_condition(jet, jet_errors, order, chord, (stored.0, 0.0));
+    let blend = geometric_end_condition(targets, &zero[..targets.len()], order, chord, stored);
+    let first = jet[1].as_ref();
     let speed = first.iter().map(|x| x * x).sum::<f64>().sqrt();
-    let beta = shape.first().copied().unwrap_or(1.0);
-    (estimate, speed / beta, errors[1] / beta)
+    (input + blend, speed, jet_errors[1])
 }
 
 /// Whether a jet (rows `P, P', ...`) has a first derivative, all of whose
@@ -519,9 +534,9 @@ fn solve_with_shapes(
     let (q, q_errors) =
         geometric_targets(&problem.q_derivatives, &problem.q_derivative_error, q_shape);
     check_targets_condition(
-        (&p, &p_errors, u0, p_shape),
-        (&q, &q_errors, v0, q_shape),
-        (problem.p_order, problem.q_order),
+        (&problem.p_derivatives, &problem.p_derivative_error, &p, u0),
+        (&problem.q_derivatives, &problem.q_derivative_error, &q, v0),
+        (problem.p_order, problem.q_order, problem.degree),
     )?;
     shaped.p_derivatives = p;
     shaped.p_derivative_error = p_errors;
@@ -604,20 +619,15 @@ pub fn connect_geometric_curve<P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
             check_ends_apart(&problem, u0, v0)?;
             // The tangents before the search (no shape value changes their
             // term; the winner's targets are checked in full).
+            let (pj, qj) = (&problem.p_derivatives, &problem.q_derivatives);
             check_targets_condition(
+                (pj, &problem.p_derivative_error, pj, u0),
+                (qj, &problem.q_derivative_error, qj, v0),
                 (
-                    &problem.p_derivatives,
-                    &problem.p_derivative_error,
-                    u0,
-                    &[1.0],
+                    options.p_order.min(1),
+                    options.q_order.min(1),
+                    problem.degree,
                 ),
-                (
-                    &problem.q_derivatives,
-                    &problem.q_derivative_error,
-                    v0,
-                    &[1.0],
-                ),
-                (options.p_order.min(1), options.q_order.min(1)),
             )?;
             let search = |checked: bool| {
                 fair::fair_shapes(
