@@ -465,6 +465,15 @@ def connect_geometric(p, u0, q, v0, *, p_order=2, q_order=2, p_shape=None, q_sha
 
     Returns:
         :class:`GeometricConnection`.
+
+    Raises:
+        BezjoinError: ``BZJ_ERR_ILL_CONDITIONED`` when an end's tangent is zero, or
+            when its unit tangent and curvature vector are not known to 1e-6 of
+            themselves (``GEOMETRIC_CONDITION_LIMIT``: an end whose last poles
+            nearly coincide, one next to a cusp, or a blend whose poles are too
+            far from the origin to hold its curvature; mathematics.md,
+            "Numerically stationary ends"); the message names the end and gives
+            the estimate. G3's curvature derivative is not estimated.
     """
     p_handle, q_handle = handle_of(p, "p"), handle_of(q, "q")
     p_order = index_argument(p_order, "p_order")
