@@ -195,34 +195,25 @@ fn connect_fixed<const D: usize, const CAP: usize, P: CurveJet + ?Sized, Q: Curv
             // G^k needs a regular point at each end of order >= 1.
             let zero = |rows: &[[f64; D]]| rows.len() > 1 && rows[1].iter().all(|v| *v == 0.0);
             crate::geometric::check_regular_ends((u0, zero(p_rows)), (v0, zero(q_rows)), (kp, kq))?;
-            // The input jets before they become targets: the ends' tangents
-            // and curvatures must be known to the promise, as the general
-            // path checks them (the same numbers).
-            const ROWS: usize = crate::geometric::MAX_GEOMETRIC_ORDER + 1;
-            let mut p_jet = [[0.0f64; D]; ROWS];
-            let mut q_jet = [[0.0f64; D]; ROWS];
-            let mut p_jet_errors = [0.0f64; ROWS];
-            let mut q_jet_errors = [0.0f64; ROWS];
-            p_jet[..kp + 1].copy_from_slice(p_rows);
-            q_jet[..kq + 1].copy_from_slice(q_rows);
-            p_jet_errors[..kp + 1].copy_from_slice(p_errors);
-            q_jet_errors[..kq + 1].copy_from_slice(q_errors);
+            // The ends' tangents and curvatures must be known to the promise,
+            // as the general path checks them (the same numbers): the input's
+            // part on the jets, the stored blend's on the targets.
+            use crate::geometric::{
+                GEOMETRIC_CONDITION_LIMIT, geometric_condition_error, input_condition,
+                largest_coordinate, stored_condition,
+            };
+            let chord = crate::bezier::distance(&p_rows[0], &q_rows[0]);
+            let stored = (n, largest_coordinate(&p_rows[0], &q_rows[0]));
+            let p_input = input_condition(p_rows, p_errors, kp, chord, n);
+            let q_input = input_condition(q_rows, q_errors, kq, chord, n);
             bell_targets_in_place(p_rows, p_errors, p_shape);
             bell_targets_in_place(q_rows, q_errors, q_shape);
-            use crate::geometric::{
-                GEOMETRIC_CONDITION_LIMIT, chord_between, end_condition, geometric_condition_error,
-                largest_coordinate,
-            };
-            let chord = chord_between(&p_jet[0], &q_jet[0]);
-            let stored = (n, largest_coordinate(&p_jet[0], &q_jet[0]));
-            let p_jet = (&p_jet[..kp + 1], &p_jet_errors[..kp + 1]);
-            let q_jet = (&q_jet[..kq + 1], &q_jet_errors[..kq + 1]);
-            let p = end_condition(p_jet, p_rows, (kp, chord, stored));
-            let q = end_condition(q_jet, q_rows, (kq, chord, stored));
-            if p.0.max(q.0) > GEOMETRIC_CONDITION_LIMIT {
+            let p = p_input.0 + stored_condition(p_rows, kp, chord, stored);
+            let q = q_input.0 + stored_condition(q_rows, kq, chord, stored);
+            if p.max(q) > GEOMETRIC_CONDITION_LIMIT {
                 return Err(geometric_condition_error(
-                    (p.0, u0, p.1, p.2),
-                    (q.0, v0, q.1, q.2),
+                    (p, u0, p_input.1, p_input.2),
+                    (q, v0, q_input.1, q_input.2),
                     (kp, kq),
                 ));
             }

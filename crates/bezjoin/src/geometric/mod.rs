@@ -50,7 +50,7 @@ mod trial;
 
 use nalgebra::DMatrix;
 
-use crate::bezier::BezierCurve;
+use crate::bezier::{BezierCurve, distance};
 use crate::connect::{
     ConnectOptions, Connection, PointConstraint, Problem, check_connect_degree, check_pair,
     connect_ends_shaped, prepare, solve_structured,
@@ -293,8 +293,8 @@ pub const GEOMETRIC_CONDITION_LIMIT: f64 = 1e-6;
 /// - `K = T_2^perp / |T_1|^2`: `(e_2 + 2 |T_2| e_1 / |T_1|) / |T_1|^2`
 ///   against `max(|K|, 1 / c)`.
 ///
-/// The larger of the two; the curvature's derivative (G^3) is not
-/// estimated. With `T_1 = 0` the tangent is undefined: infinite. At an end
+/// Returns the larger of the two and `|T_1|`; the curvature's derivative
+/// (G^3) is not estimated. With `T_1 = 0` the tangent is undefined: infinite. At an end
 /// that is nearly stationary the tangent's term dominates; next to a cusp
 /// (`P'` and `P''` nearly parallel) the curvature's: it is then a small
 /// difference of large numbers.
@@ -304,10 +304,10 @@ pub(crate) fn geometric_end_condition<R: AsRef<[f64]>>(
     order: usize,
     chord: f64,
     (degree, coordinates): (usize, f64),
-) -> f64 {
+) -> (f64, f64) {
     let order = order.min(rows.len().saturating_sub(1));
     if order == 0 {
-        return 0.0;
+        return (0.0, 0.0);
     }
     let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
     let first = rows[1].as_ref();
@@ -318,7 +318,7 @@ pub(crate) fn geometric_end_condition<R: AsRef<[f64]>>(
     let order = if first.len() == 1 { 1 } else { order.min(2) };
     let speed = dot(first, first).sqrt();
     if speed == 0.0 {
-        return f64::INFINITY;
+        return (f64::INFINITY, speed);
     }
     // The target's bound plus the rounding of the stored blend's own
     // R^(j)(end): a j-th difference of control points of size
@@ -340,7 +340,7 @@ pub(crate) fn geometric_end_condition<R: AsRef<[f64]>>(
         worst = worst.max((bound(2) + 2.0 * size * tangent) / scale);
     }
     // NaN (a zero chord, 0/0) counts as unknown.
-    if worst.is_nan() { f64::INFINITY } else { worst }
+    (if worst.is_nan() { f64::INFINITY } else { worst }, speed)
 }
 
 /// [`geometric_end_condition`] of both ends against
@@ -375,12 +375,10 @@ pub(crate) fn geometric_condition_error(
     }
 }
 
-/// [`end_condition`] of both ends (`(jet, its bounds, the targets, the
-/// end's parameter)`, the chord from the jets' rows 0), as the end path
-/// forms it: IllConditioned ([`geometric_condition_error`]) above
-/// [`GEOMETRIC_CONDITION_LIMIT`]. Before the fair search pass the jets as
-/// their own targets (orders at most 1): the tangent's terms do not depend
-/// on the shape values.
+/// [`input_condition`] plus [`stored_condition`] of both ends (`(jet, its
+/// bounds, the targets, the end's parameter)`, the chord between the jets'
+/// rows 0), as the end path forms them: IllConditioned
+/// ([`geometric_condition_error`]) above [`GEOMETRIC_CONDITION_LIMIT`].
 fn check_targets_condition(
     (p, p_errors, p_targets, u0): (&DMatrix<f64>, &[f64], &DMatrix<f64>, f64),
     (q, q_errors, q_targets, v0): (&DMatrix<f64>, &[f64], &DMatrix<f64>, f64),
@@ -392,16 +390,18 @@ fn check_targets_condition(
             .collect()
     };
     let (p_jet, q_jet) = (rows(p), rows(q));
-    let chord = chord_between(&p_jet[0], &q_jet[0]);
+    let chord = distance(&p_jet[0], &q_jet[0]);
     let stored = (degree, largest_coordinate(&p_jet[0], &q_jet[0]));
-    let p_end = end_condition((&p_jet, p_errors), &rows(p_targets), (kp, chord, stored));
-    let q_end = end_condition((&q_jet, q_errors), &rows(q_targets), (kq, chord, stored));
-    if p_end.0.max(q_end.0) <= GEOMETRIC_CONDITION_LIMIT {
+    let p_input = input_condition(&p_jet, p_errors, kp, chord, degree);
+    let q_input = input_condition(&q_jet, q_errors, kq, chord, degree);
+    let p_end = p_input.0 + stored_condition(&rows(p_targets), kp, chord, stored);
+    let q_end = q_input.0 + stored_condition(&rows(q_targets), kq, chord, stored);
+    if p_end.max(q_end) <= GEOMETRIC_CONDITION_LIMIT {
         return Ok(());
     }
     Err(geometric_condition_error(
-        (p_end.0, u0, p_end.1, p_end.2),
-        (q_end.0, v0, q_end.1, q_end.2),
+        (p_end, u0, p_input.1, p_input.2),
+        (q_end, v0, q_input.1, q_input.2),
         (kp, kq),
     ))
 }
@@ -412,37 +412,41 @@ pub(crate) fn largest_coordinate(a: &[f64], b: &[f64]) -> f64 {
     a.iter().chain(b).fold(0.0f64, |m, x| m.max(x.abs()))
 }
 
-/// `|b - a|`, summed left to right: the chord both paths measure the
-/// condition with.
-pub(crate) fn chord_between(a: &[f64], b: &[f64]) -> f64 {
-    b.iter()
-        .zip(a)
-        .map(|(x, y)| (x - y) * (x - y))
-        .sum::<f64>()
-        .sqrt()
-}
-
-/// One end's `(estimate, |X'|, its bound)` (the last two for the message):
-/// [`geometric_end_condition`] of the input's own jet `X^(j)` with its
-/// rounding bounds (the invariants are the same in every parametrisation,
-/// and an error of `X'` turns the shape values' terms `beta_j X'` of the
-/// targets with the tangent, so it is counted here once), plus that of the
-/// targets `T_j` with the stored blend's rounding alone (independent in
-/// every `R^(j)`, so the targets' full size counts). 0 at an end of order 0.
-pub(crate) fn end_condition<J: AsRef<[f64]>, T: AsRef<[f64]>>(
-    (jet, jet_errors): (&[J], &[f64]),
-    targets: &[T],
-    (order, chord, stored): (usize, f64, (usize, f64)),
+/// The input's part of an end's condition, `(estimate, |X'|, its bound)`
+/// (the last two for the message): [`geometric_end_condition`] of the
+/// input's own jet `X^(j)` with its rounding bounds. The invariants are the
+/// same in every parametrisation, so this part does not depend on the shape
+/// values; and an error of `X'` turns the shape values' terms `beta_j X'` of
+/// the targets with the tangent, so it is counted here, once. `degree` is
+/// the blend's. 0 at an end of order 0.
+pub(crate) fn input_condition<J: AsRef<[f64]>>(
+    jet: &[J],
+    errors: &[f64],
+    order: usize,
+    chord: f64,
+    degree: usize,
 ) -> (f64, f64, f64) {
     if order == 0 || jet.len() < 2 {
         return (0.0, 0.0, 0.0);
     }
+    let (estimate, speed) = geometric_end_condition(jet, errors, order, chord, (degree, 0.0));
+    (estimate, speed, errors[1])
+}
+
+/// The stored blend's part of an end's condition: [`geometric_end_condition`]
+/// of the targets `T_j` with the blend's own rounding alone (independent in
+/// every `R^(j)`, so the targets' full size counts). 0 at an end of order 0.
+pub(crate) fn stored_condition<T: AsRef<[f64]>>(
+    targets: &[T],
+    order: usize,
+    chord: f64,
+    stored: (usize, f64),
+) -> f64 {
+    if order == 0 || targets.len() < 2 {
+        return 0.0;
+    }
     let zero = [0.0; MAX_GEOMETRIC_ORDER + 1];
-    let input = geometric_end_condition(jet, jet_errors, order, chord, (stored.0, 0.0));
-    let blend = geometric_end_condition(targets, &zero[..targets.len()], order, chord, stored);
-    let first = jet[1].as_ref();
-    let speed = first.iter().map(|x| x * x).sum::<f64>().sqrt();
-    (input + blend, speed, jet_errors[1])
+    geometric_end_condition(targets, &zero[..targets.len()], order, chord, stored).0
 }
 
 /// Whether a jet (rows `P, P', ...`) has a first derivative, all of whose
