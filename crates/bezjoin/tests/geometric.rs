@@ -899,3 +899,37 @@ fn a_blend_whose_poles_cannot_hold_its_curvature_is_refused() {
         }
     }
 }
+
+#[test]
+fn the_fair_blend_of_a_long_knot_range_is_the_blend_of_the_unit_range() {
+    // Review, session 42: before the fair search the condition check took
+    // beta_1 = 1, so the same cubics as B-splines on [0, 1e9] (|P'| 1e9
+    // times smaller) were refused, where the search's beta_1 makes up for
+    // the parametrisation. The fair blend does not depend on it.
+    let p_poles = [0.0, 0.0, 1.0, 0.8, 2.2, 1.1, 3.0, 0.9];
+    let q_poles = [4.0, 0.2, 4.8, -0.6, 5.5, -1.7, 7.0, -2.0];
+    let knots = |d: f64| vec![0.0, 0.0, 0.0, 0.0, d, d, d, d];
+    for k in [2, 3] {
+        let blend = |domain: f64| {
+            let p = NurbsCurve::new(2, 3, p_poles.to_vec(), None, knots(domain)).unwrap();
+            let q = NurbsCurve::new(2, 3, q_poles.to_vec(), None, knots(domain)).unwrap();
+            connect_geometric_curve(&p, domain, &q, 0.0, &GeometricOptions::new(k, k))
+                .unwrap_or_else(|e| panic!("G{k} on [0, {domain:e}]: {e}"))
+                .curve
+        };
+        let unit = blend(1.0);
+        for domain in [1e6, 1e9, 1e12] {
+            let other = blend(domain);
+            let gap = unit
+                .points()
+                .iter()
+                .zip(other.points())
+                .map(|(a, b)| (a - b).abs())
+                .fold(0.0, f64::max);
+            assert!(
+                gap <= 1e-9 * unit.coordinate_scale(),
+                "G{k} on [0, {domain:e}]: {gap:e}"
+            );
+        }
+    }
+}

@@ -365,7 +365,8 @@ pub(crate) fn geometric_condition_error(
         what: format!(
             "G^k connect: the tangent and curvature of {name} at {at} = {} are known only to \
              {estimate:.1e} of themselves (|{derivative}| = {}, rounding bound {}): {name} is \
-             numerically stationary there, so no blend meets it with G^{order} to the promise",
+             nearly stationary there, or the blend's poles are too large against its end \
+             derivatives to hold them, so no blend meets {name} with G^{order} to the promise",
             Compact(value),
             Compact(speed),
             Compact(error),
@@ -379,9 +380,13 @@ pub(crate) fn geometric_condition_error(
 /// bounds, the targets, the end's parameter)`, the chord between the jets'
 /// rows 0), as the end path forms them: IllConditioned
 /// ([`geometric_condition_error`]) above [`GEOMETRIC_CONDITION_LIMIT`].
+/// Without targets (before the fair search) the input's part alone: it is
+/// the same for every shape value, while the stored blend's part depends on
+/// `beta_1` (a B-spline on `[0, 1e9]` has `|P'|` 1e9 times smaller than on
+/// `[0, 1]`, which the search's `beta_1` makes up for).
 fn check_targets_condition(
-    (p, p_errors, p_targets, u0): (&DMatrix<f64>, &[f64], &DMatrix<f64>, f64),
-    (q, q_errors, q_targets, v0): (&DMatrix<f64>, &[f64], &DMatrix<f64>, f64),
+    (p, p_errors, p_targets, u0): (&DMatrix<f64>, &[f64], Option<&DMatrix<f64>>, f64),
+    (q, q_errors, q_targets, v0): (&DMatrix<f64>, &[f64], Option<&DMatrix<f64>>, f64),
     (kp, kq, degree): (usize, usize, usize),
 ) -> Result<()> {
     let rows = |m: &DMatrix<f64>| -> Vec<Vec<f64>> {
@@ -394,8 +399,11 @@ fn check_targets_condition(
     let stored = (degree, largest_coordinate(&p_jet[0], &q_jet[0]));
     let p_input = input_condition(&p_jet, p_errors, kp, chord, degree);
     let q_input = input_condition(&q_jet, q_errors, kq, chord, degree);
-    let p_end = p_input.0 + stored_condition(&rows(p_targets), kp, chord, stored);
-    let q_end = q_input.0 + stored_condition(&rows(q_targets), kq, chord, stored);
+    let stored_part = |targets: Option<&DMatrix<f64>>, order: usize| {
+        targets.map_or(0.0, |t| stored_condition(&rows(t), order, chord, stored))
+    };
+    let p_end = p_input.0 + stored_part(p_targets, kp);
+    let q_end = q_input.0 + stored_part(q_targets, kq);
     if p_end.max(q_end) <= GEOMETRIC_CONDITION_LIMIT {
         return Ok(());
     }
@@ -538,8 +546,18 @@ fn solve_with_shapes(
     let (q, q_errors) =
         geometric_targets(&problem.q_derivatives, &problem.q_derivative_error, q_shape);
     check_targets_condition(
-        (&problem.p_derivatives, &problem.p_derivative_error, &p, u0),
-        (&problem.q_derivatives, &problem.q_derivative_error, &q, v0),
+        (
+            &problem.p_derivatives,
+            &problem.p_derivative_error,
+            Some(&p),
+            u0,
+        ),
+        (
+            &problem.q_derivatives,
+            &problem.q_derivative_error,
+            Some(&q),
+            v0,
+        ),
         (problem.p_order, problem.q_order, problem.degree),
     )?;
     shaped.p_derivatives = p;
@@ -621,17 +639,22 @@ pub fn connect_geometric_curve<P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
         }
         _ => {
             check_ends_apart(&problem, u0, v0)?;
-            // The tangents before the search (no shape value changes their
-            // term; the winner's targets are checked in full).
-            let (pj, qj) = (&problem.p_derivatives, &problem.q_derivatives);
+            // The input's part before the search (no shape value changes
+            // it; the winner's targets are checked in full).
             check_targets_condition(
-                (pj, &problem.p_derivative_error, pj, u0),
-                (qj, &problem.q_derivative_error, qj, v0),
                 (
-                    options.p_order.min(1),
-                    options.q_order.min(1),
-                    problem.degree,
+                    &problem.p_derivatives,
+                    &problem.p_derivative_error,
+                    None,
+                    u0,
                 ),
+                (
+                    &problem.q_derivatives,
+                    &problem.q_derivative_error,
+                    None,
+                    v0,
+                ),
+                (options.p_order, options.q_order, problem.degree),
             )?;
             let search = |checked: bool| {
                 fair::fair_shapes(
