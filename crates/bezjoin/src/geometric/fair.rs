@@ -52,6 +52,12 @@ const MAX_EVALUATIONS: usize = 120;
 /// spread.
 const RELATIVE_SPREAD: f64 = 1e-5;
 
+/// The fast search's winner is re-ranked with its speed dips refined
+/// ([`unresolved_dip`]); above this ratio of the two energies the fast rule
+/// was fooled by a near-cusp between its nodes and the search runs again
+/// with the dips refined.
+const FOOLED_RATIO: f64 = 2.0;
+
 const GL_NODES: [f64; 4] = [
     0.183_434_642_495_649_8,
     0.525_532_409_916_329,
@@ -203,12 +209,24 @@ impl NodeRows {
 #[derive(Clone)]
 pub(super) struct EnergyRule {
     degree: usize,
+    /// Panels of the composite rule.
+    panels: usize,
+    /// Whether a speed dip narrower than the rule resolves
+    /// ([`unresolved_dip`]) is integrated on sub-panels graded towards it
+    /// ([`refined_sums`](Self::refined_sums)): the reported energy and the
+    /// fair search's second pass. Without, the nodes alone (the first pass
+    /// of the search, where every trial must stay cheap).
+    refine_dips: bool,
+    /// The nodes, in the order of `weights` and of `rows`.
+    ts: Vec<f64>,
     weights: Vec<f64>,
     rows: NodeRows,
 }
 
 impl EnergyRule {
-    pub(super) fn new(degree: usize, panels: usize) -> Self {
+    /// The rule of `degree` on `panels` panels, dips refined or not
+    /// (`refine_dips`).
+    pub(super) fn new(degree: usize, panels: usize, refine_dips: bool) -> Self {
         let h = 1.0 / panels as f64;
         let mut weights = Vec::new();
         let mut ts = Vec::new();
@@ -223,7 +241,10 @@ impl EnergyRule {
         }
         Self {
             degree,
+            panels,
+            refine_dips,
             rows: NodeRows::new(degree, &ts, 3),
+            ts,
             weights,
         }
     }
@@ -236,19 +257,23 @@ impl EnergyRule {
 
     /// The quadrature sums `(sum w dkappa^2 / speed, sum w speed)` over the
     /// nodes, the jets formed [`BLOCK`] nodes at a time (`R = 3 dim` rows)
-    /// and `node(jet, j)` giving `(dkappa/dt, |r'|)` at lane `j` (the
-    /// formulas of [`kappa_from`] written out, so the compiler runs the
-    /// lanes side by side); `None` at a cusp (a node's speed zero or not
-    /// finite), whose energy is infinite.
+    /// and `node(jet, j)` giving `(dkappa/dt, |r'|, r'.r'', |r''|^2)` at
+    /// lane `j` (the formulas of [`kappa_from`] written out, so the compiler
+    /// runs the lanes side by side); `Err(None)` at a cusp (a node's speed
+    /// zero or not finite), whose energy is infinite, and `Err(Some(()))`
+    /// where a node sees a speed dip the rule cannot resolve
+    /// ([`unresolved_dip`]): the caller then takes [`refined_sums`](Self::refined_sums).
     #[inline(always)]
     fn block_sums<const R: usize>(
         &self,
         points: &[f64],
         dim: usize,
-        node: impl Fn(&[[f64; BLOCK]; R], usize) -> (f64, f64),
-    ) -> Option<(f64, f64)> {
+        node: impl Fn(&[[f64; BLOCK]; R], usize) -> (f64, f64, f64, f64),
+    ) -> std::result::Result<(f64, f64), Option<()>> {
         let (mut variation, mut length) = (0.0, 0.0);
         let mut jet = [[0.0f64; BLOCK]; R];
+        let width = 1.0 / self.panels as f64;
+        let narrow = self.narrowest_resolved();
         for (b, (start, m)) in self.rows.blocks().enumerate() {
             self.rows.jets(b, points, dim, &mut jet);
             let mut v = [0.0f64; BLOCK];
@@ -256,31 +281,58 @@ impl EnergyRule {
             let mut weights = [1.0f64; BLOCK];
             weights[..m].copy_from_slice(&self.weights[start..start + m]);
             let mut speeds = [1.0f64; BLOCK];
+            let mut dips = [false; BLOCK];
             for j in 0..BLOCK {
-                let (dkappa, speed) = node(&jet, j);
+                let (dkappa, speed, ab, bb) = node(&jet, j);
                 let w = weights[j];
                 v[j] = w * dkappa * dkappa / speed;
                 l[j] = w * speed;
                 speeds[j] = speed;
+                if self.refine_dips {
+                    dips[j] = unresolved_dip(speed * speed, ab, bb, width, narrow).is_some();
+                }
             }
             if !speeds[..m]
                 .iter()
                 .all(|&speed| speed > 0.0 && speed < f64::INFINITY)
             {
-                return None;
+                return Err(None);
+            }
+            if dips[..m].iter().any(|&dip| dip) {
+                return Err(Some(()));
             }
             for j in 0..m {
                 variation += v[j];
                 length += l[j];
             }
         }
-        Some((variation, length))
+        Ok((variation, length))
     }
 
-    /// The sums of [`block_sums`](Self::block_sums) node by node through
-    /// [`kappa_from`], for dimensions other than 2 and 3.
-    fn node_sums(&self, points: &[f64], dim: usize) -> (f64, f64) {
-        let (mut variation, mut length) = (0.0, 0.0);
+    /// The width of the narrowest speed dip the rule's nodes resolve: an
+    /// eighth of a panel, the 8-point rule's mean node spacing.
+    fn narrowest_resolved(&self) -> f64 {
+        0.125 / self.panels as f64
+    }
+
+    /// The sums of [`block_sums`](Self::block_sums) where a speed dip is
+    /// narrower than the rule resolves: every panel that holds a dip
+    /// predicted by one of the nodes ([`unresolved_dip`]) is integrated by
+    /// the same 8-point rule on sub-panels graded geometrically (ratio 4)
+    /// towards the dip's centre, down to half its width; the other panels
+    /// by their own nodes. `None` at a cusp (a speed of zero or not
+    /// finite at a node, or a dip narrower than `1e-12` of a panel).
+    #[cold]
+    #[inline(never)]
+    fn refined_sums(&self, points: &[f64], dim: usize) -> Option<(f64, f64)> {
+        let panels = self.panels;
+        let width = 1.0 / panels as f64;
+        let narrow = self.narrowest_resolved();
+        let dot = |x: &[f64], y: &[f64]| x.iter().zip(y).map(|(p, q)| p * q).sum::<f64>();
+        // The rule's own nodes from its rows: each panel's sums, and the
+        // narrowest dip each panel holds, `(centre, width)`.
+        let mut sums = vec![(0.0f64, 0.0f64); panels];
+        let mut dips: Vec<Option<(f64, f64)>> = vec![None; panels];
         let mut jets = vec![[0.0f64; BLOCK]; 3 * dim];
         let mut jet = vec![0.0; 3 * dim];
         for (b, (start, m)) in self.rows.blocks().enumerate() {
@@ -289,14 +341,106 @@ impl EnergyRule {
                 for (value, lane) in jet.iter_mut().zip(&jets) {
                     *value = lane[j];
                 }
-                let (_, dkappa, speed) =
-                    kappa_from(&jet[..dim], &jet[dim..2 * dim], &jet[2 * dim..]);
+                let (a, second) = (&jet[..dim], &jet[dim..2 * dim]);
+                let (_, dkappa, speed) = kappa_from(a, second, &jet[2 * dim..]);
+                if !(speed > 0.0 && speed < f64::INFINITY) {
+                    return None;
+                }
+                let node = start + j;
+                let weight = self.weights[node];
+                let sum = &mut sums[node / 8];
+                sum.0 += weight * dkappa * dkappa / speed;
+                sum.1 += weight * speed;
+                let (ab, bb) = (dot(a, second), dot(second, second));
+                if let Some((offset, dip)) = unresolved_dip(speed * speed, ab, bb, width, narrow) {
+                    if dip < 1e-12 * width {
+                        return None;
+                    }
+                    let centre = (self.ts[node] + offset).clamp(0.0, 1.0);
+                    let panel = ((centre * panels as f64) as usize).min(panels - 1);
+                    if dips[panel].is_none_or(|(_, w)| dip < w) {
+                        dips[panel] = Some((centre, dip));
+                    }
+                }
+            }
+        }
+        let curve = BezierCurve::from_parts(dim, self.degree, points.to_vec());
+        let mut values = vec![0.0; 4 * dim];
+        let (mut variation, mut length) = (0.0, 0.0);
+        let mut edges = Vec::new();
+        for (panel, dip) in dips.iter().enumerate() {
+            let Some((centre, dip)) = *dip else {
+                variation += sums[panel].0;
+                length += sums[panel].1;
+                continue;
+            };
+            // Sub-panels graded by 4 from half the dip's width about its
+            // centre, to the panel's ends.
+            let (start, end) = (panel as f64 * width, (panel + 1) as f64 * width);
+            edges.clear();
+            edges.extend([start, centre, end]);
+            let mut offset = 0.5 * dip;
+            while offset < width {
+                edges.extend([centre - offset, centre + offset]);
+                offset *= 4.0;
+            }
+            edges.retain(|&e| e >= start && e <= end);
+            edges.sort_by(f64::total_cmp);
+            edges.dedup();
+            for pair in edges.windows(2) {
+                let (a, b) = (pair[0], pair[1]);
+                let (mid, h) = (0.5 * (a + b), b - a);
+                for (node, weight) in GL_NODES.iter().zip(GL_WEIGHTS) {
+                    for t in [mid - 0.5 * h * node, mid + 0.5 * h * node] {
+                        curve.eval_derivatives_into(t, 3, &mut values);
+                        let (_, dkappa, speed) = kappa_from(
+                            &values[dim..2 * dim],
+                            &values[2 * dim..3 * dim],
+                            &values[3 * dim..],
+                        );
+                        if !(speed > 0.0 && speed < f64::INFINITY) {
+                            return None;
+                        }
+                        let w = weight * 0.5 * h;
+                        variation += w * dkappa * dkappa / speed;
+                        length += w * speed;
+                    }
+                }
+            }
+        }
+        Some((variation, length))
+    }
+
+    /// The sums of [`block_sums`](Self::block_sums) node by node through
+    /// [`kappa_from`], for dimensions other than 2 and 3.
+    fn node_sums(&self, points: &[f64], dim: usize) -> Option<(f64, f64)> {
+        let (mut variation, mut length) = (0.0, 0.0);
+        let mut jets = vec![[0.0f64; BLOCK]; 3 * dim];
+        let mut jet = vec![0.0; 3 * dim];
+        let width = 1.0 / self.panels as f64;
+        let narrow = self.narrowest_resolved();
+        let dot = |x: &[f64], y: &[f64]| x.iter().zip(y).map(|(p, q)| p * q).sum::<f64>();
+        for (b, (start, m)) in self.rows.blocks().enumerate() {
+            self.rows.jets(b, points, dim, &mut jets);
+            for j in 0..m {
+                for (value, lane) in jet.iter_mut().zip(&jets) {
+                    *value = lane[j];
+                }
+                let (a, second) = (&jet[..dim], &jet[dim..2 * dim]);
+                let (_, dkappa, speed) = kappa_from(a, second, &jet[2 * dim..]);
+                if self.refine_dips {
+                    let ab = dot(a, second);
+                    let bb = dot(second, second);
+                    if unresolved_dip(dot(a, a), ab, bb, width, narrow).is_some() {
+                        return self.refined_sums(points, dim);
+                    }
+                }
                 let weight = self.weights[start + j];
                 variation += weight * dkappa * dkappa / speed;
                 length += weight * speed;
             }
         }
-        (variation, length)
+        Some((variation, length))
     }
 
     /// [`energy`](Self::energy) of the curve with control points `points`
@@ -318,7 +462,7 @@ impl EnergyRule {
                 let ab = ax[j] * bx[j] + ay[j] * by[j];
                 let kappa = (ax[j] * by[j] - ay[j] * bx[j]) / (speed * s2);
                 let dkappa = (ax[j] * cy[j] - ay[j] * cx[j]) / (speed * s2) - 3.0 * kappa * ab / s2;
-                (dkappa, speed)
+                (dkappa, speed, ab, bx[j] * bx[j] + by[j] * by[j])
             })
         } else if dim == 3 {
             // kappa_from's 3D formulas, its dot products summed left to
@@ -340,10 +484,15 @@ impl EnergyRule {
                 } else {
                     0.0
                 };
-                (first - 3.0 * kappa * ab / s2, speed)
+                (first - 3.0 * kappa * ab / s2, speed, ab, bb)
             })
         } else {
-            Some(self.node_sums(points, dim))
+            self.node_sums(points, dim).ok_or(None)
+        };
+        let blocked = match blocked {
+            Ok(sums) => Some(sums),
+            Err(None) => None,
+            Err(Some(())) => self.refined_sums(points, dim),
         };
         // None: a cusp at a node, infinitely bad (kappa_from's infinities).
         let Some((variation, length)) = blocked else {
@@ -355,21 +504,50 @@ impl EnergyRule {
 
     /// The rule of `degree` on `panels` panels, built once per process for
     /// the degrees connect produces (at most [`MAX_CONNECT_DEGREE`]) and
-    /// the two panel counts used here; other requests build a new one.
-    pub(super) fn cached(degree: usize, panels: usize) -> Cow<'static, EnergyRule> {
-        static REPORT: [OnceLock<EnergyRule>; MAX_CONNECT_DEGREE + 1] =
-            [const { OnceLock::new() }; MAX_CONNECT_DEGREE + 1];
-        static SEARCH: [OnceLock<EnergyRule>; MAX_CONNECT_DEGREE + 1] =
-            [const { OnceLock::new() }; MAX_CONNECT_DEGREE + 1];
-        let table = match panels {
-            ENERGY_PANELS => &REPORT,
-            SEARCH_PANELS => &SEARCH,
-            _ => return Cow::Owned(Self::new(degree, panels)),
+    /// the three rules used here (the report's, the search's fast and
+    /// refined); other requests build a new one.
+    pub(super) fn cached(
+        degree: usize,
+        panels: usize,
+        refine_dips: bool,
+    ) -> Cow<'static, EnergyRule> {
+        type Table = [OnceLock<EnergyRule>; MAX_CONNECT_DEGREE + 1];
+        static REPORT: Table = [const { OnceLock::new() }; MAX_CONNECT_DEGREE + 1];
+        static SEARCH: Table = [const { OnceLock::new() }; MAX_CONNECT_DEGREE + 1];
+        static SEARCH_REFINED: Table = [const { OnceLock::new() }; MAX_CONNECT_DEGREE + 1];
+        let table = match (panels, refine_dips) {
+            (ENERGY_PANELS, true) => &REPORT,
+            (SEARCH_PANELS, false) => &SEARCH,
+            (SEARCH_PANELS, true) => &SEARCH_REFINED,
+            _ => return Cow::Owned(Self::new(degree, panels, refine_dips)),
         };
+        let build = || Self::new(degree, panels, refine_dips);
         match table.get(degree) {
-            Some(cell) => Cow::Borrowed(cell.get_or_init(|| Self::new(degree, panels))),
-            None => Cow::Owned(Self::new(degree, panels)),
+            Some(cell) => Cow::Borrowed(cell.get_or_init(build)),
+            None => Cow::Owned(build()),
         }
+    }
+}
+
+/// A speed dip a rule of panels `width` wide cannot resolve, seen from a
+/// node with `|r'|^2 = s2`, `r'.r'' = ab`, `|r''|^2 = bb`: on the tangent
+/// line of the hodograph, `|r'(t + tau)|^2 = bb (tau - tau*)^2 + bb w^2`
+/// with `tau* = -ab / bb` and `w^2 = s2 / bb - tau*^2`, a dip of the speed
+/// to `sqrt(bb) w` over a parameter width `w` centred at `t + tau*`. The
+/// curvature and its variation peak there over about that width, so a dip
+/// within a panel of the node (`|tau*| <= width`) and narrower than
+/// `narrow` falls between the nodes: `Some((tau*, w))`. The search's
+/// 4-panel rule, blind to such dips, ranked near-cusp blends 1e5 to 1e24
+/// times below their energy and returned them (reliability.md, session
+/// 43). `None` otherwise (also for `bb = 0`, a straight stretch).
+#[inline(always)]
+fn unresolved_dip(s2: f64, ab: f64, bb: f64, width: f64, narrow: f64) -> Option<(f64, f64)> {
+    let centre = -ab / bb;
+    let w2 = s2 / bb - centre * centre;
+    if centre.abs() <= width && w2 < narrow * narrow {
+        Some((centre, w2.max(0.0).sqrt()))
+    } else {
+        None
     }
 }
 
@@ -382,7 +560,7 @@ impl EnergyRule {
 /// [`ENERGY_PANELS`] panels; infinite when the speed vanishes at a node (a
 /// cusp).
 pub fn curvature_variation(curve: &BezierCurve) -> f64 {
-    EnergyRule::cached(curve.degree(), ENERGY_PANELS).energy(curve)
+    EnergyRule::cached(curve.degree(), ENERGY_PANELS, true).energy(curve)
 }
 
 /// The first and second derivatives of the Bernstein basis of `degree` at
@@ -564,7 +742,6 @@ pub(super) fn fair_shapes(
     let (kp, kq) = (problem.p_order, problem.q_order);
     let free_p = if fixed_p.is_some() { 0 } else { kp };
     let free_q = if fixed_q.is_some() { 0 } else { kq };
-    let rule = EnergyRule::cached(problem.degree, SEARCH_PANELS);
     let mut trial = TrialSolver::new(problem);
     let dim = problem.dim;
     let mut p_buffer = [0.0; MAX_GEOMETRIC_ORDER];
@@ -577,7 +754,7 @@ pub(super) fn fair_shapes(
         let within = |at: usize, natural: f64| (x[at] - natural.ln()).abs() <= half;
         (free_p == 0 || within(0, natural_p)) && (free_q == 0 || within(free_p, natural_q))
     };
-    let mut energy = |x: &[f64]| -> f64 {
+    let mut energy = |rule: &EnergyRule, x: &[f64]| -> f64 {
         if !inside(x) {
             return f64::INFINITY;
         }
@@ -608,16 +785,31 @@ pub(super) fn fair_shapes(
         }
         x
     };
-    let mut best: Option<(f64, Vec<f64>)> = None;
-    for i in 0..GRID_POINTS {
-        let offset = -half + 2.0 * half * i as f64 / (GRID_POINTS - 1) as f64;
-        let x = start_of(offset);
-        let e = energy(&x);
-        if e.is_finite() && best.as_ref().is_none_or(|(b, _)| e < *b) {
-            best = Some((e, x));
+    let search = |rule: &EnergyRule,
+                  energy: &mut dyn FnMut(&EnergyRule, &[f64]) -> f64|
+     -> Option<Vec<f64>> {
+        let mut best: Option<(f64, Vec<f64>)> = None;
+        for i in 0..GRID_POINTS {
+            let offset = -half + 2.0 * half * i as f64 / (GRID_POINTS - 1) as f64;
+            let x = start_of(offset);
+            let e = energy(rule, &x);
+            if e.is_finite() && best.as_ref().is_none_or(|(b, _)| e < *b) {
+                best = Some((e, x));
+            }
         }
-    }
-    let Some((_, start)) = best else {
+        let (_, start) = best?;
+        let f = |x: &[f64]| energy(rule, x);
+        Some(nelder_mead(
+            f,
+            &start,
+            0.5,
+            MAX_EVALUATIONS,
+            RELATIVE_SPREAD,
+        ))
+    };
+    // First pass: the fast rule, blind to speed dips between its nodes.
+    let fast = EnergyRule::cached(problem.degree, SEARCH_PANELS, false);
+    let Some(mut x) = search(&fast, &mut energy) else {
         return Err(BezjoinError::IllConditioned {
             what: format!(
                 "G^k connect: no shape value on the search grid gives a blend with defined \
@@ -628,7 +820,22 @@ pub(super) fn fair_shapes(
             limit: crate::CONNECT_RESIDUAL_LIMIT,
         });
     };
-    let x = nelder_mead(energy, &start, 0.5, MAX_EVALUATIONS, RELATIVE_SPREAD);
+    // Second pass where the first was fooled: its winner, with its dips
+    // refined, has more than FOOLED_RATIO times the energy the fast rule
+    // gave it (a near-cusp between the nodes). The search runs again with
+    // every dip refined, and its winner is taken if it is fairer by that
+    // rule (session 43, reliability.md: D1 and near-cusps).
+    let refined = EnergyRule::cached(problem.degree, SEARCH_PANELS, true);
+    let first = energy(&fast, &x);
+    let first_refined = energy(&refined, &x);
+    // (Both are finite or infinite, never NaN: `energy` maps NaN to infinity.)
+    if first_refined > FOOLED_RATIO * first {
+        if let Some(y) = search(&refined, &mut energy) {
+            if energy(&refined, &y) < first_refined {
+                x = y;
+            }
+        }
+    }
     Ok(shapes_from(&x, kp, fixed_p, fixed_q, kq))
 }
 
@@ -769,7 +976,7 @@ mod tests {
                 let points: Vec<f64> = (0..(n + 1) * d).map(|_| next()).collect();
                 let curve = BezierCurve::new(d, n, points).unwrap();
                 for panels in [SEARCH_PANELS, ENERGY_PANELS, 3] {
-                    let blocked = EnergyRule::cached(n, panels).energy(&curve);
+                    let blocked = EnergyRule::cached(n, panels, false).energy(&curve);
                     assert_eq!(
                         blocked.to_bits(),
                         node_by_node(&curve, panels).to_bits(),
@@ -781,7 +988,7 @@ mod tests {
         // Zero speed at the nodes (a curve standing still) is infinitely bad.
         let still = BezierCurve::from_rows(&[[1.0, 2.0]; 4]).unwrap();
         assert_eq!(
-            EnergyRule::cached(3, SEARCH_PANELS).energy(&still),
+            EnergyRule::cached(3, SEARCH_PANELS, false).energy(&still),
             f64::INFINITY
         );
         assert_eq!(node_by_node(&still, SEARCH_PANELS), f64::INFINITY);
