@@ -202,6 +202,22 @@ class MergeDefaults(unittest.TestCase):
                          "Edge")
 
 
+    def test_an_arc_is_refused_naming_the_edge_not_the_library_curve(self):
+        # User testing, session 43: an arc gave "p: the curve is rational (its weights
+        # differ): a merge of B-splines takes polynomial B-splines, since R restricted
+        # to a piece is polynomial", as "q:" when it was the second edge.
+        circle = Part.Circle(V(0, 0, 0), V(0, 0, 1), 10)
+        arc = Part.ArcOfCircle(circle, 0.0, 1.0).toShape()
+        line = Part.makeLine(V(10, -10, 0), V(10, 0, 0))
+        for first, second, name in ((arc, Part.ArcOfCircle(circle, 1.0, 2.0).toShape(), "first"),
+                                    (line, arc, "second")):
+            with self.assertRaises(bezjoin.BezjoinError) as caught:
+                operations.merge_edges(first, second)
+            message = str(caught.exception)
+            self.assertIn(f"the {name} edge is rational", message)
+            self.assertNotIn("p:", message)
+            self.assertNotIn("R restricted", message)
+
     def test_edges_that_do_not_meet_are_refused_with_their_gap(self):
         # Two lines 566 mm apart used to be bridged by one 781 mm edge (deviation 320 mm).
         first = Part.makeLine(V(0, 0, 0), V(500, 0, 0))

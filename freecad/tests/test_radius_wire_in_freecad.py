@@ -163,6 +163,30 @@ class RoundWireByRadius(unittest.TestCase, CommandDriver):
                 self.assertTrue(any(abs(e.Length - 150.0 * math.pi) < 1e-9
                                     for e in wire.Edges))
 
+    def test_a_bad_setback_is_named_as_the_setback(self):
+        # User testing, session 43: setback=-1 gave "p_setback = -1 is outside > 0",
+        # the library's argument name and range notation.
+        square = Part.makePolygon([V(0, 0, 0), V(10, 0, 0), V(10, 10, 0), V(0, 10, 0),
+                                   V(0, 0, 0)])
+        for bad in (-1.0, 0.0, math.inf, math.nan):
+            with self.assertRaises(bezjoin.BezjoinError) as caught:
+                operations.round_wire(square, setback=bad)
+            message = str(caught.exception)
+            self.assertIn("setback (Setback) must be a length above 0", message)
+            self.assertNotIn("p_setback", message)
+        self.assertTrue(operations.round_wire(square, setback=1.0).isClosed())
+
+    def test_closed_on_an_open_path_says_the_path_is_open(self):
+        # User testing, session 43: closed=True on a U whose ends are 10 apart said only
+        # "corner 2: the curves do not cross".
+        u = Part.makePolygon([V(0, 10, 0), V(0, 0, 0), V(10, 0, 0), V(10, 10, 0)])
+        for options in (dict(radius=1.0), dict(setback=1.0)):
+            with self.assertRaises(bezjoin.BezjoinError) as caught:
+                operations.round_wire(u, closed=True, **options)
+            message = str(caught.exception)
+            self.assertIn("the path is open: its ends are 10 apart", message)
+            self.assertFalse(operations.round_wire(u, **options).isClosed())
+
     def test_errors_number_corners_and_edges_along_the_whole_path(self):
         # The slot is rounded in one run (edges 3, 4, 1 along the path after its
         # smooth joins); the library's run-local numbers are given as path numbers.

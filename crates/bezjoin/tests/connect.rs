@@ -908,3 +908,69 @@ fn automatic_scale_of_nearly_stationary_ends_keeps_the_blend_in_size() {
         }
     }
 }
+
+#[test]
+fn an_automatic_scale_whose_blend_cannot_hold_its_tangents_is_refused() {
+    // User testing, session 43: a corner of lines 10000 and 0.05 long, cut
+    // 0.015 from the vertex, orders 1/1 with the automatic scale. One s for
+    // ends whose speeds differ by 2e5 put the short line's first step
+    // (s |Q'| / n) below the rounding of the coordinates far from the
+    // origin: at 1e4 and 1e5 the stored blend left Q with its tangent off by
+    // 4.9 and 164 degrees, every residual within its bound. The automatic
+    // scale now stays where both steps hold their direction to
+    // GEOMETRIC_CONDITION_LIMIT, or the connect is refused by name. Every
+    // answer is judged here by the stored poles' first steps against P' and
+    // Q'.
+    let (mut answered, mut refused) = (0, 0);
+    for turn in [90.0f64, 179.0] {
+        for offset in [0.0, 1e4, 1e5] {
+            let (a, b) = (0.3f64, 0.3 + turn.to_radians());
+            let v = [offset, -offset];
+            let p =
+                BezierCurve::from_rows(&[[v[0] - 1e4 * a.cos(), v[1] - 1e4 * a.sin()], v]).unwrap();
+            let q = BezierCurve::from_rows(&[v, [v[0] + 0.05 * b.cos(), v[1] + 0.05 * b.sin()]])
+                .unwrap();
+            let (u0, v0) = (1.0 - 0.015 / 1e4, 0.015 / 0.05);
+            let options = ConnectOptions::new(1, 1).with_auto_scale();
+            match connect(&p, u0, &q, v0, &options) {
+                Ok(c) => {
+                    answered += 1;
+                    let points = c.curve.points();
+                    let n = c.curve.degree();
+                    let angle = |step: [f64; 2], along: [f64; 2]| {
+                        let cross = step[0] * along[1] - step[1] * along[0];
+                        let dot = step[0] * along[0] + step[1] * along[1];
+                        cross.atan2(dot).abs()
+                    };
+                    let first = [points[2] - points[0], points[3] - points[1]];
+                    let last = [
+                        points[2 * n] - points[2 * n - 2],
+                        points[2 * n + 1] - points[2 * n - 1],
+                    ];
+                    let errors = (
+                        angle(first, [a.cos(), a.sin()]),
+                        angle(last, [b.cos(), b.sin()]),
+                    );
+                    assert!(
+                        errors.0.max(errors.1) <= 1e-6,
+                        "turn {turn}, offset {offset:e}: tangents off by {errors:?} rad"
+                    );
+                }
+                Err(BezjoinError::IllConditioned { what, estimate, .. }) => {
+                    refused += 1;
+                    assert!(
+                        what.contains("first step at q") && what.contains("balanced"),
+                        "{what}"
+                    );
+                    assert!(estimate > 1e-6, "{what}: estimate {estimate:e}");
+                }
+                Err(e) => panic!("turn {turn}, offset {offset:e}: {e}"),
+            }
+        }
+    }
+    // Near the origin the corner is answered; far from it, refused.
+    assert!(
+        answered >= 2 && refused >= 2,
+        "answered {answered}, refused {refused}"
+    );
+}

@@ -688,9 +688,18 @@ def round_wire(shape, *, radius=None, setback=None, continuity="G2", closed=None
     """
     if (radius is None) == (setback is None):
         raise TypeError("round_wire needs exactly one of radius and setback")
+    # The library names its own argument (p_setback) and words the range for
+    # programmers: say it here in the wire's terms (user testing, session 43).
+    if setback is not None and not 0.0 < setback < math.inf:
+        raise _invalid(f"setback (Setback) must be a length above 0, not {setback:.6g}: it is "
+                       "the arc length kept off each corner along both edges")
     order = _continuity_order(continuity)
     curves, path_closes = _path_curves(path_edges(shape))
     closed = bool(path_closes if closed is None else closed)
+    # closed=True on an open path rounds a corner between its last and first edges,
+    # which must cross; a refusal there said only "the curves do not cross" (user
+    # testing, session 43): it now says the path is open, and how far.
+    open_gap = None if path_closes else _distance(_ends(curves[-1])[1], _ends(curves[0])[0])
     try:
         if radius is not None:
             def round_chain(run, closes):
@@ -710,6 +719,14 @@ def round_wire(shape, *, radius=None, setback=None, continuity="G2", closed=None
                         curve.close()
         wire, _, _ = _round_runs(curves, closed, round_chain,
                                  edge_of=None if radius is not None else _unit_piece_edge)
+    except bezjoin.BezjoinError as error:
+        if not (closed and open_gap is not None):
+            raise
+        raise bezjoin.BezjoinError(
+            error.status, error.status_name,
+            f"{error.message} (closed=True, but the path is open: its ends are "
+            f"{open_gap:.6g} apart; the corner from its last edge to its first needs them "
+            "to cross)") from None
     finally:
         for curve in curves:
             curve.close()
@@ -842,6 +859,16 @@ def merge_edges(first_edge, second_edge, *, metric="discrete", mu="optimal", fix
                 f"the edges do not meet: their nearest ends are {gap:.6g} apart, more than "
                 f"max_gap = {limit:.6g}; merging them would bridge the gap (a larger "
                 "MaxGap in the feature or the form, max_gap in Python, merges them anyway)")
+        # Named by edge here, not as the library's p and q (user testing, session 43).
+        for curve, name in ((p, "first"), (q, "second")):
+            if curve.is_rational:
+                p.close()
+                q.close()
+                raise _invalid(
+                    f"the {name} edge is rational (an arc or a conic, its weights differ): a "
+                    "merge makes one polynomial edge, which cannot follow it exactly; "
+                    "approximate that edge by a B-spline first (Part's toBSpline or "
+                    "approximate) to merge it")
         angle = _angle_at_join(p, q)
         if max_angle is not None and angle > max_angle:
             p.close()

@@ -345,8 +345,14 @@ fn weighted_auto_scale(problem: &Problem, weights: ScaleWeights, s0: f64) -> Res
         return solve_structured(problem, 1.0, 1.0);
     }
     let half_width = AUTO_SCALE_SEARCH_DECADES * std::f64::consts::LN_10;
+    // Below the floor the blend's poles cannot hold its end tangents.
+    let floor = tangent_holding_floor(problem, weights);
+    let lo = (-half_width).max((floor.scale / s0).ln());
+    if lo > half_width {
+        return Err(unheld_tangent_error(problem, &floor, s0 * half_width.exp()));
+    }
     if let Some(coefficients) = energy_polynomial(problem, s0, weights) {
-        if let Some(sigma) = polynomial_minimum(&coefficients, -half_width, half_width) {
+        if let Some(sigma) = polynomial_minimum(&coefficients, lo, half_width) {
             let s = s0 * sigma;
             if let Ok(result) = solve_structured(problem, s * weights.p, s * weights.q) {
                 if result.curve.points().iter().all(|v| v.is_finite()) {
@@ -355,18 +361,114 @@ fn weighted_auto_scale(problem: &Problem, weights: ScaleWeights, s0: f64) -> Res
             }
         }
     }
-    auto_scale_by_search(problem, weights, s0)
+    auto_scale_by_search(problem, weights, s0, lo)
 }
 
-/// The automatic scale by full solves: a grid of [`GRID_POINTS`] in `log s`,
-/// then Brent's method; a refused scale counts as infinite energy.
-fn auto_scale_by_search(problem: &Problem, weights: ScaleWeights, s0: f64) -> Result<Connection> {
+/// The smallest scale `s` at which the blend's first control-point step at
+/// each end, `s w |X'| / n` (`w` the end's weight, `n` the blend's degree),
+/// holds its direction to [`crate::GEOMETRIC_CONDITION_LIMIT`] against the
+/// rounding of the stored poles, `u S` per coordinate (`S` the largest
+/// coordinate of the blend's ends): a direction error of about
+/// `2 sqrt(d) u S / step`. With the automatic scale's one `s` for ends whose
+/// speeds differ by 1e5 (a fillet of lines 10000 and 0.05 long) the scale
+/// chosen for the fast end left the slow end's step below the rounding far
+/// from the origin: at 1e5 the tangent at the short line was off by 164
+/// degrees, with every residual within its bound (user testing, session
+/// 43). 0 where no end has a derivative; an end whose own tangent is not
+/// known to the limit (`2 e_1 > 1e-6 |X'|`, `e_1` the rounding bound of
+/// `X'`) sets no floor.
+struct TangentFloor {
+    /// The floor of `s`.
+    scale: f64,
+    /// The end that sets it: `("p", |P'(u0)|)` or `("q", |Q'(v0)|)`, and `S`.
+    end: (&'static str, f64),
+    coordinates: f64,
+}
+
+fn tangent_holding_floor(problem: &Problem, weights: ScaleWeights) -> TangentFloor {
+    let coordinates = problem
+        .p_derivatives
+        .row(0)
+        .iter()
+        .chain(problem.q_derivatives.row(0).iter())
+        .fold(0.0f64, |m, x| m.max(x.abs()));
+    let rounding = 2.0 * (problem.dim as f64).sqrt() * 0.5 * f64::EPSILON * coordinates;
+    let mut floor = TangentFloor {
+        scale: 0.0,
+        end: ("p", 0.0),
+        coordinates,
+    };
+    for (name, jet, errors, weight) in [
+        (
+            "p",
+            &problem.p_derivatives,
+            &problem.p_derivative_error,
+            weights.p,
+        ),
+        (
+            "q",
+            &problem.q_derivatives,
+            &problem.q_derivative_error,
+            weights.q,
+        ),
+    ] {
+        if jet.nrows() < 2 {
+            continue;
+        }
+        let speed = jet.row(1).norm();
+        // An input whose own tangent is not known to the limit (a nearly
+        // stationary end) has no direction for the blend to hold: its C^k
+        // blend meets the residual promise, and the G^k connect refuses it.
+        if 2.0 * errors[1] > crate::GEOMETRIC_CONDITION_LIMIT * speed {
+            continue;
+        }
+        let scale =
+            rounding * problem.degree as f64 / (crate::GEOMETRIC_CONDITION_LIMIT * weight * speed);
+        // A zero speed (infinite floor) is left to connect's own checks.
+        if scale.is_finite() && scale > floor.scale {
+            floor.scale = scale;
+            floor.end = (name, speed);
+        }
+    }
+    floor
+}
+
+/// The refusal where the whole search range lies below the
+/// [`tangent_holding_floor`]: IllConditioned naming the end, with the
+/// direction error of its step at the range's largest scale `top`.
+#[cold]
+fn unheld_tangent_error(problem: &Problem, floor: &TangentFloor, top: f64) -> BezjoinError {
+    let (name, speed) = floor.end;
+    let derivative = if name == "p" { "P'(u0)" } else { "Q'(v0)" };
+    BezjoinError::IllConditioned {
+        what: format!(
+            "connect with an automatic scale: at the largest scale searched ({top:.3e}) the \
+             blend's first step at {name} is too short to hold its tangent against the \
+             rounding of coordinates up to {:.3e} (|{derivative}| = {speed:.3e}, degree {}); \
+             the ends' speeds or the gap are too small for the coordinates: give the scales, \
+             use the balanced scale, or move the geometry nearer the origin",
+            floor.coordinates, problem.degree
+        ),
+        estimate: crate::GEOMETRIC_CONDITION_LIMIT * floor.scale / top,
+        limit: crate::GEOMETRIC_CONDITION_LIMIT,
+    }
+}
+
+/// The automatic scale by full solves: a grid of [`GRID_POINTS`] in `log s`
+/// from `ln s0 + lowest` to the range's top, then Brent's method; a refused
+/// scale counts as infinite energy.
+fn auto_scale_by_search(
+    problem: &Problem,
+    weights: ScaleWeights,
+    s0: f64,
+    lowest: f64,
+) -> Result<Connection> {
     if problem.p_order == 0 && problem.q_order == 0 {
         return solve_structured(problem, 1.0, 1.0);
     }
     let center = s0.ln();
     let half_width = AUTO_SCALE_SEARCH_DECADES * std::f64::consts::LN_10;
-    let (lo, hi) = (center - half_width, center + half_width);
+    let (lo, hi) = (center + lowest, center + half_width);
     let solve_at = |s: f64| solve_structured(problem, s * weights.p, s * weights.q);
     let energy_at = |log_s: f64| -> f64 {
         let s = log_s.exp();
@@ -503,9 +605,14 @@ mod tests {
                     scan = scan.min(fairness_energy(&c.curve));
                 }
             }
-            let searched = auto_scale_by_search(&problem, EQUAL_WEIGHTS, natural_scale(&problem))
-                .map(|c| fairness_energy(&c.curve))
-                .unwrap_or(f64::INFINITY);
+            let searched = auto_scale_by_search(
+                &problem,
+                EQUAL_WEIGHTS,
+                natural_scale(&problem),
+                -half_width,
+            )
+            .map(|c| fairness_energy(&c.curve))
+            .unwrap_or(f64::INFINITY);
             let slack = 1e-9 * best.abs() + 1e-300;
             assert!(
                 best <= scan + slack,

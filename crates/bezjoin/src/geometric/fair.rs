@@ -16,14 +16,18 @@ use super::trial::TrialSolver;
 /// [`curvature_variation`] and of the reported energy: 64 panels agree with
 /// a 20 000-interval Simpson rule to 1e-6 relative on blends whose speed
 /// stays above a fifth of its largest value (test
-/// `fairness_energy_quadrature_is_accurate`); near a cusp the curvature
-/// peak is too sharp for any fixed rule and the energy is a lower estimate.
+/// `fairness_energy_quadrature_is_accurate`). Near a cusp the curvature
+/// peak is too sharp for any fixed rule: a speed dip narrower than an eighth
+/// of a panel is integrated on sub-panels graded towards it
+/// (`unresolved_dip`; 2 % against a Simpson rule resolving a dip of width
+/// 1e-5, test `the_reported_energy_counts_a_near_cusp_between_the_nodes`).
 pub const ENERGY_PANELS: usize = 64;
 
 /// Panels of the rule the fair search ranks its trial blends with: 4
-/// panels resolve the smooth blends near the optimum; on a blend with a
-/// near-cusp they can be off by a factor ten, but such a blend's energy is
-/// then still orders of magnitude above the optimum's.
+/// panels resolve the smooth blends near the optimum. A near-cusp between
+/// the nodes they miss altogether (ranked up to 1e24 times too low, session
+/// 43), so the winner is re-ranked with its speed dips refined and the
+/// search runs again where that ranking was fooled ([`FOOLED_RATIO`]).
 const SEARCH_PANELS: usize = 4;
 
 /// Evenly spaced samples of the curvature behind the report's range and
@@ -557,7 +561,10 @@ fn unresolved_dip(s2: f64, ab: f64, bb: f64, width: f64, narrow: f64) -> Option<
 /// tends to zero (their curvature does), and minimising it runs away to
 /// huge loops. `int (d kappa/ds)^2 ds = int (dkappa/dt)^2 / |r'| dt` and
 /// `L = int |r'| dt` over `[0, 1]` by composite 8-point Gauss-Legendre on
-/// [`ENERGY_PANELS`] panels; infinite when the speed vanishes at a node (a
+/// [`ENERGY_PANELS`] panels, a panel holding a speed dip narrower than an
+/// eighth of it on sub-panels graded towards the dip (a near-cusp, whose
+/// curvature peak the panel's nodes would miss); infinite when the speed
+/// vanishes at a node or a dip is narrower than `1e-12` of a panel (a
 /// cusp).
 pub fn curvature_variation(curve: &BezierCurve) -> f64 {
     EnergyRule::cached(curve.degree(), ENERGY_PANELS, true).energy(curve)
