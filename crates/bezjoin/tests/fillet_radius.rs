@@ -550,23 +550,21 @@ fn a_radius_that_uses_a_whole_side_of_one_corner_is_refused() {
             }
             other => panic!("G{order}: {other:?}"),
         }
-        // A radius of 2.5e-8 of the coordinates: G2 holds to the promise;
-        // the G3 blend's curvature is not known to GEOMETRIC_CONDITION_LIMIT
-        // there (the same L turned by 0.5 rad gave dK/ds off by 3.5e-6,
-        // session 42) and is refused with its estimate; 1e-4 is answered.
-        match (order, fillet_radius(&long, &short, 1e-6, order)) {
-            (2, Ok(_)) => {}
-            (
-                3,
-                Err(BezjoinError::IllConditioned {
-                    estimate, limit, ..
-                }),
-            ) => {
+        // A radius of 2.5e-8 of the coordinates: answered (G3 since session
+        // 43, whose fair search avoids blends whose poles cannot hold their
+        // end invariants; before, the G3 blend it chose was refused), or
+        // refused with its estimate; `tiny_radii_meet_g3_to_the_promise_or_are_refused`
+        // judges the answers.
+        match fillet_radius(&long, &short, 1e-6, order) {
+            Ok(_) => {}
+            Err(BezjoinError::IllConditioned {
+                estimate, limit, ..
+            }) if order == 3 => {
                 assert!(estimate > limit && limit == GEOMETRIC_CONDITION_LIMIT);
-                assert!(fillet_radius(&long, &short, 1e-4, order).is_ok());
             }
-            (_, other) => panic!("G{order}, radius 1e-6: {other:?}"),
+            other => panic!("G{order}, radius 1e-6: {other:?}"),
         }
+        assert!(fillet_radius(&long, &short, 1e-4, order).is_ok());
         let f = fillet_radius(&long, &short, 29.9, order).unwrap();
         // The kept piece of the short line is 0.1 long: from (40, 29.9) to (40, 30).
         let start = short.eval(f.v0);
@@ -607,4 +605,64 @@ fn a_tangent_join_of_a_chain_is_refused_naming_its_corner() {
         other => panic!("{other:?}"),
     }
     assert!(fillet_radius_chain(&[bend, up], 0.5, 2, false).is_ok());
+}
+
+/// Fillets of radius 1e-6 to 1e-4 on an L of lines 40 and 30 long, axis
+/// aligned and turned by 0.5 rad, at G3: each is answered with T, K and
+/// dK/ds matched at both joins to GEOMETRIC_CONDITION_LIMIT (relative to 1,
+/// 1/r and 1/r^2 at least), or refused as IllConditioned. Session 42 refused
+/// G3 at 1e-6 (the turned L's blend had missed dK/ds by 3.5e-6); session
+/// 43's fair search avoids blends whose poles cannot hold their end
+/// invariants, and answers them (measured: 7.1e-7 at 1e-6 on the turned L).
+#[test]
+fn tiny_radii_meet_g3_to_the_promise_or_are_refused() {
+    for angle in [0.0f64, 0.5] {
+        let (c, s) = (angle.cos(), angle.sin());
+        let rot = |x: f64, y: f64| [c * x - s * y, s * x + c * y];
+        let (a, b) = (rot(40.0, 0.0), rot(40.0, 30.0));
+        let long = BezierCurve::new(2, 1, vec![0.0, 0.0, a[0], a[1]]).unwrap();
+        let short = BezierCurve::new(2, 1, vec![a[0], a[1], b[0], b[1]]).unwrap();
+        for r in [1e-6, 1e-5, 1e-4] {
+            match fillet_radius(&long, &short, r, 3) {
+                Ok(f) => {
+                    let (_, pu) = f.p_trimmed.domain();
+                    let (qv, _) = f.q_trimmed.domain();
+                    for (x, y) in [
+                        (
+                            jet_of(&f.p_trimmed, pu, KnotSide::Left),
+                            f.blend.eval_derivatives(0.0, 3),
+                        ),
+                        (
+                            jet_of(&f.q_trimmed, qv, KnotSide::Right),
+                            f.blend.eval_derivatives(1.0, 3),
+                        ),
+                    ] {
+                        let (i, j) = (invariants(&x, 2), invariants(&y, 2));
+                        for k in 0..3 {
+                            let gap = norm(
+                                &i[k]
+                                    .iter()
+                                    .zip(&j[k])
+                                    .map(|(p, q)| p - q)
+                                    .collect::<Vec<_>>(),
+                            );
+                            let floor = [1.0, 1.0 / r, 1.0 / (r * r)][k];
+                            let size = norm(&i[k]).max(norm(&j[k])).max(floor);
+                            assert!(
+                                gap <= GEOMETRIC_CONDITION_LIMIT * size,
+                                "angle {angle}, r {r:e}, invariant {k}: {:e}",
+                                gap / size
+                            );
+                        }
+                    }
+                }
+                Err(BezjoinError::IllConditioned {
+                    estimate, limit, ..
+                }) => {
+                    assert!(estimate > limit, "angle {angle}, r {r:e}");
+                }
+                Err(e) => panic!("angle {angle}, r {r:e}: {e}"),
+            }
+        }
+    }
 }

@@ -69,6 +69,29 @@ fn geometric_mismatch(left: &[f64], right: &[f64], d: usize, order: usize) -> f6
     worst
 }
 
+/// The larger G^k mismatch ([`geometric_mismatch`]) of the blend's two ends
+/// against `P` at `u0` and `Q` at `v0`.
+fn ends_mismatch(
+    (p, u0): (&BezierCurve, f64),
+    (q, v0): (&BezierCurve, f64),
+    blend: &BezierCurve,
+    k: usize,
+) -> f64 {
+    let d = p.dim();
+    geometric_mismatch(
+        &p.eval_derivatives(u0, 3),
+        &blend.eval_derivatives(0.0, 3),
+        d,
+        k,
+    )
+    .max(geometric_mismatch(
+        &q.eval_derivatives(v0, 3),
+        &blend.eval_derivatives(1.0, 3),
+        d,
+        k,
+    ))
+}
+
 #[test]
 fn partial_bell_polynomials_give_stirling_numbers() {
     // B_(n,k)(1, 1, ...) = S(n, k), the Stirling numbers of the second kind
@@ -732,18 +755,7 @@ fn fair_blends_of_nearly_stationary_ends_are_answered_in_size() {
                 "eps {eps:e}, G{k}: length {length} for the chord {chord}"
             );
             {
-                let mismatch = geometric_mismatch(
-                    &p.eval_derivatives(1.0, 3),
-                    &g.curve.eval_derivatives(0.0, 3),
-                    2,
-                    k,
-                )
-                .max(geometric_mismatch(
-                    &q.eval_derivatives(0.0, 3),
-                    &g.curve.eval_derivatives(1.0, 3),
-                    2,
-                    k,
-                ));
+                let mismatch = ends_mismatch((&p, 1.0), (&q, 0.0), &g.curve, k);
                 assert!(mismatch <= 1e-6, "eps {eps:e}, G{k}: mismatch {mismatch:e}");
             }
         }
@@ -774,19 +786,7 @@ fn a_numerically_stationary_end_is_refused_and_every_answer_meets_gk() {
         }
         match connect_geometric_curve(p, u0, q, 0.0, &options) {
             Ok(g) => {
-                let d = p.dim();
-                let mismatch = geometric_mismatch(
-                    &p.eval_derivatives(u0, 3),
-                    &g.curve.eval_derivatives(0.0, 3),
-                    d,
-                    k,
-                )
-                .max(geometric_mismatch(
-                    &q.eval_derivatives(0.0, 3),
-                    &g.curve.eval_derivatives(1.0, 3),
-                    d,
-                    k,
-                ));
+                let mismatch = ends_mismatch((p, u0), (q, 0.0), &g.curve, k);
                 assert!(
                     mismatch <= GEOMETRIC_CONDITION_LIMIT,
                     "u0 {u0}, G{k}: mismatch {mismatch:e}"
@@ -1052,18 +1052,7 @@ fn a_fair_blend_from_an_end_with_a_short_last_leg_stays_near_the_gap() {
                 slowest >= 1e-3 * mean,
                 "eps {eps}, G{k}: speed dips to {slowest:e} (mean {mean:e})"
             );
-            let mismatch = geometric_mismatch(
-                &p.eval_derivatives(1.0, 3),
-                &g.curve.eval_derivatives(0.0, 3),
-                2,
-                k,
-            )
-            .max(geometric_mismatch(
-                &q.eval_derivatives(0.0, 3),
-                &g.curve.eval_derivatives(1.0, 3),
-                2,
-                k,
-            ));
+            let mismatch = ends_mismatch((&p, 1.0), (&q, 0.0), &g.curve, k);
             assert!(mismatch <= 1e-6, "eps {eps}, G{k}: mismatch {mismatch:e}");
         }
     }

@@ -59,8 +59,20 @@ const RELATIVE_SPREAD: f64 = 1e-5;
 /// The fast search's winner is re-ranked with its speed dips refined
 /// ([`unresolved_dip`]); above this ratio of the two energies the fast rule
 /// was fooled by a near-cusp between its nodes and the search runs again
-/// with the dips refined.
-const FOOLED_RATIO: f64 = 2.0;
+/// with the dips refined. At 2 the second pass ran on a quarter of ordinary
+/// inputs (review, session 43), mostly where the 4-panel rule is merely
+/// coarse, and the refined 4-panel ranking then chose a less fair blend in
+/// 2 of 13 changed cases; the near-cusps it exists for are fooled by
+/// factors of 1e5 and more.
+const FOOLED_RATIO: f64 = 10.0;
+
+/// Largest number of energy evaluations of the second pass's Nelder-Mead
+/// (its trials refine their dips, several times the cost of a fast trial):
+/// on 150 random pairs (a fifth with short last legs) half the first pass's
+/// budget gave blends within 5 % of the full budget's in most cases and
+/// fairer than the first pass's in every case, at 0.35 against 0.47 ms a
+/// call.
+const SECOND_PASS_EVALUATIONS: usize = MAX_EVALUATIONS / 2;
 
 const GL_NODES: [f64; 4] = [
     0.183_434_642_495_649_8,
@@ -74,6 +86,12 @@ const GL_WEIGHTS: [f64; 4] = [
     0.222_381_034_453_374_5,
     0.101_228_536_290_376_3,
 ];
+
+/// The 4-point Gauss-Legendre rule (positive nodes, weights) of the graded
+/// sub-panels of [`EnergyRule::refined_sums`]: each sub-panel is as wide as
+/// its distance from the dip, where the integrand is smooth.
+const GL4_NODES: [f64; 2] = [0.339_981_043_584_856_3, 0.861_136_311_594_052_6];
+const GL4_WEIGHTS: [f64; 2] = [0.652_145_154_862_546_1, 0.347_854_845_137_453_9];
 
 /// What a blend's curvature looks like.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -292,8 +310,9 @@ impl EnergyRule {
                 v[j] = w * dkappa * dkappa / speed;
                 l[j] = w * speed;
                 speeds[j] = speed;
-                if self.refine_dips {
-                    dips[j] = unresolved_dip(speed * speed, ab, bb, width, narrow).is_some();
+                if self.refine_dips && j < m {
+                    let t = self.ts[start + j];
+                    dips[j] = unresolved_dip(t, (speed * speed, ab, bb), width, narrow).is_some();
                 }
             }
             if !speeds[..m]
@@ -322,51 +341,43 @@ impl EnergyRule {
     /// The sums of [`block_sums`](Self::block_sums) where a speed dip is
     /// narrower than the rule resolves: every panel that holds a dip
     /// predicted by one of the nodes ([`unresolved_dip`]) is integrated by
-    /// the same 8-point rule on sub-panels graded geometrically (ratio 4)
+    /// the 4-point rule on sub-panels graded geometrically (ratio 4)
     /// towards the dip's centre, down to half its width; the other panels
     /// by their own nodes. `None` at a cusp (a speed of zero or not
-    /// finite at a node, or a dip narrower than `1e-12` of a panel).
+    /// finite at a node, refined or not; sub-panels stop at `1e-12` of a
+    /// panel).
     #[cold]
     #[inline(never)]
     fn refined_sums(&self, points: &[f64], dim: usize) -> Option<(f64, f64)> {
         let panels = self.panels;
         let width = 1.0 / panels as f64;
         let narrow = self.narrowest_resolved();
-        let dot = |x: &[f64], y: &[f64]| x.iter().zip(y).map(|(p, q)| p * q).sum::<f64>();
         // The rule's own nodes from its rows: each panel's sums, and the
         // narrowest dip each panel holds, `(centre, width)`.
         let mut sums = vec![(0.0f64, 0.0f64); panels];
         let mut dips: Vec<Option<(f64, f64)>> = vec![None; panels];
-        let mut jets = vec![[0.0f64; BLOCK]; 3 * dim];
-        let mut jet = vec![0.0; 3 * dim];
-        for (b, (start, m)) in self.rows.blocks().enumerate() {
-            self.rows.jets(b, points, dim, &mut jets);
-            for j in 0..m {
-                for (value, lane) in jet.iter_mut().zip(&jets) {
-                    *value = lane[j];
-                }
-                let (a, second) = (&jet[..dim], &jet[dim..2 * dim]);
-                let (_, dkappa, speed) = kappa_from(a, second, &jet[2 * dim..]);
-                if !(speed > 0.0 && speed < f64::INFINITY) {
-                    return None;
-                }
-                let node = start + j;
-                let weight = self.weights[node];
-                let sum = &mut sums[node / 8];
-                sum.0 += weight * dkappa * dkappa / speed;
-                sum.1 += weight * speed;
-                let (ab, bb) = (dot(a, second), dot(second, second));
-                if let Some((offset, dip)) = unresolved_dip(speed * speed, ab, bb, width, narrow) {
-                    if dip < 1e-12 * width {
-                        return None;
-                    }
-                    let centre = (self.ts[node] + offset).clamp(0.0, 1.0);
-                    let panel = ((centre * panels as f64) as usize).min(panels - 1);
-                    if dips[panel].is_none_or(|(_, w)| dip < w) {
-                        dips[panel] = Some((centre, dip));
-                    }
+        let every = self.visit_nodes(points, dim, |node, dkappa, speed, ab, bb| {
+            if !(speed > 0.0 && speed < f64::INFINITY) {
+                return false;
+            }
+            let weight = self.weights[node];
+            let sum = &mut sums[node / 8];
+            sum.0 += weight * dkappa * dkappa / speed;
+            sum.1 += weight * speed;
+            let t = self.ts[node];
+            if let Some((centre, dip)) = unresolved_dip(t, (speed * speed, ab, bb), width, narrow) {
+                // Grading stops at 1e-12 of a panel; whether the speed
+                // vanishes is for the refined nodes to show.
+                let dip = dip.max(1e-12 * width);
+                let panel = ((centre * panels as f64) as usize).min(panels - 1);
+                if dips[panel].is_none_or(|(_, w)| dip < w) {
+                    dips[panel] = Some((centre, dip));
                 }
             }
+            true
+        });
+        if !every {
+            return None;
         }
         let curve = BezierCurve::from_parts(dim, self.degree, points.to_vec());
         let mut values = vec![0.0; 4 * dim];
@@ -394,7 +405,7 @@ impl EnergyRule {
             for pair in edges.windows(2) {
                 let (a, b) = (pair[0], pair[1]);
                 let (mid, h) = (0.5 * (a + b), b - a);
-                for (node, weight) in GL_NODES.iter().zip(GL_WEIGHTS) {
+                for (node, weight) in GL4_NODES.iter().zip(GL4_WEIGHTS) {
                     for t in [mid - 0.5 * h * node, mid + 0.5 * h * node] {
                         curve.eval_derivatives_into(t, 3, &mut values);
                         let (_, dkappa, speed) = kappa_from(
@@ -415,15 +426,18 @@ impl EnergyRule {
         Some((variation, length))
     }
 
-    /// The sums of [`block_sums`](Self::block_sums) node by node through
-    /// [`kappa_from`], for dimensions other than 2 and 3.
-    fn node_sums(&self, points: &[f64], dim: usize) -> Option<(f64, f64)> {
-        let (mut variation, mut length) = (0.0, 0.0);
+    /// Every node of the rule in order, its jet from the rows through
+    /// [`kappa_from`]: `visit(node, dkappa/dt, |r'|, r'.r'', |r''|^2)` until
+    /// it returns `false`. Whether every node was visited.
+    fn visit_nodes(
+        &self,
+        points: &[f64],
+        dim: usize,
+        mut visit: impl FnMut(usize, f64, f64, f64, f64) -> bool,
+    ) -> bool {
+        let dot = |x: &[f64], y: &[f64]| x.iter().zip(y).map(|(p, q)| p * q).sum::<f64>();
         let mut jets = vec![[0.0f64; BLOCK]; 3 * dim];
         let mut jet = vec![0.0; 3 * dim];
-        let width = 1.0 / self.panels as f64;
-        let narrow = self.narrowest_resolved();
-        let dot = |x: &[f64], y: &[f64]| x.iter().zip(y).map(|(p, q)| p * q).sum::<f64>();
         for (b, (start, m)) in self.rows.blocks().enumerate() {
             self.rows.jets(b, points, dim, &mut jets);
             for j in 0..m {
@@ -432,17 +446,39 @@ impl EnergyRule {
                 }
                 let (a, second) = (&jet[..dim], &jet[dim..2 * dim]);
                 let (_, dkappa, speed) = kappa_from(a, second, &jet[2 * dim..]);
-                if self.refine_dips {
-                    let ab = dot(a, second);
-                    let bb = dot(second, second);
-                    if unresolved_dip(dot(a, a), ab, bb, width, narrow).is_some() {
-                        return self.refined_sums(points, dim);
-                    }
+                if !visit(
+                    start + j,
+                    dkappa,
+                    speed,
+                    dot(a, second),
+                    dot(second, second),
+                ) {
+                    return false;
                 }
-                let weight = self.weights[start + j];
-                variation += weight * dkappa * dkappa / speed;
-                length += weight * speed;
             }
+        }
+        true
+    }
+
+    /// The sums of [`block_sums`](Self::block_sums) node by node through
+    /// [`kappa_from`] ([`visit_nodes`](Self::visit_nodes)), for dimensions
+    /// other than 2 and 3.
+    fn node_sums(&self, points: &[f64], dim: usize) -> Option<(f64, f64)> {
+        let (mut variation, mut length) = (0.0, 0.0);
+        let width = 1.0 / self.panels as f64;
+        let narrow = self.narrowest_resolved();
+        let every = self.visit_nodes(points, dim, |node, dkappa, speed, ab, bb| {
+            let dip = unresolved_dip(self.ts[node], (speed * speed, ab, bb), width, narrow);
+            if self.refine_dips && dip.is_some() {
+                return false;
+            }
+            let weight = self.weights[node];
+            variation += weight * dkappa * dkappa / speed;
+            length += weight * speed;
+            true
+        });
+        if !every {
+            return self.refined_sums(points, dim);
         }
         Some((variation, length))
     }
@@ -540,16 +576,33 @@ impl EnergyRule {
 /// to `sqrt(bb) w` over a parameter width `w` centred at `t + tau*`. The
 /// curvature and its variation peak there over about that width, so a dip
 /// within a panel of the node (`|tau*| <= width`) and narrower than
-/// `narrow` falls between the nodes: `Some((tau*, w))`. The search's
+/// `narrow` falls between the nodes: `Some((t + tau*, w))`. A centre a
+/// distance `d` past an end of the blend is that end, with the width
+/// `sqrt(w^2 + d^2)` of the half-dip left on the blend (a near-stationary
+/// end layer, which the rule misses as it misses an interior dip: the fair
+/// search's ten-chord blends of reliability.md D1 hid theirs there). `w` is
+/// a difference of squares: where `r'` and `r''` are nearly parallel it may
+/// come out far too small, which only grades the panel finer (the refined
+/// nodes decide). The search's
 /// 4-panel rule, blind to such dips, ranked near-cusp blends 1e5 to 1e24
 /// times below their energy and returned them (reliability.md, session
 /// 43). `None` otherwise (also for `bb = 0`, a straight stretch).
 #[inline(always)]
-fn unresolved_dip(s2: f64, ab: f64, bb: f64, width: f64, narrow: f64) -> Option<(f64, f64)> {
-    let centre = -ab / bb;
-    let w2 = s2 / bb - centre * centre;
-    if centre.abs() <= width && w2 < narrow * narrow {
-        Some((centre, w2.max(0.0).sqrt()))
+fn unresolved_dip(
+    t: f64,
+    (s2, ab, bb): (f64, f64, f64),
+    width: f64,
+    narrow: f64,
+) -> Option<(f64, f64)> {
+    let offset = -ab / bb;
+    let centre = t + offset;
+    // A centre off the curve (a blend leaving a slow end, or arriving at
+    // one) leaves a half-dip at that end, as wide as the centre is far off:
+    // `|r'(end)|^2 = bb (w^2 + d^2)`.
+    let outside = (-centre).max(centre - 1.0).max(0.0);
+    let w2 = s2 / bb - offset * offset + outside * outside;
+    if offset.abs() <= width && w2 < narrow * narrow {
+        Some((centre.clamp(0.0, 1.0), w2.max(0.0).sqrt()))
     } else {
         None
     }
@@ -564,8 +617,7 @@ fn unresolved_dip(s2: f64, ab: f64, bb: f64, width: f64, narrow: f64) -> Option<
 /// [`ENERGY_PANELS`] panels, a panel holding a speed dip narrower than an
 /// eighth of it on sub-panels graded towards the dip (a near-cusp, whose
 /// curvature peak the panel's nodes would miss); infinite when the speed
-/// vanishes at a node or a dip is narrower than `1e-12` of a panel (a
-/// cusp).
+/// vanishes at a node (a cusp).
 pub fn curvature_variation(curve: &BezierCurve) -> f64 {
     EnergyRule::cached(curve.degree(), ENERGY_PANELS, true).energy(curve)
 }
@@ -761,6 +813,12 @@ pub(super) fn fair_shapes(
         let within = |at: usize, natural: f64| (x[at] - natural.ln()).abs() <= half;
         (free_p == 0 || within(0, natural_p)) && (free_q == 0 || within(free_p, natural_q))
     };
+    // The ends' condition (geometric_end_condition): the input's part is the
+    // same for every trial; a trial whose stored blend cannot hold its end
+    // invariants to the limit would be refused after the search, so it
+    // counts as infinitely bad (review, session 43: near-stationary blend
+    // ends chosen at the origin were refused once the inputs moved to 1e3).
+    let (inputs, stored, chord) = input_conditions(problem);
     let mut energy = |rule: &EnergyRule, x: &[f64]| -> f64 {
         if !inside(x) {
             return f64::INFINITY;
@@ -770,10 +828,16 @@ pub(super) fn fair_shapes(
         let Some(points) = trial.solve(ps, qs, checked) else {
             return f64::INFINITY;
         };
-        match rule.energy_and_length_of(points, dim) {
+        let value = match rule.energy_and_length_of(points, dim) {
             (energy, length) if length <= longest => energy,
             _ => f64::INFINITY,
+        };
+        let (p_stored, q_stored) = trial.stored_conditions(chord, stored);
+        let limit = super::GEOMETRIC_CONDITION_LIMIT;
+        if inputs.0 + p_stored > limit || inputs.1 + q_stored > limit {
+            return f64::INFINITY;
         }
+        value
     };
     let dims = free_p + free_q;
     if dims == 0 {
@@ -793,6 +857,7 @@ pub(super) fn fair_shapes(
         x
     };
     let search = |rule: &EnergyRule,
+                  evaluations: usize,
                   energy: &mut dyn FnMut(&EnergyRule, &[f64]) -> f64|
      -> Option<Vec<f64>> {
         let mut best: Option<(f64, Vec<f64>)> = None;
@@ -806,17 +871,11 @@ pub(super) fn fair_shapes(
         }
         let (_, start) = best?;
         let f = |x: &[f64]| energy(rule, x);
-        Some(nelder_mead(
-            f,
-            &start,
-            0.5,
-            MAX_EVALUATIONS,
-            RELATIVE_SPREAD,
-        ))
+        Some(nelder_mead(f, &start, 0.5, evaluations, RELATIVE_SPREAD))
     };
     // First pass: the fast rule, blind to speed dips between its nodes.
     let fast = EnergyRule::cached(problem.degree, SEARCH_PANELS, false);
-    let Some(mut x) = search(&fast, &mut energy) else {
+    let Some(mut x) = search(&fast, MAX_EVALUATIONS, &mut energy) else {
         return Err(BezjoinError::IllConditioned {
             what: format!(
                 "G^k connect: no shape value on the search grid gives a blend with defined \
@@ -830,20 +889,52 @@ pub(super) fn fair_shapes(
     // Second pass where the first was fooled: its winner, with its dips
     // refined, has more than FOOLED_RATIO times the energy the fast rule
     // gave it (a near-cusp between the nodes). The search runs again with
-    // every dip refined, and its winner is taken if it is fairer by that
-    // rule (session 43, reliability.md: D1 and near-cusps).
+    // every dip refined (at most SECOND_PASS_EVALUATIONS), and its winner is
+    // taken if it is fairer by that rule (session 43, reliability.md: D1 and
+    // near-cusps).
     let refined = EnergyRule::cached(problem.degree, SEARCH_PANELS, true);
     let first = energy(&fast, &x);
     let first_refined = energy(&refined, &x);
     // (Both are finite or infinite, never NaN: `energy` maps NaN to infinity.)
     if first_refined > FOOLED_RATIO * first {
-        if let Some(y) = search(&refined, &mut energy) {
+        if let Some(y) = search(&refined, SECOND_PASS_EVALUATIONS, &mut energy) {
             if energy(&refined, &y) < first_refined {
                 x = y;
             }
         }
     }
     Ok(shapes_from(&x, kp, fixed_p, fixed_q, kq))
+}
+
+/// The input's part of each end's condition ([`super::input_condition`],
+/// the numbers `check_targets_condition` forms), the stored blend's
+/// `(degree, largest coordinate of the ends)` and the chord it measures
+/// with.
+fn input_conditions(problem: &Problem) -> ((f64, f64), (usize, f64), f64) {
+    let rows = |m: &nalgebra::DMatrix<f64>| -> Vec<Vec<f64>> {
+        m.row_iter()
+            .map(|row| row.iter().copied().collect())
+            .collect()
+    };
+    let (p, q) = (rows(&problem.p_derivatives), rows(&problem.q_derivatives));
+    let chord = crate::bezier::distance(&p[0], &q[0]);
+    let degree = problem.degree;
+    let p_input = super::input_condition(
+        &p,
+        &problem.p_derivative_error,
+        problem.p_order,
+        chord,
+        degree,
+    );
+    let q_input = super::input_condition(
+        &q,
+        &problem.q_derivative_error,
+        problem.q_order,
+        chord,
+        degree,
+    );
+    let stored = (degree, super::largest_coordinate(&p[0], &q[0]));
+    ((p_input.0, q_input.0), stored, chord)
 }
 
 /// Minimise `f` from `start` by the Nelder-Mead simplex method (standard

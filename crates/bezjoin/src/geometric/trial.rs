@@ -69,6 +69,24 @@ impl<'a> TrialSolver<'a> {
         }
     }
 
+    /// The stored blend's part of each end's condition
+    /// ([`super::stored_condition`]) on the targets of the last
+    /// [`solve`](Self::solve): `(P's end, Q's end)`; `stored` is the blend's
+    /// degree and its ends' largest coordinate.
+    pub(super) fn stored_conditions(&self, chord: f64, stored: (usize, f64)) -> (f64, f64) {
+        let dim = self.problem.dim;
+        let (kp, kq) = (self.problem.p_order, self.problem.q_order);
+        let rows = |first: usize, order: usize| -> Vec<&[f64]> {
+            self.targets[first * dim..(first + order + 1) * dim]
+                .chunks_exact(dim)
+                .collect()
+        };
+        (
+            super::stored_condition(&rows(0, kp), kp, chord, stored),
+            super::stored_condition(&rows(kp + 1, kq), kq, chord, stored),
+        )
+    }
+
     /// The targets of the beta-constraints of one end (the rows from
     /// `first`), as `geometric_targets` forms them (with scale 1,
     /// `condition_rows` takes them unchanged).
