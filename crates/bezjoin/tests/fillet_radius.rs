@@ -50,9 +50,10 @@ fn assert_gk(f: &bezjoin_core::RadiusFillet, order: usize, d: usize) {
     assert_joins_gk(&f.p_trimmed, &f.blend, &f.q_trimmed, order, d);
 }
 
-/// G^order where `left` ends and `blend` starts, and where `blend` ends and
-/// `right` starts, judged by T, K and dK/ds (never raw derivatives).
-fn assert_joins_gk(left: &Curve, blend: &BezierCurve, right: &Curve, order: usize, d: usize) {
+/// At the join where `left` ends and `blend` starts (0), and where `blend`
+/// ends and `right` starts (1): for T, K and dK/ds (`k` = 0, 1, 2) the
+/// distance between the two sides' invariants and the larger of their sizes.
+fn join_gaps(left: &Curve, blend: &BezierCurve, right: &Curve, d: usize) -> [[(f64, f64); 3]; 2] {
     let (_, pu) = left.domain();
     let (qv, _) = right.domain();
     let pairs = [
@@ -65,17 +66,21 @@ fn assert_joins_gk(left: &Curve, blend: &BezierCurve, right: &Curve, order: usiz
             blend.eval_derivatives(1.0, 3),
         ),
     ];
-    for (side, (a, b)) in pairs.iter().enumerate() {
-        let (x, y) = (invariants(a, d), invariants(b, d));
-        for k in 0..order.min(3) {
-            let gap = norm(
-                &x[k]
-                    .iter()
-                    .zip(&y[k])
-                    .map(|(p, q)| p - q)
-                    .collect::<Vec<_>>(),
-            );
-            let size = norm(&x[k]).max(norm(&y[k])).max(1e-2);
+    pairs.map(|(a, b)| {
+        let (x, y) = (invariants(&a, d), invariants(&b, d));
+        std::array::from_fn(|k| {
+            let difference: Vec<f64> = x[k].iter().zip(&y[k]).map(|(p, q)| p - q).collect();
+            (norm(&difference), norm(&x[k]).max(norm(&y[k])))
+        })
+    })
+}
+
+/// G^order where `left` ends and `blend` starts, and where `blend` ends and
+/// `right` starts, judged by T, K and dK/ds (never raw derivatives).
+fn assert_joins_gk(left: &Curve, blend: &BezierCurve, right: &Curve, order: usize, d: usize) {
+    for (side, gaps) in join_gaps(left, blend, right, d).iter().enumerate() {
+        for (k, &(gap, size)) in gaps.iter().enumerate().take(order.min(3)) {
+            let size = size.max(1e-2);
             assert!(
                 gap <= 1e-8 * size.max(1.0),
                 "join {side}, invariant {k}: {gap:e}"
@@ -625,29 +630,10 @@ fn tiny_radii_meet_g3_to_the_promise_or_are_refused() {
         for r in [1e-6, 1e-5, 1e-4] {
             match fillet_radius(&long, &short, r, 3) {
                 Ok(f) => {
-                    let (_, pu) = f.p_trimmed.domain();
-                    let (qv, _) = f.q_trimmed.domain();
-                    for (x, y) in [
-                        (
-                            jet_of(&f.p_trimmed, pu, KnotSide::Left),
-                            f.blend.eval_derivatives(0.0, 3),
-                        ),
-                        (
-                            jet_of(&f.q_trimmed, qv, KnotSide::Right),
-                            f.blend.eval_derivatives(1.0, 3),
-                        ),
-                    ] {
-                        let (i, j) = (invariants(&x, 2), invariants(&y, 2));
-                        for k in 0..3 {
-                            let gap = norm(
-                                &i[k]
-                                    .iter()
-                                    .zip(&j[k])
-                                    .map(|(p, q)| p - q)
-                                    .collect::<Vec<_>>(),
-                            );
-                            let floor = [1.0, 1.0 / r, 1.0 / (r * r)][k];
-                            let size = norm(&i[k]).max(norm(&j[k])).max(floor);
+                    let gaps = join_gaps(&f.p_trimmed, &f.blend, &f.q_trimmed, 2);
+                    for gaps in gaps {
+                        for (k, (gap, size)) in gaps.into_iter().enumerate() {
+                            let size = size.max([1.0, 1.0 / r, 1.0 / (r * r)][k]);
                             assert!(
                                 gap <= GEOMETRIC_CONDITION_LIMIT * size,
                                 "angle {angle}, r {r:e}, invariant {k}: {:e}",

@@ -386,12 +386,10 @@ struct TangentFloor {
 }
 
 fn tangent_holding_floor(problem: &Problem, weights: ScaleWeights) -> TangentFloor {
-    let coordinates = problem
-        .p_derivatives
-        .row(0)
-        .iter()
-        .chain(problem.q_derivatives.row(0).iter())
-        .fold(0.0f64, |m, x| m.max(x.abs()));
+    let coordinates = crate::geometric::largest_coordinate(
+        problem.p_derivatives.row(0).iter(),
+        problem.q_derivatives.row(0).iter(),
+    );
     let rounding = 2.0 * (problem.dim as f64).sqrt() * 0.5 * f64::EPSILON * coordinates;
     let mut floor = TangentFloor {
         scale: 0.0,

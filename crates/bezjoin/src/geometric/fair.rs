@@ -281,17 +281,18 @@ impl EnergyRule {
     /// nodes, the jets formed [`BLOCK`] nodes at a time (`R = 3 dim` rows)
     /// and `node(jet, j)` giving `(dkappa/dt, |r'|, r'.r'', |r''|^2)` at
     /// lane `j` (the formulas of [`kappa_from`] written out, so the compiler
-    /// runs the lanes side by side); `Err(None)` at a cusp (a node's speed
-    /// zero or not finite), whose energy is infinite, and `Err(Some(()))`
-    /// where a node sees a speed dip the rule cannot resolve
-    /// ([`unresolved_dip`]): the caller then takes [`refined_sums`](Self::refined_sums).
+    /// runs the lanes side by side); [`NodeSums::Cusp`] at a node whose
+    /// speed is zero or not finite, and, with `REFINE`,
+    /// [`NodeSums::Unresolved`] where a node sees a speed dip the rule cannot
+    /// resolve ([`unresolved_dip`]): the caller then takes
+    /// [`refined_sums`](Self::refined_sums).
     #[inline(always)]
     fn block_sums<const R: usize, const REFINE: bool>(
         &self,
         points: &[f64],
         dim: usize,
         node: impl Fn(&[[f64; BLOCK]; R], usize) -> (f64, f64, f64, f64),
-    ) -> std::result::Result<(f64, f64), Option<()>> {
+    ) -> NodeSums {
         let (mut variation, mut length) = (0.0, 0.0);
         let mut jet = [[0.0f64; BLOCK]; R];
         let width = 1.0 / self.panels as f64;
@@ -319,17 +320,17 @@ impl EnergyRule {
                 .iter()
                 .all(|&speed| speed > 0.0 && speed < f64::INFINITY)
             {
-                return Err(None);
+                return NodeSums::Cusp;
             }
             if dips[..m].iter().any(|&dip| dip) {
-                return Err(Some(()));
+                return NodeSums::Unresolved;
             }
             for j in 0..m {
                 variation += v[j];
                 length += l[j];
             }
         }
-        Ok((variation, length))
+        NodeSums::Of(variation, length)
     }
 
     /// The width of the narrowest speed dip the rule's nodes resolve: an
@@ -463,13 +464,14 @@ impl EnergyRule {
     /// The sums of [`block_sums`](Self::block_sums) node by node through
     /// [`kappa_from`] ([`visit_nodes`](Self::visit_nodes)), for dimensions
     /// other than 2 and 3.
-    fn node_sums(&self, points: &[f64], dim: usize) -> Option<(f64, f64)> {
+    fn node_sums(&self, points: &[f64], dim: usize) -> NodeSums {
         let (mut variation, mut length) = (0.0, 0.0);
         let width = 1.0 / self.panels as f64;
         let narrow = self.narrowest_resolved();
         let every = self.visit_nodes(points, dim, |node, dkappa, speed, ab, bb| {
-            let dip = unresolved_dip(self.ts[node], (speed * speed, ab, bb), width, narrow);
-            if self.refine_dips && dip.is_some() {
+            if self.refine_dips
+                && unresolved_dip(self.ts[node], (speed * speed, ab, bb), width, narrow).is_some()
+            {
                 return false;
             }
             let weight = self.weights[node];
@@ -477,10 +479,11 @@ impl EnergyRule {
             length += weight * speed;
             true
         });
-        if !every {
-            return self.refined_sums(points, dim);
+        if every {
+            NodeSums::Of(variation, length)
+        } else {
+            NodeSums::Unresolved
         }
-        Some((variation, length))
     }
 
     /// [`energy`](Self::energy) of the curve with control points `points`
@@ -539,12 +542,12 @@ impl EnergyRule {
                 self.block_sums::<9, false>(points, 3, node)
             }
         } else {
-            self.node_sums(points, dim).ok_or(None)
+            self.node_sums(points, dim)
         };
         let blocked = match blocked {
-            Ok(sums) => Some(sums),
-            Err(None) => None,
-            Err(Some(())) => self.refined_sums(points, dim),
+            NodeSums::Of(variation, length) => Some((variation, length)),
+            NodeSums::Cusp => None,
+            NodeSums::Unresolved => self.refined_sums(points, dim),
         };
         // None: a cusp at a node, infinitely bad (kappa_from's infinities).
         let Some((variation, length)) = blocked else {
@@ -579,6 +582,15 @@ impl EnergyRule {
             None => Cow::Owned(build()),
         }
     }
+}
+
+/// What a rule's own nodes give: the sums `(sum w dkappa^2 / speed, sum w
+/// speed)`, a cusp at a node (infinite energy), or a speed dip between the
+/// nodes that needs [`EnergyRule::refined_sums`].
+enum NodeSums {
+    Of(f64, f64),
+    Cusp,
+    Unresolved,
 }
 
 /// A speed dip a rule of panels `width` wide cannot resolve, seen from a
@@ -831,7 +843,11 @@ pub(super) fn fair_shapes(
     // `guard` on it counts as infinitely bad (review, session 43:
     // near-stationary blend ends chosen at the origin were refused once the
     // inputs moved to 1e3).
-    let (inputs, stored, chord) = input_conditions(problem);
+    let inputs = super::input_conditions(
+        (&problem.p_derivatives, &problem.p_derivative_error, kp),
+        (&problem.q_derivatives, &problem.q_derivative_error, kq),
+        problem.degree,
+    );
     // Off for the first search (its cost per trial is a tenth of one); on
     // from its winner's check.
     let guard = std::cell::Cell::new(false);
@@ -849,9 +865,9 @@ pub(super) fn fair_shapes(
             _ => f64::INFINITY,
         };
         if guard.get() {
-            let (p_stored, q_stored) = trial.stored_conditions(chord, stored);
+            let (p_stored, q_stored) = trial.stored_conditions(inputs.chord, inputs.stored);
             let limit = super::GEOMETRIC_CONDITION_LIMIT;
-            if inputs.0 + p_stored > limit || inputs.1 + q_stored > limit {
+            if inputs.p.0 + p_stored > limit || inputs.q.0 + q_stored > limit {
                 return f64::INFINITY;
             }
         }
@@ -909,9 +925,11 @@ pub(super) fn fair_shapes(
     // not, the search runs again with every such trial counted as
     // infinitely bad (and so does the second pass below).
     guard.set(true);
-    if !energy(&fast, &x).is_finite() {
+    let mut first = energy(&fast, &x);
+    if !first.is_finite() {
         if let Some(y) = search(&fast, MAX_EVALUATIONS, &mut energy) {
             x = y;
+            first = energy(&fast, &x);
         }
     }
     // Second pass where the first was fooled: its winner, with its dips
@@ -921,7 +939,6 @@ pub(super) fn fair_shapes(
     // taken if it is fairer by that rule (session 43, reliability.md: D1 and
     // near-cusps).
     let refined = EnergyRule::cached(problem.degree, SEARCH_PANELS, true);
-    let first = energy(&fast, &x);
     let first_refined = energy(&refined, &x);
     // (Both are finite or infinite, never NaN: `energy` maps NaN to infinity.)
     if first_refined > FOOLED_RATIO * first {
@@ -932,37 +949,6 @@ pub(super) fn fair_shapes(
         }
     }
     Ok(shapes_from(&x, kp, fixed_p, fixed_q, kq))
-}
-
-/// The input's part of each end's condition ([`super::input_condition`],
-/// the numbers `check_targets_condition` forms), the stored blend's
-/// `(degree, largest coordinate of the ends)` and the chord it measures
-/// with.
-fn input_conditions(problem: &Problem) -> ((f64, f64), (usize, f64), f64) {
-    let rows = |m: &nalgebra::DMatrix<f64>| -> Vec<Vec<f64>> {
-        m.row_iter()
-            .map(|row| row.iter().copied().collect())
-            .collect()
-    };
-    let (p, q) = (rows(&problem.p_derivatives), rows(&problem.q_derivatives));
-    let chord = crate::bezier::distance(&p[0], &q[0]);
-    let degree = problem.degree;
-    let p_input = super::input_condition(
-        &p,
-        &problem.p_derivative_error,
-        problem.p_order,
-        chord,
-        degree,
-    );
-    let q_input = super::input_condition(
-        &q,
-        &problem.q_derivative_error,
-        problem.q_order,
-        chord,
-        degree,
-    );
-    let stored = (degree, super::largest_coordinate(&p[0], &q[0]));
-    ((p_input.0, q_input.0), stored, chord)
 }
 
 /// Minimise `f` from `start` by the Nelder-Mead simplex method (standard

@@ -389,35 +389,67 @@ fn check_targets_condition(
     (q, q_errors, q_targets, v0): (&DMatrix<f64>, &[f64], Option<&DMatrix<f64>>, f64),
     (kp, kq, degree): (usize, usize, usize),
 ) -> Result<()> {
-    let rows = |m: &DMatrix<f64>| -> Vec<Vec<f64>> {
-        m.row_iter()
-            .map(|row| row.iter().copied().collect())
-            .collect()
-    };
-    let (p_jet, q_jet) = (rows(p), rows(q));
-    let chord = distance(&p_jet[0], &q_jet[0]);
-    let stored = (degree, largest_coordinate(&p_jet[0], &q_jet[0]));
-    let p_input = input_condition(&p_jet, p_errors, kp, chord, degree);
-    let q_input = input_condition(&q_jet, q_errors, kq, chord, degree);
+    let inputs = input_conditions((p, p_errors, kp), (q, q_errors, kq), degree);
+    let (chord, stored) = (inputs.chord, inputs.stored);
     let stored_part = |targets: Option<&DMatrix<f64>>, order: usize| {
-        targets.map_or(0.0, |t| stored_condition(&rows(t), order, chord, stored))
+        targets.map_or(0.0, |t| stored_condition(&rows_of(t), order, chord, stored))
     };
-    let p_end = p_input.0 + stored_part(p_targets, kp);
-    let q_end = q_input.0 + stored_part(q_targets, kq);
+    let p_end = inputs.p.0 + stored_part(p_targets, kp);
+    let q_end = inputs.q.0 + stored_part(q_targets, kq);
     if p_end.max(q_end) <= GEOMETRIC_CONDITION_LIMIT {
         return Ok(());
     }
     Err(geometric_condition_error(
-        (p_end, u0, p_input.1, p_input.2),
-        (q_end, v0, q_input.1, q_input.2),
+        (p_end, u0, inputs.p.1, inputs.p.2),
+        (q_end, v0, inputs.q.1, inputs.q.2),
         (kp, kq),
     ))
 }
 
+/// The rows of a jet or of targets, each a `Vec` (what the condition
+/// functions take).
+fn rows_of(m: &DMatrix<f64>) -> Vec<Vec<f64>> {
+    m.row_iter()
+        .map(|row| row.iter().copied().collect())
+        .collect()
+}
+
+/// What the ends' condition takes from the inputs alone: each end's
+/// [`input_condition`] `(estimate, |X'|, its bound)`, the chord between the
+/// jets' rows 0 and the stored blend's `(degree, largest coordinate)` for
+/// [`stored_condition`]. The same numbers for [`check_targets_condition`]
+/// and the fair search's trials.
+pub(super) struct InputConditions {
+    pub(super) p: (f64, f64, f64),
+    pub(super) q: (f64, f64, f64),
+    pub(super) chord: f64,
+    pub(super) stored: (usize, f64),
+}
+
+/// [`InputConditions`] of the jets `(p, p_errors, kp)`, `(q, q_errors, kq)`
+/// for a blend of `degree`.
+pub(super) fn input_conditions(
+    (p, p_errors, kp): (&DMatrix<f64>, &[f64], usize),
+    (q, q_errors, kq): (&DMatrix<f64>, &[f64], usize),
+    degree: usize,
+) -> InputConditions {
+    let (p_jet, q_jet) = (rows_of(p), rows_of(q));
+    let chord = distance(&p_jet[0], &q_jet[0]);
+    InputConditions {
+        p: input_condition(&p_jet, p_errors, kp, chord, degree),
+        q: input_condition(&q_jet, q_errors, kq, chord, degree),
+        chord,
+        stored: (degree, largest_coordinate(&p_jet[0], &q_jet[0])),
+    }
+}
+
 /// The largest coordinate of two points (in absolute value): the size of
 /// the stored blend's poles both paths measure the condition with.
-pub(crate) fn largest_coordinate(a: &[f64], b: &[f64]) -> f64 {
-    a.iter().chain(b).fold(0.0f64, |m, x| m.max(x.abs()))
+pub(crate) fn largest_coordinate<'a>(
+    a: impl IntoIterator<Item = &'a f64>,
+    b: impl IntoIterator<Item = &'a f64>,
+) -> f64 {
+    a.into_iter().chain(b).fold(0.0f64, |m, x| m.max(x.abs()))
 }
 
 /// The input's part of an end's condition, `(estimate, |X'|, its bound)`
