@@ -1330,6 +1330,94 @@ fn optimal_mu_is_the_minimum_of_a_dense_scan() {
     }
 }
 
+/// The optimal `mu` reaches past the main search's range `[1e-3, 1 - 1e-3]`
+/// where the curves' lengths differ by more than about a thousand: a curve
+/// about 1000 across followed by one `1000 / ratio` across (ratios 1e2 to
+/// 1e5, either first), degrees 1, 3 and 5, both metrics, free and fixed
+/// ends. No `mu` of a log-spaced scan of both tails (`[MIN_SPLIT, 1e-2]`
+/// and its mirror), nor the polygon split, nor the dense scan of the
+/// middle, gives a smaller metric than the answer. Before session 44 the
+/// search stopped at `mu = 0.999`: on a cubic 1000 long followed by one
+/// 0.01 long its metric was 64,000 times the polygon split's (deviation
+/// 0.56 against 0.0016).
+#[test]
+fn optimal_mu_reaches_into_the_tails_for_curves_of_unequal_length() {
+    let mut rng = Random(44);
+    let mut tails = 0;
+    for ratio in [1e2, 1e3, 1e4, 1e5] {
+        for short_first in [false, true] {
+            for n in [1, 3, 5] {
+                let long = rng.curve(2, n, 500.0);
+                let short = rng.curve(2, n, 500.0 / ratio);
+                // The short curve starts where the long one ends (or ends
+                // where it starts): a stub left by a trim.
+                let (p, q) = if short_first {
+                    let by = [0, 1].map(|c| long.point(0)[c] - short.point(n)[c]);
+                    (translated(&short, by), long)
+                } else {
+                    let by = [0, 1].map(|c| long.point(n)[c] - short.point(0)[c]);
+                    (long, translated(&short, by))
+                };
+                for metric in [MergeMetric::Discrete, MergeMetric::Integral] {
+                    for fix_ends in [false, true] {
+                        let mut o = MergeOptions::default()
+                            .with_metric(metric)
+                            .with_split(Breakpoints::Optimal);
+                        o.fix_ends = fix_ends;
+                        let label = format!(
+                            "ratio {ratio:e} short first {short_first} degree {n} {metric:?} fix ends {fix_ends}"
+                        );
+                        let m = merge(&p, &q, &o).unwrap_or_else(|e| panic!("{label}: {e}"));
+                        let best = m.report.metric_value;
+                        let scan = |mu: f64| match merge_metric_at(&p, &q, &o, mu) {
+                            Ok(v) => v,
+                            Err(BezjoinError::IllConditioned { .. }) => f64::INFINITY,
+                            Err(e) => panic!("{label}: {e}"),
+                        };
+                        let polygon =
+                            merge(&p, &q, &o.clone().with_split(Breakpoints::PolygonLength))
+                                .unwrap_or_else(|e| panic!("{label}: {e}"));
+                        let (tail_mu, tail_best) =
+                            common::tail_scan_minimum(scan, polygon.report.mu);
+                        let (_, middle_best) = common::dense_scan_minimum(scan);
+                        for (what, at, value) in [
+                            ("the tail scan", tail_mu, tail_best),
+                            ("the middle scan", f64::NAN, middle_best),
+                            (
+                                "the polygon split",
+                                polygon.report.mu,
+                                polygon.report.metric_value,
+                            ),
+                        ] {
+                            assert!(
+                                best <= value * (1.0 + 1e-6) + 1e-300,
+                                "{label}: optimal mu {} gives {best}, {what} {value} at {at}",
+                                m.report.mu
+                            );
+                        }
+                        let mu = m.report.mu;
+                        if !(1e-3..=1.0 - 1e-3).contains(&mu) {
+                            tails += 1;
+                        }
+                    }
+                }
+            }
+        }
+    }
+    // The tails are where most of these answers lie (ratios 1e4 and 1e5).
+    assert!(tails >= 24, "only {tails} answers in the tails");
+}
+
+fn translated(c: &BezierCurve, by: [f64; 2]) -> BezierCurve {
+    let rows: Vec<[f64; 2]> = (0..=c.degree())
+        .map(|i| {
+            let x = c.point(i);
+            [x[0] + by[0], x[1] + by[1]]
+        })
+        .collect();
+    BezierCurve::from_rows(&rows).unwrap()
+}
+
 /// Contradictory constraints are contradictory wherever the curves sit.
 /// The tolerance of a dependent condition was 1e-8 times the largest
 /// absolute coordinate, so moving the data 1e6 away from the origin let a

@@ -787,6 +787,104 @@ fn optimal_mu_is_the_minimum_of_a_dense_scan() {
     }
 }
 
+/// The B-spline merge's optimal `mu` reaches past `[1e-3, 1 - 1e-3]` as
+/// the Bezier merge's does (`merge.rs`,
+/// `optimal_mu_reaches_into_the_tails_for_curves_of_unequal_length`): a
+/// B-spline about 1000 across followed by one `1000 / ratio` across
+/// starting at its end (ratios 1e3 to 1e5, either first), degrees 1, 3
+/// and 5 with one to three spans, both metrics, free and fixed ends. No
+/// `mu` of a log-spaced scan of both tails, nor the polygon split, nor
+/// the dense scan of the middle, gives a smaller metric than the answer.
+#[test]
+fn optimal_mu_reaches_into_the_tails_for_curves_of_unequal_length() {
+    let mut rng = Random(44);
+    let mut tails = 0;
+    // `c` scaled by `factor`, then moved so that its pole `at` lies on `to`.
+    let placed = |c: &NurbsCurve, factor: f64, at: usize, to: [f64; 2]| {
+        let d = c.dim();
+        let shift = [0, 1].map(|k| to[k] - factor * c.points()[at * d + k]);
+        let poles = c
+            .points()
+            .chunks(d)
+            .flat_map(|x| [factor * x[0] + shift[0], factor * x[1] + shift[1]])
+            .collect();
+        NurbsCurve::new(d, c.degree(), poles, None, c.knots().to_vec()).unwrap()
+    };
+    for ratio in [1e3, 1e4, 1e5] {
+        for short_first in [false, true] {
+            for (degree, spans) in [(1, 2), (3, 3), (5, 1)] {
+                let long = random_bspline(&mut rng, 2, degree, spans);
+                let long = placed(&long, 125.0, 0, [0.0, 0.0]);
+                let short = random_bspline(&mut rng, 2, degree, spans);
+                let end = |c: &NurbsCurve, i: usize| [c.points()[2 * i], c.points()[2 * i + 1]];
+                let (p, q) = if short_first {
+                    (
+                        placed(
+                            &short,
+                            125.0 / ratio,
+                            short.point_count() - 1,
+                            end(&long, 0),
+                        ),
+                        long,
+                    )
+                } else {
+                    let last = long.point_count() - 1;
+                    let q = placed(&short, 125.0 / ratio, 0, end(&long, last));
+                    (long, q)
+                };
+                for metric in [MergeMetric::Discrete, MergeMetric::Integral] {
+                    for fix_ends in [false, true] {
+                        let mut o = MergeOptions::default()
+                            .with_metric(metric)
+                            .with_split(Breakpoints::Optimal);
+                        o.fix_ends = fix_ends;
+                        let label = format!(
+                            "ratio {ratio:e} short first {short_first} degree {degree} \
+                             {metric:?} fix ends {fix_ends}"
+                        );
+                        let m =
+                            merge_bsplines(&p, &q, &o).unwrap_or_else(|e| panic!("{label}: {e}"));
+                        let best = m.report.metric_value;
+                        let scan = |mu: f64| match merge_bsplines_metric_at(&p, &q, &o, mu) {
+                            Ok(v) => v,
+                            Err(BezjoinError::IllConditioned { .. }) => f64::INFINITY,
+                            Err(e) => panic!("{label}: {e}"),
+                        };
+                        let polygon = merge_bsplines(
+                            &p,
+                            &q,
+                            &o.clone().with_split(Breakpoints::PolygonLength),
+                        )
+                        .unwrap_or_else(|e| panic!("{label}: {e}"));
+                        let (tail_mu, tail_best) =
+                            common::tail_scan_minimum(scan, polygon.report.mu);
+                        let (_, middle_best) = common::dense_scan_minimum(scan);
+                        for (what, at, value) in [
+                            ("the tail scan", tail_mu, tail_best),
+                            ("the middle scan", f64::NAN, middle_best),
+                            (
+                                "the polygon split",
+                                polygon.report.mu,
+                                polygon.report.metric_value,
+                            ),
+                        ] {
+                            assert!(
+                                best <= value * (1.0 + 1e-6) + 1e-300,
+                                "{label}: optimal mu {} gives {best}, {what} {value} at {at}",
+                                m.report.mu
+                            );
+                        }
+                        if !(1e-3..=1.0 - 1e-3).contains(&m.report.mu) {
+                            tails += 1;
+                        }
+                    }
+                }
+            }
+        }
+    }
+    assert!(tails >= 24, "only {tails} answers in the tails");
+}
+
 /// B-splines with more poles than the merge takes are refused by name
 /// before any dense matrix is formed: two curves of 1e5 poles used to abort
 /// the process ("memory allocation of 80000000000 bytes failed"). Two

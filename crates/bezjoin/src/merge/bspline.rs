@@ -95,8 +95,8 @@ use super::stage_one::{
 use super::{
     Breakpoints, ChainMergeOptions, ChainMergeReport, KeepPoint, MU_SEARCH_MAX_STEPS,
     MU_SEARCH_MIN, MU_SEARCH_SAMPLES, MU_SEARCH_SLOPE_SAMPLES, MU_SEARCH_TOLERANCE, MergeMetric,
-    MergeOptions, MergeReport, chain_breakpoints, chain_keep_points, optimal_mu,
-    polygon_breakpoints,
+    MergeOptions, MergeReport, chain_breakpoints, chain_keep_points, extend_into_tail, optimal_mu,
+    polygon_breakpoints, polygon_split,
 };
 
 /// The result of [`merge_bsplines`].
@@ -611,17 +611,31 @@ impl<'a> SplineProblem<'a> {
         };
         match (minimum, first_error) {
             (_, Some(e)) => Err(e),
-            (Some(m), None) => Ok(m.x),
+            (Some(m), None) => Ok(extend_into_tail(m, samples, self.polygon_mu(), |mu| {
+                self.stage_one(&[0.0, mu, 1.0], Check::Trial)
+                    .map_or(f64::INFINITY, |s| s.metric_value)
+            })
+            .x),
             (None, None) => Err(no_value()),
         }
     }
 
     /// The value search: every trial fully checked.
     fn optimal_mu_on_values(&self) -> Result<f64> {
-        optimal_mu(|mu| {
+        optimal_mu(self.polygon_mu(), |mu| {
             self.stage_one(&[0.0, mu, 1.0], Check::Full)
                 .map(|s| s.metric_value)
         })
+    }
+
+    /// The split proportional to the two curves' control-polygon lengths:
+    /// where the tail of the optimal `mu`'s search may reach
+    /// ([`extend_into_tail`]).
+    fn polygon_mu(&self) -> f64 {
+        polygon_split(
+            self.pieces[0].curve.polygon_length(),
+            self.pieces[1].curve.polygon_length(),
+        )
     }
 
     /// The number of poles of `R`: `sum_j n_j - (N - 1)(p + 1)`.

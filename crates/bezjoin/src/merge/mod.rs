@@ -112,7 +112,7 @@ use crate::bezier::{BezierCurve, check_degree_supported};
 use crate::error::{
     BezjoinError, Result, check_closed_range, check_finite_scalar, check_open_range, check_positive,
 };
-use crate::minimize::{minimize_on_grid_then_brent, minimize_with_slope};
+use crate::minimize::{Minimum, minimize_on_grid_then_brent, minimize_with_slope};
 
 pub use bspline::{
     BSplineChainMerge, BSplineMerge, CurveChainMerge, CurveMerge, MAX_MERGE_POLES,
@@ -150,6 +150,23 @@ pub const MU_SEARCH_TOLERANCE: f64 = 1e-10;
 
 /// At most this many refinement evaluations after the grid.
 pub const MU_SEARCH_MAX_STEPS: usize = 100;
+
+/// Samples of the metric, evenly spaced in `ln mu` (or `ln (1 - mu)`),
+/// over a tail of the optimal `mu`'s range below [`MU_SEARCH_MIN`] (at
+/// most `[MIN_SPLIT, MU_SEARCH_MIN]`, three decades), searched where the
+/// main search's minimum lies in its outermost grid interval and one
+/// curve is far shorter than the other ([`extend_into_tail`]).
+pub const MU_TAIL_SAMPLES: usize = 10;
+
+/// The tail of the optimal `mu`'s search reaches this factor closer to the
+/// end than the split proportional to the control-polygon lengths
+/// ([`extend_into_tail`]).
+pub const MU_TAIL_REACH: f64 = 10.0;
+
+/// The tail search's refinement stops at a bracket about this wide in
+/// `ln mu` (`ln (1 - mu)`): a relative step of 1e-6 in the distance to
+/// the end of the range.
+pub const MU_TAIL_TOLERANCE: f64 = 1e-6;
 
 /// What stage 1 minimises.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -437,6 +454,16 @@ impl<'a> PairProblem<'a> {
 
     /// The fully checked solve at a given `mu`, without the slope (which
     /// only the search of the optimal `mu` reads).
+    /// The split proportional to the control-polygon lengths of the two
+    /// pieces (as worked on), `L_P / (L_P + L_Q)`: where the tail of the
+    /// optimal `mu`'s search may reach ([`extend_into_tail`]).
+    fn polygon_mu(&self) -> f64 {
+        polygon_split(
+            self.pieces[0].curve.polygon_length(),
+            self.pieces[1].curve.polygon_length(),
+        )
+    }
+
     fn solve_given(&self, mu: f64) -> Result<StageOne> {
         solve_stage_one_slope(
             &self.pieces,
@@ -467,7 +494,9 @@ impl<'a> PairProblem<'a> {
     fn optimal_mu(&self, check: StageOneCheck) -> Result<f64> {
         let with_slope = self.pieces.iter().all(|p| !p.keep && p.points.is_empty());
         if !with_slope {
-            return optimal_mu(|mu| self.solve(mu, check).map(|s| s.metric_value));
+            return optimal_mu(self.polygon_mu(), |mu| {
+                self.solve(mu, check).map(|s| s.metric_value)
+            });
         }
         let mut first_error = None;
         let mut without_slope = false;
@@ -481,6 +510,8 @@ impl<'a> PairProblem<'a> {
             }
             StageOneCheck::Full => None,
         };
+        let samples =
+            (MU_SEARCH_SLOPE_SAMPLES + self.pieces[0].curve.degree()).min(MU_SEARCH_SAMPLES + 1);
         let minimum = minimize_with_slope(
             |mu| {
                 if let Some(found) = lean.as_mut().and_then(|t| t.evaluate(mu)) {
@@ -499,17 +530,27 @@ impl<'a> PairProblem<'a> {
             },
             MU_SEARCH_MIN,
             1.0 - MU_SEARCH_MIN,
-            (MU_SEARCH_SLOPE_SAMPLES + self.pieces[0].curve.degree()).min(MU_SEARCH_SAMPLES + 1),
+            samples,
             MU_SEARCH_TOLERANCE,
             MU_SEARCH_MAX_STEPS,
         );
         if without_slope {
             // Some trials were answered by the KKT fallback of stage 1,
             // which has no slope: the search on the values alone.
-            return optimal_mu(|mu| self.solve(mu, check).map(|s| s.metric_value));
+            return optimal_mu(self.polygon_mu(), |mu| {
+                self.solve(mu, check).map(|s| s.metric_value)
+            });
         }
         match (minimum, first_error) {
-            (Some(m), _) => Ok(m.x),
+            (Some(m), _) => Ok(extend_into_tail(m, samples, self.polygon_mu(), |mu| {
+                match lean.as_mut().and_then(|t| t.evaluate(mu)) {
+                    Some((value, _)) => value,
+                    None => self
+                        .solve(mu, check)
+                        .map_or(f64::INFINITY, |s| s.metric_value),
+                }
+            })
+            .x),
             (None, Some(e)) => Err(e),
             (None, None) => Err(BezjoinError::NonFiniteScalar {
                 name: "merge metric at every sampled mu".into(),
@@ -931,7 +972,7 @@ fn polygon_breakpoints(lengths: &[f64], names: &[&str]) -> Result<Vec<f64>> {
 /// brackets the best sample, Brent's method refines it
 /// ([`crate::minimize`]). When no sample can be solved, the first sample's
 /// error is returned.
-fn optimal_mu(mut metric: impl FnMut(f64) -> Result<f64>) -> Result<f64> {
+fn optimal_mu(polygon_mu: f64, mut metric: impl FnMut(f64) -> Result<f64>) -> Result<f64> {
     let mut first_error = None;
     let minimum = minimize_on_grid_then_brent(
         |mu| match metric(mu) {
@@ -948,7 +989,12 @@ fn optimal_mu(mut metric: impl FnMut(f64) -> Result<f64>) -> Result<f64> {
         MU_SEARCH_MAX_STEPS,
     );
     match (minimum, first_error) {
-        (Some(m), _) => Ok(m.x),
+        (Some(m), _) => Ok(
+            extend_into_tail(m, MU_SEARCH_SAMPLES + 1, polygon_mu, |mu| {
+                metric(mu).unwrap_or(f64::INFINITY)
+            })
+            .x,
+        ),
         (None, Some(e)) => Err(e),
         // Every sample returned a non-finite value without an error: the
         // metric overflows everywhere.
@@ -956,6 +1002,85 @@ fn optimal_mu(mut metric: impl FnMut(f64) -> Result<f64>) -> Result<f64> {
             name: "merge metric at every sampled mu".into(),
             value: f64::INFINITY,
         }),
+    }
+}
+
+/// `a / (a + b)` for the control-polygon lengths `a`, `b` of two curves
+/// (NaN where it is not a number in `[0, 1]`).
+pub(super) fn polygon_split(a: f64, b: f64) -> f64 {
+    let mu = a / (a + b);
+    if (0.0..=1.0).contains(&mu) {
+        mu
+    } else {
+        f64::NAN
+    }
+}
+
+/// The optimal `mu`'s search beyond `[MU_SEARCH_MIN, 1 - MU_SEARCH_MIN]`.
+/// `found` is the main search's minimum on its grid of `grid_points`
+/// evenly spaced samples; `polygon_mu` is the split proportional to the
+/// control-polygon lengths, `L_P / (L_P + L_Q)`. Where `found` lies in the
+/// grid's outermost interval at one end and `polygon_mu` lies within
+/// `MU_TAIL_REACH * MU_SEARCH_MIN` of that end, one curve is far shorter
+/// than the other and the minimum may lie closer to the end: a curve 1000
+/// long merged with one 0.01 long has its minimum near `mu = 1 - 1e-5`,
+/// and `mu = 0.999` changes the curves by a metric 64,000 times larger
+/// (user testing, session 44). There `metric` is minimised again over the
+/// tail from [`MU_SEARCH_MIN`] to `d = max(MIN_SPLIT, polygon's distance
+/// to the end / MU_TAIL_REACH)` (`[d, MU_SEARCH_MIN]` or `[1 - MU_SEARCH_MIN,
+/// 1 - d]`), on `ln mu` (`ln (1 - mu)`): [`MU_TAIL_SAMPLES`] samples, then
+/// Brent's method to [`MU_TAIL_TOLERANCE`]. The tail reaches a decade past
+/// the polygon split and no further: between curves of like lengths the
+/// metric can keep falling towards `MIN_SPLIT` (one curve squeezed into a
+/// millionth of `R`'s range), which is no merge a user asks for. Returns
+/// the better of the two minima (`found` on a tie, and wherever no tail is
+/// searched: the same answer as before). Non-finite values count as
+/// infinitely bad.
+pub(super) fn extend_into_tail(
+    found: Minimum,
+    grid_points: usize,
+    polygon_mu: f64,
+    mut metric: impl FnMut(f64) -> f64,
+) -> Minimum {
+    let (lo, hi) = (MU_SEARCH_MIN, 1.0 - MU_SEARCH_MIN);
+    let step = (hi - lo) / (grid_points - 1) as f64;
+    let toward_one = if found.x < lo + step {
+        false
+    } else if found.x > hi - step {
+        true
+    } else {
+        return found;
+    };
+    let polygon_distance = if toward_one {
+        1.0 - polygon_mu
+    } else {
+        polygon_mu
+    };
+    let reach = (polygon_distance / MU_TAIL_REACH).max(MIN_SPLIT);
+    // (A NaN polygon split searches no tail.)
+    if reach.is_nan() || reach >= MU_SEARCH_MIN {
+        return found;
+    }
+    let mu_at = |s: f64| {
+        let distance = s.exp();
+        let mu = if toward_one { 1.0 - distance } else { distance };
+        mu.clamp(MIN_SPLIT, 1.0 - MIN_SPLIT)
+    };
+    let tail = minimize_on_grid_then_brent(
+        |s| metric(mu_at(s)),
+        reach.ln(),
+        MU_SEARCH_MIN.ln(),
+        MU_TAIL_SAMPLES,
+        MU_TAIL_TOLERANCE,
+        MU_SEARCH_MAX_STEPS,
+    );
+    match tail {
+        Some(t) if t.value < found.value => Minimum {
+            x: mu_at(t.x),
+            value: t.value,
+            evaluations: found.evaluations + t.evaluations,
+        },
+        _ => found,
     }
 }
 

@@ -162,6 +162,54 @@ pub fn dense_scan_minimum(metric: impl Fn(f64) -> f64) -> (f64, f64) {
     (scan_mu, scan_best)
 }
 
+/// The smallest value of `metric` over the tails of the optimal `mu`'s
+/// search range towards `1e-2`: at each end, from a decade closer to it
+/// than the polygon split `polygon_mu` (at most `MIN_SPLIT` from it), 121
+/// points evenly spaced in `ln mu` (`ln (1 - mu)`), then 41 points 20 times
+/// finer around the best. Returns `(best mu, smallest value)`; `(NaN,
+/// inf)` when the polygon split is within `1e-1` of neither end.
+pub fn tail_scan_minimum(metric: impl Fn(f64) -> f64, polygon_mu: f64) -> (f64, f64) {
+    const STEPS: usize = 120;
+    let mut best = (f64::NAN, f64::INFINITY);
+    for toward_one in [false, true] {
+        let distance = if toward_one {
+            1.0 - polygon_mu
+        } else {
+            polygon_mu
+        };
+        let reach = (distance / 10.0).max(bezjoin_core::MIN_SPLIT);
+        if reach >= 1e-2 {
+            continue;
+        }
+        let (lo, hi) = (reach.ln(), 1e-2f64.ln());
+        let step = (hi - lo) / STEPS as f64;
+        let at = |s: f64| {
+            let d = s.exp().clamp(reach, 1e-2);
+            if toward_one { 1.0 - d } else { d }
+        };
+        let mut side = (0.0, f64::INFINITY);
+        for k in 0..=STEPS {
+            let s = lo + k as f64 * step;
+            let v = metric(at(s));
+            if v < side.1 {
+                side = (s, v);
+            }
+        }
+        let centre = side.0;
+        for k in -20..=20 {
+            let s = centre + k as f64 * step / 20.0;
+            let v = metric(at(s));
+            if v < side.1 {
+                side = (s, v);
+            }
+        }
+        if side.1 < best.1 {
+            best = (at(side.0), side.1);
+        }
+    }
+    best
+}
+
 /// The documented speed of an end for the automatic and balanced scales:
 /// `|X'(u)|` and the largest floor term `((BALANCED_SPEED_FLOOR c)^(j-1)
 /// |X^(j)(u)|)^(1/j)`, `j = 2..=order` (0 when there is none), `c` the chord.
