@@ -729,7 +729,10 @@ BzjStatus bzj_connect(const struct BzjCurve *p, double u0, const struct BzjCurve
  * when it is not NULL. Same guarantee as [`bzj_connect`].
  *
  * @return the statuses of [`bzj_connect`] (except for the scales, which are
- *         not read).
+ *         not read); BZJ_ERR_INVALID_ARGUMENT naming `v0` when `Q(v0)` is
+ *         within 1e-9 of the coordinate scale of `P(u0)` and an order is
+ *         at least 1 (the scale is sized by that gap; between coincident
+ *         points every blend is a loop).
  *
  * # Safety
  * As [`bzj_connect`]; `scale_out` is NULL or writable.
@@ -757,7 +760,10 @@ BzjStatus bzj_connect_auto_scale(const struct BzjCurve *p, double u0, const stru
  * [`bzj_connect`].
  *
  * @return the statuses of [`bzj_connect`] (except for the scales, which are
- *         not read).
+ *         not read); BZJ_ERR_INVALID_ARGUMENT naming `v0` when `Q(v0)` is
+ *         within 1e-9 of the coordinate scale of `P(u0)` and an order is
+ *         at least 1 (the scale is sized by that gap; between coincident
+ *         points every blend is a loop).
  *
  * # Safety
  * As [`bzj_connect`]; `p_scale_out`, `q_scale_out` are NULL or writable.

@@ -117,8 +117,12 @@ fn check_fillet_output(job: &Value, out: &Value, setbacks: Option<(f64, f64)>) {
     let (alpha, beta) = if job["auto_scale"].as_bool() == Some(false) {
         // The paper's scale 1 where none is given.
         (given_p.unwrap_or(1.0), given_q.unwrap_or(1.0))
-    } else if job["auto_scale"].as_str() == Some("balanced") {
-        // Chosen by the library, one speed at both ends: the reported scales.
+    } else if job["auto_scale"].as_str() == Some("balanced")
+        || (job.get("auto_scale").is_none() && given_p.is_none() && given_q.is_none())
+    {
+        // Chosen by the library, one speed at both ends (asked for, or the
+        // default without scales since session 44): the reported scales.
+        assert_eq!(out["report"]["balanced_scale"].as_bool(), Some(true));
         (
             out["report"]["p_scale"].as_f64().unwrap(),
             out["report"]["q_scale"].as_f64().unwrap(),
@@ -127,8 +131,8 @@ fn check_fillet_output(job: &Value, out: &Value, setbacks: Option<(f64, f64)>) {
         // One given scale stands for both.
         (given_p.or(given_q).unwrap(), given_q.or(given_p).unwrap())
     } else {
-        // Chosen by the library (asked for, or the default without
-        // scales): the reported scales, equal.
+        // Chosen by the library (`"auto_scale": true`): the reported
+        // scales, equal.
         let s = out["report"]["p_scale"].as_f64().unwrap();
         assert_eq!(out["report"]["q_scale"].as_f64(), Some(s));
         (s, s)

@@ -974,3 +974,28 @@ fn an_automatic_scale_whose_blend_cannot_hold_its_tangents_is_refused() {
         "answered {answered}, refused {refused}"
     );
 }
+
+/// The automatic scales size the blend by the gap between its ends, so
+/// coincident ends (a line's end and the start of the next line) are
+/// refused by name, `v0`, by both (user testing, session 44: a loop 0.003
+/// across was answered at the corner); ends 1e-6 apart are answered, and
+/// with given scales the loop is the caller's choice.
+#[test]
+fn automatic_scales_refuse_coincident_ends() {
+    let p = BezierCurve::new(2, 1, vec![0.0, 0.0, 1.0, 0.0]).unwrap();
+    let q = BezierCurve::new(2, 1, vec![1.0, 0.0, 1.0, 1.0]).unwrap();
+    for options in [
+        ConnectOptions::new(1, 1).with_auto_scale(),
+        ConnectOptions::new(2, 1).with_balanced_scale(),
+    ] {
+        match connect(&p, 1.0, &q, 0.0, &options) {
+            Err(BezjoinError::InvalidArgument { name, reason }) => {
+                assert_eq!(name, "v0", "{reason}");
+                assert!(reason.contains("loop"), "{reason}");
+            }
+            other => panic!("{:?}: {other:?}", options.scale),
+        }
+        assert!(connect(&p, 1.0, &q, 1e-6, &options).is_ok());
+    }
+    assert!(connect(&p, 1.0, &q, 0.0, &ConnectOptions::new(1, 1)).is_ok());
+}

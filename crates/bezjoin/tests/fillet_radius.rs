@@ -555,17 +555,18 @@ fn a_radius_that_uses_a_whole_side_of_one_corner_is_refused() {
             }
             other => panic!("G{order}: {other:?}"),
         }
-        // A radius of 2.5e-8 of the coordinates: answered (G3 since session
-        // 43, whose fair search avoids blends whose poles cannot hold their
-        // end invariants; before, the G3 blend it chose was refused), or
-        // refused with its estimate; `tiny_radii_meet_g3_to_the_promise_or_are_refused`
-        // judges the answers.
+        // A radius of 2.5e-8 of the coordinates: answered, or at G3 refused
+        // with its estimate: the ends' condition, or (since session 44, whose
+        // fair search also avoids blends whose poles cannot hold dK/ds) the
+        // arc check, where the only such blends stray from the arc (4.9 r);
+        // `tiny_radii_meet_g3_to_the_promise_or_are_refused` judges the
+        // answers.
         match fillet_radius(&long, &short, 1e-6, order) {
             Ok(_) => {}
             Err(BezjoinError::IllConditioned {
                 estimate, limit, ..
             }) if order == 3 => {
-                assert!(estimate > limit && limit == GEOMETRIC_CONDITION_LIMIT);
+                assert!(estimate > limit, "{estimate} {limit}");
             }
             other => panic!("G{order}, radius 1e-6: {other:?}"),
         }
@@ -648,6 +649,81 @@ fn tiny_radii_meet_g3_to_the_promise_or_are_refused() {
                     assert!(estimate > limit, "angle {angle}, r {r:e}");
                 }
                 Err(e) => panic!("angle {angle}, r {r:e}: {e}"),
+            }
+        }
+    }
+}
+
+/// A corner of two lines is its own mirror image about the bisector of the
+/// chord between the cut points (the arc's tangent lengths are equal), so
+/// its fillet by radius is symmetric, and it moves with the corner. Lines
+/// 80 and 45 long turning by 10 to 150 degrees, radius 9, G2 to G4: the
+/// blend's poles `R_i` and `R_(n-i)` are mirror images to 1e-9 of the
+/// radius, and the same corner moved by `(d, -0.7 d)` for `d` from 1e-3 to
+/// 1e4, or turned by 0.3 rad, gives the same blend moved (to 1e-9 of the
+/// radius). Before session 44 the fair search broke the tie between
+/// mirror-image trials by rounding: G3 blends lopsided by up to 17 % of the
+/// radius, and a move of 0.001 changed 66 of 148 G2 and 119 of 148 G3
+/// blends by up to 15 % of the radius (user testing, session 44).
+#[test]
+fn a_fillet_by_radius_of_two_lines_is_symmetric_and_moves_with_the_corner() {
+    let r = 9.0;
+    let place = |x: f64, y: f64, (d, angle): (f64, f64)| {
+        let (c, s) = (angle.cos(), angle.sin());
+        [c * x - s * y + d, s * x + c * y - 0.7 * d]
+    };
+    let back = |x: &[f64], (d, angle): (f64, f64)| {
+        let (u, v) = (x[0] - d, x[1] + 0.7 * d);
+        let (c, s) = (angle.cos(), angle.sin());
+        [c * u + s * v, -s * u + c * v]
+    };
+    for order in [2, 3, 4] {
+        for turn in (10..=150).step_by(14) {
+            let t = (turn as f64).to_radians();
+            let blend_at = |placement: (f64, f64)| {
+                let (a, o, b) = (
+                    place(-80.0, 0.0, placement),
+                    place(0.0, 0.0, placement),
+                    place(45.0 * t.cos(), 45.0 * t.sin(), placement),
+                );
+                let p = BezierCurve::new(2, 1, vec![a[0], a[1], o[0], o[1]]).unwrap();
+                let q = BezierCurve::new(2, 1, vec![o[0], o[1], b[0], b[1]]).unwrap();
+                let f = fillet_radius(&p, &q, r, order)
+                    .unwrap_or_else(|e| panic!("G{order} turn {turn} at {placement:?}: {e}"));
+                let n = f.blend.degree();
+                (0..=n)
+                    .map(|i| back(f.blend.point(i), placement))
+                    .collect::<Vec<_>>()
+            };
+            let origin = blend_at((0.0, 0.0));
+            let n = origin.len() - 1;
+            // The mirror across the bisector of the chord R_0 R_n.
+            let (first, last) = (origin[0], origin[n]);
+            let length = ((last[0] - first[0]).powi(2) + (last[1] - first[1]).powi(2)).sqrt();
+            let e = [(last[0] - first[0]) / length, (last[1] - first[1]) / length];
+            let m = [(first[0] + last[0]) / 2.0, (first[1] + last[1]) / 2.0];
+            for i in 0..=n {
+                let x = [origin[i][0] - m[0], origin[i][1] - m[1]];
+                let along = x[0] * e[0] + x[1] * e[1];
+                let mirrored = [
+                    m[0] + x[0] - 2.0 * along * e[0],
+                    m[1] + x[1] - 2.0 * along * e[1],
+                ];
+                let gap = (mirrored[0] - origin[n - i][0]).hypot(mirrored[1] - origin[n - i][1]);
+                assert!(
+                    gap <= 1e-9 * r,
+                    "G{order} turn {turn}: pole {i} off its mirror by {gap:e}"
+                );
+            }
+            for placement in [(1e-3, 0.0), (1.0, 0.0), (1e3, 0.0), (1e4, 0.0), (0.0, 0.3)] {
+                let moved = blend_at(placement);
+                for (i, (a, b)) in origin.iter().zip(&moved).enumerate() {
+                    let gap = (a[0] - b[0]).hypot(a[1] - b[1]);
+                    assert!(
+                        gap <= 1e-9 * r,
+                        "G{order} turn {turn} at {placement:?}: pole {i} moved by {gap:e}"
+                    );
+                }
             }
         }
     }

@@ -1057,3 +1057,31 @@ fn a_fair_blend_from_an_end_with_a_short_last_leg_stays_near_the_gap() {
         }
     }
 }
+
+/// A fair blend between ends that are each other's image under a point
+/// reflection (two parallel lines stepped, in 3D, the second line twice as
+/// fast) is point-symmetric: `R_i + R_(n-i) = P(u0) + Q(v0)` to 1e-9 of the
+/// chord, at G1 to G4 (session 44: the search takes P's shape values alone
+/// and Q's their mirror, module `geometric::symmetry`).
+#[test]
+fn a_fair_blend_between_point_symmetric_ends_is_point_symmetric() {
+    let p = BezierCurve::new(3, 1, vec![-10.0, 0.0, 1.0, 0.0, 0.0, 1.0]).unwrap();
+    let q = BezierCurve::new(3, 1, vec![3.0, 2.0, 2.5, 23.0, 2.0, 2.5]).unwrap();
+    for k in 1..=4 {
+        let g = connect_geometric_curve(&p, 1.0, &q, 0.0, &GeometricOptions::new(k, k))
+            .unwrap_or_else(|e| panic!("G{k}: {e}"));
+        let n = g.curve.degree();
+        let chord = common::distance(g.curve.point(0), g.curve.point(n));
+        for i in 0..=n {
+            let (a, b) = (g.curve.point(i), g.curve.point(n - i));
+            for c in 0..3 {
+                let sum = a[c] + b[c];
+                let ends = [0.0 + 3.0, 0.0 + 2.0, 1.0 + 2.5][c];
+                assert!(
+                    (sum - ends).abs() <= 1e-9 * chord,
+                    "G{k} pole {i}: {sum} vs {ends}"
+                );
+            }
+        }
+    }
+}

@@ -439,15 +439,16 @@ fn comparison(
         json!({"continuity": "G1", "u0": f.u0, "v0": f.v0, "rounding": arc_form,
                "energy": Value::Null, "curvature_extrema": 0}),
     ));
-    // The C^k fillet of the same setbacks, automatic scale.
+    // The C^k fillet of the same setbacks, balanced scale (one `s` left the
+    // shorter edge's end with a near-kink where the edges' lengths differ).
     let options =
-        FilletOptions::new(corner.p_setback, corner.q_setback, order, order).with_auto_scale();
+        FilletOptions::new(corner.p_setback, corner.q_setback, order, order).with_balanced_scale();
     let c = fillet_at(p, q, &f.corner, &options)?;
     variants.push(Variant::bezier(
         format!("C{order}, same setbacks"),
         format!(
-            "C{order} fillet, same setbacks, automatic scale {:.4}",
-            c.p_scale
+            "C{order} fillet, same setbacks, balanced scales {:.4} / {:.4}",
+            c.p_scale, c.q_scale
         ),
         Role::Modified,
         (p, c.u0, q, c.v0, lead),

@@ -1,9 +1,9 @@
 //! The fairness energy and the automatic scale ([`super::ShapeScale::Auto`]).
 
-use super::{Connection, Problem, solve_structured};
+use super::{COINCIDENT_ENDS, Connection, Problem, solve_structured};
 use crate::basis::binomial;
 use crate::bezier::BezierCurve;
-use crate::error::{BezjoinError, Result};
+use crate::error::{BezjoinError, Compact, Result};
 use crate::minimize::minimize_on_grid_then_brent;
 use nalgebra::DMatrix;
 
@@ -338,12 +338,37 @@ pub(crate) fn balanced_scale(problem: &Problem) -> Result<Connection> {
     }
 }
 
+/// The automatic scales need `P(u0) != Q(v0)`: they size the blend by the
+/// gap between its ends, and between coincident points every blend of
+/// order 1 or more is a loop, whose energy falls as it shrinks (user
+/// testing, session 44: `bezjoin connect` of a line's end to the start of
+/// the next line answered a loop 0.003 across at the corner). Ends within
+/// [`COINCIDENT_ENDS`] of the coordinate scale are InvalidArgument naming
+/// `v0`; with given scales such a loop is the caller's choice.
+fn check_ends_apart(problem: &Problem) -> Result<()> {
+    let gap = problem.chord();
+    if gap > COINCIDENT_ENDS * problem.data_scale {
+        return Ok(());
+    }
+    Err(BezjoinError::invalid(
+        "v0",
+        format!(
+            "Q(v0) is {} from P(u0), within {COINCIDENT_ENDS:e} of the coordinate scale {}: \
+             an automatic scale sizes the blend by the gap between its ends, and between \
+             coincident points every blend is a loop; give the scales, or ends apart",
+            Compact(gap),
+            Compact(problem.data_scale)
+        ),
+    ))
+}
+
 /// [`auto_scale`] with `alpha = s * weights.p`, `beta = s * weights.q`, `s`
 /// searched over [`AUTO_SCALE_SEARCH_DECADES`] either side of `s0`.
 fn weighted_auto_scale(problem: &Problem, weights: ScaleWeights, s0: f64) -> Result<Connection> {
     if problem.p_order == 0 && problem.q_order == 0 {
         return solve_structured(problem, 1.0, 1.0);
     }
+    check_ends_apart(problem)?;
     let half_width = AUTO_SCALE_SEARCH_DECADES * std::f64::consts::LN_10;
     // Below the floor the blend's poles cannot hold its end tangents.
     let floor = tangent_holding_floor(problem, weights);

@@ -333,6 +333,11 @@ pub struct Connection {
     pub constraint_condition: f64,
 }
 
+/// Ends closer than this part of the coordinate scale cannot be told apart
+/// (the rule of a radius too small to tell from its corner): the automatic
+/// scales and the fair G^k search refuse them.
+pub(crate) const COINCIDENT_ENDS: f64 = 1e-9;
+
 /// The validated problem, independent of the scales.
 #[derive(Debug, Clone)]
 pub(crate) struct Problem {

@@ -10,6 +10,7 @@ use crate::connect::{MAX_CONNECT_DEGREE, Problem, end_speed, natural_scale};
 use crate::error::{BezjoinError, Result};
 
 use super::MAX_GEOMETRIC_ORDER;
+use super::symmetry::EndSymmetry;
 use super::trial::TrialSolver;
 
 /// Panels of the composite 8-point Gauss-Legendre rule of
@@ -823,13 +824,36 @@ pub(super) fn fair_shapes(
     checked: bool,
 ) -> Result<(Vec<f64>, Vec<f64>)> {
     let (kp, kq) = (problem.p_order, problem.q_order);
+    let (natural_p, natural_q) = natural_end_scales(problem);
+    // A symmetric problem is searched in P's shape values alone, Q's their
+    // mirror (module `symmetry`): the blend comes out symmetric, and no tie
+    // between mirror-image trials is left for rounding to break.
+    let symmetry = match (fixed_p, fixed_q) {
+        (None, None) => EndSymmetry::of(problem, natural_p),
+        _ => None,
+    };
     let free_p = if fixed_p.is_some() { 0 } else { kp };
-    let free_q = if fixed_q.is_some() { 0 } else { kq };
+    let free_q = if fixed_q.is_some() || symmetry.is_some() {
+        0
+    } else {
+        kq
+    };
     let mut trial = TrialSolver::new(problem);
     let dim = problem.dim;
     let mut p_buffer = [0.0; MAX_GEOMETRIC_ORDER];
     let mut q_buffer = [0.0; MAX_GEOMETRIC_ORDER];
-    let (natural_p, natural_q) = natural_end_scales(problem);
+    // The shape values of the search coordinates `x`; `false` where the
+    // mirror has none.
+    let shapes_at = |x: &[f64], ps: &mut [f64], qs: &mut [f64]| match &symmetry {
+        Some(symmetry) => {
+            fill_shapes(x, fixed_p, None, ps, &mut []);
+            symmetry.mirror_shape(problem, ps, qs)
+        }
+        None => {
+            fill_shapes(x, fixed_p, fixed_q, ps, qs);
+            true
+        }
+    };
     let half = GRID_DECADES * std::f64::consts::LN_10;
     let longest = MAX_LENGTH_RATIO * problem.chord();
     // The search stays in the grid's range of `ln beta_1` at each end.
@@ -856,7 +880,9 @@ pub(super) fn fair_shapes(
             return f64::INFINITY;
         }
         let (ps, qs) = (&mut p_buffer[..kp], &mut q_buffer[..kq]);
-        fill_shapes(x, fixed_p, fixed_q, ps, qs);
+        if !shapes_at(x, ps, qs) {
+            return f64::INFINITY;
+        }
         let Some(points) = trial.solve(ps, qs, checked) else {
             return f64::INFINITY;
         };
@@ -948,7 +974,10 @@ pub(super) fn fair_shapes(
             }
         }
     }
-    Ok(shapes_from(&x, kp, fixed_p, fixed_q, kq))
+    let (mut ps, mut qs) = (vec![0.0; kp], vec![0.0; kq]);
+    // (The winner's energy is finite, so its mirror exists.)
+    shapes_at(&x, &mut ps, &mut qs);
+    Ok((ps, qs))
 }
 
 /// Minimise `f` from `start` by the Nelder-Mead simplex method (standard

@@ -46,6 +46,7 @@
 //! extrema of the curvature (sampled).
 
 mod fair;
+mod symmetry;
 mod trial;
 
 use nalgebra::DMatrix;
@@ -489,6 +490,73 @@ pub(crate) fn stored_condition<T: AsRef<[f64]>>(
     geometric_end_condition(targets, &zero[..targets.len()], order, chord, stored).0
 }
 
+/// How well the stored blend holds the curvature's derivative at an end of
+/// order 3 or more, relative to itself: the third arc-length derivative
+/// `r_sss = d(kappa N)/ds` from the targets `T_j` (`rows[j]`, the blend's
+/// own rounding alone, as [`stored_condition`]),
+///
+/// ```text
+/// r_sss = (T_3 - (T_3.t) t) / s^3 - |T_2^perp|^2 t / s^4 - 3 (T_2.t) T_2^perp / s^4
+/// ```
+///
+/// (`s = |T_1|`, `t = T_1 / s`), to first order in the rows' errors `e_j`:
+/// `(e_3 + 5 |T_3| e_1 / s) / s^3 + 4 (2 |T_2| e_2 + 6 |T_2|^2 e_1 / s) / s^4`
+/// against `max(|r_sss|, 1 / c^2)`. 0 below order 3 and in dimension 1.
+///
+/// Used by the fair search only, to steer it away from blends whose end
+/// steps are too short for the coordinates to hold `dK/ds` (a G3 fillet of
+/// radius 1e-5 on an L 40 long missed it by 4.2e-6, session 44); the
+/// refusal after the search does not use it (session 42: as a refusal it
+/// turned away G3 fillets whose blends were exact to 1e-14).
+pub(crate) fn stored_curvature_derivative_condition<T: AsRef<[f64]>>(
+    targets: &[T],
+    order: usize,
+    chord: f64,
+    (degree, coordinates): (usize, f64),
+) -> f64 {
+    if order < 3 || targets.len() < 4 || targets[1].as_ref().len() < 2 {
+        return 0.0;
+    }
+    let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
+    let (t1, t2, t3) = (
+        targets[1].as_ref(),
+        targets[2].as_ref(),
+        targets[3].as_ref(),
+    );
+    let s = dot(t1, t1).sqrt();
+    if s.is_nan() || s <= 0.0 {
+        return f64::INFINITY;
+    }
+    let error = |j: usize| -> f64 {
+        let stored: f64 = (0..j).map(|i| 2.0 * (degree - i) as f64).product();
+        stored * 0.5 * f64::EPSILON * coordinates
+    };
+    let (e1, e2, e3) = (error(1), error(2), error(3));
+    let (size2, size3) = (dot(t2, t2).sqrt(), dot(t3, t3).sqrt());
+    let (along2, along3) = (dot(t2, t1) / s, dot(t3, t1) / s);
+    // r_sss, coordinate by coordinate.
+    let mut value = 0.0;
+    let across2_square = (size2 * size2 - along2 * along2).max(0.0);
+    for c in 0..t1.len() {
+        let t = t1[c] / s;
+        let perp2 = t2[c] - along2 * t;
+        let x = (t3[c] - along3 * t) / (s * s * s)
+            - across2_square * t / (s * s * s * s)
+            - 3.0 * along2 * perp2 / (s * s * s * s);
+        value += x * x;
+    }
+    let value = value.sqrt();
+    let error = (e3 + 5.0 * size3 * e1 / s) / (s * s * s)
+        + 4.0 * (2.0 * size2 * e2 + 6.0 * size2 * size2 * e1 / s) / (s * s * s * s);
+    let scale = value.max(1.0 / (chord * chord));
+    let estimate = error / scale;
+    if estimate.is_nan() {
+        f64::INFINITY
+    } else {
+        estimate
+    }
+}
+
 /// Whether a jet (rows `P, P', ...`) has a first derivative, all of whose
 /// coordinates are exactly zero: the `Problem` form of the test of
 /// [`check_regular_ends`].
@@ -511,9 +579,7 @@ fn zero_tangent_error(name: &str, at: &str, value: f64, order: usize) -> Bezjoin
     }
 }
 
-/// Ends closer than this part of the coordinate scale cannot be told apart
-/// (the rule of a radius too small to tell from its corner).
-const COINCIDENT_ENDS: f64 = 1e-9;
+use crate::connect::COINCIDENT_ENDS;
 
 /// The fair search needs `P(u0) != Q(v0)`: between coincident ends a blend
 /// is a loop, and a loop has no fairest size (the scale-free energy falls

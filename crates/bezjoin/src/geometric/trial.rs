@@ -70,9 +70,10 @@ impl<'a> TrialSolver<'a> {
     }
 
     /// The stored blend's part of each end's condition
-    /// ([`super::stored_condition`]) on the targets of the last
-    /// [`solve`](Self::solve): `(P's end, Q's end)`; `stored` is the blend's
-    /// degree and its ends' largest coordinate.
+    /// ([`super::stored_condition`], and at orders 3 and more the larger
+    /// [`super::stored_curvature_derivative_condition`]) on the targets of
+    /// the last [`solve`](Self::solve): `(P's end, Q's end)`; `stored` is
+    /// the blend's degree and its ends' largest coordinate.
     pub(super) fn stored_conditions(&self, chord: f64, stored: (usize, f64)) -> (f64, f64) {
         let dim = self.problem.dim;
         let (kp, kq) = (self.problem.p_order, self.problem.q_order);
@@ -81,10 +82,12 @@ impl<'a> TrialSolver<'a> {
                 .chunks_exact(dim)
                 .collect()
         };
-        (
-            super::stored_condition(&rows(0, kp), kp, chord, stored),
-            super::stored_condition(&rows(kp + 1, kq), kq, chord, stored),
-        )
+        let end = |rows: Vec<&[f64]>, order: usize| {
+            super::stored_condition(&rows, order, chord, stored).max(
+                super::stored_curvature_derivative_condition(&rows, order, chord, stored),
+            )
+        };
+        (end(rows(0, kp), kp), end(rows(kp + 1, kq), kq))
     }
 
     /// The targets of the beta-constraints of one end (the rows from
