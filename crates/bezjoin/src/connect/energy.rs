@@ -102,6 +102,59 @@ pub(crate) fn end_speed(derivatives: &DMatrix<f64>, chord: f64) -> Option<f64> {
     (speed > 0.0).then_some(speed)
 }
 
+/// The longest control polygon, in chords `|Q(v0) - P(u0)|`, of the blend
+/// that [`unkinked_scale`] takes instead of a kink.
+pub const UNKINKED_POLYGON_CHORDS: f64 = 2.0;
+
+/// The scale, as `sigma = s / s0`, where the energy is least at the search
+/// range's lower end `ln sigma = lo < 0` (see [`weighted_auto_scale`]): 1
+/// (the ends leave at the natural speed) where the blend's control polygon
+/// there is at most [`UNKINKED_POLYGON_CHORDS`] chords long, else the
+/// largest `sigma` in `[exp(lo), 1]` whose polygon is (bisection on `ln
+/// sigma` to [`LOG_SCALE_TOLERANCE`] of the range; `exp(lo)` itself where
+/// no larger one is). The polygon bounds the blend's length: at the natural
+/// speed an end that curls within a fifth of the chord would make the blend
+/// follow it (8.6 chords on a random pair). Scales whose solve fails count
+/// as too long.
+fn unkinked_scale(problem: &Problem, s0: f64, weights: ScaleWeights, lo: f64) -> f64 {
+    let limit = UNKINKED_POLYGON_CHORDS * problem.chord();
+    let short = |log_sigma: f64| {
+        let s = s0 * log_sigma.exp();
+        solve_structured(problem, s * weights.p, s * weights.q)
+            .is_ok_and(|r| r.curve.polygon_length() <= limit)
+    };
+    if short(0.0) {
+        return 1.0;
+    }
+    let (mut a, mut b) = (lo, 0.0f64);
+    if !short(a) {
+        return a.exp();
+    }
+    while b - a > LOG_SCALE_TOLERANCE * (-lo) {
+        let middle = 0.5 * (a + b);
+        if middle <= a || middle >= b {
+            break;
+        }
+        if short(middle) {
+            a = middle;
+        } else {
+            b = middle;
+        }
+    }
+    a.exp()
+}
+
+/// Whether an end's speed for the scales ([`end_speed`]) is raised above
+/// `|X'|` by its floor: the end turns or accelerates within
+/// [`BALANCED_SPEED_FLOOR`] of the chord.
+fn speed_floor_applies(problem: &Problem) -> bool {
+    let chord = problem.chord();
+    [&problem.p_derivatives, &problem.q_derivatives]
+        .into_iter()
+        .filter(|d| d.nrows() > 1)
+        .any(|d| end_speed(d, chord).is_none_or(|speed| speed > d.row(1).norm()))
+}
+
 /// Balanced speeds this close (relative) count as equal.
 const SAME_SPEED: f64 = 1e-9;
 
@@ -377,7 +430,19 @@ fn weighted_auto_scale(problem: &Problem, weights: ScaleWeights, s0: f64) -> Res
         return Err(unheld_tangent_error(problem, &floor, s0 * half_width.exp()));
     }
     if let Some(coefficients) = energy_polynomial(problem, s0, weights) {
-        if let Some(sigma) = polynomial_minimum(&coefficients, lo, half_width) {
+        if let Some(mut sigma) = polynomial_minimum(&coefficients, lo, half_width) {
+            // A minimum at the range's lower end: the energy falls all the
+            // way to blends whose ends barely move and turn in a kink (ends
+            // facing away: the U-turn between two lines 10 apart got
+            // curvature 6,000 at both ends, user testing, session 44). Where
+            // no end's speed is raised to its floor, the natural speed is
+            // taken instead, or the fastest below it whose blend stays short
+            // ([`unkinked_scale`]). (Where a floor applies, an end already
+            // turns within 1 % of the chord and the natural speed is the
+            // floor's: larger scales there only make the blend larger.)
+            if lo < 0.0 && sigma <= lo.exp() && !speed_floor_applies(problem) {
+                sigma = unkinked_scale(problem, s0, weights, lo);
+            }
             let s = s0 * sigma;
             if let Ok(result) = solve_structured(problem, s * weights.p, s * weights.q) {
                 if result.curve.points().iter().all(|v| v.is_finite()) {
@@ -609,6 +674,73 @@ mod tests {
         }
     }
 
+    /// Where the energy is least at the search range's lower end and no
+    /// speed floor applies (ends facing away), the scale is the natural one
+    /// (`sigma = 1`) when the blend's control polygon there is at most
+    /// [`UNKINKED_POLYGON_CHORDS`] chords, else the largest smaller one
+    /// whose polygon is: on the problems of the dense-scan test and the
+    /// U-turn between two lines 10 apart (which had curvature 6,000 at both
+    /// ends), the polygon is within the bound, `sigma <= 1`, and where
+    /// `sigma < 1` a scale 1e-6 larger (relative) exceeds it. Both the
+    /// automatic and the balanced weights.
+    #[test]
+    fn a_kinked_minimum_takes_the_natural_speed_or_the_fastest_short_blend() {
+        let half_width = AUTO_SCALE_SEARCH_DECADES * std::f64::consts::LN_10;
+        let p = BezierCurve::new(2, 1, vec![0.0, 0.0, 50.0, 0.0]).unwrap();
+        let q = BezierCurve::new(2, 1, vec![50.0, 10.0, 0.0, 10.0]).unwrap();
+        let mut cases = problems(24);
+        for k in 1..=3 {
+            cases.push(prepare(&p, 1.0, &q, 0.0, &ConnectOptions::new(k, k)).unwrap());
+        }
+        let (mut natural, mut shortened) = (0, 0);
+        for problem in cases {
+            if speed_floor_applies(&problem) || (problem.p_order == 0 && problem.q_order == 0) {
+                continue;
+            }
+            for (weights, s0) in [
+                (EQUAL_WEIGHTS, natural_scale(&problem)),
+                match balanced_weights(&problem) {
+                    Some(w) => (w, problem.chord()),
+                    None => (EQUAL_WEIGHTS, natural_scale(&problem)),
+                },
+            ] {
+                let Some(coefficients) = energy_polynomial(&problem, s0, weights) else {
+                    continue;
+                };
+                let floor = tangent_holding_floor(&problem, weights);
+                let lo = (-half_width).max((floor.scale / s0).ln());
+                let Some(sigma) = polynomial_minimum(&coefficients, lo, half_width) else {
+                    continue;
+                };
+                if !(lo < 0.0 && sigma <= lo.exp()) {
+                    continue;
+                }
+                let chosen = weighted_auto_scale(&problem, weights, s0).unwrap();
+                let sigma = chosen.p_scale / (s0 * weights.p);
+                let limit = UNKINKED_POLYGON_CHORDS * problem.chord();
+                assert!(sigma <= 1.0 + 1e-12, "sigma {sigma}");
+                if sigma <= lo.exp() * (1.0 + 1e-9) {
+                    // Too long even at the lower end: that end's blend.
+                    continue;
+                }
+                assert!(chosen.curve.polygon_length() <= limit * (1.0 + 1e-12));
+                if sigma < 1.0 - 1e-12 {
+                    let s = s0 * sigma * (1.0 + 1e-6);
+                    let longer = solve_structured(&problem, s * weights.p, s * weights.q)
+                        .map_or(f64::INFINITY, |r| r.curve.polygon_length());
+                    assert!(longer > limit, "sigma {sigma}: a faster blend is as short");
+                    shortened += 1;
+                } else {
+                    natural += 1;
+                }
+            }
+        }
+        assert!(
+            natural >= 4 && shortened >= 1,
+            "natural {natural}, shortened {shortened}"
+        );
+    }
+
     /// The closed-form search finds the global minimum over the documented
     /// range: never above a dense scan of full solves (refined around its
     /// best by the old search), nor above the old grid-and-Brent answer.
@@ -621,13 +753,23 @@ mod tests {
             };
             let best = fairness_energy(&auto.curve);
             let center = natural_scale(&problem).ln();
-            let mut scan = f64::INFINITY;
-            for i in 0..=800 {
-                let s = (center - half_width + 2.0 * half_width * i as f64 / 800.0).exp();
-                if let Ok(c) = solve_structured(&problem, s, s) {
-                    scan = scan.min(fairness_energy(&c.curve));
-                }
+            let energies: Vec<(usize, f64)> = (0..=800)
+                .filter_map(|i| {
+                    let s = (center - half_width + 2.0 * half_width * i as f64 / 800.0).exp();
+                    let c = solve_structured(&problem, s, s).ok()?;
+                    Some((i, fairness_energy(&c.curve)))
+                })
+                .collect();
+            // Where the energy falls to the range's lower end and no speed
+            // floor applies, the blend of `unkinked_scale` (session 44:
+            // there the blend turns in kinks): checked by
+            // `a_kinked_minimum_takes_the_natural_speed_or_the_fastest_short_blend`.
+            let lowest = energies.iter().map(|x| x.1).fold(f64::INFINITY, f64::min);
+            let at_lower_end = energies.first().is_some_and(|x| x.0 == 0 && x.1 <= lowest);
+            if at_lower_end && !speed_floor_applies(&problem) {
+                continue;
             }
+            let scan = lowest;
             let searched = auto_scale_by_search(
                 &problem,
                 EQUAL_WEIGHTS,

@@ -96,7 +96,9 @@ use crate::error::{BezjoinError, Result, check_finite, check_open_range, check_p
 use crate::linalg::solve_checked;
 
 pub use dense::connect_dense_reference;
-pub use energy::{AUTO_SCALE_SEARCH_DECADES, BALANCED_SPEED_FLOOR, fairness_energy};
+pub use energy::{
+    AUTO_SCALE_SEARCH_DECADES, BALANCED_SPEED_FLOOR, UNKINKED_POLYGON_CHORDS, fairness_energy,
+};
 pub(crate) use energy::{end_speed, natural_scale};
 
 /// The promised worst relative residual of (1') and (2) (see the module
