@@ -730,9 +730,9 @@ BzjStatus bzj_connect(const struct BzjCurve *p, double u0, const struct BzjCurve
  *
  * @return the statuses of [`bzj_connect`] (except for the scales, which are
  *         not read); BZJ_ERR_INVALID_ARGUMENT naming `v0` when `Q(v0)` is
- *         within 1e-9 of the coordinate scale of `P(u0)` and an order is
- *         at least 1 (the scale is sized by that gap; between coincident
- *         points every blend is a loop).
+ *         within 1e-9 of the ends' largest coordinate from `P(u0)` and an
+ *         order is at least 1 (the scale is sized by that gap; between
+ *         coincident points every blend is a loop).
  *
  * # Safety
  * As [`bzj_connect`]; `scale_out` is NULL or writable.
@@ -761,9 +761,9 @@ BzjStatus bzj_connect_auto_scale(const struct BzjCurve *p, double u0, const stru
  *
  * @return the statuses of [`bzj_connect`] (except for the scales, which are
  *         not read); BZJ_ERR_INVALID_ARGUMENT naming `v0` when `Q(v0)` is
- *         within 1e-9 of the coordinate scale of `P(u0)` and an order is
- *         at least 1 (the scale is sized by that gap; between coincident
- *         points every blend is a loop).
+ *         within 1e-9 of the ends' largest coordinate from `P(u0)` and an
+ *         order is at least 1 (the scale is sized by that gap; between
+ *         coincident points every blend is a loop).
  *
  * # Safety
  * As [`bzj_connect`]; `p_scale_out`, `q_scale_out` are NULL or writable.

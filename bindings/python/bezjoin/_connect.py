@@ -144,10 +144,18 @@ def connect_auto_scale(p, u0, q, v0, *, p_order=None, q_order=None, constraints=
     """:func:`connect` with ``p_scale = q_scale = s`` chosen by the library to minimise
     the fairness energy ``integral_0^1 |R''(t)|^2 dt`` (bounded search over two
     decades either side of ``|Q(v0) - P(u0)| / mean(|P'(u0)|, |Q'(v0)|)``, each speed raised
-    to its floor where the end turns within 1 % of the chord).
+    to its floor where the end turns within 1 % of the chord). Where that energy is least
+    at the range's lower end (ends facing away, whose blend there turns in kinks) and no
+    floor applies: the natural scale, or the largest smaller one whose control polygon is
+    at most two chords long (docs/mathematics.md).
 
     Returns:
         :class:`AutoScaledConnection` (``curve``, ``scale``).
+
+    Raises:
+        BezjoinError: as :func:`connect`; ``BZJ_ERR_INVALID_ARGUMENT`` naming ``v0``
+            where ``Q(v0)`` is within 1e-9 of their largest coordinate from ``P(u0)``
+            (between coincident points every blend is a loop).
     """
     p_handle, q_handle = handle_of(p, "p"), handle_of(q, "q")
     options, _keep_alive = _options(p, q, p_order, q_order, 1.0, 1.0, constraints)
@@ -181,7 +189,9 @@ def connect_balanced_scale(p, u0, q, v0, *, p_order=None, q_order=None, constrai
     |R''(t)|^2 dt`` over two decades either side of the chord ``|Q(v0) - P(u0)|``.
     The blend does not depend on how fast either curve runs in its own parameter
     (a line on ``[0, 1]`` or on ``[0, length]``); with :func:`connect_auto_scale`'s one
-    ``s`` a fast curve next to a slow one gets a near-kink at the slow end.
+    ``s`` a fast curve next to a slow one gets a near-kink at the slow end. The rule at the
+    range's lower end and the refusal of coincident ends are
+    :func:`connect_auto_scale`'s.
 
     Returns:
         :class:`BalancedConnection` (``curve``, ``p_scale``, ``q_scale``).

@@ -255,7 +255,7 @@ fn fillet_auto_scale_keeps_the_blend_in_the_corner() {
         assert_eq!(
             *chosen.get_or_insert(s),
             s,
-            "the default is the automatic scale"
+            "the default (balanced) is the automatic scale where the speeds agree"
         );
     }
     // The chain check needs nonzero higher derivatives: fast curved cubics.

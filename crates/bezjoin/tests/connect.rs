@@ -1023,6 +1023,15 @@ fn automatic_scales_refuse_coincident_ends() {
         assert!(connect(&p, 1.0, &q, 1e-6, &options).is_ok());
     }
     assert!(connect(&p, 1.0, &q, 0.0, &ConnectOptions::new(1, 1)).is_ok());
+    // The ends' own coordinates decide, not the curves' far poles (review,
+    // session 44: ends 0.5 apart next to a pole at 1e9 were refused).
+    let far = BezierCurve::new(2, 2, vec![1.0, 0.5, 1.0, 1.0, 0.0, 1e9]).unwrap();
+    for options in [
+        ConnectOptions::new(1, 1).with_auto_scale(),
+        ConnectOptions::new(1, 1).with_balanced_scale(),
+    ] {
+        assert!(connect(&p, 1.0, &far, 0.0, &options).is_ok());
+    }
 }
 
 /// The U-turn between the facing ends of two parallel lines 10 apart (a

@@ -106,13 +106,17 @@ pub(crate) fn end_speed(derivatives: &DMatrix<f64>, chord: f64) -> Option<f64> {
 /// that [`unkinked_scale`] takes instead of a kink.
 pub const UNKINKED_POLYGON_CHORDS: f64 = 2.0;
 
+/// The bisection of [`unkinked_scale`] stops at a bracket this wide in `ln
+/// sigma` (a relative step of 1e-3 in the scale: about 13 solves).
+const UNKINKED_LOG_TOLERANCE: f64 = 1e-3;
+
 /// The scale, as `sigma = s / s0`, where the energy is least at the search
 /// range's lower end `ln sigma = lo < 0` (see [`weighted_auto_scale`]): 1
 /// (the ends leave at the natural speed) where the blend's control polygon
 /// there is at most [`UNKINKED_POLYGON_CHORDS`] chords long, else the
 /// largest `sigma` in `[exp(lo), 1]` whose polygon is (bisection on `ln
-/// sigma` to [`LOG_SCALE_TOLERANCE`] of the range; `exp(lo)` itself where
-/// no larger one is). The polygon bounds the blend's length: at the natural
+/// sigma` to [`UNKINKED_LOG_TOLERANCE`]; `exp(lo)` itself where no larger
+/// one is). The polygon bounds the blend's length: at the natural
 /// speed an end that curls within a fifth of the chord would make the blend
 /// follow it (8.6 chords on a random pair). Scales whose solve fails count
 /// as too long.
@@ -130,7 +134,7 @@ fn unkinked_scale(problem: &Problem, s0: f64, weights: ScaleWeights, lo: f64) ->
     if !short(a) {
         return a.exp();
     }
-    while b - a > LOG_SCALE_TOLERANCE * (-lo) {
+    while b - a > UNKINKED_LOG_TOLERANCE {
         let middle = 0.5 * (a + b);
         if middle <= a || middle >= b {
             break;
@@ -396,21 +400,23 @@ pub(crate) fn balanced_scale(problem: &Problem) -> Result<Connection> {
 /// order 1 or more is a loop, whose energy falls as it shrinks (user
 /// testing, session 44: `bezjoin connect` of a line's end to the start of
 /// the next line answered a loop 0.003 across at the corner). Ends within
-/// [`COINCIDENT_ENDS`] of the coordinate scale are InvalidArgument naming
-/// `v0`; with given scales such a loop is the caller's choice.
+/// [`COINCIDENT_ENDS`] of their largest coordinate are InvalidArgument
+/// naming `v0` (the curves' far poles do not count: review, session 44);
+/// with given scales such a loop is the caller's choice.
 fn check_ends_apart(problem: &Problem) -> Result<()> {
     let gap = problem.chord();
-    if gap > COINCIDENT_ENDS * problem.data_scale {
+    let ends = problem.ends_coordinate();
+    if gap > COINCIDENT_ENDS * ends {
         return Ok(());
     }
     Err(BezjoinError::invalid(
         "v0",
         format!(
-            "Q(v0) is {} from P(u0), within {COINCIDENT_ENDS:e} of the coordinate scale {}: \
-             an automatic scale sizes the blend by the gap between its ends, and between \
+            "Q(v0) is {} from P(u0), within {COINCIDENT_ENDS:e} of their largest coordinate \
+             {}: an automatic scale sizes the blend by the gap between its ends, and between \
              coincident points every blend is a loop; give the scales, or ends apart",
             Compact(gap),
-            Compact(problem.data_scale)
+            Compact(ends)
         ),
     ))
 }
@@ -681,7 +687,7 @@ mod tests {
     /// whose polygon is: on the problems of the dense-scan test and the
     /// U-turn between two lines 10 apart (which had curvature 6,000 at both
     /// ends), the polygon is within the bound, `sigma <= 1`, and where
-    /// `sigma < 1` a scale 1e-6 larger (relative) exceeds it. Both the
+    /// `sigma < 1` a scale 2e-3 larger (relative) exceeds it. Both the
     /// automatic and the balanced weights.
     #[test]
     fn a_kinked_minimum_takes_the_natural_speed_or_the_fastest_short_blend() {
@@ -725,7 +731,7 @@ mod tests {
                 }
                 assert!(chosen.curve.polygon_length() <= limit * (1.0 + 1e-12));
                 if sigma < 1.0 - 1e-12 {
-                    let s = s0 * sigma * (1.0 + 1e-6);
+                    let s = s0 * sigma * (1.0 + 2e-3);
                     let longer = solve_structured(&problem, s * weights.p, s * weights.q)
                         .map_or(f64::INFINITY, |r| r.curve.polygon_length());
                     assert!(longer > limit, "sigma {sigma}: a faster blend is as short");

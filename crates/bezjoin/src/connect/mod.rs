@@ -265,7 +265,15 @@ pub enum ShapeScale {
     /// (every sign change of its slope on a log-spaced grid, refined by
     /// bisection to about 1e-9 relative in `s`, and the range's ends), then
     /// one fully checked solve there. Should that solve be refused, a grid of
-    /// 33 full solves, then Brent's method, skips the refused scales. When
+    /// 33 full solves, then Brent's method, skips the refused scales. Where
+    /// that minimum lies at the range's lower end (ends facing away: the
+    /// blend would be the chord with a kink at each end) and no end's speed
+    /// is raised to its floor, `s = s0`, or the largest smaller scale whose
+    /// control polygon is at most [`UNKINKED_POLYGON_CHORDS`] chords
+    /// (docs/mathematics.md, "Where the energy has no minimum inside the
+    /// range"). Ends within 1e-9 of their largest coordinate are
+    /// InvalidArgument naming `v0` (between coincident points every blend
+    /// is a loop). When
     /// `kp = kq = 0` the result does not depend on `s` and `s = 1`. Keeps
     /// blends whose ends move fast (`|P'(u0)|` large against the gap) from
     /// looping, which scale 1 does not. The chosen `s` is reported in
@@ -273,7 +281,8 @@ pub enum ShapeScale {
     Auto,
     /// `alpha = sigma / |P'(u0)|`, `beta = sigma / |Q'(v0)|`: the blend
     /// leaves both curves at one speed `sigma`, chosen as [`ShapeScale::Auto`]
-    /// chooses `s` (the same energy, search and fallback, with the natural
+    /// chooses `s` (the same energy, search, rule at the lower end and
+    /// fallback, with the natural
     /// value `sigma0 = |Q(v0) - P(u0)|`). `alpha^k P^(k)(u0)` is then the jet of
     /// `P` reparametrised to unit speed at `u0`, so the blend does not depend
     /// on how fast either curve runs in its own parameter: reparametrising `P`
@@ -364,6 +373,16 @@ impl Problem {
     /// The chord `|Q(v0) - P(u0)|` between the blend's ends.
     pub(crate) fn chord(&self) -> f64 {
         (self.q_derivatives.row(0) - self.p_derivatives.row(0)).norm()
+    }
+
+    /// The largest coordinate of the blend's ends `P(u0)`, `Q(v0)` (in
+    /// absolute value): what tells coincident ends apart
+    /// ([`COINCIDENT_ENDS`]).
+    pub(crate) fn ends_coordinate(&self) -> f64 {
+        crate::geometric::largest_coordinate(
+            self.p_derivatives.row(0).iter(),
+            self.q_derivatives.row(0).iter(),
+        )
     }
 
     /// `M = sum (K_j + 1)`.

@@ -585,24 +585,26 @@ use crate::connect::COINCIDENT_ENDS;
 /// is a loop, and a loop has no fairest size (the scale-free energy falls
 /// as the loop grows: user testing, session 40, answered blends with
 /// coordinates of 1e68 on a part 10 across and reported energy 0). Ends
-/// within [`COINCIDENT_ENDS`] of the coordinate scale are InvalidArgument
+/// within [`COINCIDENT_ENDS`] of their largest coordinate (the curves' far
+/// poles do not count: review, session 44) are InvalidArgument
 /// naming `v0`; with shape values given, such a blend is the caller's
 /// choice and is answered.
 fn check_ends_apart(problem: &Problem, u0: f64, v0: f64) -> Result<()> {
     let gap = problem.chord();
-    if gap > COINCIDENT_ENDS * problem.data_scale {
+    let ends = problem.ends_coordinate();
+    if gap > COINCIDENT_ENDS * ends {
         return Ok(());
     }
     Err(BezjoinError::invalid(
         "v0",
         format!(
-            "Q(v0 = {}) is {} from P(u0 = {}), within {COINCIDENT_ENDS:e} of the coordinate \
-             scale {}: a G^k blend between coincident points is a loop, which has no fairest \
-             size; give p_shape and q_shape, or ends apart",
+            "Q(v0 = {}) is {} from P(u0 = {}), within {COINCIDENT_ENDS:e} of their largest \
+             coordinate {}: a G^k blend between coincident points is a loop, which has no \
+             fairest size; give p_shape and q_shape, or ends apart",
             Compact(v0),
             Compact(gap),
             Compact(u0),
-            Compact(problem.data_scale)
+            Compact(ends)
         ),
     ))
 }

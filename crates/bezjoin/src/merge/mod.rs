@@ -1056,9 +1056,12 @@ pub(super) fn extend_into_tail(
     } else {
         polygon_mu
     };
+    // (A NaN polygon split searches no tail; `f64::max` would drop it.)
+    if polygon_distance.is_nan() {
+        return found;
+    }
     let reach = (polygon_distance / MU_TAIL_REACH).max(MIN_SPLIT);
-    // (A NaN polygon split searches no tail.)
-    if reach.is_nan() || reach >= MU_SEARCH_MIN {
+    if reach >= MU_SEARCH_MIN {
         return found;
     }
     let mu_at = |s: f64| {
