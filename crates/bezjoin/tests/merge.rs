@@ -1358,47 +1358,29 @@ fn optimal_mu_reaches_into_the_tails_for_curves_of_unequal_length() {
                     let by = [0, 1].map(|c| long.point(n)[c] - short.point(0)[c]);
                     (long, translated(&short, by))
                 };
-                for metric in [MergeMetric::Discrete, MergeMetric::Integral] {
-                    for fix_ends in [false, true] {
-                        let mut o = MergeOptions::default()
-                            .with_metric(metric)
-                            .with_split(Breakpoints::Optimal);
-                        o.fix_ends = fix_ends;
-                        let label = format!(
-                            "ratio {ratio:e} short first {short_first} degree {n} {metric:?} fix ends {fix_ends}"
-                        );
-                        let m = merge(&p, &q, &o).unwrap_or_else(|e| panic!("{label}: {e}"));
-                        let best = m.report.metric_value;
-                        let scan = |mu: f64| match merge_metric_at(&p, &q, &o, mu) {
-                            Ok(v) => v,
-                            Err(BezjoinError::IllConditioned { .. }) => f64::INFINITY,
-                            Err(e) => panic!("{label}: {e}"),
-                        };
-                        let polygon =
-                            merge(&p, &q, &o.clone().with_split(Breakpoints::PolygonLength))
-                                .unwrap_or_else(|e| panic!("{label}: {e}"));
-                        let (tail_mu, tail_best) =
-                            common::tail_scan_minimum(scan, polygon.report.mu);
-                        let (_, middle_best) = common::dense_scan_minimum(scan);
-                        for (what, at, value) in [
-                            ("the tail scan", tail_mu, tail_best),
-                            ("the middle scan", f64::NAN, middle_best),
-                            (
-                                "the polygon split",
-                                polygon.report.mu,
-                                polygon.report.metric_value,
-                            ),
-                        ] {
-                            assert!(
-                                best <= value * (1.0 + 1e-6) + 1e-300,
-                                "{label}: optimal mu {} gives {best}, {what} {value} at {at}",
-                                m.report.mu
-                            );
-                        }
-                        let mu = m.report.mu;
-                        if !(1e-3..=1.0 - 1e-3).contains(&mu) {
-                            tails += 1;
-                        }
+                for o in common::optimal_split_variants() {
+                    let label = format!(
+                        "ratio {ratio:e} short first {short_first} degree {n} {:?} fix ends {}",
+                        o.metric, o.fix_ends
+                    );
+                    let m = merge(&p, &q, &o).unwrap_or_else(|e| panic!("{label}: {e}"));
+                    let best = m.report.metric_value;
+                    let scan = |mu: f64| match merge_metric_at(&p, &q, &o, mu) {
+                        Ok(v) => v,
+                        Err(BezjoinError::IllConditioned { .. }) => f64::INFINITY,
+                        Err(e) => panic!("{label}: {e}"),
+                    };
+                    let polygon = merge(&p, &q, &o.clone().with_split(Breakpoints::PolygonLength))
+                        .unwrap_or_else(|e| panic!("{label}: {e}"));
+                    common::assert_no_split_beats(
+                        &label,
+                        (m.report.mu, best),
+                        (polygon.report.mu, polygon.report.metric_value),
+                        scan,
+                    );
+                    let mu = m.report.mu;
+                    if !(1e-3..=1.0 - 1e-3).contains(&mu) {
+                        tails += 1;
                     }
                 }
             }

@@ -404,11 +404,9 @@ pub(crate) fn balanced_scale(problem: &Problem) -> Result<Connection> {
 /// naming `v0` (the curves' far poles do not count: review, session 44);
 /// with given scales such a loop is the caller's choice.
 fn check_ends_apart(problem: &Problem) -> Result<()> {
-    let gap = problem.chord();
-    let ends = problem.ends_coordinate();
-    if gap > COINCIDENT_ENDS * ends {
+    let Some((gap, ends)) = problem.coincident_ends() else {
         return Ok(());
-    }
+    };
     Err(BezjoinError::invalid(
         "v0",
         format!(

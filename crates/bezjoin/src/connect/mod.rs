@@ -385,6 +385,14 @@ impl Problem {
         )
     }
 
+    /// `Some((gap, largest coordinate of the ends))` where the ends lie
+    /// within [`COINCIDENT_ENDS`] of their largest coordinate (the
+    /// automatic scales and the fair G^k search refuse them).
+    pub(crate) fn coincident_ends(&self) -> Option<(f64, f64)> {
+        let (gap, ends) = (self.chord(), self.ends_coordinate());
+        (gap <= COINCIDENT_ENDS * ends).then_some((gap, ends))
+    }
+
     /// `M = sum (K_j + 1)`.
     pub(crate) fn middle_count(&self) -> usize {
         self.constraints.iter().map(|(_, d)| d.nrows()).sum()

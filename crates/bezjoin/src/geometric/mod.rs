@@ -590,11 +590,9 @@ use crate::connect::COINCIDENT_ENDS;
 /// naming `v0`; with shape values given, such a blend is the caller's
 /// choice and is answered.
 fn check_ends_apart(problem: &Problem, u0: f64, v0: f64) -> Result<()> {
-    let gap = problem.chord();
-    let ends = problem.ends_coordinate();
-    if gap > COINCIDENT_ENDS * ends {
+    let Some((gap, ends)) = problem.coincident_ends() else {
         return Ok(());
-    }
+    };
     Err(BezjoinError::invalid(
         "v0",
         format!(

@@ -210,6 +210,48 @@ pub fn tail_scan_minimum(metric: impl Fn(f64) -> f64, polygon_mu: f64) -> (f64, 
     best
 }
 
+/// The optimal-split options of both metrics, with free and with fixed
+/// ends.
+pub fn optimal_split_variants() -> Vec<bezjoin_core::MergeOptions> {
+    use bezjoin_core::{Breakpoints, MergeMetric, MergeOptions};
+    let mut out = Vec::new();
+    for metric in [MergeMetric::Discrete, MergeMetric::Integral] {
+        for fix_ends in [false, true] {
+            let mut o = MergeOptions::default()
+                .with_metric(metric)
+                .with_split(Breakpoints::Optimal);
+            o.fix_ends = fix_ends;
+            out.push(o);
+        }
+    }
+    out
+}
+
+/// The optimal split's metric `best` (at `mu`) is no larger than any of a
+/// tail scan ([`tail_scan_minimum`] from the polygon split `polygon.0`), the
+/// dense scan of the middle ([`dense_scan_minimum`]) and the polygon
+/// split's own metric `polygon.1` (relative slack 1e-6); `metric` is the
+/// merge's metric at a given `mu`.
+pub fn assert_no_split_beats(
+    label: &str,
+    (mu, best): (f64, f64),
+    polygon: (f64, f64),
+    metric: impl Fn(f64) -> f64,
+) {
+    let (tail_mu, tail_best) = tail_scan_minimum(&metric, polygon.0);
+    let (_, middle_best) = dense_scan_minimum(&metric);
+    for (what, at, value) in [
+        ("the tail scan", tail_mu, tail_best),
+        ("the middle scan", f64::NAN, middle_best),
+        ("the polygon split", polygon.0, polygon.1),
+    ] {
+        assert!(
+            best <= value * (1.0 + 1e-6) + 1e-300,
+            "{label}: optimal mu {mu} gives {best}, {what} {value} at {at}"
+        );
+    }
+}
+
 /// The documented speed of an end for the automatic and balanced scales:
 /// `|X'(u)|` and the largest floor term `((BALANCED_SPEED_FLOOR c)^(j-1)
 /// |X^(j)(u)|)^(1/j)`, `j = 2..=order` (0 when there is none), `c` the chord.
