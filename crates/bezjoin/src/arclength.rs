@@ -535,7 +535,7 @@ impl BezierCurve {
             return Err(BezjoinError::invalid(
                 "a, b",
                 format!(
-                    "the arc length from a = {} to b = {} overflows the f64 range",
+                    "the arc length from a = {} to b = {} overflows the double range",
                     Compact(a),
                     Compact(b)
                 ),

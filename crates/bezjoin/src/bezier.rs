@@ -488,9 +488,12 @@ impl BezierCurve {
             } else {
                 ("b", b)
             };
+            // The number as it reads, not 301 digits, and no Rust type name
+            // (user testing, session 44).
             return Err(BezjoinError::invalid(
-                format!("{name} = {value}"),
-                "the segment's control points overflow the f64 range",
+                format!("{name} = {}", crate::error::Compact(value)),
+                "so far outside [0, 1] that the segment's control points overflow the double \
+                 range",
             ));
         }
         Ok(seg)

@@ -1310,3 +1310,19 @@ fn ellipse_arcs_survive_hostile_inputs() {
         Ok(())
     });
 }
+
+/// A segment so far outside `[0, 1]` that its control points overflow is
+/// refused naming the argument, with the number as it reads (user testing,
+/// session 44: `a = -1e300` was printed as 301 digits, with the type name
+/// `f64`).
+#[test]
+fn an_overflowing_segment_names_its_bound_in_a_short_message() {
+    let c = BezierCurve::new(2, 3, vec![0.0, 0.0, 1.0, 2.0, 3.0, -1.0, 4.0, 0.0]).unwrap();
+    match c.segment(-1e300, 1e300) {
+        Err(BezjoinError::InvalidArgument { name, reason }) => {
+            assert_eq!(name, "a = -1e300", "{reason}");
+            assert!(reason.len() < 120 && !reason.contains("f64"), "{reason}");
+        }
+        other => panic!("{other:?}"),
+    }
+}
