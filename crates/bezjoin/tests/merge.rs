@@ -1365,18 +1365,13 @@ fn optimal_mu_reaches_into_the_tails_for_curves_of_unequal_length() {
                     );
                     let m = merge(&p, &q, &o).unwrap_or_else(|e| panic!("{label}: {e}"));
                     let best = m.report.metric_value;
-                    let scan = |mu: f64| match merge_metric_at(&p, &q, &o, mu) {
-                        Ok(v) => v,
-                        Err(BezjoinError::IllConditioned { .. }) => f64::INFINITY,
-                        Err(e) => panic!("{label}: {e}"),
-                    };
                     let polygon = merge(&p, &q, &o.clone().with_split(Breakpoints::PolygonLength))
                         .unwrap_or_else(|e| panic!("{label}: {e}"));
                     common::assert_no_split_beats(
                         &label,
                         (m.report.mu, best),
                         (polygon.report.mu, polygon.report.metric_value),
-                        scan,
+                        |mu| merge_metric_at(&p, &q, &o, mu),
                     );
                     let mu = m.report.mu;
                     if !(1e-3..=1.0 - 1e-3).contains(&mu) {

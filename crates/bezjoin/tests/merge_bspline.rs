@@ -839,11 +839,6 @@ fn optimal_mu_reaches_into_the_tails_for_curves_of_unequal_length() {
                     );
                     let m = merge_bsplines(&p, &q, &o).unwrap_or_else(|e| panic!("{label}: {e}"));
                     let best = m.report.metric_value;
-                    let scan = |mu: f64| match merge_bsplines_metric_at(&p, &q, &o, mu) {
-                        Ok(v) => v,
-                        Err(BezjoinError::IllConditioned { .. }) => f64::INFINITY,
-                        Err(e) => panic!("{label}: {e}"),
-                    };
                     let polygon =
                         merge_bsplines(&p, &q, &o.clone().with_split(Breakpoints::PolygonLength))
                             .unwrap_or_else(|e| panic!("{label}: {e}"));
@@ -851,7 +846,7 @@ fn optimal_mu_reaches_into_the_tails_for_curves_of_unequal_length() {
                         &label,
                         (m.report.mu, best),
                         (polygon.report.mu, polygon.report.metric_value),
-                        scan,
+                        |mu| merge_bsplines_metric_at(&p, &q, &o, mu),
                     );
                     if !(1e-3..=1.0 - 1e-3).contains(&m.report.mu) {
                         tails += 1;

@@ -103,49 +103,52 @@ pub(crate) fn end_speed(derivatives: &DMatrix<f64>, chord: f64) -> Option<f64> {
 }
 
 /// The longest control polygon, in chords `|Q(v0) - P(u0)|`, of the blend
-/// that [`unkinked_scale`] takes instead of a kink.
+/// that [`unkinked_blend`] takes instead of a kink.
 pub const UNKINKED_POLYGON_CHORDS: f64 = 2.0;
 
-/// The bisection of [`unkinked_scale`] stops at a bracket this wide in `ln
+/// The bisection of [`unkinked_blend`] stops at a bracket this wide in `ln
 /// sigma` (a relative step of 1e-3 in the scale: about 13 solves).
 const UNKINKED_LOG_TOLERANCE: f64 = 1e-3;
 
-/// The scale, as `sigma = s / s0`, where the energy is least at the search
-/// range's lower end `ln sigma = lo < 0` (see [`weighted_auto_scale`]): 1
-/// (the ends leave at the natural speed) where the blend's control polygon
-/// there is at most [`UNKINKED_POLYGON_CHORDS`] chords long, else the
+/// The blend where the energy is least at the search range's lower end `ln
+/// sigma = lo < 0` (`sigma = s / s0`, see [`weighted_auto_scale`]): at
+/// `sigma = 1` (the ends leave at the natural speed) where its control
+/// polygon is at most [`UNKINKED_POLYGON_CHORDS`] chords long, else at the
 /// largest `sigma` in `[exp(lo), 1]` whose polygon is (bisection on `ln
-/// sigma` to [`UNKINKED_LOG_TOLERANCE`]; `exp(lo)` itself where no larger
-/// one is). The polygon bounds the blend's length: at the natural
-/// speed an end that curls within a fifth of the chord would make the blend
-/// follow it (8.6 chords on a random pair). Scales whose solve fails count
-/// as too long.
-fn unkinked_scale(problem: &Problem, s0: f64, weights: ScaleWeights, lo: f64) -> f64 {
+/// sigma` to [`UNKINKED_LOG_TOLERANCE`]); `None` where even `exp(lo)`'s is
+/// longer (the caller keeps the lower end). The polygon bounds the blend's
+/// length: at the natural speed an end that curls within a fifth of the
+/// chord would make the blend follow it (8.6 chords on a random pair).
+/// Scales whose solve fails count as too long.
+fn unkinked_blend(
+    problem: &Problem,
+    s0: f64,
+    weights: ScaleWeights,
+    lo: f64,
+) -> Option<Connection> {
     let limit = UNKINKED_POLYGON_CHORDS * problem.chord();
     let short = |log_sigma: f64| {
         let s = s0 * log_sigma.exp();
         solve_structured(problem, s * weights.p, s * weights.q)
-            .is_ok_and(|r| r.curve.polygon_length() <= limit)
+            .ok()
+            .filter(|r| r.curve.polygon_length() <= limit)
     };
-    if short(0.0) {
-        return 1.0;
+    if let Some(natural) = short(0.0) {
+        return Some(natural);
     }
+    let mut best = short(lo)?;
     let (mut a, mut b) = (lo, 0.0f64);
-    if !short(a) {
-        return a.exp();
-    }
     while b - a > UNKINKED_LOG_TOLERANCE {
         let middle = 0.5 * (a + b);
         if middle <= a || middle >= b {
             break;
         }
-        if short(middle) {
-            a = middle;
-        } else {
-            b = middle;
+        match short(middle) {
+            Some(blend) => (a, best) = (middle, blend),
+            None => b = middle,
         }
     }
-    a.exp()
+    Some(best)
 }
 
 /// Whether an end's speed for the scales ([`end_speed`]) is raised above
@@ -434,18 +437,20 @@ fn weighted_auto_scale(problem: &Problem, weights: ScaleWeights, s0: f64) -> Res
         return Err(unheld_tangent_error(problem, &floor, s0 * half_width.exp()));
     }
     if let Some(coefficients) = energy_polynomial(problem, s0, weights) {
-        if let Some(mut sigma) = polynomial_minimum(&coefficients, lo, half_width) {
+        if let Some(sigma) = polynomial_minimum(&coefficients, lo, half_width) {
             // A minimum at the range's lower end: the energy falls all the
             // way to blends whose ends barely move and turn in a kink (ends
             // facing away: the U-turn between two lines 10 apart got
             // curvature 6,000 at both ends, user testing, session 44). Where
             // no end's speed is raised to its floor, the natural speed is
             // taken instead, or the fastest below it whose blend stays short
-            // ([`unkinked_scale`]). (Where a floor applies, an end already
+            // ([`unkinked_blend`]). (Where a floor applies, an end already
             // turns within 1 % of the chord and the natural speed is the
             // floor's: larger scales there only make the blend larger.)
             if lo < 0.0 && sigma <= lo.exp() && !speed_floor_applies(problem) {
-                sigma = unkinked_scale(problem, s0, weights, lo);
+                if let Some(blend) = unkinked_blend(problem, s0, weights, lo) {
+                    return Ok(blend);
+                }
             }
             let s = s0 * sigma;
             if let Ok(result) = solve_structured(problem, s * weights.p, s * weights.q) {
@@ -480,10 +485,7 @@ struct TangentFloor {
 }
 
 fn tangent_holding_floor(problem: &Problem, weights: ScaleWeights) -> TangentFloor {
-    let coordinates = crate::geometric::largest_coordinate(
-        problem.p_derivatives.row(0).iter(),
-        problem.q_derivatives.row(0).iter(),
-    );
+    let coordinates = problem.ends_coordinate();
     let rounding = 2.0 * (problem.dim as f64).sqrt() * 0.5 * f64::EPSILON * coordinates;
     let mut floor = TangentFloor {
         scale: 0.0,
@@ -765,7 +767,7 @@ mod tests {
                 })
                 .collect();
             // Where the energy falls to the range's lower end and no speed
-            // floor applies, the blend of `unkinked_scale` (session 44:
+            // floor applies, the blend of `unkinked_blend` (session 44:
             // there the blend turns in kinks): checked by
             // `a_kinked_minimum_takes_the_natural_speed_or_the_fastest_short_blend`.
             let lowest = energies.iter().map(|x| x.1).fold(f64::INFINITY, f64::min);

@@ -764,19 +764,6 @@ fn fill_shapes(
     }
 }
 
-/// [`fill_shapes`] into new vectors.
-fn shapes_from(
-    x: &[f64],
-    p_order: usize,
-    fixed_p: Option<&[f64]>,
-    fixed_q: Option<&[f64]>,
-    q_order: usize,
-) -> (Vec<f64>, Vec<f64>) {
-    let (mut p, mut q) = (vec![0.0; p_order], vec![0.0; q_order]);
-    fill_shapes(x, fixed_p, fixed_q, &mut p, &mut q);
-    (p, q)
-}
-
 /// The natural `beta_1` of each end, `c / v_P` and `c / v_Q` (`c` the chord
 /// `|Q(v0) - P(u0)|`, `v` the end's speed of connect's balanced scale,
 /// [`end_speed`]: `|P'(u0)|` unless the end turns or accelerates within
@@ -841,15 +828,19 @@ pub(super) fn fair_shapes(
     fixed_q: Option<&[f64]>,
     checked: bool,
 ) -> Result<(Vec<f64>, Vec<f64>)> {
+    let naturals = natural_end_scales(problem);
     let symmetry = match (fixed_p, fixed_q) {
-        (None, None) => EndSymmetry::of(problem, natural_end_scales(problem).0),
+        (None, None) => EndSymmetry::of(problem, naturals.0),
         _ => None,
     };
-    let full = search_shapes(problem, fixed_p, fixed_q, checked, None, symmetry.is_some());
+    let search = |fixed: (Option<&[f64]>, Option<&[f64]>), symmetry, report| {
+        search_shapes(problem, fixed, naturals, checked, symmetry, report)
+    };
+    let full = search((fixed_p, fixed_q), None, symmetry.is_some());
     let Some(symmetry) = symmetry else {
         return full.map(|(p, q, _)| (p, q));
     };
-    let symmetric = search_shapes(problem, None, None, checked, Some(&symmetry), true);
+    let symmetric = search((None, None), Some(&symmetry), true);
     match (symmetric, full) {
         (Ok(s), Ok(f)) if f.2 < (1.0 - SYMMETRIC_PREFERENCE) * s.2 => Ok((f.0, f.1)),
         (Ok(s), _) => Ok((s.0, s.1)),
@@ -858,19 +849,19 @@ pub(super) fn fair_shapes(
 }
 
 /// [`fair_shapes`]' search, in all the free shape values or (with
-/// `symmetry`) in P's alone, Q's their mirror. Returns the shape values
-/// and, with `report`, the winner's energy by the report's rule
+/// `symmetry`) in P's alone, Q's their mirror, from the ends' natural
+/// `beta_1` ([`natural_end_scales`]). Returns the shape values and, with
+/// `report`, the winner's energy by the report's rule
 /// ([`fairness_report`]'s, on [`ENERGY_PANELS`] panels; NaN without).
 fn search_shapes(
     problem: &Problem,
-    fixed_p: Option<&[f64]>,
-    fixed_q: Option<&[f64]>,
+    (fixed_p, fixed_q): (Option<&[f64]>, Option<&[f64]>),
+    (natural_p, natural_q): (f64, f64),
     checked: bool,
     symmetry: Option<&EndSymmetry>,
     report: bool,
 ) -> Result<(Vec<f64>, Vec<f64>, f64)> {
     let (kp, kq) = (problem.p_order, problem.q_order);
-    let (natural_p, natural_q) = natural_end_scales(problem);
     let free_p = if fixed_p.is_some() { 0 } else { kp };
     let free_q = if fixed_q.is_some() || symmetry.is_some() {
         0
@@ -938,9 +929,17 @@ fn search_shapes(
         }
         value
     };
+    // The shape values of the search coordinates `x`, into new vectors.
+    let shapes_of = |x: &[f64]| {
+        let (mut ps, mut qs) = (vec![0.0; kp], vec![0.0; kq]);
+        // (A winner's energy is finite, so its mirror exists; with no free
+        // value there is no mirror.)
+        shapes_at(x, &mut ps, &mut qs);
+        (ps, qs)
+    };
     let dims = free_p + free_q;
     if dims == 0 {
-        let (p, q) = shapes_from(&[], kp, fixed_p, fixed_q, kq);
+        let (p, q) = shapes_of(&[]);
         return Ok((p, q, f64::NAN));
     }
     // Grid over a common end speed `sigma |R(1) - R(0)|` (gammas zero):
@@ -1020,9 +1019,7 @@ fn search_shapes(
     } else {
         f64::NAN
     };
-    let (mut ps, mut qs) = (vec![0.0; kp], vec![0.0; kq]);
-    // (The winner's energy is finite, so its mirror exists.)
-    shapes_at(&x, &mut ps, &mut qs);
+    let (ps, qs) = shapes_of(&x);
     Ok((ps, qs, winner))
 }
 

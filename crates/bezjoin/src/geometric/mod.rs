@@ -53,8 +53,8 @@ use nalgebra::DMatrix;
 
 use crate::bezier::{BezierCurve, distance};
 use crate::connect::{
-    ConnectOptions, Connection, PointConstraint, Problem, check_connect_degree, check_pair,
-    connect_ends_shaped, prepare, solve_structured,
+    COINCIDENT_ENDS, ConnectOptions, Connection, PointConstraint, Problem, check_connect_degree,
+    check_pair, connect_ends_shaped, prepare, solve_structured,
 };
 use crate::curve::CurveJet;
 use crate::error::{BezjoinError, Compact, Result, check_finite};
@@ -280,6 +280,14 @@ pub(crate) fn check_regular_ends(
 /// `3e-15` by 92 %).
 pub const GEOMETRIC_CONDITION_LIMIT: f64 = 1e-6;
 
+/// The rounding of the stored blend's own `R^(j)` at an end: a `j`-th
+/// difference of control points of size `coordinates`, times `n!/(n-j)!`
+/// (`n` the blend's degree): `2^j n!/(n-j)! u S`.
+fn stored_rounding(j: usize, (degree, coordinates): (usize, f64)) -> f64 {
+    let stored: f64 = (0..j).map(|i| 2.0 * (degree - i) as f64).product();
+    stored * 0.5 * f64::EPSILON * coordinates
+}
+
 /// How well the geometric invariants of one end are known, relative to
 /// themselves: the unit tangent and (in two dimensions and more) the
 /// curvature vector `K`, from the targets `T_j = R^(j)(end)` of the
@@ -324,10 +332,7 @@ pub(crate) fn geometric_end_condition<R: AsRef<[f64]>>(
     // The target's bound plus the rounding of the stored blend's own
     // R^(j)(end): a j-th difference of control points of size
     // `coordinates`, times n!/(n-j)!.
-    let bound = |j: usize| {
-        let stored: f64 = (0..j).map(|i| 2.0 * (degree - i) as f64).product();
-        errors[j] + stored * 0.5 * f64::EPSILON * coordinates
-    };
+    let bound = |j: usize| errors[j] + stored_rounding(j, (degree, coordinates));
     let tangent = bound(1) / speed;
     let mut worst = 2.0 * tangent;
     if order >= 2 {
@@ -527,10 +532,7 @@ pub(crate) fn stored_curvature_derivative_condition<T: AsRef<[f64]>>(
     if s.is_nan() || s <= 0.0 {
         return f64::INFINITY;
     }
-    let error = |j: usize| -> f64 {
-        let stored: f64 = (0..j).map(|i| 2.0 * (degree - i) as f64).product();
-        stored * 0.5 * f64::EPSILON * coordinates
-    };
+    let error = |j: usize| stored_rounding(j, (degree, coordinates));
     let (e1, e2, e3) = (error(1), error(2), error(3));
     let (size2, size3) = (dot(t2, t2).sqrt(), dot(t3, t3).sqrt());
     let (along2, along3) = (dot(t2, t1) / s, dot(t3, t1) / s);
@@ -578,8 +580,6 @@ fn zero_tangent_error(name: &str, at: &str, value: f64, order: usize) -> Bezjoin
         limit: crate::CONNECT_RESIDUAL_LIMIT,
     }
 }
-
-use crate::connect::COINCIDENT_ENDS;
 
 /// The fair search needs `P(u0) != Q(v0)`: between coincident ends a blend
 /// is a loop, and a loop has no fairest size (the scale-free energy falls

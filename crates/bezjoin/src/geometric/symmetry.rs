@@ -67,6 +67,13 @@ pub(super) struct EndSymmetry {
     kind: Kind,
     /// The unit chord `(Q(v0) - P(u0)) / |Q(v0) - P(u0)|`.
     axis: Vec<f64>,
+    /// `Q'(v0)` and `|Q'(v0)|^2`, the same for every shape value.
+    q1: Vec<f64>,
+    q1_square: f64,
+    /// The target and right-hand side of one row of the mirror equations
+    /// (`2 dim`): [`solve`](Self::solve) runs in every trial of the fair
+    /// search, and allocates nothing.
+    scratch: std::cell::RefCell<Vec<f64>>,
 }
 
 impl EndSymmetry {
@@ -88,14 +95,16 @@ impl EndSymmetry {
             return None;
         }
         let axis: Vec<f64> = chord.iter().map(|c| c / length).collect();
+        let q1: Vec<f64> = problem.q_derivatives.row(1).iter().copied().collect();
+        let q1_square: f64 = q1.iter().map(|v| v * v).sum();
+        if !(q1_square > 0.0 && q1_square.is_finite()) {
+            return None;
+        }
         // The ends' own rounding far from the origin: a symmetric problem
         // whose coordinates are 1e7 and whose chord is 2 is symmetric to
         // about 1e-9 only (review, session 44: 19 of 58 such problems were
         // recognised at 1e7, 60 of 60 at the origin).
-        let largest = crate::geometric::largest_coordinate(
-            problem.p_derivatives.row(0).iter(),
-            problem.q_derivatives.row(0).iter(),
-        );
+        let largest = problem.ends_coordinate();
         let tolerance = SYMMETRY_TOLERANCE.max(SYMMETRY_ROUNDING * f64::EPSILON * largest / length);
         let mut test = [0.0; MAX_GEOMETRIC_ORDER];
         test[0] = beta1;
@@ -108,6 +117,9 @@ impl EndSymmetry {
             .map(|kind| Self {
                 kind,
                 axis: axis.clone(),
+                q1: q1.clone(),
+                q1_square,
+                scratch: std::cell::RefCell::new(vec![0.0; 2 * problem.dim]),
             })
             .find(|symmetry| {
                 symmetry
@@ -150,16 +162,11 @@ impl EndSymmetry {
     /// `None` where there is no solution.
     fn solve(&self, problem: &Problem, p_shape: &[f64], q_shape: &mut [f64]) -> Option<f64> {
         let k = p_shape.len();
-        let dim = problem.dim;
         let (p, q) = (&problem.p_derivatives, &problem.q_derivatives);
-        let q1: Vec<f64> = q.row(1).iter().copied().collect();
-        let q1_square: f64 = q1.iter().map(|v| v * v).sum();
-        if !(q1_square > 0.0 && q1_square.is_finite()) {
-            return None;
-        }
+        let (q1, q1_square) = (&self.q1, self.q1_square);
         let p_bell = partial_bell_small(p_shape, k);
-        let mut target = vec![0.0; dim];
-        let mut rhs = vec![0.0; dim];
+        let mut scratch = self.scratch.borrow_mut();
+        let (target, rhs) = scratch.split_at_mut(problem.dim);
         let mut worst = 0.0f64;
         q_shape.fill(0.0);
         for j in 1..=k {
@@ -169,7 +176,7 @@ impl EndSymmetry {
                     *t += p_bell[j][i] * p[(i, c)];
                 }
             }
-            self.apply(&target, &mut rhs);
+            self.apply(target, rhs);
             let sign = if j % 2 == 0 { 1.0 } else { -1.0 };
             let mut size = 0.0;
             for v in rhs.iter_mut() {
@@ -189,10 +196,10 @@ impl EndSymmetry {
                 }
                 size += term.sqrt();
             }
-            let beta = rhs.iter().zip(&q1).map(|(a, b)| a * b).sum::<f64>() / q1_square;
+            let beta = rhs.iter().zip(q1).map(|(a, b)| a * b).sum::<f64>() / q1_square;
             let off: f64 = rhs
                 .iter()
-                .zip(&q1)
+                .zip(q1)
                 .map(|(a, b)| (a - beta * b) * (a - beta * b))
                 .sum::<f64>()
                 .sqrt();

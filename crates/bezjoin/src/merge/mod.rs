@@ -452,8 +452,6 @@ impl<'a> PairProblem<'a> {
         })
     }
 
-    /// The fully checked solve at a given `mu`, without the slope (which
-    /// only the search of the optimal `mu` reads).
     /// The split proportional to the control-polygon lengths of the two
     /// pieces (as worked on), `L_P / (L_P + L_Q)`: where the tail of the
     /// optimal `mu`'s search may reach ([`extend_into_tail`]).
@@ -464,6 +462,8 @@ impl<'a> PairProblem<'a> {
         )
     }
 
+    /// The fully checked solve at a given `mu`, without the slope (which
+    /// only the search of the optimal `mu` reads).
     fn solve_given(&self, mu: f64) -> Result<StageOne> {
         solve_stage_one_slope(
             &self.pieces,
@@ -1006,7 +1006,9 @@ fn optimal_mu(polygon_mu: f64, mut metric: impl FnMut(f64) -> Result<f64>) -> Re
 }
 
 /// `a / (a + b)` for the control-polygon lengths `a`, `b` of two curves
-/// (NaN where it is not a number in `[0, 1]`).
+/// (NaN where it is not a number in `[0, 1]`): a hint for the tail of the
+/// optimal `mu`'s search, so a zero length gives 0 or 1 here where
+/// [`polygon_breakpoints`] (the split a caller asks for) refuses it.
 pub(super) fn polygon_split(a: f64, b: f64) -> f64 {
     let mu = a / (a + b);
     if (0.0..=1.0).contains(&mu) {
