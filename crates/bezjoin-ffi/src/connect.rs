@@ -2,7 +2,9 @@
 //! (mathematics.md, section 1; `bezjoin_core::connect`).
 
 use bezjoin_core::{BezjoinError, Curve};
-use bezjoin_core::{ConnectOptions, PointConstraint, ShapeScale, check_connect_degree, connect};
+use bezjoin_core::{
+    ConnectOptions, PointConstraint, ShapeScale, check_connect_degree, connect, connect_curve,
+};
 
 use crate::guard::guard;
 use crate::handles::{BzjCurve, HandleOut};
@@ -127,7 +129,7 @@ pub unsafe extern "C" fn bzj_connect(
         let out = out.require()?;
         // SAFETY: caller contract for every pointer.
         let (p, q, options) = unsafe { read_inputs(p, q, options) }?;
-        out.write(connect(p, u0, q, v0, &options)?.curve);
+        out.write(connect_curve(p, u0, q, v0, &options)?);
         Ok(())
     })
 }

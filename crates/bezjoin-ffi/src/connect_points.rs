@@ -6,7 +6,10 @@
 //! followed by `bzj_connect` (`bzj_connect_auto_scale`) and
 //! `bzj_curve_points`, so the control points are the same, bit for bit.
 
-use bezjoin_core::{BezierCurve, BezjoinError, ConnectOptions, check_connect_degree, connect};
+use bezjoin_core::{
+    BezierCurve, BezjoinError, ConnectOptions, ShapeScale, check_connect_degree, connect,
+    connect_curve,
+};
 
 use crate::guard::guard;
 use crate::pointers::{input_slice, output_slice, write_optional};
@@ -80,6 +83,11 @@ unsafe fn connect_points(
     let p = unsafe { bezier_from_points(dim, p_points, p_len, "p") }?;
     // SAFETY: as above.
     let q = unsafe { bezier_from_points(dim, q_points, q_len, "q") }?;
+    if let ShapeScale::Given { p: p_scale, .. } = options.scale {
+        // bzj_connect's path (the curve alone, the same points).
+        out.copy_from_slice(connect_curve(&p, u0, &q, v0, &options)?.points());
+        return Ok(p_scale);
+    }
     let connection = connect(&p, u0, &q, v0, &options)?;
     out.copy_from_slice(connection.curve.points());
     Ok(connection.p_scale)

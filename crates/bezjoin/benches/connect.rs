@@ -2,7 +2,8 @@
 //! (degree 7), in 2D and 3D, with and without one K = 2 interior constraint
 //! (degree 10), structured solve versus the dense reference solve.
 //!
-//! `connect_vs_jets/<case>/{connect,jets}` (issue 20): a connect next to
+//! `connect_vs_jets/<case>/{connect,connect_curve,jets}` (issue 20): a connect
+//! (with its estimate, and the curve alone as `bzj_connect` takes it) next to
 //! the evaluation of the two input jets it needs (`P^(k)(u0)`, k <= kp, and
 //! `Q^(k)(v0)`, k <= kq, by `eval_derivatives_into` into stack buffers), the
 //! physical limit of the operation; the goal is connect <= 2x jets. Cases:
@@ -13,7 +14,7 @@
 use std::hint::black_box;
 
 use bezjoin_core::BezierCurve;
-use bezjoin_core::{ConnectOptions, PointConstraint, connect, connect_dense_reference};
+use bezjoin_core::{ConnectOptions, PointConstraint, connect, connect_curve, connect_dense_reference};
 use criterion::{Criterion, criterion_group, criterion_main};
 
 fn cubic(dim: usize, offset: f64) -> BezierCurve {
@@ -93,6 +94,18 @@ fn bench_connect_vs_jets(c: &mut Criterion) {
             c.bench_function(&format!("connect_vs_jets/{label}{suffix}/connect"), |b| {
                 b.iter(|| {
                     connect(
+                        black_box(&p),
+                        black_box(u0),
+                        black_box(&q),
+                        black_box(v0),
+                        options,
+                    )
+                    .unwrap()
+                })
+            });
+            c.bench_function(&format!("connect_vs_jets/{label}{suffix}/connect_curve"), |b| {
+                b.iter(|| {
+                    connect_curve(
                         black_box(&p),
                         black_box(u0),
                         black_box(&q),

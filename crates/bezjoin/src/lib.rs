@@ -58,7 +58,8 @@ pub use bezier::{BezierCurve, MAX_DEGREE, distance};
 pub use connect::{
     AUTO_SCALE_SEARCH_DECADES, BALANCED_SPEED_FLOOR, CONNECT_RESIDUAL_LIMIT, ConnectOptions,
     Connection, MAX_CONNECT_DEGREE, PointConstraint, ShapeScale, UNKINKED_POLYGON_CHORDS,
-    check_connect_degree, connect, connect_dense_reference, connect_unchecked, fairness_energy,
+    check_connect_degree, connect, connect_curve, connect_dense_reference, connect_unchecked,
+    fairness_energy,
 };
 pub use curve::{AsCurveRef, Curve, CurveJet, CurveRef};
 pub use error::{BezjoinError, Result};

@@ -20,8 +20,9 @@
 //! the jets combined by the partial Bell polynomials of the shapes, scales 1.
 
 use super::{
-    CONNECT_RESIDUAL_LIMIT, Connection, END_BAND_NORMS, FALLING_FACTORIALS, SIGNED_BINOMIALS,
-    finite_or_infinite, power, residual_and_bound_unguarded, unit_roundoff,
+    CONNECT_RESIDUAL_LIMIT, Connection, END_BAND_NORM_RECIPROCALS, END_BAND_NORMS,
+    FALLING_FACTORIALS, SIGNED_BINOMIALS, finite_or_infinite, power, residual_and_bound_unguarded,
+    unit_roundoff,
 };
 use crate::basis::KnotSide;
 use crate::bezier::BezierCurve;
@@ -78,6 +79,143 @@ pub(crate) fn connect_ends_shaped<P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
     q_shape: &[f64],
 ) -> Option<Result<Connection>> {
     connect_small(p, q, (u0, v0, kp, kq, 1.0, 1.0), Some((p_shape, q_shape)))
+}
+
+/// The part of [`CONNECT_RESIDUAL_LIMIT`] the screen of
+/// [`connect_ends_curve`] keeps in reserve: its bounds are the full
+/// check's to first order (within a few `n u` relatively, far below this),
+/// so a problem that passes the screen passes the full check.
+const SCREEN_SLACK: f64 = 1e-6;
+
+/// [`connect_ends`]'s curve alone, the same control points bit for bit and
+/// the same errors (the hot path of `bzj_connect`, which returns no
+/// estimate). In the plane and in space, for result degrees below
+/// `MAX_POINTS - 1`, a screen runs first ([`connect_fixed_screened`]): the
+/// same jets' values, targets and substitution, and instead of the
+/// residual check's Euclidean norms, square roots and divisions, bounds
+/// that are never below the check's: 1-norms for Euclidean norms, the
+/// curves' coordinate scale for the data scale, the jets' bounds a priori
+/// ([`CurveJet::jet_screen_into`]). When every condition row passes the
+/// screen, every row's bound in the full check is below
+/// [`CONNECT_RESIDUAL_LIMIT`], so the full check would accept the same
+/// points; when any row does not pass (or a value is not finite), the full
+/// [`connect_ends`] runs and answers, estimate and refusal included.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn connect_ends_curve<P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
+    p: &P,
+    u0: f64,
+    q: &Q,
+    v0: f64,
+    kp: usize,
+    kq: usize,
+    alpha: f64,
+    beta: f64,
+) -> Result<BezierCurve> {
+    match connect_ends_screened(p, q, (u0, v0, kp, kq, alpha, beta)) {
+        Some(curve) => Ok(curve),
+        None => connect_ends(p, u0, q, v0, kp, kq, alpha, beta).map(|c| c.curve),
+    }
+}
+
+/// The screen of [`connect_ends_curve`] (`args`: `(u0, v0, kp, kq, alpha,
+/// beta)`, validated): `Some(R)` when every condition row passes it, `None`
+/// when one does not or the problem is outside its arrays (dimension other
+/// than 2 or 3, degree `kp + kq + 1 >= MAX_POINTS`).
+pub(super) fn connect_ends_screened<P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
+    p: &P,
+    q: &Q,
+    args: (f64, f64, usize, usize, f64, f64),
+) -> Option<BezierCurve> {
+    let (_, _, kp, kq, _, _) = args;
+    let count = kp + kq + 2;
+    match (p.dim(), count) {
+        _ if count > MAX_POINTS => None,
+        (2, ..=8) => connect_fixed_screened::<2, 8, P, Q>(p, q, args),
+        (2, ..=12) => connect_fixed_screened::<2, 12, P, Q>(p, q, args),
+        (2, _) => connect_fixed_screened::<2, MAX_POINTS, P, Q>(p, q, args),
+        (3, ..=8) => connect_fixed_screened::<3, 8, P, Q>(p, q, args),
+        (3, ..=12) => connect_fixed_screened::<3, 12, P, Q>(p, q, args),
+        (3, _) => connect_fixed_screened::<3, MAX_POINTS, P, Q>(p, q, args),
+        _ => None,
+    }
+}
+
+/// The screen of [`connect_ends_curve`] in dimension `D`, as
+/// [`connect_fixed`] without shapes: `Some(R)` when every row passes,
+/// `None` otherwise.
+fn connect_fixed_screened<
+    const D: usize,
+    const CAP: usize,
+    P: CurveJet + ?Sized,
+    Q: CurveJet + ?Sized,
+>(
+    p: &P,
+    q: &Q,
+    (u0, v0, kp, kq, alpha, beta): (f64, f64, usize, usize, f64, f64),
+) -> Option<BezierCurve> {
+    let n = kp + kq + 1;
+    let count = n + 1;
+    let (p_scale, q_scale) = (p.coordinate_scale(), q.coordinate_scale());
+    let mut targets = [[0.0f64; D]; CAP];
+    let mut target_errors = [0.0f64; CAP];
+    {
+        let (p_rows, q_rows) = targets[..count].split_at_mut(kp + 1);
+        let (p_errors, q_errors) = target_errors[..count].split_at_mut(kp + 1);
+        p.jet_screen_into(
+            u0,
+            kp,
+            KnotSide::Left,
+            p_scale,
+            p_rows.as_flattened_mut(),
+            p_errors,
+        );
+        q.jet_screen_into(
+            v0,
+            kq,
+            KnotSide::Right,
+            q_scale,
+            q_rows.as_flattened_mut(),
+            q_errors,
+        );
+    }
+    // The largest absolute coordinates of the targets in place of their
+    // norms (at most the norms: the denominators' lower bounds).
+    let mut target_norms = [0.0f64; CAP];
+    let mut data_scale = p_scale.max(q_scale);
+    for (first, rows, scale) in [(0, kp + 1, alpha), (kp + 1, kq + 1, beta)] {
+        let range = first..first + rows;
+        scale_targets::<D, true>(
+            n,
+            scale,
+            &mut targets[range.clone()],
+            &mut target_errors[range.clone()],
+            &mut target_norms[range],
+            &mut data_scale,
+        );
+    }
+    let mut points = [[0.0f64; D]; CAP];
+    let end = |first: usize, rows: usize| EndRows {
+        n,
+        targets: &targets[first..first + rows],
+        target_norms: &target_norms[first..first + rows],
+        target_errors: &target_errors[first..first + rows],
+        data_scale,
+        gamma: row_rounding(n),
+    };
+    let (p_points, q_points) = points[..count].split_at_mut(kp + 1);
+    let (p_screen, _) = solve_end_by_rows::<D, false, true>(&end(0, kp + 1), p_points);
+    let (q_screen, _) = solve_end_by_rows::<D, true, true>(&end(kp + 1, kq + 1), q_points);
+    let flat = points[..count].as_flattened();
+    if p_screen != 0.0 || q_screen != 0.0 || flat.iter().any(|v| !v.is_finite()) {
+        return None;
+    }
+    Some(BezierCurve::from_parts(D, n, flat.to_vec()))
+}
+
+/// The rounding factor of a row product `D_k R` in the residual check,
+/// `2 (2 n + 4) u`.
+fn row_rounding(n: usize) -> f64 {
+    2.0 * (2 * n + 4) as f64 * unit_roundoff()
 }
 
 /// [`connect_fixed`] in the dimension of `p` when it is 1 to 4 and the
@@ -225,7 +363,7 @@ fn connect_fixed<const D: usize, const CAP: usize, P: CurveJet + ?Sized, Q: Curv
     let mut data_scale = p.coordinate_scale().max(q.coordinate_scale());
     for (first, rows, scale) in [(0, kp + 1, alpha), (kp + 1, kq + 1, beta)] {
         let range = first..first + rows;
-        scale_targets(
+        scale_targets::<D, false>(
             n,
             scale,
             &mut targets[range.clone()],
@@ -234,7 +372,7 @@ fn connect_fixed<const D: usize, const CAP: usize, P: CurveJet + ?Sized, Q: Curv
             &mut data_scale,
         );
     }
-    let gamma = 2.0 * (2 * n + 4) as f64 * unit_roundoff();
+    let gamma = row_rounding(n);
     let mut points = [[0.0f64; D]; CAP];
     // P end: row k of D(0) touches R_0..R_k only (lower triangular); Q end:
     // row k of D(1) touches R_(n-k)..R_n only (anti-triangular). The two
@@ -249,8 +387,8 @@ fn connect_fixed<const D: usize, const CAP: usize, P: CurveJet + ?Sized, Q: Curv
         gamma,
     };
     let (p_points, q_points) = points[..count].split_at_mut(kp + 1);
-    let (p_residual, p_bound) = solve_end_by_rows::<D, false>(&end(0, kp + 1), p_points);
-    let (q_residual, q_bound) = solve_end_by_rows::<D, true>(&end(kp + 1, kq + 1), q_points);
+    let (p_residual, p_bound) = solve_end_by_rows::<D, false, false>(&end(0, kp + 1), p_points);
+    let (q_residual, q_bound) = solve_end_by_rows::<D, true, false>(&end(kp + 1, kq + 1), q_points);
     // The maxima over all rows (f64::max of non-negative, non-NaN values:
     // the order of the rows does not matter).
     let max_residual = 0.0f64.max(p_residual).max(q_residual);
@@ -285,7 +423,14 @@ fn connect_fixed<const D: usize, const CAP: usize, P: CurveJet + ?Sized, Q: Curv
 /// With `s = 1` (the paper's scale) the products by `s^k` and by the
 /// factor are skipped: they are exact (`1 x = x` for every `x`, and
 /// `power(1, k) = 1`), so the values are the same bit for bit.
-fn scale_targets<const D: usize>(
+///
+/// With `SCREEN` ([`connect_ends_curve`]) the same targets, and without a
+/// square root or a division: `|T_k|` bounded above by the 1-norm in `e_k`
+/// and below by the largest absolute coordinate in `norms` and in the data
+/// scale (`|T_k|_inf / ||D_k||_1` by the table of reciprocals), so the
+/// bounds are never below the full check's and the denominators never above
+/// (to first order).
+fn scale_targets<const D: usize, const SCREEN: bool>(
     n: usize,
     scale: f64,
     rows: &mut [[f64; D]],
@@ -303,21 +448,32 @@ fn scale_targets<const D: usize>(
         .enumerate()
     {
         let mut square = 0.0;
+        let mut largest = 0.0f64;
         for v in row.iter_mut() {
             if !unit {
                 *v *= factor;
             }
-            square += *v * *v;
+            if SCREEN {
+                square += v.abs();
+                largest = largest.max(v.abs());
+            } else {
+                square += *v * *v;
+            }
         }
-        *norm = square.sqrt();
+        let size = if SCREEN { square } else { square.sqrt() };
         let scaled_error = if unit {
             *error
         } else {
             power(scale, k) * *error
         };
-        *error = scaled_error + (k + 1) as f64 * unit_roundoff() * *norm;
+        *error = scaled_error + (k + 1) as f64 * unit_roundoff() * size;
         factor *= scale;
-        let v = *norm / band_norms[k];
+        *norm = if SCREEN { largest } else { size };
+        let v = if SCREEN {
+            largest * END_BAND_NORM_RECIPROCALS[n][k]
+        } else {
+            size / band_norms[k]
+        };
         if v.is_finite() {
             *data_scale = data_scale.max(v);
         }
@@ -342,20 +498,20 @@ struct EndRows<'a, const D: usize> {
 /// [`solve_end`] with the number of rows a constant for orders up to 7
 /// (`rows` 1 to 8: every loop of the substitution with constant bounds,
 /// unrolled), the same code with a run-time count above.
-fn solve_end_by_rows<const D: usize, const AT_ONE: bool>(
+fn solve_end_by_rows<const D: usize, const AT_ONE: bool, const SCREEN: bool>(
     end: &EndRows<'_, D>,
     points: &mut [[f64; D]],
 ) -> (f64, f64) {
     match end.targets.len() {
-        1 => solve_end::<D, AT_ONE, 1>(1, end, points),
-        2 => solve_end::<D, AT_ONE, 2>(2, end, points),
-        3 => solve_end::<D, AT_ONE, 3>(3, end, points),
-        4 => solve_end::<D, AT_ONE, 4>(4, end, points),
-        5 => solve_end::<D, AT_ONE, 5>(5, end, points),
-        6 => solve_end::<D, AT_ONE, 6>(6, end, points),
-        7 => solve_end::<D, AT_ONE, 7>(7, end, points),
-        8 => solve_end::<D, AT_ONE, 8>(8, end, points),
-        rows => solve_end::<D, AT_ONE, MAX_POINTS>(rows, end, points),
+        1 => solve_end::<D, AT_ONE, 1, SCREEN>(1, end, points),
+        2 => solve_end::<D, AT_ONE, 2, SCREEN>(2, end, points),
+        3 => solve_end::<D, AT_ONE, 3, SCREEN>(3, end, points),
+        4 => solve_end::<D, AT_ONE, 4, SCREEN>(4, end, points),
+        5 => solve_end::<D, AT_ONE, 5, SCREEN>(5, end, points),
+        6 => solve_end::<D, AT_ONE, 6, SCREEN>(6, end, points),
+        7 => solve_end::<D, AT_ONE, 7, SCREEN>(7, end, points),
+        8 => solve_end::<D, AT_ONE, 8, SCREEN>(8, end, points),
+        rows => solve_end::<D, AT_ONE, MAX_POINTS, SCREEN>(rows, end, points),
     }
 }
 
@@ -378,8 +534,19 @@ fn solve_end_by_rows<const D: usize, const AT_ONE: bool>(
 /// `s <= k` (Q) instead of bounds that depend on `k`: with `rows` a
 /// constant every loop has constant bounds and unrolls; the operations on
 /// the slots that pass the test are those of the triangular loops.
+///
+/// With `SCREEN` ([`connect_ends_curve`]) the same substitution, so the
+/// same points bit for bit, and instead of the residuals and bounds a
+/// screen without square roots or divisions: every row passes when
+/// `|D_k R - T_k|_1 + gamma ||D_k| |R||_1 + e_k <= (1 - SCREEN_SLACK)
+/// CONNECT_RESIDUAL_LIMIT den_k`, with the targets' screen bounds `e_k` and
+/// the lower bounds `den_k` of the denominators in `target_errors` and
+/// `target_norms` ([`scale_targets`]). The 1-norms are at least the
+/// Euclidean ones, so a row that passes has a bound below the limit in the
+/// full check. Returns `(0, 0)` when every row passes, `(inf, inf)`
+/// otherwise (also for a NaN or an infinity anywhere).
 #[inline(always)]
-fn solve_end<const D: usize, const AT_ONE: bool, const ROWS: usize>(
+fn solve_end<const D: usize, const AT_ONE: bool, const ROWS: usize, const SCREEN: bool>(
     rows: usize,
     end: &EndRows<'_, D>,
     points: &mut [[f64; D]],
@@ -417,7 +584,9 @@ fn solve_end<const D: usize, const AT_ONE: bool, const ROWS: usize>(
             for c in 0..D {
                 x[c] = sum[c] / new_band;
                 value[c] += new_band * x[c];
-                abs_value[c] += new_band.abs() * x[c].abs();
+                if !SCREEN {
+                    abs_value[c] += new_band.abs() * x[c].abs();
+                }
             }
             local[k] = x;
             for s in 1..rows {
@@ -426,7 +595,9 @@ fn solve_end<const D: usize, const AT_ONE: bool, const ROWS: usize>(
                     let point = local[k - s];
                     for c in 0..D {
                         value[c] += b * point[c];
-                        abs_value[c] += b.abs() * point[c].abs();
+                        if !SCREEN {
+                            abs_value[c] += b.abs() * point[c].abs();
+                        }
                     }
                 }
             }
@@ -438,7 +609,9 @@ fn solve_end<const D: usize, const AT_ONE: bool, const ROWS: usize>(
                     for c in 0..D {
                         sum[c] -= b * point[c];
                         value[c] += b * point[c];
-                        abs_value[c] += b.abs() * point[c].abs();
+                        if !SCREEN {
+                            abs_value[c] += b.abs() * point[c].abs();
+                        }
                     }
                 }
             }
@@ -447,7 +620,9 @@ fn solve_end<const D: usize, const AT_ONE: bool, const ROWS: usize>(
             for c in 0..D {
                 x[c] = sum[c] / new_band;
                 value[c] += new_band * x[c];
-                abs_value[c] += new_band.abs() * x[c].abs();
+                if !SCREEN {
+                    abs_value[c] += new_band.abs() * x[c].abs();
+                }
             }
             local[k] = x;
         }
@@ -455,15 +630,44 @@ fn solve_end<const D: usize, const AT_ONE: bool, const ROWS: usize>(
         let mut abs_square = 0.0;
         for c in 0..D {
             let difference = value[c] - target[c];
-            difference_square += difference * difference;
-            abs_square += abs_value[c] * abs_value[c];
+            if SCREEN {
+                difference_square += difference.abs();
+                // The largest `|R_s|_1` of the row's points so far: every
+                // row's points are the ones solved up to it.
+                abs_square = local[k].iter().map(|v| v.abs()).sum::<f64>();
+            } else {
+                difference_square += difference * difference;
+                abs_square += abs_value[c] * abs_value[c];
+            }
         }
         difference_squares[k] = difference_square;
-        abs_squares[k] = abs_square;
+        abs_squares[k] = if SCREEN && k > 0 {
+            abs_square.max(abs_squares[k - 1])
+        } else {
+            abs_square
+        };
     }
     for (k, x) in local[..rows].iter().enumerate() {
         // `points` holds `R_0..R_(rows-1)` (P) or `R_(n+1-rows)..R_n` (Q).
         points[if AT_ONE { rows - 1 - k } else { k }] = *x;
+    }
+    if SCREEN {
+        // `sum_s |b_s| |R_s|_1 <= ||D_k||_1 max_s |R_s|_1`, the maximum
+        // over the row's points (`abs_squares[k]`).
+        let limit = (1.0 - SCREEN_SLACK) * CONNECT_RESIDUAL_LIMIT;
+        let mut pass = true;
+        for k in 0..rows {
+            let numerator = difference_squares[k]
+                + end.gamma * norms[k] * abs_squares[k]
+                + end.target_errors[k];
+            let denominator = end.target_norms[k].max(end.data_scale * norms[k]);
+            pass &= numerator <= limit * denominator;
+        }
+        return if pass {
+            (0.0, 0.0)
+        } else {
+            (f64::INFINITY, f64::INFINITY)
+        };
     }
     // The residuals and their bounds in a pass of their own: the square
     // roots and divisions of different rows are independent there (the

@@ -502,6 +502,23 @@ pub(crate) static END_BAND_NORMS: [[f64; END_TABLE_SIZE]; END_TABLE_SIZE] = {
     table
 };
 
+/// `END_BAND_NORM_RECIPROCALS[n][k] = 1 / END_BAND_NORMS[n][k]` (rounded):
+/// the data scale of the connect's screen without a division
+/// (`ends::scale_targets`; the screen's slack covers the rounding).
+pub(crate) static END_BAND_NORM_RECIPROCALS: [[f64; END_TABLE_SIZE]; END_TABLE_SIZE] = {
+    let mut table = [[0.0f64; END_TABLE_SIZE]; END_TABLE_SIZE];
+    let mut n = 0;
+    while n < END_TABLE_SIZE {
+        let mut k = 0;
+        while k <= n {
+            table[n][k] = 1.0 / END_BAND_NORMS[n][k];
+            k += 1;
+        }
+        n += 1;
+    }
+    table
+};
+
 /// Degrees below which [`end_band`] reads its factors from tables.
 pub(crate) const END_TABLE_SIZE: usize = MAX_CONNECT_DEGREE + 1;
 
@@ -652,6 +669,53 @@ pub(crate) fn derivatives_with_error_into(
     end_jet_slices(points, dim, n, t == 1.0, order, values, errors);
 }
 
+/// [`derivatives_with_error_into`]'s values, bit for bit, with bounds that
+/// are never below its bounds and cost no square root: the screen of
+/// [`ends::connect_ends_curve`]. Where the jet comes from the de Casteljau
+/// triangle in the plane or in space (`0 < t < 1`, degree below
+/// [`SMALL_JET_POINTS`]) the sizes' triangle is skipped and row `k <=
+/// min(order, n)` gets `2 u (3 n + k + 2) n!/(n-k)! 2^k sqrt(dim) scale`,
+/// `scale >=` the largest absolute coordinate of a control point (its
+/// [`BezierCurve::coordinate_scale`]): the sizes `a_i <= sqrt(dim) scale`,
+/// the triangle's weights `|1 - t| + |t| = 1`, so `S_k = sum_j C(k, j)
+/// a^(n-k)_j <= 2^k sqrt(dim) scale`, and `3 n + k + 2` is at least the
+/// triangle's `3 (n - k) + k + 1` and the end bands' `n + k + 2`. Both
+/// hold to first order; the screen's slack covers the rest. Elsewhere the
+/// bounds of [`derivatives_with_error_into`] themselves.
+pub(crate) fn derivatives_with_screen_into(
+    curve: &BezierCurve,
+    t: f64,
+    order: usize,
+    scale: f64,
+    values: &mut [f64],
+    errors: &mut [f64],
+) {
+    let n = curve.degree();
+    let dim = curve.dim();
+    if !(n > 0 && t > 0.0 && t < 1.0 && n < SMALL_JET_POINTS && (dim == 2 || dim == 3)) {
+        derivatives_with_error_into(curve, t, order, values, errors);
+        return;
+    }
+    assert_eq!(values.len(), (order + 1) * dim);
+    assert_eq!(errors.len(), order + 1);
+    let points = curve.points();
+    let m = order.min(n);
+    values[(m + 1) * dim..].fill(0.0);
+    errors[m + 1..].fill(0.0);
+    if dim == 2 {
+        de_casteljau_jet_by_degree::<2, false>(points, n, t, m, values, errors);
+    } else {
+        de_casteljau_jet_by_degree::<3, false>(points, n, t, m, values, errors);
+    }
+    let size = (dim as f64).sqrt() * scale;
+    let falling_row = &FALLING_FACTORIALS[n];
+    let mut spread = 1.0f64;
+    for (k, error) in errors[..=m].iter_mut().enumerate() {
+        *error = 2.0 * unit_roundoff() * (3 * n + k + 2) as f64 * falling_row[k] * spread * size;
+        spread *= 2.0;
+    }
+}
+
 /// The end branch of [`derivatives_with_error_into`] (`n > 0`, `t = 0` or,
 /// with `at_one`, `t = 1`) in dimension `D <= 4` and degree
 /// `n <` [`END_TABLE_SIZE`]: row `k` is `sum_s b_s P_(first + s)` with the
@@ -769,10 +833,14 @@ pub(crate) fn de_casteljau_jet_into(
     values[(m + 1) * dim..].fill(0.0);
     errors[m + 1..].fill(0.0);
     match dim {
-        1 => de_casteljau_jet_small::<1, SMALL_JET_POINTS, false>(points, n, t, m, values, errors),
-        2 => de_casteljau_jet_by_degree::<2>(points, n, t, m, values, errors),
-        3 => de_casteljau_jet_by_degree::<3>(points, n, t, m, values, errors),
-        _ => de_casteljau_jet_small::<4, SMALL_JET_POINTS, false>(points, n, t, m, values, errors),
+        1 => de_casteljau_jet_small::<1, SMALL_JET_POINTS, false, true>(
+            points, n, t, m, values, errors,
+        ),
+        2 => de_casteljau_jet_by_degree::<2, true>(points, n, t, m, values, errors),
+        3 => de_casteljau_jet_by_degree::<3, true>(points, n, t, m, values, errors),
+        _ => de_casteljau_jet_small::<4, SMALL_JET_POINTS, false, true>(
+            points, n, t, m, values, errors,
+        ),
     }
 }
 
@@ -782,7 +850,7 @@ pub(crate) fn de_casteljau_jet_into(
 /// full jet (`m = n`, every order up to the degree: the connect's usual
 /// case `kp >= deg P`) has the order a constant too, so that every loop of
 /// the triangle and of the differences has constant bounds.
-fn de_casteljau_jet_by_degree<const D: usize>(
+fn de_casteljau_jet_by_degree<const D: usize, const SIZES: bool>(
     points: &[f64],
     n: usize,
     t: f64,
@@ -793,9 +861,13 @@ fn de_casteljau_jet_by_degree<const D: usize>(
     macro_rules! by_order {
         ($n:literal) => {
             if m == $n {
-                de_casteljau_jet_small::<D, { $n + 1 }, true>(points, $n, t, $n, values, errors)
+                de_casteljau_jet_small::<D, { $n + 1 }, true, SIZES>(
+                    points, $n, t, $n, values, errors,
+                )
             } else {
-                de_casteljau_jet_small::<D, { $n + 1 }, true>(points, $n, t, m, values, errors)
+                de_casteljau_jet_small::<D, { $n + 1 }, true, SIZES>(
+                    points, $n, t, m, values, errors,
+                )
             }
         };
     }
@@ -807,7 +879,9 @@ fn de_casteljau_jet_by_degree<const D: usize>(
         5 => by_order!(5),
         6 => by_order!(6),
         7 => by_order!(7),
-        _ => de_casteljau_jet_small::<D, SMALL_JET_POINTS, false>(points, n, t, m, values, errors),
+        _ => de_casteljau_jet_small::<D, SMALL_JET_POINTS, false, SIZES>(
+            points, n, t, m, values, errors,
+        ),
     }
 }
 
@@ -820,9 +894,16 @@ const SMALL_JET_POINTS: usize = 16;
 /// same operations on every coordinate and size as
 /// [`de_casteljau_jet_slices`] (the factor `n!/(n-k)!` from the table of
 /// the same products), so the same values and bounds bit for bit (unit
-/// test `small_jets_equal_the_slice_jets`).
+/// test `small_jets_equal_the_slice_jets`). Without `SIZES` the values
+/// alone (the same operations on the coordinates) and `errors` untouched:
+/// [`derivatives_with_screen_into`] bounds them a priori.
 #[inline(always)]
-fn de_casteljau_jet_small<const D: usize, const CAP: usize, const UNROLL: bool>(
+fn de_casteljau_jet_small<
+    const D: usize,
+    const CAP: usize,
+    const UNROLL: bool,
+    const SIZES: bool,
+>(
     points: &[f64],
     n: usize,
     t: f64,
@@ -847,7 +928,9 @@ fn de_casteljau_jet_small<const D: usize, const CAP: usize, const UNROLL: bool>(
         .take(n + 1)
     {
         slot.copy_from_slice(point);
-        *a = point.iter().map(|v| v * v).sum::<f64>().sqrt();
+        if SIZES {
+            *a = point.iter().map(|v| v * v).sum::<f64>().sqrt();
+        }
     }
     let s = 1.0 - t;
     let (s_abs, t_abs) = (s.abs(), t.abs());
@@ -867,7 +950,9 @@ fn de_casteljau_jet_small<const D: usize, const CAP: usize, const UNROLL: bool>(
                     for c in 0..D {
                         here[c] = s * here[c] + t * next[c];
                     }
-                    size[i] = s_abs * size[i] + t_abs * size[i + 1];
+                    if SIZES {
+                        size[i] = s_abs * size[i] + t_abs * size[i + 1];
+                    }
                 }
             }
         }
@@ -884,7 +969,9 @@ fn de_casteljau_jet_small<const D: usize, const CAP: usize, const UNROLL: bool>(
                     for c in 0..D {
                         work[i][c] = next[c] - here[c];
                     }
-                    work_size[i] = size[i] + size[i + 1];
+                    if SIZES {
+                        work_size[i] = size[i] + size[i + 1];
+                    }
                 }
             }
             for pass in 1..upto(k) {
@@ -896,7 +983,9 @@ fn de_casteljau_jet_small<const D: usize, const CAP: usize, const UNROLL: bool>(
                             for c in 0..D {
                                 here[c] = next[c] - here[c];
                             }
-                            work_size[i] += work_size[i + 1];
+                            if SIZES {
+                                work_size[i] += work_size[i + 1];
+                            }
                         }
                     }
                 }
@@ -907,7 +996,9 @@ fn de_casteljau_jet_small<const D: usize, const CAP: usize, const UNROLL: bool>(
         for (v, w) in values[k * D..(k + 1) * D].iter_mut().zip(difference) {
             *v = falling * w;
         }
-        errors[k] = gamma_unit * (3 * (n - k) + k + 1) as f64 * falling * difference_size;
+        if SIZES {
+            errors[k] = gamma_unit * (3 * (n - k) + k + 1) as f64 * falling * difference_size;
+        }
     }
 }
 
@@ -1405,6 +1496,34 @@ pub fn connect<P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
         None if options.scale == ShapeScale::Balanced => energy::balanced_scale(&problem),
         None => energy::auto_scale(&problem),
     }
+}
+
+/// [`connect`]'s curve alone: the same control points bit for bit, the same
+/// errors in the same order, the same guarantee (every condition to a
+/// relative residual of [`CONNECT_RESIDUAL_LIMIT`] in exact arithmetic on
+/// the returned points, or [`BezjoinError::IllConditioned`] with the full
+/// check's estimate). For given scales and no interior constraints it
+/// screens the answer with bounds that are never below the full check's
+/// (norms by 1-norms, the data scale by the curves' coordinate scale, the
+/// jets' rounding a priori: no square root, no division) and runs the full
+/// check only when the screen does not pass; everything else is
+/// `connect(...)?.curve`. `bzj_connect`'s path: it returns no estimate.
+pub fn connect_curve<P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
+    p: &P,
+    u0: f64,
+    q: &Q,
+    v0: f64,
+    options: &ConnectOptions,
+) -> Result<BezierCurve> {
+    if options.constraints.is_empty() {
+        check_pair(p, u0, q, v0)?;
+        check_connect_degree(options.p_order, options.q_order, [])?;
+        if let Some((alpha, beta)) = options.scale.checked()? {
+            let (kp, kq) = (options.p_order, options.q_order);
+            return ends::connect_ends_curve(p, u0, q, v0, kp, kq, alpha, beta);
+        }
+    }
+    connect(p, u0, q, v0, options).map(|connection| connection.curve)
 }
 
 /// [`connect`] without the accuracy refusal: the answer is returned even when
@@ -1987,5 +2106,193 @@ mod tests {
         for (a, b) in s.curve.points().iter().zip(d.curve.points()) {
             assert!((a - b).abs() <= 1e-12 * scale);
         }
+    }
+
+    /// A random problem of [`the_curve_path_answers_as_the_full_check`]:
+    /// curves, parameters, orders and scales from `values`.
+    fn random_problem(
+        values: &mut crate::test_values::Values,
+        case: usize,
+    ) -> (BezierCurve, f64, BezierCurve, f64, ConnectOptions) {
+        let mut pick = |below: usize| ((values.unit() * below as f64) as usize).min(below - 1);
+        let dim = [1, 2, 2, 3, 3, 4][pick(6)];
+        let (np, nq) = (pick(16), pick(16));
+        let kp = pick(np + 3).min(15);
+        let kq = pick((nq + 3).min(MAX_CONNECT_DEGREE - kp));
+        // Near the origin, or far from it (the ends' rounding then counts).
+        let offset = [0.0, 0.0, 1e4, 1e9][pick(4)];
+        let mut coordinates = crate::test_values::Values(45 + case as u64);
+        let mut curve = |degree: usize, shift: f64| {
+            let points: Vec<f64> = (0..(degree + 1) * dim)
+                .map(|_| offset + shift + 4.0 * coordinates.signed())
+                .collect();
+            BezierCurve::new(dim, degree, points).unwrap()
+        };
+        let (p, q) = (curve(np, 0.0), curve(nq, 3.0));
+        let parameter = |choice: usize, value: f64| match choice {
+            0 => 0.0,
+            1 => 1.0,
+            _ => value,
+        };
+        let u0 = parameter(pick(4), values_unit(case, 11));
+        let v0 = parameter(pick(4), values_unit(case, 12));
+        // 0.1 to 1e3: large scales of high orders are refused.
+        let alpha = 10f64.powf(4.0 * values.unit() - 1.0);
+        let beta = 10f64.powf(4.0 * values.unit() - 1.0);
+        (
+            p,
+            u0,
+            q,
+            v0,
+            ConnectOptions::new(kp, kq).with_scales(alpha, beta),
+        )
+    }
+
+    /// `connect_curve` is `connect(...).curve`: the same points bit for bit
+    /// or the same error, on problems answered and refused, near the origin
+    /// and far from it. Where its screen passes, the full check accepts the
+    /// same points (the screen's bounds are never below the check's); where
+    /// the full check accepts with room to spare the screen passes too (it
+    /// is not a path that always falls back).
+    #[test]
+    fn the_curve_path_answers_as_the_full_check() {
+        let mut values = crate::test_values::Values(4545);
+        let (mut screened, mut refused, mut fell_back) = (0, 0, 0);
+        for case in 0..800 {
+            let (p, u0, q, v0, options) = random_problem(&mut values, case);
+            let label = format!(
+                "case {case}: dim {} {}/{} {}/{} {u0}/{v0} {:?}",
+                p.dim(),
+                p.degree(),
+                q.degree(),
+                options.p_order,
+                options.q_order,
+                options.scale
+            );
+            let full = connect(&p, u0, &q, v0, &options);
+            let curve = connect_curve(&p, u0, &q, v0, &options);
+            // P as a NURBS curve: its own jets and bounds in the screen.
+            let nurbs = crate::NurbsCurve::from_bezier(&p);
+            let full_nurbs = connect(&nurbs, u0, &q, v0, &options);
+            let curve_nurbs = connect_curve(&nurbs, u0, &q, v0, &options);
+            for (full, curve) in [(&full, &curve), (&full_nurbs, &curve_nurbs)] {
+                match (full, curve) {
+                    (Ok(c), Ok(r)) => assert_eq!(c.curve.points(), r.points(), "{label}"),
+                    (Err(a), Err(b)) => assert_eq!(a.to_string(), b.to_string(), "{label}"),
+                    _ => panic!("{label}: {full:?} against {curve:?}"),
+                }
+            }
+            refused += usize::from(full.is_err());
+            let Some((alpha, beta)) = options.scale.checked().unwrap() else {
+                unreachable!()
+            };
+            let args = (u0, v0, options.p_order, options.q_order, alpha, beta);
+            match ends::connect_ends_screened(&p, &q, args) {
+                Some(r) => {
+                    screened += 1;
+                    let c = full
+                        .as_ref()
+                        .unwrap_or_else(|e| panic!("{label}: screen passed, check refused: {e}"));
+                    assert_eq!(c.curve.points(), r.points(), "{label}");
+                    assert!(c.error_estimate <= CONNECT_RESIDUAL_LIMIT, "{label}");
+                }
+                None => {
+                    if let (Ok(c), 2..=3) = (&full, p.dim()) {
+                        // Looser than the check by at most about `2^k sqrt(dim)`.
+                        fell_back += 1;
+                        assert!(
+                            c.error_estimate > 1e-14,
+                            "{label}: fell back at {:e}",
+                            c.error_estimate
+                        );
+                    }
+                }
+            }
+        }
+        assert!(
+            screened > 300 && refused > 20 && fell_back < screened / 10,
+            "screened {screened}, refused {refused}, fell back {fell_back}"
+        );
+    }
+
+    /// Across the scale at which the full check starts refusing (curves
+    /// 1e9 from the origin: the jets' rounding grows with `s^k`), the
+    /// curve-only path answers as `connect` at every step, and its screen
+    /// never passes a problem the check refuses.
+    #[test]
+    fn the_curve_path_refuses_where_the_full_check_refuses() {
+        let mut coordinates = crate::test_values::Values(4546);
+        let mut curve = |degree: usize, shift: f64| {
+            let points: Vec<f64> = (0..(degree + 1) * 3)
+                .map(|_| shift + 4.0 * coordinates.signed())
+                .collect();
+            BezierCurve::new(3, degree, points).unwrap()
+        };
+        let (p, q) = (curve(7, 1e9), curve(4, 1e9 + 3.0));
+        let (mut answered, mut refused, mut screened) = (0, 0, 0);
+        for step in 0..=300 {
+            let scale = 10f64.powf(step as f64 / 100.0);
+            let options = ConnectOptions::new(7, 2).with_scales(scale, scale);
+            let full = connect(&p, 0.35, &q, 0.8, &options);
+            let curve = connect_curve(&p, 0.35, &q, 0.8, &options);
+            match (&full, &curve) {
+                (Ok(c), Ok(r)) => assert_eq!(c.curve.points(), r.points(), "scale {scale}"),
+                (Err(a), Err(b)) => assert_eq!(a.to_string(), b.to_string(), "scale {scale}"),
+                _ => panic!("scale {scale}: {full:?} against {curve:?}"),
+            }
+            answered += usize::from(full.is_ok());
+            refused += usize::from(full.is_err());
+            if ends::connect_ends_screened(&p, &q, (0.35, 0.8, 7, 2, scale, scale)).is_some() {
+                screened += 1;
+                assert!(full.is_ok(), "scale {scale}: screen passed, check refused");
+            }
+        }
+        assert!(
+            answered > 20 && refused > 20 && screened > 10,
+            "answered {answered}, refused {refused}, screened {screened}"
+        );
+    }
+
+    /// The screen's jets: the values of [`derivatives_with_error_into`] bit
+    /// for bit, bounds never below its bounds, for every dimension, degree,
+    /// order and parameter (the ends and outside the plane and space take
+    /// the full bounds themselves).
+    #[test]
+    fn screen_jets_are_the_jets_with_larger_bounds() {
+        let mut values = crate::test_values::Values(4547);
+        let mut larger = 0;
+        for n in 0..SMALL_JET_POINTS + 2 {
+            for dim in 1..=4 {
+                let offset = [0.0, 1e5][n % 2];
+                let points: Vec<f64> = (0..(n + 1) * dim)
+                    .map(|_| offset + 10.0 * values.signed())
+                    .collect();
+                let curve = BezierCurve::new(dim, n, points).unwrap();
+                for t in [0.0, 1.0, 0.3, 0.5, 0.77, 1e-9, 1.0 - 1e-12, values.unit()] {
+                    for order in [0, 1, n / 2, n, n + 2] {
+                        let mut full = (vec![7.0; (order + 1) * dim], vec![7.0; order + 1]);
+                        let mut screen = full.clone();
+                        derivatives_with_error_into(&curve, t, order, &mut full.0, &mut full.1);
+                        let scale = curve.coordinate_scale();
+                        derivatives_with_screen_into(
+                            &curve,
+                            t,
+                            order,
+                            scale,
+                            &mut screen.0,
+                            &mut screen.1,
+                        );
+                        let label = format!("n {n} dim {dim} t {t} order {order}");
+                        assert_eq!(full.0, screen.0, "{label}");
+                        for (k, (a, b)) in full.1.iter().zip(&screen.1).enumerate() {
+                            assert!(*b >= *a * (1.0 - 1e-12), "{label} row {k}: {b:e} < {a:e}");
+                            larger += usize::from(b > a);
+                        }
+                    }
+                }
+            }
+        }
+        // The a-priori bounds are used (not the full ones everywhere).
+        assert!(larger > 1000, "{larger}");
     }
 }
