@@ -14,7 +14,9 @@
 use std::hint::black_box;
 
 use bezjoin_core::BezierCurve;
-use bezjoin_core::{ConnectOptions, PointConstraint, connect, connect_curve, connect_dense_reference};
+use bezjoin_core::{
+    ConnectOptions, PointConstraint, connect, connect_curve, connect_dense_reference,
+};
 use criterion::{Criterion, criterion_group, criterion_main};
 
 fn cubic(dim: usize, offset: f64) -> BezierCurve {
@@ -103,18 +105,21 @@ fn bench_connect_vs_jets(c: &mut Criterion) {
                     .unwrap()
                 })
             });
-            c.bench_function(&format!("connect_vs_jets/{label}{suffix}/connect_curve"), |b| {
-                b.iter(|| {
-                    connect_curve(
-                        black_box(&p),
-                        black_box(u0),
-                        black_box(&q),
-                        black_box(v0),
-                        options,
-                    )
-                    .unwrap()
-                })
-            });
+            c.bench_function(
+                &format!("connect_vs_jets/{label}{suffix}/connect_curve"),
+                |b| {
+                    b.iter(|| {
+                        connect_curve(
+                            black_box(&p),
+                            black_box(u0),
+                            black_box(&q),
+                            black_box(v0),
+                            options,
+                        )
+                        .unwrap()
+                    })
+                },
+            );
             c.bench_function(&format!("connect_vs_jets/{label}{suffix}/jets"), |b| {
                 let mut pj = [0.0f64; 16];
                 let mut qj = [0.0f64; 16];
