@@ -676,6 +676,69 @@ fn a_line_crosses_a_full_circle_twice_where_the_algebra_says() {
     }
 }
 
+/// A full circle's seam (`v = 0` and `v = 2 pi`, one point) is one hit:
+/// lines through it, the circle as either curve, the seam turned to every
+/// quarter, and two full circles meeting at both seams.
+#[test]
+fn a_full_circle_meets_a_line_through_its_seam_once() {
+    use std::f64::consts::PI;
+    for turn in [0.0, 0.5 * PI, PI, 1.5 * PI] {
+        let c = circle(1.0, 2.0, 3.0, turn, turn + 2.0 * PI);
+        let seam = c.eval(turn);
+        let opposite = c.eval(turn + PI);
+        // Through the centre: the seam and the opposite point.
+        let (dx, dy) = (opposite[0] - seam[0], opposite[1] - seam[1]);
+        let through = BezierCurve::new(
+            2,
+            1,
+            vec![
+                seam[0] - 0.5 * dx,
+                seam[1] - 0.5 * dy,
+                opposite[0] + 0.5 * dx,
+                opposite[1] + 0.5 * dy,
+            ],
+        )
+        .unwrap();
+        // A chord from the seam at 60 degrees to the radius.
+        let other = c.eval(turn + 2.0 * PI / 3.0);
+        let chord = BezierCurve::new(
+            2,
+            1,
+            vec![
+                2.0 * seam[0] - other[0],
+                2.0 * seam[1] - other[1],
+                2.0 * other[0] - seam[0],
+                2.0 * other[1] - seam[1],
+            ],
+        )
+        .unwrap();
+        for (line, far) in [(&through, &opposite), (&chord, &other)] {
+            let label = format!("turn {turn}");
+            let hits = intersect(line, &c, &IntersectOptions::default()).unwrap();
+            assert_eq!(hits.len(), 2, "{label}: {hits:?}");
+            let reversed = intersect(&c, line, &IntersectOptions::default()).unwrap();
+            assert_eq!(reversed.len(), 2, "{label}: {reversed:?}");
+            for found in [
+                hits.iter().map(|h| &h.point).collect::<Vec<_>>(),
+                reversed.iter().map(|h| &h.point).collect(),
+            ] {
+                let at = |x: &[f64]| found.iter().filter(|p| close(p, x, 1e-9)).count();
+                assert_eq!((at(&seam), at(far)), (1, 1), "{label}: {found:?}");
+            }
+            for h in &hits {
+                assert_eq!(h.kind, IntersectionKind::Crossing, "{label}: {h:?}");
+            }
+        }
+    }
+    // Two unit circles, centres 2 apart on the x axis, the first's seam at
+    // angle 0 and the second's at pi: they touch at (1, 0), both seams.
+    let a = circle(0.0, 0.0, 1.0, 0.0, 2.0 * PI);
+    let b = circle(2.0, 0.0, 1.0, PI, 3.0 * PI);
+    let hits = intersect(&a, &b, &IntersectOptions::default()).unwrap();
+    assert_eq!(hits.len(), 1, "{hits:?}");
+    assert!(close(&hits[0].point, &[1.0, 0.0], 1e-6), "{hits:?}");
+}
+
 #[test]
 fn two_circles_and_a_tangent_line() {
     let a = circle(0.0, 0.0, 1.0, 0.0, 2.0 * std::f64::consts::PI);

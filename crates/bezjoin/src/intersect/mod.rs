@@ -1088,7 +1088,55 @@ impl<'a> Search<'a> {
             }
         }
         merged.sort_by(|a, b| a.u.total_cmp(&b.u).then(a.v.total_cmp(&b.v)));
-        self.candidates = merged;
+        self.candidates = self.without_seam_repeats(merged);
+    }
+
+    /// A closed curve's two ends are one point (a full circle at `0` and
+    /// `2 pi`): a hit found at its domain's end that is the same hit as one
+    /// at its start ([`Self::same_hit`] with the end's parameter moved to the
+    /// start) is dropped, the other hit kept (in the order of `hits`). A
+    /// curve is closed when its ends are within the distance tolerance of
+    /// each other.
+    fn without_seam_repeats(&self, hits: Vec<Candidate>) -> Vec<Candidate> {
+        if hits.len() < 2 {
+            return hits;
+        }
+        let closed = |track: &Track, unit: f64| {
+            let (first, last) = track.domain();
+            let ends = distance(&track.eval(first), &track.eval(last));
+            // Domains shorter than the merge distance hold one hit anyway.
+            (ends <= self.tolerance && last - first > 2.0 * MERGE_PARAMETER_DISTANCE * unit)
+                .then_some((first, last))
+        };
+        let p_seam = closed(&self.pair.p, self.units.0);
+        let q_seam = closed(&self.pair.q, self.units.1);
+        if p_seam.is_none() && q_seam.is_none() {
+            return hits;
+        }
+        let to_start = |x: f64, seam: Option<(f64, f64)>, unit: f64| match seam {
+            Some((first, last)) if (last - x).abs() <= MERGE_PARAMETER_DISTANCE * unit => first,
+            _ => x,
+        };
+        let mut dropped = vec![false; hits.len()];
+        for (i, c) in hits.iter().enumerate() {
+            let moved = Candidate {
+                u: to_start(c.u, p_seam, self.units.0),
+                v: to_start(c.v, q_seam, self.units.1),
+                distance: c.distance,
+                tangents: None,
+            };
+            if moved.u == c.u && moved.v == c.v {
+                continue;
+            }
+            dropped[i] = hits
+                .iter()
+                .enumerate()
+                .any(|(j, d)| j != i && !dropped[j] && self.same_hit(d, &moved));
+        }
+        hits.into_iter()
+            .zip(dropped)
+            .filter_map(|(c, dropped)| (!dropped).then_some(c))
+            .collect()
     }
 
     fn same_hit(&self, a: &Candidate, b: &Candidate) -> bool {
