@@ -82,20 +82,34 @@ pub(crate) fn connect_ends_shaped<P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
 }
 
 /// The part of [`CONNECT_RESIDUAL_LIMIT`] the screen of
-/// [`connect_ends_curve`] keeps in reserve: its bounds are the full
-/// check's to first order (within a few `n u` relatively, far below this),
-/// so a problem that passes the screen passes the full check.
+/// [`connect_ends_curve`] keeps in reserve: inside [`SCREEN_RANGE`] its
+/// bounds are at least the full check's to first order (within a few `n u`
+/// relatively, far below this), so a problem that passes the screen passes
+/// the full check.
 const SCREEN_SLACK: f64 = 1e-6;
+
+/// The magnitudes the screen of [`connect_ends_curve`] accepts: the data
+/// scale (at least the curves' coordinate scale) between the two, the
+/// targets' largest coordinates and `||D_k||_1 max_s |R_s|_1` at most the
+/// second. The full check squares
+/// coordinates before its square roots: above about `1e154` a square
+/// overflows (the check then refuses with an infinite estimate), and below
+/// about `1e-154` a square loses digits or vanishes (a Euclidean norm then
+/// comes out below the largest coordinate, so a denominator shrinks). Inside
+/// this range every square the check forms is a normal number; outside it
+/// the full check answers.
+const SCREEN_RANGE: (f64, f64) = (1e-140, 1e140);
 
 /// [`connect_ends`]'s curve alone, the same control points bit for bit and
 /// the same errors (the hot path of `bzj_connect`, which returns no
-/// estimate). In the plane and in space, for result degrees below
-/// `MAX_POINTS - 1`, a screen runs first ([`connect_fixed_screened`]): the
-/// same jets' values, targets and substitution, and instead of the
-/// residual check's Euclidean norms, square roots and divisions, bounds
-/// that are never below the check's: 1-norms for Euclidean norms, the
-/// curves' coordinate scale for the data scale, the jets' bounds a priori
-/// ([`CurveJet::jet_screen_into`]). When every condition row passes the
+/// estimate). In the plane and in space a screen runs first
+/// ([`connect_fixed_screened`]): the same jets' values, targets and
+/// substitution, and instead of the residual check's Euclidean norms,
+/// square roots and divisions, bounds that are never below the check's
+/// (inside [`SCREEN_RANGE`]): 1-norms for Euclidean norms in numerators,
+/// largest coordinates in denominators and the data scale, the jets'
+/// bounds a priori ([`CurveJet::jet_screen_into`]). When every condition
+/// row passes the
 /// screen, every row's bound in the full check is below
 /// [`CONNECT_RESIDUAL_LIMIT`], so the full check would accept the same
 /// points; when any row does not pass (or a value is not finite), the full
@@ -655,13 +669,15 @@ fn solve_end<const D: usize, const AT_ONE: bool, const ROWS: usize, const SCREEN
         // `sum_s |b_s| |R_s|_1 <= ||D_k||_1 max_s |R_s|_1`, the maximum
         // over the row's points (`abs_squares[k]`).
         let limit = (1.0 - SCREEN_SLACK) * CONNECT_RESIDUAL_LIMIT;
-        let mut pass = true;
+        let (low, high) = SCREEN_RANGE;
+        let mut pass = end.data_scale >= low && end.data_scale <= high;
         for k in 0..rows {
-            let numerator = difference_squares[k]
-                + end.gamma * norms[k] * abs_squares[k]
-                + end.target_errors[k];
+            let row_product = norms[k] * abs_squares[k];
+            let numerator = difference_squares[k] + end.gamma * row_product + end.target_errors[k];
             let denominator = end.target_norms[k].max(end.data_scale * norms[k]);
-            pass &= numerator <= limit * denominator;
+            pass &= numerator <= limit * denominator
+                && row_product <= high
+                && end.target_norms[k] <= high;
         }
         return if pass {
             (0.0, 0.0)
