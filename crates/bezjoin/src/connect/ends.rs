@@ -194,36 +194,73 @@ fn connect_fixed_screened<
     }
     // The largest absolute coordinates of the targets in place of their
     // norms (at most the norms: the denominators' lower bounds).
-    let mut target_norms = [0.0f64; CAP];
-    let mut data_scale = p_scale.max(q_scale);
-    for (first, rows, scale) in [(0, kp + 1, alpha), (kp + 1, kq + 1, beta)] {
-        let range = first..first + rows;
-        scale_targets::<D, true>(
-            n,
-            scale,
-            &mut targets[range.clone()],
-            &mut target_errors[range.clone()],
-            &mut target_norms[range],
-            &mut data_scale,
-        );
-    }
-    let mut points = [[0.0f64; D]; CAP];
-    let end = |first: usize, rows: usize| EndRows {
-        n,
-        targets: &targets[first..first + rows],
-        target_norms: &target_norms[first..first + rows],
-        target_errors: &target_errors[first..first + rows],
-        data_scale,
-        gamma: row_rounding(n),
+    let mut targets = ScaledTargets {
+        rows: targets,
+        errors: target_errors,
+        data_scale: p_scale.max(q_scale),
     };
-    let (p_points, q_points) = points[..count].split_at_mut(kp + 1);
-    let (p_screen, _) = solve_end_by_rows::<D, false, true>(&end(0, kp + 1), p_points);
-    let (q_screen, _) = solve_end_by_rows::<D, true, true>(&end(kp + 1, kq + 1), q_points);
+    let (points, [(p_screen, _), (q_screen, _)]) =
+        targets.solve::<true>(n, (kp, kq), (alpha, beta));
     let flat = points[..count].as_flattened();
     if p_screen != 0.0 || q_screen != 0.0 || flat.iter().any(|v| !v.is_finite()) {
         return None;
     }
     Some(BezierCurve::from_parts(D, n, flat.to_vec()))
+}
+
+/// The jets at both ends in condition rows (`kp + 1` of P, then `kq + 1`
+/// of Q), their rounding bounds, and the data scale's start (the curves'
+/// coordinate scale).
+struct ScaledTargets<const D: usize, const CAP: usize> {
+    rows: [[f64; D]; CAP],
+    errors: [f64; CAP],
+    data_scale: f64,
+}
+
+impl<const D: usize, const CAP: usize> ScaledTargets<D, CAP> {
+    /// The targets in place ([`scale_targets`]: `alpha^k`, `beta^k`, their
+    /// bounds and norms, the data scale raised), then the two ends'
+    /// substitutions and checks ([`solve_end_by_rows`]): `R` in the first
+    /// `n + 1` rows, and each end's worst residual and bound (with
+    /// `SCREEN`, `(0, 0)` or `(inf, inf)` per end).
+    ///
+    /// P end: row k of D(0) touches R_0..R_k only (lower triangular); Q
+    /// end: row k of D(1) touches R_(n-k)..R_n only (anti-triangular). The
+    /// two sets of unknowns are disjoint (n - kq = kp + 1), so each end is
+    /// solved and checked on its own.
+    #[inline(always)]
+    fn solve<const SCREEN: bool>(
+        &mut self,
+        n: usize,
+        (kp, kq): (usize, usize),
+        (alpha, beta): (f64, f64),
+    ) -> ([[f64; D]; CAP], [(f64, f64); 2]) {
+        let mut norms = [0.0f64; CAP];
+        for (first, rows, scale) in [(0, kp + 1, alpha), (kp + 1, kq + 1, beta)] {
+            let range = first..first + rows;
+            scale_targets::<D, SCREEN>(
+                n,
+                scale,
+                &mut self.rows[range.clone()],
+                &mut self.errors[range.clone()],
+                &mut norms[range],
+                &mut self.data_scale,
+            );
+        }
+        let end = |first: usize, rows: usize| EndRows {
+            n,
+            targets: &self.rows[first..first + rows],
+            target_norms: &norms[first..first + rows],
+            target_errors: &self.errors[first..first + rows],
+            data_scale: self.data_scale,
+            gamma: row_rounding(n),
+        };
+        let mut points = [[0.0f64; D]; CAP];
+        let (p_points, q_points) = points[..n + 1].split_at_mut(kp + 1);
+        let p_end = solve_end_by_rows::<D, false, SCREEN>(&end(0, kp + 1), p_points);
+        let q_end = solve_end_by_rows::<D, true, SCREEN>(&end(kp + 1, kq + 1), q_points);
+        (points, [p_end, q_end])
+    }
 }
 
 /// The rounding factor of a row product `D_k R` in the residual check,
@@ -372,37 +409,14 @@ fn connect_fixed<const D: usize, const CAP: usize, P: CurveJet + ?Sized, Q: Curv
         }
     }
     // Targets and their bounds in place, their norms, and the data scale
-    // of `check_residuals` ([`scale_targets`]).
-    let mut target_norms = [0.0f64; CAP];
-    let mut data_scale = p.coordinate_scale().max(q.coordinate_scale());
-    for (first, rows, scale) in [(0, kp + 1, alpha), (kp + 1, kq + 1, beta)] {
-        let range = first..first + rows;
-        scale_targets::<D, false>(
-            n,
-            scale,
-            &mut targets[range.clone()],
-            &mut target_errors[range.clone()],
-            &mut target_norms[range],
-            &mut data_scale,
-        );
-    }
-    let gamma = row_rounding(n);
-    let mut points = [[0.0f64; D]; CAP];
-    // P end: row k of D(0) touches R_0..R_k only (lower triangular); Q end:
-    // row k of D(1) touches R_(n-k)..R_n only (anti-triangular). The two
-    // sets of unknowns are disjoint (n - kq = kp + 1), so each end is
-    // solved and checked on its own ([`solve_end`]).
-    let end = |first: usize, rows: usize| EndRows {
-        n,
-        targets: &targets[first..first + rows],
-        target_norms: &target_norms[first..first + rows],
-        target_errors: &target_errors[first..first + rows],
-        data_scale,
-        gamma,
+    // of `check_residuals` ([`scale_targets`]), then both ends' solves.
+    let mut targets = ScaledTargets {
+        rows: targets,
+        errors: target_errors,
+        data_scale: p.coordinate_scale().max(q.coordinate_scale()),
     };
-    let (p_points, q_points) = points[..count].split_at_mut(kp + 1);
-    let (p_residual, p_bound) = solve_end_by_rows::<D, false, false>(&end(0, kp + 1), p_points);
-    let (q_residual, q_bound) = solve_end_by_rows::<D, true, false>(&end(kp + 1, kq + 1), q_points);
+    let (points, [(p_residual, p_bound), (q_residual, q_bound)]) =
+        targets.solve::<false>(n, (kp, kq), (alpha, beta));
     // The maxima over all rows (f64::max of non-negative, non-NaN values:
     // the order of the rows does not matter).
     let max_residual = 0.0f64.max(p_residual).max(q_residual);

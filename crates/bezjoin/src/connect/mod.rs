@@ -2260,48 +2260,19 @@ mod tests {
         let cubic = |points: [f64; 8]| BezierCurve::new(2, 3, points.to_vec()).unwrap();
         let p = cubic([0.0, 0.0, 1.0, 2.0, 3.0, 1.0, 4.0, 0.0]);
         let q = cubic([6.0, 0.0, 7.0, -1.0, 8.0, 1.0, 9.0, 0.0]);
-        let mut cases = vec![
-            (
-                line(0.0, 1e155),
-                0.5,
-                line(2e155, 3e155),
-                0.5,
-                1,
-                1,
-                1.0,
-                1.0,
-            ),
-            (
-                line(-1e155, 1e155),
-                0.5,
-                line(2e155, 3e155),
-                0.5,
-                1,
-                1,
-                1.0,
-                1.0,
-            ),
-            (
-                line(0.0, 1e-169),
-                1.0,
-                line(2e-169, 3e-169),
-                0.0,
-                0,
-                15,
-                1.0,
-                1e7,
-            ),
-            (
-                line(0.0, 1e-172),
-                1.0,
-                line(2e-172, 3e-172),
-                0.0,
-                0,
-                15,
-                1.0,
-                3e8,
-            ),
+        // Lines along x: P from a to b, Q from c to d; u0, v0; kp, kq; beta.
+        let lines = [
+            ([0.0, 1e155, 2e155, 3e155], (0.5, 0.5), (1, 1), 1.0),
+            ([-1e155, 1e155, 2e155, 3e155], (0.5, 0.5), (1, 1), 1.0),
+            ([0.0, 1e-169, 2e-169, 3e-169], (1.0, 0.0), (0, 15), 1e7),
+            ([0.0, 1e-172, 2e-172, 3e-172], (1.0, 0.0), (0, 15), 3e8),
         ];
+        let mut cases: Vec<_> = lines
+            .iter()
+            .map(|&([a, b, c, d], (u0, v0), (kp, kq), beta)| {
+                (line(a, b), u0, line(c, d), v0, kp, kq, 1.0, beta)
+            })
+            .collect();
         for scale in [1e50, 1e52, 1e53] {
             cases.push((p.clone(), 0.5, q.clone(), 0.5, 3, 3, scale, scale));
         }
