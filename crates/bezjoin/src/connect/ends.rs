@@ -91,8 +91,7 @@ const SCREEN_SLACK: f64 = 1e-6;
 /// The magnitudes the screen of [`connect_ends_curve`] accepts: the data
 /// scale (at least the curves' coordinate scale) between the two, the
 /// targets' largest coordinates and `||D_k||_1 max_s |R_s|_1` at most the
-/// second. The full check squares
-/// coordinates before its square roots: above about `1e154` a square
+/// second. The full check squares coordinates before its square roots: above about `1e154` a square
 /// overflows (the check then refuses with an infinite estimate), and below
 /// about `1e-154` a square loses digits or vanishes (a Euclidean norm then
 /// comes out below the largest coordinate, so a denominator shrinks). Inside
@@ -109,8 +108,7 @@ const SCREEN_RANGE: (f64, f64) = (1e-140, 1e140);
 /// (inside [`SCREEN_RANGE`]): 1-norms for Euclidean norms in numerators,
 /// largest coordinates in denominators and the data scale, the jets'
 /// bounds a priori ([`CurveJet::jet_screen_into`]). When every condition
-/// row passes the
-/// screen, every row's bound in the full check is below
+/// row passes the screen, every row's bound in the full check is below
 /// [`CONNECT_RESIDUAL_LIMIT`], so the full check would accept the same
 /// points; when any row does not pass (or a value is not finite), the full
 /// [`connect_ends`] runs and answers, estimate and refusal included.
@@ -564,15 +562,17 @@ fn solve_end_by_rows<const D: usize, const AT_ONE: bool, const SCREEN: bool>(
 /// the slots that pass the test are those of the triangular loops.
 ///
 /// With `SCREEN` ([`connect_ends_curve`]) the same substitution, so the
-/// same points bit for bit, and instead of the residuals and bounds a
-/// screen without square roots or divisions: every row passes when
-/// `|D_k R - T_k|_1 + gamma ||D_k| |R||_1 + e_k <= (1 - SCREEN_SLACK)
-/// CONNECT_RESIDUAL_LIMIT den_k`, with the targets' screen bounds `e_k` and
-/// the lower bounds `den_k` of the denominators in `target_errors` and
-/// `target_norms` ([`scale_targets`]). The 1-norms are at least the
-/// Euclidean ones, so a row that passes has a bound below the limit in the
-/// full check. Returns `(0, 0)` when every row passes, `(inf, inf)`
-/// otherwise (also for a NaN or an infinity anywhere).
+/// same points bit for bit, no `|b_s| |R_s|` sums, and instead of the
+/// residuals and bounds a screen without square roots or divisions: every
+/// row passes when `|D_k R - T_k|_1 + gamma ||D_k||_1 max_s |R_s|_1 + e_k
+/// <= (1 - SCREEN_SLACK) CONNECT_RESIDUAL_LIMIT max(|T_k|_inf, S ||D_k||_1)`
+/// (the maximum over the row's points, which are the ones solved up to
+/// it; `e_k`, `|T_k|_inf` and `S` from [`scale_targets`]) and the
+/// magnitudes are inside [`SCREEN_RANGE`]. Each term is at least its
+/// counterpart in the full check (`|x|_1 >= |x|`, `|x|_inf <= |x|`, `sum_s
+/// |b_s| |R_s| <= ||D_k||_1 max_s |R_s|`), so a row that passes has a bound
+/// below the limit there. Returns `(0, 0)` when every row passes,
+/// `(inf, inf)` otherwise (also for a NaN anywhere).
 #[inline(always)]
 fn solve_end<const D: usize, const AT_ONE: bool, const ROWS: usize, const SCREEN: bool>(
     rows: usize,

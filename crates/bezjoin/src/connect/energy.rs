@@ -103,7 +103,9 @@ pub(crate) fn end_speed(derivatives: &DMatrix<f64>, chord: f64) -> Option<f64> {
 }
 
 /// The longest control polygon, in chords `|Q(v0) - P(u0)|`, of the blend
-/// that [`unkinked_blend`] takes instead of a kink.
+/// that the automatic and balanced scales take instead of a kink where the
+/// energy's minimum lies at the lower end of their range (mathematics.md,
+/// "Connect: automatic scale").
 pub const UNKINKED_POLYGON_CHORDS: f64 = 2.0;
 
 /// The bisection of [`unkinked_blend`] stops at a bracket this wide in `ln
