@@ -45,7 +45,7 @@ SEED="${FUZZ_SEED:-1}"
 declare -A RUNS=(
     [curve_new]=200000 [curve_eval]=100000 [curve_segment]=60000
     [curve_ops]=120000 [curve_length]=40000 [lagrange_spline]=150000
-    [merge]=10000 [merge_chain]=40000 [connect]=20000 [intersect]=40000
+    [merge]=10000 [merge_chain]=40000 [connect]=20000 [connect_screen]=200000 [intersect]=40000
     [intersect_detailed]=80000 [fillet]=15000 [fillet_deviation]=50000
     [fillet_chain]=40000 [nurbs]=5000
 )
