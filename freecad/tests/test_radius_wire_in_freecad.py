@@ -163,6 +163,58 @@ class RoundWireByRadius(unittest.TestCase, CommandDriver):
                 self.assertTrue(any(abs(e.Length - 150.0 * math.pi) < 1e-9
                                     for e in wire.Edges))
 
+    def test_a_line_split_in_collinear_pieces_rounds_as_the_whole_line(self):
+        # User testing, session 44 (B7): a line split into pieces of 1000 and 0.1 (as
+        # sketches have them) blocked a fillet that fits the unsplit line: the smooth
+        # join between the pieces ended a run. The pieces are now rounded as one line,
+        # and a split vertex the rounding does not reach is kept.
+        corner = V(1000.1, 0, 0)
+        up = Part.makeLine(corner, V(1000.1, 50, 0))
+        whole = [Part.makeLine(V(0, 0, 0), corner), up]
+        split = [Part.makeLine(V(0, 0, 0), V(1000, 0, 0)), Part.makeLine(V(1000, 0, 0), corner),
+                 up]
+
+        def samples(wire):
+            return [edge.valueAt(edge.FirstParameter + f * (edge.LastParameter
+                                                            - edge.FirstParameter))
+                    for edge in wire.OrderedEdges for f in (0.0, 0.3, 0.7, 1.0)]
+
+        for options in (dict(radius=5.0), dict(setback=5.0)):
+            expected = operations.round_wire(whole, **options)
+            got = operations.round_wire(split, **options)
+            self.assertEqual(len(got.Edges), 3, options)
+            for a, b in zip(samples(got), samples(expected)):
+                self.assertLessEqual(gap(a, b), 1e-9, options)
+        # Split at 900: the fillet of radius 5 ends 5 before the corner, so the split
+        # vertex stays, a smooth join left as it is, the rest as the whole line's.
+        far = [Part.makeLine(V(0, 0, 0), V(900, 0, 0)), Part.makeLine(V(900, 0, 0), corner), up]
+        rounded = operations.round_wire_by_radius(far, 5.0)
+        self.assertEqual(rounded.smooth_joins, [1])
+        self.assertIn("1 smooth joins left as they are", rounded.describe())
+        shape = rounded.shape
+        self.assertEqual(len(shape.Edges), 4)
+        self.assertTrue(any(gap(v.Point, V(900, 0, 0)) <= 1e-12 for v in shape.Vertexes))
+        assert_g2_path(self, shape, closed=False)
+        expected = operations.round_wire(whole, radius=5.0)
+        self.assertAlmostEqual(shape.Length, expected.Length, delta=1e-9)
+        # The same path given backwards, its edges reversed, and as a closed
+        # triangle: the split vertex kept, the wire valid and G2.
+        backwards = [Part.makeLine(V(1000.1, 50, 0), corner), Part.makeLine(corner, V(900, 0, 0)),
+                     Part.makeLine(V(900, 0, 0), V(0, 0, 0))]
+        triangle = far + [Part.makeLine(V(1000.1, 50, 0), V(0, 0, 0))]
+        for path, closed in ((backwards, False), (triangle, True)):
+            rounded = operations.round_wire_by_radius(path, 5.0)
+            shape = rounded.shape
+            self.assertTrue(shape.isValid(), path)
+            self.assertEqual(len(rounded.smooth_joins), 1)
+            self.assertTrue(any(gap(v.Point, V(900, 0, 0)) <= 1e-12 for v in shape.Vertexes))
+            assert_g2_path(self, shape, closed=closed)
+        # A fillet that fits neither names the corner as a call on the unsplit path
+        # would number it along the split one (between edges 2 and 3: corner 1).
+        with self.assertRaises(bezjoin.BezjoinError) as caught:
+            operations.round_wire_by_radius(split, 2000.0)
+        self.assertIn("corner 1", str(caught.exception))
+
     def test_a_bad_setback_is_named_as_the_setback(self):
         # User testing, session 43: setback=-1 gave "p_setback = -1 is outside > 0",
         # the library's argument name and range notation.

@@ -14,6 +14,7 @@ an edge are given here as fractions of that range (0 = start, 1 = end).
 import math
 import re
 
+import FreeCAD
 import Part
 
 from . import ensure_bindings_importable
@@ -537,14 +538,124 @@ def _is_smooth_join(p, q):
 PATH_INDEX = re.compile(r"\b(corner |curves\[)(\d+)(\]?)")
 
 
+def _is_straight(curve):
+    """Whether ``curve`` is a straight segment as FreeCAD's lines arrive (degree 1, two
+    poles, not rational)."""
+    return curve.degree == 1 and curve.pole_count == 2 and not curve.is_rational
+
+
+def _merge_collinear_lines(curves):
+    """The path ``curves`` with every run of consecutive straight curves that meet in
+    smooth joins (a line split into collinear pieces, as sketches often have it) as ONE
+    line from the run's first start to its last end: ``(merged, groups, splits)``,
+    ``groups[j]`` the indices of ``curves`` merged into ``merged[j]``, ``splits`` the
+    points where they met. A corner next to a short piece can then take its fillet
+    from the whole line, as it would from the unsplit line (user testing, session 44:
+    B7). The closing join of a closed path is not merged across. Merged lines are new
+    curves; the others are the given ones."""
+    groups = [[0]]
+    for i in range(1, len(curves)):
+        previous = curves[groups[-1][-1]]
+        if _is_straight(previous) and _is_straight(curves[i]) and \
+                _is_smooth_join(previous, curves[i]):
+            groups[-1].append(i)
+        else:
+            groups.append([i])
+    merged, splits = [], []
+    for group in groups:
+        if len(group) == 1:
+            merged.append(curves[group[0]])
+            continue
+        merged.append(bezjoin.Curve([_ends(curves[group[0]])[0],
+                                     _ends(curves[group[-1]])[1]]))
+        splits.extend(_ends(curves[i])[1] for i in group[:-1])
+    return merged, groups, splits
+
+
+def _split_at_points(edges, points, tolerance):
+    """``edges`` with every straight edge (as long as its chord: a line segment, or a
+    kept piece of one as a degree-1 curve) cut at the ``points`` that lie on it, more
+    than ``tolerance`` from its ends (the split vertices of merged lines that the
+    rounding kept), in path order."""
+    def ends_of(edge):
+        return edge.valueAt(edge.FirstParameter), edge.valueAt(edge.LastParameter)
+
+    def nearness(point, edge):
+        return min(point.distanceToPoint(e) for e in ends_of(edge))
+
+    result = []
+    for index, edge in enumerate(edges):
+        start = edge.valueAt(edge.FirstParameter)
+        end = edge.valueAt(edge.LastParameter)
+        length = start.distanceToPoint(end)
+        if not points or abs(edge.Length - length) > tolerance:
+            result.append(edge)
+            continue
+        direction = (end - start) * (1.0 / length) if length > 0.0 else None
+        cuts = []
+        for point in points:
+            vector = FreeCAD.Vector(*point)
+            if direction is None:
+                continue
+            along = (vector - start).dot(direction)
+            off = (vector - start - direction * along).Length
+            if off <= tolerance and tolerance < along < length - tolerance:
+                cuts.append(along)
+        if not cuts:
+            result.append(edge)
+            continue
+        stops = [start] + [start + direction * a for a in sorted(cuts)] + [end]
+        # The pieces in path order: from the end that meets the previous edge (or away
+        # from the end that meets the next one).
+        if result:
+            backwards = nearness(end, result[-1]) < nearness(start, result[-1])
+        else:
+            following = edges[index + 1] if index + 1 < len(edges) else None
+            backwards = following is not None and \
+                nearness(start, following) < nearness(end, following)
+        if backwards:
+            stops.reverse()
+        result.extend(Part.makeLine(a, b) for a, b in zip(stops, stops[1:]))
+    return result
+
+
 def _round_runs(curves, closed, round_chain, edge_of=None):
     """Every corner of the path ``curves`` rounded by ``round_chain(run_curves,
     closed)`` (a library chain call, whose result has ``pieces`` and may have
     ``reports``), run by run between the smooth joins (:func:`_corner_runs`), which are
     left as they are; ``edge_of(piece)`` makes each piece's edge (default
-    :meth:`bezjoin.Curve.to_edge`). Returns ``(wire, reports, smooth)``; a run's error is re-raised
+    :meth:`bezjoin.Curve.to_edge`). Straight curves in smooth joins are rounded as one
+    line (:func:`_merge_collinear_lines`) and cut again where they met if the rounding
+    kept those points. Returns ``(wire, reports, smooth)``; a run's error is re-raised
     with its ``corner i`` / ``curves[i]`` numbered along the whole path, as a call on
     the whole path would number them."""
+    original = curves
+    curves, groups, splits = _merge_collinear_lines(original)
+    try:
+        wire, reports, smooth = _round_merged_runs(curves, closed, round_chain, edge_of, groups)
+    finally:
+        for curve, group in zip(curves, groups):
+            if len(group) > 1:
+                curve.close()
+    if splits:
+        size = max([1.0] + [c.length() for c in original])
+        edges = _split_at_points(wire.OrderedEdges, splits, TOUCH_TOLERANCE * size)
+        wire = Part.Wire(edges)
+        # The kept split vertices are smooth joins left as they are.
+        kept = [i + 1 for group in groups for i in group[:-1]
+                if any(_distance(_ends(original[i])[1], tuple(v.Point)) <= TOUCH_TOLERANCE * size
+                       for v in wire.Vertexes)]
+        smooth = sorted(set(smooth) | set(kept))
+    return wire, reports, smooth
+
+
+def _round_merged_runs(curves, closed, round_chain, edge_of, groups):
+    """:func:`_round_runs` on the path with its collinear lines merged (``groups``: the
+    original curves behind each, for the numbers in messages and in ``smooth``)."""
+    def original_index(local, last=True):
+        group = groups[local] if local < len(groups) else [local]
+        return group[-1] if last else group[0]
+
     runs, closes, smooth = _corner_runs(curves, closed)
     if all(len(run) == 1 for run in runs):
         raise _invalid(
@@ -558,13 +669,15 @@ def _round_runs(curves, closed, round_chain, edge_of=None):
         try:
             result = round_chain([curves[i] for i in run], closes)
         except bezjoin.BezjoinError as error:
-            if not smooth:
+            if not smooth and all(len(group) == 1 for group in groups):
                 raise
-            # The run's corner j and curves[j] are the path's corner / curve run[j]:
-            # say them as a call on the whole path would.
+            # The run's corner j and curves[j] are the path's corner / curve run[j]
+            # (of the merged path: a merged line's corner is at its last piece, the
+            # curve its first): say them as a call on the whole path would.
             def path_index(m):
                 local = int(m.group(2))
                 index = run[local] if local < len(run) else local
+                index = original_index(index, last=m.group(1) == "corner ")
                 return f"{m.group(1)}{index}{m.group(3)}"
 
             message = PATH_INDEX.sub(path_index, error.message)
@@ -573,7 +686,7 @@ def _round_runs(curves, closed, round_chain, edge_of=None):
             edges.extend(piece.to_edge() if edge_of is None else edge_of(piece)
                          for piece in result.pieces)
             reports.extend(getattr(result, "reports", []))
-    return Part.Wire(edges), reports, [i + 1 for i in smooth]
+    return Part.Wire(edges), reports, [original_index(i) + 1 for i in smooth]
 
 
 def _path_curves(edges):
