@@ -1481,14 +1481,8 @@ pub fn connect<P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
     v0: f64,
     options: &ConnectOptions,
 ) -> Result<Connection> {
-    if options.constraints.is_empty() {
-        // The checks of `prepare` in its order, then the scales'.
-        check_pair(p, u0, q, v0)?;
-        check_connect_degree(options.p_order, options.q_order, [])?;
-        if let Some((alpha, beta)) = options.scale.checked()? {
-            let (kp, kq) = (options.p_order, options.q_order);
-            return ends::connect_ends(p, u0, q, v0, kp, kq, alpha, beta);
-        }
+    if let Some((kp, kq, alpha, beta)) = end_path_case(p, u0, q, v0, options)? {
+        return ends::connect_ends(p, u0, q, v0, kp, kq, alpha, beta);
     }
     let problem = prepare(p, u0, q, v0, options)?;
     match options.scale.checked()? {
@@ -1517,15 +1511,33 @@ pub fn connect_curve<P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
     v0: f64,
     options: &ConnectOptions,
 ) -> Result<BezierCurve> {
-    if options.constraints.is_empty() {
-        check_pair(p, u0, q, v0)?;
-        check_connect_degree(options.p_order, options.q_order, [])?;
-        if let Some((alpha, beta)) = options.scale.checked()? {
-            let (kp, kq) = (options.p_order, options.q_order);
-            return ends::connect_ends_curve(p, u0, q, v0, kp, kq, alpha, beta);
-        }
+    if let Some((kp, kq, alpha, beta)) = end_path_case(p, u0, q, v0, options)? {
+        return ends::connect_ends_curve(p, u0, q, v0, kp, kq, alpha, beta);
     }
     connect(p, u0, q, v0, options).map(|connection| connection.curve)
+}
+
+/// Whether [`connect`] takes the end path (no interior constraints, given
+/// scales): then `Some((kp, kq, alpha, beta))` after the checks of
+/// [`prepare`] in its order and the scales' (the same errors as the general
+/// path); `None` for the general path, which checks again.
+fn end_path_case<P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
+    p: &P,
+    u0: f64,
+    q: &Q,
+    v0: f64,
+    options: &ConnectOptions,
+) -> Result<Option<(usize, usize, f64, f64)>> {
+    if !options.constraints.is_empty() {
+        return Ok(None);
+    }
+    check_pair(p, u0, q, v0)?;
+    check_connect_degree(options.p_order, options.q_order, [])?;
+    let (kp, kq) = (options.p_order, options.q_order);
+    Ok(options
+        .scale
+        .checked()?
+        .map(|(alpha, beta)| (kp, kq, alpha, beta)))
 }
 
 /// [`connect`] without the accuracy refusal: the answer is returned even when
