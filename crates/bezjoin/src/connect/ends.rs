@@ -684,14 +684,17 @@ fn solve_end<const D: usize, const AT_ONE: bool, const ROWS: usize, const SCREEN
         // over the row's points (`abs_squares[k]`).
         let limit = (1.0 - SCREEN_SLACK) * CONNECT_RESIDUAL_LIMIT;
         let (low, high) = SCREEN_RANGE;
-        let mut pass = end.data_scale >= low && end.data_scale <= high;
+        // The row products grow with the row (`||D_k||_1` and the running
+        // maximum both do): the last is the largest.
+        let last = rows - 1;
+        let mut pass = (end.data_scale >= low)
+            & (end.data_scale <= high)
+            & (norms[last] * abs_squares[last] <= high);
         for k in 0..rows {
             let row_product = norms[k] * abs_squares[k];
             let numerator = difference_squares[k] + end.gamma * row_product + end.target_errors[k];
             let denominator = end.target_norms[k].max(end.data_scale * norms[k]);
-            pass &= numerator <= limit * denominator
-                && row_product <= high
-                && end.target_norms[k] <= high;
+            pass &= (numerator <= limit * denominator) & (end.target_norms[k] <= high);
         }
         return if pass {
             (0.0, 0.0)
