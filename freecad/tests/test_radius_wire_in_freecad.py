@@ -103,6 +103,11 @@ class RoundWireByRadius(unittest.TestCase, CommandDriver):
         lines = sorted(e.Length for e in shape.Edges if e.Curve.TypeId != "Part::GeomBezierCurve")
         for got, want in zip(lines, [3.0, 3.0, 7.0, 7.0]):
             self.assertAlmostEqual(got, want, delta=1e-9)
+        # The kept parts of the sides are line segments, as the sides were (user testing,
+        # session 44: B8 gave degree-1 Bezier edges), by radius and by setback.
+        for wire in (shape, operations.round_wire(wire, setback=1.5)):
+            kinds = sorted(e.Curve.TypeId for e in wire.Edges)
+            self.assertEqual(kinds.count("Part::GeomLine"), 4, kinds)
         # Every corner vertex is cut off; every blend stays in its corner and has one
         # curvature maximum, measured by FreeCAD.
         for corner in ((0, 0), (10, 0), (10, 6), (0, 6)):

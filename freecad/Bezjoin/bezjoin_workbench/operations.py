@@ -463,11 +463,12 @@ def _at_unit_speed(curve):
     return bezjoin.Curve.nurbs(curve.points, knots, degree, weights)
 
 
-def _unit_piece_edge(piece):
-    """The edge of a chain piece cut from a curve given at unit speed
-    (:func:`_at_unit_speed`): a straight piece (degree 1, two poles: a line's) as a line
-    segment again, not a B-spline; any other as :meth:`bezjoin.Curve.to_edge` makes it.
-    The curves of FreeCAD edges are 3D."""
+def _piece_edge(piece):
+    """The edge of a chain piece: a straight piece (degree 1, two poles, not rational: a
+    kept part of a line, also of one given at unit speed by :func:`_at_unit_speed`) as a
+    line segment again, not a degree-1 Bezier curve or B-spline (user testing, session
+    44: B8); any other as :meth:`bezjoin.Curve.to_edge` makes it. The curves of FreeCAD
+    edges are 3D."""
     if piece.degree == 1 and piece.pole_count == 2 and not piece.is_rational:
         return Part.makeLine(*(tuple(point) for point in piece.points))
     return piece.to_edge()
@@ -757,7 +758,8 @@ def round_wire_by_radius(edges, radius, *, order=2, closed=None):
         wire, reports, smooth = _round_runs(
             curves, bool(closed),
             lambda run, closes: bezjoin.fillet_radius_chain(run, radius, order=order,
-                                                            closed=closes))
+                                                            closed=closes),
+            edge_of=_piece_edge)
         return RoundedWire(wire, bool(closed), list(reports), smooth)
     finally:
         for curve in curves:
@@ -830,8 +832,7 @@ def round_wire(shape, *, radius=None, setback=None, continuity="G2", closed=None
                 finally:
                     for curve in unit:
                         curve.close()
-        wire, _, _ = _round_runs(curves, closed, round_chain,
-                                 edge_of=None if radius is not None else _unit_piece_edge)
+        wire, _, _ = _round_runs(curves, closed, round_chain, edge_of=_piece_edge)
     except bezjoin.BezjoinError as error:
         if not (closed and open_gap is not None):
             raise
