@@ -550,7 +550,8 @@ def _merge_collinear_lines(curves):
     smooth joins (a line split into collinear pieces, as sketches often have it) as ONE
     line from the run's first start to its last end: ``(merged, groups, splits)``,
     ``groups[j]`` the indices of ``curves`` merged into ``merged[j]``, ``splits`` the
-    points where they met. A corner next to a short piece can then take its fillet
+    joins where they met, as ``(join, point)`` (join ``i + 1`` after ``curves[i]``, as
+    :class:`RoundedWire` numbers them). A corner next to a short piece can then take its fillet
     from the whole line, as it would from the unsplit line (user testing, session 44:
     B7). The closing join of a closed path is not merged across. Merged lines are new
     curves; the others are the given ones."""
@@ -569,7 +570,7 @@ def _merge_collinear_lines(curves):
             continue
         merged.append(bezjoin.Curve([_ends(curves[group[0]])[0],
                                      _ends(curves[group[-1]])[1]]))
-        splits.extend(_ends(curves[i])[1] for i in group[:-1])
+        splits.extend((i + 1, _ends(curves[i])[1]) for i in group[:-1])
     return merged, groups, splits
 
 
@@ -586,21 +587,18 @@ def _split_at_points(edges, points, tolerance):
 
     result = []
     for index, edge in enumerate(edges):
-        start = edge.valueAt(edge.FirstParameter)
-        end = edge.valueAt(edge.LastParameter)
+        start, end = ends_of(edge)
         length = start.distanceToPoint(end)
-        if not points or abs(edge.Length - length) > tolerance:
+        if length == 0.0 or abs(edge.Length - length) > tolerance:
             result.append(edge)
             continue
-        direction = (end - start) * (1.0 / length) if length > 0.0 else None
+        direction = (end - start) * (1.0 / length)
         cuts = []
         for point in points:
-            vector = FreeCAD.Vector(*point)
-            if direction is None:
-                continue
-            along = (vector - start).dot(direction)
-            off = (vector - start - direction * along).Length
-            if off <= tolerance and tolerance < along < length - tolerance:
+            offset = FreeCAD.Vector(*point) - start
+            along = offset.dot(direction)
+            if (offset - direction * along).Length <= tolerance and \
+                    tolerance < along < length - tolerance:
                 cuts.append(along)
         if not cuts:
             result.append(edge)
@@ -630,22 +628,21 @@ def _round_runs(curves, closed, round_chain, edge_of=None):
     kept those points. Returns ``(wire, reports, smooth)``; a run's error is re-raised
     with its ``corner i`` / ``curves[i]`` numbered along the whole path, as a call on
     the whole path would number them."""
-    original = curves
-    curves, groups, splits = _merge_collinear_lines(original)
+    curves, groups, splits = _merge_collinear_lines(curves)
+    merged_lines = [curve for curve, group in zip(curves, groups) if len(group) > 1]
     try:
+        # The tolerance of the split points: the merged lines' size, as the path's.
+        size = max([1.0] + [line.length() for line in merged_lines])
         wire, reports, smooth = _round_merged_runs(curves, closed, round_chain, edge_of, groups)
     finally:
-        for curve, group in zip(curves, groups):
-            if len(group) > 1:
-                curve.close()
+        for line in merged_lines:
+            line.close()
     if splits:
-        size = max([1.0] + [c.length() for c in original])
-        edges = _split_at_points(wire.OrderedEdges, splits, TOUCH_TOLERANCE * size)
-        wire = Part.Wire(edges)
+        tolerance = TOUCH_TOLERANCE * size
+        wire = Part.Wire(_split_at_points(wire.OrderedEdges, [p for _, p in splits], tolerance))
         # The kept split vertices are smooth joins left as they are.
-        kept = [i + 1 for group in groups for i in group[:-1]
-                if any(_distance(_ends(original[i])[1], tuple(v.Point)) <= TOUCH_TOLERANCE * size
-                       for v in wire.Vertexes)]
+        kept = [join for join, point in splits
+                if any(_distance(point, tuple(v.Point)) <= tolerance for v in wire.Vertexes)]
         smooth = sorted(set(smooth) | set(kept))
     return wire, reports, smooth
 
