@@ -919,6 +919,11 @@ std::vector<double> occt_connect(const Handle(Geom_BezierCurve)& p, double u0,
 // must be bzj_connect's (a row); its time against OCCT's route, next to
 // bzj_connect's, is printed as information: how far the checked, general
 // connect is from the least any connect of this case can cost here.
+Curve ours_from_occ(const Handle(Geom_BSplineCurve)& c, std::size_t dim);
+void check_connect_nurbs_inputs(Report& report, const Curve& p, const Curve& q,
+                                const Handle(Geom_BezierCurve)& occ_p, const Handle(Geom_BezierCurve)& occ_q,
+                                double u0, double v0, const bezjoin::ConnectOptions& opts, const Options& options);
+
 void check_connect_floor(Report& report, bool demo_case, const std::vector<double>& p_points,
                          const std::vector<double>& q_points, double u0, double v0,
                          const std::vector<double>& ours, const Handle(Geom_BezierCurve)& occ_p,
@@ -1069,6 +1074,9 @@ void check_connect(Report& report, StepScene& scene, std::vector<Timing>& timing
                 check_connect_floor(report, cs.np == 3 && cs.nq == 4 && cs.kp == 3 && cs.kq == 4 &&
                                                 cs.alpha == 1.0 && cs.beta == 1.0,
                                     p_points, q_points, cs.u0, cs.v0, ours, occ_p, occ_q, pair, options);
+                if (cs.np == 3 && cs.nq == 4 && cs.kp == 3 && cs.kq == 4) {
+                    check_connect_nurbs_inputs(report, p, q, occ_p, occ_q, cs.u0, cs.v0, opts, options);
+                }
                 const gp_Vec offset(0.0, 0.0, 0.0);
                 scene.add(Handle(Geom_Curve)(chain.curve), offset);
             }
@@ -1317,6 +1325,61 @@ Curve ours_from_occ(const Handle(Geom_BSplineCurve)& c, std::size_t dim) {
                                         count, degree));
     }
     return Curve::nurbs(dim, static_cast<std::size_t>(degree), poles, knots, weights);
+}
+
+// Issue 20's "NURBS inputs within 2x their Bezier counterparts" for connect.
+// bzj_connect of the demo's cubic and quartic as Bezier handles against:
+// - the same curves as NURBS handles of two spans (GeomConvert, then OCCT's
+//   InsertKnot at 0.5: the same geometry, so the same connecting curve up to
+//   rounding, checked);
+// - a rational copy of those two spans (SetWeight, weights 0.7 to 1.3 inside,
+//   1 at the ends: other geometry of the same sizes and degrees).
+// Alternating batches, the median of the per-batch ratios (as every TIME row).
+void check_connect_nurbs_inputs(Report& report, const Curve& p, const Curve& q,
+                                const Handle(Geom_BezierCurve)& occ_p, const Handle(Geom_BezierCurve)& occ_q,
+                                double u0, double v0, const bezjoin::ConnectOptions& opts, const Options& options) {
+    auto two_spans = [](const Handle(Geom_BezierCurve)& bezier, const std::vector<double>& weights) {
+        Handle(Geom_BSplineCurve) c = GeomConvert::CurveToBSplineCurve(bezier);
+        c->InsertKnot(0.5);
+        for (std::size_t i = 0; i < weights.size() && static_cast<int>(i) < c->NbPoles(); ++i) {
+            c->SetWeight(static_cast<int>(i) + 1, weights[i]);
+        }
+        return c;
+    };
+    const Curve p_spans = ours_from_occ(two_spans(occ_p, {}), 3);
+    const Curve q_spans = ours_from_occ(two_spans(occ_q, {}), 3);
+    const Curve p_rational = ours_from_occ(two_spans(occ_p, {1.0, 0.7, 1.3, 0.9, 1.0}), 3);
+    const Curve q_rational = ours_from_occ(two_spans(occ_q, {1.0, 1.2, 0.8, 1.1, 0.7, 1.0}), 3);
+    const std::vector<double> bezier_poles = bezjoin::connect(p, u0, q, v0, opts).points();
+    const std::vector<double> span_poles = bezjoin::connect(p_spans, u0, q_spans, v0, opts).points();
+    double gap = bezier_poles.size() == span_poles.size() ? 0.0 : INFINITY;
+    for (std::size_t i = 0; i < std::min(bezier_poles.size(), span_poles.size()); ++i) {
+        gap = std::max(gap, std::abs(bezier_poles[i] - span_poles[i]));
+    }
+    gap /= std::max(1.0, max_abs(bezier_poles));
+    const bool rational = p_rational.is_rational() && q_rational.is_rational() && p_spans.pole_count() == 5 &&
+                          q_spans.pole_count() == 6;
+    report.row(gap <= 1e-12 && rational, "c.connect-nurbs-inputs", gap, 1e-12,
+               format("the cubic and quartic as two-span NURBS (%zu and %zu poles, knot 0.5) give R's poles as the "
+                      "Bezier handles do; rational copies built: %s",
+                      p_spans.pole_count(), q_spans.pole_count(), rational ? "yes" : "NO"));
+    const int batches = options.quick ? 1 : 11;
+    const int calls = options.quick ? 2 : 10000;
+    auto timed = [&](const Curve& a, const Curve& b) {
+        return [&, pa = &a, pb = &b](int) {
+            const Curve joined = bezjoin::connect(*pa, u0, *pb, v0, opts);
+            g_sink = g_sink + static_cast<double>(joined.degree());
+        };
+    };
+    const Pair spans = time_pair(batches, calls, timed(p, q), calls, timed(p_spans, q_spans));
+    const Pair weighted = time_pair(batches, calls, timed(p, q), calls, timed(p_rational, q_rational));
+    report.info("timing.connect-nurbs-vs-bezier",
+                format("bzj_connect C3/C4 with two-span NURBS inputs %s (%.2fx the Bezier inputs' %s), with "
+                       "rational two-span inputs %s (%.2fx the Bezier inputs' %s); goal <= 2x (median over %d "
+                       "alternating batches)",
+                       format_time(spans.occt_ns).c_str(), spans.ratio, format_time(spans.ours_ns).c_str(),
+                       format_time(weighted.occt_ns).c_str(), weighted.ratio,
+                       format_time(weighted.ours_ns).c_str(), batches));
 }
 
 // The value and derivatives 1..3 of OCCT's curve at u. from == 0: Value and

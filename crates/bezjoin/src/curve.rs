@@ -299,8 +299,10 @@ impl CurveJet for NurbsCurve {
     /// the domain (`NurbsCurve::bezier_span_jet_into`; on `[0, 1]` the
     /// jet of the Bezier curve itself). A polynomial curve of several
     /// spans: the same from its span's poles in the kept decomposition,
-    /// with their rounding in the bound (`NurbsCurve::spans_jet_into`).
-    /// Any other curve: A2.3
+    /// with their rounding in the bound (`NurbsCurve::spans_jet_into`). A
+    /// rational curve of dimension at most 3: the homogeneous jet of its
+    /// span's rows, then the quotient rule, its bound carried through
+    /// (`NurbsCurve::rational_spans_jet_into`). Any other curve: A2.3
     /// (the rows and bounds of `NurbsCurve::eval_derivatives_into`).
     fn jet_into(
         &self,
@@ -312,6 +314,7 @@ impl CurveJet for NurbsCurve {
     ) {
         if self.bezier_span_jet_into(u, order, values, errors)
             || self.spans_jet_into(u, order, side, values, errors)
+            || self.rational_spans_jet_into(u, order, side, values, errors)
         {
             return;
         }

@@ -844,6 +844,29 @@ pub(crate) fn de_casteljau_jet_into(
     }
 }
 
+/// The values of [`de_casteljau_jet_into`] alone (orders `0..=m`, `m <=
+/// n`, into `values[..(m + 1) * dim]`), the same operations on the
+/// coordinates so the same bits, for dimensions 2 to 4 and degrees `1 <= n
+/// <` [`SMALL_JET_POINTS`]: the homogeneous jets of rational spans
+/// (`NurbsCurve::rational_spans_jet_into`), whose bounds are a priori.
+pub(crate) fn de_casteljau_values_into(
+    points: &[f64],
+    dim: usize,
+    n: usize,
+    t: f64,
+    m: usize,
+    values: &mut [f64],
+) {
+    assert!((2..=4).contains(&dim) && (1..SMALL_JET_POINTS).contains(&n) && m <= n);
+    let values = &mut values[..(m + 1) * dim];
+    let mut unused = [0.0f64; SMALL_JET_POINTS];
+    match dim {
+        2 => de_casteljau_jet_by_degree::<2, false>(points, n, t, m, values, &mut unused),
+        3 => de_casteljau_jet_by_degree::<3, false>(points, n, t, m, values, &mut unused),
+        _ => de_casteljau_jet_by_degree::<4, false>(points, n, t, m, values, &mut unused),
+    }
+}
+
 /// [`de_casteljau_jet_small`] with the degree a compile-time constant for
 /// degrees 1 to 7 in dimension `D` (2 and 3, the plane and space): the
 /// triangle's loops unrolled and sized exactly, the same operations. The
@@ -886,7 +909,7 @@ fn de_casteljau_jet_by_degree<const D: usize, const SIZES: bool>(
 }
 
 /// Control points up to which [`de_casteljau_jet_small`] works on the stack.
-const SMALL_JET_POINTS: usize = 16;
+pub(crate) const SMALL_JET_POINTS: usize = 16;
 
 /// [`de_casteljau_jet_into`] for dimension `D <= 4`, at most `CAP <=`
 /// [`SMALL_JET_POINTS`] control points, in fixed arrays, orders `0..=m`:

@@ -45,6 +45,16 @@
 //! (3.5 KB) beside its 11 poles, 11 weights and 17 knots; a polynomial
 //! cubic of `S` spans in 3D `30 S + S + 1`.
 //!
+//! The jets with rounding bounds that connect, the fillets and the G^k
+//! blends take ([`CurveJet::jet_into`](crate::curve::CurveJet::jet_into))
+//! come from the spans' Bezier rows as well: a one-span polynomial curve
+//! by de Casteljau on its poles (`bezier_span_jet_into`), a polynomial
+//! curve of several spans on its span's poles in the kept decomposition
+//! (`spans_jet_into`), a rational curve on its span's homogeneous rows then
+//! the quotient rule, the bounds carried through
+//! (`rational_spans_jet_into`, issue 20: NURBS inputs within 2x their Bezier
+//! counterparts); each with the decomposition's rounding in its bound.
+//!
 //! The values (order 0) of a curve of several spans stay on A2.2
 //! (`value_fast_into`, the bits of the basis route). A sum that is not
 //! finite is caught by the caller, which then takes the basis route.
@@ -62,6 +72,17 @@ pub(super) const SPAN_FAST_MAX_DEGREE: usize = 15;
 /// Highest derivative order whose rows a [`SpanTable`] holds (the orders
 /// of a host's `D0` to `D3`); a request for more takes the basis route.
 pub(super) const TABLE_MAX_ORDER: usize = 3;
+
+/// Largest bound, relative to the row's 1-norm, that
+/// [`NurbsCurve::rational_spans_jet_into`] returns; a row above it (a short
+/// span beside long ones, orders far above the degree: the span route's
+/// differences lose digits there, the basis route's wider knot intervals do
+/// not) sends the jet to the basis route (A2.3).
+pub(super) const RATIONAL_SPAN_RELATIVE_BOUND: f64 = 1e-10;
+
+/// Highest order of [`NurbsCurve::rational_spans_jet_into`] (the rows of
+/// Pascal's triangle in [`BINOMIALS`]); above it the basis route.
+pub(super) const RATIONAL_SPAN_MAX_ORDER: usize = SPAN_FAST_MAX_DEGREE;
 
 /// Rows `0..=SPAN_FAST_MAX_DEGREE` of Pascal's triangle (row `n` starts at
 /// `n (n + 1) / 2`), exact in `f64`.
@@ -225,20 +246,11 @@ impl NurbsCurve {
         debug_assert_eq!(values.len(), (order + 1) * dim);
         debug_assert_eq!(errors.len(), order + 1);
         let spans = self.span_poles();
-        let breaks = &spans.breaks;
-        let count = spans.count();
-        // The span: `breaks[i] <= u < breaks[i + 1]` from the right,
-        // `breaks[i] < u <= breaks[i + 1]` from the left, clamped to the
-        // first and last span at the domain's ends.
-        let above = breaks[1..count].partition_point(|&b| match side {
-            KnotSide::Right => b <= u,
-            KnotSide::Left => b < u,
-        });
-        let i = above.min(count - 1);
+        let i = spans.span_at(u, side);
         let poles = spans.beziers[i].points();
         let unit = f64::EPSILON / 2.0;
         let q = (p + 1) as f64;
-        let delta = 4.0 * q * q * unit * self.coordinate_scale() * (dim as f64).sqrt();
+        let delta = 4.0 * q * q * unit * spans.scale * (dim as f64).sqrt();
         scaled_span_jet_into(
             poles,
             dim,
@@ -250,6 +262,225 @@ impl NurbsCurve {
             values,
             errors,
         );
+        true
+    }
+
+    /// [`spans_jet_into`](Self::spans_jet_into) for a curve with weights,
+    /// dimension at most 3, degree 1 to 15 and orders up to
+    /// [`RATIONAL_SPAN_MAX_ORDER`]: the jet of the homogeneous curve
+    /// `A = (w C, w)` (`h = dim + 1` coordinates) from its span's
+    /// homogeneous Bezier rows in the kept decomposition, then the quotient
+    /// rule (The NURBS Book A4.2)
+    /// `C^(k) = (A^(k) - sum_(i=1..k) C(k, i) w^(i) C^(k-i)) / w`. No square
+    /// root: the norms in the bounds are 1-norms (never below the Euclidean
+    /// norms they stand for).
+    ///
+    /// The homogeneous rows in `t = (u - a) / (b - a)` are the de Casteljau
+    /// jet's values ([`de_casteljau_values_into`](crate::connect::de_casteljau_values_into)).
+    /// Their bounds: the triangle's rounding (the bound of
+    /// `de_casteljau_jet_into`, whose analysis holds in any absolute norm,
+    /// here the 1-norm) is at most `p!/(p-k)! 2 u (3 (p - k) + k + 1) S_k(a)`
+    /// with `S_k(x) = sum_j C(k, j) x^(p-k)_j` over level `p - k` of the
+    /// triangle run on the scalars `x` (weights `|1 - t|`, `|t|`), `a` the
+    /// rows' 1-norms; the rows' own rounding `e` (kept beside the
+    /// decomposition, [`SpanPoles::row_errors`](super::spans::SpanPoles):
+    /// the products `w_i x_i` and every insertion, tracked when the
+    /// decomposition is built) moves row `k` by at most `p!/(p-k)! S_k(e)`
+    /// (the triangle and the differences are linear and their absolute
+    /// versions dominate them). With every size at its largest,
+    /// `S_k(x) <= 2^k max_j x_j`, so row `k` in `t` is within
+    /// `p!/(p-k)! 2^k (2 u (3 (p - k) + k + 1) A + E)`, `A` and `E` the
+    /// span's largest row 1-norm and row error, kept per span
+    /// ([`SpanPoles::span_sizes`](super::spans::SpanPoles)). The parameter's
+    /// rounding and the factor `(b - a)^-k` are then bounded as in
+    /// `spans_jet_into`, giving `E_k` for the homogeneous row `k` in `u` (it
+    /// bounds `|dA^(k)|` and `|dw^(k)|`).
+    ///
+    /// The quotient rule's bound, to first order, with `e_k` the bound of
+    /// `C^(k)` (from `C^(k) w = N_k`, the numerator `N_k` moved by the
+    /// errors of `A^(k)`, of the `w^(i)` and of the earlier rows, the
+    /// quotient by the error of `w`):
+    ///
+    /// ```text
+    /// e_k = ( E_k + sum_(i=1..k) C(k, i) (E_i |C^(k-i)| + |w^(i)| e_(k-i))
+    ///         + E_0 |C^(k)|
+    ///         + gamma_k (|A^(k)| + sum_(i=1..k) C(k, i) |w^(i)| |C^(k-i)|) ) / |w|
+    /// ```
+    ///
+    /// with `gamma_k = 2 (k + 3) u_r`, twice the rounding of the row's `k`
+    /// products, `k` subtractions and one division (the factor 2 also
+    /// covers the rounding of the bound's own sums).
+    ///
+    /// `false` for other curves, and when a row's bound exceeds
+    /// [`RATIONAL_SPAN_RELATIVE_BOUND`] times its 1-norm (a short span beside
+    /// long ones, orders far above the degree; 20 of the 354 jets of the
+    /// test `rational_spans_jet_is_within_its_bound_of_the_exact_jet`): the
+    /// caller then takes the basis route, which writes every value and
+    /// bound again.
+    pub(crate) fn rational_spans_jet_into(
+        &self,
+        u: f64,
+        order: usize,
+        side: KnotSide,
+        values: &mut [f64],
+        errors: &mut [f64],
+    ) -> bool {
+        self.rational_spans_jet_within(u, order, side, values, errors, RATIONAL_SPAN_RELATIVE_BOUND)
+    }
+
+    /// [`rational_spans_jet_into`](Self::rational_spans_jet_into) with the
+    /// relative bound `limit` in place of [`RATIONAL_SPAN_RELATIVE_BOUND`]
+    /// (the tests take `f64::INFINITY`: every bound, however loose).
+    pub(crate) fn rational_spans_jet_within(
+        &self,
+        u: f64,
+        order: usize,
+        side: KnotSide,
+        values: &mut [f64],
+        errors: &mut [f64],
+        limit: f64,
+    ) -> bool {
+        let (p, dim) = (self.degree, self.dim);
+        if self.weights.is_none()
+            || dim > 3
+            || !(1..crate::connect::SMALL_JET_POINTS).contains(&p)
+            || order > RATIONAL_SPAN_MAX_ORDER
+        {
+            return false;
+        }
+        debug_assert_eq!(values.len(), (order + 1) * dim);
+        debug_assert_eq!(errors.len(), order + 1);
+        // The dimension, and degrees 1 to 5, as constants (the triangle's
+        // arrays sized exactly); other degrees in arrays of 16 rows.
+        macro_rules! by_degree {
+            ($d:literal, $h:literal) => {
+                match p {
+                    1 => self.rational_span_jet::<$d, $h, 2>(u, order, side, values, errors, limit),
+                    2 => self.rational_span_jet::<$d, $h, 3>(u, order, side, values, errors, limit),
+                    3 => self.rational_span_jet::<$d, $h, 4>(u, order, side, values, errors, limit),
+                    4 => self.rational_span_jet::<$d, $h, 5>(u, order, side, values, errors, limit),
+                    5 => self.rational_span_jet::<$d, $h, 6>(u, order, side, values, errors, limit),
+                    _ => {
+                        self.rational_span_jet::<$d, $h, 16>(u, order, side, values, errors, limit)
+                    }
+                }
+            };
+        }
+        match dim {
+            1 => by_degree!(1, 2),
+            2 => by_degree!(2, 3),
+            _ => by_degree!(3, 4),
+        }
+    }
+
+    /// [`rational_spans_jet_into`](Self::rational_spans_jet_into) in
+    /// dimension `D`, `H = D + 1` homogeneous coordinates, the degree below
+    /// `CAP` (the rows of the span and of its homogeneous jet).
+    #[allow(clippy::too_many_arguments)]
+    fn rational_span_jet<const D: usize, const H: usize, const CAP: usize>(
+        &self,
+        u: f64,
+        order: usize,
+        side: KnotSide,
+        values: &mut [f64],
+        errors: &mut [f64],
+        limit: f64,
+    ) -> bool {
+        let p = self.degree;
+        debug_assert!(p < CAP);
+        let spans = self.span_poles();
+        let i = spans.span_at(u, side);
+        let (a, b) = spans.domain(i);
+        // Homogeneous rows 0..=top in t, one more than asked for the
+        // parameter's rounding term (none above the degree).
+        let top = (order + 1).min(p);
+        let mut jet = [[0.0f64; H]; CAP];
+        let width = b - a;
+        let t = (u - a) / width;
+        crate::connect::de_casteljau_values_into(
+            spans.rows(i),
+            H,
+            p,
+            t,
+            top,
+            jet.as_flattened_mut(),
+        );
+        let unit = f64::EPSILON / 2.0;
+        let one_norm = |row: &[f64]| row.iter().fold(0.0f64, |s, v| s + v.abs());
+        // The bounds in t of the homogeneous rows 0..=top: row k within
+        // p!/(p-k)! 2^k (2 u (3 (p - k) + k + 1) A + E) of the exact jet of
+        // the exact rows, A and E the span's largest row 1-norm and row
+        // error (the triangle on the rows' sizes and on their errors, every size at
+        // its largest: `S_k(x) = sum_j C(k, j) x_j <= 2^k max x`).
+        let [size, row_error] = spans.span_sizes[i];
+        let falling = &crate::connect::FALLING_FACTORIALS[p];
+        let mut in_t = [0.0f64; CAP];
+        let mut power = 1.0;
+        for (k, bound) in in_t[..=top].iter_mut().enumerate() {
+            let triangle = 2.0 * unit * (3 * (p - k) + k + 1) as f64 * size;
+            *bound = falling[k] * power * (triangle + row_error);
+            power *= 2.0;
+        }
+        // The homogeneous rows in u and their bounds E_k, in place.
+        let dt = 3.0 * unit * t.abs();
+        let inverse = 1.0 / width;
+        let rows = order.min(p);
+        let mut homogeneous_errors = [0.0f64; CAP];
+        let mut scale = 1.0;
+        for k in 0..=rows {
+            let next = if k < p {
+                one_norm(&jet[k + 1]) + in_t[k + 1]
+            } else {
+                0.0
+            };
+            let row = &mut jet[k];
+            for v in row.iter_mut() {
+                *v *= scale;
+            }
+            homogeneous_errors[k] =
+                scale * (in_t[k] + next * dt) + 2.0 * (3 * k + 2) as f64 * unit * one_norm(row);
+            scale *= inverse;
+        }
+        // The quotient rule (rows above the degree are zero in `jet`), the
+        // 1-norms of the rows of C kept.
+        let mut curve = [[0.0f64; D]; RATIONAL_SPAN_MAX_ORDER + 1];
+        let mut sizes = [0.0f64; RATIONAL_SPAN_MAX_ORDER + 1];
+        let (w0, e0) = (jet[0][D], homogeneous_errors[0]);
+        for k in 0..=order {
+            // Rows above the degree (k > rows) are zero.
+            let mut row = [0.0f64; D];
+            let mut moved = 0.0;
+            if k <= rows {
+                row.copy_from_slice(&jet[k][..D]);
+                moved = homogeneous_errors[k];
+            }
+            let mut terms = one_norm(&row);
+            // w^(i) vanishes above the degree: those terms are skipped.
+            for i in 1..=k.min(rows) {
+                let choose = BINOMIALS[k * (k + 1) / 2 + i];
+                let wi = jet[i][D];
+                let coef = choose * wi;
+                let prev = &curve[k - i];
+                for c in 0..D {
+                    row[c] -= coef * prev[c];
+                }
+                terms += coef.abs() * sizes[k - i];
+                moved += choose * (homogeneous_errors[i] * sizes[k - i] + wi.abs() * errors[k - i]);
+            }
+            for x in row.iter_mut() {
+                *x /= w0;
+            }
+            sizes[k] = one_norm(&row);
+            curve[k] = row;
+            let gamma = 2.0 * (k + 3) as f64 * unit;
+            errors[k] = (moved + e0 * sizes[k] + gamma * terms) / w0.abs();
+            // A NaN bound or size declines too (the basis route then).
+            let accepted = errors[k] <= limit * sizes[k] || limit == f64::INFINITY;
+            if !accepted {
+                return false;
+            }
+        }
+        values.copy_from_slice(curve[..=order].as_flattened());
         true
     }
 
@@ -810,6 +1041,96 @@ mod tests {
         worst
     }
 
+    /// The exact Bezier rows of every span of a curve from its f64 data
+    /// (homogeneous `(w x, w)` with the products exact for a curve with
+    /// weights): every distinct knot of the domain, its ends included,
+    /// inserted up to multiplicity `p` by Boehm's insertion in rationals;
+    /// span `i` has rows `i p ..= i p + p`. With the span breaks (domain
+    /// ends and distinct interior knots).
+    fn exact_span_rows(c: &NurbsCurve) -> (Vec<Vec<num_rational::BigRational>>, Vec<f64>) {
+        use num_rational::BigRational;
+        use num_traits::One;
+        let p = c.degree();
+        let exact = |x: f64| BigRational::from_float(x).expect("finite");
+        let mut knots: Vec<BigRational> = c.knots().iter().map(|&k| exact(k)).collect();
+        let mut poles: Vec<Vec<BigRational>> = (0..c.point_count())
+            .map(|i| {
+                let row = c.point(i).iter().map(|&x| exact(x));
+                match c.weights() {
+                    None => row.collect(),
+                    Some(w) => {
+                        let w = exact(w[i]);
+                        let mut row: Vec<BigRational> = row.map(|x| x * &w).collect();
+                        row.push(w);
+                        row
+                    }
+                }
+            })
+            .collect();
+        let h = poles[0].len();
+        let (interior, _) = c.interior_knots();
+        let (first, last) = c.domain();
+        // Every distinct knot of the domain to multiplicity p (the ends at
+        // least p: free end knots are clamped by the same insertions).
+        let mut targets = vec![first];
+        targets.extend(&interior);
+        targets.push(last);
+        for &k in &targets {
+            let ku = exact(k);
+            while knots.iter().filter(|x| **x == ku).count() < p {
+                // Boehm: span `s` with knots[s] <= k < knots[s + 1]; at the
+                // domain's last knot the last span of the domain,
+                // knots[s] < k <= knots[s + 1] (the span from the right
+                // would be past the last pole).
+                let s = if k == last {
+                    knots.iter().rposition(|x| *x < ku).unwrap()
+                } else {
+                    knots.iter().rposition(|x| *x <= ku).unwrap()
+                };
+                let mut next = Vec::with_capacity(poles.len() + 1);
+                for i in 0..=poles.len() {
+                    if i + p <= s {
+                        next.push(poles[i].clone());
+                    } else if i > s {
+                        next.push(poles[i - 1].clone());
+                    } else {
+                        let alpha = (&ku - &knots[i]) / (&knots[i + p] - &knots[i]);
+                        let beta = BigRational::one() - &alpha;
+                        next.push(
+                            (0..h)
+                                .map(|j| &alpha * &poles[i][j] + &beta * &poles[i - 1][j])
+                                .collect(),
+                        );
+                    }
+                }
+                poles = next;
+                knots.insert(s + 1, ku.clone());
+            }
+        }
+        // The first span's rows start where the multiplicity of `first`
+        // (at least p, first met at index j) ends p + 1 knots before the
+        // span: row j + m - p - 1.
+        let ku = exact(first);
+        let j = knots.iter().position(|x| *x == ku).unwrap();
+        let m = knots.iter().filter(|x| **x == ku).count();
+        let start = j + m - p - 1;
+        let poles = poles[start..start + p * (interior.len() + 1) + 1].to_vec();
+        (poles, targets)
+    }
+
+    /// For every span `[b_i, b_(i+1)]` of `breaks`: its start from the
+    /// right, its end from the left, and a random parameter inside, each
+    /// with the span's index.
+    fn span_parameters(breaks: &[f64], values: &mut Values) -> Vec<(f64, KnotSide, usize)> {
+        let mut us = Vec::new();
+        for (i, w) in breaks.windows(2).enumerate() {
+            us.push((w[0], KnotSide::Right, i));
+            us.push((w[1], KnotSide::Left, i));
+            us.push((w[0] + (w[1] - w[0]) * values.unit(), KnotSide::Right, i));
+        }
+        us
+    }
+
     /// `spans_jet_into` (the jet with bounds of a polynomial curve of
     /// several spans, from the kept decomposition): every row within its
     /// bound of the exact jet of the same f64 data (the span's exact poles
@@ -820,7 +1141,7 @@ mod tests {
     #[test]
     fn spans_jet_is_within_its_bound_of_the_exact_jet() {
         use num_rational::BigRational;
-        use num_traits::One;
+        let exact = |x: f64| BigRational::from_float(x).expect("finite");
         let mut values = Values(37);
         let mut worst: f64 = 0.0;
         let mut checked = 0;
@@ -836,52 +1157,8 @@ mod tests {
             } else {
                 c
             };
-            // The exact decomposition: every interior knot inserted up to
-            // multiplicity p, exactly.
-            let exact = |x: f64| BigRational::from_float(x).expect("finite");
-            let mut knots: Vec<BigRational> = c.knots().iter().map(|&k| exact(k)).collect();
-            let mut poles: Vec<Vec<BigRational>> = c
-                .points()
-                .chunks_exact(dim)
-                .map(|row| row.iter().map(|&x| exact(x)).collect())
-                .collect();
-            let (first, last) = c.domain();
-            let (interior, _) = c.interior_knots();
-            for &k in &interior {
-                let ku = exact(k);
-                while knots.iter().filter(|x| **x == ku).count() < p {
-                    // Boehm: span `s` with knots[s] <= k < knots[s + 1].
-                    let s = knots.iter().rposition(|x| *x <= ku).unwrap();
-                    let mut next = Vec::with_capacity(poles.len() + 1);
-                    for i in 0..=poles.len() {
-                        if i + p <= s {
-                            next.push(poles[i].clone());
-                        } else if i > s {
-                            next.push(poles[i - 1].clone());
-                        } else {
-                            let alpha = (&ku - &knots[i]) / (&knots[i + p] - &knots[i]);
-                            let beta = BigRational::one() - &alpha;
-                            next.push(
-                                (0..dim)
-                                    .map(|j| &alpha * &poles[i][j] + &beta * &poles[i - 1][j])
-                                    .collect(),
-                            );
-                        }
-                    }
-                    poles = next;
-                    knots.insert(s + 1, ku.clone());
-                }
-            }
-            let mut breaks = vec![first];
-            breaks.extend(&interior);
-            breaks.push(last);
-            let mut us: Vec<(f64, KnotSide, usize)> = Vec::new();
-            for (i, w) in breaks.windows(2).enumerate() {
-                us.push((w[0], KnotSide::Right, i));
-                us.push((w[1], KnotSide::Left, i));
-                us.push((w[0] + (w[1] - w[0]) * values.unit(), KnotSide::Right, i));
-            }
-            for (u, side, span) in us {
+            let (poles, breaks) = exact_span_rows(&c);
+            for (u, side, span) in span_parameters(&breaks, &mut values) {
                 let order = [1, p, p + 1][checked % 3];
                 let mut jet = vec![f64::NAN; (order + 1) * dim];
                 let mut bound = vec![f64::NAN; order + 1];
@@ -906,6 +1183,238 @@ mod tests {
         decline(NurbsCurve::from_bezier(
             &BezierCurve::new(2, 16, high).unwrap(),
         ));
+    }
+
+    /// `rational_spans_jet_into` (the jet with bounds of a curve with
+    /// weights, from the kept homogeneous decomposition and the quotient
+    /// rule): every row within its bound of the exact jet of the same f64
+    /// data (exact homogeneous span rows, exact Bezier jet, exact quotient
+    /// rule), from both sides at every interior knot, at the ends and inside
+    /// spans; dimensions 1-3, degrees 1-5 (one to four spans) and 7 (one or,
+    /// twice, two), a double knot in some, free end knots in some (clamped here by
+    /// exact insertions, there by the route's f64 ones), weights 0.3-3.3, domains near 0
+    /// and shifted by 1000, orders 1, the degree, and the degree plus 2 (rows
+    /// above the degree do not vanish). Curves without weights, dimension 4
+    /// and orders above 15 are declined.
+    #[test]
+    fn rational_spans_jet_is_within_its_bound_of_the_exact_jet() {
+        use num_rational::BigRational;
+        use num_traits::Zero;
+        let exact = |x: f64| BigRational::from_float(x).expect("finite");
+        let mut values = Values(41);
+        let mut worst: f64 = 0.0;
+        let (mut checked, mut declined) = (0, 0);
+        for case in 0..54 {
+            let dim = 1 + case % 3;
+            let p = [1, 2, 3, 4, 5, 7][case % 6];
+            // Degree 7 on one or two clamped spans only: beyond, the
+            // rationals of the reference grow to thousands of digits.
+            let spans = match p {
+                7 => 1 + usize::from(case % 24 == 11),
+                _ => 1 + case % 4,
+            };
+            let clamped = case % 7 != 3 || spans == 1 || p == 7;
+            let c = curve(&mut values, dim, p, spans, true, clamped);
+            let weights = c.weights().map(|w| w.to_vec());
+            let c = match case % 5 {
+                // Shifted far from 0: the parameter's rounding matters.
+                4 => {
+                    let knots: Vec<f64> = c.knots().iter().map(|k| k + 1000.0).collect();
+                    NurbsCurve::new(dim, p, c.points().to_vec(), weights, knots).unwrap()
+                }
+                // Squeezed towards the first knot (`a + (k - a)^4 / 4`):
+                // short spans beside long ones, where the differences of
+                // the span rows amplify the decomposition's rounding.
+                2 => {
+                    let a = c.knots()[0];
+                    let knots: Vec<f64> = c
+                        .knots()
+                        .iter()
+                        .map(|k| a + (k - a).powi(4) / 4.0)
+                        .collect();
+                    NurbsCurve::new(dim, p, c.points().to_vec(), weights, knots).unwrap()
+                }
+                _ => c,
+            };
+            let (poles, breaks) = exact_span_rows(&c);
+            for (u, side, span) in span_parameters(&breaks, &mut values) {
+                let order = [1, p, p + 2][checked % 3];
+                let mut jet = vec![f64::NAN; (order + 1) * dim];
+                let mut bound = vec![f64::NAN; order + 1];
+                // Every bound, however loose (the short spans are the
+                // test of the decomposition's rounding), and whether the
+                // screened route would take it.
+                assert!(c.rational_spans_jet_within(
+                    u,
+                    order,
+                    side,
+                    &mut jet,
+                    &mut bound,
+                    f64::INFINITY
+                ));
+                let (mut v, mut e) = (jet.clone(), bound.clone());
+                if !c.rational_spans_jet_into(u, order, side, &mut v, &mut e) {
+                    declined += 1;
+                }
+                let rows = poles[span * p..=span * p + p].to_vec();
+                let domain = (exact(breaks[span]), exact(breaks[span + 1]), exact(u));
+                let homogeneous =
+                    crate::test_values::exact_bezier_jet_of(rows, dim + 1, p, domain, order);
+                // A4.2 in rationals.
+                let mut reference: Vec<Vec<BigRational>> = Vec::new();
+                for k in 0..=order {
+                    let mut row: Vec<BigRational> = homogeneous[k][..dim].to_vec();
+                    for i in 1..=k {
+                        let choose = BigRational::from_integer((binomial(k, i) as i64).into());
+                        let coef = choose * &homogeneous[i][dim];
+                        for (o, x) in row.iter_mut().zip(&reference[k - i]) {
+                            *o -= &coef * x;
+                        }
+                    }
+                    let w = &homogeneous[0][dim];
+                    assert!(!w.is_zero());
+                    reference.push(row.into_iter().map(|x| x / w).collect());
+                }
+                let at = format!("case {case} dim {dim} p {p} u {u} {side:?} order {order}");
+                worst = worst.max(worst_miss_over_bound(&jet, &bound, &reference, dim, &at));
+                checked += 1;
+            }
+        }
+        println!("{checked} jets ({declined} declined); largest miss / bound: {worst:.3}");
+        assert!(
+            checked > 250 && declined < checked / 4,
+            "{checked} jets, {declined} declined"
+        );
+        let decline = |nurbs: NurbsCurve, order: usize| {
+            let (mut v, mut e) = (vec![0.0; (order + 1) * nurbs.dim()], vec![0.0; order + 1]);
+            assert!(!nurbs.rational_spans_jet_into(0.5, order, KnotSide::Right, &mut v, &mut e));
+        };
+        decline(curve(&mut values, 3, 3, 2, false, true), 1);
+        decline(curve(&mut values, 4, 3, 2, true, true), 1);
+        decline(curve(&mut values, 3, 3, 2, true, true), 16);
+        // A span of width 1e-6 between spans of width 1: its third
+        // derivative from the span's rows has a bound far above
+        // RATIONAL_SPAN_RELATIVE_BOUND (the basis route takes it).
+        let poles: Vec<f64> = (0..6 * 2).map(|_| 4.0 * values.unit() - 2.0).collect();
+        let weights = (0..6).map(|_| 0.5 + values.unit()).collect();
+        let knots = vec![0.0, 0.0, 0.0, 0.0, 1.0, 1.0 + 1e-6, 2.0, 2.0, 2.0, 2.0];
+        let short = NurbsCurve::new(2, 3, poles, Some(weights), knots).unwrap();
+        let (mut v, mut e) = (vec![0.0; 4 * 2], vec![0.0; 4]);
+        assert!(!short.rational_spans_jet_into(1.0 + 5e-7, 3, KnotSide::Right, &mut v, &mut e));
+        assert!(short.rational_spans_jet_into(0.5, 3, KnotSide::Right, &mut v, &mut e));
+    }
+
+    /// A NURBS curve whose jets all come from the basis route (A2.3 and
+    /// its bounds), the route of rational curves before session 46.
+    struct BasisRoute<'a>(&'a NurbsCurve);
+
+    impl crate::curve::CurveJet for BasisRoute<'_> {
+        fn dim(&self) -> usize {
+            self.0.dim()
+        }
+        fn check_parameter(&self, name: &str, u: f64) -> crate::Result<()> {
+            self.0.check_parameter(name, u)
+        }
+        fn coordinate_scale(&self) -> f64 {
+            self.0.coordinate_scale()
+        }
+        fn jet(&self, u: f64, order: usize, side: KnotSide) -> (nalgebra::DMatrix<f64>, Vec<f64>) {
+            let dim = self.0.dim();
+            let mut v = vec![0.0; (order + 1) * dim];
+            let mut e = vec![0.0; order + 1];
+            self.0
+                .eval_derivatives_into(u, order, side, &mut v, Some(&mut e));
+            (nalgebra::DMatrix::from_row_slice(order + 1, dim, &v), e)
+        }
+    }
+
+    /// Connect on rational inputs answers wherever it answered when every
+    /// rational jet came from the basis route (`BasisRoute`, A2.3): 3,000
+    /// random pairs of rational curves (dimensions 2 and 3, degrees 2-5,
+    /// one to four spans with a double knot, in a third of them the knots
+    /// squeezed towards the start so that short spans sit beside long ones),
+    /// random parameters, orders 1 to the degree plus 1 (above the degree a
+    /// rational curve's derivatives do not vanish). Prints how the error
+    /// estimates compare.
+    #[test]
+    fn rational_span_jets_answer_where_the_basis_route_answers() {
+        use crate::connect::{ConnectOptions, connect};
+        let mut values = Values(47);
+        let (mut both, mut old_only, mut new_only, mut neither) = (0, 0, 0, 0);
+        let mut ratios = Vec::new();
+        let (mut worst_new, mut worst_old) = (0.0f64, 0.0f64);
+        for case in 0..3000 {
+            let dim = 2 + case % 2;
+            let p = [2, 3, 4, 5][case % 4];
+            let spans = 1 + case % 4;
+            let c = curve(&mut values, dim, p, spans, true, true);
+            let d = curve(
+                &mut values,
+                dim,
+                [2, 3, 4, 5][(case / 4) % 4],
+                1 + (case / 3) % 4,
+                true,
+                true,
+            );
+            // Short spans: squeeze the knots geometrically in some cases.
+            let squeeze = |c: NurbsCurve, f: f64| {
+                let (a, _) = c.domain();
+                let knots: Vec<f64> = c.knots().iter().map(|k| a + (k - a).powf(f)).collect();
+                NurbsCurve::new(
+                    c.dim(),
+                    c.degree(),
+                    c.points().to_vec(),
+                    c.weights().map(|w| w.to_vec()),
+                    knots,
+                )
+                .unwrap()
+            };
+            let (c, d) = if case % 3 == 0 {
+                (squeeze(c, 3.0), squeeze(d, 3.0))
+            } else {
+                (c, d)
+            };
+            let (a, b) = c.domain();
+            let (e, f) = d.domain();
+            let u0 = a + (b - a) * values.unit();
+            let v0 = e + (f - e) * values.unit();
+            let kp = 1 + case % (c.degree() + 2);
+            let kq = 1 + (case / 7) % (d.degree() + 2);
+            let options = ConnectOptions::new(kp, kq);
+            let new = connect(&c, u0, &d, v0, &options);
+            let old = connect(&BasisRoute(&c), u0, &BasisRoute(&d), v0, &options);
+            match (&old, &new) {
+                (Ok(o), Ok(n)) => {
+                    both += 1;
+                    ratios.push(n.error_estimate / o.error_estimate);
+                    worst_new = worst_new.max(n.error_estimate);
+                    worst_old = worst_old.max(o.error_estimate);
+                }
+                (Ok(o), Err(err)) => {
+                    old_only += 1;
+                    if old_only < 6 {
+                        println!(
+                            "old only: case {case} kp {kp} kq {kq} est {:e}: {err}",
+                            o.error_estimate
+                        );
+                    }
+                }
+                (Err(_), Ok(_)) => new_only += 1,
+                _ => neither += 1,
+            }
+        }
+        ratios.sort_by(f64::total_cmp);
+        let n = ratios.len();
+        println!(
+            "answered by both {both}, by the basis route only {old_only}, by the span route only \
+             {new_only}, by neither {neither}; largest estimate {worst_new:e} (basis route \
+             {worst_old:e}); estimate / basis route's: median {:.2} p90 {:.2} max {:.2}",
+            ratios[n / 2],
+            ratios[9 * n / 10],
+            ratios[n - 1]
+        );
+        assert_eq!(old_only, 0, "refused where the basis route answered");
+        assert!(both > 2900, "{both} answered by both");
     }
 
     /// `bezier_span_jet_into` (the jet with bounds a one-span polynomial

@@ -83,8 +83,21 @@ impl NurbsCurve {
         let n = self.point_count();
         let clamped = self.knots[..=p].iter().all(|&k| k == first)
             && self.knots[n..].iter().all(|&k| k == last);
+        // The largest absolute value of the rows before any insertion (of
+        // this curve's, not the clamped copy's: clamping is insertions too).
+        let scale = self.row_scale();
         if !clamped {
-            return self.clamped().build_span_poles();
+            let mut poles = self.clamped().build_span_poles();
+            poles.scale = poles.scale.max(scale);
+            // The clamping's own insertions (not tracked): the a priori
+            // bound of `spans_jet_into`, `4 (p + 1)^2 u S` per coordinate.
+            let q = (p + 1) as f64;
+            let clamping = 4.0 * q * q * (f64::EPSILON / 2.0) * poles.scale * poles.h as f64;
+            for e in &mut poles.row_errors {
+                *e += clamping;
+            }
+            poles.span_sizes = span_sizes(&poles.rows, &poles.row_errors, poles.h, p);
+            return poles;
         }
         let rational = self.weights.is_some();
         let h = if rational { self.dim + 1 } else { self.dim };
@@ -117,12 +130,28 @@ impl NurbsCurve {
         } else {
             rows.extend_from_slice(&self.points);
         }
+        // With weights, a bound per row on its rounding (1-norm): the
+        // products `w_i x_i` (`u |w_i x_i|` per coordinate), then the
+        // insertions' (`insert_in_place_tracked`).
+        let unit = f64::EPSILON / 2.0;
+        let mut row_errors: Vec<f64> = if rational {
+            rows.chunks_exact(h)
+                .map(|row| unit * row[..h - 1].iter().fold(0.0f64, |s, x| s + x.abs()))
+                .collect()
+        } else {
+            Vec::new()
+        };
         if insertions > 0 {
             let mut knots = Vec::with_capacity(self.knots.len() + insertions);
             knots.extend_from_slice(&self.knots);
             for &u in &breaks[1..breaks.len() - 1] {
                 let m = knots.iter().filter(|&&k| k == u).count();
-                insert_in_place(h, p, &mut knots, &mut rows, u, p.saturating_sub(m));
+                let times = p.saturating_sub(m);
+                if rational {
+                    insert_in_place_tracked(h, p, &mut knots, &mut rows, &mut row_errors, u, times);
+                } else {
+                    insert_in_place(h, p, &mut knots, &mut rows, u, times);
+                }
             }
         }
         let beziers = if rational {
@@ -138,16 +167,38 @@ impl NurbsCurve {
                 })
                 .collect()
         };
+        let span_sizes = span_sizes(&rows, &row_errors, h, p);
         SpanPoles {
             breaks,
             rows,
             h,
             degree: p,
+            scale,
+            row_errors,
+            span_sizes,
             beziers,
             rational_cuts: std::sync::OnceLock::new(),
             homogeneous: std::sync::OnceLock::new(),
             projected: std::sync::OnceLock::new(),
         }
+    }
+
+    /// [`SpanPoles::scale`] of this curve: the largest absolute pole
+    /// coordinate, with weights also `|w_i x_i|` (as rounded) and `w_i`.
+    fn row_scale(&self) -> f64 {
+        let largest = match &self.weights {
+            None => self.points.iter().fold(0.0f64, |m, v| m.max(v.abs())),
+            Some(weights) => {
+                self.points
+                    .chunks_exact(self.dim)
+                    .zip(weights)
+                    .fold(0.0f64, |m, (row, &w)| {
+                        row.iter()
+                            .fold(m.max(w.abs()), |m, &x| m.max((w * x).abs()))
+                    })
+            }
+        };
+        largest.max(f64::MIN_POSITIVE)
     }
 
     /// The Bezier curve of a clamped one-span polynomial curve, read from
@@ -267,6 +318,19 @@ pub(crate) struct SpanPoles {
     pub(crate) rows: Vec<f64>,
     pub(crate) h: usize,
     pub(crate) degree: usize,
+    /// The largest absolute value of the curve's own rows (its poles, or
+    /// with weights its homogeneous poles `(w x, w)` as rounded), at least
+    /// `f64::MIN_POSITIVE`: every row of every insertion is a convex
+    /// combination of them, so no larger (the scale of the insertions'
+    /// rounding). Without weights, [`NurbsCurve::coordinate_scale`].
+    pub(crate) scale: f64,
+    /// For a curve with weights, a bound on the rounding of every row (the
+    /// 1-norm of its difference from the exact decomposition of the exact
+    /// data: [`insert_in_place_tracked`]); empty without weights.
+    pub(crate) row_errors: Vec<f64>,
+    /// For a curve with weights, per span the largest 1-norm of its rows
+    /// and the largest of their [`row_errors`](SpanPoles::row_errors).
+    pub(crate) span_sizes: Vec<[f64; 2]>,
     /// For a curve without weights, span `i` as the Bezier curve of its
     /// rows (in `t = (u - breaks[i]) / (breaks[i + 1] - breaks[i])`);
     /// empty for a curve with weights.
@@ -326,11 +390,44 @@ impl SpanPoles {
         (self.breaks[i], self.breaks[i + 1])
     }
 
+    /// The span that holds `u`: `breaks[i] <= u < breaks[i + 1]` from the
+    /// right, `breaks[i] < u <= breaks[i + 1]` from the left, clamped to the
+    /// first and last span at (and beyond) the domain's ends.
+    pub(crate) fn span_at(&self, u: f64, side: crate::basis::KnotSide) -> usize {
+        use crate::basis::KnotSide;
+        let count = self.count();
+        let above = self.breaks[1..count].partition_point(|&b| match side {
+            KnotSide::Right => b <= u,
+            KnotSide::Left => b < u,
+        });
+        above.min(count - 1)
+    }
+
     /// The `p + 1` rows of span `i`.
     pub(crate) fn rows(&self, i: usize) -> &[f64] {
         let (p, h) = (self.degree, self.h);
         &self.rows[i * p * h..(i * p + p + 1) * h]
     }
+}
+
+/// [`SpanPoles::span_sizes`] of the rows (`h` values each, spans of `p + 1`
+/// rows sharing their ends) and their errors; empty without errors.
+fn span_sizes(rows: &[f64], row_errors: &[f64], h: usize, p: usize) -> Vec<[f64; 2]> {
+    if row_errors.is_empty() || p == 0 {
+        return Vec::new();
+    }
+    let count = (row_errors.len() - 1) / p;
+    (0..count)
+        .map(|i| {
+            let window = i * p..=i * p + p;
+            let size = rows[i * p * h..(i * p + p + 1) * h]
+                .chunks_exact(h)
+                .map(|row| row.iter().fold(0.0f64, |s, x| s + x.abs()))
+                .fold(0.0f64, f64::max);
+            let error = row_errors[window].iter().fold(0.0f64, |m, &e| m.max(e));
+            [size, error]
+        })
+        .collect()
 }
 
 /// `times` insertions of `u` into the rows `h` (`hd` values each) on
@@ -350,19 +447,57 @@ pub(super) fn insert_in_place(
     // The plane and space (with or without the weight) with the row length
     // as a constant: the same operations.
     match hd {
-        2 => insert_sized(2, p, knots, h, u, times),
-        3 => insert_sized(3, p, knots, h, u, times),
-        4 => insert_sized(4, p, knots, h, u, times),
-        _ => insert_sized(hd, p, knots, h, u, times),
+        2 => insert_sized(2, p, knots, h, None, u, times),
+        3 => insert_sized(3, p, knots, h, None, u, times),
+        4 => insert_sized(4, p, knots, h, None, u, times),
+        _ => insert_sized(hd, p, knots, h, None, u, times),
     }
 }
 
-/// [`insert_in_place`], inlined so that a constant `hd` unrolls it.
+/// [`insert_in_place`] (the same operations on the rows, so the same bits)
+/// that also carries `errors`, one value per row: a bound on the 1-norm of
+/// the difference between the computed row and the row that exact
+/// insertions of the exact data would give (the errors of the rows before
+/// the first insertion are the caller's). A new row `a R_i + (1 - a)
+/// R_(i-1)` gets `a e_i + (1 - a) e_(i-1) + 8 u max(|R_i|_1, |R_(i-1)|_1)`:
+/// the computed `a` is within `3 u a` of the exact ratio (a difference, a
+/// difference, a quotient), `fl(1 - a)` within `3 u a + u (1 - a)` of
+/// `1 - a`, and the two products and the sum add `u (a |x| + (1 - a) |y|)
+/// + u |new|` per coordinate: `u (5 a |x| + 3 |y|)` in all, at most `8 u`
+/// times the larger row's 1-norm (to first order, `a` in `[0, 1]`).
+pub(super) fn insert_in_place_tracked(
+    hd: usize,
+    p: usize,
+    knots: &mut Vec<f64>,
+    h: &mut Vec<f64>,
+    errors: &mut Vec<f64>,
+    u: f64,
+    times: usize,
+) {
+    match hd {
+        2 => insert_sized(2, p, knots, h, Some(errors), u, times),
+        3 => insert_sized(3, p, knots, h, Some(errors), u, times),
+        4 => insert_sized(4, p, knots, h, Some(errors), u, times),
+        _ => insert_sized(hd, p, knots, h, Some(errors), u, times),
+    }
+}
+
+/// [`insert_in_place`] and [`insert_in_place_tracked`], inlined so that a
+/// constant `hd` unrolls it.
 #[inline(always)]
-fn insert_sized(hd: usize, p: usize, knots: &mut Vec<f64>, h: &mut Vec<f64>, u: f64, times: usize) {
+fn insert_sized(
+    hd: usize,
+    p: usize,
+    knots: &mut Vec<f64>,
+    h: &mut Vec<f64>,
+    mut errors: Option<&mut Vec<f64>>,
+    u: f64,
+    times: usize,
+) {
     if times == 0 {
         return;
     }
+    let unit = f64::EPSILON / 2.0;
     let first = find_span(knots, p, u, KnotSide::Right);
     for r in 0..times {
         // After `r` insertions `u` occupies `first + 1 ..= first + r`, so
@@ -372,8 +507,16 @@ fn insert_sized(hd: usize, p: usize, knots: &mut Vec<f64>, h: &mut Vec<f64>, u: 
         let n = h.len() / hd;
         h.resize((n + 1) * hd, 0.0);
         h.copy_within(k * hd..n * hd, (k + 1) * hd);
+        if let Some(errors) = errors.as_deref_mut() {
+            errors.insert(k, errors[k]);
+        }
         for i in ((k + 1 - p)..=k).rev() {
             let a = (u - knots[i]) / (knots[i + p] - knots[i]);
+            if let Some(errors) = errors.as_deref_mut() {
+                let norm = |row: &[f64]| row.iter().fold(0.0f64, |s, x| s + x.abs());
+                let larger = norm(&h[i * hd..(i + 1) * hd]).max(norm(&h[(i - 1) * hd..i * hd]));
+                errors[i] = a * errors[i] + (1.0 - a) * errors[i - 1] + 8.0 * unit * larger;
+            }
             for c in 0..hd {
                 h[i * hd + c] = a * h[i * hd + c] + (1.0 - a) * h[(i - 1) * hd + c];
             }
