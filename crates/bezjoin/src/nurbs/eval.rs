@@ -311,7 +311,11 @@ impl NurbsCurve {
     /// products, `k` subtractions and one division (the factor 2 also
     /// covers the rounding of the bound's own sums).
     ///
-    /// `false` for other curves, and when a row's bound exceeds
+    /// `false` for other curves; when `(b - a)^-k` leaves the normal range
+    /// or a row's 1-norm is zero, subnormal, infinite or NaN (rounding there
+    /// is not relative: an underflowed row could come back 0 with bound 0);
+    /// and
+    /// when a row's bound exceeds
     /// [`RATIONAL_SPAN_RELATIVE_BOUND`] times its 1-norm (a short span beside
     /// long ones, orders far above the degree; 20 of the 354 jets of the
     /// test `rational_spans_jet_is_within_its_bound_of_the_exact_jet`): the
@@ -329,8 +333,10 @@ impl NurbsCurve {
     }
 
     /// [`rational_spans_jet_into`](Self::rational_spans_jet_into) with the
-    /// relative bound `limit` in place of [`RATIONAL_SPAN_RELATIVE_BOUND`]
-    /// (the tests take `f64::INFINITY`: every bound, however loose).
+    /// relative bound `limit` in place of [`RATIONAL_SPAN_RELATIVE_BOUND`];
+    /// with `f64::INFINITY` (the tests) nothing is declined, not even the
+    /// range checks: every bound, however loose, for data in the normal
+    /// range.
     pub(crate) fn rational_spans_jet_within(
         &self,
         u: f64,
@@ -426,8 +432,15 @@ impl NurbsCurve {
         let inverse = 1.0 / width;
         let rows = order.min(p);
         let mut homogeneous_errors = [0.0f64; CAP];
-        let mut scale = 1.0;
+        let checked = limit.is_finite();
+        let mut scale = 1.0f64;
         for k in 0..=rows {
+            // (b - a)^-k out of the normal range (span widths far from 1 at
+            // high orders): its rounding is no longer relative, the basis
+            // route takes the jet.
+            if checked && !scale.is_normal() {
+                return false;
+            }
             let next = if k < p {
                 one_norm(&jet[k + 1]) + in_t[k + 1]
             } else {
@@ -474,8 +487,11 @@ impl NurbsCurve {
             curve[k] = row;
             let gamma = 2.0 * (k + 3) as f64 * unit;
             errors[k] = (moved + e0 * sizes[k] + gamma * terms) / w0.abs();
-            // A NaN bound or size declines too (the basis route then).
-            let accepted = errors[k] <= limit * sizes[k] || limit == f64::INFINITY;
+            // A bound or size that is NaN or infinite, and a size below the
+            // normal range or zero (where rounding is not relative: a row
+            // that underflowed comes back 0 with bound 0), decline too (the
+            // basis route then).
+            let accepted = !checked || (sizes[k].is_normal() && errors[k] <= limit * sizes[k]);
             if !accepted {
                 return false;
             }
@@ -1302,6 +1318,30 @@ mod tests {
         let (mut v, mut e) = (vec![0.0; 4 * 2], vec![0.0; 4]);
         assert!(!short.rational_spans_jet_into(1.0 + 5e-7, 3, KnotSide::Right, &mut v, &mut e));
         assert!(short.rational_spans_jet_into(0.5, 3, KnotSide::Right, &mut v, &mut e));
+        // Out of the normal range (the review of session 46): one span of
+        // width 1e100 at order 4 (`(b - a)^-4` underflows: the fourth
+        // derivative came back 0 with bound 0), width 1e30 at order 12
+        // (a subnormal row), width 1e-30 at order 10 (an infinite row with an
+        // infinite bound was accepted).
+        for (width, order) in [(1e100, 4), (1e30, 12), (1e-30, 10), (1e-100, 4)] {
+            let poles = vec![0.0, 1.0, 3.0, -1.0];
+            let weights = Some(vec![1.0, 2.0, 0.5, 1.5]);
+            let knots = vec![0.0, 0.0, 0.0, 0.0, width, width, width, width];
+            let far = NurbsCurve::new(1, 3, poles, weights, knots).unwrap();
+            let (mut v, mut e) = (vec![0.0; order + 1], vec![0.0; order + 1]);
+            assert!(
+                !far.rational_spans_jet_into(width / 3.0, order, KnotSide::Right, &mut v, &mut e),
+                "width {width:e} order {order}"
+            );
+            // Orders whose rows stay in range are taken.
+            assert!(far.rational_spans_jet_into(
+                width / 3.0,
+                1,
+                KnotSide::Right,
+                &mut v[..2],
+                &mut e[..2]
+            ));
+        }
     }
 
     /// A NURBS curve whose jets all come from the basis route (A2.3 and
