@@ -198,6 +198,17 @@ Handle(Geom2d_BezierCurve) occ_bezier2d(const Curve& c) {
     return m;
 }
 
+// Largest coordinate difference between two lists of control points,
+// relative to the reference's size (max |coordinate|, at least 1); infinite
+// when their lengths differ.
+double relative_gap(const std::vector<double>& ours, const std::vector<double>& reference) {
+    double gap = ours.size() == reference.size() ? 0.0 : INFINITY;
+    for (std::size_t i = 0; i < std::min(ours.size(), reference.size()); ++i) {
+        gap = std::max(gap, std::abs(ours[i] - reference[i]));
+    }
+    return gap / std::max(1.0, max_abs(reference));
+}
+
 // Largest coordinate difference between our control points and OCCT's poles,
 // relative to the size of the OCCT curve (max |coordinate|, at least 1).
 double pole_difference(const Curve& ours, const Handle(Geom_BezierCurve)& occ) {
@@ -922,7 +933,7 @@ std::vector<double> occt_connect(const Handle(Geom_BezierCurve)& p, double u0,
 Curve ours_from_occ(const Handle(Geom_BSplineCurve)& c, std::size_t dim);
 void check_connect_nurbs_inputs(Report& report, const Curve& p, const Curve& q,
                                 const Handle(Geom_BezierCurve)& occ_p, const Handle(Geom_BezierCurve)& occ_q,
-                                double u0, double v0, const bezjoin::ConnectOptions& opts, const Options& options);
+                                double u0, double v0, const bezjoin::ConnectOptions& opts, int batches, int calls);
 
 void check_connect_floor(Report& report, bool demo_case, const std::vector<double>& p_points,
                          const std::vector<double>& q_points, double u0, double v0,
@@ -1045,11 +1056,7 @@ void check_connect(Report& report, StepScene& scene, std::vector<Timing>& timing
                     occt_connect(occ_p, cs.u0, occ_q, cs.v0, static_cast<int>(cs.kp),
                                  static_cast<int>(cs.kq), cs.alpha, cs.beta);
                 const std::vector<double> ours = r.points();
-                double gap = ours.size() == theirs.size() ? 0.0 : INFINITY;
-                for (std::size_t i = 0; i < std::min(ours.size(), theirs.size()); ++i) {
-                    gap = std::max(gap, std::abs(ours[i] - theirs[i]));
-                }
-                gap /= std::max(1.0, max_abs(theirs));
+                const double gap = relative_gap(ours, theirs);
                 report.row(gap <= 1e-10, "c.connect-vs-math_Gauss", gap, 1e-10,
                            format("control points of R (degree %zu), OCCT-assembled system",
                                   cs.kp + cs.kq + 1));
@@ -1075,7 +1082,7 @@ void check_connect(Report& report, StepScene& scene, std::vector<Timing>& timing
                                                 cs.alpha == 1.0 && cs.beta == 1.0,
                                     p_points, q_points, cs.u0, cs.v0, ours, occ_p, occ_q, pair, options);
                 if (cs.np == 3 && cs.nq == 4 && cs.kp == 3 && cs.kq == 4) {
-                    check_connect_nurbs_inputs(report, p, q, occ_p, occ_q, cs.u0, cs.v0, opts, options);
+                    check_connect_nurbs_inputs(report, p, q, occ_p, occ_q, cs.u0, cs.v0, opts, batches, calls);
                 }
                 const gp_Vec offset(0.0, 0.0, 0.0);
                 scene.add(Handle(Geom_Curve)(chain.curve), offset);
@@ -1337,7 +1344,7 @@ Curve ours_from_occ(const Handle(Geom_BSplineCurve)& c, std::size_t dim) {
 // Alternating batches, the median of the per-batch ratios (as every TIME row).
 void check_connect_nurbs_inputs(Report& report, const Curve& p, const Curve& q,
                                 const Handle(Geom_BezierCurve)& occ_p, const Handle(Geom_BezierCurve)& occ_q,
-                                double u0, double v0, const bezjoin::ConnectOptions& opts, const Options& options) {
+                                double u0, double v0, const bezjoin::ConnectOptions& opts, int batches, int calls) {
     auto two_spans = [](const Handle(Geom_BezierCurve)& bezier, const std::vector<double>& weights) {
         Handle(Geom_BSplineCurve) c = GeomConvert::CurveToBSplineCurve(bezier);
         c->InsertKnot(0.5);
@@ -1352,19 +1359,13 @@ void check_connect_nurbs_inputs(Report& report, const Curve& p, const Curve& q,
     const Curve q_rational = ours_from_occ(two_spans(occ_q, {1.0, 1.2, 0.8, 1.1, 0.7, 1.0}), 3);
     const std::vector<double> bezier_poles = bezjoin::connect(p, u0, q, v0, opts).points();
     const std::vector<double> span_poles = bezjoin::connect(p_spans, u0, q_spans, v0, opts).points();
-    double gap = bezier_poles.size() == span_poles.size() ? 0.0 : INFINITY;
-    for (std::size_t i = 0; i < std::min(bezier_poles.size(), span_poles.size()); ++i) {
-        gap = std::max(gap, std::abs(bezier_poles[i] - span_poles[i]));
-    }
-    gap /= std::max(1.0, max_abs(bezier_poles));
+    const double gap = relative_gap(span_poles, bezier_poles);
     const bool rational = p_rational.is_rational() && q_rational.is_rational() && p_spans.pole_count() == 5 &&
                           q_spans.pole_count() == 6;
     report.row(gap <= 1e-12 && rational, "c.connect-nurbs-inputs", gap, 1e-12,
                format("the cubic and quartic as two-span NURBS (%zu and %zu poles, knot 0.5) give R's poles as the "
                       "Bezier handles do; rational copies built: %s",
                       p_spans.pole_count(), q_spans.pole_count(), rational ? "yes" : "NO"));
-    const int batches = options.quick ? 1 : 11;
-    const int calls = options.quick ? 2 : 10000;
     auto timed = [&](const Curve& a, const Curve& b) {
         return [&, pa = &a, pb = &b](int) {
             const Curve joined = bezjoin::connect(*pa, u0, *pb, v0, opts);

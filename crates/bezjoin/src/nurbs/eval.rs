@@ -282,10 +282,8 @@ impl NurbsCurve {
     /// here the 1-norm) is at most `p!/(p-k)! 2 u (3 (p - k) + k + 1) S_k(a)`
     /// with `S_k(x) = sum_j C(k, j) x^(p-k)_j` over level `p - k` of the
     /// triangle run on the scalars `x` (weights `|1 - t|`, `|t|`), `a` the
-    /// rows' 1-norms; the rows' own rounding `e` (kept beside the
-    /// decomposition, [`SpanPoles::row_errors`](super::spans::SpanPoles):
-    /// the products `w_i x_i` and every insertion, tracked when the
-    /// decomposition is built) moves row `k` by at most `p!/(p-k)! S_k(e)`
+    /// rows' 1-norms; the rows' own rounding `e` (the products `w_i x_i`
+    /// and every insertion, tracked when the decomposition is built) moves row `k` by at most `p!/(p-k)! S_k(e)`
     /// (the triangle and the differences are linear and their absolute
     /// versions dominate them). With every size at its largest,
     /// `S_k(x) <= 2^k max_j x_j`, so row `k` in `t` is within
@@ -412,7 +410,7 @@ impl NurbsCurve {
             jet.as_flattened_mut(),
         );
         let unit = f64::EPSILON / 2.0;
-        let one_norm = |row: &[f64]| row.iter().fold(0.0f64, |s, v| s + v.abs());
+        let one_norm = super::spans::abs_sum;
         // The bounds in t of the homogeneous rows 0..=top: row k within
         // p!/(p-k)! 2^k (2 u (3 (p - k) + k + 1) A + E) of the exact jet of
         // the exact rows, A and E the span's largest row 1-norm and row
@@ -450,8 +448,7 @@ impl NurbsCurve {
             for v in row.iter_mut() {
                 *v *= scale;
             }
-            homogeneous_errors[k] =
-                scale * (in_t[k] + next * dt) + 2.0 * (3 * k + 2) as f64 * unit * one_norm(row);
+            homogeneous_errors[k] = bound_in_u(scale, in_t[k], next, dt, k, one_norm(row));
             scale *= inverse;
         }
         // The quotient rule (rows above the degree are zero in `jet`), the
@@ -887,6 +884,18 @@ fn quotient_rule<const D: usize, const H: usize>(jet: &[[f64; H]; 4], top: usize
     }
 }
 
+/// The bound of row `k` in `u = a + (b - a) t` from its bound in `t`
+/// (`scaled_span_jet_into`'s analysis): `scale = fl((b - a)^-1)^k`,
+/// `in_t` the row's bound in `t`, `next` the size of row `k + 1` in `t`
+/// plus its bound (0 above the degree), `dt = 3 u |t|` the parameter's
+/// rounding, `size` the scaled row's norm; the last term is twice the
+/// scaling's rounding and covers the bound's own sums.
+#[inline(always)]
+fn bound_in_u(scale: f64, in_t: f64, next: f64, dt: f64, k: usize, size: f64) -> f64 {
+    let unit = f64::EPSILON / 2.0;
+    scale * (in_t + next * dt) + 2.0 * (3 * k + 2) as f64 * unit * size
+}
+
 /// The jet of the degree-`p` Bezier span `poles` of the domain `(a, b)`
 /// at `u` to `order`, with the bounds of
 /// [`NurbsCurve::bezier_span_jet_into`]'s analysis, plus
@@ -939,8 +948,7 @@ fn scaled_span_jet_into(
         } else {
             0.0
         };
-        errors[k] =
-            scale * (jet_errors[k] + next * dt) + 2.0 * (3 * k + 2) as f64 * unit * norm(out);
+        errors[k] = bound_in_u(scale, jet_errors[k], next, dt, k, norm(out));
         if delta > 0.0 {
             errors[k] += scale * moved * delta;
             moved *= 2.0 * (p - k) as f64;

@@ -93,10 +93,9 @@ impl NurbsCurve {
             // bound of `spans_jet_into`, `4 (p + 1)^2 u S` per coordinate.
             let q = (p + 1) as f64;
             let clamping = 4.0 * q * q * (f64::EPSILON / 2.0) * poles.scale * poles.h as f64;
-            for e in &mut poles.row_errors {
-                *e += clamping;
+            for [_, error] in &mut poles.span_sizes {
+                *error += clamping;
             }
-            poles.span_sizes = span_sizes(&poles.rows, &poles.row_errors, poles.h, p);
             return poles;
         }
         let rational = self.weights.is_some();
@@ -136,7 +135,7 @@ impl NurbsCurve {
         let unit = f64::EPSILON / 2.0;
         let mut row_errors: Vec<f64> = if rational {
             rows.chunks_exact(h)
-                .map(|row| unit * row[..h - 1].iter().fold(0.0f64, |s, x| s + x.abs()))
+                .map(|row| unit * abs_sum(&row[..h - 1]))
                 .collect()
         } else {
             Vec::new()
@@ -174,7 +173,6 @@ impl NurbsCurve {
             h,
             degree: p,
             scale,
-            row_errors,
             span_sizes,
             beziers,
             rational_cuts: std::sync::OnceLock::new(),
@@ -324,12 +322,11 @@ pub(crate) struct SpanPoles {
     /// combination of them, so no larger (the scale of the insertions'
     /// rounding). Without weights, [`NurbsCurve::coordinate_scale`].
     pub(crate) scale: f64,
-    /// For a curve with weights, a bound on the rounding of every row (the
-    /// 1-norm of its difference from the exact decomposition of the exact
-    /// data: [`insert_in_place_tracked`]); empty without weights.
-    pub(crate) row_errors: Vec<f64>,
     /// For a curve with weights, per span the largest 1-norm of its rows
-    /// and the largest of their [`row_errors`](SpanPoles::row_errors).
+    /// and the largest bound on their rounding (the 1-norm of a row's
+    /// difference from the exact decomposition of the exact data, tracked
+    /// through the insertions: [`insert_in_place_tracked`]); empty without
+    /// weights.
     pub(crate) span_sizes: Vec<[f64; 2]>,
     /// For a curve without weights, span `i` as the Bezier curve of its
     /// rows (in `t = (u - breaks[i]) / (breaks[i + 1] - breaks[i])`);
@@ -410,6 +407,11 @@ impl SpanPoles {
     }
 }
 
+/// The sum of the absolute values (the 1-norm of a row).
+pub(crate) fn abs_sum(row: &[f64]) -> f64 {
+    row.iter().fold(0.0f64, |s, x| s + x.abs())
+}
+
 /// [`SpanPoles::span_sizes`] of the rows (`h` values each, spans of `p + 1`
 /// rows sharing their ends) and their errors; empty without errors.
 fn span_sizes(rows: &[f64], row_errors: &[f64], h: usize, p: usize) -> Vec<[f64; 2]> {
@@ -422,7 +424,7 @@ fn span_sizes(rows: &[f64], row_errors: &[f64], h: usize, p: usize) -> Vec<[f64;
             let window = i * p..=i * p + p;
             let size = rows[i * p * h..(i * p + p + 1) * h]
                 .chunks_exact(h)
-                .map(|row| row.iter().fold(0.0f64, |s, x| s + x.abs()))
+                .map(abs_sum)
                 .fold(0.0f64, f64::max);
             let error = row_errors[window].iter().fold(0.0f64, |m, &e| m.max(e));
             [size, error]
@@ -513,8 +515,8 @@ fn insert_sized(
         for i in ((k + 1 - p)..=k).rev() {
             let a = (u - knots[i]) / (knots[i + p] - knots[i]);
             if let Some(errors) = errors.as_deref_mut() {
-                let norm = |row: &[f64]| row.iter().fold(0.0f64, |s, x| s + x.abs());
-                let larger = norm(&h[i * hd..(i + 1) * hd]).max(norm(&h[(i - 1) * hd..i * hd]));
+                let larger =
+                    abs_sum(&h[i * hd..(i + 1) * hd]).max(abs_sum(&h[(i - 1) * hd..i * hd]));
                 errors[i] = a * errors[i] + (1.0 - a) * errors[i - 1] + 8.0 * unit * larger;
             }
             for c in 0..hd {
