@@ -184,24 +184,7 @@ impl BezierCurve {
     /// Largest absolute coordinate of any control point (a size scale for
     /// relative tolerances; at least the smallest positive normal number).
     pub fn coordinate_scale(&self) -> f64 {
-        // Four running maxima by comparison, then their maximum: the value
-        // of `fold(0.0, f64::max)` in order (max is exact; a NaN |v| fails
-        // `>` as f64::max ignores it; all terms are >= +0), in a quarter of
-        // the dependent steps and without maxnum's NaN handling (the hot
-        // path of connect).
-        let larger = |m: f64, v: f64| if v > m { v } else { m };
-        let mut lanes = [0.0f64; 4];
-        let chunks = self.points.chunks_exact(4);
-        let rest = chunks.remainder();
-        for chunk in chunks {
-            for (m, v) in lanes.iter_mut().zip(chunk) {
-                *m = larger(*m, v.abs());
-            }
-        }
-        for (m, v) in lanes.iter_mut().zip(rest) {
-            *m = larger(*m, v.abs());
-        }
-        larger(larger(lanes[0], lanes[1]), larger(lanes[2], lanes[3])).max(f64::MIN_POSITIVE)
+        largest_magnitude(&self.points).max(f64::MIN_POSITIVE)
     }
 
     /// Length of the control polygon.
@@ -1121,6 +1104,28 @@ pub(crate) fn scaled_norm(values: impl Iterator<Item = f64> + Clone) -> f64 {
             .map(|v| (v / largest) * (v / largest))
             .sum::<f64>()
             .sqrt()
+}
+
+/// The largest `|v|` of `values` (0 for none): the value of
+/// `fold(0.0, |m, v| m.max(v.abs()))` (max is exact; a NaN `|v|` fails `>`
+/// as `f64::max` ignores it; all terms are `>= +0`), by four running maxima
+/// by comparison, then their maximum: a quarter of the dependent steps and
+/// without maxnum's NaN handling (the curves' coordinate scales, on the hot
+/// path of connect).
+pub(crate) fn largest_magnitude(values: &[f64]) -> f64 {
+    let larger = |m: f64, v: f64| if v > m { v } else { m };
+    let mut lanes = [0.0f64; 4];
+    let chunks = values.chunks_exact(4);
+    let rest = chunks.remainder();
+    for chunk in chunks {
+        for (m, v) in lanes.iter_mut().zip(chunk) {
+            *m = larger(*m, v.abs());
+        }
+    }
+    for (m, v) in lanes.iter_mut().zip(rest) {
+        *m = larger(*m, v.abs());
+    }
+    larger(larger(lanes[0], lanes[1]), larger(lanes[2], lanes[3]))
 }
 
 #[cfg(test)]

@@ -199,48 +199,59 @@ pub(crate) fn check_finite(name: &str, values: &[f64]) -> Result<()> {
 }
 
 /// Check a scalar is finite.
+#[inline]
 pub(crate) fn check_finite_scalar(name: &str, value: f64) -> Result<()> {
     if value.is_finite() {
         Ok(())
     } else {
-        Err(BezjoinError::NonFiniteScalar {
-            name: name.into(),
-            value,
-        })
+        Err(non_finite_scalar(name, value))
     }
 }
 
+/// The error of [`check_finite_scalar`], out of the callers' hot paths
+/// (the checks themselves are inlined: a comparison and a branch).
+#[cold]
+#[inline(never)]
+fn non_finite_scalar(name: &str, value: f64) -> BezjoinError {
+    BezjoinError::NonFiniteScalar {
+        name: name.into(),
+        value,
+    }
+}
+
+/// The error of a range check, out of the callers' hot paths.
+#[cold]
+#[inline(never)]
+fn outside_range(name: &str, value: f64, range: std::fmt::Arguments<'_>) -> BezjoinError {
+    BezjoinError::out_of_range(name, value, range.to_string())
+}
+
 /// Check `value` is finite and in the closed interval `[lo, hi]`.
+#[inline]
 pub(crate) fn check_closed_range(name: &str, value: f64, lo: f64, hi: f64) -> Result<()> {
     check_finite_scalar(name, value)?;
     if value < lo || value > hi {
-        return Err(BezjoinError::out_of_range(
-            name,
-            value,
-            format!("[{lo}, {hi}]"),
-        ));
+        return Err(outside_range(name, value, format_args!("[{lo}, {hi}]")));
     }
     Ok(())
 }
 
 /// Check `value` is finite and in the open interval `(lo, hi)`.
+#[inline]
 pub(crate) fn check_open_range(name: &str, value: f64, lo: f64, hi: f64) -> Result<()> {
     check_finite_scalar(name, value)?;
     if value <= lo || value >= hi {
-        return Err(BezjoinError::out_of_range(
-            name,
-            value,
-            format!("({lo}, {hi})"),
-        ));
+        return Err(outside_range(name, value, format_args!("({lo}, {hi})")));
     }
     Ok(())
 }
 
 /// Check `value` is finite and strictly positive.
+#[inline]
 pub(crate) fn check_positive(name: &str, value: f64) -> Result<()> {
     check_finite_scalar(name, value)?;
     if value <= 0.0 {
-        return Err(BezjoinError::out_of_range(name, value, "> 0"));
+        return Err(outside_range(name, value, format_args!("> 0")));
     }
     Ok(())
 }

@@ -20,9 +20,8 @@
 //! the jets combined by the partial Bell polynomials of the shapes, scales 1.
 
 use super::{
-    CONNECT_RESIDUAL_LIMIT, Connection, END_BAND_NORM_RECIPROCALS, END_BAND_NORMS,
-    FALLING_FACTORIALS, SIGNED_BINOMIALS, finite_or_infinite, power, residual_and_bound_unguarded,
-    unit_roundoff,
+    CONNECT_RESIDUAL_LIMIT, Connection, END_BAND_NORMS, FALLING_FACTORIALS, SIGNED_BINOMIALS,
+    finite_or_infinite, power, residual_and_bound_unguarded, unit_roundoff,
 };
 use crate::basis::KnotSide;
 use crate::bezier::BezierCurve;
@@ -81,37 +80,16 @@ pub(crate) fn connect_ends_shaped<P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
     connect_small(p, q, (u0, v0, kp, kq, 1.0, 1.0), Some((p_shape, q_shape)))
 }
 
-/// The part of [`CONNECT_RESIDUAL_LIMIT`] the screen of
-/// [`connect_ends_curve`] keeps in reserve: inside [`SCREEN_RANGE`] its
-/// bounds are at least the full check's to first order (within a few `n u`
-/// relatively, far below this), so a problem that passes the screen passes
-/// the full check.
-const SCREEN_SLACK: f64 = 1e-6;
-
-/// The magnitudes the screen of [`connect_ends_curve`] accepts: the data
-/// scale (at least the curves' coordinate scale) between the two, the
-/// targets' largest coordinates and `||D_k||_1 max_s |R_s|_1` at most the
-/// second. The full check squares coordinates before its square roots: above about `1e154` a square
-/// overflows (the check then refuses with an infinite estimate), and below
-/// about `1e-154` a square loses digits or vanishes (a Euclidean norm then
-/// comes out below the largest coordinate, so a denominator shrinks). Inside
-/// this range every square the check forms is a normal number; outside it
-/// the full check answers.
-const SCREEN_RANGE: (f64, f64) = (1e-140, 1e140);
-
 /// [`connect_ends`]'s curve alone, the same control points bit for bit and
 /// the same errors (the hot path of `bzj_connect`, which returns no
 /// estimate). In the plane and in space a screen runs first
-/// ([`connect_fixed_screened`]): the same jets' values, targets and
-/// substitution, and instead of the residual check's Euclidean norms,
-/// square roots and divisions, bounds that are never below the check's
-/// (inside [`SCREEN_RANGE`]): 1-norms for Euclidean norms in numerators,
-/// largest coordinates in denominators and the data scale, the jets'
-/// bounds a priori ([`CurveJet::jet_screen_into`]). When every condition
-/// row passes the screen, every row's bound in the full check is below
-/// [`CONNECT_RESIDUAL_LIMIT`], so the full check would accept the same
-/// points; when any row does not pass (or a value is not finite), the full
-/// [`connect_ends`] runs and answers, estimate and refusal included.
+/// ([`super::screen`]): the same jets' values, targets and substitution,
+/// and instead of the residual check's Euclidean norms, square roots and
+/// divisions, bounds that are never below the check's. When every
+/// condition row passes the screen, every row's bound in the full check is
+/// below [`CONNECT_RESIDUAL_LIMIT`], so the full check would accept the
+/// same points; when any row does not pass (or a value is not finite), the
+/// full [`connect_ends`] runs and answers, estimate and refusal included.
 #[allow(clippy::too_many_arguments)]
 pub(super) fn connect_ends_curve<P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
     p: &P,
@@ -123,87 +101,10 @@ pub(super) fn connect_ends_curve<P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
     alpha: f64,
     beta: f64,
 ) -> Result<BezierCurve> {
-    match connect_ends_screened(p, q, (u0, v0, kp, kq, alpha, beta)) {
+    match super::screen::connect_ends_screened(p, q, (u0, v0, kp, kq, alpha, beta)) {
         Some(curve) => Ok(curve),
         None => connect_ends(p, u0, q, v0, kp, kq, alpha, beta).map(|c| c.curve),
     }
-}
-
-/// The screen of [`connect_ends_curve`] (`args`: `(u0, v0, kp, kq, alpha,
-/// beta)`, validated): `Some(R)` when every condition row passes it, `None`
-/// when one does not or the problem is outside its arrays (dimension other
-/// than 2 or 3, degree `kp + kq + 1 >= MAX_POINTS`).
-pub(super) fn connect_ends_screened<P: CurveJet + ?Sized, Q: CurveJet + ?Sized>(
-    p: &P,
-    q: &Q,
-    args: (f64, f64, usize, usize, f64, f64),
-) -> Option<BezierCurve> {
-    let (_, _, kp, kq, _, _) = args;
-    let count = kp + kq + 2;
-    match (p.dim(), count) {
-        _ if count > MAX_POINTS => None,
-        (2, ..=8) => connect_fixed_screened::<2, 8, P, Q>(p, q, args),
-        (2, ..=12) => connect_fixed_screened::<2, 12, P, Q>(p, q, args),
-        (2, _) => connect_fixed_screened::<2, MAX_POINTS, P, Q>(p, q, args),
-        (3, ..=8) => connect_fixed_screened::<3, 8, P, Q>(p, q, args),
-        (3, ..=12) => connect_fixed_screened::<3, 12, P, Q>(p, q, args),
-        (3, _) => connect_fixed_screened::<3, MAX_POINTS, P, Q>(p, q, args),
-        _ => None,
-    }
-}
-
-/// The screen of [`connect_ends_curve`] in dimension `D`, as
-/// [`connect_fixed`] without shapes: `Some(R)` when every row passes,
-/// `None` otherwise.
-fn connect_fixed_screened<
-    const D: usize,
-    const CAP: usize,
-    P: CurveJet + ?Sized,
-    Q: CurveJet + ?Sized,
->(
-    p: &P,
-    q: &Q,
-    (u0, v0, kp, kq, alpha, beta): (f64, f64, usize, usize, f64, f64),
-) -> Option<BezierCurve> {
-    let n = kp + kq + 1;
-    let count = n + 1;
-    let (p_scale, q_scale) = (p.coordinate_scale(), q.coordinate_scale());
-    let mut targets = [[0.0f64; D]; CAP];
-    let mut target_errors = [0.0f64; CAP];
-    {
-        let (p_rows, q_rows) = targets[..count].split_at_mut(kp + 1);
-        let (p_errors, q_errors) = target_errors[..count].split_at_mut(kp + 1);
-        p.jet_screen_into(
-            u0,
-            kp,
-            KnotSide::Left,
-            p_scale,
-            p_rows.as_flattened_mut(),
-            p_errors,
-        );
-        q.jet_screen_into(
-            v0,
-            kq,
-            KnotSide::Right,
-            q_scale,
-            q_rows.as_flattened_mut(),
-            q_errors,
-        );
-    }
-    // The largest absolute coordinates of the targets in place of their
-    // norms (at most the norms: the denominators' lower bounds).
-    let mut targets = ScaledTargets {
-        rows: targets,
-        errors: target_errors,
-        data_scale: p_scale.max(q_scale),
-    };
-    let (points, [(p_screen, _), (q_screen, _)]) =
-        targets.solve::<true>(n, (kp, kq), (alpha, beta));
-    let flat = points[..count].as_flattened();
-    if p_screen != 0.0 || q_screen != 0.0 || flat.iter().any(|v| !v.is_finite()) {
-        return None;
-    }
-    Some(BezierCurve::from_parts(D, n, flat.to_vec()))
 }
 
 /// The jets at both ends in condition rows (`kp + 1` of P, then `kq + 1`
@@ -219,15 +120,14 @@ impl<const D: usize, const CAP: usize> ScaledTargets<D, CAP> {
     /// The targets in place ([`scale_targets`]: `alpha^k`, `beta^k`, their
     /// bounds and norms, the data scale raised), then the two ends'
     /// substitutions and checks ([`solve_end_by_rows`]): `R` in the first
-    /// `n + 1` rows, and each end's worst residual and bound (with
-    /// `SCREEN`, `(0, 0)` or `(inf, inf)` per end).
+    /// `n + 1` rows, and each end's worst residual and bound.
     ///
     /// P end: row k of D(0) touches R_0..R_k only (lower triangular); Q
     /// end: row k of D(1) touches R_(n-k)..R_n only (anti-triangular). The
     /// two sets of unknowns are disjoint (n - kq = kp + 1), so each end is
     /// solved and checked on its own.
     #[inline(always)]
-    fn solve<const SCREEN: bool>(
+    fn solve(
         &mut self,
         n: usize,
         (kp, kq): (usize, usize),
@@ -236,7 +136,7 @@ impl<const D: usize, const CAP: usize> ScaledTargets<D, CAP> {
         let mut norms = [0.0f64; CAP];
         for (first, rows, scale) in [(0, kp + 1, alpha), (kp + 1, kq + 1, beta)] {
             let range = first..first + rows;
-            scale_targets::<D, SCREEN>(
+            scale_targets::<D>(
                 n,
                 scale,
                 &mut self.rows[range.clone()],
@@ -255,8 +155,8 @@ impl<const D: usize, const CAP: usize> ScaledTargets<D, CAP> {
         };
         let mut points = [[0.0f64; D]; CAP];
         let (p_points, q_points) = points[..n + 1].split_at_mut(kp + 1);
-        let p_end = solve_end_by_rows::<D, false, SCREEN>(&end(0, kp + 1), p_points);
-        let q_end = solve_end_by_rows::<D, true, SCREEN>(&end(kp + 1, kq + 1), q_points);
+        let p_end = solve_end_by_rows::<D, false>(&end(0, kp + 1), p_points);
+        let q_end = solve_end_by_rows::<D, true>(&end(kp + 1, kq + 1), q_points);
         (points, [p_end, q_end])
     }
 }
@@ -414,7 +314,7 @@ fn connect_fixed<const D: usize, const CAP: usize, P: CurveJet + ?Sized, Q: Curv
         data_scale: p.coordinate_scale().max(q.coordinate_scale()),
     };
     let (points, [(p_residual, p_bound), (q_residual, q_bound)]) =
-        targets.solve::<false>(n, (kp, kq), (alpha, beta));
+        targets.solve(n, (kp, kq), (alpha, beta));
     // The maxima over all rows (f64::max of non-negative, non-NaN values:
     // the order of the rows does not matter).
     let max_residual = 0.0f64.max(p_residual).max(q_residual);
@@ -449,14 +349,7 @@ fn connect_fixed<const D: usize, const CAP: usize, P: CurveJet + ?Sized, Q: Curv
 /// With `s = 1` (the paper's scale) the products by `s^k` and by the
 /// factor are skipped: they are exact (`1 x = x` for every `x`, and
 /// `power(1, k) = 1`), so the values are the same bit for bit.
-///
-/// With `SCREEN` ([`connect_ends_curve`]) the same targets, and without a
-/// square root or a division: `|T_k|` bounded above by the 1-norm in `e_k`
-/// and below by the largest absolute coordinate in `norms` and in the data
-/// scale (`|T_k|_inf / ||D_k||_1` by the table of reciprocals), so the
-/// bounds are never below the full check's and the denominators never above
-/// (to first order).
-fn scale_targets<const D: usize, const SCREEN: bool>(
+fn scale_targets<const D: usize>(
     n: usize,
     scale: f64,
     rows: &mut [[f64; D]],
@@ -474,19 +367,13 @@ fn scale_targets<const D: usize, const SCREEN: bool>(
         .enumerate()
     {
         let mut square = 0.0;
-        let mut largest = 0.0f64;
         for v in row.iter_mut() {
             if !unit {
                 *v *= factor;
             }
-            if SCREEN {
-                square += v.abs();
-                largest = largest.max(v.abs());
-            } else {
-                square += *v * *v;
-            }
+            square += *v * *v;
         }
-        let size = if SCREEN { square } else { square.sqrt() };
+        let size = square.sqrt();
         let scaled_error = if unit {
             *error
         } else {
@@ -494,12 +381,8 @@ fn scale_targets<const D: usize, const SCREEN: bool>(
         };
         *error = scaled_error + (k + 1) as f64 * unit_roundoff() * size;
         factor *= scale;
-        *norm = if SCREEN { largest } else { size };
-        let v = if SCREEN {
-            largest * END_BAND_NORM_RECIPROCALS[n][k]
-        } else {
-            size / band_norms[k]
-        };
+        *norm = size;
+        let v = size / band_norms[k];
         if v.is_finite() {
             *data_scale = data_scale.max(v);
         }
@@ -524,20 +407,20 @@ struct EndRows<'a, const D: usize> {
 /// [`solve_end`] with the number of rows a constant for orders up to 7
 /// (`rows` 1 to 8: every loop of the substitution with constant bounds,
 /// unrolled), the same code with a run-time count above.
-fn solve_end_by_rows<const D: usize, const AT_ONE: bool, const SCREEN: bool>(
+fn solve_end_by_rows<const D: usize, const AT_ONE: bool>(
     end: &EndRows<'_, D>,
     points: &mut [[f64; D]],
 ) -> (f64, f64) {
     match end.targets.len() {
-        1 => solve_end::<D, AT_ONE, 1, SCREEN>(1, end, points),
-        2 => solve_end::<D, AT_ONE, 2, SCREEN>(2, end, points),
-        3 => solve_end::<D, AT_ONE, 3, SCREEN>(3, end, points),
-        4 => solve_end::<D, AT_ONE, 4, SCREEN>(4, end, points),
-        5 => solve_end::<D, AT_ONE, 5, SCREEN>(5, end, points),
-        6 => solve_end::<D, AT_ONE, 6, SCREEN>(6, end, points),
-        7 => solve_end::<D, AT_ONE, 7, SCREEN>(7, end, points),
-        8 => solve_end::<D, AT_ONE, 8, SCREEN>(8, end, points),
-        rows => solve_end::<D, AT_ONE, MAX_POINTS, SCREEN>(rows, end, points),
+        1 => solve_end::<D, AT_ONE, 1>(1, end, points),
+        2 => solve_end::<D, AT_ONE, 2>(2, end, points),
+        3 => solve_end::<D, AT_ONE, 3>(3, end, points),
+        4 => solve_end::<D, AT_ONE, 4>(4, end, points),
+        5 => solve_end::<D, AT_ONE, 5>(5, end, points),
+        6 => solve_end::<D, AT_ONE, 6>(6, end, points),
+        7 => solve_end::<D, AT_ONE, 7>(7, end, points),
+        8 => solve_end::<D, AT_ONE, 8>(8, end, points),
+        rows => solve_end::<D, AT_ONE, MAX_POINTS>(rows, end, points),
     }
 }
 
@@ -560,21 +443,8 @@ fn solve_end_by_rows<const D: usize, const AT_ONE: bool, const SCREEN: bool>(
 /// `s <= k` (Q) instead of bounds that depend on `k`: with `rows` a
 /// constant every loop has constant bounds and unrolls; the operations on
 /// the slots that pass the test are those of the triangular loops.
-///
-/// With `SCREEN` ([`connect_ends_curve`]) the same substitution, so the
-/// same points bit for bit, no `|b_s| |R_s|` sums, and instead of the
-/// residuals and bounds a screen without square roots or divisions: every
-/// row passes when `|D_k R - T_k|_1 + gamma ||D_k||_1 max_s |R_s|_1 + e_k
-/// <= (1 - SCREEN_SLACK) CONNECT_RESIDUAL_LIMIT max(|T_k|_inf, S ||D_k||_1)`
-/// (the maximum over the row's points, which are the ones solved up to
-/// it; `e_k`, `|T_k|_inf` and `S` from [`scale_targets`]) and the
-/// magnitudes are inside [`SCREEN_RANGE`]. Each term is at least its
-/// counterpart in the full check (`|x|_1 >= |x|`, `|x|_inf <= |x|`, `sum_s
-/// |b_s| |R_s| <= ||D_k||_1 max_s |R_s|`), so a row that passes has a bound
-/// below the limit there. Returns `(0, 0)` when every row passes,
-/// `(inf, inf)` otherwise (also for a NaN anywhere).
 #[inline(always)]
-fn solve_end<const D: usize, const AT_ONE: bool, const ROWS: usize, const SCREEN: bool>(
+fn solve_end<const D: usize, const AT_ONE: bool, const ROWS: usize>(
     rows: usize,
     end: &EndRows<'_, D>,
     points: &mut [[f64; D]],
@@ -612,9 +482,7 @@ fn solve_end<const D: usize, const AT_ONE: bool, const ROWS: usize, const SCREEN
             for c in 0..D {
                 x[c] = sum[c] / new_band;
                 value[c] += new_band * x[c];
-                if !SCREEN {
-                    abs_value[c] += new_band.abs() * x[c].abs();
-                }
+                abs_value[c] += new_band.abs() * x[c].abs();
             }
             local[k] = x;
             for s in 1..rows {
@@ -623,9 +491,7 @@ fn solve_end<const D: usize, const AT_ONE: bool, const ROWS: usize, const SCREEN
                     let point = local[k - s];
                     for c in 0..D {
                         value[c] += b * point[c];
-                        if !SCREEN {
-                            abs_value[c] += b.abs() * point[c].abs();
-                        }
+                        abs_value[c] += b.abs() * point[c].abs();
                     }
                 }
             }
@@ -637,9 +503,7 @@ fn solve_end<const D: usize, const AT_ONE: bool, const ROWS: usize, const SCREEN
                     for c in 0..D {
                         sum[c] -= b * point[c];
                         value[c] += b * point[c];
-                        if !SCREEN {
-                            abs_value[c] += b.abs() * point[c].abs();
-                        }
+                        abs_value[c] += b.abs() * point[c].abs();
                     }
                 }
             }
@@ -648,9 +512,7 @@ fn solve_end<const D: usize, const AT_ONE: bool, const ROWS: usize, const SCREEN
             for c in 0..D {
                 x[c] = sum[c] / new_band;
                 value[c] += new_band * x[c];
-                if !SCREEN {
-                    abs_value[c] += new_band.abs() * x[c].abs();
-                }
+                abs_value[c] += new_band.abs() * x[c].abs();
             }
             local[k] = x;
         }
@@ -658,49 +520,15 @@ fn solve_end<const D: usize, const AT_ONE: bool, const ROWS: usize, const SCREEN
         let mut abs_square = 0.0;
         for c in 0..D {
             let difference = value[c] - target[c];
-            if SCREEN {
-                difference_square += difference.abs();
-                // The largest `|R_s|_1` of the row's points so far: every
-                // row's points are the ones solved up to it.
-                abs_square = local[k].iter().map(|v| v.abs()).sum::<f64>();
-            } else {
-                difference_square += difference * difference;
-                abs_square += abs_value[c] * abs_value[c];
-            }
+            difference_square += difference * difference;
+            abs_square += abs_value[c] * abs_value[c];
         }
         difference_squares[k] = difference_square;
-        abs_squares[k] = if SCREEN && k > 0 {
-            abs_square.max(abs_squares[k - 1])
-        } else {
-            abs_square
-        };
+        abs_squares[k] = abs_square;
     }
     for (k, x) in local[..rows].iter().enumerate() {
         // `points` holds `R_0..R_(rows-1)` (P) or `R_(n+1-rows)..R_n` (Q).
         points[if AT_ONE { rows - 1 - k } else { k }] = *x;
-    }
-    if SCREEN {
-        // `sum_s |b_s| |R_s|_1 <= ||D_k||_1 max_s |R_s|_1`, the maximum
-        // over the row's points (`abs_squares[k]`).
-        let limit = (1.0 - SCREEN_SLACK) * CONNECT_RESIDUAL_LIMIT;
-        let (low, high) = SCREEN_RANGE;
-        // The row products grow with the row (`||D_k||_1` and the running
-        // maximum both do): the last is the largest.
-        let last = rows - 1;
-        let mut pass = (end.data_scale >= low)
-            & (end.data_scale <= high)
-            & (norms[last] * abs_squares[last] <= high);
-        for k in 0..rows {
-            let row_product = norms[k] * abs_squares[k];
-            let numerator = difference_squares[k] + end.gamma * row_product + end.target_errors[k];
-            let denominator = end.target_norms[k].max(end.data_scale * norms[k]);
-            pass &= (numerator <= limit * denominator) & (end.target_norms[k] <= high);
-        }
-        return if pass {
-            (0.0, 0.0)
-        } else {
-            (f64::INFINITY, f64::INFINITY)
-        };
     }
     // The residuals and their bounds in a pass of their own: the square
     // roots and divisions of different rows are independent there (the

@@ -84,6 +84,7 @@
 
 mod dense;
 mod ends;
+mod screen;
 pub(crate) use ends::connect_ends_shaped;
 mod energy;
 
@@ -123,6 +124,7 @@ pub const MAX_CONNECT_DEGREE: usize = 31;
 /// nothing is solved) when it is above [`MAX_CONNECT_DEGREE`] or
 /// overflows. [`connect`] checks it first; the C ABI calls it before it
 /// reads the constraints' value arrays, whose lengths depend on the orders.
+#[inline]
 pub fn check_connect_degree(
     p_order: usize,
     q_order: usize,
@@ -136,16 +138,23 @@ pub fn check_connect_degree(
     }
     match degree {
         Some(d) if d <= MAX_CONNECT_DEGREE => Ok(d),
-        _ => Err(BezjoinError::IllConditioned {
-            what: format!(
-                "connect: result degree {} is above the supported maximum {MAX_CONNECT_DEGREE} \
-                 (p_order {p_order} + q_order {q_order} + 1, plus one more than each \
-                 constraint's order)",
-                degree.map_or_else(|| "(overflow)".to_string(), |d| d.to_string())
-            ),
-            estimate: f64::INFINITY,
-            limit: CONNECT_RESIDUAL_LIMIT,
-        }),
+        _ => Err(degree_above_maximum(p_order, q_order, degree)),
+    }
+}
+
+/// The error of [`check_connect_degree`], out of the callers' hot paths.
+#[cold]
+#[inline(never)]
+fn degree_above_maximum(p_order: usize, q_order: usize, degree: Option<usize>) -> BezjoinError {
+    BezjoinError::IllConditioned {
+        what: format!(
+            "connect: result degree {} is above the supported maximum {MAX_CONNECT_DEGREE} \
+             (p_order {p_order} + q_order {q_order} + 1, plus one more than each \
+             constraint's order)",
+            degree.map_or_else(|| "(overflow)".to_string(), |d| d.to_string())
+        ),
+        estimate: f64::INFINITY,
+        limit: CONNECT_RESIDUAL_LIMIT,
     }
 }
 
@@ -312,6 +321,7 @@ impl Default for ShapeScale {
 impl ShapeScale {
     /// The given scales, checked `> 0` (named `p_scale`, `q_scale`); `None`
     /// for [`ShapeScale::Auto`].
+    #[inline]
     pub(crate) fn checked(&self) -> Result<Option<(f64, f64)>> {
         match *self {
             ShapeScale::Given { p, q } => {
@@ -2224,7 +2234,7 @@ mod tests {
                 unreachable!()
             };
             let args = (u0, v0, options.p_order, options.q_order, alpha, beta);
-            match ends::connect_ends_screened(&p, &q, args) {
+            match screen::connect_ends_screened(&p, &q, args) {
                 Some(r) => {
                     screened += 1;
                     let c = full
@@ -2273,7 +2283,7 @@ mod tests {
             }
             answered += usize::from(full.is_ok());
             refused += usize::from(full.is_err());
-            if ends::connect_ends_screened(&p, &q, (0.35, 0.8, 7, 2, scale, scale)).is_some() {
+            if screen::connect_ends_screened(&p, &q, (0.35, 0.8, 7, 2, scale, scale)).is_some() {
                 screened += 1;
                 assert!(full.is_ok(), "scale {scale}: screen passed, check refused");
             }

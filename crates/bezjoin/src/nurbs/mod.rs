@@ -57,6 +57,14 @@ pub struct NurbsCurve {
     span_cache: eval::SpanCache,
 }
 
+/// The error of [`NurbsCurve::check_parameter`], out of the callers' hot
+/// paths.
+#[cold]
+#[inline(never)]
+fn outside_domain(name: &str, u: f64, (a, b): (f64, f64)) -> BezjoinError {
+    BezjoinError::out_of_range(name, u, format!("[{}, {}]", Compact(a), Compact(b)))
+}
+
 /// The name the chain code and older callers know the type by: a
 /// polynomial B-spline is a [`NurbsCurve`] without weights.
 pub type BSplineCurve = NurbsCurve;
@@ -528,10 +536,7 @@ impl NurbsCurve {
 
     /// Largest absolute pole coordinate (at least `f64::MIN_POSITIVE`).
     pub fn coordinate_scale(&self) -> f64 {
-        self.points
-            .iter()
-            .fold(0.0f64, |m, v| m.max(v.abs()))
-            .max(f64::MIN_POSITIVE)
+        crate::bezier::largest_magnitude(&self.points).max(f64::MIN_POSITIVE)
     }
 
     /// Distinct knots and their multiplicities (the form OpenCASCADE's
@@ -542,15 +547,12 @@ impl NurbsCurve {
 
     /// `Ok` when `u` is finite and inside the domain; otherwise the error
     /// names `name` and the domain.
+    #[inline]
     pub fn check_parameter(&self, name: &str, u: f64) -> Result<()> {
         check_finite_scalar(name, u)?;
         let (a, b) = self.domain();
         if u < a || u > b {
-            return Err(BezjoinError::out_of_range(
-                name,
-                u,
-                format!("[{}, {}]", Compact(a), Compact(b)),
-            ));
+            return Err(outside_domain(name, u, (a, b)));
         }
         Ok(())
     }
