@@ -322,6 +322,24 @@ impl CurveJet for NurbsCurve {
         // the rows are zeroed before they are summed).
         self.eval_derivatives_into(u, order, side, values, Some(errors));
     }
+
+    /// A polynomial curve (dimension 2 to 4, degree 1 to 15): the same
+    /// de Casteljau values as [`jet_into`](CurveJet::jet_into), the
+    /// triangle's bound a priori (`NurbsCurve::span_jet_screen_into`).
+    /// Any other curve: [`jet_into`](CurveJet::jet_into).
+    fn jet_screen_into(
+        &self,
+        u: f64,
+        order: usize,
+        side: KnotSide,
+        scale: f64,
+        values: &mut [f64],
+        errors: &mut [f64],
+    ) {
+        if !self.span_jet_screen_into(u, order, side, scale, values, errors) {
+            self.jet_into(u, order, side, values, errors);
+        }
+    }
 }
 
 impl CurveJet for Curve {

@@ -265,6 +265,72 @@ impl NurbsCurve {
         true
     }
 
+    /// The jet of a polynomial curve (dimension 2 to 4, degree 1 to 15)
+    /// as [`CurveJet::jet_into`](crate::curve::CurveJet::jet_into) takes it
+    /// ([`bezier_span_jet_into`](Self::bezier_span_jet_into) for one
+    /// clamped span, [`spans_jet_into`](Self::spans_jet_into) otherwise):
+    /// the same values bit for bit (the de Casteljau values of the same
+    /// poles, [`de_casteljau_values_into`](crate::connect::de_casteljau_values_into),
+    /// scaled by the same products), with bounds never below that route's
+    /// (to first order) that need no sizes' triangle and no square root:
+    /// the connect's screen ([`CurveJet::jet_screen_into`](crate::curve::CurveJet::jet_screen_into)).
+    ///
+    /// That route bounds row `k` in `t` by `p!/(p-k)! 2 u (3 (p - k) + k +
+    /// 1) S_k(a)`, `S_k(a) = sum_j C(k, j) a^(p-k)_j` over level `p - k` of
+    /// the triangle run on the poles' Euclidean sizes `a` (weights `|1 -
+    /// t|`, `|t|`, which sum to 1 on `[0, 1]`). Every size in that
+    /// triangle is at most `A = sqrt(dim) scale`, `scale >=` the largest
+    /// absolute pole coordinate (the curve's
+    /// [`coordinate_scale`](NurbsCurve::coordinate_scale): a span's poles
+    /// are convex combinations of the curve's, to rounding), so `S_k(a) <=
+    /// 2^k A`: that replaces the triangle. The rest of the bound
+    /// (the parameter's rounding, `(b - a)^-k`, the decomposition's `delta`)
+    /// is the route's own, with 1-norms for its Euclidean norms. `false`
+    /// (nothing written) for other curves.
+    pub(crate) fn span_jet_screen_into(
+        &self,
+        u: f64,
+        order: usize,
+        side: KnotSide,
+        scale: f64,
+        values: &mut [f64],
+        errors: &mut [f64],
+    ) -> bool {
+        let (p, dim) = (self.degree, self.dim);
+        if self.weights.is_some() || !(2..=4).contains(&dim) || !(1..=15).contains(&p) {
+            return false;
+        }
+        debug_assert_eq!(values.len(), (order + 1) * dim);
+        debug_assert_eq!(errors.len(), order + 1);
+        let size = (dim as f64).sqrt() * scale;
+        if self.is_bezier_span() {
+            let poles = &self.points[..(p + 1) * dim];
+            let (a, b) = (self.knots[p], self.knots[p + 1]);
+            if a == 0.0 && b == 1.0 {
+                // `de_casteljau_jet_into` at `u` itself: its rows and
+                // bounds, the bounds a priori.
+                let m = order.min(p);
+                values[(m + 1) * dim..].fill(0.0);
+                errors[m + 1..].fill(0.0);
+                crate::connect::de_casteljau_values_into(poles, dim, p, u, m, values);
+                triangle_bounds(p, size, &mut errors[..=m]);
+                return true;
+            }
+            let span = ((a, b), size, 0.0);
+            scaled_span_jet_screen_into(poles, dim, p, span, u, order, values, errors);
+            return true;
+        }
+        let spans = self.span_poles();
+        let i = spans.span_at(u, side);
+        let poles = spans.beziers[i].points();
+        let unit = f64::EPSILON / 2.0;
+        let q = (p + 1) as f64;
+        let delta = 4.0 * q * q * unit * spans.scale * (dim as f64).sqrt();
+        let span = (spans.domain(i), size, delta);
+        scaled_span_jet_screen_into(poles, dim, p, span, u, order, values, errors);
+        true
+    }
+
     /// [`spans_jet_into`](Self::spans_jet_into) for a curve with weights,
     /// dimension at most 3, degree 1 to 15 and orders up to
     /// [`RATIONAL_SPAN_MAX_ORDER`]: the jet of the homogeneous curve
@@ -957,6 +1023,81 @@ fn scaled_span_jet_into(
     }
 }
 
+/// `bounds[k] = p!/(p-k)! 2^k 2 u (3 (p - k) + k + 1) size` for the rows
+/// `k = 0..bounds.len()` (at most `p + 1`): the de Casteljau triangle's
+/// bounds of the rows in `t` with every size at `size`
+/// ([`NurbsCurve::span_jet_screen_into`]); `p!/(p-k)! 2^k` by running
+/// products, exact in f64 for `p <= 15`.
+fn triangle_bounds(p: usize, size: f64, bounds: &mut [f64]) {
+    // `3 (p - k) + k + 1` and `p - k` as doubles stepped down (exact).
+    let mut count = (3 * p + 1) as f64;
+    let mut remaining = p as f64;
+    let mut moved = f64::EPSILON * size;
+    for bound in bounds.iter_mut() {
+        *bound = count * moved;
+        moved *= 2.0 * remaining;
+        count -= 2.0;
+        remaining -= 1.0;
+    }
+}
+
+/// [`scaled_span_jet_into`]'s values bit for bit (the de Casteljau values
+/// of the same poles, scaled by the same products), with its bound's
+/// triangle replaced by [`triangle_bounds`] of `size` (at least every
+/// pole's Euclidean size) and its Euclidean norms by 1-norms: never below
+/// its bounds (to first order). `span`: the span's domain `(a, b)`,
+/// `size`, and the decomposition's `delta`.
+#[allow(clippy::too_many_arguments)]
+fn scaled_span_jet_screen_into(
+    poles: &[f64],
+    dim: usize,
+    p: usize,
+    ((a, b), size, delta): ((f64, f64), f64, f64),
+    u: f64,
+    order: usize,
+    values: &mut [f64],
+    errors: &mut [f64],
+) {
+    const STACK: usize = 17 * 4;
+    let top = (order + 1).min(p);
+    let mut jet = [0.0f64; STACK];
+    let jet = &mut jet[..(top + 1) * dim];
+    let h = b - a;
+    let t = (u - a) / h;
+    crate::connect::de_casteljau_values_into(poles, dim, p, t, top, jet);
+    let mut in_t = [0.0f64; 17];
+    triangle_bounds(p, size, &mut in_t[..=top]);
+    let one_norm = super::spans::abs_sum;
+    let unit = f64::EPSILON / 2.0;
+    let dt = 3.0 * unit * t.abs();
+    let inverse = 1.0 / h;
+    let mut scale = 1.0;
+    let mut moved = 1.0;
+    for k in 0..=order {
+        let out = &mut values[k * dim..(k + 1) * dim];
+        if k > p {
+            out.fill(0.0);
+            errors[k] = 0.0;
+            continue;
+        }
+        let row = &jet[k * dim..(k + 1) * dim];
+        for (o, &v) in out.iter_mut().zip(row) {
+            *o = scale * v;
+        }
+        let next = if k < p {
+            one_norm(&jet[(k + 1) * dim..(k + 2) * dim]) + in_t[k + 1]
+        } else {
+            0.0
+        };
+        errors[k] = bound_in_u(scale, in_t[k], next, dt, k, one_norm(out));
+        if delta > 0.0 {
+            errors[k] += scale * moved * delta;
+            moved *= 2.0 * (p - k) as f64;
+        }
+        scale *= inverse;
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -1153,6 +1294,86 @@ mod tests {
             us.push((w[0] + (w[1] - w[0]) * values.unit(), KnotSide::Right, i));
         }
         us
+    }
+
+    /// The screen's jet of a polynomial curve (`span_jet_screen_into`):
+    /// `jet_into`'s values bit for bit and bounds never below its bounds,
+    /// for one clamped span on `[0, 1]` and on another domain, and for
+    /// curves of several spans, clamped and not; dimensions 2-4, degrees
+    /// 1-15, orders 0 to two above the degree, at the knots from both
+    /// sides, at the ends and inside spans. Rational curves, dimension 1
+    /// and degree 16 are declined.
+    #[test]
+    fn span_screen_jets_are_the_jets_with_larger_bounds() {
+        let mut values = Values(4702);
+        let (mut compared, mut larger) = (0, 0);
+        for case in 0..60 {
+            let dim = 2 + case % 3;
+            let p = 1 + (case * 7) % 15;
+            let spans = 1 + case % 3;
+            let clamped = spans == 1 || case % 2 == 0;
+            let mut c = curve(&mut values, dim, p, spans, false, clamped);
+            if case % 5 == 0 && spans == 1 {
+                // The same poles on [0, 1]: the direct route.
+                let poles = c.points().to_vec();
+                let mut knots = vec![0.0; p + 1];
+                knots.extend(std::iter::repeat_n(1.0, p + 1));
+                c = NurbsCurve::new(dim, p, poles, None, knots).unwrap();
+            }
+            let mut breaks = vec![c.domain().0];
+            breaks.extend(c.interior_knots().0);
+            breaks.push(c.domain().1);
+            for (u, side, _) in span_parameters(&breaks, &mut values) {
+                for order in [0, 1, p / 2, p, p + 2] {
+                    let mut full = (vec![7.0; (order + 1) * dim], vec![7.0; order + 1]);
+                    let mut screen = full.clone();
+                    crate::curve::CurveJet::jet_into(&c, u, order, side, &mut full.0, &mut full.1);
+                    let scale = c.coordinate_scale();
+                    assert!(c.span_jet_screen_into(
+                        u,
+                        order,
+                        side,
+                        scale,
+                        &mut screen.0,
+                        &mut screen.1
+                    ));
+                    let label =
+                        format!("case {case}: dim {dim} p {p} spans {spans} u {u} order {order}");
+                    assert_eq!(full.0, screen.0, "{label}");
+                    for (k, (a, b)) in full.1.iter().zip(&screen.1).enumerate() {
+                        assert!(*b >= *a * (1.0 - 1e-9), "{label} row {k}: {b:e} < {a:e}");
+                        larger += usize::from(b > a);
+                    }
+                    compared += 1;
+                }
+            }
+        }
+        let mut declined = (vec![0.0; 6], vec![0.0; 3]);
+        let rational = curve(&mut values, 2, 3, 2, true, true);
+        assert!(!rational.span_jet_screen_into(
+            0.0,
+            2,
+            KnotSide::Right,
+            1.0,
+            &mut declined.0,
+            &mut declined.1
+        ));
+        let line = curve(&mut values, 1, 3, 2, false, true);
+        let mut one = (vec![0.0; 3], vec![0.0; 3]);
+        assert!(!line.span_jet_screen_into(0.0, 2, KnotSide::Right, 1.0, &mut one.0, &mut one.1));
+        let high = curve(&mut values, 2, 16, 1, false, true);
+        assert!(!high.span_jet_screen_into(
+            0.0,
+            2,
+            KnotSide::Right,
+            1.0,
+            &mut declined.0,
+            &mut declined.1
+        ));
+        assert!(
+            compared > 1000 && larger > compared,
+            "{compared} jets, {larger} larger bounds"
+        );
     }
 
     /// `spans_jet_into` (the jet with bounds of a polynomial curve of
