@@ -24,15 +24,27 @@
 //! - the jets' rounding bounded a priori ([`CurveJet::jet_screen_into`]);
 //! - `|T_k|_inf <= |T_k|` in the denominator;
 //! - the data scale from the coordinate scales and the end's own rows
-//!   only, a lower bound of `S` (the other end's rows can only raise it).
+//!   only, a lower bound of `S` up to rounding (the other end's rows can
+//!   only raise `S`; `|T_j|_inf` times the rounded reciprocal of
+//!   `||D_j||_1` can exceed `|T_j| / ||D_j||_1` by an ulp or two where
+//!   `T_j` has one non-zero coordinate).
 //!
 //! All of this holds to first order; the slack [`SCREEN_SLACK`] of the
-//! limit covers the rest inside [`SCREEN_RANGE`], where every square the
-//! full check forms is a normal number.
+//! limit covers the rest inside [`SCREEN_RANGE`]. That range bounds the
+//! magnitudes from above, so no square the full check forms overflows.
+//! From below it bounds only the data scale: a target, residual or
+//! coordinate may still be far below `1e-154`, where its square is not a
+//! normal number and the full check's Euclidean norm of it can be off by
+//! far more than the slack. Such a quantity is at most about `1e-154`
+//! while every denominator is at least `S' ||D_k||_1 >= 1e-140`, so it is
+//! within about `1e-14` of the limit's scale either way.
 //!
 //! A point that is not finite fails its own row: it enters that row's
 //! residual `D_k R - T_k`, which is then infinite or NaN, and neither
-//! passes `<=` against a finite denominator.
+//! passes `<=` against a finite denominator. The denominators are finite
+//! because the range checks (`data_scale <= high`, `|T_k|_inf <= high`)
+//! are in the same conjunction as the comparison: the two must stay
+//! together (`inf <= inf` would pass).
 
 use super::{
     CONNECT_RESIDUAL_LIMIT, END_BAND_NORM_RECIPROCALS, END_BAND_NORMS, FALLING_FACTORIALS,
@@ -55,8 +67,9 @@ const SCREEN_SLACK: f64 = 1e-6;
 /// overflows (the check then refuses with an infinite estimate), and below
 /// about `1e-154` a square loses digits or vanishes (a Euclidean norm then
 /// comes out below the largest coordinate, so a denominator shrinks).
-/// Inside this range every square the check forms is a normal number;
-/// outside it the full check answers.
+/// The upper end keeps every square finite; the lower end keeps every
+/// denominator at least `1e-140`, far above any quantity whose square is
+/// not normal (module documentation). Outside it the full check answers.
 const SCREEN_RANGE: (f64, f64) = (1e-140, 1e140);
 
 /// The most rows of one end: `R` has at most `MAX_CONNECT_DEGREE + 1`
@@ -383,6 +396,50 @@ mod tests {
         }
         // None of these goes to the full check (the screen is not a path
         // that falls back on ordinary problems).
+        assert_eq!(passed, cases, "{passed} of {cases} passed");
+    }
+
+    /// More than 16 rows at one end and the largest result degree (31):
+    /// the shared code's arrays of 32 rows. Where the screen passes, its
+    /// points are `connect`'s bit for bit and `connect` accepts them.
+    #[test]
+    fn the_largest_row_counts_give_the_full_paths_points() {
+        let mut values = crate::test_values::Values(4703);
+        let (mut passed, mut cases) = (0, 0);
+        for dim in [2, 3] {
+            for (kp, kq) in [
+                (30, 0),
+                (0, 30),
+                (15, 15),
+                (20, 10),
+                (10, 20),
+                (16, 14),
+                (17, 3),
+            ] {
+                for degrees in [(3, 4), (12, 9), (24, 26)] {
+                    let mut curve = |degree: usize, shift: f64| {
+                        let points = (0..(degree + 1) * dim)
+                            .map(|_| shift + 4.0 * values.signed())
+                            .collect();
+                        BezierCurve::new(dim, degree, points).unwrap()
+                    };
+                    let (p, q) = (curve(degrees.0, 0.0), curve(degrees.1, 9.0));
+                    let (u0, v0) = (0.2 + 0.6 * values.unit(), 0.2 + 0.6 * values.unit());
+                    let options = ConnectOptions::new(kp, kq).with_scales(0.25, 0.25);
+                    let full = connect(&p, u0, &q, v0, &options);
+                    let label = format!("dim {dim}, orders {kp}/{kq}, degrees {degrees:?}");
+                    cases += 1;
+                    if let Some(r) = connect_ends_screened(&p, &q, (u0, v0, kp, kq, 0.25, 0.25)) {
+                        passed += 1;
+                        let full = full.unwrap_or_else(|e| {
+                            panic!("{label}: screen passed, check refused: {e}")
+                        });
+                        assert_eq!(r.points(), full.curve.points(), "{label}");
+                        assert!(full.error_estimate <= CONNECT_RESIDUAL_LIMIT, "{label}");
+                    }
+                }
+            }
+        }
         assert_eq!(passed, cases, "{passed} of {cases} passed");
     }
 }

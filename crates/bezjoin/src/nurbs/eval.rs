@@ -275,18 +275,19 @@ impl NurbsCurve {
     /// (to first order) that need no sizes' triangle and no square root:
     /// the connect's screen ([`CurveJet::jet_screen_into`](crate::curve::CurveJet::jet_screen_into)).
     ///
-    /// That route bounds row `k` in `t` by `p!/(p-k)! 2 u (3 (p - k) + k +
-    /// 1) S_k(a)`, `S_k(a) = sum_j C(k, j) a^(p-k)_j` over level `p - k` of
-    /// the triangle run on the poles' Euclidean sizes `a` (weights `|1 -
-    /// t|`, `|t|`, which sum to 1 on `[0, 1]`). Every size in that
-    /// triangle is at most `A = sqrt(dim) scale`, `scale >=` the largest
-    /// absolute pole coordinate (the curve's
+    /// That route bounds row `k` in `t` by
+    /// `p!/(p-k)! 2 u (3 (p - k) + k + 1) S_k(a)`, where
+    /// `S_k(a) = sum_j C(k, j) a^(p-k)_j` over level `p - k` of the
+    /// triangle run on the poles' Euclidean sizes `a` (weights `|1 - t|`
+    /// and `|t|`, which sum to 1 on `[0, 1]`). Every size in that triangle
+    /// is at most `A = sqrt(dim) scale`, where `scale` is at least the
+    /// largest absolute pole coordinate (the curve's
     /// [`coordinate_scale`](NurbsCurve::coordinate_scale): a span's poles
-    /// are convex combinations of the curve's, to rounding), so `S_k(a) <=
-    /// 2^k A`: that replaces the triangle. The rest of the bound
-    /// (the parameter's rounding, `(b - a)^-k`, the decomposition's `delta`)
-    /// is the route's own, with 1-norms for its Euclidean norms. `false`
-    /// (nothing written) for other curves.
+    /// are convex combinations of the curve's, to rounding), so
+    /// `S_k(a) <= 2^k A`: that replaces the triangle. The rest of the
+    /// bound (the parameter's rounding, `(b - a)^-k`, the decomposition's
+    /// `delta`) is the route's own, with 1-norms for its Euclidean norms.
+    /// `false` (nothing written) for other curves.
     pub(crate) fn span_jet_screen_into(
         &self,
         u: f64,
