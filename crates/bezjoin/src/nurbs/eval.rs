@@ -212,7 +212,7 @@ impl NurbsCurve {
             crate::connect::de_casteljau_jet_into(poles, dim, p, u, order, values, errors);
             return true;
         }
-        scaled_span_jet_into(poles, dim, p, (a, b), u, order, 0.0, values, errors);
+        scaled_span_jet_into(poles, dim, p, ((a, b), 0.0), u, order, None, values, errors);
         true
     }
 
@@ -245,24 +245,23 @@ impl NurbsCurve {
         }
         debug_assert_eq!(values.len(), (order + 1) * dim);
         debug_assert_eq!(errors.len(), order + 1);
+        let (poles, span) = self.decomposed_span(u, side);
+        scaled_span_jet_into(poles, dim, p, span, u, order, None, values, errors);
+        true
+    }
+
+    /// The Bezier poles of the span of the kept decomposition that holds
+    /// `u` (from `side` at a knot), its domain, and `delta`: the bound
+    /// `4 (p + 1)^2 u S sqrt(dim)` on each pole's distance from the exact
+    /// one ([`spans_jet_into`](Self::spans_jet_into)'s analysis).
+    #[inline]
+    fn decomposed_span(&self, u: f64, side: KnotSide) -> (&[f64], ((f64, f64), f64)) {
         let spans = self.span_poles();
         let i = spans.span_at(u, side);
-        let poles = spans.beziers[i].points();
         let unit = f64::EPSILON / 2.0;
-        let q = (p + 1) as f64;
-        let delta = 4.0 * q * q * unit * spans.scale * (dim as f64).sqrt();
-        scaled_span_jet_into(
-            poles,
-            dim,
-            p,
-            spans.domain(i),
-            u,
-            order,
-            delta,
-            values,
-            errors,
-        );
-        true
+        let q = (self.degree + 1) as f64;
+        let delta = 4.0 * q * q * unit * spans.scale * (self.dim as f64).sqrt();
+        (spans.beziers[i].points(), (spans.domain(i), delta))
     }
 
     /// The jet of a polynomial curve (dimension 2 to 4, degree 1 to 15)
@@ -317,18 +316,22 @@ impl NurbsCurve {
                 triangle_bounds(p, size, &mut errors[..=m]);
                 return true;
             }
-            let span = ((a, b), size, 0.0);
-            scaled_span_jet_screen_into(poles, dim, p, span, u, order, values, errors);
+            let screen = Some(size);
+            scaled_span_jet_into(
+                poles,
+                dim,
+                p,
+                ((a, b), 0.0),
+                u,
+                order,
+                screen,
+                values,
+                errors,
+            );
             return true;
         }
-        let spans = self.span_poles();
-        let i = spans.span_at(u, side);
-        let poles = spans.beziers[i].points();
-        let unit = f64::EPSILON / 2.0;
-        let q = (p + 1) as f64;
-        let delta = 4.0 * q * q * unit * spans.scale * (dim as f64).sqrt();
-        let span = (spans.domain(i), size, delta);
-        scaled_span_jet_screen_into(poles, dim, p, span, u, order, values, errors);
+        let (poles, span) = self.decomposed_span(u, side);
+        scaled_span_jet_into(poles, dim, p, span, u, order, Some(size), values, errors);
         true
     }
 
@@ -968,15 +971,23 @@ fn bound_in_u(scale: f64, in_t: f64, next: f64, dt: f64, k: usize, size: f64) ->
 /// [`NurbsCurve::bezier_span_jet_into`]'s analysis, plus
 /// `h^-k p!/(p-k)! 2^k delta` on row `k` for poles within `delta`
 /// (Euclidean) of the exact ones (0: the curve's own poles).
+///
+/// With `screen = Some(size)` (`size` at least every pole's Euclidean
+/// size; [`NurbsCurve::span_jet_screen_into`]) the same values bit for bit
+/// (the de Casteljau values of the same poles, scaled by the same
+/// products), with the triangle's bound replaced by [`triangle_bounds`]
+/// of `size` and the Euclidean norms by 1-norms: never below the bounds
+/// without it (to first order), and no square root.
 #[allow(clippy::too_many_arguments)]
+#[inline(always)]
 fn scaled_span_jet_into(
     poles: &[f64],
     dim: usize,
     p: usize,
-    (a, b): (f64, f64),
+    ((a, b), delta): ((f64, f64), f64),
     u: f64,
     order: usize,
-    delta: f64,
+    screen: Option<f64>,
     values: &mut [f64],
     errors: &mut [f64],
 ) {
@@ -991,11 +1002,67 @@ fn scaled_span_jet_into(
     let jet_errors = &mut jet_errors[..=top];
     let h = b - a;
     let t = (u - a) / h;
+    if let Some(size) = screen {
+        crate::connect::de_casteljau_values_into(poles, dim, p, t, top, jet);
+        triangle_bounds(p, size, jet_errors);
+        let in_t = RowsInT {
+            jet,
+            bounds: jet_errors,
+            t,
+            width: h,
+        };
+        scale_rows_to_u(
+            &in_t,
+            (dim, p),
+            order,
+            delta,
+            super::spans::abs_sum,
+            values,
+            errors,
+        );
+        return;
+    }
     crate::connect::de_casteljau_jet_into(poles, dim, p, t, top, jet, jet_errors);
-    let unit = f64::EPSILON / 2.0;
-    let dt = 3.0 * unit * t.abs();
-    let inverse = 1.0 / h;
     let norm = |row: &[f64]| row.iter().map(|v| v * v).sum::<f64>().sqrt();
+    let in_t = RowsInT {
+        jet,
+        bounds: jet_errors,
+        t,
+        width: h,
+    };
+    scale_rows_to_u(&in_t, (dim, p), order, delta, norm, values, errors);
+}
+
+/// A span's jet in `t = (u - a) / (b - a)`: rows `0..=top` (`dim` values
+/// each) and their bounds in `t`.
+struct RowsInT<'a> {
+    jet: &'a [f64],
+    bounds: &'a [f64],
+    t: f64,
+    /// `b - a`.
+    width: f64,
+}
+
+/// The rows of `in_t` in `u`, `0..=order` (zero above the degree `p`):
+/// row `k` times `(b - a)^-k` (by repeated products of the rounded
+/// reciprocal), its bound [`bound_in_u`] with `norm` for the rows' norms
+/// and the next row's norm and bound for the parameter's rounding, plus
+/// `(b - a)^-k p!/(p-k)! 2^k delta` when `delta > 0`. The last part of
+/// [`scaled_span_jet_into`] (Euclidean norms, or 1-norms for the screen).
+#[inline(always)]
+fn scale_rows_to_u(
+    in_t: &RowsInT<'_>,
+    (dim, p): (usize, usize),
+    order: usize,
+    delta: f64,
+    norm: impl Fn(&[f64]) -> f64,
+    values: &mut [f64],
+    errors: &mut [f64],
+) {
+    let (jet, bounds) = (in_t.jet, in_t.bounds);
+    let unit = f64::EPSILON / 2.0;
+    let dt = 3.0 * unit * in_t.t.abs();
+    let inverse = 1.0 / in_t.width;
     let mut scale = 1.0;
     // p!/(p-k)! 2^k, exact in f64 for p <= 15.
     let mut moved = 1.0;
@@ -1011,11 +1078,11 @@ fn scaled_span_jet_into(
             *o = scale * v;
         }
         let next = if k < p {
-            norm(&jet[(k + 1) * dim..(k + 2) * dim]) + jet_errors[k + 1]
+            norm(&jet[(k + 1) * dim..(k + 2) * dim]) + bounds[k + 1]
         } else {
             0.0
         };
-        errors[k] = bound_in_u(scale, jet_errors[k], next, dt, k, norm(out));
+        errors[k] = bound_in_u(scale, bounds[k], next, dt, k, norm(out));
         if delta > 0.0 {
             errors[k] += scale * moved * delta;
             moved *= 2.0 * (p - k) as f64;
@@ -1039,63 +1106,6 @@ fn triangle_bounds(p: usize, size: f64, bounds: &mut [f64]) {
         moved *= 2.0 * remaining;
         count -= 2.0;
         remaining -= 1.0;
-    }
-}
-
-/// [`scaled_span_jet_into`]'s values bit for bit (the de Casteljau values
-/// of the same poles, scaled by the same products), with its bound's
-/// triangle replaced by [`triangle_bounds`] of `size` (at least every
-/// pole's Euclidean size) and its Euclidean norms by 1-norms: never below
-/// its bounds (to first order). `span`: the span's domain `(a, b)`,
-/// `size`, and the decomposition's `delta`.
-#[allow(clippy::too_many_arguments)]
-fn scaled_span_jet_screen_into(
-    poles: &[f64],
-    dim: usize,
-    p: usize,
-    ((a, b), size, delta): ((f64, f64), f64, f64),
-    u: f64,
-    order: usize,
-    values: &mut [f64],
-    errors: &mut [f64],
-) {
-    const STACK: usize = 17 * 4;
-    let top = (order + 1).min(p);
-    let mut jet = [0.0f64; STACK];
-    let jet = &mut jet[..(top + 1) * dim];
-    let h = b - a;
-    let t = (u - a) / h;
-    crate::connect::de_casteljau_values_into(poles, dim, p, t, top, jet);
-    let mut in_t = [0.0f64; 17];
-    triangle_bounds(p, size, &mut in_t[..=top]);
-    let one_norm = super::spans::abs_sum;
-    let unit = f64::EPSILON / 2.0;
-    let dt = 3.0 * unit * t.abs();
-    let inverse = 1.0 / h;
-    let mut scale = 1.0;
-    let mut moved = 1.0;
-    for k in 0..=order {
-        let out = &mut values[k * dim..(k + 1) * dim];
-        if k > p {
-            out.fill(0.0);
-            errors[k] = 0.0;
-            continue;
-        }
-        let row = &jet[k * dim..(k + 1) * dim];
-        for (o, &v) in out.iter_mut().zip(row) {
-            *o = scale * v;
-        }
-        let next = if k < p {
-            one_norm(&jet[(k + 1) * dim..(k + 2) * dim]) + in_t[k + 1]
-        } else {
-            0.0
-        };
-        errors[k] = bound_in_u(scale, in_t[k], next, dt, k, one_norm(out));
-        if delta > 0.0 {
-            errors[k] += scale * moved * delta;
-            moved *= 2.0 * (p - k) as f64;
-        }
-        scale *= inverse;
     }
 }
 
