@@ -199,7 +199,6 @@ pub(crate) fn check_finite(name: &str, values: &[f64]) -> Result<()> {
 }
 
 /// Check a scalar is finite.
-#[inline]
 pub(crate) fn check_finite_scalar(name: &str, value: f64) -> Result<()> {
     if value.is_finite() {
         Ok(())
@@ -227,7 +226,6 @@ fn outside_range(name: &str, value: f64, range: std::fmt::Arguments<'_>) -> Bezj
 }
 
 /// Check `value` is finite and in the closed interval `[lo, hi]`.
-#[inline]
 pub(crate) fn check_closed_range(name: &str, value: f64, lo: f64, hi: f64) -> Result<()> {
     check_finite_scalar(name, value)?;
     if value < lo || value > hi {
@@ -237,7 +235,6 @@ pub(crate) fn check_closed_range(name: &str, value: f64, lo: f64, hi: f64) -> Re
 }
 
 /// Check `value` is finite and in the open interval `(lo, hi)`.
-#[inline]
 pub(crate) fn check_open_range(name: &str, value: f64, lo: f64, hi: f64) -> Result<()> {
     check_finite_scalar(name, value)?;
     if value <= lo || value >= hi {
@@ -247,7 +244,6 @@ pub(crate) fn check_open_range(name: &str, value: f64, lo: f64, hi: f64) -> Resu
 }
 
 /// Check `value` is finite and strictly positive.
-#[inline]
 pub(crate) fn check_positive(name: &str, value: f64) -> Result<()> {
     check_finite_scalar(name, value)?;
     if value <= 0.0 {
