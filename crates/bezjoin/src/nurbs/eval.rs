@@ -313,7 +313,7 @@ impl NurbsCurve {
                 values[(m + 1) * dim..].fill(0.0);
                 errors[m + 1..].fill(0.0);
                 crate::connect::de_casteljau_values_into(poles, dim, p, u, m, values);
-                triangle_bounds(p, size, &mut errors[..=m]);
+                triangle_bounds(p, (size, 0.0), &mut errors[..=m]);
                 return true;
             }
             let screen = Some(size);
@@ -484,43 +484,41 @@ impl NurbsCurve {
         // The bounds in t of the homogeneous rows 0..=top: row k within
         // p!/(p-k)! 2^k (2 u (3 (p - k) + k + 1) A + E) of the exact jet of
         // the exact rows, A and E the span's largest row 1-norm and row
-        // error (the triangle on the rows' sizes and on their errors, every size at
-        // its largest: `S_k(x) = sum_j C(k, j) x_j <= 2^k max x`).
+        // error (the triangle on the rows' sizes and on their errors, every
+        // size at its largest: `S_k(x) = sum_j C(k, j) x_j <= 2^k max x`).
         let [size, row_error] = spans.span_sizes[i];
-        let falling = &crate::connect::FALLING_FACTORIALS[p];
         let mut in_t = [0.0f64; CAP];
-        let mut power = 1.0;
-        for (k, bound) in in_t[..=top].iter_mut().enumerate() {
-            let triangle = 2.0 * unit * (3 * (p - k) + k + 1) as f64 * size;
-            *bound = falling[k] * power * (triangle + row_error);
-            power *= 2.0;
-        }
-        // The homogeneous rows in u and their bounds E_k, in place.
-        let dt = 3.0 * unit * t.abs();
-        let inverse = 1.0 / width;
+        triangle_bounds(p, (size, row_error), &mut in_t[..=top]);
         let rows = order.min(p);
-        let mut homogeneous_errors = [0.0f64; CAP];
+        // (b - a)^-k out of the normal range (span widths far from 1 at high
+        // orders): its rounding is no longer relative, the basis route takes
+        // the jet. The powers are monotone and the normal range holds 1, so
+        // the highest one decides.
+        let inverse = 1.0 / width;
+        let highest = (0..rows).fold(1.0f64, |scale, _| scale * inverse);
         let checked = limit.is_finite();
-        let mut scale = 1.0f64;
-        for k in 0..=rows {
-            // (b - a)^-k out of the normal range (span widths far from 1 at
-            // high orders): its rounding is no longer relative, the basis
-            // route takes the jet.
-            if checked && !scale.is_normal() {
-                return false;
-            }
-            let next = if k < p {
-                one_norm(&jet[k + 1]) + in_t[k + 1]
-            } else {
-                0.0
-            };
-            let row = &mut jet[k];
-            for v in row.iter_mut() {
-                *v *= scale;
-            }
-            homogeneous_errors[k] = bound_in_u(scale, in_t[k], next, dt, k, one_norm(row));
-            scale *= inverse;
+        if checked && !highest.is_normal() {
+            return false;
         }
+        // The homogeneous rows in u and their bounds E_k.
+        let mut homogeneous = [[0.0f64; H]; CAP];
+        let mut homogeneous_errors = [0.0f64; CAP];
+        let in_t = RowsInT {
+            jet: jet.as_flattened(),
+            bounds: &in_t[..=top],
+            t,
+            width,
+        };
+        scale_rows_to_u(
+            &in_t,
+            (H, p),
+            rows,
+            0.0,
+            one_norm,
+            &mut homogeneous.as_flattened_mut()[..(rows + 1) * H],
+            &mut homogeneous_errors[..=rows],
+        );
+        let jet = homogeneous;
         // The quotient rule (rows above the degree are zero in `jet`), the
         // 1-norms of the rows of C kept.
         let mut curve = [[0.0f64; D]; RATIONAL_SPAN_MAX_ORDER + 1];
@@ -1004,7 +1002,7 @@ fn scaled_span_jet_into(
     let t = (u - a) / h;
     if let Some(size) = screen {
         crate::connect::de_casteljau_values_into(poles, dim, p, t, top, jet);
-        triangle_bounds(p, size, jet_errors);
+        triangle_bounds(p, (size, 0.0), jet_errors);
         let in_t = RowsInT {
             jet,
             bounds: jet_errors,
@@ -1091,18 +1089,19 @@ fn scale_rows_to_u(
     }
 }
 
-/// `bounds[k] = p!/(p-k)! 2^k 2 u (3 (p - k) + k + 1) size` for the rows
-/// `k = 0..bounds.len()` (at most `p + 1`): the de Casteljau triangle's
-/// bounds of the rows in `t` with every size at `size`
-/// ([`NurbsCurve::span_jet_screen_into`]); `p!/(p-k)! 2^k` by running
-/// products, exact in f64 for `p <= 15`.
-fn triangle_bounds(p: usize, size: f64, bounds: &mut [f64]) {
+/// `bounds[k] = p!/(p-k)! 2^k (2 u (3 (p - k) + k + 1) size + error)` for
+/// the rows `k = 0..bounds.len()` (at most `p + 1`): the de Casteljau
+/// triangle's bounds of the rows in `t` with every size at `size` and
+/// every input row's own error at `error` (0 for a curve's poles;
+/// [`NurbsCurve::span_jet_screen_into`], `rational_span_jet`);
+/// `p!/(p-k)! 2^k` by running products, exact in f64 for `p <= 15`.
+fn triangle_bounds(p: usize, (size, error): (f64, f64), bounds: &mut [f64]) {
     // `3 (p - k) + k + 1` and `p - k` as doubles stepped down (exact).
     let mut count = (3 * p + 1) as f64;
     let mut remaining = p as f64;
-    let mut moved = f64::EPSILON * size;
+    let mut moved = 1.0f64;
     for bound in bounds.iter_mut() {
-        *bound = count * moved;
+        *bound = moved * (f64::EPSILON * count * size + error);
         moved *= 2.0 * remaining;
         count -= 2.0;
         remaining -= 1.0;
