@@ -48,6 +48,27 @@ pub struct BzjConnectOptions {
 /// # Safety
 /// `options` is valid for reads, its arrays as the contract describes.
 unsafe fn read_options(options: &BzjConnectOptions, dim: usize) -> FfiResult<ConnectOptions> {
+    let mut out = ConnectOptions::new(options.p_order, options.q_order)
+        .with_scales(options.p_scale, options.q_scale);
+    if options.constraint_count == 0 {
+        check_connect_degree(options.p_order, options.q_order, [])?;
+    } else {
+        // SAFETY: as this function's.
+        out.constraints = unsafe { read_constraints(options, dim) }?;
+    }
+    Ok(out)
+}
+
+/// The interior constraints of [`read_options`] (`constraint_count > 0`),
+/// the degree checked before any values array is read.
+///
+/// # Safety
+/// As [`read_options`].
+#[cold]
+unsafe fn read_constraints(
+    options: &BzjConnectOptions,
+    dim: usize,
+) -> FfiResult<Vec<PointConstraint>> {
     // SAFETY: caller promises `constraint_count` readable constraints.
     let constraints = unsafe {
         input_slice(
@@ -62,8 +83,7 @@ unsafe fn read_options(options: &BzjConnectOptions, dim: usize) -> FfiResult<Con
         options.q_order,
         constraints.iter().map(|c| c.max_order),
     )?;
-    let mut out = ConnectOptions::new(options.p_order, options.q_order)
-        .with_scales(options.p_scale, options.q_scale);
+    let mut out = Vec::with_capacity(constraints.len());
     for (j, c) in constraints.iter().enumerate() {
         let rows = c.max_order + 1;
         let name = format!("options.constraints[{j}].values");
@@ -74,8 +94,7 @@ unsafe fn read_options(options: &BzjConnectOptions, dim: usize) -> FfiResult<Con
         }
         // SAFETY: caller promises (max_order + 1) * dim readable doubles.
         let values = unsafe { input_slice(c.values, len, &name) }?;
-        out.constraints
-            .push(PointConstraint::new(c.t, c.max_order, values.to_vec()));
+        out.push(PointConstraint::new(c.t, c.max_order, values.to_vec()));
     }
     Ok(out)
 }
