@@ -429,10 +429,12 @@ fn solve_end_by_rows<const D: usize, const AT_ONE: bool>(
 /// `R_k`, known `R_0..R_(k-1)` at band slots `0..k`) or `D(1)` (unknown
 /// `R_(n-k)` at slot 0, known `R_(n-k+1)..R_n` at slots `1..=k`), with the
 /// band `n!/(n-k)! (-1)^(k-s) C(k, s)` ([`super::end_band`]) from the
-/// tables. Row by row: the unknown by substitution, then the row's
-/// residual sums `sum b_s R_s` and `sum |b_s| |R_s|` (each accumulator in
-/// the general path's order: columns ascending, so at the P end the known
-/// points first, at the Q end the new one first); the substitution sum
+/// tables. Row by row: the unknown by substitution on the row divided by
+/// its diagonal entry (`T_k / b_k` by [`divided_target`], then the known
+/// points times the integers `b_s / b_k`), then the row's residual sums
+/// `sum b_s R_s` and `sum |b_s| |R_s|` (each accumulator in the general
+/// path's order: columns ascending, so at the P end the known points
+/// first, at the Q end the new one first); at the P end the substitution
 /// and the residual sums share the pass over the known points. Then every
 /// row's residual and bound ([`residual_and_bound_unguarded`], branch-free,
 /// the rows side by side), the guard and the maxima. Returns the end's
@@ -463,24 +465,23 @@ fn solve_end<const D: usize, const AT_ONE: bool, const ROWS: usize>(
         let f = falling[k];
         let signed = &SIGNED_BINOMIALS[k];
         let target = end.targets[k];
-        let mut sum = target;
         let mut value = [0.0f64; D];
         let mut abs_value = [0.0f64; D];
         if AT_ONE {
             // The new point's residual terms come first; solve it first.
+            let new_band = f * signed[0];
+            let mut x = divided_target(target, new_band);
             for s in 1..rows {
                 if s <= k {
-                    let b = f * signed[s];
+                    // `b_s / b_0`, an exact integer (`signed[0]` is +-1).
+                    let ratio = signed[s] * signed[0];
                     let point = local[k - s];
                     for c in 0..D {
-                        sum[c] -= b * point[c];
+                        x[c] -= ratio * point[c];
                     }
                 }
             }
-            let new_band = f * signed[0];
-            let mut x = [0.0f64; D];
             for c in 0..D {
-                x[c] = sum[c] / new_band;
                 value[c] += new_band * x[c];
                 abs_value[c] += new_band.abs() * x[c].abs();
             }
@@ -496,21 +497,22 @@ fn solve_end<const D: usize, const AT_ONE: bool, const ROWS: usize>(
                 }
             }
         } else {
+            let new_band = f * signed[k];
+            let mut x = divided_target(target, new_band);
             for s in 0..rows {
                 if s < k {
+                    // `b_s / b_k`, an exact integer (`signed[k]` is 1).
+                    let ratio = signed[s] * signed[k];
                     let b = f * signed[s];
                     let point = local[s];
                     for c in 0..D {
-                        sum[c] -= b * point[c];
+                        x[c] -= ratio * point[c];
                         value[c] += b * point[c];
                         abs_value[c] += b.abs() * point[c].abs();
                     }
                 }
             }
-            let new_band = f * signed[k];
-            let mut x = [0.0f64; D];
             for c in 0..D {
-                x[c] = sum[c] / new_band;
                 value[c] += new_band * x[c];
                 abs_value[c] += new_band.abs() * x[c].abs();
             }
@@ -553,4 +555,15 @@ fn solve_end<const D: usize, const AT_ONE: bool, const ROWS: usize>(
         max_bound = max_bound.max(bound);
     }
     (max_residual, max_bound)
+}
+
+/// `T_k / b_k` per coordinate: the start of row `k`'s substitution divided
+/// by its diagonal entry (docs/mathematics.md, "Connect: the structured
+/// solve"). It depends on no solved point, so the divisions of all rows run
+/// beside the chain of substitutions, whose steps are then products by the
+/// exact integers `b_s / b_k = +-C(k, s)`. Shared by the end path and the
+/// screen, so the two give the same points bit for bit.
+#[inline(always)]
+pub(super) fn divided_target<const D: usize>(target: [f64; D], diagonal: f64) -> [f64; D] {
+    target.map(|v| v / diagonal)
 }

@@ -1393,28 +1393,36 @@ pub(crate) fn solve_condition_rows(
     let rows = &conditions.rows;
     let targets = &conditions.targets;
     let mut points = DMatrix::<f64>::zeros(n + 1, dim);
+    // Each row divided by its diagonal entry first: `R_k = T_k / b_k -
+    // sum_s (b_s / b_k) R_s` with `b_s / b_k = +-C(k, s)` exact integers
+    // (SIGNED_BINOMIALS), so the divisions depend on no solved point and
+    // the chain from row to row is products (docs/mathematics.md,
+    // "Connect: the structured solve"). The end path, the screen and the
+    // G^k trials do the same operations.
     // P end: row k of D(0) touches R_0..R_k only (lower triangular).
     for k in 0..=kp {
         let diagonal = rows[(k, k)];
+        let signed = &SIGNED_BINOMIALS[k];
         for c in 0..dim {
-            let mut sum = targets[(k, c)];
+            let mut x = targets[(k, c)] / diagonal;
             for i in 0..k {
-                sum -= rows[(k, i)] * points[(i, c)];
+                x -= signed[i] * signed[k] * points[(i, c)];
             }
-            points[(k, c)] = sum / diagonal;
+            points[(k, c)] = x;
         }
     }
-    // Q end: row k of D(1) touches R_(n-k)..R_n only (anti-triangular).
-    for k in 0..=kq {
+    // Q end: row k of D(1) touches R_(n-k)..R_n only (anti-triangular);
+    // column `index + s` is band slot `s`.
+    for (k, signed) in SIGNED_BINOMIALS[..=kq].iter().enumerate() {
         let r = kp + 1 + k;
         let index = n - k;
         let diagonal = rows[(r, index)];
         for c in 0..dim {
-            let mut sum = targets[(r, c)];
+            let mut x = targets[(r, c)] / diagonal;
             for i in index + 1..=n {
-                sum -= rows[(r, i)] * points[(i, c)];
+                x -= signed[i - index] * signed[0] * points[(i, c)];
             }
-            points[(index, c)] = sum / diagonal;
+            points[(index, c)] = x;
         }
     }
     // Interior constraints: M x M for R_(kp+1)..R_(kp+M), known points moved

@@ -3,7 +3,8 @@
 //! plane and in space, each end in one pass with its number of rows a
 //! constant (orders up to 7): the jet ([`CurveJet::jet_screen_into`]), the
 //! targets `s^k X^(k)`, the substitution and a residual screen that costs
-//! no square root and no division but the substitution's
+//! no square root and no division but the targets' by the diagonal
+//! entries ([`super::ends::divided_target`])
 //! (mathematics.md, "The curve alone").
 //!
 //! The control points are those of the full path ([`super::ends`]) bit for
@@ -46,6 +47,7 @@
 //! are in the same conjunction as the comparison: the two must stay
 //! together (`inf <= inf` would pass).
 
+use super::ends::divided_target;
 use super::{
     CONNECT_RESIDUAL_LIMIT, END_BAND_NORM_RECIPROCALS, END_BAND_NORMS, FALLING_FACTORIALS,
     MAX_CONNECT_DEGREE, SIGNED_BINOMIALS, power, unit_roundoff,
@@ -211,7 +213,8 @@ fn screen_end_many<const D: usize, const AT_ONE: bool, C: CurveJet + ?Sized>(
 /// 2. The targets `T_k = s^k X^(k)` (the factor by repeated products, none
 ///    for `s = 1`), `e_k = s^k err_k + (k + 1) u |T_k|_1`, `|T_k|_inf`, the
 ///    end's data scale `max(S_0, |T_k|_inf / ||D_k||_1)`.
-/// 3. Row by row: the unknown by substitution and the row product `D_k R`
+/// 3. Row by row: the unknown by substitution on the row divided by its
+///    diagonal entry, as the full path's, and the row product `D_k R`
 ///    (each accumulator in the full path's order: at the P end the known
 ///    points first, at the Q end the new one first), and `|D_k R - T_k|_1`
 ///    summed over the coordinates in order.
@@ -273,23 +276,21 @@ fn screen_end<const D: usize, const AT_ONE: bool, const CAP: usize, C: CurveJet 
         let f = falling[k];
         let signed = &SIGNED_BINOMIALS[k];
         let target = targets[k];
-        let mut sum = target;
         let mut value = [0.0f64; D];
         let x = if AT_ONE {
             // `solved[j]` is `R_(n-j)`: band slot `s` of row `k` is
             // `solved[k - s]`.
+            let new_band = f * signed[0];
+            let mut x = divided_target(target, new_band);
             for s in 1..CAP {
                 if s <= k {
-                    let b = f * signed[s];
+                    let ratio = signed[s] * signed[0];
                     for c in 0..D {
-                        sum[c] -= b * solved[k - s][c];
+                        x[c] -= ratio * solved[k - s][c];
                     }
                 }
             }
-            let new_band = f * signed[0];
-            let mut x = [0.0f64; D];
             for c in 0..D {
-                x[c] = sum[c] / new_band;
                 value[c] += new_band * x[c];
             }
             for s in 1..CAP {
@@ -302,20 +303,19 @@ fn screen_end<const D: usize, const AT_ONE: bool, const CAP: usize, C: CurveJet 
             }
             x
         } else {
+            let new_band = f * signed[k];
+            let mut x = divided_target(target, new_band);
             for s in 0..CAP {
                 if s < k {
+                    let ratio = signed[s] * signed[k];
                     let b = f * signed[s];
                     for c in 0..D {
-                        let term = b * solved[s][c];
-                        sum[c] -= term;
-                        value[c] += term;
+                        x[c] -= ratio * solved[s][c];
+                        value[c] += b * solved[s][c];
                     }
                 }
             }
-            let new_band = f * signed[k];
-            let mut x = [0.0f64; D];
             for c in 0..D {
-                x[c] = sum[c] / new_band;
                 value[c] += new_band * x[c];
             }
             x

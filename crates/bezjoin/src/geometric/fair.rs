@@ -1116,6 +1116,68 @@ pub(crate) fn nelder_mead(
 mod tests {
     use super::*;
 
+    /// G2 between a quadratic and its mirror image (review, session 44): a
+    /// symmetric problem whose fairest blend is asymmetric. The symmetric
+    /// search alone finds a blend of energy about 240 with seven curvature
+    /// extrema; the answer must keep the full search's blend, fairer by
+    /// far. Checked at the input and at every input within two units in
+    /// the last place of `u0` and `v0`: where the full search stops
+    /// between its two local minima (energy about 10 with two extrema,
+    /// about 107 with six) depends on rounding (reliability.md, session
+    /// 48), and both are kept over the symmetric one.
+    #[test]
+    fn a_symmetric_problem_keeps_a_much_fairer_asymmetric_blend() {
+        use crate::connect::{ConnectOptions, prepare};
+        let p = BezierCurve::from_rows(&[
+            [2.591064493050337, -2.1516944950456702],
+            [-1.0108205238739683, 1.3228642187828799],
+            [0.5845967719020324, 0.32954296323208343],
+        ])
+        .unwrap();
+        let q = BezierCurve::from_rows(&[
+            [6.753725320373605, 0.32954296323208343],
+            [8.349142616149607, 1.3228642187828799],
+            [4.747257599225301, -2.1516944950456702],
+        ])
+        .unwrap();
+        let (u0, v0) = (0.5187099080350102f64, 0.48129009196498984f64);
+        let near = |x: f64, ulps: i64| f64::from_bits(x.to_bits().wrapping_add_signed(ulps));
+        for du in -2..=2 {
+            for dv in -2..=2 {
+                let (u, v) = (near(u0, du), near(v0, dv));
+                let problem = prepare(&p, u, &q, v, &ConnectOptions::new(2, 2)).unwrap();
+                let naturals = natural_end_scales(&problem);
+                let symmetry = EndSymmetry::of(&problem, naturals.0).expect("symmetric");
+                let (_, _, symmetric) = search_shapes(
+                    &problem,
+                    (None, None),
+                    naturals,
+                    false,
+                    Some(&symmetry),
+                    true,
+                )
+                .unwrap();
+                let g = crate::geometric::connect_geometric(
+                    &p,
+                    u,
+                    &q,
+                    v,
+                    &crate::geometric::GeometricOptions::new(2, 2),
+                )
+                .unwrap();
+                let label = format!("u0 {du:+} ulps, v0 {dv:+} ulps");
+                // The premise: the symmetric blend is far from the fairest.
+                assert!(symmetric > 200.0, "{label}: symmetric energy {symmetric}");
+                assert!(
+                    g.report.energy < 0.5 * symmetric,
+                    "{label}: energy {} against the symmetric blend's {symmetric}",
+                    g.report.energy
+                );
+                assert!(g.report.curvature_extrema < 7, "{label}: {:?}", g.report);
+            }
+        }
+    }
+
     /// The energy as first written: node by node, each jet a row-by-row
     /// product, [`kappa_from`] per node.
     fn node_by_node(curve: &BezierCurve, panels: usize) -> f64 {

@@ -11,7 +11,8 @@
 use nalgebra::DMatrix;
 
 use crate::connect::{
-    CONNECT_RESIDUAL_LIMIT, ConditionRows, Problem, check_residuals, condition_rows, solve_interior,
+    CONNECT_RESIDUAL_LIMIT, ConditionRows, Problem, SIGNED_BINOMIALS, check_residuals,
+    condition_rows, solve_interior,
 };
 
 use super::MAX_GEOMETRIC_ORDER;
@@ -189,25 +190,26 @@ impl<'a> TrialSolver<'a> {
         for k in 0..=kp {
             let row = &rows[k * n1..(k + 1) * n1];
             let diagonal = row[k];
+            let signed = &SIGNED_BINOMIALS[k];
             for c in 0..dim {
-                let mut sum = targets[k * dim + c];
+                let mut x = targets[k * dim + c] / diagonal;
                 for i in 0..k {
-                    sum -= row[i] * points[i * dim + c];
+                    x -= signed[i] * signed[k] * points[i * dim + c];
                 }
-                points[k * dim + c] = sum / diagonal;
+                points[k * dim + c] = x;
             }
         }
-        for k in 0..=kq {
+        for (k, signed) in SIGNED_BINOMIALS[..=kq].iter().enumerate() {
             let r = kp + 1 + k;
             let row = &rows[r * n1..(r + 1) * n1];
             let index = n - k;
             let diagonal = row[index];
             for c in 0..dim {
-                let mut sum = targets[r * dim + c];
+                let mut x = targets[r * dim + c] / diagonal;
                 for i in index + 1..=n {
-                    sum -= row[i] * points[i * dim + c];
+                    x -= signed[i - index] * signed[0] * points[i * dim + c];
                 }
-                points[index * dim + c] = sum / diagonal;
+                points[index * dim + c] = x;
             }
         }
         let m = problem.middle_count();
