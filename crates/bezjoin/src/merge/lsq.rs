@@ -245,7 +245,7 @@ impl<'p> Factor<'p> {
 
     /// `||T^-1||_F`: column `k` of `T^-1` from `e_k` on the leading
     /// `(k + 1) x (k + 1)` block (`T^-1` is upper triangular), column by
-    /// column as [`Self::solve_t`].
+    /// column as [`Self::solve_leading_t`].
     pub(super) fn inverse_frobenius(&self) -> f64 {
         let mut total = 0.0;
         let mut e = vec![0.0; self.cols];
@@ -290,7 +290,7 @@ impl<'p> Factor<'p> {
     }
 
     /// [`Self::least_squares`] with the sizes of [`Self::sizes`]:
-    /// [`Self::apply_qt`] then [`Self::solve_t`] per column, inlined; the
+    /// [`Self::apply_qt_sized`] then [`Self::solve_leading_t_into`] per column, inlined; the
     /// solve writes each solved entry straight to `y`.
     ///
     /// (Not a copy of the solved entries from `work` afterwards: that copy
