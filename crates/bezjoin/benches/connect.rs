@@ -11,9 +11,15 @@
 //! demo's interior parameters `u0 = 0.6, v0 = 0.3`) and 3D, cubic + quartic
 //! C3/C4 in 3D (the demo's case), each without and with one interior point
 //! (position and tangent at `t = 0.4`, as the demo).
+//!
+//! `connect_nurbs_inputs/{bezier,two_spans,two_spans_rational}` (issue 20:
+//! NURBS inputs within 2x their Bezier counterparts): `connect_curve` C3/C4
+//! of the C++ demo's cubic and quartic in 3D at `u0 = 0.6`, `v0 = 0.3`, as
+//! Bezier curves, as two-span NURBS curves (the knot 0.5 inserted: the same
+//! geometry) and as rational copies of those spans (the demo's weights).
 use std::hint::black_box;
 
-use bezjoin_core::BezierCurve;
+use bezjoin_core::{BezierCurve, NurbsCurve};
 use bezjoin_core::{
     ConnectOptions, PointConstraint, connect, connect_curve, connect_dense_reference,
 };
@@ -141,5 +147,63 @@ fn bench_connect_vs_jets(c: &mut Criterion) {
     }
 }
 
-criterion_group!(benches, bench_connect, bench_connect_vs_jets);
+fn bench_connect_nurbs_inputs(c: &mut Criterion) {
+    let p = BezierCurve::new(
+        3,
+        3,
+        vec![0.1, 0.2, 0.3, 1.0, 1.5, -0.2, 2.0, -0.7, 0.4, 3.1, 0.2, 0.1],
+    )
+    .unwrap();
+    let q = BezierCurve::new(
+        3,
+        4,
+        vec![
+            5.5, 0.3, 0.2, 6.1, 1.2, -0.4, 7.0, -0.5, 0.6, 7.8, 0.9, 0.0, 8.9, 0.1, 0.3,
+        ],
+    )
+    .unwrap();
+    let two_spans = |b: &BezierCurve| NurbsCurve::from_bezier(b).insert_knot(0.5, 1).unwrap();
+    let weighted = |n: &NurbsCurve, weights: &[f64]| {
+        NurbsCurve::new(
+            n.dim(),
+            n.degree(),
+            n.points().to_vec(),
+            Some(weights.to_vec()),
+            n.knots().to_vec(),
+        )
+        .unwrap()
+    };
+    let (p_spans, q_spans) = (two_spans(&p), two_spans(&q));
+    let p_rational = weighted(&p_spans, &[1.0, 0.7, 1.3, 0.9, 1.0]);
+    let q_rational = weighted(&q_spans, &[1.0, 1.2, 0.8, 1.1, 0.7, 1.0]);
+    let options = ConnectOptions::new(3, 4);
+    let (u0, v0) = (0.6, 0.3);
+    c.bench_function("connect_nurbs_inputs/bezier", |b| {
+        b.iter(|| connect_curve(black_box(&p), u0, black_box(&q), v0, &options).unwrap())
+    });
+    c.bench_function("connect_nurbs_inputs/two_spans", |b| {
+        b.iter(|| {
+            connect_curve(black_box(&p_spans), u0, black_box(&q_spans), v0, &options).unwrap()
+        })
+    });
+    c.bench_function("connect_nurbs_inputs/two_spans_rational", |b| {
+        b.iter(|| {
+            connect_curve(
+                black_box(&p_rational),
+                u0,
+                black_box(&q_rational),
+                v0,
+                &options,
+            )
+            .unwrap()
+        })
+    });
+}
+
+criterion_group!(
+    benches,
+    bench_connect,
+    bench_connect_vs_jets,
+    bench_connect_nurbs_inputs
+);
 criterion_main!(benches);

@@ -569,6 +569,15 @@ impl NurbsCurve {
         let mut curve = [[0.0f64; D]; RATIONAL_SPAN_MAX_ORDER + 1];
         let mut sizes = [0.0f64; RATIONAL_SPAN_MAX_ORDER + 1];
         let (w0, e0) = (jet[0][D], homogeneous_errors[0]);
+        // The bounds' sums are taken in the order that keeps the previous
+        // row's bound (`i = 1`) to the end and multiply by the rounded
+        // `1 / |w|` instead of dividing: each row's bound then waits for
+        // the previous one by two products and two sums, not a division
+        // and the whole sum (the chain that held the jet's time; issue 20,
+        // session 49). Sums of nonnegative terms in any order and one more
+        // rounded factor: within the factor 2 of `gamma_k` that covers the
+        // bound's own rounding.
+        let inverse_weight = 1.0 / w0.abs();
         for k in 0..=order {
             // Rows above the degree (k > rows) are zero.
             let mut row = [0.0f64; D];
@@ -588,15 +597,24 @@ impl NurbsCurve {
                     row[c] -= coef * prev[c];
                 }
                 terms += coef.abs() * sizes[k - i];
-                moved += choose * (homogeneous_errors[i] * sizes[k - i] + wi.abs() * errors[k - i]);
+                if i > 1 {
+                    moved +=
+                        choose * (homogeneous_errors[i] * sizes[k - i] + wi.abs() * errors[k - i]);
+                }
             }
+            // The term `i = 1` (`C(k, 1) = k`), the previous row's bound in it.
+            let latest = if k >= 1 && rows >= 1 {
+                k as f64 * (homogeneous_errors[1] * sizes[k - 1] + jet[1][D].abs() * errors[k - 1])
+            } else {
+                0.0
+            };
             for x in row.iter_mut() {
                 *x /= w0;
             }
             sizes[k] = one_norm(&row);
             curve[k] = row;
             let gamma = 2.0 * (k + 3) as f64 * unit;
-            errors[k] = (moved + e0 * sizes[k] + gamma * terms) / w0.abs();
+            errors[k] = (moved + (e0 * sizes[k] + gamma * terms) + latest) * inverse_weight;
             // A bound or size that is NaN or infinite, and a size below the
             // normal range or zero (where rounding is not relative: a row
             // that underflowed comes back 0 with bound 0), decline too (the
