@@ -109,7 +109,7 @@ pub(crate) fn end_speed(derivatives: &DMatrix<f64>, chord: f64) -> Option<f64> {
 pub const UNKINKED_POLYGON_CHORDS: f64 = 2.0;
 
 /// The bisection of [`unkinked_blend`] stops at a bracket this wide in `ln
-/// sigma` (a relative step of 1e-3 in the scale: about 13 solves).
+/// sigma` (a relative step of 1e-3 in the scale: about 13 steps).
 const UNKINKED_LOG_TOLERANCE: f64 = 1e-3;
 
 /// The blend where the energy is least at the search range's lower end `ln
