@@ -844,80 +844,49 @@ mod tests {
     /// automatic and the balanced weights.
     #[test]
     fn a_kinked_minimum_takes_the_natural_speed_or_the_fastest_short_blend() {
-        let half_width = AUTO_SCALE_SEARCH_DECADES * std::f64::consts::LN_10;
-        let p = BezierCurve::new(2, 1, vec![0.0, 0.0, 50.0, 0.0]).unwrap();
-        let q = BezierCurve::new(2, 1, vec![50.0, 10.0, 0.0, 10.0]).unwrap();
-        let mut cases = problems(24);
-        for k in 1..=3 {
-            cases.push(prepare(&p, 1.0, &q, 0.0, &ConnectOptions::new(k, k)).unwrap());
-        }
         let (mut natural, mut shortened) = (0, 0);
-        for problem in cases {
-            if speed_floor_applies(&problem) || (problem.p_order == 0 && problem.q_order == 0) {
-                continue;
+        for_each_lower_end_case(24, |problem, weights, s0, lo, _| {
+            let chosen = weighted_auto_scale(problem, weights, s0).unwrap();
+            let sigma = chosen.p_scale / (s0 * weights.p);
+            let limit = UNKINKED_POLYGON_CHORDS * problem.chord();
+            assert!(sigma <= 1.0 + 1e-12, "sigma {sigma}");
+            if sigma <= lo.exp() * (1.0 + 1e-9) {
+                // Too long even at the lower end: that end's blend.
+                return;
             }
-            for (weights, s0) in [
-                (EQUAL_WEIGHTS, natural_scale(&problem)),
-                match balanced_weights(&problem) {
-                    Some(w) => (w, problem.chord()),
-                    None => (EQUAL_WEIGHTS, natural_scale(&problem)),
-                },
-            ] {
-                let Some((coefficients, _)) = energy_polynomial(&problem, s0, weights) else {
-                    continue;
-                };
-                let floor = tangent_holding_floor(&problem, weights);
-                let lo = (-half_width).max((floor.scale / s0).ln());
-                let Some(sigma) = polynomial_minimum(&coefficients, lo, half_width) else {
-                    continue;
-                };
-                if !(lo < 0.0 && sigma <= lo.exp()) {
-                    continue;
-                }
-                let chosen = weighted_auto_scale(&problem, weights, s0).unwrap();
-                let sigma = chosen.p_scale / (s0 * weights.p);
-                let limit = UNKINKED_POLYGON_CHORDS * problem.chord();
-                assert!(sigma <= 1.0 + 1e-12, "sigma {sigma}");
-                if sigma <= lo.exp() * (1.0 + 1e-9) {
-                    // Too long even at the lower end: that end's blend.
-                    continue;
-                }
-                assert!(chosen.curve.polygon_length() <= limit * (1.0 + 1e-12));
-                if sigma < 1.0 - 1e-12 {
-                    let s = s0 * sigma * (1.0 + 2e-3);
-                    let longer = solve_structured(&problem, s * weights.p, s * weights.q)
-                        .map_or(f64::INFINITY, |r| r.curve.polygon_length());
-                    assert!(longer > limit, "sigma {sigma}: a faster blend is as short");
-                    shortened += 1;
-                } else {
-                    natural += 1;
-                }
+            assert!(chosen.curve.polygon_length() <= limit * (1.0 + 1e-12));
+            if sigma < 1.0 - 1e-12 {
+                let s = s0 * sigma * (1.0 + 2e-3);
+                let longer = solve_structured(problem, s * weights.p, s * weights.q)
+                    .map_or(f64::INFINITY, |r| r.curve.polygon_length());
+                assert!(longer > limit, "sigma {sigma}: a faster blend is as short");
+                shortened += 1;
+            } else {
+                natural += 1;
             }
-        }
+        });
         assert!(
             natural >= 4 && shortened >= 1,
             "natural {natural}, shortened {shortened}"
         );
     }
 
-    /// The lower end's rule gives the same blend, bit for bit, whether its
-    /// decisions read the components' polygons or solve at every scale:
-    /// every problem of the dense-scan generator (200) and the U-turns
-    /// between two lines 10 apart (C1-C3), both weightings, wherever the
-    /// rule applies; at least nine in ten of them are decided by the
-    /// components (no near tie, the answer's solve accepted). The
-    /// components' polygons against the solved blends' too, at nine scales
-    /// of each bracket: within 1e-9 relative.
-    #[test]
-    fn the_components_bisection_is_the_full_solves_bisection() {
+    /// The cases of the lower end's rule: the problems of [`problems`]
+    /// (`count`) and the U-turns between two lines 10 apart (C1-C3), with the
+    /// automatic and the balanced weights, where no speed floor applies and
+    /// the energy is least at the search's lower end `lo < 0`: `body(problem,
+    /// weights, s0, lo, components)`.
+    fn for_each_lower_end_case(
+        count: usize,
+        mut body: impl FnMut(&Problem, ScaleWeights, f64, f64, &ScaleComponents),
+    ) {
         let half_width = AUTO_SCALE_SEARCH_DECADES * std::f64::consts::LN_10;
         let p = BezierCurve::new(2, 1, vec![0.0, 0.0, 50.0, 0.0]).unwrap();
         let q = BezierCurve::new(2, 1, vec![50.0, 10.0, 0.0, 10.0]).unwrap();
-        let mut cases = problems(200);
+        let mut cases = problems(count);
         for k in 1..=3 {
             cases.push(prepare(&p, 1.0, &q, 0.0, &ConnectOptions::new(k, k)).unwrap());
         }
-        let (mut compared, mut bisected, mut by_components, mut worst) = (0, 0, 0, 0.0f64);
         for problem in cases {
             if speed_floor_applies(&problem) || (problem.p_order == 0 && problem.q_order == 0) {
                 continue;
@@ -938,41 +907,56 @@ mod tests {
                 let Some(sigma) = polynomial_minimum(&coefficients, lo, half_width) else {
                     continue;
                 };
-                if !(lo < 0.0 && sigma <= lo.exp()) {
-                    continue;
-                }
-                let fast = unkinked_blend(&problem, s0, weights, lo, Some(&components));
-                let solved = unkinked_blend(&problem, s0, weights, lo, None);
-                let bits = |c: &Option<Connection>| {
-                    c.as_ref().map(|c| {
-                        let mut v = vec![c.p_scale.to_bits(), c.q_scale.to_bits()];
-                        v.extend(c.curve.points().iter().map(|x| x.to_bits()));
-                        v
-                    })
-                };
-                assert_eq!(bits(&fast), bits(&solved), "lo {lo}");
-                compared += 1;
-                if unkinked_by_components(&problem, s0, weights, lo, &components).is_some() {
-                    by_components += 1;
-                }
-                let limit = UNKINKED_POLYGON_CHORDS * problem.chord();
-                if short_blend(&problem, s0, weights, limit, 0.0).is_none() {
-                    bisected += 1;
-                }
-                // The polygons the bisection reads, against the solves'.
-                let mut scratch = components.scratch();
-                for step in 0..=8 {
-                    let log_sigma = lo * step as f64 / 8.0;
-                    let s = s0 * log_sigma.exp();
-                    let Ok(c) = solve_structured(&problem, s * weights.p, s * weights.q) else {
-                        continue;
-                    };
-                    let exact = c.curve.polygon_length();
-                    let read = components.polygon_length(s, &mut scratch);
-                    worst = worst.max((read - exact).abs() / exact);
+                if lo < 0.0 && sigma <= lo.exp() {
+                    body(&problem, weights, s0, lo, &components);
                 }
             }
         }
+    }
+
+    /// The lower end's rule gives the same blend, bit for bit, whether its
+    /// decisions read the components' polygons or solve at every scale:
+    /// every problem of the dense-scan generator (200) and the U-turns
+    /// between two lines 10 apart (C1-C3), both weightings, wherever the
+    /// rule applies; at least nine in ten of them are decided by the
+    /// components (no near tie, the answer's solve accepted). The
+    /// components' polygons against the solved blends' too, at nine scales
+    /// of each bracket: within 1e-9 relative.
+    #[test]
+    fn the_components_bisection_is_the_full_solves_bisection() {
+        let (mut compared, mut bisected, mut by_components, mut worst) = (0, 0, 0, 0.0f64);
+        for_each_lower_end_case(200, |problem, weights, s0, lo, components| {
+            let fast = unkinked_blend(problem, s0, weights, lo, Some(components));
+            let solved = unkinked_blend(problem, s0, weights, lo, None);
+            let bits = |c: &Option<Connection>| {
+                c.as_ref().map(|c| {
+                    let mut v = vec![c.p_scale.to_bits(), c.q_scale.to_bits()];
+                    v.extend(c.curve.points().iter().map(|x| x.to_bits()));
+                    v
+                })
+            };
+            assert_eq!(bits(&fast), bits(&solved), "lo {lo}");
+            compared += 1;
+            if unkinked_by_components(problem, s0, weights, lo, components).is_some() {
+                by_components += 1;
+            }
+            let limit = UNKINKED_POLYGON_CHORDS * problem.chord();
+            if short_blend(problem, s0, weights, limit, 0.0).is_none() {
+                bisected += 1;
+            }
+            // The polygons the decisions read, against the solves'.
+            let mut scratch = components.scratch();
+            for step in 0..=8 {
+                let log_sigma = lo * step as f64 / 8.0;
+                let s = s0 * log_sigma.exp();
+                let Ok(c) = solve_structured(problem, s * weights.p, s * weights.q) else {
+                    continue;
+                };
+                let exact = c.curve.polygon_length();
+                let read = components.polygon_length(s, &mut scratch);
+                worst = worst.max((read - exact).abs() / exact);
+            }
+        });
         eprintln!(
             "compared {compared}, bisected {bisected}, decided by the components \
              {by_components}, worst polygon difference {worst:e}"
