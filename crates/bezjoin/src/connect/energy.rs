@@ -130,10 +130,15 @@ const UNKINKED_LOG_TOLERANCE: f64 = 1e-3;
 /// residual checks: 2.3 -> 10-12 us for C2 on the demo's pair, issue 20,
 /// session 49), and only the answer is solved and checked
 /// ([`unkinked_by_components`]). Those polygons differ from the solved ones
-/// by rounding only; where one is within [`UNKINKED_TIE`] of the bound, or
-/// the answer's own solve is refused or too long, the rule runs with a
-/// solve per decision instead ([`unkinked_blend_by_solves`]), so it is met
-/// either way (test `the_components_bisection_is_the_full_solves_bisection`).
+/// by rounding only; where one is within the tie margin of the bound
+/// ([`UNKINKED_TIE`] of it plus [`ScaleComponents::rounding`]), or the
+/// answer's own solve is refused or too long, the rule runs with a solve per
+/// decision instead ([`unkinked_blend_by_solves`]), so it is met either way
+/// (test `the_components_bisection_is_the_full_solves_bisection`). One
+/// difference remains by construction: a scale inside the bracket whose own
+/// solve would be refused is judged by its polygon here, where the solves
+/// count it as too long; the answer is still a solved, checked blend within
+/// the bound.
 fn unkinked_blend(
     problem: &Problem,
     s0: f64,
@@ -149,11 +154,10 @@ fn unkinked_blend(
     unkinked_blend_by_solves(problem, s0, weights, lo)
 }
 
-/// A polygon this close to [`UNKINKED_POLYGON_CHORDS`] chords (relative)
-/// is a near tie that the components' rounding might decide otherwise than
-/// a solve: [`unkinked_blend`] then decides by solves. (The components'
-/// polygons are within 1.6e-12 of the solved ones on the 98 problems of the
-/// test.)
+/// A polygon within this part of [`UNKINKED_POLYGON_CHORDS`] chords, plus
+/// the rounding margin of [`ScaleComponents::rounding`], is a near tie that
+/// the components' rounding might decide otherwise than a solve:
+/// [`unkinked_blend`] then decides by solves.
 const UNKINKED_TIE: f64 = 1e-9;
 
 /// [`unkinked_blend`]'s decisions by the components' polygons and the
@@ -171,8 +175,9 @@ fn unkinked_by_components(
     let mut scratch = components.scratch();
     let mut near_tie = false;
     let mut is_short = |log_sigma: f64| {
-        let length = components.polygon_length(s0 * log_sigma.exp(), &mut scratch);
-        near_tie |= (length - limit).abs() <= UNKINKED_TIE * limit;
+        let s = s0 * log_sigma.exp();
+        let length = components.polygon_length(s, &mut scratch);
+        near_tie |= (length - limit).abs() <= UNKINKED_TIE * limit + components.rounding(s);
         length <= limit
     };
     let answer = if is_short(0.0) {
@@ -352,6 +357,9 @@ fn energy_polynomial(
     let mut hodographs = DMatrix::<f64>::zeros(m + 1, (order + 1) * dim);
     let blocks = order + 1;
     let mut components = DMatrix::<f64>::zeros(n + 1, blocks * dim);
+    // The interior block's condition estimate (1 without interior
+    // constraints): it scales the components' rounding.
+    let mut condition = 1.0f64;
     let mut part = conditions.clone();
     for k in 0..=order {
         for r in 0..part.targets.nrows() {
@@ -379,7 +387,8 @@ fn energy_polynomial(
                 };
             }
         }
-        let (points, _) = super::solve_condition_rows(problem, &part).ok()?;
+        let (points, constraint_condition) = super::solve_condition_rows(problem, &part).ok()?;
+        condition = condition.max(constraint_condition);
         components
             .view_mut((0, k * dim), (n + 1, dim))
             .copy_from(&points);
@@ -412,11 +421,7 @@ fn energy_polynomial(
     }
     coefficients.iter().all(|e| e.is_finite()).then_some((
         coefficients,
-        ScaleComponents {
-            points: components,
-            blocks,
-            dim,
-        },
+        ScaleComponents::new(components, blocks, dim, condition),
     ))
 }
 
@@ -429,9 +434,66 @@ struct ScaleComponents {
     points: DMatrix<f64>,
     blocks: usize,
     dim: usize,
+    /// `max |C_k|` (largest coordinate) of each component.
+    largest: Vec<f64>,
+    /// The interior block's condition estimate (1 without interior
+    /// constraints), the largest over the components' solves.
+    condition: f64,
 }
 
+/// [`ScaleComponents::rounding`]'s factor over `n 2^K sqrt(d) u kappa`.
+const COMPONENTS_ROUNDING: f64 = 64.0;
+
 impl ScaleComponents {
+    fn new(points: DMatrix<f64>, blocks: usize, dim: usize, condition: f64) -> Self {
+        let rows = points.nrows();
+        let largest = (0..blocks)
+            .map(|k| {
+                points.as_slice()[k * dim * rows..(k + 1) * dim * rows]
+                    .iter()
+                    .fold(0.0f64, |m, v| m.max(v.abs()))
+            })
+            .collect();
+        Self {
+            points,
+            blocks,
+            dim,
+            largest,
+            condition,
+        }
+    }
+
+    /// A bound, with a wide margin, on how far the control polygon of `R(s)`
+    /// read from the components ([`Self::polygon_length`]) and that of a
+    /// solve at `s` can lie apart by rounding:
+    /// `64 n 2^K sqrt(d) u kappa sum_k s^k max |C_k|`, `K` the highest
+    /// order and `kappa` the interior block's condition estimate (1 without
+    /// interior constraints). Each point of either is a sum of terms up to
+    /// `sum_k s^k max |C_k|` in size, and rounds relative to them, not to the
+    /// chord: an end's substitution sums binomials `C(k, s)` of the earlier
+    /// points (at most `2^K` times their size), the interior block
+    /// multiplies its rounding by up to `kappa`, the components' Horner sums
+    /// add a few `u`; the polygon has `n` sides of two points each. Far from the origin it grows with the
+    /// coordinates, not with the chord (review, session 49: at 1e7 and 1e8
+    /// with a chord of about 0.1 the two polygons were up to 4.9e-4 of the
+    /// bound apart).
+    fn rounding(&self, s: f64) -> f64 {
+        let n = (self.points.nrows().max(1) - 1) as f64;
+        let mut terms = 0.0;
+        for &m in self.largest.iter().rev() {
+            terms = terms * s + m;
+        }
+        // 2^K: the substitution's sums of binomials over an end's rows.
+        let growth = 2f64.powi(self.blocks as i32 - 1);
+        COMPONENTS_ROUNDING
+            * n
+            * growth
+            * (self.dim as f64).sqrt()
+            * f64::EPSILON
+            * self.condition
+            * terms
+    }
+
     /// A buffer for [`Self::polygon_length`] (two points).
     fn scratch(&self) -> Vec<f64> {
         vec![0.0; 2 * self.dim]
@@ -751,6 +813,12 @@ mod tests {
     /// Random pairs (dimensions 1..3, degrees 1..9, orders up to the
     /// degree, half of them with an interior point constraint), fixed seed.
     fn problems(count: usize) -> Vec<Problem> {
+        problems_placed(count, 0.0, 1.0)
+    }
+
+    /// [`problems`]' draws with every coordinate `x` placed at `offset +
+    /// spread x` (the same draws: `problems` is `(0, 1)`).
+    fn problems_placed(count: usize, offset: f64, spread: f64) -> Vec<Problem> {
         let mut values = Values(0x5ca1e);
         let mut out = Vec::new();
         while out.len() < count {
@@ -762,7 +830,9 @@ mod tests {
                     .map(|i| {
                         (0..dim)
                             .map(|c| {
-                                values.signed() * 4.0 + if c == 0 { shift + i as f64 } else { 0.0 }
+                                let x = values.signed() * 4.0
+                                    + if c == 0 { shift + i as f64 } else { 0.0 };
+                                offset + spread * x
                             })
                             .collect()
                     })
@@ -774,7 +844,9 @@ mod tests {
             let kq = (values.unit() * (nq + 1) as f64) as usize;
             let mut options = ConnectOptions::new(kp.min(np), kq.min(nq));
             if out.len() % 2 == 1 {
-                let point: Vec<f64> = (0..dim).map(|_| 6.0 + values.signed() * 4.0).collect();
+                let point: Vec<f64> = (0..dim)
+                    .map(|_| offset + spread * (6.0 + values.signed() * 4.0))
+                    .collect();
                 options = options.with_constraint(PointConstraint::new(0.5, 0, point));
             }
             let (u0, v0) = (0.5 + 0.5 * values.unit(), 0.5 * values.unit());
@@ -845,7 +917,7 @@ mod tests {
     #[test]
     fn a_kinked_minimum_takes_the_natural_speed_or_the_fastest_short_blend() {
         let (mut natural, mut shortened) = (0, 0);
-        for_each_lower_end_case(24, |problem, weights, s0, lo, _| {
+        for_each_lower_end_case(problems(24), |problem, weights, s0, lo, _| {
             let chosen = weighted_auto_scale(problem, weights, s0).unwrap();
             let sigma = chosen.p_scale / (s0 * weights.p);
             let limit = UNKINKED_POLYGON_CHORDS * problem.chord();
@@ -877,13 +949,12 @@ mod tests {
     /// the energy is least at the search's lower end `lo < 0`: `body(problem,
     /// weights, s0, lo, components)`.
     fn for_each_lower_end_case(
-        count: usize,
+        mut cases: Vec<Problem>,
         mut body: impl FnMut(&Problem, ScaleWeights, f64, f64, &ScaleComponents),
     ) {
         let half_width = AUTO_SCALE_SEARCH_DECADES * std::f64::consts::LN_10;
         let p = BezierCurve::new(2, 1, vec![0.0, 0.0, 50.0, 0.0]).unwrap();
         let q = BezierCurve::new(2, 1, vec![50.0, 10.0, 0.0, 10.0]).unwrap();
-        let mut cases = problems(count);
         for k in 1..=3 {
             cases.push(prepare(&p, 1.0, &q, 0.0, &ConnectOptions::new(k, k)).unwrap());
         }
@@ -924,8 +995,19 @@ mod tests {
     /// of each bracket: within 1e-9 relative.
     #[test]
     fn the_components_bisection_is_the_full_solves_bisection() {
-        let (mut compared, mut bisected, mut by_components, mut worst) = (0, 0, 0, 0.0f64);
-        for_each_lower_end_case(200, |problem, weights, s0, lo, components| {
+        // [near the origin, far from it]: cases, bisected, decided by the
+        // components; and the largest polygon gap over the rounding margin.
+        let mut counts = [[0usize; 3]; 2];
+        let mut worst = 0.0f64;
+        // Far from the origin too: the points' rounding grows with their
+        // coordinates, not with the chord (review, session 49: with a margin
+        // of the chord's alone, 1 answer in about 1,300 differed at 1e7 and
+        // at 1e8).
+        let mut cases = problems(200);
+        cases.extend(problems_placed(8000, 1e7, 1e-2));
+        cases.extend(problems_placed(8000, 1e8, 1e-2));
+        for_each_lower_end_case(cases, |problem, weights, s0, lo, components| {
+            let count = &mut counts[usize::from(problem.ends_coordinate() > 1e6)];
             let fast = unkinked_blend(problem, s0, weights, lo, Some(components));
             let solved = unkinked_blend(problem, s0, weights, lo, None);
             let bits = |c: &Option<Connection>| {
@@ -936,15 +1018,16 @@ mod tests {
                 })
             };
             assert_eq!(bits(&fast), bits(&solved), "lo {lo}");
-            compared += 1;
-            if unkinked_by_components(problem, s0, weights, lo, components).is_some() {
-                by_components += 1;
-            }
+            count[0] += 1;
             let limit = UNKINKED_POLYGON_CHORDS * problem.chord();
             if short_blend(problem, s0, weights, limit, 0.0).is_none() {
-                bisected += 1;
+                count[1] += 1;
             }
-            // The polygons the decisions read, against the solves'.
+            if unkinked_by_components(problem, s0, weights, lo, components).is_some() {
+                count[2] += 1;
+            }
+            // The polygons the decisions read, against the solves', within
+            // the rounding margin the near ties are judged with.
             let mut scratch = components.scratch();
             for step in 0..=8 {
                 let log_sigma = lo * step as f64 / 8.0;
@@ -952,26 +1035,26 @@ mod tests {
                 let Ok(c) = solve_structured(problem, s * weights.p, s * weights.q) else {
                     continue;
                 };
-                let exact = c.curve.polygon_length();
-                let read = components.polygon_length(s, &mut scratch);
-                worst = worst.max((read - exact).abs() / exact);
+                let gap =
+                    (components.polygon_length(s, &mut scratch) - c.curve.polygon_length()).abs();
+                worst = worst.max(gap / components.rounding(s));
             }
         });
         eprintln!(
-            "compared {compared}, bisected {bisected}, decided by the components \
-             {by_components}, worst polygon difference {worst:e}"
+            "near the origin [cases, bisected, by the components] {:?}, far {:?}, largest \
+             polygon gap over the rounding margin {worst:e}",
+            counts[0], counts[1]
         );
-        // (Measured: 98 compared, 82 of them bisected, 94 decided by the
-        // components, polygons within 1.6e-12.)
-        assert!(worst <= 1e-9, "polygon difference {worst:e}");
+        // (Measured: near [98, 82, 94], far [7362, 6634, 5757], gap at most
+        // 0.12 of the margin.)
+        assert!(worst <= 1.0, "polygon gap {worst} of the margin");
+        let [near, far] = counts;
         assert!(
-            by_components * 10 >= compared * 9,
-            "{by_components} of {compared}"
+            near[0] >= 20 && near[1] >= 5 && far[0] >= 1000,
+            "{counts:?}"
         );
-        assert!(
-            compared >= 20 && bisected >= 5,
-            "compared {compared}, bisected {bisected}"
-        );
+        assert!(near[2] * 10 >= near[0] * 9, "near the origin {near:?}");
+        assert!(far[2] * 2 >= far[0], "far from the origin {far:?}");
     }
 
     /// The closed-form search finds the global minimum over the documented

@@ -614,7 +614,13 @@ impl NurbsCurve {
             sizes[k] = one_norm(&row);
             curve[k] = row;
             let gamma = 2.0 * (k + 3) as f64 * unit;
-            errors[k] = (moved + (e0 * sizes[k] + gamma * terms) + latest) * inverse_weight;
+            let sum = moved + (e0 * sizes[k] + gamma * terms) + latest;
+            // (A subnormal `w` has no finite reciprocal: divided then.)
+            errors[k] = if inverse_weight.is_finite() {
+                sum * inverse_weight
+            } else {
+                sum / w0.abs()
+            };
             // A bound or size that is NaN or infinite, and a size below the
             // normal range or zero (where rounding is not relative: a row
             // that underflowed comes back 0 with bound 0), decline too (the
