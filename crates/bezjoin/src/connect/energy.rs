@@ -146,12 +146,13 @@ fn unkinked_blend(
     lo: f64,
     components: Option<&ScaleComponents>,
 ) -> Option<Connection> {
+    let limit = UNKINKED_POLYGON_CHORDS * problem.chord();
     if let Some(components) = components {
-        if let Some(answer) = unkinked_by_components(problem, s0, weights, lo, components) {
+        if let Some(answer) = unkinked_by_components(problem, s0, weights, lo, limit, components) {
             return answer;
         }
     }
-    unkinked_blend_by_solves(problem, s0, weights, lo)
+    unkinked_blend_by_solves(problem, s0, weights, lo, limit)
 }
 
 /// A polygon within this part of [`UNKINKED_POLYGON_CHORDS`] chords, plus
@@ -161,17 +162,18 @@ fn unkinked_blend(
 const UNKINKED_TIE: f64 = 1e-9;
 
 /// [`unkinked_blend`]'s decisions by the components' polygons and the
-/// answer's solve: `Some(answer)`, or `None` where a decision was a near
-/// tie or the answer's solve is refused or too long (the caller then
-/// decides by solves).
+/// answer's solve, polygons of at most `limit` counting as short:
+/// `Some(answer)`, or `None` where a decision was a near tie or the
+/// answer's solve is refused or too long (the caller then decides by
+/// solves).
 fn unkinked_by_components(
     problem: &Problem,
     s0: f64,
     weights: ScaleWeights,
     lo: f64,
+    limit: f64,
     components: &ScaleComponents,
 ) -> Option<Option<Connection>> {
-    let limit = UNKINKED_POLYGON_CHORDS * problem.chord();
     let mut scratch = components.scratch();
     let mut near_tie = false;
     let mut is_short = |log_sigma: f64| {
@@ -228,14 +230,14 @@ fn unkinked_bisection(lo: f64, mut is_short: impl FnMut(f64) -> bool) -> f64 {
 }
 
 /// [`unkinked_blend`]'s rule with a full solve for every decision (its
-/// definition; the fallback).
+/// definition; the fallback), polygons of at most `limit` counting as short.
 fn unkinked_blend_by_solves(
     problem: &Problem,
     s0: f64,
     weights: ScaleWeights,
     lo: f64,
+    limit: f64,
 ) -> Option<Connection> {
-    let limit = UNKINKED_POLYGON_CHORDS * problem.chord();
     let short = |log_sigma: f64| short_blend(problem, s0, weights, limit, log_sigma);
     if let Some(natural) = short(0.0) {
         return Some(natural);
@@ -436,15 +438,17 @@ struct ScaleComponents {
     dim: usize,
     /// `max |C_k|` (largest coordinate) of each component.
     largest: Vec<f64>,
-    /// The interior block's condition estimate (1 without interior
-    /// constraints), the largest over the components' solves.
-    condition: f64,
+    /// [`Self::rounding`]'s factor `64 n 2^K sqrt(d) u kappa`.
+    rounding_factor: f64,
 }
 
 /// [`ScaleComponents::rounding`]'s factor over `n 2^K sqrt(d) u kappa`.
 const COMPONENTS_ROUNDING: f64 = 64.0;
 
 impl ScaleComponents {
+    /// The components in `points`, `kappa = condition` the interior block's
+    /// condition estimate (the largest over the components' solves; 1
+    /// without interior constraints).
     fn new(points: DMatrix<f64>, blocks: usize, dim: usize, condition: f64) -> Self {
         let rows = points.nrows();
         let largest = (0..blocks)
@@ -454,12 +458,17 @@ impl ScaleComponents {
                     .fold(0.0f64, |m, v| m.max(v.abs()))
             })
             .collect();
+        let n = (rows.max(1) - 1) as f64;
+        // 2^K: the substitution's sums of binomials over an end's rows.
+        let growth = 2f64.powi(blocks as i32 - 1);
+        let rounding_factor =
+            COMPONENTS_ROUNDING * n * growth * (dim as f64).sqrt() * f64::EPSILON * condition;
         Self {
             points,
             blocks,
             dim,
             largest,
-            condition,
+            rounding_factor,
         }
     }
 
@@ -473,25 +482,16 @@ impl ScaleComponents {
     /// chord: an end's substitution sums binomials `C(k, s)` of the earlier
     /// points (at most `2^K` times their size), the interior block
     /// multiplies its rounding by up to `kappa`, the components' Horner sums
-    /// add a few `u`; the polygon has `n` sides of two points each. Far from the origin it grows with the
-    /// coordinates, not with the chord (review, session 49: at 1e7 and 1e8
-    /// with a chord of about 0.1 the two polygons were up to 4.9e-4 of the
-    /// bound apart).
+    /// add a few `u`; the polygon has `n` sides of two points each. Far from
+    /// the origin it grows with the coordinates, not with the chord (review,
+    /// session 49: at 1e7 and 1e8 with a chord of about 0.1 the two polygons
+    /// were up to 4.9e-4 of the bound apart).
     fn rounding(&self, s: f64) -> f64 {
-        let n = (self.points.nrows().max(1) - 1) as f64;
         let mut terms = 0.0;
         for &m in self.largest.iter().rev() {
             terms = terms * s + m;
         }
-        // 2^K: the substitution's sums of binomials over an end's rows.
-        let growth = 2f64.powi(self.blocks as i32 - 1);
-        COMPONENTS_ROUNDING
-            * n
-            * growth
-            * (self.dim as f64).sqrt()
-            * f64::EPSILON
-            * self.condition
-            * terms
+        self.rounding_factor * terms
     }
 
     /// A buffer for [`Self::polygon_length`] (two points).
@@ -1008,6 +1008,7 @@ mod tests {
         cases.extend(problems_placed(8000, 1e8, 1e-2));
         for_each_lower_end_case(cases, |problem, weights, s0, lo, components| {
             let count = &mut counts[usize::from(problem.ends_coordinate() > 1e6)];
+            let limit = UNKINKED_POLYGON_CHORDS * problem.chord();
             let fast = unkinked_blend(problem, s0, weights, lo, Some(components));
             let solved = unkinked_blend(problem, s0, weights, lo, None);
             let bits = |c: &Option<Connection>| {
@@ -1019,11 +1020,10 @@ mod tests {
             };
             assert_eq!(bits(&fast), bits(&solved), "lo {lo}");
             count[0] += 1;
-            let limit = UNKINKED_POLYGON_CHORDS * problem.chord();
             if short_blend(problem, s0, weights, limit, 0.0).is_none() {
                 count[1] += 1;
             }
-            if unkinked_by_components(problem, s0, weights, lo, components).is_some() {
+            if unkinked_by_components(problem, s0, weights, lo, limit, components).is_some() {
                 count[2] += 1;
             }
             // The polygons the decisions read, against the solves', within

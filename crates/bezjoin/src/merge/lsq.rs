@@ -203,29 +203,6 @@ impl<'p> Factor<'p> {
         }
     }
 
-    /// [`Self::solve_t`] with the sizes of [`Self::sizes`].
-    #[cfg(test)]
-    #[inline(always)]
-    fn solve_t_sized<const R: usize, const C: usize>(&self, y: &mut [f64]) {
-        let (_, cols) = self.sizes::<R, C>();
-        self.solve_leading_t::<R, C>(&mut y[..cols]);
-    }
-
-    /// `y <- T_k^-1 y` on the leading `k x k` block of `T`, `k = y.len() <=
-    /// cols`, column by column from the last (the sizes of [`Self::sizes`]).
-    #[inline(always)]
-    fn solve_leading_t<const R: usize, const C: usize>(&self, y: &mut [f64]) {
-        let (rows, cols) = self.sizes::<R, C>();
-        let diagonal = &self.packed[rows * cols..rows * cols + cols];
-        for j in (0..y.len()).rev() {
-            let yj = y[j] / diagonal[j];
-            y[j] = yj;
-            for (yi, &t) in y[..j].iter_mut().zip(&self.packed[j * rows..j * rows + j]) {
-                *yi -= t * yj;
-            }
-        }
-    }
-
     /// `T`'s column `j` above the diagonal (`j` entries).
     pub(super) fn t_column(&self, j: usize) -> &[f64] {
         &self.packed[j * self.rows..j * self.rows + j]
@@ -240,21 +217,24 @@ impl<'p> Factor<'p> {
     /// `y <- T^-1 y` (the first `cols` entries), column by column.
     #[cfg(test)]
     pub(super) fn solve_t(&self, y: &mut [f64]) {
-        self.solve_t_sized::<0, 0>(y);
+        let mut work = y[..self.cols].to_vec();
+        self.solve_leading_t_into::<0, 0>(&mut work, &mut y[..self.cols]);
     }
 
     /// `||T^-1||_F`: column `k` of `T^-1` from `e_k` on the leading
     /// `(k + 1) x (k + 1)` block (`T^-1` is upper triangular), column by
-    /// column as [`Self::solve_leading_t`].
+    /// column as [`Self::solve_leading_t_into`].
     pub(super) fn inverse_frobenius(&self) -> f64 {
         let mut total = 0.0;
         let mut e = vec![0.0; self.cols];
+        let mut column = vec![0.0; self.cols];
         for k in 0..self.cols {
             let e = &mut e[..=k];
             e.fill(0.0);
             e[k] = 1.0;
-            self.solve_leading_t::<0, 0>(e);
-            total += e.iter().map(|v| v * v).sum::<f64>();
+            let column = &mut column[..=k];
+            self.solve_leading_t_into::<0, 0>(e, column);
+            total += column.iter().map(|v| v * v).sum::<f64>();
         }
         total.sqrt()
     }
@@ -313,9 +293,9 @@ impl<'p> Factor<'p> {
         }
     }
 
-    /// [`Self::solve_leading_t`] of `y` with each solved entry written to
-    /// `out` (`y.len()` entries) instead of back into `y`: the same
-    /// operations in the same order, so the same bits.
+    /// `T_k^-1 y` on the leading `k x k` block of `T`, `k = y.len() <=
+    /// cols`, column by column from the last (the sizes of [`Self::sizes`]),
+    /// each solved entry written to `out` (`k` entries); `y` is scratch.
     #[inline(always)]
     fn solve_leading_t_into<const R: usize, const C: usize>(&self, y: &mut [f64], out: &mut [f64]) {
         let (rows, cols) = self.sizes::<R, C>();
