@@ -14,6 +14,9 @@ use bezjoin_core::{
 use crate::guard::guard;
 use crate::pointers::{input_slice, output_slice, write_optional};
 use crate::status::{BzjStatus, FfiError, FfiResult};
+// The entry points these docs link to (rustdoc only; the header's text is unchanged).
+#[cfg(doc)]
+use crate::connect::{bzj_connect, bzj_connect_auto_scale};
 
 /// The Bezier curve of dimension `dim` whose control points are the `len`
 /// doubles at `points` (row-major, `len / dim` points); errors name the

@@ -13,6 +13,9 @@ use bezjoin_core::{
 use bezjoin_core::{IntersectOptions, Intersection, IntersectionKind, intersect};
 
 use crate::guard::guard;
+// The entry point these docs link to (rustdoc only; the header's text is unchanged).
+#[cfg(doc)]
+use crate::connect::bzj_connect_balanced_scale;
 use crate::handles::{
     BzjCurve, CheckedOut, HandleArray, HandleOut, HandleSlots, ShortArray, require_all,
 };

@@ -1472,7 +1472,7 @@ impl ChebyshevSpeed {
         }
     }
 
-    /// [`Self::new`] written into a zeroed `self` in place (no copy of the
+    /// `Self::new` (test-only) written into a zeroed `self` in place (no copy of the
     /// buffer): `false` when the curve does not qualify (`self` then means
     /// nothing).
     fn fill(&mut self, curve: &BezierCurve) -> bool {
@@ -1604,7 +1604,7 @@ impl ChebyshevSpeed {
     /// The speed at the grid nodes `i = first, first + step, ..` below
     /// [`CHEBYSHEV_MAX_N`], `t = start + (nodes[i] + 1) span / 2`, into
     /// `samples[i]`; `false` at the first value that is not finite. The
-    /// plane and space up to hodograph degree 4 take [`Self::at_fixed`]
+    /// plane and space up to hodograph degree 4 take [`at_fixed`]
     /// (chosen once for all the nodes), the rest [`Self::at`]; the values
     /// are the same to the bit.
     fn sample(

@@ -1,7 +1,7 @@
 //! Compensated arithmetic: double-double numbers (error-free transforms
 //! TwoSum and TwoProduct) and the compensated de Casteljau blossom used
 //! where plain rounding would lose `(2/mu - 1)^n` units in the last place
-//! (the kept-piece path of [`crate::merge`]).
+//! (the kept-piece path of [`crate::merge()`]).
 
 use nalgebra::DMatrix;
 

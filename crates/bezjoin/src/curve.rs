@@ -162,7 +162,7 @@ impl Curve {
     }
 }
 
-/// What [`connect`](crate::connect) needs of a curve: its dimension, its
+/// What [`connect`](fn@crate::connect) needs of a curve: its dimension, its
 /// domain and its derivative jet at a parameter, from one side, with a
 /// bound on the rounding error of each derivative.
 pub trait CurveJet {
@@ -181,7 +181,7 @@ pub trait CurveJet {
     /// values), the bound of row `k` at `errors[k]` (`order + 1` values);
     /// the same numbers bit for bit. The default copies from `jet`; a
     /// Bezier curve computes it without allocating for small degrees, the
-    /// hot path of [`connect`](crate::connect).
+    /// hot path of [`connect`](fn@crate::connect).
     ///
     /// # Panics
     /// If the lengths are not as stated.

@@ -3,11 +3,11 @@
 //! Smooth joins of Bezier curves of any degree in any dimension, after four
 //! papers stated in `docs/mathematics.md`:
 //!
-//! * [`connect`] — a connecting Bezier curve with C^k continuity at both ends
+//! * [`connect()`] — a connecting Bezier curve with C^k continuity at both ends
 //!   and interior point/derivative constraints (Krivosheev, Mavrin, Starkova 2025);
-//! * [`fillet`] — rounding the corner between two crossing curves, built on
-//!   [`intersect`] and [`connect`];
-//! * [`merge`] — the smallest change of two curves' control points that makes
+//! * [`fillet()`] — rounding the corner between two crossing curves, built on
+//!   [`intersect()`] and [`connect()`];
+//! * [`merge()`] — the smallest change of two curves' control points that makes
 //!   them one curve (Ganchuk, Krivosheev, Mavrin, Ryzhov 2024; Hu et al. 2001);
 //! * `lagrange` ([`lagrange_spline`]) — cubic splines whose control points
 //!   lie on the curve (Kovtun).

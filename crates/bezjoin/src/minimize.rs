@@ -1,5 +1,5 @@
 //! One-dimensional minimisation over a bounded interval, shared by the
-//! searches of the library: the optimal split `mu` of [`crate::merge`] and
+//! searches of the library: the optimal split `mu` of [`crate::merge()`] and
 //! the automatic scale ([`crate::connect::ShapeScale::Auto`]).
 //!
 //! Method: the function is sampled on an even grid (the global part: the

@@ -251,7 +251,7 @@ impl ConnectOptions {
 /// How the shape scales `alpha` (at `P`) and `beta` (at `Q`) of a
 /// connecting curve are chosen (section 1, eq. (1'): the end derivatives of
 /// `R` are those of `P` and `Q` times `alpha^r`, `beta^r`). One choice for
-/// [`connect`] and for [`crate::fillet`].
+/// [`connect`] and for [`crate::fillet()`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum ShapeScale {
     /// The caller's `alpha = p > 0` and `beta = q > 0`; `p = q = 1` is the paper.
@@ -489,7 +489,7 @@ pub(crate) fn end_band_norm(degree: usize, k: usize) -> f64 {
     band.iter().map(|v| v.abs()).sum()
 }
 
-/// `END_BAND_NORMS[n][k]`: [`end_band_norm`] by the operations of
+/// `END_BAND_NORMS[n][k]`: `end_band_norm` (test-only) by the operations of
 /// [`end_band`] and the sum.
 pub(crate) static END_BAND_NORMS: [[f64; END_TABLE_SIZE]; END_TABLE_SIZE] = {
     let mut table = [[0.0f64; END_TABLE_SIZE]; END_TABLE_SIZE];

@@ -1,4 +1,4 @@
-//! **[beyond]** Rounding every corner of a chain of curves in one call
+//! **\[beyond\]** Rounding every corner of a chain of curves in one call
 //! (docs/mathematics.md#fillet-chains).
 //!
 //! Corner `i` lies between `curves[i]` and `curves[i + 1]` (and, for a closed

@@ -1,4 +1,4 @@
-//! **[beyond]** Rounding within a deviation bound (docs/mathematics.md#fillet-deviation-bound:
+//! **\[beyond\]** Rounding within a deviation bound (docs/mathematics.md#fillet-deviation-bound:
 //! "a bound on the deviation from the sharp corner instead of a setback, as
 //! CNC corner smoothing asks").
 //!

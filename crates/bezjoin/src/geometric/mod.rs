@@ -17,7 +17,7 @@
 //! `beta_p = phi_p^(j)(0)`, `beta_q = phi_q^(j)(1)` (`beta_1 > 0`). For
 //! `beta_j = 0` (`j >= 2`) this is connect's `C^k` with scales `alpha =
 //! beta_p1`, `beta = beta_q1`. Only the targets change: the structured solve
-//! of [`connect`](crate::connect) is used unchanged, with its residual
+//! of [`connect`](fn@crate::connect) is used unchanged, with its residual
 //! guarantee on the new targets, interior constraints included.
 //!
 //! # Fair shape parameters
@@ -672,7 +672,7 @@ fn solve_with_shapes(
 ///
 /// Guarantee: the returned curve satisfies the beta-constraints of the
 /// returned shape values and the interior constraints with the residual
-/// guarantee of [`connect`](crate::connect) (`error_estimate <=
+/// guarantee of [`connect`](fn@crate::connect) (`error_estimate <=
 /// CONNECT_RESIDUAL_LIMIT`); so it meets P and Q with G^kp and G^kq
 /// (`P'(u0)`, `Q'(v0)` are not zero: a zero tangent at an end of order at
 /// least 1 is refused, IllConditioned naming the curve and the parameter;
@@ -682,7 +682,7 @@ fn solve_with_shapes(
 /// returned ones minimise the curvature variation as the module says (a
 /// local minimum from a deterministic start; no global guarantee).
 ///
-/// Errors: those of [`connect`](crate::connect) (parameters, dimensions,
+/// Errors: those of [`connect`](fn@crate::connect) (parameters, dimensions,
 /// degree above [`crate::MAX_CONNECT_DEGREE`], IllConditioned); an order
 /// above [`MAX_GEOMETRIC_ORDER`] or shape values of the wrong count, not
 /// finite, or `beta_1 <= 0` (InvalidArgument / LengthMismatch naming

@@ -189,7 +189,7 @@ impl<'p> Factor<'p> {
         }
     }
 
-    /// [`Self::apply_qt`] with the sizes of [`Self::sizes`].
+    /// `Self::apply_qt` (test-only) with the sizes of [`Self::sizes`].
     #[inline(always)]
     fn apply_qt_sized<const R: usize, const C: usize>(&self, x: &mut [f64]) {
         let (rows, cols) = self.sizes::<R, C>();
@@ -245,7 +245,7 @@ impl<'p> Factor<'p> {
         self.mul_t_sized::<0, 0>(x);
     }
 
-    /// [`Self::mul_t`] with the sizes of [`Self::sizes`]: row `i` is
+    /// `Self::mul_t` (test-only) with the sizes of [`Self::sizes`]: row `i` is
     /// `T[i][i] x_i + T[i][i+1] x_(i+1) + ...` in that order.
     #[inline(always)]
     pub(super) fn mul_t_sized<const R: usize, const C: usize>(&self, x: &mut [f64]) {

@@ -278,8 +278,8 @@ fn blocked_product(rows: usize, inner: usize, cols: usize) -> bool {
 
 /// `a * b` into the column-major `out` (`rows x cols`), the same values as
 /// nalgebra's `a * b` bit for bit: its `gemm` on small matrices is column
-/// axpys, entry `(i, j)` being `a[i][0] b[0][j]` and then `a[i][k] b[k][j]
-/// + sum` for `k = 1..` in order (no fused multiply-add; an empty inner
+/// axpys, entry `(i, j)` being `a[i][0] b[0][j]` and then
+/// `a[i][k] b[k][j] + sum` for `k = 1..` in order (no fused multiply-add; an empty inner
 /// dimension gives `0`), done here the same way on slices;
 /// `matrixmultiply`'s case is nalgebra's own product. No temporary but in
 /// that case. `abs`: of `|a| |b|` (entries' absolute values, exact), as
@@ -444,7 +444,7 @@ fn ends_product(c: &DMatrix<f64>, m: &DMatrix<f64>, p: &DMatrix<f64>, abs: bool)
     out
 }
 
-/// [`ends_product`] into the column-major `out` (`c`'s shape), with `c`
+/// `ends_product` (test-only) into the column-major `out` (`c`'s shape), with `c`
 /// replaced by `|c|` when `c_abs` (entry by entry, exact: the same values
 /// as passing `abs_of(c)`, one matrix fewer).
 fn ends_product_into(

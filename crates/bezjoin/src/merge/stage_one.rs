@@ -65,7 +65,7 @@ pub const DATA_ROUNDING_MARGIN: f64 = 4.0;
 pub(crate) struct PieceInput<'a> {
     /// The caller's curve, or its elevation to the working degree.
     pub curve: std::borrow::Cow<'a, BezierCurve>,
-    /// "P", "Q", "curves[2]" ...
+    /// "P", "Q", `"curves[2]"` ...
     pub name: &'a str,
     /// Name of its keep-point list ("p_points", "keep_points" ...).
     pub points_name: &'a str,

@@ -229,7 +229,7 @@ impl NurbsCurve {
     /// of the exact span pole (the bound used is twice that), and the
     /// `k`-th derivative in `t`, `p!/(p-k)! sum Delta^k P_i B_i^(p-k)(t)`,
     /// moves by at most `p!/(p-k)! 2^k delta`: that, times `h^-k`, is added
-    /// to row `k`'s bound of [`bezier_span_jet_into`]'s analysis. `false`
+    /// to row `k`'s bound of [`Self::bezier_span_jet_into`]'s analysis. `false`
     /// (nothing written) for other curves.
     pub(crate) fn spans_jet_into(
         &self,
