@@ -152,15 +152,11 @@ pub unsafe extern "C" fn bzj_curve_eval(
     out: *mut f64,
     out_len: usize,
 ) -> BzjStatus {
-    guard(|| {
+    guard(move || {
         // SAFETY: caller contract.
         let curve = unsafe { curve_ref(c, "c") }?;
         if !t.is_finite() {
-            return Err(BezjoinError::NonFiniteScalar {
-                name: "t".into(),
-                value: t,
-            }
-            .into());
+            return Err(non_finite_t(t));
         }
         let needed = derivative_rows_len(max_order, curve.dim())?;
         match curve {
@@ -173,29 +169,62 @@ pub unsafe extern "C" fn bzj_curve_eval(
                     c.eval_derivatives_into(t, max_order, buf);
                 }
             }
-            Curve::Nurbs(n) => {
+            Curve::Nurbs(n) if max_order == 0 && matches!(n.dim(), 2 | 3) => {
+                // The parameter's error before the buffer's, as below.
                 let (first, last) = n.domain();
                 if !(first..=last).contains(&t) {
                     n.check_parameter("t", t)?;
                 }
                 // SAFETY: caller contract.
                 let buf = unsafe { output_slice(out, out_len, needed, "out") }?;
-                // Computed into a scratch block (on the stack up to 16
-                // doubles) and checked before anything is written.
-                let mut stack = [0.0f64; 16];
-                let mut heap = Vec::new();
-                let block: &mut [f64] = if needed <= stack.len() {
-                    &mut stack[..needed]
-                } else {
-                    heap.resize(needed, 0.0);
-                    &mut heap
-                };
-                n.eval_derivatives_checked_into(|| "t".into(), t, max_order, block)?;
-                buf.copy_from_slice(block);
+                if let Ok(buf) = <&mut [f64; 3]>::try_from(&mut *buf) {
+                    *buf = n.point_checked::<3>(|| "t".into(), t)?;
+                } else if let Ok(buf) = <&mut [f64; 2]>::try_from(buf) {
+                    *buf = n.point_checked::<2>(|| "t".into(), t)?;
+                }
+            }
+            Curve::Nurbs(n) => {
+                // SAFETY: caller contract.
+                unsafe { eval_nurbs(n, t, max_order, needed, out, out_len) }?;
             }
         }
         Ok(())
     })
+}
+
+/// [`bzj_curve_eval`] of a NURBS handle, out of line: its scratch block
+/// would otherwise give the Bezier path's frame its size.
+///
+/// # Safety
+/// `out` is null or points to `out_len` writable doubles.
+#[inline(never)]
+unsafe fn eval_nurbs(
+    n: &NurbsCurve,
+    t: f64,
+    max_order: usize,
+    needed: usize,
+    out: *mut f64,
+    out_len: usize,
+) -> Result<(), FfiError> {
+    let (first, last) = n.domain();
+    if !(first..=last).contains(&t) {
+        n.check_parameter("t", t)?;
+    }
+    // SAFETY: caller contract.
+    let buf = unsafe { output_slice(out, out_len, needed, "out") }?;
+    // Computed into a scratch block (on the stack up to 16 doubles) and
+    // checked before anything is written.
+    let mut stack = [0.0f64; 16];
+    let mut heap = Vec::new();
+    let block: &mut [f64] = if needed <= stack.len() {
+        &mut stack[..needed]
+    } else {
+        heap.resize(needed, 0.0);
+        &mut heap
+    };
+    n.eval_derivatives_checked_into(|| "t".into(), t, max_order, block)?;
+    buf.copy_from_slice(block);
+    Ok(())
 }
 
 /// The same curve written with degree `new_degree >= degree` (exact). A
@@ -512,6 +541,18 @@ fn check_nurbs_split(curve: &NurbsCurve, t: f64) -> Result<(), BezjoinError> {
 /// `(max_order + 1) * dim`, the doubles of one value-and-derivatives block
 /// (`bzj_curve_eval`, each parameter of `bzj_curve_eval_many`), or
 /// INVALID_ARGUMENT naming `max_order` when it overflows.
+/// NON_FINITE naming the parameter `t` (cold and out of line: the
+/// evaluation's hot path builds no error).
+#[cold]
+#[inline(never)]
+fn non_finite_t(t: f64) -> FfiError {
+    BezjoinError::NonFiniteScalar {
+        name: "t".into(),
+        value: t,
+    }
+    .into()
+}
+
 fn derivative_rows_len(max_order: usize, dim: usize) -> Result<usize, BezjoinError> {
     max_order
         .checked_add(1)
@@ -694,6 +735,75 @@ mod tests {
                     bzj_curve_free(bezier);
                     bzj_curve_free(nurbs);
                 }
+            }
+        }
+    }
+
+    /// The value of a NURBS handle of dimension 2 or 3 (its own path)
+    /// reports errors in the order of every other evaluation: the
+    /// parameter (not finite, then outside the domain) before the buffer,
+    /// a NULL buffer before its length; a short buffer is not written.
+    /// The values are those of the core's checked evaluation, bit for bit.
+    #[test]
+    fn nurbs_value_errors_come_in_the_general_order() {
+        use crate::nurbs::bzj_curve_to_nurbs;
+        for dim in [2usize, 3] {
+            let pts: Vec<f64> = (0..4 * dim).map(|i| (i * i) as f64 / 7.0 - 1.0).collect();
+            let mut bezier = std::ptr::null_mut();
+            let mut nurbs = std::ptr::null_mut();
+            // SAFETY: valid buffers, writable outs.
+            unsafe {
+                assert_eq!(
+                    bzj_curve_new(dim, 3, pts.as_ptr(), pts.len(), &mut bezier),
+                    BzjStatus::BZJ_OK
+                );
+                assert_eq!(bzj_curve_to_nurbs(bezier, &mut nurbs), BzjStatus::BZJ_OK);
+            }
+            let mut v = [7.0f64; 3];
+            // SAFETY (every call below): a live handle; `v` has 3 writable
+            // doubles, at least the length passed.
+            let eval = |t: f64, out: *mut f64, len: usize| unsafe {
+                bzj_curve_eval(nurbs, t, 0, out, len)
+            };
+            let buf = v.as_mut_ptr();
+            assert_eq!(eval(f64::NAN, buf, 1), BzjStatus::BZJ_ERR_NON_FINITE);
+            assert_eq!(last_error(), "t = NaN is not finite");
+            assert_eq!(eval(1.5, buf, 1), BzjStatus::BZJ_ERR_INVALID_ARGUMENT);
+            assert!(last_error().contains("t = 1.5"), "{}", last_error());
+            assert_eq!(
+                eval(-0.25, std::ptr::null_mut(), 0),
+                BzjStatus::BZJ_ERR_INVALID_ARGUMENT
+            );
+            assert!(last_error().contains("t = -0.25"), "{}", last_error());
+            assert_eq!(
+                eval(0.5, std::ptr::null_mut(), dim),
+                BzjStatus::BZJ_ERR_NULL_POINTER
+            );
+            assert!(last_error().contains("out"), "{}", last_error());
+            assert_eq!(eval(0.5, buf, dim - 1), BzjStatus::BZJ_ERR_BUFFER_TOO_SMALL);
+            assert_eq!(v, [7.0; 3], "a short buffer is not written");
+            // SAFETY: a live handle.
+            let curve = unsafe { curve_ref(nurbs, "c") }.unwrap();
+            let Curve::Nurbs(core) = curve else {
+                panic!("a NURBS handle")
+            };
+            for t in [0.0, 0.3, 0.5, 0.9, 1.0] {
+                assert_eq!(eval(t, buf, 3), BzjStatus::BZJ_OK);
+                let mut expected = vec![0.0; dim];
+                core.eval_derivatives_checked_into(|| "t".into(), t, 0, &mut expected)
+                    .unwrap();
+                assert!(
+                    expected
+                        .iter()
+                        .zip(&v)
+                        .all(|(a, b)| a.to_bits() == b.to_bits()),
+                    "dim {dim}, t {t}: {v:?} vs {expected:?}"
+                );
+            }
+            // SAFETY: live handles, released once.
+            unsafe {
+                bzj_curve_free(bezier);
+                bzj_curve_free(nurbs);
             }
         }
     }

@@ -107,28 +107,44 @@ pub(crate) fn no_unwind<T>(fallback: T, body: impl FnOnce() -> T) -> T {
 
 /// Run one entry point's body: a panic becomes `BZJ_ERR_INTERNAL`, an error
 /// its status with the message stored for [`bzj_last_error`].
+///
+/// Inlined into each entry point, with the error and panic reports out of
+/// line: the body's arguments then stay in registers instead of being
+/// spilled for a closure that another function reads back (a third of a
+/// degree-3 evaluation's instructions were this guard's; issue 20).
+#[inline(always)]
 pub(crate) fn guard(body: impl FnOnce() -> FfiResult) -> BzjStatus {
     match catch_unwind(AssertUnwindSafe(body)) {
         Ok(Ok(())) => {
             set_last_error("");
             BzjStatus::BZJ_OK
         }
-        Ok(Err(e)) => {
-            set_last_error(&e.message());
-            e.status()
-        }
-        Err(panic) => {
-            let what = panic
-                .downcast_ref::<&str>()
-                .map(|s| s.to_string())
-                .or_else(|| panic.downcast_ref::<String>().cloned())
-                .unwrap_or_else(|| "unknown panic".into());
-            set_last_error(&format!(
-                "internal error (a bug in bezjoin, please report): {what}"
-            ));
-            BzjStatus::BZJ_ERR_INTERNAL
-        }
+        Ok(Err(e)) => report_error(e),
+        Err(panic) => report_panic(panic),
     }
+}
+
+/// [`guard`]'s failure: the error's message stored, its status returned.
+#[cold]
+#[inline(never)]
+fn report_error(e: crate::status::FfiError) -> BzjStatus {
+    set_last_error(&e.message());
+    e.status()
+}
+
+/// [`guard`]'s panic (a bug): `BZJ_ERR_INTERNAL` with the panic's text.
+#[cold]
+#[inline(never)]
+fn report_panic(panic: Box<dyn std::any::Any + Send>) -> BzjStatus {
+    let what = panic
+        .downcast_ref::<&str>()
+        .map(|s| s.to_string())
+        .or_else(|| panic.downcast_ref::<String>().cloned())
+        .unwrap_or_else(|| "unknown panic".into());
+    set_last_error(&format!(
+        "internal error (a bug in bezjoin, please report): {what}"
+    ));
+    BzjStatus::BZJ_ERR_INTERNAL
 }
 
 /// Run the body of a function that cannot fail and returns nothing (the

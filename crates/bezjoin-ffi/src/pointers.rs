@@ -14,9 +14,42 @@ use crate::status::{FfiError, FfiResult};
 /// `ptr` is null or a live handle from this library.
 pub(crate) unsafe fn curve_ref<'a>(ptr: *const BzjCurve, name: &str) -> FfiResult<&'a Curve> {
     // SAFETY: the caller promises a live handle or null.
-    unsafe { ptr.as_ref() }
-        .map(|h| &h.curve)
-        .ok_or_else(|| FfiError::NullPointer(name.into()))
+    match unsafe { ptr.as_ref() } {
+        Some(h) => Ok(&h.curve),
+        None => Err(null_pointer(name)),
+    }
+}
+
+/// NULL_POINTER naming `name`. Cold and out of line, as every error of
+/// these helpers: the entry points' hot paths keep no string building in
+/// their frames (issue 20: a third of an evaluation's time was the frame
+/// of its guard).
+#[cold]
+#[inline(never)]
+pub(crate) fn null_pointer(name: &str) -> FfiError {
+    FfiError::NullPointer(name.into())
+}
+
+/// BUFFER_TOO_SMALL for the output `name` (cold, as [`null_pointer`]).
+#[cold]
+#[inline(never)]
+fn buffer_too_small(name: &str, needed: usize, given: usize) -> FfiError {
+    FfiError::BufferTooSmall {
+        name: name.into(),
+        needed,
+        given,
+    }
+}
+
+/// INVALID_ARGUMENT for a length no array can have (cold, as
+/// [`null_pointer`]).
+#[cold]
+#[inline(never)]
+fn impossible_length(name: &str, len: usize) -> FfiError {
+    FfiError::Core(BezjoinError::invalid(
+        format!("length of {name}"),
+        format!("{len} is larger than any array can be"),
+    ))
 }
 
 /// The caller's array of `len` doubles; a null pointer is accepted only when `len == 0`.
@@ -32,7 +65,7 @@ pub(crate) unsafe fn input_slice<'a, T>(
         return Ok(&[]);
     }
     if ptr.is_null() {
-        return Err(FfiError::NullPointer(name.into()));
+        return Err(null_pointer(name));
     }
     check_possible_length::<T>(len, name)?;
     // SAFETY: non-null and the caller promises `len` readable elements.
@@ -51,15 +84,11 @@ pub(crate) unsafe fn output_slice<'a>(
     name: &str,
 ) -> FfiResult<&'a mut [f64]> {
     if ptr.is_null() {
-        return Err(FfiError::NullPointer(name.into()));
+        return Err(null_pointer(name));
     }
     check_possible_length::<f64>(given, name)?;
     if given < needed {
-        return Err(FfiError::BufferTooSmall {
-            name: name.into(),
-            needed,
-            given,
-        });
+        return Err(buffer_too_small(name, needed, given));
     }
     // SAFETY: non-null and the caller promises `given >= needed` writable doubles.
     Ok(unsafe { std::slice::from_raw_parts_mut(ptr, needed) })
@@ -67,13 +96,11 @@ pub(crate) unsafe fn output_slice<'a>(
 
 /// A length no array can have (more than `isize::MAX` bytes) is a caller
 /// error, reported before any slice is made (making one would be UB).
+#[inline]
 fn check_possible_length<T>(len: usize, name: &str) -> FfiResult {
     let largest = isize::MAX as usize / std::mem::size_of::<T>().max(1);
     if len > largest {
-        return Err(FfiError::Core(BezjoinError::invalid(
-            format!("length of {name}"),
-            format!("{len} is larger than any array can be"),
-        )));
+        return Err(impossible_length(name, len));
     }
     Ok(())
 }

@@ -772,7 +772,7 @@ pub(crate) fn bernstein_horner(
 /// [`BINOMIAL_TABLE_DEGREE`] ([`bernstein_horner_fixed`], the same
 /// operations in the same order: bit-identical) and the general one
 /// otherwise. The evaluation entry points of [`BezierCurve`] go through it.
-#[inline]
+#[inline(always)]
 pub(crate) fn bernstein_horner_any(
     points: &[f64],
     n: usize,
@@ -820,11 +820,32 @@ fn bernstein_horner_small_degree<const D: usize>(
         6 => bernstein_horner_degree::<D, 6>(points, t, scale, out),
         7 => bernstein_horner_degree::<D, 7>(points, t, scale, out),
         8 => bernstein_horner_degree::<D, 8>(points, t, scale, out),
-        _ => bernstein_horner_fixed(points, n, t, scale, out),
+        _ => bernstein_horner_variable_degree(points, n, t, scale, out),
     }
 }
 
-/// [`bernstein_horner_fixed`] at the constant degree `N`.
+/// [`bernstein_horner_fixed`] out of line for the degrees above 8, so that
+/// its loop's registers do not make every caller of
+/// [`bernstein_horner_any`] save and restore them.
+#[inline(never)]
+fn bernstein_horner_variable_degree<const D: usize>(
+    points: &[f64],
+    n: usize,
+    t: f64,
+    scale: f64,
+    out: &mut [f64; D],
+) {
+    bernstein_horner_fixed(points, n, t, scale, out);
+}
+
+/// [`bernstein_horner_fixed`] at the constant degree `N`: the same
+/// operations in the same order (so the same bits), with the points read
+/// as `P_j` forwards or `P_(N-j)` backwards by a select on an index the
+/// compiler knows to be at most `N` (no bounds check, no stride
+/// arithmetic), and the finiteness of the result tested by one comparison
+/// (`v - v` is `+0` for a finite `v` and NaN otherwise). Evaluation is
+/// throughput-bound: a host's loop of calls overlaps their latency chains,
+/// so the instructions are what a call costs (issue 20).
 #[inline(never)]
 fn bernstein_horner_degree<const D: usize, const N: usize>(
     points: &[f64],
@@ -832,7 +853,33 @@ fn bernstein_horner_degree<const D: usize, const N: usize>(
     scale: f64,
     out: &mut [f64; D],
 ) {
-    bernstein_horner_fixed(points, N, t, scale, out);
+    let points = &points[..(N + 1) * D];
+    let s = 1.0 - t;
+    let forward = t > 0.5;
+    let (numerator, base) = if forward { (s, t) } else { (t, s) };
+    let ratio = numerator / base;
+    let factor = power(base, N) * scale;
+    let row = N * (N + 1) / 2;
+    let at = |j: usize| if forward { j } else { N - j };
+    let mut sum = [0.0f64; D];
+    let first = at(0);
+    for c in 0..D {
+        sum[c] = points[first * D + c];
+    }
+    for j in 1..=N {
+        let coef = BINOMIALS[row + j];
+        let i = at(j);
+        for c in 0..D {
+            sum[c] = sum[c] * ratio + coef * points[i * D + c];
+        }
+    }
+    for c in 0..D {
+        out[c] = sum[c] * factor;
+    }
+    // Not finite somewhere (NaN `t` aside): the general scheme's fallbacks.
+    if !all_finite(out) && !t.is_nan() {
+        bernstein_horner(points, N, D, t, scale, out);
+    }
 }
 
 /// `P(t_j)` for every parameter of `ts` into `out` (`ts.len() * D`,
@@ -987,6 +1034,15 @@ fn bernstein_horner_fixed<const D: usize>(
     if out.iter().any(|v| !v.is_finite()) && !t.is_nan() {
         bernstein_horner(points, n, D, t, scale, out);
     }
+}
+
+/// Whether every value is finite, by one comparison: `v - v` is `+0` for a
+/// finite `v` and NaN for an infinite or NaN one, and a sum with a NaN is
+/// NaN (instead of a test and a branch or mask per value).
+#[inline(always)]
+#[allow(clippy::eq_op)] // `v - v` is the test, not a mistake.
+pub(crate) fn all_finite(values: &[f64]) -> bool {
+    values.iter().fold(0.0, |probe, &v| probe + (v - v)) == 0.0
 }
 
 /// `base^n` by binary powering: the products of `f64::powi` in the same

@@ -714,6 +714,39 @@ impl NurbsCurve {
         }
     }
 
+    /// The point at `u` of a curve of dimension `D`: the value and the
+    /// errors of [`NurbsCurve::eval_derivatives_checked_into`] at order 0,
+    /// bit for bit, returned as an array. A polynomial one-span curve (a
+    /// Bezier curve as a NURBS handle) takes the Bezier kernel here with its
+    /// domain test and no scratch, so that such a handle costs little more
+    /// than the Bezier handle (issue 20); every other curve, a parameter
+    /// outside the domain and a value that is not finite go through
+    /// `eval_derivatives_checked_into`.
+    ///
+    /// # Panics
+    /// If the curve's dimension is not `D`.
+    #[inline]
+    pub fn point_checked<const D: usize>(
+        &self,
+        name: impl Fn() -> String,
+        u: f64,
+    ) -> crate::error::Result<[f64; D]> {
+        assert_eq!(self.dim, D);
+        let mut out = [0.0f64; D];
+        let (p, knots) = (self.degree, &self.knots[..]);
+        if self.weights.is_none() && p <= SPAN_FAST_MAX_DEGREE && knots.len() == 2 * p + 2 {
+            let (a, b) = (knots[p], knots[p + 1]);
+            if knots[0] == a && knots[2 * p + 1] == b && a <= u && u <= b {
+                bezier_jet::<D>(&self.points, p, u, a, b, 0, &mut out);
+                if crate::bezier::all_finite(&out) {
+                    return Ok(out);
+                }
+            }
+        }
+        self.eval_derivatives_checked_into(name, u, 0, &mut out)?;
+        Ok(out)
+    }
+
     /// Value and derivatives `0..=max_order` at `u` in the domain (from the
     /// right at an interior knot, the last span at the end) into `out`
     /// (`(max_order + 1) * dim` values) for dimensions 2 and 3 up to degree
@@ -852,11 +885,13 @@ fn bezier_jet<const D: usize>(
 ) {
     let len = b - a;
     // On [0, 1] (a Bezier curve as a NURBS handle) t is u itself: the same
-    // value as the division, without its latency.
+    // value as the division, without its latency. The division is out of
+    // line so that the compiler branches: as a select of both values, it
+    // kept the division's latency on every call (issue 20).
     let t = if a == 0.0 && len == 1.0 {
         u
     } else {
-        (u - a) / len
+        span_parameter(u, a, len)
     };
     if max_order == 0 {
         bernstein_horner_any(points, p, D, t, 1.0, out);
@@ -885,6 +920,13 @@ fn bezier_jet<const D: usize>(
         }
         out[(top + 1) * D..].fill(0.0);
     }
+}
+
+/// `(u - a) / len`, the parameter in a span of length `len` from `a`
+/// ([`bezier_jet`]; out of line on purpose).
+#[inline(never)]
+fn span_parameter(u: f64, a: f64, len: f64) -> f64 {
+    (u - a) / len
 }
 
 /// Rows `0..=top` (`top <= TABLE_MAX_ORDER`) of the jet from one span's
@@ -2026,6 +2068,83 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// `point_checked` is `eval_derivatives_checked_into` at order 0, bit
+    /// for bit, and fails where it fails with the same error: one-span
+    /// polynomial curves on `[0, 1]` (its own path) and on other domains,
+    /// one-span curves whose end knots are not clamped, rational and
+    /// multi-span curves, parameters at and between the ends, outside the
+    /// domain and not finite, and poles near the top of the `f64` range
+    /// (whose sums overflow on the way; the value itself may or may not).
+    #[test]
+    fn point_checked_is_the_checked_evaluation_at_order_zero() {
+        fn check<const D: usize>(c: &NurbsCurve, u: f64) -> bool {
+            let mut general = [f64::NAN; D];
+            let expected = c.eval_derivatives_checked_into(|| "u".into(), u, 0, &mut general);
+            let ours = c.point_checked::<D>(|| "u".into(), u);
+            match (ours, expected) {
+                (Ok(x), Ok(())) => {
+                    assert!(
+                        x.iter()
+                            .zip(&general)
+                            .all(|(a, b)| a.to_bits() == b.to_bits()),
+                        "u {u}: {x:?} vs {general:?} for {c:?}"
+                    );
+                    true
+                }
+                (Err(a), Err(b)) => {
+                    assert_eq!(a.to_string(), b.to_string(), "u {u}");
+                    false
+                }
+                (a, b) => panic!("u {u}: {a:?} vs {b:?} for {c:?}"),
+            }
+        }
+        let mut values = Values(50);
+        let (mut answered, mut refused) = (0, 0);
+        for case in 0..360 {
+            let dim = 2 + case % 2;
+            let p = 1 + (case / 2) % 9;
+            let c = match case % 6 {
+                // A Bezier curve as a NURBS handle: the fast path.
+                0 | 1 => {
+                    let magnitude = if case % 12 == 1 { 1e307 } else { 1.0 };
+                    let points = (0..(p + 1) * dim)
+                        .map(|_| magnitude * (4.0 * values.unit() - 2.0))
+                        .collect();
+                    NurbsCurve::from_bezier(&BezierCurve::new(dim, p, points).unwrap())
+                }
+                2 => curve(&mut values, dim, p, 1, false, true),
+                3 => curve(&mut values, dim, p, 1, false, false),
+                4 => curve(&mut values, dim, p, 1 + case % 3, true, case % 4 == 0),
+                _ => curve(&mut values, dim, p, 2 + case % 2, false, true),
+            };
+            let (a, b) = c.domain();
+            let mut us = vec![
+                a,
+                b,
+                0.5 * (a + b),
+                a - 1e-9,
+                b + 1.0,
+                f64::NAN,
+                f64::INFINITY,
+            ];
+            us.extend((0..6).map(|_| a + (b - a) * values.unit()));
+            for u in us {
+                let ok = if dim == 2 {
+                    check::<2>(&c, u)
+                } else {
+                    check::<3>(&c, u)
+                };
+                if ok {
+                    answered += 1;
+                } else {
+                    refused += 1;
+                }
+            }
+        }
+        // Both outcomes were compared (not only one of them).
+        assert!(answered > 2000 && refused > 1000, "{answered} / {refused}");
     }
 
     /// The span route (every route of `eval_derivatives_checked_into` in
