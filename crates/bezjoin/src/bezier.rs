@@ -842,10 +842,12 @@ fn bernstein_horner_variable_degree<const D: usize>(
 /// operations in the same order (so the same bits), with the points read
 /// as `P_j` forwards or `P_(N-j)` backwards by a select on an index the
 /// compiler knows to be at most `N` (no bounds check, no stride
-/// arithmetic), and the finiteness of the result tested by one comparison
-/// (`v - v` is `+0` for a finite `v` and NaN otherwise). Evaluation is
-/// throughput-bound: a host's loop of calls overlaps their latency chains,
-/// so the instructions are what a call costs (issue 20).
+/// arithmetic). Evaluation is mostly throughput-bound: a host's loop of
+/// calls overlaps their latency chains, so the instructions are what a call
+/// costs (issue 20). Not every saving is one: testing the finiteness with
+/// one comparison (a sum of `v - v`, NaN for a value that is not finite)
+/// took fewer instructions but lengthened the chain the branch waits for,
+/// and the derivatives (three kernels a call) got 5 % slower.
 #[inline(never)]
 fn bernstein_horner_degree<const D: usize, const N: usize>(
     points: &[f64],
@@ -877,7 +879,7 @@ fn bernstein_horner_degree<const D: usize, const N: usize>(
         out[c] = sum[c] * factor;
     }
     // Not finite somewhere (NaN `t` aside): the general scheme's fallbacks.
-    if !all_finite(out) && !t.is_nan() {
+    if out.iter().any(|v| !v.is_finite()) && !t.is_nan() {
         bernstein_horner(points, N, D, t, scale, out);
     }
 }
@@ -1034,15 +1036,6 @@ fn bernstein_horner_fixed<const D: usize>(
     if out.iter().any(|v| !v.is_finite()) && !t.is_nan() {
         bernstein_horner(points, n, D, t, scale, out);
     }
-}
-
-/// Whether every value is finite, by one comparison: `v - v` is `+0` for a
-/// finite `v` and NaN for an infinite or NaN one, and a sum with a NaN is
-/// NaN (instead of a test and a branch or mask per value).
-#[inline(always)]
-#[allow(clippy::eq_op)] // `v - v` is the test, not a mistake.
-pub(crate) fn all_finite(values: &[f64]) -> bool {
-    values.iter().fold(0.0, |probe, &v| probe + (v - v)) == 0.0
 }
 
 /// `base^n` by binary powering: the products of `f64::powi` in the same

@@ -738,7 +738,7 @@ impl NurbsCurve {
             let (a, b) = (knots[p], knots[p + 1]);
             if knots[0] == a && knots[2 * p + 1] == b && a <= u && u <= b {
                 bezier_jet::<D>(&self.points, p, u, a, b, 0, &mut out);
-                if crate::bezier::all_finite(&out) {
+                if out.iter().all(|x| x.is_finite()) {
                     return Ok(out);
                 }
             }
