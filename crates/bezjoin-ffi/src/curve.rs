@@ -181,6 +181,9 @@ pub unsafe extern "C" fn bzj_curve_eval(
                     *buf = n.point_checked::<3>(|| "t".into(), t)?;
                 } else if let Ok(buf) = <&mut [f64; 2]>::try_from(buf) {
                     *buf = n.point_checked::<2>(|| "t".into(), t)?;
+                } else {
+                    // (A widened arm must not return OK with nothing written.)
+                    unreachable!("the value arm takes dimensions 2 and 3 only");
                 }
             }
             Curve::Nurbs(n) => {
@@ -192,8 +195,9 @@ pub unsafe extern "C" fn bzj_curve_eval(
     })
 }
 
-/// [`bzj_curve_eval`] of a NURBS handle, out of line: its scratch block
-/// would otherwise give the Bezier path's frame its size.
+/// [`bzj_curve_eval`] of a NURBS handle (all but the value of one of
+/// dimension 2 or 3), out of line: its scratch block would otherwise give
+/// the Bezier path's frame its size.
 ///
 /// # Safety
 /// `out` is null or points to `out_len` writable doubles.
@@ -538,9 +542,6 @@ fn check_nurbs_split(curve: &NurbsCurve, t: f64) -> Result<(), BezjoinError> {
     Ok(())
 }
 
-/// `(max_order + 1) * dim`, the doubles of one value-and-derivatives block
-/// (`bzj_curve_eval`, each parameter of `bzj_curve_eval_many`), or
-/// INVALID_ARGUMENT naming `max_order` when it overflows.
 /// NON_FINITE naming the parameter `t` (cold and out of line: the
 /// evaluation's hot path builds no error).
 #[cold]
@@ -553,6 +554,9 @@ fn non_finite_t(t: f64) -> FfiError {
     .into()
 }
 
+/// `(max_order + 1) * dim`, the doubles of one value-and-derivatives block
+/// (`bzj_curve_eval`, each parameter of `bzj_curve_eval_many`), or
+/// INVALID_ARGUMENT naming `max_order` when it overflows.
 fn derivative_rows_len(max_order: usize, dim: usize) -> Result<usize, BezjoinError> {
     max_order
         .checked_add(1)
@@ -760,27 +764,38 @@ mod tests {
                 assert_eq!(bzj_curve_to_nurbs(bezier, &mut nurbs), BzjStatus::BZJ_OK);
             }
             let mut v = [7.0f64; 3];
-            // SAFETY (every call below): a live handle; `v` has 3 writable
-            // doubles, at least the length passed.
+            // SAFETY (every call below): a live handle; `out` is NULL or
+            // `v`'s 3 writable doubles (a fresh pointer each call), and the
+            // library writes no further than that whatever `len` says.
             let eval = |t: f64, out: *mut f64, len: usize| unsafe {
                 bzj_curve_eval(nurbs, t, 0, out, len)
             };
-            let buf = v.as_mut_ptr();
-            assert_eq!(eval(f64::NAN, buf, 1), BzjStatus::BZJ_ERR_NON_FINITE);
-            assert_eq!(last_error(), "t = NaN is not finite");
-            assert_eq!(eval(1.5, buf, 1), BzjStatus::BZJ_ERR_INVALID_ARGUMENT);
-            assert!(last_error().contains("t = 1.5"), "{}", last_error());
+            let null = std::ptr::null_mut();
             assert_eq!(
-                eval(-0.25, std::ptr::null_mut(), 0),
+                eval(f64::NAN, v.as_mut_ptr(), 1),
+                BzjStatus::BZJ_ERR_NON_FINITE
+            );
+            assert_eq!(last_error(), "t = NaN is not finite");
+            assert_eq!(
+                eval(1.5, v.as_mut_ptr(), 1),
                 BzjStatus::BZJ_ERR_INVALID_ARGUMENT
             );
+            assert!(last_error().contains("t = 1.5"), "{}", last_error());
+            assert_eq!(eval(-0.25, null, 0), BzjStatus::BZJ_ERR_INVALID_ARGUMENT);
             assert!(last_error().contains("t = -0.25"), "{}", last_error());
+            assert_eq!(eval(0.5, null, 0), BzjStatus::BZJ_ERR_NULL_POINTER);
+            assert!(last_error().contains("out"), "{}", last_error());
+            assert_eq!(eval(0.5, null, dim), BzjStatus::BZJ_ERR_NULL_POINTER);
             assert_eq!(
-                eval(0.5, std::ptr::null_mut(), dim),
-                BzjStatus::BZJ_ERR_NULL_POINTER
+                eval(0.5, v.as_mut_ptr(), usize::MAX),
+                BzjStatus::BZJ_ERR_INVALID_ARGUMENT
+            );
+            assert!(last_error().contains("length of out"), "{}", last_error());
+            assert_eq!(
+                eval(0.5, v.as_mut_ptr(), dim - 1),
+                BzjStatus::BZJ_ERR_BUFFER_TOO_SMALL
             );
             assert!(last_error().contains("out"), "{}", last_error());
-            assert_eq!(eval(0.5, buf, dim - 1), BzjStatus::BZJ_ERR_BUFFER_TOO_SMALL);
             assert_eq!(v, [7.0; 3], "a short buffer is not written");
             // SAFETY: a live handle.
             let curve = unsafe { curve_ref(nurbs, "c") }.unwrap();
@@ -788,7 +803,7 @@ mod tests {
                 panic!("a NURBS handle")
             };
             for t in [0.0, 0.3, 0.5, 0.9, 1.0] {
-                assert_eq!(eval(t, buf, 3), BzjStatus::BZJ_OK);
+                assert_eq!(eval(t, v.as_mut_ptr(), 3), BzjStatus::BZJ_OK);
                 let mut expected = vec![0.0; dim];
                 core.eval_derivatives_checked_into(|| "t".into(), t, 0, &mut expected)
                     .unwrap();

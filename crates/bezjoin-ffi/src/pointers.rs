@@ -26,7 +26,7 @@ pub(crate) unsafe fn curve_ref<'a>(ptr: *const BzjCurve, name: &str) -> FfiResul
 /// of its guard).
 #[cold]
 #[inline(never)]
-pub(crate) fn null_pointer(name: &str) -> FfiError {
+fn null_pointer(name: &str) -> FfiError {
     FfiError::NullPointer(name.into())
 }
 

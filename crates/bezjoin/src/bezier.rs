@@ -268,6 +268,16 @@ impl BezierCurve {
         let d = self.dim;
         let n = self.degree;
         assert_eq!(out.len(), (max_order + 1) * d);
+        let top = max_order.min(n);
+        let done = match d {
+            2 => derivatives_by_degree::<2>(&self.points, n, t, top, out),
+            3 => derivatives_by_degree::<3>(&self.points, n, t, top, out),
+            _ => false,
+        };
+        if done {
+            out[(top + 1) * d..].fill(0.0);
+            return;
+        }
         let len = self.points.len();
         let mut stack = [0.0f64; 96];
         let mut heap = Vec::new();
@@ -278,7 +288,6 @@ impl BezierCurve {
             heap.extend_from_slice(&self.points);
             &mut heap
         };
-        let top = max_order.min(n);
         let mut factor = 1.0;
         for k in 0..=top {
             let m = n - k;
@@ -881,6 +890,97 @@ fn bernstein_horner_degree<const D: usize, const N: usize>(
     // Not finite somewhere (NaN `t` aside): the general scheme's fallbacks.
     if out.iter().any(|v| !v.is_finite()) && !t.is_nan() {
         bernstein_horner(points, N, D, t, scale, out);
+    }
+}
+
+/// [`derivatives_degree`] for the degree `n` when it is at most 8; `false`
+/// (nothing written) otherwise.
+#[inline(always)]
+fn derivatives_by_degree<const D: usize>(
+    points: &[f64],
+    n: usize,
+    t: f64,
+    top: usize,
+    out: &mut [f64],
+) -> bool {
+    match n {
+        0 => derivatives_degree::<D, 0>(points, t, top, out),
+        1 => derivatives_degree::<D, 1>(points, t, top, out),
+        2 => derivatives_degree::<D, 2>(points, t, top, out),
+        3 => derivatives_degree::<D, 3>(points, t, top, out),
+        4 => derivatives_degree::<D, 4>(points, t, top, out),
+        5 => derivatives_degree::<D, 5>(points, t, top, out),
+        6 => derivatives_degree::<D, 6>(points, t, top, out),
+        7 => derivatives_degree::<D, 7>(points, t, top, out),
+        8 => derivatives_degree::<D, 8>(points, t, top, out),
+        _ => return false,
+    }
+    true
+}
+
+/// Rows `0..=top` (`top <= N`) of `BezierCurve::eval_derivatives_into` for
+/// `N + 1` points of dimension `D`: row `k` is
+/// `N!/(N-k)! sum_i (Delta^k P)_i B_i^(N-k)(t)`, each sum by the operations
+/// of [`bernstein_horner_degree`] at degree `N - k` with scale
+/// `N!/(N-k)!` (so the same bits as one such call per order, tested), but
+/// with the ratio `t / (1 - t)` or its inverse divided once for all the
+/// orders, the differences kept in an array of the degree's size (not a
+/// zeroed 96-value block), and no call or dispatch per order (issue 20: a
+/// value with two derivatives took 882 instructions through the C ABI).
+/// An order whose row is not finite is computed again by
+/// [`bernstein_horner`], whose fallbacks decide, as in the kernel.
+#[inline(never)]
+fn derivatives_degree<const D: usize, const N: usize>(
+    points: &[f64],
+    t: f64,
+    top: usize,
+    out: &mut [f64],
+) {
+    const ROWS: usize = 9;
+    debug_assert!(N < ROWS && top <= N);
+    let mut diff = [[0.0f64; D]; ROWS];
+    for (row, point) in diff.iter_mut().zip(points[..(N + 1) * D].chunks_exact(D)) {
+        row.copy_from_slice(point);
+    }
+    let out = &mut out[..(top + 1) * D];
+    let s = 1.0 - t;
+    let forward = t > 0.5;
+    let (numerator, base) = if forward { (s, t) } else { (t, s) };
+    let ratio = numerator / base;
+    let mut scale = 1.0;
+    for k in 0..=N {
+        if k > top {
+            break;
+        }
+        let m = N - k;
+        let factor = power(base, m) * scale;
+        let row = m * (m + 1) / 2;
+        let at = |j: usize| if forward { j } else { m - j };
+        let mut sum = diff[at(0)];
+        for j in 1..=m {
+            let coef = BINOMIALS[row + j];
+            let p = &diff[at(j)];
+            for c in 0..D {
+                sum[c] = sum[c] * ratio + coef * p[c];
+            }
+        }
+        let target = &mut out[k * D..(k + 1) * D];
+        for c in 0..D {
+            target[c] = sum[c] * factor;
+        }
+        if target.iter().any(|v| !v.is_finite()) && !t.is_nan() {
+            let flat = diff.as_flattened();
+            bernstein_horner(&flat[..(m + 1) * D], m, D, t, scale, target);
+        }
+        if k < top {
+            for i in 0..m {
+                let next = diff[i + 1];
+                for (x, later) in diff[i].iter_mut().zip(next) {
+                    *x = later - *x;
+                }
+            }
+            scale *= m as f64;
+        }
     }
 }
 
@@ -1568,45 +1668,59 @@ mod fixed_dimension_evaluation_tests {
         }
     }
 
-    /// `eval_into` and `eval_derivatives_into` on curves of dimension 2 and
-    /// 3 give the bits of the general scheme applied by hand (the old
-    /// path: differences of the points, one general sum per order).
+    /// `eval_into` and `eval_derivatives_into` on curves of dimensions 1 to
+    /// 4 give the bits of the general scheme applied by hand (the old
+    /// path: differences of the points, one general sum per order), for
+    /// every order count up to past the degree, every degree of the
+    /// specialised rows (0 to 8) and some above, and poles near `1e306`
+    /// (whose sums and derivatives overflow: the fallbacks' bits).
     #[test]
     fn curve_evaluation_is_the_general_scheme_to_the_bit() {
         let mut values = Values(33);
-        for dim in [2usize, 3] {
-            for n in [0usize, 1, 3, 5, 7, 15, 32] {
-                let points: Vec<f64> = (0..(n + 1) * dim).map(|_| 4.0 * values.signed()).collect();
-                let curve = BezierCurve::new(dim, n, points.clone()).unwrap();
-                for t in parameters(&mut values) {
-                    let mut value = vec![0.0; dim];
-                    curve.eval_into(t, &mut value);
-                    let mut general = vec![0.0; dim];
-                    bernstein_horner(&points, n, dim, t, 1.0, &mut general);
-                    assert!(same_bits(&value, &general), "dim {dim}, n {n}, t {t}");
+        for dim in [1usize, 2, 3, 4] {
+            for n in [0usize, 1, 2, 3, 4, 5, 6, 7, 8, 9, 15, 32] {
+                for magnitude in [4.0, 1e306] {
+                    let points: Vec<f64> = (0..(n + 1) * dim)
+                        .map(|_| magnitude * values.signed())
+                        .collect();
+                    let curve = BezierCurve::new(dim, n, points.clone()).unwrap();
+                    for t in parameters(&mut values) {
+                        let mut value = vec![0.0; dim];
+                        curve.eval_into(t, &mut value);
+                        let mut general = vec![0.0; dim];
+                        bernstein_horner(&points, n, dim, t, 1.0, &mut general);
+                        assert!(same_bits(&value, &general), "dim {dim}, n {n}, t {t}");
 
-                    let max_order = n + 1;
-                    let mut rows = vec![0.0; (max_order + 1) * dim];
-                    curve.eval_derivatives_into(t, max_order, &mut rows);
-                    let mut expected = vec![0.0; (max_order + 1) * dim];
-                    let mut diff = points.clone();
-                    let mut factor = 1.0;
-                    for k in 0..=n {
-                        let m = n - k;
-                        bernstein_horner(
-                            &diff[..(m + 1) * dim],
-                            m,
-                            dim,
-                            t,
-                            factor,
-                            &mut expected[k * dim..(k + 1) * dim],
-                        );
-                        for i in 0..m * dim {
-                            diff[i] = diff[i + dim] - diff[i];
+                        // Every order count, up to past the degree: the
+                        // degree-specialised rows stop at `top`.
+                        for max_order in 0..=n + 1 {
+                            let mut rows = vec![f64::NAN; (max_order + 1) * dim];
+                            curve.eval_derivatives_into(t, max_order, &mut rows);
+                            let mut expected = vec![0.0; (max_order + 1) * dim];
+                            let mut diff = points.clone();
+                            let mut factor = 1.0;
+                            for k in 0..=max_order.min(n) {
+                                let m = n - k;
+                                bernstein_horner(
+                                    &diff[..(m + 1) * dim],
+                                    m,
+                                    dim,
+                                    t,
+                                    factor,
+                                    &mut expected[k * dim..(k + 1) * dim],
+                                );
+                                for i in 0..m * dim {
+                                    diff[i] = diff[i + dim] - diff[i];
+                                }
+                                factor *= m as f64;
+                            }
+                            assert!(
+                                same_bits(&rows, &expected),
+                                "dim {dim}, n {n}, |P| {magnitude}, t {t}, order {max_order}: \
+                                 {rows:?} vs {expected:?}"
+                            );
                         }
-                        factor *= m as f64;
                     }
-                    assert!(same_bits(&rows, &expected), "dim {dim}, n {n}, t {t}");
                 }
             }
         }
