@@ -169,55 +169,47 @@ pub unsafe extern "C" fn bzj_curve_eval(
                     c.eval_derivatives_into(t, max_order, buf);
                 }
             }
-            Curve::Nurbs(n) if max_order == 0 && matches!(n.dim(), 2 | 3) => {
-                // The parameter's error before the buffer's, as below.
+            Curve::Nurbs(n) => {
+                // The parameter's error before the buffer's.
                 let (first, last) = n.domain();
                 if !(first..=last).contains(&t) {
                     n.check_parameter("t", t)?;
                 }
                 // SAFETY: caller contract.
                 let buf = unsafe { output_slice(out, out_len, needed, "out") }?;
-                if let Ok(buf) = <&mut [f64; 3]>::try_from(&mut *buf) {
-                    *buf = n.point_checked::<3>(|| "t".into(), t)?;
-                } else if let Ok(buf) = <&mut [f64; 2]>::try_from(buf) {
-                    *buf = n.point_checked::<2>(|| "t".into(), t)?;
+                // The value in dimension 2 or 3 (`buf` holds `dim` values
+                // at order 0) straight into the caller's buffer; the rest
+                // through a scratch block.
+                if max_order == 0
+                    && let Ok(point) = <&mut [f64; 3]>::try_from(&mut *buf)
+                {
+                    *point = n.point_checked::<3>(|| "t".into(), t)?;
+                } else if max_order == 0
+                    && let Ok(point) = <&mut [f64; 2]>::try_from(&mut *buf)
+                {
+                    *point = n.point_checked::<2>(|| "t".into(), t)?;
                 } else {
-                    // (A widened arm must not return OK with nothing written.)
-                    unreachable!("the value arm takes dimensions 2 and 3 only");
+                    eval_nurbs(n, t, max_order, buf)?;
                 }
-            }
-            Curve::Nurbs(n) => {
-                // SAFETY: caller contract.
-                unsafe { eval_nurbs(n, t, max_order, needed, out, out_len) }?;
             }
         }
         Ok(())
     })
 }
 
-/// [`bzj_curve_eval`] of a NURBS handle (all but the value of one of
-/// dimension 2 or 3), out of line: its scratch block would otherwise give
-/// the Bezier path's frame its size.
-///
-/// # Safety
-/// `out` is null or points to `out_len` writable doubles.
+/// [`bzj_curve_eval`] of a NURBS handle into `buf` (its checked length),
+/// all but the value in dimension 2 or 3: computed into a scratch block (on
+/// the stack up to 16 doubles) and checked before anything is written. Out
+/// of line: the block would otherwise give the Bezier path's frame its
+/// size.
 #[inline(never)]
-unsafe fn eval_nurbs(
+fn eval_nurbs(
     n: &NurbsCurve,
     t: f64,
     max_order: usize,
-    needed: usize,
-    out: *mut f64,
-    out_len: usize,
-) -> Result<(), FfiError> {
-    let (first, last) = n.domain();
-    if !(first..=last).contains(&t) {
-        n.check_parameter("t", t)?;
-    }
-    // SAFETY: caller contract.
-    let buf = unsafe { output_slice(out, out_len, needed, "out") }?;
-    // Computed into a scratch block (on the stack up to 16 doubles) and
-    // checked before anything is written.
+    buf: &mut [f64],
+) -> Result<(), BezjoinError> {
+    let needed = buf.len();
     let mut stack = [0.0f64; 16];
     let mut heap = Vec::new();
     let block: &mut [f64] = if needed <= stack.len() {
